@@ -1,0 +1,68 @@
+"""vehdyn: vehicle dynamics in Python — tires, handling and ride.
+
+API index
+---------
+Model contract
+    :class:`Signal`, :class:`Model`, :class:`LinearModel`, :func:`connect_in_series`
+Simulation and results
+    :func:`simulate`, :class:`SimulationResult`, :class:`FrequencyResponse`, :class:`Modes`
+Parameters
+    :func:`load_vehicle`, :func:`shipped_vehicles`, :class:`Vehicle` (and its groups in
+    :mod:`vehdyn.params`), :func:`data_path`
+Errors
+    :class:`VehdynError`, :class:`ParameterError`, :class:`SimulationError`, :class:`TirFileError`
+Conventions and units
+    :mod:`vehdyn.conventions` (SAE J670 / ISO 8855 / ISO-W signs), :mod:`vehdyn.units`
+Subpackages (imported on first use)
+    :mod:`vehdyn.mechanics` (rigid body), :mod:`vehdyn.tire`, :mod:`vehdyn.handling`,
+    :mod:`vehdyn.ride`, :mod:`vehdyn.analysis`, :mod:`vehdyn.plotting`
+
+Importing vehdyn imports numpy only; scipy, pandas, matplotlib and python-control are imported
+when a function needs them.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from .errors import ParameterError, SimulationError, TirFileError, VehdynError
+from .linear import LinearModel, connect_in_series
+from .model import Model
+from .params import Vehicle, data_path, load_vehicle, shipped_vehicles
+from .results import FrequencyResponse, SimulationResult
+from .signals import Signal
+from .simulate import simulate
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Signal",
+    "Model",
+    "LinearModel",
+    "connect_in_series",
+    "simulate",
+    "SimulationResult",
+    "FrequencyResponse",
+    "Modes",
+    "Vehicle",
+    "load_vehicle",
+    "shipped_vehicles",
+    "data_path",
+    "VehdynError",
+    "ParameterError",
+    "SimulationError",
+    "TirFileError",
+]
+
+_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "analysis", "plotting", "conventions", "units", "params",
+                "cli"}
+
+
+def __getattr__(name: str):
+    if name in _SUBPACKAGES:
+        return importlib.import_module(f".{name}", __name__)
+    if name == "Modes":
+        from .analysis.modal import Modes
+
+        return Modes
+    raise AttributeError(f"module 'vehdyn' has no attribute {name!r}")

@@ -1,0 +1,158 @@
+"""Axis systems and sign conventions: the one place where vehdyn flips a sign.
+
+Three axis systems meet in vehicle dynamics:
+
+* **SAE J670 vehicle axes** (used by every vehdyn vehicle model): x forward, y to the right, z down;
+  body velocities u, v, w; body rates p, q, r; Euler angles roll phi, pitch theta, yaw psi in the
+  order yaw-pitch-roll. A positive steer angle turns the vehicle to the right.
+* **ISO 8855 vehicle axes**: x forward, y to the left, z up. A positive steer angle turns left.
+* **ISO-W (TYDEX) tire axes**, the convention of ``.tir`` files and of MFeval: x forward in the
+  wheel plane, y to the left, z up; slip angle alpha = atan(V_sy / |V_cx|), so that a tire sliding
+  to its left (alpha > 0) makes a negative lateral force for a tire with the usual negative
+  ``PKY1``; longitudinal slip kappa = -V_sx / |V_cx| (positive when driving); camber gamma
+  positive for a rotation about +x; normal load F_z a positive compressive magnitude.
+
+Both pairs (SAE/ISO 8855 and SAE-tire/ISO-W) differ by a half turn about the x axis: components
+along y and z change sign, components along x do not. So do rotations: a rate or angle about x
+keeps its sign, one about y or z changes it. Tire slip angle, turn slip and steer angle, being
+rotations about z, change sign; slip ratio and camber keep theirs.
+
+Vehicle models call these functions; nothing else in vehdyn flips a sign between conventions.
+
+References
+----------
+SAE J670 (2008), *Vehicle Dynamics Terminology*. ISO 8855:2011, *Road vehicles - Vehicle dynamics
+and road-holding ability - Vocabulary*. H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed.,
+Butterworth-Heinemann, 2012, sec. 1.2 and Fig. 4.21 (TYDEX W-axis system).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+__all__ = [
+    "flip_y_z",
+    "iso8855_to_sae",
+    "sae_to_iso8855",
+    "rotation_iso8855_to_sae",
+    "rotation_sae_to_iso8855",
+    "steer_angle_sae_to_iso8855",
+    "steer_angle_iso8855_to_sae",
+    "TireSlips",
+    "TireLoads",
+    "tire_slips_sae_to_iso_w",
+    "tire_slips_iso_w_to_sae",
+    "tire_forces_iso_w_to_sae",
+    "tire_forces_sae_to_iso_w",
+]
+
+
+def flip_y_z(x, y, z):
+    """Components of a vector in the other of two axis systems related by a half turn about x.
+
+    Parameters
+    ----------
+    x, y, z : array_like
+        Components of a force, velocity, position or acceleration.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(x, -y, -z)``. The map is its own inverse.
+    """
+    return np.asarray(x), -np.asarray(y), -np.asarray(z)
+
+
+def iso8855_to_sae(x, y, z):
+    """Vector components from ISO 8855 (y left, z up) to SAE J670 (y right, z down)."""
+    return flip_y_z(x, y, z)
+
+
+def sae_to_iso8855(x, y, z):
+    """Vector components from SAE J670 (y right, z down) to ISO 8855 (y left, z up)."""
+    return flip_y_z(x, y, z)
+
+
+def rotation_iso8855_to_sae(about_x, about_y, about_z):
+    """Angles, rates or moments from ISO 8855 to SAE J670: about x kept, about y and z negated."""
+    return np.asarray(about_x), -np.asarray(about_y), -np.asarray(about_z)
+
+
+def rotation_sae_to_iso8855(about_x, about_y, about_z):
+    """Angles, rates or moments from SAE J670 to ISO 8855 (the inverse map; the same flips)."""
+    return rotation_iso8855_to_sae(about_x, about_y, about_z)
+
+
+def steer_angle_sae_to_iso8855(steer_angle):
+    """Steer angle [rad]: SAE (positive turns right) to ISO 8855 (positive turns left)."""
+    return -np.asarray(steer_angle)
+
+
+def steer_angle_iso8855_to_sae(steer_angle):
+    """Steer angle [rad]: ISO 8855 (positive turns left) to SAE (positive turns right)."""
+    return -np.asarray(steer_angle)
+
+
+class TireSlips(NamedTuple):
+    """Slip quantities of one tire: slip ratio [-], slip angle [rad], camber [rad], turn slip [1/m]."""
+
+    kappa: np.ndarray
+    alpha: np.ndarray
+    gamma: np.ndarray
+    phit: np.ndarray
+
+
+class TireLoads(NamedTuple):
+    """Forces [N] and moments [N*m] on a tire at the contact centre, in one axis system."""
+
+    fx: np.ndarray
+    fy: np.ndarray
+    fz: np.ndarray
+    mx: np.ndarray
+    my: np.ndarray
+    mz: np.ndarray
+
+
+def tire_slips_sae_to_iso_w(kappa, alpha, gamma=0.0, phit=0.0) -> TireSlips:
+    """Tire slips from the SAE tire axis system to ISO-W (the ``.tir`` file's convention).
+
+    Parameters
+    ----------
+    kappa : array_like
+        Longitudinal slip ratio [-]; the same in both systems (positive when driving).
+    alpha : array_like
+        SAE slip angle [rad], atan(v_y / v_x) with y to the right.
+    gamma : array_like, optional
+        Inclination (camber) angle [rad], a rotation about x: the same in both systems.
+    phit : array_like, optional
+        Turn slip [1/m], a curvature about z: negated.
+
+    Returns
+    -------
+    TireSlips
+        ``(kappa, -alpha, gamma, -phit)``.
+    """
+    return TireSlips(np.asarray(kappa), -np.asarray(alpha), np.asarray(gamma), -np.asarray(phit))
+
+
+def tire_slips_iso_w_to_sae(kappa, alpha, gamma=0.0, phit=0.0) -> TireSlips:
+    """Tire slips from ISO-W to the SAE tire axis system (the same flips as the inverse)."""
+    return tire_slips_sae_to_iso_w(kappa, alpha, gamma, phit)
+
+
+def tire_forces_iso_w_to_sae(fx, fy, fz, mx, my, mz) -> TireLoads:
+    """Tire forces and moments from ISO-W (y left, z up) to SAE (y right, z down).
+
+    F_x and M_x keep their signs; F_y, F_z, M_y and M_z change sign. The ISO-W normal force F_z is
+    the positive load; in SAE axes the road pushes the tire up, so the SAE F_z is negative.
+    """
+    fx, fy, fz = flip_y_z(fx, fy, fz)
+    mx, my, mz = rotation_iso8855_to_sae(mx, my, mz)
+    return TireLoads(fx, fy, fz, mx, my, mz)
+
+
+def tire_forces_sae_to_iso_w(fx, fy, fz, mx, my, mz) -> TireLoads:
+    """Tire forces and moments from SAE to ISO-W (the inverse of :func:`tire_forces_iso_w_to_sae`)."""
+    return tire_forces_iso_w_to_sae(fx, fy, fz, mx, my, mz)

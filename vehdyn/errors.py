@@ -1,0 +1,72 @@
+"""Exceptions raised by vehdyn.
+
+Every error names the parameter, signal or file position at fault and the value it found, so that
+a bad input is reported where it enters and never surfaces later as a NaN inside a solver.
+"""
+
+from __future__ import annotations
+
+__all__ = ["VehdynError", "ParameterError", "SimulationError", "TirFileError"]
+
+
+class VehdynError(Exception):
+    """Base class of every exception raised on purpose by vehdyn."""
+
+
+class ParameterError(VehdynError, ValueError):
+    """A parameter is missing, unknown, of the wrong type, non-finite or out of range.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong; it names the parameter and the value.
+    key : str, optional
+        Dotted path of the offending parameter (``"suspension.front_spring_rate"``).
+    value : object, optional
+        The offending value.
+    """
+
+    def __init__(self, message: str, *, key: str | None = None, value: object = None):
+        super().__init__(message)
+        self.key = key
+        self.value = value
+
+
+class SimulationError(VehdynError, RuntimeError):
+    """An integration failed or produced a non-finite state.
+
+    Attributes
+    ----------
+    time : float or None
+        Simulation time [s] at which the failure was detected.
+    signal : str or None
+        Name of the state that became non-finite, where one did.
+    """
+
+    def __init__(self, message: str, *, time: float | None = None, signal: str | None = None):
+        super().__init__(message)
+        self.time = time
+        self.signal = signal
+
+
+class TirFileError(VehdynError, ValueError):
+    """A ``.tir`` tire property file cannot be read.
+
+    Attributes
+    ----------
+    path : str or None
+        The file.
+    line : int or None
+        1-based line number of the offending line.
+    """
+
+    def __init__(self, message: str, *, path: str | None = None, line: int | None = None):
+        where = ""
+        if path is not None:
+            where = f"{path}"
+            if line is not None:
+                where += f", line {line}"
+            where += ": "
+        super().__init__(where + message)
+        self.path = path
+        self.line = line

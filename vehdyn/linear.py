@@ -1,0 +1,418 @@
+"""Linear time-invariant models with named signals.
+
+:class:`LinearModel` is the state-space form dx/dt = A x + B u, y = C x + D u of a vehdyn model. It
+is itself a :class:`~vehdyn.Model` (so it simulates, and linearizes to itself exactly), and it adds
+what linear analysis needs: export to python-control and scipy, frequency responses vectorized
+over frequency, and modal analysis, none of which import python-control.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+
+from .errors import ParameterError
+from .model import Model, signal_vector
+from .signals import Signal, as_signals, names_of
+
+__all__ = ["LinearModel", "connect_in_series"]
+
+
+def _matrix(value, name: str, shape: tuple[int, int]) -> np.ndarray:
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a real matrix, got {value!r}", key=name, value=value) from None
+    if arr.size == 0 and 0 in shape:
+        return np.zeros(shape)
+    if arr.ndim == 0 and shape == (1, 1):
+        arr = arr.reshape(1, 1)
+    if arr.shape != shape:
+        raise ParameterError(f"{name} must have shape {shape}, got {arr.shape}", key=name, value=arr.shape)
+    if not np.all(np.isfinite(arr)):
+        i, j = np.argwhere(~np.isfinite(arr))[0]
+        raise ParameterError(f"{name}[{i}, {j}] is not finite ({arr[i, j]})", key=name, value=arr[i, j])
+    return arr
+
+
+def _velocity_name(dof: str) -> str:
+    """Name of the rate of a coordinate: ``*_displacement`` -> ``*_velocity``, ``*_angle`` -> ``*_rate``."""
+    for suffix, rate in (("_displacement", "_velocity"), ("_angle", "_rate"), ("_position", "_velocity")):
+        if dof.endswith(suffix):
+            return dof[: -len(suffix)] + rate
+    return dof + "_velocity"
+
+
+class LinearModel(Model):
+    """Linear time-invariant state-space model with named signals.
+
+    Parameters
+    ----------
+    A, B, C, D : array_like
+        State, input, output and feedthrough matrices. ``C`` defaults to the identity (the outputs
+        are the states) and ``D`` to zeros.
+    states, inputs, outputs : sequence of str or Signal
+        Signal names; ``outputs`` defaults to the states.
+    x_op, u_op, y_op : array_like, optional
+        Operating point of a linearized model (its signals are deviations from it).
+    name : str, optional
+        Label used in exports.
+    phenomena : iterable of str, optional
+        What the model represents (see :data:`vehdyn.model.PHENOMENA`).
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> m = vehdyn.LinearModel([[0, 1], [-4, -0.4]], [[0], [1]], states=["position", "position_velocity"],
+    ...                        inputs=["force"])
+    >>> m.modes().natural_frequency_hz[0].round(4)
+    0.3183
+    """
+
+    def __init__(
+        self,
+        A,
+        B,
+        C=None,
+        D=None,
+        *,
+        states: Sequence[str | Signal],
+        inputs: Sequence[str | Signal],
+        outputs: Sequence[str | Signal] | None = None,
+        x_op=None,
+        u_op=None,
+        y_op=None,
+        name: str | None = None,
+        phenomena=frozenset(),
+    ):
+        self.declare(states=states, inputs=inputs)
+        if outputs is not None:
+            self.declare(outputs=outputs)
+        n, m = len(self.states), len(self.inputs)
+        p = len(self.outputs) if outputs is not None else n
+        self.A = _matrix(A, "A", (n, n))
+        self.B = _matrix(B, "B", (n, m))
+        if C is None:
+            if outputs is not None and p != n:
+                raise ParameterError("C is required when the outputs are not the states", key="C", value=None)
+            C = np.eye(n)
+        self.C = _matrix(C, "C", (p, n))
+        self.D = _matrix(np.zeros((p, m)) if D is None else D, "D", (p, m))
+        if outputs is None:
+            # the outputs are the states, explicitly (so that to_control() names them)
+            self.outputs = self.states
+        self.x_op = signal_vector(x_op, self.states, "x_op")
+        self.u_op = signal_vector(u_op, self.inputs, "u_op")
+        self.y_op = np.zeros(p) if y_op is None else np.asarray(y_op, dtype=float).reshape(p)
+        self.name = name or "LinearModel"
+        self.phenomena = frozenset(phenomena)
+        self.second_order = None  # (M, C, K, F, dof names) when built by from_second_order
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def from_second_order(
+        cls,
+        M,
+        C,
+        K,
+        F=None,
+        *,
+        dof: Sequence[str | Signal],
+        inputs: Sequence[str | Signal] = (),
+        velocities: Sequence[str | Signal] | None = None,
+        outputs: Sequence[str | Signal] | None = None,
+        output_matrix=None,
+        feedthrough=None,
+        name: str | None = None,
+        phenomena=frozenset(),
+    ) -> "LinearModel":
+        """State-space model of the mass-damper-spring system M q'' + C q' + K q = F u.
+
+        Parameters
+        ----------
+        M, C, K : array_like, shape (n, n)
+            Mass [kg or kg*m^2], damping [N*s/m ...] and stiffness [N/m ...] matrices. M must be
+            symmetric positive definite.
+        F : array_like, shape (n, m), optional
+            Input matrix (generalized force per unit input).
+        dof : sequence of str
+            Names of the coordinates q (``"sprung_displacement"``, ``"pitch_angle"``).
+        inputs : sequence of str
+            Input names.
+        velocities : sequence of str, optional
+            Names of q'. By default ``*_displacement`` becomes ``*_velocity``, ``*_angle``
+            becomes ``*_rate`` and any other name gets ``_velocity`` appended.
+        outputs, output_matrix, feedthrough : optional
+            Outputs and their ``C``, ``D`` matrices over the state ``[q, q']``; by default the
+            outputs are the states.
+
+        Returns
+        -------
+        LinearModel
+            States ``[q, q']`` with ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` and ``B = [[0], [M^-1 F]]``;
+            ``model.second_order`` keeps ``(M, C, K, F)`` for :meth:`modal_analysis`.
+        """
+        dof_signals = as_signals(dof, "dof")
+        n = len(dof_signals)
+        M = _matrix(M, "M", (n, n))
+        Cm = _matrix(C, "C", (n, n))
+        K = _matrix(K, "K", (n, n))
+        in_signals = as_signals(inputs, "inputs")
+        F = _matrix(np.zeros((n, len(in_signals))) if F is None else F, "F", (n, len(in_signals)))
+        if not np.allclose(M, M.T, rtol=1e-12, atol=0.0):
+            raise ParameterError("M must be symmetric", key="M", value=M)
+        try:
+            np.linalg.cholesky(M)
+        except np.linalg.LinAlgError:
+            raise ParameterError(
+                f"M must be positive definite; its eigenvalues are {np.linalg.eigvalsh(M)}", key="M", value=M
+            ) from None
+        if velocities is None:
+            velocities = [_velocity_name(s.name) for s in dof_signals]
+        vel_signals = as_signals(velocities, "velocities")
+        Minv = np.linalg.inv(M)
+        A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ Cm]])
+        B = np.vstack([np.zeros_like(F), Minv @ F])
+        model = cls(
+            A,
+            B,
+            output_matrix,
+            feedthrough,
+            states=dof_signals + vel_signals,
+            inputs=in_signals,
+            outputs=outputs,
+            name=name,
+            phenomena=phenomena,
+        )
+        model.second_order = (M, Cm, K, F, tuple(s.name for s in dof_signals))
+        return model
+
+    # ------------------------------------------------------------------ the model contract
+    def rhs(self, t, x, u):
+        return self.A @ x + self.B @ u
+
+    def output(self, t, x, u):
+        return self.C @ x + self.D @ u
+
+    def jacobian(self, t, x, u):
+        return self.A, self.B, self.C, self.D
+
+    def linearize(self, x0=None, u0=None, t: float = 0.0) -> "LinearModel":
+        """A linear model is its own linearization: the same matrices and names."""
+        x0 = self.state_vector(x0)
+        u0 = self.input_vector(u0)
+        return LinearModel(
+            self.A,
+            self.B,
+            self.C,
+            self.D,
+            states=self.states,
+            inputs=self.inputs,
+            outputs=self.outputs,
+            x_op=x0,
+            u_op=u0,
+            y_op=self.output(t, x0, u0),
+            name=self.name,
+            phenomena=self.phenomena,
+        )
+
+    # ------------------------------------------------------------------ selection and composition
+    def select(self, outputs=None, inputs=None) -> "LinearModel":
+        """The sub-model from ``inputs`` to ``outputs`` (names; ``None`` keeps all)."""
+        out_idx = [self.index(o, "outputs") for o in (outputs or self.output_names)]
+        in_idx = [self.index(i, "inputs") for i in (inputs or self.input_names)]
+        return LinearModel(
+            self.A,
+            self.B[:, in_idx],
+            self.C[out_idx],
+            self.D[np.ix_(out_idx, in_idx)],
+            states=self.states,
+            inputs=[self.inputs[i] for i in in_idx],
+            outputs=[self.outputs[i] for i in out_idx],
+            name=self.name,
+            phenomena=self.phenomena,
+        )
+
+    # ------------------------------------------------------------------ exports
+    def to_control(self, name: str | None = None, **kwargs):
+        """This model as a ``control.StateSpace`` with every signal name (imports python-control)."""
+        import control as ct
+
+        return ct.ss(
+            self.A,
+            self.B,
+            self.C,
+            self.D,
+            states=list(self.state_names),
+            inputs=list(self.input_names),
+            outputs=list(self.output_names),
+            name=name or self.name.replace(" ", "_").replace(".", "_"),
+            **kwargs,
+        )
+
+    @classmethod
+    def from_control(cls, sys, **kwargs) -> "LinearModel":
+        """A :class:`LinearModel` from a ``control.StateSpace``, keeping its signal names."""
+        return cls(
+            sys.A,
+            sys.B,
+            sys.C,
+            sys.D,
+            states=kwargs.pop("states", sys.state_labels),
+            inputs=kwargs.pop("inputs", sys.input_labels),
+            outputs=kwargs.pop("outputs", sys.output_labels),
+            **kwargs,
+        )
+
+    def to_scipy(self):
+        """This model as a ``scipy.signal.StateSpace`` (scipy keeps no names)."""
+        from scipy import signal
+
+        return signal.StateSpace(self.A, self.B, self.C, self.D)
+
+    # ------------------------------------------------------------------ analysis
+    def poles(self) -> np.ndarray:
+        """Eigenvalues of A [1/s]."""
+        return np.linalg.eigvals(self.A)
+
+    def is_stable(self) -> bool:
+        """True when every eigenvalue of A has a negative real part."""
+        return bool(np.all(self.poles().real < 0))
+
+    def dc_gain(self) -> np.ndarray:
+        """Steady-state gain -C A^-1 B + D, shape (n_outputs, n_inputs)."""
+        return self.D - self.C @ np.linalg.solve(self.A, self.B)
+
+    def frequency_response(self, omega, outputs=None, inputs=None):
+        """Complex frequency response C (j omega I - A)^-1 B + D.
+
+        Parameters
+        ----------
+        omega : array_like
+            Angular frequencies [rad/s].
+        outputs, inputs : sequence of str, optional
+            Restrict to these signals.
+
+        Returns
+        -------
+        FrequencyResponse
+            ``response[output, input, frequency]``; all frequencies are solved in one batched
+            linear solve, without python-control.
+        """
+        from .results import FrequencyResponse
+
+        model = self if outputs is None and inputs is None else self.select(outputs, inputs)
+        omega = np.atleast_1d(np.asarray(omega, dtype=float))
+        if omega.ndim != 1 or not np.all(np.isfinite(omega)):
+            raise ParameterError("omega must be a finite 1-D array of angular frequencies [rad/s]", key="omega", value=omega)
+        n = model.A.shape[0]
+        s = 1j * omega
+        if n == 0:
+            H = np.broadcast_to(model.D[:, :, None], model.D.shape + (omega.size,)).astype(complex)
+        else:
+            Z = s[:, None, None] * np.eye(n) - model.A
+            try:
+                X = np.linalg.solve(Z, np.broadcast_to(model.B.astype(complex), (omega.size,) + model.B.shape))
+            except np.linalg.LinAlgError:
+                X = np.empty((omega.size,) + model.B.shape, dtype=complex)
+                for k in range(omega.size):  # only at a pole on the imaginary axis
+                    try:
+                        X[k] = np.linalg.solve(Z[k], model.B)
+                    except np.linalg.LinAlgError:
+                        X[k] = np.inf
+            H = np.einsum("pn,wnm->pmw", model.C, X) + model.D[:, :, None]
+        return FrequencyResponse(
+            omega=omega,
+            response=H,
+            outputs=model.outputs,
+            inputs=model.inputs,
+        )
+
+    def modes(self):
+        """Eigenvalues, natural frequencies, damping ratios and mode shapes of A.
+
+        Returns
+        -------
+        Modes
+            One entry per real eigenvalue and per complex-conjugate pair (the member with positive
+            imaginary part), sorted by natural frequency; shapes are labelled by state name and
+            scaled so that their largest entry is 1.
+        """
+        from .analysis.modal import state_space_modes
+
+        return state_space_modes(self.A, self.states)
+
+    def modal_analysis(self):
+        """Undamped modal analysis in mass-normalized coordinates (models from :meth:`from_second_order`).
+
+        Returns
+        -------
+        SecondOrderModes
+            See :func:`vehdyn.analysis.modal.modal_analysis`.
+        """
+        from .analysis.modal import modal_analysis
+
+        if self.second_order is None:
+            raise ParameterError(
+                "modal_analysis needs a model built by LinearModel.from_second_order", key="second_order", value=None
+            )
+        M, C, K, _, dof = self.second_order
+        return modal_analysis(M, K, C, dof=dof)
+
+    def __repr__(self) -> str:
+        return (
+            f"<LinearModel {self.name!r}: states {list(self.state_names)}, inputs {list(self.input_names)}, "
+            f"outputs {list(self.output_names)}>"
+        )
+
+
+def connect_in_series(upstream: LinearModel, downstream: LinearModel, connections=None, *, name=None) -> LinearModel:
+    """Feed outputs of ``upstream`` into inputs of ``downstream``.
+
+    Parameters
+    ----------
+    upstream, downstream : LinearModel
+    connections : mapping of str to str, optional
+        ``{downstream_input: upstream_output}``; by default every downstream input that shares a
+        name with an upstream output is connected.
+
+    Returns
+    -------
+    LinearModel
+        States: upstream's then downstream's. Inputs: upstream's, then the downstream inputs left
+        unconnected. Outputs: downstream's, then upstream's outputs whose names are not taken.
+        This is how a road shaping filter is appended to a ride model.
+    """
+    if connections is None:
+        connections = {i: i for i in downstream.input_names if i in upstream.output_names}
+    if not connections:
+        raise ParameterError("connect_in_series: no input of downstream matches an output of upstream",
+                             key="connections", value=None)
+    n1, n2 = upstream.n_states, downstream.n_states
+    conn_in = [downstream.index(i, "inputs") for i in connections]
+    conn_out = [upstream.index(o, "outputs") for o in connections.values()]
+    free_in = [k for k in range(downstream.n_inputs) if k not in conn_in]
+    # downstream input vector = S @ y1 + T @ u_free
+    S = np.zeros((downstream.n_inputs, upstream.n_outputs))
+    S[conn_in, conn_out] = 1.0
+    T = np.zeros((downstream.n_inputs, len(free_in)))
+    T[free_in, range(len(free_in))] = 1.0
+    A1, B1, C1, D1 = upstream.A, upstream.B, upstream.C, upstream.D
+    A2, B2, C2, D2 = downstream.A, downstream.B, downstream.C, downstream.D
+    A = np.block([[A1, np.zeros((n1, n2))], [B2 @ S @ C1, A2]])
+    B = np.block([[B1, np.zeros((n1, len(free_in)))], [B2 @ S @ D1, B2 @ T]])
+    keep_up = [k for k, o in enumerate(upstream.output_names) if o not in downstream.output_names]
+    C = np.block([[D2 @ S @ C1, C2], [C1[keep_up], np.zeros((len(keep_up), n2))]])
+    D = np.block([[D2 @ S @ D1, D2 @ T], [D1[keep_up], np.zeros((len(keep_up), len(free_in)))]])
+    return LinearModel(
+        A,
+        B,
+        C,
+        D,
+        states=upstream.states + downstream.states,
+        inputs=upstream.inputs + tuple(downstream.inputs[k] for k in free_in),
+        outputs=downstream.outputs + tuple(upstream.outputs[k] for k in keep_up),
+        name=name or f"{upstream.name} -> {downstream.name}",
+        phenomena=upstream.phenomena | downstream.phenomena,
+    )

@@ -1,0 +1,33 @@
+"""Parameter sets: frozen, validated dataclasses loaded from TOML, and shipped-data lookup."""
+
+from .base import ParameterSet, dump_toml, load_toml, parameter, text
+from .vehicle import (
+    Aerodynamics,
+    Geometry,
+    MassProperties,
+    Steering,
+    Suspension,
+    Tires,
+    Vehicle,
+    data_path,
+    load_vehicle,
+    shipped_vehicles,
+)
+
+__all__ = [
+    "ParameterSet",
+    "parameter",
+    "text",
+    "load_toml",
+    "dump_toml",
+    "Vehicle",
+    "MassProperties",
+    "Geometry",
+    "Suspension",
+    "Tires",
+    "Steering",
+    "Aerodynamics",
+    "load_vehicle",
+    "shipped_vehicles",
+    "data_path",
+]

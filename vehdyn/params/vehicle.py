@@ -1,0 +1,306 @@
+"""Vehicle parameters: a nested, frozen, validated :class:`Vehicle` loaded from TOML.
+
+Conventions: SI units; per-corner quantities are said to be so in their description ("per
+corner"), per-axle ones likewise. Distances along x are measured from the total centre of gravity
+(CG) unless the name says ``sprung``. Products of inertia follow the definition I_xz = int x z dm
+(SAE axes, x forward, z down), so the inertia matrix carries -I_xz off its diagonal.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..units import GRAVITY
+from .base import ParameterSet, load_toml, parameter, text
+
+__all__ = [
+    "MassProperties",
+    "Geometry",
+    "Suspension",
+    "Tires",
+    "Steering",
+    "Aerodynamics",
+    "Vehicle",
+    "load_vehicle",
+    "shipped_vehicles",
+    "data_path",
+]
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class MassProperties(ParameterSet):
+    """Masses, inertias and centre-of-gravity heights."""
+
+    mass: float = parameter("kg", "total vehicle mass", gt=0)
+    sprung_mass: float = parameter("kg", "sprung mass", gt=0)
+    front_unsprung_mass: float = parameter("kg", "unsprung mass of the front axle (both wheels)", ge=0)
+    rear_unsprung_mass: float = parameter("kg", "unsprung mass of the rear axle (both wheels)", ge=0)
+    roll_inertia: float = parameter("kg*m^2", "I_xx of the whole vehicle about its CG", gt=0)
+    pitch_inertia: float = parameter("kg*m^2", "I_yy of the whole vehicle about its CG", gt=0)
+    yaw_inertia: float = parameter("kg*m^2", "I_zz of the whole vehicle about its CG", gt=0)
+    roll_yaw_product: float = parameter("kg*m^2", "I_xz = int x z dm of the whole vehicle (SAE axes)", default=0.0)
+    sprung_roll_inertia: float = parameter("kg*m^2", "I_xx of the sprung mass about its own CG", gt=0)
+    sprung_pitch_inertia: float = parameter("kg*m^2", "I_yy of the sprung mass about its own CG", gt=0)
+    sprung_roll_yaw_product: float = parameter("kg*m^2", "I_xz of the sprung mass about its own CG", default=0.0)
+    cg_height: float = parameter("m", "height of the total CG above the ground", gt=0)
+    sprung_cg_height: float = parameter("m", "height of the sprung-mass CG above the ground", gt=0)
+
+    def check(self):
+        parts = self.sprung_mass + self.front_unsprung_mass + self.rear_unsprung_mass
+        if parts > self.mass * (1 + 1e-6):
+            raise ParameterError(
+                f"sprung_mass + front_unsprung_mass + rear_unsprung_mass = {parts} kg exceeds mass = {self.mass} kg",
+                key="sprung_mass", value=self.sprung_mass)
+        for a, b, c in (("roll_inertia", "pitch_inertia", "yaw_inertia"),):
+            ixx, iyy, izz = getattr(self, a), getattr(self, b), getattr(self, c)
+            # triangle inequalities of a physical inertia tensor (principal-axis approximation)
+            if ixx + iyy < izz * (1 - 1e-9) or iyy + izz < ixx * (1 - 1e-9) or izz + ixx < iyy * (1 - 1e-9):
+                raise ParameterError(f"roll, pitch and yaw inertia ({ixx}, {iyy}, {izz} kg*m^2) violate the "
+                                     "triangle inequality of a rigid body", key="yaw_inertia", value=izz)
+        if self.roll_yaw_product**2 >= self.roll_inertia * self.yaw_inertia:
+            raise ParameterError(f"roll_yaw_product = {self.roll_yaw_product} kg*m^2 makes the inertia tensor "
+                                 "indefinite (needs I_xz^2 < I_xx I_zz)", key="roll_yaw_product",
+                                 value=self.roll_yaw_product)
+
+    @property
+    def unsprung_mass(self) -> float:
+        """Both axles' unsprung mass [kg]."""
+        return self.front_unsprung_mass + self.rear_unsprung_mass
+
+    @property
+    def inertia_matrix(self) -> np.ndarray:
+        """3x3 inertia matrix about the CG in SAE axes [kg*m^2] (-I_xz off the diagonal)."""
+        return np.array([[self.roll_inertia, 0.0, -self.roll_yaw_product],
+                         [0.0, self.pitch_inertia, 0.0],
+                         [-self.roll_yaw_product, 0.0, self.yaw_inertia]])
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Geometry(ParameterSet):
+    """Axle positions, tracks and roll centres."""
+
+    cg_to_front_axle: float = parameter("m", "a: horizontal distance from the total CG to the front axle", gt=0)
+    cg_to_rear_axle: float = parameter("m", "b: horizontal distance from the total CG to the rear axle", gt=0)
+    sprung_cg_to_front_axle: float = parameter("m", "horizontal distance from the sprung-mass CG to the front axle",
+                                               gt=0)
+    front_track: float = parameter("m", "front track width", gt=0)
+    rear_track: float = parameter("m", "rear track width", gt=0)
+    front_roll_centre_height: float = parameter("m", "height of the front roll centre above the ground",
+                                                default=0.0)
+    rear_roll_centre_height: float = parameter("m", "height of the rear roll centre above the ground", default=0.0)
+
+    def check(self):
+        if self.sprung_cg_to_front_axle >= self.wheelbase:
+            raise ParameterError(f"sprung_cg_to_front_axle = {self.sprung_cg_to_front_axle} m must be less than "
+                                 f"the wheelbase {self.wheelbase} m", key="sprung_cg_to_front_axle",
+                                 value=self.sprung_cg_to_front_axle)
+
+    @property
+    def wheelbase(self) -> float:
+        """L = a + b [m]."""
+        return self.cg_to_front_axle + self.cg_to_rear_axle
+
+    @property
+    def a(self) -> float:
+        """CG to front axle [m] (textbook symbol)."""
+        return self.cg_to_front_axle
+
+    @property
+    def b(self) -> float:
+        """CG to rear axle [m] (textbook symbol)."""
+        return self.cg_to_rear_axle
+
+    @property
+    def sprung_cg_to_rear_axle(self) -> float:
+        return self.wheelbase - self.sprung_cg_to_front_axle
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Suspension(ParameterSet):
+    """Corner springs and dampers (wheel rates), anti-roll bars, roll steer."""
+
+    front_spring_rate: float = parameter("N/m", "vertical spring rate at each front wheel (per corner, wheel rate)",
+                                         gt=0)
+    rear_spring_rate: float = parameter("N/m", "vertical spring rate at each rear wheel (per corner, wheel rate)",
+                                        gt=0)
+    front_damping: float = parameter("N*s/m", "linear damping rate at each front wheel (per corner)", ge=0)
+    rear_damping: float = parameter("N*s/m", "linear damping rate at each rear wheel (per corner)", ge=0)
+    front_antiroll_stiffness: float = parameter("N*m/rad", "roll stiffness of the front anti-roll bar (per axle)",
+                                                ge=0, default=0.0)
+    rear_antiroll_stiffness: float = parameter("N*m/rad", "roll stiffness of the rear anti-roll bar (per axle)",
+                                               ge=0, default=0.0)
+    front_roll_steer: float = parameter("rad/rad", "front road-wheel steer per unit body roll (SAE signs)",
+                                        default=0.0)
+    rear_roll_steer: float = parameter("rad/rad", "rear road-wheel steer per unit body roll (SAE signs)",
+                                       default=0.0)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Tires(ParameterSet):
+    """Tire data the vehicle models need, and the tire property file."""
+
+    front_cornering_stiffness: float = parameter("N/rad", "cornering stiffness of the front axle (both tires)",
+                                                 gt=0)
+    rear_cornering_stiffness: float = parameter("N/rad", "cornering stiffness of the rear axle (both tires)", gt=0)
+    vertical_stiffness: float = parameter("N/m", "vertical stiffness of one tire", gt=0)
+    vertical_damping: float = parameter("N*s/m", "vertical damping of one tire", ge=0, default=0.0)
+    rolling_radius: float = parameter("m", "effective rolling radius", gt=0)
+    wheel_spin_inertia: float = parameter("kg*m^2", "spin inertia of one wheel", gt=0)
+    friction_coefficient: float = parameter("-", "peak road-tire friction coefficient", gt=0)
+    front_relaxation_length: float = parameter("m", "lateral relaxation length of the front tires", ge=0,
+                                               default=0.0)
+    rear_relaxation_length: float = parameter("m", "lateral relaxation length of the rear tires", ge=0,
+                                              default=0.0)
+    tir_file: str = text("name of a .tir file in data/tires/ or a path to one")
+    model: str = text("tire law used by nonlinear vehicle models", default="magic_formula")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Steering(ParameterSet):
+    """Steering system."""
+
+    ratio: float = parameter("-", "overall steering ratio: hand-wheel angle / road-wheel angle", gt=0)
+    max_road_wheel_angle: float = parameter("rad", "largest road-wheel steer angle", gt=0, le=np.pi / 2)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Aerodynamics(ParameterSet):
+    """Aerodynamic drag (and lift) coefficients."""
+
+    frontal_area: float = parameter("m^2", "frontal (reference) area", gt=0)
+    drag_coefficient: float = parameter("-", "drag coefficient c_x", ge=0)
+    air_density: float = parameter("kg/m^3", "air density (1.206 kg/m^3 at 20 degC, 101.325 kPa)", gt=0,
+                                   default=1.206)
+    front_lift_coefficient: float = parameter("-", "front-axle lift coefficient", default=0.0)
+    rear_lift_coefficient: float = parameter("-", "rear-axle lift coefficient", default=0.0)
+
+    def drag_force(self, speed):
+        """Drag force 0.5 rho c_x A V|V| [N] at air speed ``speed`` [m/s] (sign follows the speed)."""
+        speed = np.asarray(speed, dtype=float)
+        return 0.5 * self.air_density * self.drag_coefficient * self.frontal_area * speed * np.abs(speed)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Vehicle(ParameterSet):
+    """A complete vehicle parameter set.
+
+    Load shipped vehicles with :func:`load_vehicle` (``"sedan"``, ``"compact"``, ``"van"``) and make
+    variants with :meth:`replace` or ``dataclasses.replace``.
+    """
+
+    name: str = text("short name")
+    description: str = text("what vehicle this is", default="")
+    source: str = text("where the numbers come from", default="")
+    mass: MassProperties
+    geometry: Geometry
+    suspension: Suspension
+    tires: Tires
+    steering: Steering
+    aero: Aerodynamics
+
+    def check(self):
+        g = self.geometry
+        m = self.mass
+        # the sprung CG must sit where the total CG and the unsprung masses (at the axles) put it
+        # total CG at x = 0 (x forward): 0 = m_s x_s + m_uf a - m_ur b
+        x_sprung = (m.rear_unsprung_mass * g.b - m.front_unsprung_mass * g.a) / m.sprung_mass
+        implied = g.a - x_sprung
+        if abs(implied - g.sprung_cg_to_front_axle) > 0.01 * g.wheelbase:
+            raise ParameterError(
+                f"geometry.sprung_cg_to_front_axle = {g.sprung_cg_to_front_axle} m is inconsistent with the "
+                f"masses and the total CG (it implies {implied:.4f} m)",
+                key="geometry.sprung_cg_to_front_axle", value=g.sprung_cg_to_front_axle)
+
+    # ------------------------------------------------------------------ derived quantities
+    @property
+    def wheelbase(self) -> float:
+        """Wheelbase [m]."""
+        return self.geometry.wheelbase
+
+    def static_axle_loads(self, gravity: float = GRAVITY) -> tuple[float, float]:
+        """Static (front, rear) axle loads [N]: m g b / L and m g a / L."""
+        g = self.geometry
+        w = self.mass.mass * gravity
+        return w * g.b / g.wheelbase, w * g.a / g.wheelbase
+
+    @property
+    def front_roll_stiffness(self) -> float:
+        """Front suspension roll stiffness [N*m/rad]: k_s T^2 / 2 + anti-roll bar (tires excluded)."""
+        return self.suspension.front_spring_rate * self.geometry.front_track**2 / 2 + \
+            self.suspension.front_antiroll_stiffness
+
+    @property
+    def rear_roll_stiffness(self) -> float:
+        """Rear suspension roll stiffness [N*m/rad]: k_s T^2 / 2 + anti-roll bar (tires excluded)."""
+        return self.suspension.rear_spring_rate * self.geometry.rear_track**2 / 2 + \
+            self.suspension.rear_antiroll_stiffness
+
+    def replace(self, **changes) -> "Vehicle":
+        """A validated copy; nested groups can be changed with ``group__field=value`` keywords.
+
+        Examples
+        --------
+        >>> sedan = load_vehicle("sedan")
+        >>> heavy = sedan.replace(mass__mass=1500.0)
+        """
+        nested: dict[str, dict] = {}
+        flat = {}
+        for key, value in changes.items():
+            if "__" in key:
+                group, field = key.split("__", 1)
+                nested.setdefault(group, {})[field] = value
+            else:
+                flat[key] = value
+        for group, fields in nested.items():
+            if not hasattr(self, group) or not isinstance(getattr(self, group), ParameterSet):
+                raise ParameterError(f"Vehicle has no parameter group {group!r}", key=group, value=fields)
+            flat[group] = dataclasses.replace(getattr(self, group), **fields)
+        return dataclasses.replace(self, **flat)
+
+    def tir_path(self) -> Path:
+        """Path of the vehicle's ``.tir`` file (a shipped name or a path)."""
+        p = Path(self.tires.tir_file)
+        if p.is_file():
+            return p
+        shipped = data_path("tires", self.tires.tir_file)
+        if shipped.is_file():
+            return shipped
+        raise ParameterError(f"tires.tir_file {self.tires.tir_file!r} is neither a file nor a shipped tire",
+                             key="tires.tir_file", value=self.tires.tir_file)
+
+
+def data_path(*parts: str) -> Path:
+    """Path of a shipped data file: ``vehdyn/data`` in a wheel, ``data/`` beside the package in a checkout."""
+    here = Path(__file__).resolve().parent.parent
+    for root in (here / "data", here.parent / "data"):
+        if root.is_dir():
+            return root.joinpath(*parts)
+    raise ParameterError("vehdyn's shipped data folder is missing from this installation", key="data", value=str(here))
+
+
+def shipped_vehicles() -> list[str]:
+    """Names of the vehicles shipped in ``data/vehicles``."""
+    return sorted(p.stem for p in data_path("vehicles").glob("*.toml"))
+
+
+def load_vehicle(name_or_path: str | Path) -> Vehicle:
+    """Load a shipped vehicle by name (``"sedan"``) or a user's TOML file by path.
+
+    Raises
+    ------
+    ParameterError
+        If the name is unknown, the file is not valid TOML, or a parameter is missing, unknown, of the
+        wrong type, non-finite or out of range (the message names the key and the value).
+    """
+    p = Path(name_or_path)
+    if p.suffix == ".toml" or p.is_file():
+        return load_toml(Vehicle, p)
+    candidate = data_path("vehicles", f"{name_or_path}.toml")
+    if not candidate.is_file():
+        raise ParameterError(f"unknown vehicle {str(name_or_path)!r}; shipped vehicles are {shipped_vehicles()}, "
+                             "or give a path to a .toml file", key="vehicle", value=str(name_or_path))
+    return load_toml(Vehicle, candidate)

@@ -1,0 +1,493 @@
+"""Time simulation of any vehdyn model: ``simulate(model, time, inputs, x0, method)``.
+
+Methods
+-------
+``"exact"``
+    For a :class:`~vehdyn.LinearModel`: the exact discretization of dx/dt = A x + B u for inputs
+    held constant (``hold="zoh"``) or linear (``hold="foh"``) between samples, through one matrix
+    exponential per distinct step size (Franklin, Powell & Workman, *Digital Control of Dynamic
+    Systems*, 3rd ed., sec. 4.3 and 6.3.2). The recurrence x[k+1] = Ad x[k] + g[k] is evaluated as a
+    parallel prefix scan: log2(N) array passes of ``c[d:] += Ad^d c[:-d]`` instead of N Python
+    iterations.
+any ``scipy.integrate.solve_ivp`` method
+    ``"RK45"``, ``"RK23"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"`` with ``rtol``, ``atol``
+    and ``max_step``; sampled inputs are interpolated with the same hold.
+``"rk4"``
+    Classical fixed-step Runge-Kutta on the time grid (optionally ``substeps`` per interval),
+    vectorized across a trailing batch axis. Before it starts it checks the step against the
+    model's fastest eigenvalue at the initial point and refuses a step outside RK4's stability
+    region.
+``"auto"``
+    ``"exact"`` for a linear model; otherwise ``"LSODA"`` when the linearization at the initial
+    point is stiff over the run, ``"DOP853"`` when ``rtol < 1e-8``, else ``"RK45"``. The choice and
+    its reason are in ``result.method`` and ``result.method_reason``.
+"""
+
+from __future__ import annotations
+
+import time as _time
+from typing import Any, Callable, Mapping
+
+import numpy as np
+
+from .errors import ParameterError, SimulationError
+from .model import Model, signal_vector
+from .results import SimulationResult
+
+__all__ = ["simulate", "SOLVE_IVP_METHODS", "rk4_stability_limit", "exact_discretization"]
+
+SOLVE_IVP_METHODS = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
+_HOLDS = ("zoh", "foh")
+
+
+# --------------------------------------------------------------------------- input handling
+def _time_grid(time) -> np.ndarray:
+    t = np.asarray(time, dtype=float)
+    if t.ndim != 1 or t.size < 2:
+        raise ParameterError(f"time must be a 1-D array of at least two instants, got shape {t.shape}",
+                             key="time", value=t.shape)
+    if not np.all(np.isfinite(t)):
+        raise ParameterError("time contains non-finite values", key="time", value=t[~np.isfinite(t)][0])
+    dt = np.diff(t)
+    if np.any(dt <= 0):
+        k = int(np.argmax(dt <= 0))
+        raise ParameterError(f"time must increase strictly; time[{k + 1}] = {t[k + 1]} <= time[{k}] = {t[k]}",
+                             key="time", value=t[k + 1])
+    return t
+
+
+def _sample_inputs(model: Model, inputs: Any, t: np.ndarray) -> np.ndarray:
+    """Inputs on the time grid, shape (n_inputs, n_times) or (n_inputs, n_times, n_batch)."""
+    m, n_t = model.n_inputs, t.size
+    names = model.input_names
+    if inputs is None:
+        return np.zeros((m, n_t))
+    if callable(inputs):
+        return _sample_callable(inputs, t, m, "inputs")
+    if isinstance(inputs, Mapping):
+        unknown = [k for k in inputs if k not in names]
+        if unknown:
+            raise ParameterError(f"inputs: {type(model).__name__} has no input {unknown[0]!r}; its inputs are "
+                                 f"{list(names)}", key="inputs", value=unknown[0])
+        rows = []
+        for name in names:
+            v = inputs.get(name, 0.0)
+            if callable(v):
+                v = _sample_callable(v, t, None, f"inputs[{name!r}]")
+            v = np.asarray(v, dtype=float)
+            if v.ndim == 0:
+                v = np.full(n_t, float(v))
+            if v.shape[0] != n_t:
+                raise ParameterError(f"inputs[{name!r}] has {v.shape[0]} samples but time has {n_t}",
+                                     key=f"inputs.{name}", value=v.shape)
+            rows.append(v)
+        shape = np.broadcast_shapes(*(r.shape for r in rows)) if rows else (n_t,)
+        u = np.stack([np.broadcast_to(r, shape) for r in rows]) if rows else np.zeros((0, n_t))
+    else:
+        u = np.asarray(inputs, dtype=float)
+        if u.ndim == 1 and m == 1 and u.shape[0] == n_t:
+            u = u[None, :]
+        if u.ndim < 2 or u.shape[0] != m or u.shape[1] != n_t:
+            raise ParameterError(f"inputs must have shape (n_inputs, n_times) = ({m}, {n_t}) for inputs "
+                                 f"{list(names)}, got {u.shape}", key="inputs", value=u.shape)
+    if not np.all(np.isfinite(u)):
+        idx = np.argwhere(~np.isfinite(u))[0]
+        raise ParameterError(f"input {names[idx[0]]!r} is not finite at t = {t[idx[1]]} ({u[tuple(idx)]})",
+                             key=f"inputs.{names[idx[0]]}", value=u[tuple(idx)])
+    return u
+
+
+def _sample_callable(fun: Callable, t: np.ndarray, m: int | None, what: str) -> np.ndarray:
+    try:
+        v = np.asarray(fun(t), dtype=float)
+        vectorized = v.shape[-1:] == (t.size,) or (m is None and v.shape == t.shape)
+    except Exception:  # a scalar-only callable: evaluate sample by sample
+        vectorized = False
+    if not vectorized:
+        v = np.stack([np.asarray(fun(tk), dtype=float) for tk in t], axis=-1)
+    if m is not None:
+        if v.ndim == 1 and m == 1:
+            v = v[None, :]
+        if v.shape[0] != m:
+            raise ParameterError(f"{what}: u(t) must return {m} values, got shape {v.shape[:-1]}",
+                                 key=what, value=v.shape)
+    return v
+
+
+def _interpolator(t: np.ndarray, u: np.ndarray, hold: str) -> Callable[[float], np.ndarray]:
+    """u(t) between samples: previous sample (zoh) or linear (foh); held beyond the grid."""
+    n_t = t.size
+
+    def u_at(tt: float) -> np.ndarray:
+        k = int(np.searchsorted(t, tt, side="right") - 1)
+        if k < 0:
+            return u[:, 0]
+        if k >= n_t - 1:
+            return u[:, -1]
+        if hold == "zoh":
+            return u[:, k]
+        w = (tt - t[k]) / (t[k + 1] - t[k])
+        return (1.0 - w) * u[:, k] + w * u[:, k + 1]
+
+    return u_at
+
+
+# --------------------------------------------------------------------------- exact (linear)
+def exact_discretization(A: np.ndarray, B: np.ndarray, dt: float, hold: str = "zoh"):
+    """Exact discretization of dx/dt = A x + B u over a step ``dt`` [s].
+
+    Returns
+    -------
+    (Ad, B0, B1) : tuple of ndarray
+        x[k+1] = Ad x[k] + B0 u[k] + B1 u[k+1]; ``B1`` is zero for a zero-order hold.
+
+    Notes
+    -----
+    One matrix exponential of the block matrix [[A dt, B dt, 0], [0, 0, I], [0, 0, 0]] gives
+    Ad = e^(A dt), G1 = int_0^dt e^(A s) ds B and G2 = int_0^dt e^(A s) (dt - s)/dt ds B
+    (van Loan's method); zoh: B0 = G1, B1 = 0; foh: B0 = G1 - G2, B1 = G2.
+    """
+    from scipy.linalg import expm
+
+    n, m = B.shape
+    if hold == "zoh":
+        blk = np.zeros((n + m, n + m))
+        blk[:n, :n] = A * dt
+        blk[:n, n:] = B * dt
+        E = expm(blk)
+        return E[:n, :n], E[:n, n:], np.zeros((n, m))
+    blk = np.zeros((n + 2 * m, n + 2 * m))
+    blk[:n, :n] = A * dt
+    blk[:n, n:n + m] = B * dt
+    blk[n:n + m, n + m:] = np.eye(m)
+    E = expm(blk)
+    Ad, G1, G2 = E[:n, :n], E[:n, n:n + m], E[:n, n + m:]
+    return Ad, G1 - G2, G2
+
+
+def _linear_recurrence(Ad: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """All partial sums c[k] = sum_{j<=k} Ad^(k-j) g[j] by a Hillis-Steele prefix scan.
+
+    g has shape (N, n, ...); the scan does ceil(log2 N) passes of c[d:] += Ad^d c[:-d].
+    """
+    c = g.copy()
+    N = c.shape[0]
+    P = Ad.copy()
+    d = 1
+    while d < N:
+        c[d:] += np.einsum("ij,kj...->ki...", P, c[:-d])
+        d *= 2
+        if d < N:
+            P = P @ P
+    return c
+
+
+def _simulate_exact(model, t, u, x0, hold):
+    A, B = model.A, model.B
+    n = A.shape[0]
+    dts = np.diff(t)
+    N = t.size
+    batch_shape = x0.shape[1:]
+    if u.ndim == 3 and not batch_shape:
+        batch_shape = u.shape[2:]
+    x = np.empty((N, n) + tuple(batch_shape))
+    x0b = np.broadcast_to(x0.reshape((n,) + x0.shape[1:] + (1,) * (len(batch_shape) - len(x0.shape[1:]))),
+                          (n,) + tuple(batch_shape))
+    uT = np.moveaxis(u, 1, 0)  # (N, m, ...)
+    if uT.ndim - 2 < len(batch_shape):
+        uT = np.broadcast_to(uT[..., None], uT.shape + tuple(batch_shape))
+    x[0] = x0b
+    uniform = np.allclose(dts, dts[0], rtol=1e-9, atol=0.0)
+    if uniform:
+        Ad, B0, B1 = exact_discretization(A, B, float(np.mean(dts)), hold)
+        g = np.einsum("ij,kj...->ki...", B0, uT[:-1])
+        if hold == "foh":
+            g += np.einsum("ij,kj...->ki...", B1, uT[1:])
+        g[0] += np.einsum("ij,j...->i...", Ad, x0b)
+        x[1:] = _linear_recurrence(Ad, g)
+        n_expm = 1
+    else:
+        # one discretization per distinct step size; the recurrence then runs step by step
+        cache: dict[float, tuple] = {}
+        for k, dt in enumerate(dts):
+            key = float(np.round(dt, 15))
+            if key not in cache:
+                cache[key] = exact_discretization(A, B, dt, hold)
+            Ad, B0, B1 = cache[key]
+            x[k + 1] = Ad @ x[k] + B0 @ uT[k] + (B1 @ uT[k + 1] if hold == "foh" else 0.0)
+        n_expm = len(cache)
+    return np.moveaxis(x, 0, 1), n_expm
+
+
+# --------------------------------------------------------------------------- rk4
+def rk4_stability_limit(eigenvalues) -> float:
+    """Largest step [s] for which classical RK4 is stable on the given eigenvalues.
+
+    Solves |R(h lambda)| = 1 along each ray h lambda (R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24) by
+    bisection; eigenvalues with non-negative real part impose no limit (they grow anyway).
+    Returns ``inf`` when no eigenvalue limits the step.
+    """
+    lam = np.atleast_1d(np.asarray(eigenvalues, dtype=complex))
+    lam = lam[(lam.real < 0) & (np.abs(lam) > 0)]
+    if lam.size == 0:
+        return float("inf")
+
+    def growth(z):
+        return np.abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24)
+
+    lo = np.zeros(lam.size)
+    hi = np.full(lam.size, 4.0)  # |z| = 4 lies outside the region on every ray
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        stable = growth(mid * lam / np.abs(lam)) <= 1.0
+        lo = np.where(stable, mid, lo)
+        hi = np.where(stable, hi, mid)
+    return float(np.min(lo / np.abs(lam)))
+
+
+def _simulate_rk4(model, t, u, x0, hold, substeps, check_stability):
+    n = model.n_states
+    u_at = _interpolator(t, u, hold)
+    if check_stability and n > 0:
+        x_lin = x0 if x0.ndim == 1 else x0[:, 0]
+        u_lin = u[:, 0] if u.ndim == 2 else u[:, 0, 0]
+        lam = np.linalg.eigvals(model.linearize(x_lin, u_lin, t[0]).A)
+        h_max = rk4_stability_limit(lam)
+        h = float(np.max(np.diff(t))) / substeps
+        if h > h_max:
+            fast = lam[np.argmax(np.abs(lam))]
+            raise SimulationError(
+                f"rk4 step {h:.3g} s exceeds the stability limit {h_max:.3g} s set by the eigenvalue "
+                f"{fast:.4g} 1/s of the linearization at t = {t[0]:g} s; use a smaller step, "
+                f"substeps >= {int(np.ceil(h * substeps / h_max))}, or an implicit method ('Radau', 'LSODA')",
+                time=float(t[0]),
+            )
+    batch = x0.shape[1:] if x0.ndim > 1 else (u.shape[2:] if u.ndim == 3 else ())
+    x = np.empty((n, t.size) + tuple(batch))
+    xk = np.broadcast_to(x0.reshape((n,) + x0.shape[1:] + (1,) * (len(batch) - (x0.ndim - 1))),
+                         (n,) + tuple(batch)).astype(float).copy()
+    x[:, 0] = xk
+    f = model.rhs
+    nfev = 0
+    names = model.state_names
+    for k in range(t.size - 1):
+        h = (t[k + 1] - t[k]) / substeps
+        tk = t[k]
+        for s in range(substeps):
+            ta = tk + s * h
+            u0, u1, u2 = u_at(ta), u_at(ta + 0.5 * h), u_at(ta + h)
+            k1 = f(ta, xk, u0)
+            k2 = f(ta + 0.5 * h, xk + 0.5 * h * k1, u1)
+            k3 = f(ta + 0.5 * h, xk + 0.5 * h * k2, u1)
+            k4 = f(ta + h, xk + h * k3, u2)
+            xk = xk + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+            nfev += 4
+        if not np.all(np.isfinite(xk)):
+            bad = np.argwhere(~np.isfinite(xk.reshape(n, -1)))[0]
+            raise SimulationError(
+                f"state {names[bad[0]]!r} became non-finite ({xk.reshape(n, -1)[tuple(bad)]}) at t = "
+                f"{t[k + 1]:.6g} s (rk4, step {h:.3g} s" + (f", batch member {bad[1]}" if batch else "") + ")",
+                time=float(t[k + 1]), signal=names[bad[0]],
+            )
+        x[:, k + 1] = xk
+    return x, nfev
+
+
+# --------------------------------------------------------------------------- solve_ivp
+def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_step):
+    from scipy.integrate import solve_ivp
+
+    n = model.n_states
+    batch = x0.shape[1:] if x0.ndim > 1 else (u.shape[2:] if u.ndim == 3 else ())
+    shape = (n,) + tuple(batch)
+    x0b = np.broadcast_to(x0.reshape((n,) + x0.shape[1:] + (1,) * (len(batch) - (x0.ndim - 1))), shape)
+    u_at = _interpolator(t, u, hold)
+
+    def fun(tt, y):
+        return np.asarray(model.rhs(tt, y.reshape(shape), u_at(tt)), dtype=float).reshape(-1)
+
+    opts = {"rtol": rtol, "atol": atol}
+    if max_step is not None:
+        opts["max_step"] = max_step
+    if first_step is not None:
+        opts["first_step"] = first_step
+    with np.errstate(over="ignore", invalid="ignore"):
+        sol = solve_ivp(fun, (t[0], t[-1]), x0b.reshape(-1).astype(float), method=method, t_eval=t, **opts)
+    if sol.status < 0:
+        t_end = float(sol.t[-1]) if sol.t.size else float(t[0])
+        raise SimulationError(f"{method} failed at t = {t_end:.6g} s: {sol.message}", time=t_end)
+    y = sol.y.reshape(shape + (t.size,))
+    y = np.moveaxis(y, -1, 1)
+    return y, sol
+
+
+# --------------------------------------------------------------------------- auto
+def _choose_method(model, t, u, x0, rtol) -> tuple[str, str]:
+    from .linear import LinearModel
+
+    if isinstance(model, LinearModel):
+        return "exact", "linear model: exact discretization through the matrix exponential"
+    if model.n_states == 0:
+        return "RK45", "no states"
+    x_lin = x0 if x0.ndim == 1 else x0[:, 0]
+    u_lin = u[:, 0] if u.ndim == 2 else u[:, 0, 0]
+    try:
+        lam = np.linalg.eigvals(model.linearize(x_lin, u_lin, t[0]).A)
+    except Exception as exc:  # pragma: no cover - a model whose linearization fails
+        return "LSODA", f"linearization at the initial point failed ({exc}); LSODA switches by itself"
+    fast = float(np.max(np.abs(lam.real), initial=0.0))
+    duration = float(t[-1] - t[0])
+    if fast * duration > 1e3:
+        return "LSODA", (f"stiff: fastest decay rate {fast:.3g} 1/s times the {duration:g} s run is "
+                         f"{fast * duration:.3g} > 1e3")
+    if rtol < 1e-8:
+        return "DOP853", f"non-stiff, tight tolerance rtol = {rtol:g}: 8th-order Dormand-Prince"
+    return "RK45", f"non-stiff (fastest decay rate {fast:.3g} 1/s over {duration:g} s)"
+
+
+# --------------------------------------------------------------------------- entry point
+def simulate(
+    model: Model,
+    time,
+    inputs=None,
+    x0=None,
+    method: str = "auto",
+    *,
+    rtol: float = 1e-6,
+    atol: float = 1e-9,
+    hold: str = "foh",
+    max_step: float | None = None,
+    first_step: float | None = None,
+    substeps: int = 1,
+    check_stability: bool = True,
+) -> SimulationResult:
+    """Simulate ``model`` over the time grid ``time``.
+
+    Parameters
+    ----------
+    model : Model
+        Any vehdyn model (a :class:`~vehdyn.LinearModel` or a user's :class:`~vehdyn.Model`).
+    time : array_like
+        Strictly increasing output times [s]; the simulation starts at ``time[0]``.
+    inputs : None, mapping, array_like or callable
+        ``None`` (all inputs zero); ``{name: array or scalar or callable}`` (omitted inputs are
+        zero); an array of shape (n_inputs, n_times) or (n_inputs, n_times, n_batch); or a callable
+        ``u(t)`` returning the input vector.
+    x0 : None, mapping or array_like
+        Initial state (zeros by default); shape (n_states,) or (n_states, n_batch) for a batch.
+    method : str
+        ``"auto"``, ``"exact"``, ``"rk4"`` or a ``solve_ivp`` method name.
+    rtol, atol : float
+        Tolerances of the adaptive methods.
+    hold : {"foh", "zoh"}
+        How sampled inputs vary between samples: linearly (default, as ``scipy.signal.lsim`` and
+        ``control.forced_response``) or held constant.
+    max_step, first_step : float, optional
+        Passed to ``solve_ivp``.
+    substeps : int
+        rk4 steps per interval of the time grid.
+    check_stability : bool
+        rk4 only: refuse a step outside RK4's stability region for the fastest eigenvalue of the
+        linearization at the initial point.
+
+    Returns
+    -------
+    SimulationResult
+
+    Raises
+    ------
+    ParameterError
+        On malformed time, inputs, x0 or options.
+    SimulationError
+        When the solver fails (its message is included) or a state becomes non-finite (the state
+        and the time are named).
+    """
+    from .linear import LinearModel
+
+    if not isinstance(model, Model):
+        raise ParameterError(f"model must be a vehdyn Model, got {type(model).__name__}", key="model", value=model)
+    t = _time_grid(time)
+    if hold not in _HOLDS:
+        raise ParameterError(f"hold must be one of {_HOLDS}, got {hold!r}", key="hold", value=hold)
+    for name, val in (("rtol", rtol), ("atol", atol)):
+        if not (np.isfinite(val) and val > 0):
+            raise ParameterError(f"{name} must be a positive number, got {val!r}", key=name, value=val)
+    if not (isinstance(substeps, (int, np.integer)) and substeps >= 1):
+        raise ParameterError(f"substeps must be a positive integer, got {substeps!r}", key="substeps", value=substeps)
+    u = _sample_inputs(model, inputs, t)
+    x0v = signal_vector(x0, model.states, "x0")
+    reason = ""
+    if method == "auto":
+        method, reason = _choose_method(model, t, u, x0v, rtol)
+    valid = ("exact", "rk4") + SOLVE_IVP_METHODS
+    if method not in valid:
+        raise ParameterError(f"method must be 'auto' or one of {valid}, got {method!r}", key="method", value=method)
+    if method == "exact" and not isinstance(model, LinearModel):
+        raise ParameterError(
+            f"method 'exact' needs a LinearModel; {type(model).__name__} is not linear "
+            "(use model.linearize() first, or a solve_ivp method)", key="method", value=method)
+
+    counters = {"nfev": 0, "njev": 0, "nlu": 0, "n_steps": t.size - 1, "message": ""}
+    start = _time.perf_counter()
+    if method == "exact":
+        x, n_expm = _simulate_exact(model, t, u, x0v, hold)
+        counters["message"] = f"exact {hold} discretization ({n_expm} matrix exponential{'s' if n_expm > 1 else ''})"
+    elif method == "rk4":
+        x, nfev = _simulate_rk4(model, t, u, x0v, hold, int(substeps), check_stability)
+        counters.update(nfev=nfev, n_steps=(t.size - 1) * int(substeps), message="fixed-step RK4")
+    else:
+        x, sol = _simulate_ivp(model, t, u, x0v, hold, method, rtol, atol, max_step, first_step)
+        counters.update(nfev=int(sol.nfev), njev=int(sol.njev), nlu=int(sol.nlu), message=str(sol.message),
+                        n_steps=int(sol.nfev))
+    wall = _time.perf_counter() - start
+
+    if not np.all(np.isfinite(x)):
+        flat = x.reshape(x.shape[0], x.shape[1], -1)
+        bad = np.argwhere(~np.isfinite(flat))
+        k = int(bad[:, 1].min())
+        i = int(bad[bad[:, 1] == k][0, 0])
+        raise SimulationError(
+            f"state {model.state_names[i]!r} became non-finite at t = {t[k]:.6g} s ({method})",
+            time=float(t[k]), signal=model.state_names[i],
+        )
+    y = _outputs(model, t, x, u)
+    if u.ndim < x.ndim:
+        u = np.broadcast_to(u[..., None], u.shape + x.shape[2:])
+    return SimulationResult(
+        time=t,
+        states=x,
+        inputs=u,
+        outputs=y,
+        state_signals=model.states,
+        input_signals=model.inputs,
+        output_signals=model.output_signals,
+        method=method,
+        method_reason=reason,
+        wall_time=wall,
+        options={"rtol": rtol, "atol": atol, "hold": hold, "substeps": substeps},
+        **counters,
+    )
+
+
+def _outputs(model, t, x, u):
+    """Outputs for every sample: one batched call when the model allows it."""
+    from .linear import LinearModel
+
+    if isinstance(model, LinearModel):
+        uu = u if u.ndim == x.ndim else np.broadcast_to(u[..., None], u.shape + x.shape[2:])
+        return np.einsum("pn,nt...->pt...", model.C, x) + np.einsum("pm,mt...->pt...", model.D, uu)
+    n_t = t.size
+    extra = x.shape[2:]
+    # fold time (and batch) into the batch axis: one call to output()
+    X = x.reshape(x.shape[0], -1)
+    uu = u if u.ndim == x.ndim else np.broadcast_to(u[..., None], u.shape + extra)
+    U = uu.reshape(uu.shape[0], -1)
+    T = np.broadcast_to(t.reshape((n_t,) + (1,) * len(extra)), (n_t,) + extra).reshape(-1)
+    try:
+        Y = np.asarray(model.output(T, X, U), dtype=float)
+        if Y.shape != (model.n_outputs, X.shape[1]):
+            raise ValueError
+    except Exception:
+        Y = np.stack([np.asarray(model.output(T[k], X[:, k], U[:, k]), dtype=float) for k in range(X.shape[1])],
+                     axis=1)
+    return Y.reshape((model.n_outputs, n_t) + extra)
