@@ -117,6 +117,9 @@ def _sample_callable(fun: Callable, t: np.ndarray, m: int | None, what: str) -> 
 def _interpolator(t: np.ndarray, u: np.ndarray, hold: str) -> Callable[[float], np.ndarray]:
     """u(t) between samples: previous sample (zoh) or linear (foh); held beyond the grid."""
     n_t = t.size
+    if u.shape[0] == 0 or np.all(u == u[:, :1]):
+        constant = np.ascontiguousarray(u[:, 0])
+        return lambda tt: constant
 
     def u_at(tt: float) -> np.ndarray:
         k = int(np.searchsorted(t, tt, side="right") - 1)
@@ -175,7 +178,8 @@ def _linear_recurrence(Ad: np.ndarray, g: np.ndarray) -> np.ndarray:
     P = Ad.copy()
     d = 1
     while d < N:
-        c[d:] += np.einsum("ij,kj...->ki...", P, c[:-d])
+        # the product is formed before the in-place add, so the overlap of c[d:] and c[:-d] is safe
+        c[d:] += (c[:-d] @ P.T) if c.ndim == 2 else (P @ c[:-d])
         d *= 2
         if d < N:
             P = P @ P
@@ -200,10 +204,15 @@ def _simulate_exact(model, t, u, x0, hold):
     uniform = np.allclose(dts, dts[0], rtol=1e-9, atol=0.0)
     if uniform:
         Ad, B0, B1 = exact_discretization(A, B, float(np.mean(dts)), hold)
-        g = np.einsum("ij,kj...->ki...", B0, uT[:-1])
-        if hold == "foh":
-            g += np.einsum("ij,kj...->ki...", B1, uT[1:])
-        g[0] += np.einsum("ij,j...->i...", Ad, x0b)
+        if uT.ndim == 2:
+            g = uT[:-1] @ B0.T
+            if hold == "foh":
+                g += uT[1:] @ B1.T
+        else:
+            g = B0 @ uT[:-1]
+            if hold == "foh":
+                g += B1 @ uT[1:]
+        g[0] += Ad @ x0b
         x[1:] = _linear_recurrence(Ad, g)
         n_expm = 1
     else:
@@ -245,20 +254,41 @@ def rk4_stability_limit(eigenvalues) -> float:
     return float(np.min(lo / np.abs(lam)))
 
 
+def _state_jacobian_eigenvalues(model, t0, x0, u0) -> np.ndarray:
+    """Eigenvalues of df/dx at (t0, x0, u0) for every batch member (central differences).
+
+    Works for models whose parameters are arrays along the batch axis: each call perturbs one
+    state in every batch member at once. Returns an array of shape (n_batch, n) or (n,).
+    """
+    n = model.n_states
+    single = x0.ndim == 1
+    X = x0[:, None] if single else x0
+    U = u0[:, None] if u0.ndim == 1 else u0
+    if U.shape[1] != X.shape[1]:
+        U = np.broadcast_to(U, (U.shape[0], X.shape[1]))
+    J = np.empty((X.shape[1], n, n))
+    for i in range(n):
+        h = 1e-6 * np.maximum(np.abs(X[i]), 1.0)
+        Xp, Xm = X.copy(), X.copy()
+        Xp[i] += h
+        Xm[i] -= h
+        J[:, :, i] = ((np.asarray(model.rhs(t0, Xp, U)) - np.asarray(model.rhs(t0, Xm, U))) / (2 * h)).T
+    lam = np.linalg.eigvals(J)
+    return lam[0] if single else lam
+
+
 def _simulate_rk4(model, t, u, x0, hold, substeps, check_stability):
     n = model.n_states
     u_at = _interpolator(t, u, hold)
     if check_stability and n > 0:
-        x_lin = x0 if x0.ndim == 1 else x0[:, 0]
-        u_lin = u[:, 0] if u.ndim == 2 else u[:, 0, 0]
-        lam = np.linalg.eigvals(model.linearize(x_lin, u_lin, t[0]).A)
+        lam = _state_jacobian_eigenvalues(model, t[0], x0, u[:, 0]).reshape(-1)
         h_max = rk4_stability_limit(lam)
         h = float(np.max(np.diff(t))) / substeps
         if h > h_max:
             fast = lam[np.argmax(np.abs(lam))]
             raise SimulationError(
                 f"rk4 step {h:.3g} s exceeds the stability limit {h_max:.3g} s set by the eigenvalue "
-                f"{fast:.4g} 1/s of the linearization at t = {t[0]:g} s; use a smaller step, "
+                f"{fast:.4g} 1/s of the state Jacobian at t = {t[0]:g} s; use a smaller step, "
                 f"substeps >= {int(np.ceil(h * substeps / h_max))}, or an implicit method ('Radau', 'LSODA')",
                 time=float(t[0]),
             )
@@ -329,11 +359,9 @@ def _choose_method(model, t, u, x0, rtol) -> tuple[str, str]:
         return "exact", "linear model: exact discretization through the matrix exponential"
     if model.n_states == 0:
         return "RK45", "no states"
-    x_lin = x0 if x0.ndim == 1 else x0[:, 0]
-    u_lin = u[:, 0] if u.ndim == 2 else u[:, 0, 0]
     try:
-        lam = np.linalg.eigvals(model.linearize(x_lin, u_lin, t[0]).A)
-    except Exception as exc:  # pragma: no cover - a model whose linearization fails
+        lam = _state_jacobian_eigenvalues(model, t[0], x0, u[:, 0]).reshape(-1)
+    except Exception as exc:  # pragma: no cover - a model whose Jacobian cannot be evaluated
         return "LSODA", f"linearization at the initial point failed ({exc}); LSODA switches by itself"
     fast = float(np.max(np.abs(lam.real), initial=0.0))
     duration = float(t[-1] - t[0])
@@ -481,7 +509,7 @@ def _outputs(model, t, x, u):
     # fold time (and batch) into the batch axis: one call to output()
     X = x.reshape(x.shape[0], -1)
     uu = u if u.ndim == x.ndim else np.broadcast_to(u[..., None], u.shape + extra)
-    U = uu.reshape(uu.shape[0], -1)
+    U = uu.reshape(uu.shape[0], X.shape[1])
     T = np.broadcast_to(t.reshape((n_t,) + (1,) * len(extra)), (n_t,) + extra).reshape(-1)
     try:
         Y = np.asarray(model.output(T, X, U), dtype=float)

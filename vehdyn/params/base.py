@@ -110,8 +110,9 @@ class ParameterSet:
         Errors name the dotted path of the key (``suspension.front_spring_rate``).
         """
         if not isinstance(data, Mapping):
-            raise ParameterError(f"{path or cls.__name__} must be a table of parameters, got {_type_name(data)}",
-                                 key=path or None, value=data)
+            where = path.rstrip(".")
+            raise ParameterError(f"{where or cls.__name__} must be a table of parameters, got "
+                                 f"{_type_name(data)} {data!r}", key=where or None, value=data)
         hints = typing.get_type_hints(cls)
         fields = {f.name: f for f in dataclasses.fields(cls)}
         unknown = [k for k in data if k not in fields]

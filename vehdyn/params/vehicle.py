@@ -59,8 +59,9 @@ class MassProperties(ParameterSet):
             ixx, iyy, izz = getattr(self, a), getattr(self, b), getattr(self, c)
             # triangle inequalities of a physical inertia tensor (principal-axis approximation)
             if ixx + iyy < izz * (1 - 1e-9) or iyy + izz < ixx * (1 - 1e-9) or izz + ixx < iyy * (1 - 1e-9):
-                raise ParameterError(f"roll, pitch and yaw inertia ({ixx}, {iyy}, {izz} kg*m^2) violate the "
-                                     "triangle inequality of a rigid body", key="yaw_inertia", value=izz)
+                raise ParameterError(f"roll_inertia, pitch_inertia and yaw_inertia = ({ixx}, {iyy}, {izz}) kg*m^2 "
+                                     "violate the triangle inequality of a rigid body", key="yaw_inertia",
+                                     value=izz)
         if self.roll_yaw_product**2 >= self.roll_inertia * self.yaw_inertia:
             raise ParameterError(f"roll_yaw_product = {self.roll_yaw_product} kg*m^2 makes the inertia tensor "
                                  "indefinite (needs I_xz^2 < I_xx I_zz)", key="roll_yaw_product",

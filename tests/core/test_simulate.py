@@ -1,0 +1,206 @@
+"""Simulation engines against closed forms, convergence orders and error paths."""
+
+import numpy as np
+import pytest
+
+import vehdyn
+from vehdyn import LinearModel, Model, ParameterError, SimulationError, simulate
+from vehdyn.simulate import exact_discretization, rk4_stability_limit
+
+WN, ZETA = 2.0, 0.1
+
+
+def oscillator():
+    return LinearModel([[0, 1], [-WN**2, -2 * ZETA * WN]], [[0], [WN**2]],
+                       states=["position", "position_velocity"], inputs=["force"])
+
+
+def free_response(t, x0=1.0):
+    """Closed form of x'' + 2 zeta wn x' + wn^2 x = 0, x(0) = x0, x'(0) = 0."""
+    wd = WN * np.sqrt(1 - ZETA**2)
+    return x0 * np.exp(-ZETA * WN * t) * (np.cos(wd * t) + ZETA * WN / wd * np.sin(wd * t))
+
+
+def step_response(t):
+    """Closed form of the unit step response (static gain 1)."""
+    return 1.0 - free_response(t)
+
+
+def test_exact_free_response_matches_closed_form():
+    t = np.linspace(0, 20, 20001)
+    r = simulate(oscillator(), t, x0=[1.0, 0.0], method="exact")
+    assert np.max(np.abs(r["position"] - free_response(t))) <= 1e-12
+
+
+def test_exact_zoh_step_response_matches_closed_form():
+    t = np.linspace(0, 20, 4001)
+    r = simulate(oscillator(), t, inputs={"force": 1.0}, method="exact", hold="zoh")
+    assert np.max(np.abs(r["position"] - step_response(t))) <= 1e-12
+
+
+def test_exact_foh_is_exact_for_ramp_input():
+    # x' = -x + u, u = t, x(0) = 0  =>  x = t - 1 + exp(-t)
+    m = LinearModel([[-1.0]], [[1.0]], states=["level"], inputs=["ramp"])
+    t = np.linspace(0, 5, 51)
+    r = simulate(m, t, inputs={"ramp": t}, method="exact", hold="foh")
+    assert np.max(np.abs(r["level"] - (t - 1 + np.exp(-t)))) <= 1e-13
+
+
+def test_exact_nonuniform_grid_matches_closed_form():
+    t = np.sort(np.concatenate([[0.0], np.random.default_rng(1).uniform(0, 10, 300)]))
+    r = simulate(oscillator(), t, x0=[1.0, 0.0], method="exact")
+    assert np.max(np.abs(r["position"] - free_response(t))) <= 1e-12
+
+
+def test_exact_batch_equals_individual_runs():
+    t = np.linspace(0, 5, 501)
+    x0 = np.array([[1.0, -0.5, 2.0], [0.0, 1.0, 0.3]])
+    rb = simulate(oscillator(), t, x0=x0, method="exact")
+    for k in range(3):
+        rk = simulate(oscillator(), t, x0=x0[:, k], method="exact")
+        np.testing.assert_allclose(rb.states[:, :, k], rk.states, rtol=0, atol=1e-14)
+
+
+def test_exact_discretization_against_series():
+    # zoh: B0 = A^-1 (Ad - I) B for invertible A
+    A = np.array([[0.0, 1.0], [-3.0, -0.7]])
+    B = np.array([[0.0], [1.0]])
+    Ad, B0, B1 = exact_discretization(A, B, 0.05, "zoh")
+    np.testing.assert_allclose(B0, np.linalg.solve(A, (Ad - np.eye(2)) @ B), rtol=1e-12)
+    assert np.all(B1 == 0)
+
+
+def test_solve_ivp_methods_agree_with_closed_form():
+    t = np.linspace(0, 10, 501)
+    for method in vehdyn.simulate.__globals__["SOLVE_IVP_METHODS"]:
+        r = simulate(oscillator(), t, x0=[1.0, 0.0], method=method, rtol=1e-10, atol=1e-12)
+        assert np.max(np.abs(r["position"] - free_response(t))) < 2e-7, method
+        assert r.nfev > 0 and r.method == method
+
+
+def test_rk4_convergence_order_is_four():
+    errors = []
+    steps = [0.1, 0.05, 0.025]
+    for h in steps:
+        t = np.arange(0, 10 + h / 2, h)
+        r = simulate(oscillator(), t, x0=[1.0, 0.0], method="rk4")
+        errors.append(np.max(np.abs(r["position"] - free_response(t))))
+    orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(np.abs(orders - 4.0) < 0.15), orders
+
+
+def test_rk4_batch_of_nonlinear_models():
+    class Decay(Model):
+        states = ("level",)
+
+        def __init__(self, rate):
+            self.rate = np.asarray(rate)
+
+        def rhs(self, t, x, u):
+            return -self.rate * x
+
+    rates = np.array([0.5, 1.0, 2.0])
+    t = np.linspace(0, 2, 201)
+    r = simulate(Decay(rates), t, x0=np.ones((1, 3)), method="rk4")
+    np.testing.assert_allclose(r["level"], np.exp(-np.outer(t, rates)), rtol=1e-8)
+
+
+def test_rk4_refuses_unstable_step():
+    m = LinearModel([[-1000.0]], np.zeros((1, 0)), states=["level"], inputs=[])
+    with pytest.raises(SimulationError, match="stability limit"):
+        simulate(m, np.linspace(0, 1, 11), x0=[1.0], method="rk4")
+    # just inside the limit it runs
+    h = rk4_stability_limit([-1000.0])
+    assert h == pytest.approx(2.785293563 / 1000, rel=1e-6)  # RK4 real-axis limit
+    simulate(m, np.arange(0, 0.1, 0.99 * h), x0=[1.0], method="rk4")
+
+
+def test_blow_up_raises_simulation_error():
+    class Quadratic(Model):
+        states = ("level",)
+
+        def rhs(self, t, x, u):
+            return x**2
+
+    # x' = x^2, x(0) = 1 blows up at t = 1
+    with pytest.raises(SimulationError) as info:
+        simulate(Quadratic(), np.linspace(0, 2, 21), x0=[1.0], method="RK45")
+    assert "RK45" in str(info.value) and info.value.time is not None and 0.9 < info.value.time <= 1.0
+    with pytest.raises(SimulationError, match="'level' became non-finite") as info:
+        simulate(Quadratic(), np.linspace(0, 2, 201), x0=[1.0], method="rk4", check_stability=False)
+    assert info.value.signal == "level"
+
+
+def test_auto_picks_exact_for_linear_and_lsoda_for_stiff():
+    assert simulate(oscillator(), np.linspace(0, 1, 11)).method == "exact"
+
+    class Stiff(Model):
+        states = ("fast", "slow")
+
+        def rhs(self, t, x, u):
+            fast, slow = x
+            return np.stack([-1e4 * (fast - np.cos(t)), -slow + 0 * fast])
+
+    r = simulate(Stiff(), np.linspace(0, 1, 11), x0=[0.0, 1.0])
+    assert r.method == "LSODA" and "stiff" in r.method_reason
+    np.testing.assert_allclose(r["slow"], np.exp(-r.time), rtol=1e-4)
+
+
+def test_callable_and_mapping_inputs_agree():
+    t = np.linspace(0, 5, 501)
+    r1 = simulate(oscillator(), t, inputs=lambda tt: np.sin(tt)[None] if np.ndim(tt) else [np.sin(tt)],
+                  method="exact")
+    r2 = simulate(oscillator(), t, inputs={"force": np.sin(t)}, method="exact")
+    r3 = simulate(oscillator(), t, inputs={"force": np.sin}, method="exact")
+    np.testing.assert_allclose(r1.states, r2.states, atol=1e-15)
+    np.testing.assert_allclose(r3.states, r2.states, atol=1e-15)
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        ({"time": [0.0]}, "at least two"),
+        ({"time": [0.0, 1.0, 1.0]}, "increase strictly"),
+        ({"time": [0.0, np.nan]}, "non-finite"),
+        ({"inputs": {"torque": 1.0}}, "no input 'torque'"),
+        ({"inputs": np.zeros((2, 11))}, r"shape \(n_inputs, n_times\)"),
+        ({"inputs": {"force": np.full(11, np.inf)}}, "'force' is not finite"),
+        ({"x0": [1.0]}, "expected 2 values"),
+        ({"x0": {"speed": 1.0}}, "unknown name 'speed'"),
+        ({"x0": [np.nan, 0.0]}, "'position' is not finite"),
+        ({"method": "euler"}, "method must be"),
+        ({"hold": "cubic"}, "hold must be"),
+        ({"rtol": -1.0}, "rtol must be"),
+        ({"substeps": 0}, "substeps"),
+    ],
+)
+def test_simulate_rejects_bad_arguments(kwargs, match):
+    args = {"time": np.linspace(0, 1, 11)}
+    args.update(kwargs)
+    with pytest.raises(ParameterError, match=match):
+        simulate(oscillator(), args.pop("time"), **args)
+
+
+def test_exact_requires_linear_model():
+    class Pend(Model):
+        states = ("angle", "angle_rate")
+
+        def rhs(self, t, x, u):
+            return np.stack([x[1], -np.sin(x[0])])
+
+    with pytest.raises(ParameterError, match="needs a LinearModel"):
+        simulate(Pend(), np.linspace(0, 1, 3), method="exact")
+
+
+def test_result_named_access_frame_and_units():
+    t = np.linspace(0, 1, 11)
+    r = simulate(oscillator(), t, x0=[1.0, 0.0], inputs={"force": 0.5})
+    assert r["position"] is r.states[0] or np.array_equal(r["position"], r.outputs[0])
+    np.testing.assert_array_equal(r.position_velocity, r["position_velocity"])
+    df = r.to_frame()
+    assert list(df.columns) == ["position", "position_velocity", "force"]
+    assert df.index.name == "time" and df.attrs["units"]["position_velocity"] == "m/s"
+    assert df.attrs["units"]["position"] == "" or df.attrs["units"]["position"] == "m"
+    with pytest.raises(KeyError, match="no signal named 'speed'"):
+        r["speed"]
+    assert r.wall_time > 0 and r.method == "exact"
