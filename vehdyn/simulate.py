@@ -502,6 +502,8 @@ def _outputs(model, t, x, u):
     from .linear import LinearModel
 
     if isinstance(model, LinearModel):
+        if x.ndim == 2:
+            return model.C @ x + model.D @ u
         uu = u if u.ndim == x.ndim else np.broadcast_to(u[..., None], u.shape + x.shape[2:])
         return np.einsum("pn,nt...->pt...", model.C, x) + np.einsum("pm,mt...->pt...", model.D, uu)
     n_t = t.size
