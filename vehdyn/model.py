@@ -263,8 +263,9 @@ class Model:
         The Jacobians come from :meth:`jacobian` where a model provides them, else from a
         fourth-order central difference, all perturbed points evaluated in one batched call. The
         step of each variable z_i is h_i = eps**(1/5) * max(|z_i|, 1), which balances truncation
-        (O(h^4)) against rounding (O(eps/h)) for well-scaled variables: the Jacobian is then
-        accurate to about 1e-12 relative.
+        (O(h^4)) against rounding (O(eps |f| / h)) for well-scaled variables: the Jacobian is then
+        accurate to about 1e-12 relative to the size of f for smooth models, and to 1e-9 of it in
+        the worst case of strong cancellation.
         """
         from .linear import LinearModel
 
