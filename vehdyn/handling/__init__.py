@@ -27,6 +27,14 @@ from .steady_state import (
     understeer_gradient_rad_per_g,
     zero_sideslip_speed,
 )
+from .four_wheel_steer import (
+    FourWheelSteerComparison,
+    compare_four_wheel_steering,
+    proportional_rear_steer,
+    yaw_rate_feedback_rear_steer,
+    zero_sideslip_rear_steer_ratio,
+)
+from .lateral_yaw_roll import LateralYawRoll, LateralYawRollParameters, lateral_yaw_roll_parameters, roll_gradient
 from .transient import (
     StepResponseMetrics,
     YawMode,
@@ -60,6 +68,15 @@ __all__ = [
     "understeer_gradient_deg_per_g",
     "understeer_gradient_rad_per_g",
     "zero_sideslip_speed",
+    "FourWheelSteerComparison",
+    "compare_four_wheel_steering",
+    "proportional_rear_steer",
+    "yaw_rate_feedback_rear_steer",
+    "zero_sideslip_rear_steer_ratio",
+    "LateralYawRoll",
+    "LateralYawRollParameters",
+    "lateral_yaw_roll_parameters",
+    "roll_gradient",
     "StepResponseMetrics",
     "YawMode",
     "lateral_acceleration_transfer_function",
