@@ -2,9 +2,12 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import vehdyn
 from vehdyn.handling import (
+    BicycleParameters,
     LinearBicycle,
     compare_four_wheel_steering,
     proportional_rear_steer,
@@ -95,3 +98,21 @@ def test_four_wheel_steer_errors(abe):
         zero_sideslip_rear_steer_ratio(vehdyn.load_vehicle("sedan"))
     with pytest.raises(vehdyn.ParameterError, match="frequency_hz"):
         compare_four_wheel_steering(abe, [10.0], frequency_hz=0.0)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(0.3, 0.7), st.floats(0.6, 1.6), st.floats(1.0, 50.0))
+def test_zero_sideslip_ratio_property(cg_fraction, stiffness_ratio, speed):
+    """For any CG position, stiffness balance and speed, the 4WS model's steady sideslip is zero and the
+    yaw-rate gain follows the balance delta_f - delta_r = r (L/u + K u)."""
+    L = 2.7
+    p = BicycleParameters(mass=1500.0, yaw_inertia=2500.0, a=cg_fraction * L, b=(1 - cg_fraction) * L,
+                          front_cornering_stiffness=1e5 * stiffness_ratio, rear_cornering_stiffness=1e5)
+    four = proportional_rear_steer(LinearBicycle(p, speed))
+    if not four.is_stable():
+        return  # beyond the critical speed the steady state is not reached
+    dc = four.dc_gain()[:, 0]
+    k = four.rear_steer_ratio
+    assert dc[four.index("sideslip_angle", "outputs")] == pytest.approx(0.0, abs=1e-10)
+    expected = (1 - k) / (L / speed + p.understeer_gradient * speed)
+    assert dc[four.index("yaw_rate", "outputs")] == pytest.approx(expected, rel=1e-9)

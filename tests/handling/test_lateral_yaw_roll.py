@@ -180,3 +180,19 @@ def test_lateral_yaw_roll_errors():
     with pytest.raises(vehdyn.ParameterError, match="yaw_inertia"):
         lateral_yaw_roll_parameters(vehdyn.load_vehicle("van").replace(mass__yaw_inertia=240.0,
                                                                        mass__pitch_inertia=800.0))
+
+
+def test_tire_compliance_in_series_with_the_suspension():
+    van = vehdyn.load_vehicle("van")
+    stiff = lateral_yaw_roll_parameters(van)
+    soft = lateral_yaw_roll_parameters(van, tire_compliance=True)
+    g, kt = van.geometry, van.tires.vertical_stiffness
+
+    def series(k_susp, track):
+        k_tire = kt * track**2 / 2
+        return 1.0 / (1.0 / k_susp + 1.0 / k_tire)
+
+    expected = series(van.front_roll_stiffness, g.front_track) + series(van.rear_roll_stiffness, g.rear_track)
+    assert stiff.roll_stiffness == pytest.approx(van.front_roll_stiffness + van.rear_roll_stiffness, rel=1e-14)
+    assert soft.roll_stiffness == pytest.approx(expected, rel=1e-12)
+    assert roll_gradient(van, tire_compliance=True) > roll_gradient(van)
