@@ -85,13 +85,12 @@ def run(study: Study) -> None:
 
     table = pd.concat(tables).reset_index().set_index(["vehicle", "speed"])
     table.attrs["units"] = tables[0].attrs["units"]
-    if not study.quick:
-        table = table.iloc[::4]
-    study.table(table, "two_vs_four_wheel_steering",
-                caption="2WS against zero-sideslip 4WS (phases at 1 Hz)")
     at = table.xs(30.0, level="speed") if 30.0 in table.index.get_level_values("speed") else table.groupby(
         level="vehicle").last()
     slow = table.groupby(level="vehicle").first()
+    shown = table if study.quick else table.iloc[::4]
+    shown.attrs["units"] = table.attrs["units"]
+    study.table(shown, "two_vs_four_wheel_steering", caption="2WS against zero-sideslip 4WS (phases at 1 Hz)")
     study.text("At speed the zero-sideslip law steers the rear wheels in phase and cuts the yaw-rate gain to "
                + ", ".join(f"{100 * r.yaw_rate_gain_4ws / r.yaw_rate_gain_2ws:.0f} % ({v})" for v, r in at.iterrows())
                + " of front steering alone at 30 m/s, while the sideslip stays zero in the steady state; at "
