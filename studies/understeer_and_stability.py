@@ -110,6 +110,29 @@ def run(study: Study) -> None:
                  caption="Steady-state gains per unit road-wheel steer against speed; triangles: yaw-rate gain at "
                          "the characteristic speed, dotted lines: characteristic and critical speeds")
 
+    # --- linear handling diagram: steer angle against lateral acceleration
+    ay = np.linspace(0.0, 0.4 * GRAVITY, 9 if study.quick else 41)
+    fig, axes = new_figure(1, 2, width=10.0, height_per_row=3.4)
+    for name, p in params.items():
+        style = "--" if "oversteer" in name else "-"
+        radius = handling.handling_diagram(p, ay, radius=40.0)
+        speed = handling.handling_diagram(p, ay, speed=20.0)
+        (line,) = axes[0, 0].plot(ay / GRAVITY, np.rad2deg(radius.steer_angle), style, label=name)
+        axes[0, 1].plot(ay / GRAVITY, np.rad2deg(speed.steer_angle), style, color=line.get_color(), label=name)
+    axes[0, 0].axhline(np.rad2deg(handling.ackermann_steer_angle(params["sedan"], 40.0)), color="k", lw=0.8, ls=":",
+                       label="Ackermann (sedan)")
+    axes[0, 0].set_title("constant radius 40 m", fontsize=9)
+    axes[0, 1].set_title("constant speed 20 m/s", fontsize=9)
+    for ax in axes[0]:
+        ax.set_xlabel("lateral acceleration [g]")
+        ax.set_ylabel("road-wheel steer angle [deg]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    study.figure(fig, "handling_diagram",
+                 caption="Linear handling diagram: road-wheel angle against lateral acceleration; the slope at "
+                         "constant radius is the understeer gradient")
+
     table = pd.DataFrame(rows).set_index("vehicle")
     table.attrs["units"] = {"understeer_gradient_deg_per_g": "deg/g", "understeer_gradient": "rad/(m/s^2)",
                             "stability_factor": "s^2/m^2", "characteristic_speed": "m/s", "critical_speed": "m/s",
