@@ -13,7 +13,7 @@ one profile per track in three ways:
 * **State space, approximate**: :func:`with_wheelbase_delay` appends a Padé approximant of the
   delay so that eigenvalues, Lyapunov covariances and LQR designs can see the whole car driven by
   one profile per track. Its error: the [n/n] Padé approximant P has |P(j omega)| = 1 exactly, and
-  |P(j omega) - exp(-j omega tau)| < 1e-3 for omega tau < 1.5 n - 3 and < 1e-2 for
+  |P(j omega) - exp(-j omega tau)| < 1e-3 for omega tau < 1.5 n - 3.5 and < 1e-2 for
   omega tau < 1.6 n - 2.3 (n = 4..10, checked numerically in the tests); above that the delayed
   input is wrong in phase. With the default n = 6 and a 2.6 m wheelbase at 20 m/s (tau = 0.13 s)
   it is good to 1e-2 up to 9 Hz: enough for the body modes, not for wheel hop — use the exact
