@@ -201,7 +201,10 @@ class SemiActiveQuarterCar(Model):
         self.groundhook_damping = float(groundhook_damping)
         self.min_damping, self.max_damping = float(min_damping), float(max_damping)
         self.plant = quarter_car.replace(damping=0.0, actuator=True)
-        self._j_force = self.plant.index("actuator_force", "inputs")
+        j = self.plant.index("actuator_force", "inputs")
+        road = [k for k in range(self.plant.n_inputs) if k != j]
+        self._B_road, self._b_force = self.plant.B[:, road], self.plant.B[:, j]
+        self._D_road, self._d_force = self.plant.D[:, road], self.plant.D[:, j]
         self._i_vs = self.plant.index("sprung_velocity")
         self._i_vu = self.plant.index("unsprung_velocity")
         self.declare(states=self.plant.states, inputs=[s for s in self.plant.inputs if s.name != "actuator_force"],
@@ -221,19 +224,15 @@ class SemiActiveQuarterCar(Model):
         c = np.where(dissipative, np.clip(wanted, self.min_damping, self.max_damping), self.min_damping)
         return c, -c * rel
 
-    def _plant_input(self, x, u):
-        _, force = self.damper(x)
-        u = np.asarray(u, dtype=float)
-        return np.insert(u, self._j_force, force, axis=0)
-
     def rhs(self, t, x, u):
         x = np.asarray(x, dtype=float)
-        return self.plant.A @ x + self.plant.B @ self._plant_input(x, u)
+        _, force = self.damper(x)
+        return self.plant.A @ x + self._B_road @ u + np.multiply.outer(self._b_force, force)
 
     def output(self, t, x, u):
         x = np.asarray(x, dtype=float)
         c, force = self.damper(x)
-        y = self.plant.C @ x + self.plant.D @ self._plant_input(x, u)
+        y = self.plant.C @ x + self._D_road @ u + np.multiply.outer(self._d_force, force)
         return np.concatenate([y, force[None], c[None]], axis=0)
 
 
