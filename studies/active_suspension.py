@@ -133,7 +133,7 @@ def run(study: Study) -> None:
                  "and the ideal hook laws (class C, 20 m/s)")
 
     # ---------------------------------------------------------------- a single bump
-    tb = np.arange(0.0, 2.5, 1e-3)
+    tb = np.arange(0.0, 1.2, 1e-3)
     length, height = 1.0, 0.05  # m
     s = SPEED * (tb - 0.2)
     bump = np.where((s > 0) & (s < length), 0.5 * height * (1 - np.cos(2 * np.pi * s / length)), 0.0)

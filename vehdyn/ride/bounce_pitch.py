@@ -101,7 +101,7 @@ class BouncePitch(RideModel):
     >>> from vehdyn.ride import BouncePitch
     >>> bp = BouncePitch(mass=1600.0, pitch_inertia=1600.0 * 0.95**2, a=1.3, b=1.6,
     ...                  front_spring_rate=38e3, rear_spring_rate=34e3)
-    >>> [round(f, 4) for f in bp.modal_analysis().natural_frequency_hz]
+    >>> bp.modal_analysis().natural_frequency_hz.round(4).tolist()
     [1.0655, 1.6303]
     """
 
