@@ -148,3 +148,18 @@ def test_bad_parameters_are_named(key, value):
 def test_bad_axle():
     with pytest.raises(vehdyn.ParameterError, match="axle"):
         QuarterCar.from_vehicle(vehdyn.load_vehicle("sedan"), "middle")
+
+
+def test_replace_validates_and_keeps_the_actuator_option():
+    qc = golden_car()
+    active = qc.replace(actuator=True)
+    assert "actuator_force" in active.input_names and active.parameters == qc.parameters
+    assert "actuator_force" in active.replace(damping=2.0).input_names
+    with pytest.raises(vehdyn.ParameterError) as err:
+        qc.replace(damping=-1.0)
+    assert err.value.key == "damping"
+    # actuator force extends the suspension: statically it lifts the body by f / k_s more than the wheel
+    f = 10.0
+    dc = active.dc_gain()[:, active.index("actuator_force", "inputs")] * f
+    assert dc[active.index("suspension_travel", "outputs")] == pytest.approx(f / qc.parameters.spring_rate, rel=1e-10)
+    assert dc[active.index("dynamic_tire_load", "outputs")] == pytest.approx(0.0, abs=1e-9)

@@ -276,6 +276,20 @@ class RideModel(LinearModel):
         self.mass_matrix, self.damping_matrix, self.stiffness_matrix = M, C, K
 
     # ------------------------------------------------------------------ conveniences
+    _actuator_keyword = "actuators"
+
+    def replace(self, **changes) -> "RideModel":
+        """The same kind of model with some parameters changed (``qc.replace(damping=2000.0)``).
+
+        The actuator option (``actuator`` for the quarter car, ``actuators`` otherwise) may be
+        changed too; everything else is validated again.
+        """
+        import dataclasses
+
+        flag = changes.pop(self._actuator_keyword, self.has_actuators)
+        params = dataclasses.replace(self.parameters, **changes)
+        return type(self)(**params.to_dict(), **{self._actuator_keyword: flag}, name=self.name)
+
     @property
     def corner_suffixes(self) -> tuple[str, ...]:
         """Suffixes of the corners' signal names, in input order."""

@@ -152,9 +152,3 @@ class BouncePitch(RideModel):
             else:
                 kw[f"{axle}_spring_rate"] = ks * kt / (ks + kt)
         return cls(actuators=actuators, name=f"bounce_pitch_{vehicle.name}", **kw)
-
-    def replace(self, **changes) -> "BouncePitch":
-        """A half car with some parameters changed."""
-        actuators = changes.pop("actuators", self.has_actuators)
-        params = dataclasses.replace(self.parameters, **changes)
-        return BouncePitch(actuators=actuators, name=self.name, **params.to_dict())

@@ -129,9 +129,3 @@ class FullCar(RideModel):
             front_tire_damping=t.vertical_damping, rear_tire_damping=t.vertical_damping,
             actuators=actuators, name=f"full_car_{vehicle.name}",
         )
-
-    def replace(self, **changes) -> "FullCar":
-        """A full car with some parameters changed."""
-        actuators = changes.pop("actuators", self.has_actuators)
-        params = dataclasses.replace(self.parameters, **changes)
-        return FullCar(actuators=actuators, name=self.name, **params.to_dict())

@@ -70,6 +70,7 @@ class QuarterCar(RideModel):
     """
 
     phenomena = frozenset({"heave", "wheel_hop", "road_input"})
+    _actuator_keyword = "actuator"
 
     def __init__(self, *, sprung_mass, unsprung_mass, spring_rate, damping=0.0, tire_stiffness, tire_damping=0.0,
                  actuator: bool = False, name: str = "quarter_car"):
@@ -109,12 +110,6 @@ class QuarterCar(RideModel):
             actuator=actuator,
             name=f"quarter_car_{vehicle.name}_{axle}",
         )
-
-    def replace(self, **changes) -> "QuarterCar":
-        """A quarter car with some parameters changed (``qc.replace(damping=2000.0)``)."""
-        actuator = changes.pop("actuator", self.has_actuators)
-        params = dataclasses.replace(self.parameters, **changes)
-        return QuarterCar(**params.to_dict(), actuator=actuator, name=self.name)
 
     # ------------------------------------------------------------------ textbook estimates
     @property
