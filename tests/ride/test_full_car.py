@@ -89,3 +89,27 @@ def test_bad_track():
     with pytest.raises(vehdyn.ParameterError) as err:
         reference_car(front_track=0.0)
     assert err.value.key == "front_track"
+
+
+@pytest.mark.parametrize("build", ["two_dof", "half", "full"])
+def test_tire_loads_balance_the_inertial_forces(build):
+    """Newton for the whole car: sum of dynamic tire loads = m z_s'' + sum m_u z_u'' (pitch/roll moments likewise)."""
+    v = vehdyn.load_vehicle("van")
+    model = {"two_dof": lambda: BouncePitch.from_vehicle(v, unsprung=False), "half": lambda: BouncePitch.from_vehicle(v),
+             "full": lambda: reference_car()}[build]()
+    w = np.array([2.0, 9.0, 70.0])
+    fr = model.frequency_response(w)
+    y = {n: fr.response[k] for k, n in enumerate(fr.output_names)}
+    loads = sum(y[f"dynamic_tire_load{s}"] for s in model.corner_suffixes)
+    inertia = model.parameters.mass * y["sprung_acceleration"]
+    for c in model.corners:
+        if c.has_unsprung_mass:
+            inertia = inertia + c.unsprung_mass * y[f"unsprung_acceleration{c.suffix}"]
+    np.testing.assert_allclose(loads, inertia, rtol=1e-9, atol=1e-9 * np.abs(loads).max())
+    # pitch: moment of the tire loads about the sprung CG (x ahead, loads up) = I_y theta'' + sum m_u x z_u''
+    moment = sum(c.x * y[f"dynamic_tire_load{c.suffix}"] for c in model.corners)
+    inertia = model.parameters.pitch_inertia * y["pitch_acceleration"]
+    for c in model.corners:
+        if c.has_unsprung_mass:
+            inertia = inertia + c.unsprung_mass * c.x * y[f"unsprung_acceleration{c.suffix}"]
+    np.testing.assert_allclose(moment, inertia, rtol=1e-9, atol=1e-9 * np.abs(moment).max())
