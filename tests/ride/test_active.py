@@ -1,0 +1,198 @@
+"""Active and semi-active suspension: closed forms, E-QC-ISO-C, LQR optimality and the Riccati equation."""
+
+import numpy as np
+import pytest
+import scipy.integrate
+import scipy.linalg
+
+import vehdyn
+from vehdyn.ride import (QuarterCar, SemiActiveQuarterCar, compare_suspensions, groundhook,
+                         iso8608_velocity_intensity, lqr_quarter_car, relative_quarter_car, skyhook, white_noise_rms)
+
+from .conftest import check, load_case
+
+
+def iso_c_car(**changes):
+    i = {k: v[0] for k, v in load_case("E-QC-ISO-C")["inputs"].items()}
+    kw = dict(sprung_mass=i["ms"], unsprung_mass=i["mu"], spring_rate=i["ks"], damping=i["cs"],
+              tire_stiffness=i["kt"])
+    kw.update(changes)
+    return QuarterCar(**kw)
+
+
+def iso_c_intensity():
+    i = {k: v[0] for k, v in load_case("E-QC-ISO-C")["inputs"].items()}
+    return iso8608_velocity_intensity(i["Gd(n0)_class_C"], i["V"], i["n0"])
+
+
+def test_passive_rms_on_class_c_road():
+    exp = load_case("E-QC-ISO-C")["expected"]
+    G = iso_c_intensity()
+    check(G, exp["road_velocity_PSD_white_Gzr'"], "velocity PSD")
+    rms = white_noise_rms(relative_quarter_car(iso_c_car(), actuator=False), {"road_velocity": G})
+    check(rms["sprung_acceleration"], exp["rms_body_acceleration"], "acceleration")
+    check(rms["suspension_travel"], exp["rms_suspension_travel"], "travel")
+    check(rms["tire_deflection"], exp["rms_tyre_deflection"], "tire deflection")
+    check(rms["dynamic_tire_load"], exp["rms_dynamic_tyre_load"], "tire load")
+    check(rms["dynamic_tire_load"] / (9.81 * (300 + 60)), exp["rms_dynamic_tyre_load/static_load"], "ratio")
+
+
+def test_relative_form_matches_absolute_model():
+    """Per unit road velocity: H_rel = H_abs,displacement / (j w) + H_abs,velocity."""
+    qc = iso_c_car(tire_damping=150.0)
+    rel = relative_quarter_car(qc, actuator=False)
+    w = np.logspace(-1, 2.5, 25)
+    ha = qc.frequency_response(w, outputs=list(rel.output_names))
+    hr = rel.frequency_response(w)
+    expected = ha.response[:, 0] / (1j * w) + ha.response[:, 1]
+    np.testing.assert_allclose(hr.response[:, 0], expected, rtol=1e-9, atol=1e-12)
+
+
+def test_lyapunov_rms_equals_psd_integral():
+    qc = iso_c_car()
+    rel = relative_quarter_car(qc, actuator=False)
+    G = iso_c_intensity()
+    f_max = 1e4
+    f = np.logspace(-5, np.log10(f_max), 200001)
+    fr = rel.frequency_response(2 * np.pi * f, outputs=["suspension_travel", "dynamic_tire_load"])
+    var = scipy.integrate.trapezoid(np.abs(fr.response[:, 0]) ** 2 * G, f, axis=-1)
+    # tail above f_max: the tire load tends to k_t z_r = k_t z_r' / (j w), |H|^2 = k_t^2 / (2 pi f)^2
+    var[1] += qc.parameters.tire_stiffness**2 * G / (4 * np.pi**2 * f_max)
+    rms = white_noise_rms(rel, {"road_velocity": G}, outputs=["suspension_travel", "dynamic_tire_load"])
+    assert np.sqrt(var[0]) == pytest.approx(rms["suspension_travel"], rel=1e-4)
+    assert np.sqrt(var[1]) == pytest.approx(rms["dynamic_tire_load"], rel=1e-4)
+
+
+def test_skyhook_and_groundhook_closed_forms():
+    qc = iso_c_car(damping=0.0)
+    p = qc.parameters
+    ms, mu, ks, kt = p.sprung_mass, p.unsprung_mass, p.spring_rate, p.tire_stiffness
+    csky, cg = 2500.0, 900.0
+    w = 2 * np.pi * np.logspace(-1, 1.5, 30)
+    s = 1j * w
+    sky = skyhook(qc, csky)
+    h = sky.frequency_response(w, outputs=["sprung_displacement"], inputs=["road_displacement"]).response[0, 0]
+    np.testing.assert_allclose(h, ks * kt / ((ms * s**2 + csky * s + ks) * (mu * s**2 + ks + kt) - ks * (ks + csky * s)),
+                               rtol=1e-9)
+    gh = groundhook(qc, cg)
+    h = gh.frequency_response(w, outputs=["sprung_displacement"], inputs=["road_displacement"]).response[0, 0]
+    np.testing.assert_allclose(
+        h, kt * (ks + cg * s) / ((ms * s**2 + ks) * (mu * s**2 + cg * s + ks + kt) - ks * (ks + cg * s)), rtol=1e-9)
+    # the actuator force is an output: -c_sky z_s'
+    y = sky.frequency_response(w, outputs=["actuator_force", "sprung_velocity"], inputs=["road_displacement"])
+    np.testing.assert_allclose(y.response[0, 0], -csky * y.response[1, 0], rtol=1e-12)
+
+
+def test_skyhook_without_feedback_is_passive():
+    qc = iso_c_car()
+    closed = skyhook(qc, 0.0)
+    w = np.logspace(-1, 2, 9)
+    np.testing.assert_allclose(closed.frequency_response(w, outputs=list(qc.output_names)).response,
+                               qc.frequency_response(w).response, rtol=1e-12)
+
+
+def test_lqr_gain_solves_the_riccati_equation_and_is_optimal():
+    qc = iso_c_car()
+    weights = {"sprung_acceleration": 1.0, "suspension_travel": 2e4, "tire_deflection": 5e4}
+    r = 1e-7
+    design = lqr_quarter_car(qc, weights, force_weight=r)
+    plant = design.plant
+    j = plant.index("actuator_force", "inputs")
+    sel = plant.select(outputs=list(weights), inputs=["actuator_force"])
+    W = np.diag(list(weights.values()))
+    Q, R, N = sel.C.T @ W @ sel.C, sel.D.T @ W @ sel.D + r, sel.C.T @ W @ sel.D
+    B = plant.B[:, [j]]
+    S = scipy.linalg.solve_continuous_are(plant.A, B, Q, R, s=N)
+    K = np.linalg.solve(R, B.T @ S + N.T).ravel()
+    np.testing.assert_allclose(design.gain, K, rtol=1e-6)
+    assert design.closed_loop.is_stable()
+    # expected cost from the closed loop's covariance equals the Riccati value (G/2) b' S b
+    G = iso_c_intensity()
+    rms = white_noise_rms(design.closed_loop, {"road_velocity": G}, outputs=list(weights) + ["actuator_force"])
+    cost = sum(w * rms[k] ** 2 for k, w in weights.items()) + r * rms["actuator_force"] ** 2
+    assert cost == pytest.approx(design.cost(G), rel=1e-6)
+    # the passive car (K = 0) is an admissible feedback: its cost cannot be lower
+    passive = white_noise_rms(relative_quarter_car(qc, actuator=False), {"road_velocity": G}, outputs=list(weights))
+    assert sum(w * passive[k] ** 2 for k, w in weights.items()) > cost
+
+
+def test_lqr_with_expensive_force_tends_to_passive():
+    qc = iso_c_car()
+    design = lqr_quarter_car(qc, force_weight=1e3)
+    assert np.max(np.abs(design.gain)) < 1e-3
+    passive = relative_quarter_car(qc, actuator=False)
+    np.testing.assert_allclose(np.sort_complex(design.poles), np.sort_complex(passive.poles()), rtol=1e-6)
+
+
+def test_comparison_table():
+    qc = iso_c_car()
+    G = iso_c_intensity()
+    df = compare_suspensions({"passive": relative_quarter_car(qc, actuator=False),
+                              "lqr": lqr_quarter_car(qc).closed_loop}, G)
+    assert list(df.index) == ["passive", "lqr"]
+    np.testing.assert_allclose(df.loc["passive", ["sprung_acceleration_ratio", "suspension_travel_ratio"]], 1.0)
+    assert df.attrs["units"]["dynamic_tire_load"] == "N"
+    assert np.isfinite(df.loc["lqr", "actuator_force"])
+
+
+def _road(t, G, seed):
+    rng = np.random.default_rng(seed)
+    dt = t[1] - t[0]
+    v = rng.standard_normal(t.size) * np.sqrt(G / (2 * dt))
+    return {"road_displacement": np.concatenate([[0.0], np.cumsum(v[:-1]) * dt]), "road_velocity": v}
+
+
+def test_semi_active_with_fixed_damping_is_passive():
+    qc = iso_c_car()
+    sa = SemiActiveQuarterCar(qc, skyhook_damping=3000.0, min_damping=1000.0, max_damping=1000.0)
+    t = np.arange(0, 2, 1e-3)
+    road = _road(t, iso_c_intensity(), 3)
+    a = vehdyn.simulate(sa, t, inputs=road, method="rk4", hold="zoh")
+    b = vehdyn.simulate(qc, t, inputs=road, method="rk4", hold="zoh")  # same integrator: only the law differs
+    scale = np.max(np.abs(b["sprung_acceleration"]))
+    assert np.max(np.abs(a["sprung_acceleration"] - b["sprung_acceleration"])) < 1e-6 * scale
+
+
+def test_semi_active_damper_only_dissipates_and_respects_limits():
+    qc = iso_c_car()
+    sa = SemiActiveQuarterCar(qc, skyhook_damping=4000.0, groundhook_damping=500.0, min_damping=300.0,
+                              max_damping=3000.0)
+    t = np.arange(0, 2, 1e-3)
+    r = vehdyn.simulate(sa, t, inputs=_road(t, iso_c_intensity(), 5), method="rk4", hold="zoh")
+    assert np.all(r["damper_force"] * r["suspension_velocity"] <= 1e-12)
+    c = r["damper_coefficient"]
+    assert c.min() >= 300.0 and c.max() <= 3000.0 and (c > 300.0).any()
+    # a batch of two states in one call (trailing batch axis)
+    x = np.array([[0.0, 0.01], [0.0, 0.0], [0.1, -0.2], [0.0, 0.3]])
+    assert sa.rhs(0.0, x, np.zeros((2, 2))).shape == (4, 2)
+
+
+@pytest.mark.parametrize("kw,key", [
+    (dict(min_damping=-1.0, max_damping=10.0), "min_damping"),
+    (dict(min_damping=100.0, max_damping=10.0), "max_damping"),
+    (dict(min_damping=0.0, max_damping=10.0, skyhook_damping=float("nan")), "skyhook_damping"),
+])
+def test_semi_active_bad_parameters(kw, key):
+    with pytest.raises(vehdyn.ParameterError) as err:
+        SemiActiveQuarterCar(iso_c_car(), **kw)
+    assert err.value.key == key
+
+
+def test_bad_inputs_of_the_active_functions():
+    qc = iso_c_car()
+    with pytest.raises(vehdyn.ParameterError):
+        skyhook(qc, -1.0)
+    with pytest.raises(vehdyn.ParameterError):
+        lqr_quarter_car(qc, {"no_such_output": 1.0})
+    with pytest.raises(vehdyn.ParameterError):
+        lqr_quarter_car(qc, force_weight=0.0)
+    with pytest.raises(vehdyn.ParameterError):
+        iso8608_velocity_intensity(-1.0, 20.0)
+    with pytest.raises(vehdyn.ParameterError):
+        relative_quarter_car("not a quarter car")
+    unstable = vehdyn.LinearModel([[1.0]], [[1.0]], states=["x"], inputs=["road_velocity"])
+    with pytest.raises(vehdyn.ParameterError):
+        white_noise_rms(unstable, {"road_velocity": 1.0})
+    # an output fed through by the noise has infinite variance
+    qct = relative_quarter_car(iso_c_car(tire_damping=100.0), actuator=False)
+    assert white_noise_rms(qct, {"road_velocity": 1.0}, outputs=["dynamic_tire_load"])["dynamic_tire_load"] == np.inf

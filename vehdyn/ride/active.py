@@ -1,0 +1,421 @@
+"""Active and semi-active quarter-car suspension: skyhook, groundhook, LQR, clipped semi-active damping.
+
+* **Ideal skyhook / groundhook** (Karnopp, Crosby & Harwood, *J. Eng. Ind.* 96(2), 1974;
+  Valášek et al., *Vehicle System Dynamics* 28, 1997): an actuator between body and wheel makes the
+  force of a damper from the body to the inertial "sky", f = -c_sky z_s', or from the wheel to the
+  ground, f = c_gnd z_u' (the wheel then feels -c_gnd z_u'); both at once is the hybrid.
+  :func:`skyhook` and :func:`groundhook` return the closed loop as a :class:`~vehdyn.LinearModel`.
+* **Semi-active** (Karnopp 1974; Sammier, Sename & Dugard, *Vehicle System Dynamics* 39, 2003):
+  :class:`SemiActiveQuarterCar` is a damper whose coefficient varies between c_min and c_max and
+  can only dissipate. It tracks the skyhook/groundhook force when that force is dissipative and
+  falls to c_min when it is not ("clipped optimal"); a nonlinear :class:`~vehdyn.Model`.
+* **LQR** (Hrovat, *Automatica* 33(10), 1997, sec. 3; Thompson, *Proc. IMechE* 190, 1976):
+  full-state feedback f = -K x on the quarter car in relative coordinates (suspension travel,
+  tire deflection, sprung and unsprung velocity; road velocity the disturbance) minimizing
+  E[sum w_i y_i^2 + r f^2] with y the sprung acceleration, suspension travel and tire deflection
+  (or any outputs). :func:`lqr_quarter_car` builds the weights over the outputs, exports the plant
+  with :meth:`~vehdyn.LinearModel.to_control` and calls python-control's ``lqr``.
+* **Comparison** on white road velocity — the ISO 8608 road of waviness 2 seen at speed V has the
+  one-sided velocity PSD G = (2 pi n0)^2 G_d(n0) V [(m/s)^2/Hz] (ISO 8608:2016, Annex C;
+  :func:`iso8608_velocity_intensity`) — with exact r.m.s. values from the Lyapunov equation
+  A X + X A' + B W B' = 0, W = G / 2 (:func:`white_noise_rms`; Newland, *Random Vibrations*,
+  3rd ed., 1993, ch. 7), ranked on comfort (r.m.s. sprung acceleration), suspension travel and road
+  holding (r.m.s. dynamic tire load).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..linear import LinearModel
+from ..model import Model
+from ..signals import Signal
+from .quarter_car import QuarterCar
+
+__all__ = [
+    "relative_quarter_car",
+    "skyhook",
+    "groundhook",
+    "SemiActiveQuarterCar",
+    "LQRDesign",
+    "lqr_quarter_car",
+    "iso8608_velocity_intensity",
+    "white_noise_rms",
+    "compare_suspensions",
+]
+
+#: The three measures of :func:`compare_suspensions`.
+COMPARISON_OUTPUTS = ("sprung_acceleration", "suspension_travel", "dynamic_tire_load")
+
+
+def _require_quarter_car(qc):
+    if not isinstance(qc, QuarterCar):
+        raise ParameterError(f"expected a vehdyn.ride.QuarterCar, got {type(qc).__name__}", key="quarter_car",
+                             value=qc)
+
+
+def _with_actuator(qc: QuarterCar) -> QuarterCar:
+    return qc if qc.has_actuators else qc.replace(actuator=True)
+
+
+def relative_quarter_car(qc: QuarterCar, actuator: bool = True) -> LinearModel:
+    """The quarter car in relative coordinates, driven by the road velocity only.
+
+    States ``suspension_travel`` (z_s - z_u), ``tire_deflection`` (z_r - z_u), ``sprung_velocity``,
+    ``unsprung_velocity``; inputs ``road_velocity`` (and ``actuator_force``). The road elevation
+    drops out because every force depends on differences of displacements; so a white road
+    velocity (an ISO 8608 road of waviness 2) gives a stationary state with finite covariance.
+    The outputs are those of ``qc`` that do not depend on absolute position.
+
+    Derived from ``qc``'s own matrices by the substitution z_s = x_1 - x_2 + z_r,
+    z_u = z_r - x_2 (checked: the coefficient of z_r vanishes).
+    """
+    _require_quarter_car(qc)
+    m = _with_actuator(qc) if actuator else qc.replace(actuator=False)
+    i_zs, i_zu = m.index("sprung_displacement"), m.index("unsprung_displacement")
+    i_vs, i_vu = m.index("sprung_velocity"), m.index("unsprung_velocity")
+    n = m.n_states
+    # x_abs = P x_rel + e z_r
+    P = np.zeros((n, n))
+    P[i_zs, 0], P[i_zs, 1] = 1.0, -1.0
+    P[i_zu, 1] = -1.0
+    P[i_vs, 2] = 1.0
+    P[i_vu, 3] = 1.0
+    e = np.zeros(n)
+    e[[i_zs, i_zu]] = 1.0
+    j_zr, j_vr = m.index("road_displacement", "inputs"), m.index("road_velocity", "inputs")
+    others = [j for j in range(m.n_inputs) if j not in (j_zr, j_vr)]
+    Pinv = np.linalg.inv(P)
+    # x_rel' = Pinv (x_abs' - e z_r') ; x_abs' = A x_abs + B u
+    A = Pinv @ m.A @ P
+    road_term = Pinv @ (m.A @ e + m.B[:, j_zr])
+    if np.abs(road_term).max() > 1e-9 * np.abs(A).max():
+        raise AssertionError("relative_quarter_car: the road elevation does not drop out")  # pragma: no cover
+    B = np.column_stack([Pinv @ (m.B[:, j_vr] - e)] + [Pinv @ m.B[:, j] for j in others])
+    Cabs_zr = m.C @ e + m.D[:, j_zr]
+    keep = [k for k in range(m.n_outputs) if abs(Cabs_zr[k]) <= 1e-9 * (1 + np.abs(m.C[k]).max())]
+    C = (m.C @ P)[keep]
+    D = np.column_stack([m.D[keep, j_vr]] + [m.D[keep, j] for j in others])
+    states = [Signal("suspension_travel", "m", "suspension extension z_s - z_u"),
+              Signal("tire_deflection", "m", "tire compression z_r - z_u"),
+              m.states[i_vs], m.states[i_vu]]
+    return LinearModel(A, B, C, D, states=states, inputs=[m.inputs[j_vr]] + [m.inputs[j] for j in others],
+                       outputs=[m.outputs[k] for k in keep], name=f"{qc.name}_relative",
+                       phenomena=qc.phenomena)
+
+
+def _close_loop(model: LinearModel, gain: np.ndarray, actuator: str = "actuator_force", name: str = "") -> LinearModel:
+    """Closed loop of ``model`` with ``actuator = gain @ x``; the actuator force becomes an output."""
+    j = model.index(actuator, "inputs")
+    rest = [k for k in range(model.n_inputs) if k != j]
+    gain = np.asarray(gain, dtype=float).reshape(1, model.n_states)
+    A = model.A + model.B[:, [j]] @ gain
+    C = np.vstack([model.C + model.D[:, [j]] @ gain, gain])
+    D = np.vstack([model.D[:, rest], np.zeros((1, len(rest)))])
+    return LinearModel(A, model.B[:, rest], C, D, states=model.states, inputs=[model.inputs[k] for k in rest],
+                       outputs=list(model.outputs) + [model.inputs[j]], name=name or model.name,
+                       phenomena=model.phenomena)
+
+
+def _hook_gain(model: LinearModel, sky: float, ground: float) -> np.ndarray:
+    for name, c in (("skyhook_damping", sky), ("groundhook_damping", ground)):
+        if not (np.isfinite(c) and c >= 0):
+            raise ParameterError(f"{name} must be a non-negative number [N*s/m], got {c!r}", key=name, value=c)
+    g = np.zeros(model.n_states)
+    g[model.index("sprung_velocity")] = -sky
+    g[model.index("unsprung_velocity")] = ground
+    return g
+
+
+def skyhook(model, skyhook_damping: float, groundhook_damping: float = 0.0) -> LinearModel:
+    """Ideal skyhook (and optionally groundhook: the hybrid) active quarter car.
+
+    Parameters
+    ----------
+    model : QuarterCar or LinearModel
+        A :class:`QuarterCar` (an actuator is added; its passive damper is kept — use
+        ``qc.replace(damping=0.0)`` for a pure skyhook) or a model with an ``actuator_force`` input
+        and ``sprung_velocity``/``unsprung_velocity`` states (e.g. :func:`relative_quarter_car`).
+    skyhook_damping : float
+        c_sky [N*s/m]: actuator force -c_sky z_s' on the body.
+    groundhook_damping : float
+        c_gnd [N*s/m]: actuator force -c_gnd z_u' on the wheel.
+
+    Returns
+    -------
+    LinearModel
+        The closed loop: the model's inputs without the actuator, its outputs and ``actuator_force``.
+    """
+    base = _with_actuator(model) if isinstance(model, QuarterCar) else model
+    gain = _hook_gain(base, float(skyhook_damping), float(groundhook_damping))
+    return _close_loop(base, gain, name=f"{base.name}_skyhook")
+
+
+def groundhook(model, groundhook_damping: float) -> LinearModel:
+    """Ideal groundhook active quarter car (actuator force -c_gnd z_u' on the wheel); see :func:`skyhook`."""
+    base = _with_actuator(model) if isinstance(model, QuarterCar) else model
+    return _close_loop(base, _hook_gain(base, 0.0, float(groundhook_damping)), name=f"{base.name}_groundhook")
+
+
+class SemiActiveQuarterCar(Model):
+    """Quarter car with a continuously variable, purely dissipative damper (clipped skyhook/groundhook).
+
+    The damper's coefficient c is chosen at each instant to make the force of the ideal hybrid
+    skyhook-groundhook law, f* = -c_sky z_s' + c_gnd z_u' (on the body; the wheel takes -f*), when
+    that force opposes the suspension velocity, clipped to [c_min, c_max]; otherwise c = c_min.
+    The damper force on the body is then f = -c (z_s' - z_u') with f (z_s' - z_u') <= 0 always.
+
+    Parameters
+    ----------
+    quarter_car : QuarterCar
+        Masses, spring and tire (its damping is replaced by the variable damper).
+    skyhook_damping, groundhook_damping : float
+        c_sky, c_gnd [N*s/m] of the reference law.
+    min_damping, max_damping : float
+        Range of the damper [N*s/m], 0 <= c_min <= c_max.
+
+    Notes
+    -----
+    States, inputs and outputs as the :class:`QuarterCar`, plus outputs ``damper_force`` [N] (on
+    the body, up +) and ``damper_coefficient`` [N*s/m]. ``rhs`` and ``output`` take a trailing
+    batch axis. With c_min = c_max = c it is the passive quarter car of damping c.
+    """
+
+    phenomena = frozenset({"heave", "wheel_hop", "road_input"})
+
+    def __init__(self, quarter_car: QuarterCar, *, skyhook_damping: float = 0.0, groundhook_damping: float = 0.0,
+                 min_damping: float, max_damping: float):
+        _require_quarter_car(quarter_car)
+        for key, val in (("skyhook_damping", skyhook_damping), ("groundhook_damping", groundhook_damping),
+                         ("min_damping", min_damping), ("max_damping", max_damping)):
+            if not (isinstance(val, (int, float)) and np.isfinite(val) and val >= 0):
+                raise ParameterError(f"{key} must be a non-negative number [N*s/m], got {val!r}", key=key, value=val)
+        if max_damping < min_damping:
+            raise ParameterError(f"max_damping = {max_damping} N*s/m is below min_damping = {min_damping} N*s/m",
+                                 key="max_damping", value=max_damping)
+        self.skyhook_damping = float(skyhook_damping)
+        self.groundhook_damping = float(groundhook_damping)
+        self.min_damping, self.max_damping = float(min_damping), float(max_damping)
+        self.plant = quarter_car.replace(damping=0.0, actuator=True)
+        j = self.plant.index("actuator_force", "inputs")
+        road = [k for k in range(self.plant.n_inputs) if k != j]
+        self._B_road, self._b_force = self.plant.B[:, road], self.plant.B[:, j]
+        self._D_road, self._d_force = self.plant.D[:, road], self.plant.D[:, j]
+        self._i_vs = self.plant.index("sprung_velocity")
+        self._i_vu = self.plant.index("unsprung_velocity")
+        self.declare(states=self.plant.states, inputs=[s for s in self.plant.inputs if s.name != "actuator_force"],
+                     outputs=list(self.plant.outputs) + [
+                         Signal("damper_force", "N", "semi-active damper force on the body (up +)"),
+                         Signal("damper_coefficient", "N*s/m", "damping coefficient the damper is set to")])
+        self.name = f"{quarter_car.name}_semi_active"
+
+    def damper(self, x):
+        """Damper coefficient [N*s/m] and force on the body [N] for states ``x`` (batch axis allowed)."""
+        vs, vu = x[self._i_vs], x[self._i_vu]
+        rel = vs - vu
+        target = -self.skyhook_damping * vs + self.groundhook_damping * vu
+        with np.errstate(divide="ignore", invalid="ignore"):
+            wanted = np.where(rel != 0, -target / np.where(rel != 0, rel, 1.0), self.min_damping)
+        dissipative = target * rel < 0
+        c = np.where(dissipative, np.clip(wanted, self.min_damping, self.max_damping), self.min_damping)
+        return c, -c * rel
+
+    def rhs(self, t, x, u):
+        x = np.asarray(x, dtype=float)
+        _, force = self.damper(x)
+        return self.plant.A @ x + self._B_road @ u + np.multiply.outer(self._b_force, force)
+
+    def output(self, t, x, u):
+        x = np.asarray(x, dtype=float)
+        c, force = self.damper(x)
+        y = self.plant.C @ x + self._D_road @ u + np.multiply.outer(self._d_force, force)
+        return np.concatenate([y, force[None], c[None]], axis=0)
+
+
+@dataclass(frozen=True)
+class LQRDesign:
+    """An LQR active suspension for the quarter car.
+
+    Attributes
+    ----------
+    gain : ndarray, shape (n_states,)
+        K in f = -K x over the states of ``plant`` [N/m, N*s/m].
+    riccati : ndarray
+        Solution S of the algebraic Riccati equation.
+    closed_loop : LinearModel
+        Input ``road_velocity``; the plant's outputs and ``actuator_force``.
+    plant : LinearModel
+        :func:`relative_quarter_car` with the actuator.
+    weights : dict
+        Output weights w_i [1/unit^2] and ``actuator_force`` weight r.
+    poles : ndarray
+        Closed-loop eigenvalues [1/s].
+    """
+
+    gain: np.ndarray
+    riccati: np.ndarray
+    closed_loop: LinearModel
+    plant: LinearModel
+    weights: dict
+    poles: np.ndarray
+
+    def cost(self, road_velocity_intensity: float) -> float:
+        """Expected cost E[sum w y^2 + r f^2] for white road velocity of one-sided PSD G: (G/2) B_w' S B_w."""
+        bw = self.plant.B[:, self.plant.index("road_velocity", "inputs")]
+        return float(0.5 * road_velocity_intensity * bw @ self.riccati @ bw)
+
+
+def lqr_quarter_car(qc: QuarterCar, weights: Mapping[str, float] | None = None, force_weight: float = 1e-8,
+                    ) -> LQRDesign:
+    """Design an LQR active suspension through ``to_control()`` and python-control's ``lqr``.
+
+    Parameters
+    ----------
+    qc : QuarterCar
+        The passive car; its spring and damper stay in parallel with the actuator.
+    weights : mapping, optional
+        Output weights ``{output name: w}`` [1/unit^2] of the cost
+        J = E[sum w_i y_i^2 + r f^2]; outputs of :func:`relative_quarter_car`. Default
+        ``{"sprung_acceleration": 1.0, "suspension_travel": 1e4, "tire_deflection": 1e5}``.
+    force_weight : float
+        r [1/N^2], > 0.
+
+    Returns
+    -------
+    LQRDesign
+
+    Notes
+    -----
+    With y = C x + D f the cost is x'Qx + f'Rf + 2 x'N f with Q = C'WC, R = D'WD + r, N = C'WD
+    (the sprung acceleration depends on f directly, hence the cross term). Full-state feedback
+    needs the tire deflection, which a real car estimates rather than measures.
+    """
+    _require_quarter_car(qc)
+    import control as ct
+
+    weights = dict(weights or {"sprung_acceleration": 1.0, "suspension_travel": 1e4, "tire_deflection": 1e5})
+    if not (np.isfinite(force_weight) and force_weight > 0):
+        raise ParameterError(f"force_weight must be positive, got {force_weight!r}", key="force_weight",
+                             value=force_weight)
+    plant = relative_quarter_car(qc, actuator=True)
+    for name, w in weights.items():
+        if name not in plant.output_names:
+            raise ParameterError(f"no output {name!r} to weight; outputs are {list(plant.output_names)}",
+                                 key="weights", value=name)
+        if not (np.isfinite(w) and w >= 0):
+            raise ParameterError(f"weight of {name} must be a non-negative number, got {w!r}", key="weights", value=w)
+    sys = plant.select(outputs=list(weights), inputs=["actuator_force"]).to_control()
+    W = np.diag(list(weights.values()))
+    C, D = np.asarray(sys.C), np.asarray(sys.D)
+    Q = C.T @ W @ C
+    R = D.T @ W @ D + force_weight
+    N = C.T @ W @ D
+    K, S, E = ct.lqr(sys, Q, R, N)
+    K = np.asarray(K).reshape(-1)
+    closed = _close_loop(plant, -K, name=f"{qc.name}_lqr")
+    return LQRDesign(gain=K, riccati=np.asarray(S), closed_loop=closed, plant=plant,
+                     weights={**weights, "actuator_force": float(force_weight)}, poles=np.asarray(E))
+
+
+def iso8608_velocity_intensity(roughness: float, speed: float, reference_wavenumber: float = 0.1) -> float:
+    """One-sided PSD of the road velocity [(m/s)^2/Hz] of an ISO 8608 road of waviness 2 at ``speed``.
+
+    G(f) = (2 pi n0)^2 G_d(n0) V, flat in frequency (ISO 8608:2016, eq. for w = 2).
+
+    Parameters
+    ----------
+    roughness : float
+        G_d(n0) [m^3], e.g. 256e-6 for class C (geometric mean).
+    speed : float
+        V [m/s].
+    reference_wavenumber : float
+        n0 [cycles/m] (0.1 in the standard).
+    """
+    for key, val in (("roughness", roughness), ("speed", speed), ("reference_wavenumber", reference_wavenumber)):
+        if not (np.isfinite(val) and val > 0):
+            raise ParameterError(f"{key} must be positive, got {val!r}", key=key, value=val)
+    return float((2 * np.pi * reference_wavenumber) ** 2 * roughness * speed)
+
+
+def white_noise_rms(model: LinearModel, intensities: Mapping[str, float], outputs=None) -> dict[str, float]:
+    """Exact stationary r.m.s. of outputs under white-noise inputs, by the Lyapunov equation.
+
+    Parameters
+    ----------
+    model : LinearModel
+        Asymptotically stable.
+    intensities : mapping
+        ``{input name: one-sided PSD G [unit^2/Hz]}``; independent white noises (other inputs zero).
+    outputs : sequence of str, optional
+        Default: all outputs not fed through by a noise input (those have infinite variance).
+
+    Returns
+    -------
+    dict
+        ``{output: rms}``: sqrt(diag(C X C')) with A X + X A' + B W B' = 0, W = diag(G / 2).
+    """
+    import scipy.linalg
+
+    if not model.is_stable():
+        raise ParameterError(f"{model.name} is not asymptotically stable; its white-noise response has no "
+                             "stationary variance", key="model", value=model.name)
+    cols = [model.index(name, "inputs") for name in intensities]
+    G = np.array([float(v) for v in intensities.values()])
+    if np.any(~np.isfinite(G)) or np.any(G < 0):
+        raise ParameterError(f"intensities must be non-negative, got {dict(intensities)}", key="intensities",
+                             value=dict(intensities))
+    B = model.B[:, cols]
+    X = scipy.linalg.solve_continuous_lyapunov(model.A, -(B * (G / 2)) @ B.T)
+    fed = np.abs(model.D[:, cols]) @ G > 0
+    if outputs is None:
+        outputs = [n for k, n in enumerate(model.output_names) if not fed[k]]
+    out = {}
+    for name in outputs:
+        k = model.index(name, "outputs")
+        if fed[k]:
+            out[name] = float("inf")
+        else:
+            c = model.C[k]
+            out[name] = float(np.sqrt(max(c @ X @ c, 0.0)))
+    return out
+
+
+def compare_suspensions(systems: Mapping[str, LinearModel], road_velocity_intensity: float,
+                        reference: str | None = None):
+    """R.m.s. comfort, suspension travel and road holding of suspensions on the same white road velocity.
+
+    Parameters
+    ----------
+    systems : mapping
+        ``{label: LinearModel}`` with input ``road_velocity`` and outputs ``sprung_acceleration``,
+        ``suspension_travel`` and ``dynamic_tire_load`` (e.g. :func:`relative_quarter_car` closed
+        by :func:`skyhook` or :func:`lqr_quarter_car`, or ``relative_quarter_car(qc, False)``).
+    road_velocity_intensity : float
+        One-sided PSD [(m/s)^2/Hz] (see :func:`iso8608_velocity_intensity`).
+    reference : str, optional
+        Label whose values the ``*_ratio`` columns divide by (default: the first).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per system: r.m.s. of the three measures (and of ``actuator_force`` where present)
+        and ratios to the reference; ``attrs["units"]``.
+    """
+    import pandas as pd
+
+    rows = {}
+    for label, sys in systems.items():
+        outs = list(COMPARISON_OUTPUTS) + (["actuator_force"] if "actuator_force" in sys.output_names else [])
+        rows[label] = white_noise_rms(sys, {"road_velocity": road_velocity_intensity}, outputs=outs)
+    df = pd.DataFrame(rows).T
+    ref = reference if reference is not None else next(iter(systems))
+    for col in COMPARISON_OUTPUTS:
+        df[f"{col}_ratio"] = df[col] / df.loc[ref, col]
+    df.index.name = "suspension"
+    df.attrs["units"] = {"sprung_acceleration": "m/s^2", "suspension_travel": "m", "dynamic_tire_load": "N",
+                         "actuator_force": "N", **{f"{c}_ratio": "-" for c in COMPARISON_OUTPUTS}}
+    return df
