@@ -31,11 +31,12 @@ and falls to zero at full sliding, ``tan(alpha_sl) = 3 mu F_z / (2 c_p a^2)``.
 
 Signs follow ISO-W (:mod:`vehdyn.conventions`): ``F_x = F sigma_x / sigma`` (driving positive),
 ``F_y = -F sigma_y / sigma`` (a positive slip angle makes a negative side force) and a positive
-(self-aligning) ``M_z`` for positive slip angle. When rolling backwards (``vx < 0``) the contact
-patch is entered from the rear: the theoretical slips use ``1 - kappa`` (the wheel's rolling speed
-over ``|vx|``), forces keep the signs above and the aligning moment changes sign. A wheel that
-does not roll in its direction of travel (``1 + kappa sign(vx) <= 0``: locked or spinning
-backwards) slides fully.
+(self-aligning) ``M_z`` for positive slip angle. Reverse follows MFeval: ``kappa = -V_sx / V_x``
+with the signed speed (the wheel turns at ``omega R_e = (1 + kappa) V_x``, see
+:mod:`vehdyn.tire.slip`), so that ``F_x`` changes sign with ``vx`` at the same ``kappa``, ``F_y``
+does not, and the aligning moment changes sign (the patch is entered from the rear). A wheel that
+does not roll in its direction of travel (``1 + kappa <= 0``: locked or spinning the other way)
+slides fully.
 
 References
 ----------
@@ -195,24 +196,24 @@ class BrushTire(ParameterSet, TireModel):
         direction = rolling_direction(vx)
         tan_alpha = np.tan(alpha)
         slip = np.hypot(kappa, tan_alpha)  # |V_s| / |V_x|
-        lam = self._adhesion_parameter(fz, kappa, slip, direction)
+        lam = self._adhesion_parameter(fz, kappa, slip)
         r = self.sliding_ratio
         force = self.mu * fz * brush_force_fraction(lam, r)
         moment = self.mu * fz * self.contact_half_length * brush_moment_fraction(lam, r) * direction
         has_slip = slip > 0.0
         safe = np.where(has_slip, slip, 1.0)
-        ex = np.where(has_slip, kappa / safe, 0.0)
+        ex = np.where(has_slip, kappa / safe, 0.0) * direction
         ey = np.where(has_slip, tan_alpha / safe, 0.0)
         return planar_forces(force * ex, -force * ey, fz, moment * ey)
 
-    def _adhesion_parameter(self, fz, kappa, slip, direction):
-        """``lambda = theta sigma = C slip / (3 mu_0 F_z (1 + kappa sign(vx)))`` clipped at 1.
+    def _adhesion_parameter(self, fz, kappa, slip):
+        """``lambda = theta sigma = C slip / (3 mu_0 F_z (1 + kappa))`` clipped at 1.
 
-        ``slip`` is ``|V_s| / |V_x|``; the rolling factor ``1 + kappa sign(vx)`` is ``V_r / |V_x|``.
+        ``slip`` is ``|V_s| / |V_x|``; the rolling factor ``1 + kappa`` is ``V_r / V_x``.
         Written without a division by zero: no load or no rolling means full sliding.
         """
         numerator = self.cornering_stiffness * slip
-        denominator = 3.0 * self.mu * fz * (1.0 + kappa * direction)
+        denominator = 3.0 * self.mu * fz * (1.0 + kappa)
         adhering = numerator < denominator
         return np.where(adhering, numerator / np.where(adhering, denominator, 1.0), 1.0)
 
@@ -225,13 +226,13 @@ class BrushTire(ParameterSet, TireModel):
         if slip == 0.0:
             return planar_forces(0.0, 0.0, fz, 0.0)
         numerator = self.cornering_stiffness * slip
-        denominator = 3.0 * self.mu * fz * (1.0 + kappa * direction)
+        denominator = 3.0 * self.mu * fz * (1.0 + kappa)
         lam = numerator / denominator if numerator < denominator else 1.0
         r = self.sliding_ratio
         force = self.mu * fz * brush_force_fraction(lam, r)
         moment = self.mu * fz * self.contact_half_length * brush_moment_fraction(lam, r) * direction
         ey = tan_alpha / slip
-        return planar_forces(force * kappa / slip, -force * ey, fz, moment * ey)
+        return planar_forces(force * kappa / slip * direction, -force * ey, fz, moment * ey)
 
     def pneumatic_trail(self, fz, kappa, alpha, vx=10.0):
         """Pneumatic trail ``t = -M_z / F_y`` [m]; its limit ``a/3`` (sign of ``vx``) where F_y = 0.
@@ -241,7 +242,7 @@ class BrushTire(ParameterSet, TireModel):
         """
         fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, 0.0, vx)
         direction = rolling_direction(vx)
-        lam = self._adhesion_parameter(fz, kappa, np.hypot(kappa, np.tan(alpha)), direction)
+        lam = self._adhesion_parameter(fz, kappa, np.hypot(kappa, np.tan(alpha)))
         r = self.sliding_ratio
         f = brush_force_fraction(lam, r)
         small = lam < 1e-9

@@ -2,7 +2,7 @@
 
 Dugoff, Fancher and Segel (1970) take a uniform pressure and linear tread stiffness. With the slip
 ratio ``kappa``, slip angle ``alpha``, ``rho = 1 + kappa`` (the rolling speed over the forward
-speed) and::
+speed, ``omega R_e / V_x``) and::
 
     S      = sqrt((C_kappa kappa)^2 + (C_alpha tan alpha)^2)
     lambda = mu F_z rho / (2 S)
@@ -17,8 +17,9 @@ speed) and::
 factor ``A_s`` [s/m], default 0), floored at zero.
 
 The equations are written in the resultant form above so that a locked or backwards-spinning
-wheel (``rho <= 0``) slides fully instead of dividing by zero. In reverse (``vx < 0``),
-``rho = 1 - kappa`` and the trail moment changes sign.
+wheel (``rho <= 0``) slides fully instead of dividing by zero. In reverse (``vx < 0``) ``kappa``
+keeps MFeval's meaning (``-V_sx / V_x``, see :mod:`vehdyn.tire.slip`): ``F_x`` and the trail moment
+change sign, ``F_y`` does not.
 
 References
 ----------
@@ -86,7 +87,7 @@ class DugoffTire(ParameterSet, TireModel):
         fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
         direction = rolling_direction(vx)
         tan_alpha = np.tan(alpha)
-        rolling = 1.0 + kappa * direction
+        rolling = 1.0 + kappa
         mu = self.mu * np.maximum(1.0 - self.speed_friction_reduction * np.abs(vx) * np.hypot(kappa, tan_alpha), 0.0)
         limit = mu * fz
         ux = self.slip_stiffness * kappa
@@ -101,7 +102,7 @@ class DugoffTire(ParameterSet, TireModel):
             limit - limit * limit * np.maximum(rolling, 0.0) / (4.0 * safe_slip),
         )
         resultant = np.where(moving, resultant, 0.0)
-        fx = resultant * ux / safe_slip
+        fx = resultant * ux / safe_slip * direction
         fy = -resultant * uy / safe_slip
         return planar_forces(fx, fy, fz, -self.pneumatic_trail * fy * direction)
 
@@ -110,7 +111,7 @@ class DugoffTire(ParameterSet, TireModel):
         fz = max(fz, 0.0)
         direction = scalar_rolling_direction(vx)
         tan_alpha = math.tan(alpha)
-        rolling = 1.0 + kappa * direction
+        rolling = 1.0 + kappa
         mu = self.mu * max(1.0 - self.speed_friction_reduction * abs(vx) * math.hypot(kappa, tan_alpha), 0.0)
         limit = mu * fz
         ux = self.slip_stiffness * kappa
@@ -123,4 +124,4 @@ class DugoffTire(ParameterSet, TireModel):
         else:
             resultant = limit - limit * limit * max(rolling, 0.0) / (4.0 * stiff_slip)
         fy = -resultant * uy / stiff_slip
-        return planar_forces(resultant * ux / stiff_slip, fy, fz, -self.pneumatic_trail * fy * direction)
+        return planar_forces(resultant * ux / stiff_slip * direction, fy, fz, -self.pneumatic_trail * fy * direction)

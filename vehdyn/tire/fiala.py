@@ -17,7 +17,8 @@ longitudinal force has priority and the side force uses the friction left on the
 ``mu F_z -> sqrt((mu F_z)^2 - F_x^2)`` (the "coupled" Fiala model used for vehicles at the limit,
 e.g. Hindiyeh & Gerdes 2014), so that ``sqrt(F_x^2 + F_y^2) <= mu F_z``.
 
-Signs follow ISO-W (:mod:`vehdyn.conventions`); in reverse (``vx < 0``) the forces keep their sign
+Signs follow ISO-W (:mod:`vehdyn.conventions`); in reverse (``vx < 0``) ``kappa`` keeps MFeval's
+meaning (``-V_sx / V_x``, see :mod:`vehdyn.tire.slip`), so ``F_x`` changes sign, ``F_y`` does not,
 and the aligning moment changes sign (the patch is entered from the rear).
 
 References
@@ -111,7 +112,8 @@ class FialaTire(ParameterSet, TireModel):
         fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
         limit = self.mu * fz
         lam_x = _saturation(self.longitudinal_stiffness, np.abs(kappa), limit)
-        fx = limit * brush_force_fraction(lam_x) * np.sign(kappa)
+        direction = rolling_direction(vx)
+        fx = limit * brush_force_fraction(lam_x) * np.sign(kappa) * direction
         lateral_limit = np.sqrt(np.maximum(limit * limit - fx * fx, 0.0))
         tan_alpha = np.tan(alpha)
         lam_y = _saturation(self.cornering_stiffness, np.abs(tan_alpha), lateral_limit)
@@ -120,8 +122,7 @@ class FialaTire(ParameterSet, TireModel):
         if self.contact_half_length is None:
             mz = np.zeros_like(fy)
         else:
-            mz = (lateral_limit * self.contact_half_length * brush_moment_fraction(lam_y) * side
-                  * rolling_direction(vx))
+            mz = lateral_limit * self.contact_half_length * brush_moment_fraction(lam_y) * side * direction
         return planar_forces(fx, fy, fz, mz)
 
     def _forces_scalar(self, fz: float, kappa: float, alpha: float, vx: float) -> TireForces:
@@ -130,7 +131,8 @@ class FialaTire(ParameterSet, TireModel):
         limit = self.mu * fz
         numerator = self.longitudinal_stiffness * abs(kappa)
         lam_x = numerator / (3.0 * limit) if numerator < 3.0 * limit else 1.0
-        fx = limit * brush_force_fraction(lam_x) * scalar_sign(kappa)
+        direction = scalar_rolling_direction(vx)
+        fx = limit * brush_force_fraction(lam_x) * scalar_sign(kappa) * direction
         lateral_limit = math.sqrt(max(limit * limit - fx * fx, 0.0))
         tan_alpha = math.tan(alpha)
         numerator = self.cornering_stiffness * abs(tan_alpha)
@@ -139,6 +141,5 @@ class FialaTire(ParameterSet, TireModel):
         fy = -lateral_limit * brush_force_fraction(lam_y) * side
         mz = 0.0
         if self.contact_half_length is not None:
-            mz = (lateral_limit * self.contact_half_length * brush_moment_fraction(lam_y) * side
-                  * scalar_rolling_direction(vx))
+            mz = lateral_limit * self.contact_half_length * brush_moment_fraction(lam_y) * side * direction
         return planar_forces(fx, fy, fz, mz)

@@ -2,11 +2,13 @@
 
 ::
 
-    F_x = C_kappa kappa f_z,    F_y = -C_alpha alpha f_z + C_gamma gamma f_z,    M_z = -t F_y sign(vx)
+    F_x = C_kappa kappa f_z sign(vx),   F_y = (-C_alpha alpha + C_gamma gamma) f_z,   M_z = -t F_y sign(vx)
 
 with ``f_z = F_z / F_z0`` when a nominal load ``F_z0`` is given (constant cornering and slip
 *coefficients* ``C / F_z``, Pacejka 2012, ch. 1), else ``f_z = 1`` for a loaded tire; ``f_z = 0`` when ``F_z <= 0`` (lift-off).
-ISO-W signs (:mod:`vehdyn.conventions`): a positive slip angle makes a negative side force.
+ISO-W signs (:mod:`vehdyn.conventions`): a positive slip angle makes a negative side force; in
+reverse ``kappa`` keeps MFeval's meaning (``-V_sx / V_x``, see :mod:`vehdyn.tire.slip`) and
+``sign(vx)`` (+1 at standstill) flips ``F_x`` and ``M_z``.
 
 The linear tire has no friction limit: it is valid for small slips only, roughly where the
 lateral acceleration stays below about half the friction limit (Pacejka 2012, ch. 1).
@@ -80,16 +82,18 @@ class LinearTire(ParameterSet, TireModel):
             fz = max(float(fz), 0.0)
             scale = self._load_factor_scalar(fz)
             fy = (-self.cornering_stiffness * alpha + self.camber_stiffness * gamma) * scale
-            return planar_forces(self.longitudinal_stiffness * kappa * scale, fy, fz,
-                                 -self.pneumatic_trail * fy * scalar_rolling_direction(float(vx)))
+            direction = scalar_rolling_direction(float(vx))
+            return planar_forces(self.longitudinal_stiffness * kappa * scale * direction, fy, fz,
+                                 -self.pneumatic_trail * fy * direction)
         fz, kappa, alpha, gamma, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
         if self.nominal_load is None:
             scale = np.where(fz > 0.0, 1.0, 0.0)
         else:
             scale = fz / self.nominal_load
         fy = (-self.cornering_stiffness * alpha + self.camber_stiffness * gamma) * scale
-        return planar_forces(self.longitudinal_stiffness * kappa * scale, fy, fz,
-                             -self.pneumatic_trail * fy * rolling_direction(vx))
+        direction = rolling_direction(vx)
+        return planar_forces(self.longitudinal_stiffness * kappa * scale * direction, fy, fz,
+                             -self.pneumatic_trail * fy * direction)
 
     def _load_factor_scalar(self, fz: float) -> float:
         if self.nominal_load is None:
