@@ -96,10 +96,11 @@ class DugoffTire(ParameterSet, TireModel):
         adhering = 2.0 * stiff_slip <= limit * rolling  # lambda >= 1 (includes S = 0 under load)
         moving = stiff_slip > 0.0
         safe_slip = np.where(moving, stiff_slip, 1.0)
+        # each branch is evaluated with harmless denominators where the other one applies
         resultant = np.where(
             adhering,
             stiff_slip / np.where(adhering, rolling, 1.0),
-            limit - limit * limit * np.maximum(rolling, 0.0) / (4.0 * safe_slip),
+            limit - limit * limit * np.maximum(rolling, 0.0) / np.where(adhering, 1.0, 4.0 * safe_slip),
         )
         resultant = np.where(moving, resultant, 0.0)
         fx = resultant * ux / safe_slip * direction
