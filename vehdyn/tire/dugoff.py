@@ -36,8 +36,7 @@ import math
 import numpy as np
 
 from ..params.base import ParameterSet, parameter
-from ._common import (all_scalars, broadcast_inputs, planar_forces, rolling_direction,
-                      scalar_rolling_direction)
+from ._common import all_scalars, evaluate_chunked, planar_forces, rolling_direction, scalar_rolling_direction
 from .base import TireForces, TireModel
 
 __all__ = ["DugoffTire"]
@@ -84,28 +83,31 @@ class DugoffTire(ParameterSet, TireModel):
         """Steady-state forces (ISO-W); see :meth:`TireModel.forces`. ``gamma`` has no effect."""
         if all_scalars(fz, kappa, alpha, gamma, vx):
             return self._forces_scalar(float(fz), float(kappa), float(alpha), float(vx))
-        fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+        return evaluate_chunked(self._kernel, fz, kappa, alpha, gamma, vx)
+
+    def _kernel(self, fz, kappa, alpha, gamma, vx):
+        """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
         direction = rolling_direction(vx)
         tan_alpha = np.tan(alpha)
         rolling = 1.0 + kappa
-        mu = self.mu * np.maximum(1.0 - self.speed_friction_reduction * np.abs(vx) * np.hypot(kappa, tan_alpha), 0.0)
-        limit = mu * fz
+        limit = self.mu * fz
+        if self.speed_friction_reduction:
+            limit *= np.maximum(1.0 - self.speed_friction_reduction * np.abs(vx) * np.hypot(kappa, tan_alpha), 0.0)
         ux = self.slip_stiffness * kappa
         uy = self.cornering_stiffness * tan_alpha
         stiff_slip = np.hypot(ux, uy)  # S
         adhering = 2.0 * stiff_slip <= limit * rolling  # lambda >= 1 (includes S = 0 under load)
-        moving = stiff_slip > 0.0
-        safe_slip = np.where(moving, stiff_slip, 1.0)
-        # each branch is evaluated with harmless denominators where the other one applies
-        resultant = np.where(
-            adhering,
-            stiff_slip / np.where(adhering, rolling, 1.0),
-            limit - limit * limit * np.maximum(rolling, 0.0) / np.where(adhering, 1.0, 4.0 * safe_slip),
-        )
-        resultant = np.where(moving, resultant, 0.0)
-        fx = resultant * ux / safe_slip * direction
-        fy = -resultant * uy / safe_slip
-        return planar_forces(fx, fy, fz, -self.pneumatic_trail * fy * direction)
+        # resultant over S: 1/rho while adhering, mu F_z (1 - lambda/2) / S once sliding;
+        # each branch with harmless denominators where the other applies
+        sliding_part = limit - limit * limit * np.maximum(rolling, 0.0) / np.where(adhering, 1.0, 4.0 * stiff_slip)
+        per_slip = np.divide(sliding_part, stiff_slip, out=np.zeros_like(stiff_slip),
+                             where=~adhering & (stiff_slip > 0.0))
+        np.divide(1.0, rolling, out=per_slip, where=adhering & (stiff_slip > 0.0))
+        fx = per_slip * ux
+        fx *= direction
+        fy = per_slip * uy
+        np.negative(fy, out=fy)
+        return fx, fy, (-self.pneumatic_trail) * fy * direction
 
     def _forces_scalar(self, fz: float, kappa: float, alpha: float, vx: float) -> TireForces:
         """The same equations for one point with :mod:`math` (no numpy overhead)."""

@@ -27,8 +27,7 @@ import dataclasses
 import numpy as np
 
 from ..params.base import ParameterSet, parameter
-from ._common import (all_scalars, broadcast_inputs, planar_forces, rolling_direction,
-                      scalar_rolling_direction)
+from ._common import all_scalars, evaluate_chunked, planar_forces, rolling_direction, scalar_rolling_direction
 from .base import TireForces, TireModel
 
 __all__ = ["LinearTire"]
@@ -85,15 +84,18 @@ class LinearTire(ParameterSet, TireModel):
             direction = scalar_rolling_direction(float(vx))
             return planar_forces(self.longitudinal_stiffness * kappa * scale * direction, fy, fz,
                                  -self.pneumatic_trail * fy * direction)
-        fz, kappa, alpha, gamma, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+        return evaluate_chunked(self._kernel, fz, kappa, alpha, gamma, vx)
+
+    def _kernel(self, fz, kappa, alpha, gamma, vx):
+        """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
         if self.nominal_load is None:
-            scale = np.where(fz > 0.0, 1.0, 0.0)
+            scale = (fz > 0.0).astype(float)
         else:
             scale = fz / self.nominal_load
-        fy = (-self.cornering_stiffness * alpha + self.camber_stiffness * gamma) * scale
         direction = rolling_direction(vx)
-        return planar_forces(self.longitudinal_stiffness * kappa * scale * direction, fy, fz,
-                             -self.pneumatic_trail * fy * direction)
+        fy = (self.camber_stiffness * gamma - self.cornering_stiffness * alpha) * scale
+        fx = (self.longitudinal_stiffness * kappa) * scale * direction
+        return fx, fy, (-self.pneumatic_trail) * fy * direction
 
     def _load_factor_scalar(self, fz: float) -> float:
         if self.nominal_load is None:
