@@ -8,7 +8,8 @@ Slip and transients
     :func:`wheel_slip`, :func:`regularized_speed`, :func:`slip_velocities`, :func:`theoretical_slip`,
     :class:`TireRelaxation`, :func:`relaxation_lengths`
 Plots
-    :func:`plot_tire_characteristics`, :func:`describe_tire` (matplotlib imported on use)
+    :func:`plot_tire_characteristics`, :func:`characteristic_values`, :func:`describe_tire`
+    (matplotlib and pandas imported on use)
 """
 
 from .base import TireForces, TireModel
@@ -16,7 +17,7 @@ from .brush import BrushTire
 from .dugoff import DugoffTire
 from .fiala import FialaTire
 from .linear import LinearTire
-from .plots import describe_tire, plot_tire_characteristics
+from .plots import characteristic_values, describe_tire, plot_tire_characteristics
 from .registry import register_tire_law, tire_for_vehicle, tire_law, tire_law_names
 from .relaxation import TireRelaxation, relaxation_lengths
 from .slip import WheelSlip, regularized_speed, slip_velocities, theoretical_slip, wheel_slip
@@ -41,4 +42,5 @@ __all__ = [
     "relaxation_lengths",
     "plot_tire_characteristics",
     "describe_tire",
+    "characteristic_values",
 ]

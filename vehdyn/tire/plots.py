@@ -20,7 +20,7 @@ import numpy as np
 
 from .base import TireModel
 
-__all__ = ["plot_tire_characteristics", "characteristic_values", "describe_tire", "nominal_load"]
+__all__ = ["plot_tire_characteristics", "characteristic_values", "cornering_stiffness", "describe_tire", "nominal_load"]
 
 _DEFAULT_NOMINAL_LOAD = 4000.0  # [N], for laws that carry no load of their own
 _STIFFNESS_STEP = 1e-7  # slip step [rad or -] of the central differences at zero slip
@@ -57,12 +57,20 @@ def _tires(tire) -> dict:
     return {getattr(tire, "name", "") or type(tire).__name__: tire}
 
 
+def cornering_stiffness(tire: TireModel, loads, *, vx: float = 20.0) -> np.ndarray:
+    """``-dF_y/dalpha`` at zero slip [N/rad] for each load, by a central difference."""
+    h = _STIFFNESS_STEP
+    lateral = tire.forces(np.asarray(loads, dtype=float)[..., None], 0.0, np.array([-h, h]), 0.0, vx)
+    return -(lateral.fy[..., 1] - lateral.fy[..., 0]) / (2 * h)
+
+
 def characteristic_values(tire: TireModel, loads=None, *, vx: float = 20.0):
     """Key numbers of ``tire`` at each load, as a pandas DataFrame indexed by load [N].
 
     Columns: ``cornering_stiffness`` [N/rad] (``-dF_y/dalpha`` at zero slip, central difference),
     ``slip_stiffness`` [N] (``dF_x/dkappa``), ``peak_lateral_friction`` and
-    ``peak_longitudinal_friction`` [-] (``max |F|/F_z`` over |alpha| <= 30 deg, |kappa| <= 1),
+    ``peak_longitudinal_friction`` [-] (``max |F|/F_z`` over |alpha| <= 30 deg, |kappa| <= 1; for a
+    law without friction limit, such as the linear tire, the value at the end of the sweep),
     ``trail_at_zero_slip`` [m] (``-dM_z/dF_y`` at zero slip).
     """
     import pandas as pd
@@ -72,7 +80,7 @@ def characteristic_values(tire: TireModel, loads=None, *, vx: float = 20.0):
     fz = loads[:, None]
     lateral = tire.forces(fz, 0.0, np.array([-h, h]), 0.0, vx)
     longitudinal = tire.forces(fz, np.array([-h, h]), 0.0, 0.0, vx)
-    cornering = -(lateral.fy[:, 1] - lateral.fy[:, 0]) / (2 * h)
+    cornering = cornering_stiffness(tire, loads, vx=vx)
     slip_stiffness = (longitudinal.fx[:, 1] - longitudinal.fx[:, 0]) / (2 * h)
     dfy = lateral.fy[:, 1] - lateral.fy[:, 0]
     trail = np.where(dfy != 0.0, -(lateral.mz[:, 1] - lateral.mz[:, 0]) / np.where(dfy != 0.0, dfy, 1.0), np.nan)
@@ -215,8 +223,7 @@ def plot_tire_characteristics(tire, loads=None, *, vx: float = 20.0, max_slip_an
     ax = axes[0, 0]
     load_axis = np.linspace(0.05, 2.0, 40) * nominal
     for i, (label, law) in enumerate(tires.items()):
-        frame = characteristic_values(law, load_axis, vx=vx)
-        ax.plot(load_axis, frame["cornering_stiffness"], styles[i % len(styles)], label=label)
+        ax.plot(load_axis, cornering_stiffness(law, load_axis, vx=vx), styles[i % len(styles)], label=label)
     ax.set_xlabel("normal load F_z [N]")
     ax.set_ylabel("cornering stiffness [N/rad]")
     ax.grid(True, alpha=0.3)
