@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from .base import TireForces
+from .base import TireForces, TireModel
 
 
 def all_scalars(*values) -> bool:
@@ -71,3 +71,25 @@ def evaluate_chunked(kernel, fz, kappa, alpha, gamma, vx) -> TireForces:
         block = slice(start, start + CHUNK_POINTS)
         out[0, block], out[1, block], out[2, block] = kernel(*(a[block] for a in flat))
     return planar_forces(out[0].reshape(shape), out[1].reshape(shape), flat[0].reshape(shape), out[2].reshape(shape))
+
+
+class VectorizedTire(TireModel):
+    """A tire law written twice: ``_kernel`` on arrays, ``_forces_scalar`` on floats with :mod:`math`.
+
+    :meth:`forces` sends all-scalar calls to the scalar path (no numpy overhead, and the per-point
+    baseline of ``benchmarks/bench_tire.py``) and everything else, in cache-sized blocks, to the
+    kernel. Subclasses implement ``_kernel(fz, kappa, alpha, gamma, vx) -> (fx, fy, mz)`` for float
+    arrays of one shape with ``fz >= 0``, and ``_forces_scalar(fz, kappa, alpha, gamma, vx)`` for floats.
+    """
+
+    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
+        """Steady-state forces and moments (ISO-W); see :meth:`TireModel.forces`."""
+        if all_scalars(fz, kappa, alpha, gamma, vx):
+            return self._forces_scalar(float(fz), float(kappa), float(alpha), float(gamma), float(vx))
+        return evaluate_chunked(self._kernel, fz, kappa, alpha, gamma, vx)
+
+    def _kernel(self, fz, kappa, alpha, gamma, vx):
+        raise NotImplementedError
+
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
+        raise NotImplementedError

@@ -53,9 +53,9 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params.base import ParameterSet, parameter
-from ._common import (all_scalars, broadcast_inputs, evaluate_chunked, planar_forces, rolling_direction,
+from ._common import (VectorizedTire, broadcast_inputs, planar_forces, rolling_direction,
                       scalar_rolling_direction)
-from .base import TireForces, TireModel
+from .base import TireForces
 
 __all__ = ["BrushTire", "brush_force_fraction", "brush_moment_fraction"]
 
@@ -99,7 +99,7 @@ def brush_moment_fraction(lam, sliding_ratio=1.0):
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class BrushTire(ParameterSet, TireModel):
+class BrushTire(ParameterSet, VectorizedTire):
     """Brush tire with parabolic pressure, combined slip through the theoretical slip.
 
     Parameters
@@ -187,16 +187,6 @@ class BrushTire(ParameterSet, TireModel):
         return cls.from_cornering_stiffness(data.cornering_stiffness, data.contact_half_length, data.mu)
 
     # ------------------------------------------------------------------ the law
-    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
-        """Steady-state forces and aligning moment (ISO-W); see :meth:`TireModel.forces`.
-
-        ``gamma`` is accepted and has no effect (the brush has no camber thrust). ``vx`` enters
-        only through its sign (rolling direction).
-        """
-        if all_scalars(fz, kappa, alpha, gamma, vx):
-            return self._forces_scalar(float(fz), float(kappa), float(alpha), float(vx))
-        return evaluate_chunked(self._kernel, fz, kappa, alpha, gamma, vx)
-
     def _kernel(self, fz, kappa, alpha, gamma, vx):
         """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
         direction = rolling_direction(vx)
@@ -228,7 +218,7 @@ class BrushTire(ParameterSet, TireModel):
         denominator = (3.0 * self.mu) * fz * (1.0 + kappa)
         return np.divide(numerator, denominator, out=np.ones_like(numerator), where=numerator < denominator)
 
-    def _forces_scalar(self, fz: float, kappa: float, alpha: float, vx: float) -> TireForces:
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
         """The same equations for one point with :mod:`math` (no numpy overhead)."""
         fz = max(fz, 0.0)
         direction = scalar_rolling_direction(vx)

@@ -36,14 +36,14 @@ import math
 import numpy as np
 
 from ..params.base import ParameterSet, parameter
-from ._common import all_scalars, evaluate_chunked, planar_forces, rolling_direction, scalar_rolling_direction
-from .base import TireForces, TireModel
+from ._common import VectorizedTire, planar_forces, rolling_direction, scalar_rolling_direction
+from .base import TireForces
 
 __all__ = ["DugoffTire"]
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class DugoffTire(ParameterSet, TireModel):
+class DugoffTire(ParameterSet, VectorizedTire):
     """Dugoff tire.
 
     Parameters
@@ -58,6 +58,11 @@ class DugoffTire(ParameterSet, TireModel):
         ``A_s`` [s/m]: friction reduction per unit sliding speed; default 0.
     pneumatic_trail : float
         ``t`` [m]: ``M_z = -t F_y`` rolling forwards; default 0 (Dugoff's model has no moment).
+
+    Notes
+    -----
+    No camber (``gamma`` has no effect); ``vx`` enters through its sign and, with
+    ``speed_friction_reduction``, through the sliding speed. ``M_x = M_y = 0``.
     """
 
     cornering_stiffness: float = parameter("N/rad", "C_alpha: cornering stiffness", gt=0)
@@ -78,12 +83,6 @@ class DugoffTire(ParameterSet, TireModel):
         data = vehicle_tire_data(vehicle, axle)
         return cls(cornering_stiffness=data.cornering_stiffness, slip_stiffness=data.cornering_stiffness,
                    mu=data.mu)
-
-    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
-        """Steady-state forces (ISO-W); see :meth:`TireModel.forces`. ``gamma`` has no effect."""
-        if all_scalars(fz, kappa, alpha, gamma, vx):
-            return self._forces_scalar(float(fz), float(kappa), float(alpha), float(vx))
-        return evaluate_chunked(self._kernel, fz, kappa, alpha, gamma, vx)
 
     def _kernel(self, fz, kappa, alpha, gamma, vx):
         """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
@@ -109,7 +108,7 @@ class DugoffTire(ParameterSet, TireModel):
         np.negative(fy, out=fy)
         return fx, fy, (-self.pneumatic_trail) * fy * direction
 
-    def _forces_scalar(self, fz: float, kappa: float, alpha: float, vx: float) -> TireForces:
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
         """The same equations for one point with :mod:`math` (no numpy overhead)."""
         fz = max(fz, 0.0)
         direction = scalar_rolling_direction(vx)

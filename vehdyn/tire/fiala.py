@@ -37,9 +37,8 @@ import math
 import numpy as np
 
 from ..params.base import ParameterSet, parameter
-from ._common import (all_scalars, evaluate_chunked, planar_forces, rolling_direction, scalar_rolling_direction,
-                      scalar_sign)
-from .base import TireForces, TireModel
+from ._common import VectorizedTire, planar_forces, rolling_direction, scalar_rolling_direction, scalar_sign
+from .base import TireForces
 from .brush import brush_force_fraction, brush_moment_fraction
 
 __all__ = ["FialaTire"]
@@ -53,7 +52,7 @@ def _saturation(stiffness, slip_magnitude, limit):
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class FialaTire(ParameterSet, TireModel):
+class FialaTire(ParameterSet, VectorizedTire):
     """Fiala tire: closed-form brush side force and aligning moment, friction-circle coupling.
 
     Parameters
@@ -101,15 +100,6 @@ class FialaTire(ParameterSet, TireModel):
         return cls(cornering_stiffness=data.cornering_stiffness, mu=data.mu,
                    contact_half_length=data.contact_half_length)
 
-    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
-        """Steady-state forces and aligning moment (ISO-W); see :meth:`TireModel.forces`.
-
-        ``gamma`` has no effect; ``vx`` enters only through its sign (rolling direction).
-        """
-        if all_scalars(fz, kappa, alpha, gamma, vx):
-            return self._forces_scalar(float(fz), float(kappa), float(alpha), float(vx))
-        return evaluate_chunked(self._kernel, fz, kappa, alpha, gamma, vx)
-
     def _kernel(self, fz, kappa, alpha, gamma, vx):
         """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
         limit = self.mu * fz
@@ -135,7 +125,7 @@ class FialaTire(ParameterSet, TireModel):
         mz *= direction
         return fx, fy, mz
 
-    def _forces_scalar(self, fz: float, kappa: float, alpha: float, vx: float) -> TireForces:
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
         """The same equations for one point with :mod:`math` (no numpy overhead)."""
         fz = max(fz, 0.0)
         limit = self.mu * fz
