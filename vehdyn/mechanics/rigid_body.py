@@ -39,6 +39,12 @@ _OUTPUTS = (
 )
 
 
+def _skew(vector) -> np.ndarray:
+    """The matrix [a x] with [a x] b = a x b."""
+    a1, a2, a3 = vector
+    return np.array([[0.0, -a3, a2], [a3, 0.0, -a1], [-a2, a1, 0.0]])
+
+
 class RigidBody6DOF(Model):
     """A rigid body with six degrees of freedom in SAE vehicle axes (x forward, y right, z down).
 
@@ -103,8 +109,8 @@ class RigidBody6DOF(Model):
         d(x, y, z)/dt = R V, R = Rz(psi) Ry(theta) Rx(phi)
         d(phi, theta, psi)/dt from (p, q, r) by :func:`~vehdyn.mechanics.kinematics.euler_angle_rates`.
 
-    Every array may carry a trailing batch axis. No analytic Jacobian is provided:
-    :meth:`linearize` uses the core's fourth-order central differences (about 1e-12 relative).
+    Every array may carry a trailing batch axis. :meth:`jacobian` gives the exact derivatives, so
+    :meth:`linearize` returns exact matrices (structural zeros are exact zeros).
     """
 
     states = _STATES
@@ -125,9 +131,12 @@ class RigidBody6DOF(Model):
         self.gimbal_lock_margin = float(gimbal_lock_margin)
 
     def _motion(self, t, x, u):
-        """Body-axis velocity, rates, their derivatives, the rotation matrix and the Euler-angle rates."""
+        """Body-axis velocity, rates, their derivatives, the rotation matrix, the Euler-angle rates, yaw."""
         x = np.asarray(x, dtype=float)
         u_in = np.asarray(u, dtype=float)
+        if self.mass.ndim or self.inertia.ndim == 3:  # batch parameters: single states and inputs broadcast
+            x = x.reshape(x.shape[:1] + (-1,))
+            u_in = u_in.reshape(u_in.shape[:1] + (-1,))
         (longitudinal_velocity, lateral_velocity, vertical_velocity, roll_rate, pitch_rate, yaw_rate,
          _x, _y, _z, roll_angle, pitch_angle, yaw_angle) = x
         velocity = x[0:3]
@@ -144,25 +153,78 @@ class RigidBody6DOF(Model):
             self.mass, self.inertia, self._inverse_inertia, velocity, angular_velocity, force, moment)
         if self.gravity:
             velocity_rate = velocity_rate + self.gravity * rotation[2]  # g R^T e_Z: row 3 of R
-        return velocity, angular_velocity, velocity_rate, angular_acceleration, rotation, euler_rates
+        return velocity, angular_velocity, velocity_rate, angular_acceleration, rotation, euler_rates, yaw_angle
 
     def rhs(self, t, x, u):
         """dx/dt for states x (12,) or (12, n) and inputs u (6,) or (6, n); see the class Notes."""
-        velocity, _, velocity_rate, angular_acceleration, rotation, euler_rates = self._motion(t, x, u)
+        velocity, _, velocity_rate, angular_acceleration, rotation, euler_rates, _ = self._motion(t, x, u)
         earth_velocity = np.einsum("ij...,j...->i...", rotation, velocity)
         shape = np.broadcast_shapes(velocity_rate.shape, angular_acceleration.shape, earth_velocity.shape)
         return np.concatenate([np.broadcast_to(velocity_rate, shape), np.broadcast_to(angular_acceleration, shape),
                                np.broadcast_to(earth_velocity, shape),
                                np.broadcast_to(np.stack(np.broadcast_arrays(*euler_rates)), shape)])
 
+    def jacobian(self, t, x, u):
+        """Exact Jacobians (A, B, C, D) at a single point (x of shape (12,), u of shape (6,)).
+
+        Raises
+        ------
+        ParameterError
+            For a body whose mass or inertia is a batch (linearize one variant at a time).
+        """
+        if self.mass.ndim or self.inertia.ndim == 3:
+            raise ParameterError("RigidBody6DOF.jacobian: mass and inertia must be single values, not a batch; "
+                                 "build one model per variant to linearize it", key="mass", value=self.mass)
+        x = np.asarray(x, dtype=float)
+        velocity, angular_velocity, _, _, rotation, _, _ = self._motion(t, x, u)
+        roll, pitch = x[9], x[10]
+        p, q, r = angular_velocity
+        inertia, inverse, mass, g = self.inertia, self._inverse_inertia, float(self.mass), self.gravity
+        sf, cf, st, ct = np.sin(roll), np.cos(roll), np.sin(pitch), np.cos(pitch)
+        # derivatives of the body-to-earth matrix with respect to roll, pitch and yaw
+        ex, ey, ez = (_skew(e) for e in np.eye(3))
+        r_yaw_pitch = rotation_body_to_earth(0.0, pitch, x[11])
+        d_rotation = (rotation @ ex, r_yaw_pitch @ ey @ rotation_body_to_earth(roll, 0.0, 0.0), ez @ rotation)
+        # d(g R^T e_Z)/d(angles): row 3 of R is (-st, sf ct, cf ct)
+        d_gravity = g * np.array([[0.0, -ct, 0.0], [cf * ct, -sf * st, 0.0], [-sf * ct, -cf * st, 0.0]])
+        q_r, q_r_roll = q * sf + r * cf, q * cf - r * sf
+        A = np.zeros((12, 12))
+        A[0:3, 0:3] = -_skew(angular_velocity)
+        A[0:3, 3:6] = _skew(velocity)
+        A[0:3, 9:12] = d_gravity
+        A[3:6, 3:6] = inverse @ (_skew(inertia @ angular_velocity) - _skew(angular_velocity) @ inertia)
+        A[6:9, 0:3] = rotation
+        A[6:9, 9:12] = np.stack([d @ velocity for d in d_rotation], axis=1)
+        A[9:12, 3:6] = [[1.0, sf * st / ct, cf * st / ct], [0.0, cf, -sf], [0.0, sf / ct, cf / ct]]
+        A[9:12, 9:11] = [[q_r_roll * st / ct, q_r / ct**2], [-q_r, 0.0], [q_r_roll / ct, q_r * st / ct**2]]
+        B = np.zeros((12, 6))
+        B[0:3, 0:3] = np.eye(3) / mass
+        B[3:6, 3:6] = inverse
+        C = np.zeros((9, 12))
+        D = np.zeros((9, 6))
+        C[0:3] = A[6:9]
+        u_body, v_body = velocity[0], velocity[1]
+        speed = float(np.linalg.norm(velocity))
+        if speed > 0:
+            C[3, 0:3] = velocity / speed
+        planar = u_body * u_body + v_body * v_body
+        if planar > 0:
+            C[4, 0:2] = [-v_body / planar, u_body / planar]
+        C[5] = C[4]
+        C[5, 11] = 1.0
+        # absolute acceleration F/m + g R^T e_Z
+        C[6:9, 9:12] = d_gravity
+        D[6:9, 0:3] = np.eye(3) / mass
+        return A, B, C, D
+
     def output(self, t, x, u):
         """The outputs listed in the class docstring, shape (9,) or (9, n)."""
-        velocity, angular_velocity, velocity_rate, _, rotation, _ = self._motion(t, x, u)
+        velocity, angular_velocity, velocity_rate, _, rotation, _, yaw_angle = self._motion(t, x, u)
         earth_velocity = np.einsum("ij...,j...->i...", rotation, velocity)
         acceleration = velocity_rate + np.cross(angular_velocity, velocity, axis=0)
         u_body, v_body = velocity[0], velocity[1]
         sideslip = np.arctan2(v_body, u_body)
-        course = np.asarray(x, dtype=float)[11] + sideslip
+        course = yaw_angle + sideslip
         speed = np.sqrt(np.sum(velocity * velocity, axis=0))
         shape = np.broadcast_shapes(earth_velocity.shape, acceleration.shape)
         return np.concatenate([np.broadcast_to(earth_velocity, shape),
