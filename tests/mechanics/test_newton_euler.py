@@ -142,3 +142,26 @@ def test_newton_euler_rejects_bad_input(kwargs, key):
     with pytest.raises(ParameterError) as info:
         newton_euler(**args)
     assert info.value.key == key
+
+
+def test_torque_free_period_limits():
+    from vehdyn.mechanics import torque_free_period
+
+    inertia = InertiaTensor(1.0, 2.0, 3.0)
+    # small wobble about the major axis: omega_wobble = r sqrt((I3 - I1)(I3 - I2) / (I1 I2))
+    r = 0.8
+    expected = 2 * np.pi / (r * np.sqrt((3 - 1) * (3 - 2) / (1 * 2)))
+    assert torque_free_period(inertia, [0.0, 0.0, r]) == pytest.approx(expected, rel=1e-12)
+    assert torque_free_period(inertia, [1e-7, 1e-7, r]) == pytest.approx(expected, rel=1e-9)
+    # about the minor axis likewise, with I1 and I3 exchanged
+    expected_minor = 2 * np.pi / (r * np.sqrt((2 - 1) * (3 - 1) / (2 * 3)))
+    assert torque_free_period(inertia, [r, 0.0, 0.0]) == pytest.approx(expected_minor, rel=1e-12)
+    # exactly about the intermediate axis: on the separatrix, the period is infinite
+    assert torque_free_period(inertia, [0.0, 1.0, 0.0]) == np.inf
+    # the period does not depend on the axes the tensor is written in
+    turned = InertiaTensor.from_principal([1.0, 2.0, 3.0], Rotation.from_euler("xyz", [0.3, -0.2, 1.0]).as_matrix())
+    rot = Rotation.from_euler("xyz", [0.3, -0.2, 1.0]).as_matrix()
+    omega = np.array([0.05, 1.0, 0.02])
+    assert torque_free_period(turned, rot @ omega) == pytest.approx(torque_free_period(inertia, omega), rel=1e-10)
+    with pytest.raises(ParameterError):
+        torque_free_period(InertiaTensor(1.0, 1.0, 1.5), omega)

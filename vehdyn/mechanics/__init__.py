@@ -4,7 +4,7 @@ The bottom layer of vehdyn: the Newton-Euler equations with the full inertia ten
 rigid-body model, Euler-angle kinematics and point transfer, and mass properties.
 
 Newton-Euler (:mod:`~vehdyn.mechanics.newton_euler`)
-    :func:`newton_euler`, :func:`angular_momentum`, :func:`kinetic_energy`
+    :func:`newton_euler`, :func:`angular_momentum`, :func:`kinetic_energy`, :func:`torque_free_period`
 Model (:mod:`~vehdyn.mechanics.rigid_body`)
     :class:`RigidBody6DOF`
 Kinematics (:mod:`~vehdyn.mechanics.kinematics`)
@@ -50,13 +50,14 @@ from .kinematics import (
     rotation_body_to_earth,
     rotation_earth_to_body,
 )
-from .newton_euler import angular_momentum, kinetic_energy, newton_euler
+from .newton_euler import angular_momentum, kinetic_energy, newton_euler, torque_free_period
 from .rigid_body import RigidBody6DOF
 
 __all__ = [
     "newton_euler",
     "angular_momentum",
     "kinetic_energy",
+    "torque_free_period",
     "RigidBody6DOF",
     "rotation_body_to_earth",
     "rotation_earth_to_body",

@@ -26,10 +26,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ParameterError
-from .inertia import inertia_matrix
-from .kinematics import as_vector3, as_vectors3, cross
+from .inertia import InertiaTensor, inertia_matrix
+from .kinematics import apply_matrix, as_vector3, as_vectors3, cross
 
-__all__ = ["newton_euler", "accelerations", "angular_momentum", "kinetic_energy", "inverse_inertia", "mass_array"]
+__all__ = ["newton_euler", "torque_free_period", "accelerations", "angular_momentum", "kinetic_energy", "inverse_inertia", "mass_array"]
 
 
 def mass_array(mass) -> np.ndarray:
@@ -49,14 +49,9 @@ def inverse_inertia(inertia) -> tuple[np.ndarray, np.ndarray]:
     return mat, np.moveaxis(np.linalg.inv(np.moveaxis(mat, -1, 0)), 0, -1)
 
 
-def _apply(matrix: np.ndarray, vector: np.ndarray) -> np.ndarray:
-    """matrix @ vector with trailing batch axes broadcast (matrix (3, 3[, n]), vector (3[, n]))."""
-    return np.einsum("ij...,j...->i...", matrix, vector)
-
-
 def angular_momentum(inertia, angular_velocity) -> np.ndarray:
     """Angular momentum about the centre of mass in body axes, H = I omega [kg m^2/s]."""
-    return _apply(inertia_matrix(inertia), as_vector3(angular_velocity, "angular_velocity"))
+    return apply_matrix(inertia_matrix(inertia), as_vector3(angular_velocity, "angular_velocity"))
 
 
 def kinetic_energy(mass, inertia, velocity, angular_velocity) -> np.ndarray:
@@ -112,5 +107,53 @@ def newton_euler(mass, inertia, velocity, angular_velocity, force, moment):
 def accelerations(mass, inertia, inverse, velocity, angular_velocity, force, moment):
     """:func:`newton_euler` on validated arrays (``inverse`` = inertia^-1), for models' inner loops."""
     velocity_rate = force / mass - cross(angular_velocity, velocity)
-    angular_acceleration = _apply(inverse, moment - cross(angular_velocity, _apply(inertia, angular_velocity)))
+    angular_acceleration = apply_matrix(inverse, moment - cross(angular_velocity, apply_matrix(inertia, angular_velocity)))
     return velocity_rate, angular_acceleration
+
+
+def torque_free_period(inertia, angular_velocity) -> float:
+    """Period [s] of the body rates of a torque-free rigid body (Euler-Poinsot motion).
+
+    Parameters
+    ----------
+    inertia : InertiaTensor or array_like, shape (3, 3)
+        Inertia tensor about the centre of mass [kg m^2].
+    angular_velocity : array_like, shape (3,)
+        Body rates at any instant [rad/s], in the tensor's axes.
+
+    Returns
+    -------
+    float
+        T = 4 K(k) sqrt(I1 I2 I3 / ((I3 - I2)(H^2 - 2 E I1))),
+        k^2 = (I2 - I1)(2 E I3 - H^2) / ((I3 - I2)(H^2 - 2 E I1)) for H^2 >= 2 E I2 (rotation
+        about the major axis), with I1 and I3 exchanged for H^2 < 2 E I2 (about the minor axis);
+        I1 < I2 < I3 are the principal moments, E the kinetic energy, H the angular momentum and K
+        the complete elliptic integral of the first kind (Landau & Lifshitz, *Mechanics*, 3rd ed.,
+        sec. 37). Over one period a body spun near its intermediate axis flips over and back. The
+        period is infinite on the separatrix (H^2 = 2 E I2, e.g. a pure spin about the intermediate
+        axis) and for a body at rest; for a pure spin about the minor or major axis it is the
+        period of small wobbles about that spin.
+
+    Raises
+    ------
+    ParameterError
+        If two principal moments are equal (a symmetric body precesses steadily instead).
+    """
+    from scipy.special import ellipk
+
+    tensor = inertia if isinstance(inertia, InertiaTensor) else InertiaTensor.from_matrix(inertia_matrix(inertia))
+    moments, axes = tensor.principal()
+    if np.min(np.diff(moments)) <= 1e-9 * moments[-1]:
+        raise ParameterError(f"torque_free_period needs three distinct principal moments, got {moments.tolist()} "
+                             "kg*m^2: a symmetric body precesses steadily", key="inertia", value=moments.tolist())
+    w = axes.T @ as_vector3(angular_velocity, "angular_velocity")
+    i1, i2, i3 = moments
+    energy2 = float(np.sum(moments * w * w))  # 2 E
+    momentum2 = float(np.sum((moments * w) ** 2))  # H^2
+    if momentum2 < energy2 * i2:
+        i1, i3 = i3, i1
+    scale = (i3 - i2) * (momentum2 - energy2 * i1)
+    if not scale > 0:
+        return float("inf")
+    k2 = min((i2 - i1) * (energy2 * i3 - momentum2) / scale, 1.0)
+    return float(4.0 * ellipk(k2) * np.sqrt(i1 * i2 * i3 / scale))

@@ -7,7 +7,7 @@ import numpy as np
 from ..errors import ParameterError, SimulationError
 from ..model import Model
 from ..signals import Signal
-from .kinematics import GIMBAL_LOCK_MARGIN, euler_angle_rates, rotation_body_to_earth
+from .kinematics import GIMBAL_LOCK_MARGIN, apply_matrix, cross, euler_angle_rates, rotation_body_to_earth
 from .newton_euler import accelerations, inverse_inertia, mass_array
 
 __all__ = ["RigidBody6DOF"]
@@ -37,6 +37,13 @@ _OUTPUTS = (
     Signal("lateral_acceleration", "m/s^2", "absolute CG acceleration along body y, dv/dt + r u - p w"),
     Signal("vertical_acceleration", "m/s^2", "absolute CG acceleration along body z, dw/dt + p v - q u"),
 )
+
+
+def _stack3(components) -> np.ndarray:
+    """Three arrays stacked along a new first axis, broadcast only when their shapes differ."""
+    if np.shape(components[0]) == np.shape(components[1]) == np.shape(components[2]):
+        return np.array(components)
+    return np.array(np.broadcast_arrays(*components))
 
 
 def _skew(vector) -> np.ndarray:
@@ -158,11 +165,12 @@ class RigidBody6DOF(Model):
     def rhs(self, t, x, u):
         """dx/dt for states x (12,) or (12, n) and inputs u (6,) or (6, n); see the class Notes."""
         velocity, _, velocity_rate, angular_acceleration, rotation, euler_rates, _ = self._motion(t, x, u)
-        earth_velocity = np.einsum("ij...,j...->i...", rotation, velocity)
-        shape = np.broadcast_shapes(velocity_rate.shape, angular_acceleration.shape, earth_velocity.shape)
-        return np.concatenate([np.broadcast_to(velocity_rate, shape), np.broadcast_to(angular_acceleration, shape),
-                               np.broadcast_to(earth_velocity, shape),
-                               np.broadcast_to(np.stack(np.broadcast_arrays(*euler_rates)), shape)])
+        earth_velocity = apply_matrix(rotation, velocity)
+        parts = (velocity_rate, angular_acceleration, earth_velocity, _stack3(euler_rates))
+        if all(part.shape == velocity_rate.shape for part in parts):
+            return np.concatenate(parts)
+        shape = np.broadcast_shapes(*(part.shape for part in parts))
+        return np.concatenate([np.broadcast_to(part, shape) for part in parts])
 
     def jacobian(self, t, x, u):
         """Exact Jacobians (A, B, C, D) at a single point (x of shape (12,), u of shape (6,)).
@@ -220,8 +228,8 @@ class RigidBody6DOF(Model):
     def output(self, t, x, u):
         """The outputs listed in the class docstring, shape (9,) or (9, n)."""
         velocity, angular_velocity, velocity_rate, _, rotation, _, yaw_angle = self._motion(t, x, u)
-        earth_velocity = np.einsum("ij...,j...->i...", rotation, velocity)
-        acceleration = velocity_rate + np.cross(angular_velocity, velocity, axis=0)
+        earth_velocity = apply_matrix(rotation, velocity)
+        acceleration = velocity_rate + cross(angular_velocity, velocity)
         u_body, v_body = velocity[0], velocity[1]
         sideslip = np.arctan2(v_body, u_body)
         course = yaw_angle + sideslip
