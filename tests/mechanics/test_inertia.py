@@ -233,3 +233,11 @@ def test_inertia_tensor_is_frozen():
         [[0, -1, 0], [1, 0, 0], [0, 0, 1]])
     np.testing.assert_allclose(turned.centre_of_mass, (0.0, 1.0, 0.0), atol=1e-15)
     assert turned.inertia.ixx == pytest.approx(solid_box(2.0, 1, 0.5, 0.2).iyy)
+
+
+def test_tensors_about_one_point_add_and_round_trip_through_a_dict():
+    half = solid_box(1.0, 0.4, 0.2, 0.2)
+    np.testing.assert_allclose((half + half).matrix, solid_box(2.0, 0.4, 0.2, 0.2).matrix, rtol=1e-15)
+    tensor = InertiaTensor(2.0, 3.0, 4.0, ixz=-0.3)
+    assert InertiaTensor.from_dict(tensor.to_dict()) == tensor
+    assert InertiaTensor.units()["ixz"] == "kg*m^2"
