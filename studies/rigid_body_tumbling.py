@@ -69,6 +69,7 @@ def run(study: Study) -> None:
     tolerances = {"RK45": (1e-5, 1e-8), "DOP853": (1e-5, 1e-8), "Radau": (1e-5, 1e-7), "LSODA": (1e-5, 1e-8)}
     if not study.quick:
         tolerances = {method: (1e-4, 1e-6, 1e-8, 1e-10) for method in tolerances}
+        tolerances["Radau"] = (1e-4, 1e-6, 1e-8)  # 1e-10 costs ~80000 evaluations with a numerical Jacobian
     rk4_steps = (0.02, 0.01) if study.quick else (0.02, 0.01, 0.005, 0.0025)
     reference_run = ("DOP853", f"rtol {tolerances['DOP853'][-1]:g}")
 
