@@ -181,6 +181,14 @@ def test_batch_axis_matches_one_by_one():
     assert result.states.shape == (12, 11, n)
     with pytest.raises(ParameterError):
         batch_body.linearize(x[:, 0], u[:, 0])
+    # a batch of initial states with inputs shared by all of them, with every integrator path
+    body = RigidBody6DOF(mass=1500.0, inertia=CAR)
+    for method in ("rk4", "RK45"):
+        shared = vehdyn.simulate(body, t, x0=x, inputs={"lateral_force": 800.0}, method=method)
+        for k in (0, n - 1):
+            alone = vehdyn.simulate(body, t, x0=x[:, k], inputs={"lateral_force": 800.0}, method=method)
+            np.testing.assert_allclose(shared.states[:, :, k], alone.states, rtol=1e-5, atol=1e-8)
+            np.testing.assert_allclose(shared.outputs[:, :, k], alone.outputs, rtol=1e-5, atol=1e-8)
 
 
 @pytest.mark.parametrize("seed", range(5))

@@ -141,7 +141,8 @@ class RigidBody6DOF(Model):
         """Body-axis velocity, rates, their derivatives, the rotation matrix, the Euler-angle rates, yaw."""
         x = np.asarray(x, dtype=float)
         u_in = np.asarray(u, dtype=float)
-        if self.mass.ndim or self.inertia.ndim == 3:  # batch parameters: single states and inputs broadcast
+        if self.mass.ndim or self.inertia.ndim == 3 or x.ndim != u_in.ndim:
+            # a batch (of parameters, states or inputs): single states and inputs broadcast against it
             x = x.reshape(x.shape[:1] + (-1,))
             u_in = u_in.reshape(u_in.shape[:1] + (-1,))
         (longitudinal_velocity, lateral_velocity, vertical_velocity, roll_rate, pitch_rate, yaw_rate,
@@ -153,8 +154,9 @@ class RigidBody6DOF(Model):
             euler_rates = euler_angle_rates(roll_angle, pitch_angle, roll_rate, pitch_rate, yaw_rate,
                                             margin=self.gimbal_lock_margin)
         except ParameterError as exc:
-            raise SimulationError(f"RigidBody6DOF at t = {t:.6g} s: {exc}", time=float(t),
-                                  signal="pitch_angle") from None
+            when = float(t) if np.ndim(t) == 0 else None
+            raise SimulationError(f"RigidBody6DOF at t = {when:.6g} s: {exc}" if when is not None else
+                                  f"RigidBody6DOF: {exc}", time=when, signal="pitch_angle") from None
         rotation = rotation_body_to_earth(roll_angle, pitch_angle, yaw_angle)
         velocity_rate, angular_acceleration = accelerations(
             self.mass, self.inertia, self._inverse_inertia, velocity, angular_velocity, force, moment)
