@@ -29,6 +29,7 @@ DATA = Path(__file__).resolve().parents[1] / "data" / "rigid_body_reference.json
 
 # ----------------------------------------------------------------------------- sign convention
 def test_products_of_inertia_enter_the_matrix_negated():
+    """The pitfall H-NE-1 of the shared reference README: matrix entries are -Ixy, -Ixz, -Iyz."""
     tensor = InertiaTensor(1.0, 2.0, 2.5, ixy=0.1, ixz=0.2, iyz=0.3)
     np.testing.assert_array_equal(tensor.matrix, [[1.0, -0.1, -0.2], [-0.1, 2.0, -0.3], [-0.2, -0.3, 2.5]])
     assert InertiaTensor.from_matrix(tensor.matrix) == tensor

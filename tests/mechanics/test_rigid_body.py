@@ -43,7 +43,7 @@ def test_linearization_about_straight_running_splits_into_three_groups():
                 assert lin.B[i, j] == 0.0, (row, col, lin.B[i, j])
     a = lambda r, c: lin.A[body.index(r), body.index(c)]  # noqa: E731
     b = lambda r, c: lin.B[body.index(r), body.index(c, "inputs")]  # noqa: E731
-    # small-perturbation equations (Etkin 1972, sec. 5.9 with no gravity): dw/dt = Z/m + u0 q,
+    # small-perturbation equations about straight running with no gravity: dw/dt = Z/m + u0 q,
     # dv/dt = Y/m - u0 r, dz/dt = w - u0 theta, dy/dt = v + u0 psi
     assert a("vertical_velocity", "pitch_rate") == pytest.approx(u0, rel=1e-9)
     assert a("lateral_velocity", "yaw_rate") == pytest.approx(-u0, rel=1e-9)

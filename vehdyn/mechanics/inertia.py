@@ -14,9 +14,9 @@ H = I omega) carries the products with a minus sign::
     I = [ -Ixy   Iyy  -Iyz ]
         [ -Ixz  -Iyz   Izz ]
 
-This is the convention of SAE J670 and of most vehicle-dynamics texts (Gillespie, *Fundamentals of
-Vehicle Dynamics*, 1992, ch. 6; Milliken & Milliken, *Race Car Vehicle Dynamics*, 1995, ch. 5;
-Etkin, *Dynamics of Atmospheric Flight*, 1972, sec. 4.6). Some texts (e.g. Goldstein, *Classical
+This is the convention of the flight- and vehicle-dynamics literature whose body axes SAE J670
+adopted (B. Etkin, *Dynamics of Atmospheric Flight*, Wiley, 1972, ch. 4, cited from memory: its
+moment equations carry -Ixz as here). Some texts (e.g. Goldstein, *Classical
 Mechanics*, ch. 5) call the matrix entries themselves "products of inertia"; vehdyn does not:
 :class:`InertiaTensor` takes ``ixy``, ``ixz``, ``iyz`` as the integrals above and ``.matrix`` holds
 their negatives. The sign of a product is that of its integral: in SAE vehicle axes (x forward,

@@ -9,8 +9,9 @@ y, then phi about the new x. The body-to-earth matrix is
 
     R = Rz(psi) Ry(theta) Rx(phi),         v_earth = R v_body,   v_body = R^T v_earth.
 
-The Euler-angle rates follow from the body rates p, q, r (Etkin, *Dynamics of Atmospheric
-Flight*, 1972, eq. 4.4,3; Gillespie, *Fundamentals of Vehicle Dynamics*, 1992, ch. 6)::
+The Euler-angle rates follow from the body rates p, q, r (B. Etkin, *Dynamics of Atmospheric
+Flight*, Wiley, 1972, ch. 4, cited from memory; derived by projecting psi' e_Z + theta' e_y1 +
+phi' e_x on the body axes and checked in the tests against R^T dR/dt = [omega x])::
 
     dphi/dt   = p + (q sin phi + r cos phi) tan theta
     dtheta/dt = q cos phi - r sin phi

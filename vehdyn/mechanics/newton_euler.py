@@ -6,8 +6,9 @@ about the centre of mass M = (L, M, N), all in body axes, Newton's and Euler's l
 
     F = m (dV/dt + omega x V),              M = I domega/dt + omega x (I omega),
 
-(Etkin, *Dynamics of Atmospheric Flight*, 1972, eqs. 5.8,1 and 5.8,3; Gillespie, *Fundamentals of
-Vehicle Dynamics*, 1992, ch. 6; Milliken & Milliken, *Race Car Vehicle Dynamics*, 1995, ch. 5).
+(Landau & Lifshitz, *Mechanics*, 3rd ed., 1976, sec. 36 for Euler's equations; B. Etkin, *Dynamics
+of Atmospheric Flight*, Wiley, 1972, ch. 4, for the same equations in flight/vehicle body axes,
+cited from memory).
 Written out with all products of inertia (Ixy = integral x y dm etc., so the tensor's off-diagonal
 entries are -Ixy, -Ixz, -Iyz; see :mod:`vehdyn.mechanics.inertia`)::
 

@@ -108,8 +108,8 @@ class RigidBody6DOF(Model):
 
     Notes
     -----
-    Equations (Etkin, *Dynamics of Atmospheric Flight*, 1972, ch. 4-5; Gillespie, *Fundamentals of
-    Vehicle Dynamics*, 1992, ch. 6):
+    Equations (see :mod:`vehdyn.mechanics.newton_euler` and :mod:`vehdyn.mechanics.kinematics` for
+    the sources):
 
         dV/dt = F/m + g R^T e_Z - omega x V
         domega/dt = I^-1 (M - omega x I omega)
