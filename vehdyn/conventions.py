@@ -9,8 +9,10 @@ Three axis systems meet in vehicle dynamics:
 * **ISO-W (TYDEX) tire axes**, the convention of ``.tir`` files and of MFeval: x forward in the
   wheel plane, y to the left, z up; slip angle alpha = atan(V_sy / |V_cx|), so that a tire sliding
   to its left (alpha > 0) makes a negative lateral force for a tire with the usual negative
-  ``PKY1``; longitudinal slip kappa = -V_sx / |V_cx| (positive when driving); camber gamma
-  positive for a rotation about +x; normal load F_z a positive compressive magnitude.
+  ``PKY1``; longitudinal slip kappa = -V_sx / V_cx with the signed wheel-centre speed V_cx, so
+  kappa > 0 means the wheel drives in its direction of travel, forwards or in reverse (MFeval
+  4.3.1 then flips F_x with sign(V_cx), and keeps F_y); camber gamma positive for a rotation
+  about +x; normal load F_z a positive compressive magnitude.
 
 Both pairs (SAE/ISO 8855 and SAE-tire/ISO-W) differ by a half turn about the x axis: components
 along y and z change sign, components along x do not. So do rotations: a rate or angle about x

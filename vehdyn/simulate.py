@@ -337,6 +337,13 @@ def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_ste
         return np.asarray(model.rhs(tt, y.reshape(shape), u_at(tt)), dtype=float).reshape(-1)
 
     opts = {"rtol": rtol, "atol": atol}
+    if (method in ("Radau", "BDF", "LSODA") and not batch and type(model).jacobian is not Model.jacobian
+            and model.jacobian(t[0], x0b, u_at(t[0])) is not None):
+        # an analytic Jacobian saves the implicit methods their finite-difference columns
+        def jac(tt, y):
+            return np.asarray(model.jacobian(tt, y, u_at(tt))[0], dtype=float)
+
+        opts["jac"] = jac
     if max_step is not None:
         opts["max_step"] = max_step
     if first_step is not None:
