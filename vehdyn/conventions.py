@@ -43,7 +43,7 @@ __all__ = [
     "steer_angle_sae_to_iso8855",
     "steer_angle_iso8855_to_sae",
     "TireSlips",
-    "TireLoads",
+    "TireForces",
     "tire_slips_sae_to_iso_w",
     "tire_slips_iso_w_to_sae",
     "tire_forces_iso_w_to_sae",
@@ -106,8 +106,12 @@ class TireSlips(NamedTuple):
     phit: np.ndarray
 
 
-class TireLoads(NamedTuple):
-    """Forces [N] and moments [N*m] on a tire at the contact centre, in one axis system."""
+class TireForces(NamedTuple):
+    """Forces [N] and moments [N*m] on a tire at the contact centre, in one axis system.
+
+    Tire laws return them in ISO-W axes (``fz`` is then the positive normal load they were computed
+    for); :func:`tire_forces_iso_w_to_sae` gives the same loads in SAE axes.
+    """
 
     fx: np.ndarray
     fy: np.ndarray
@@ -144,7 +148,7 @@ def tire_slips_iso_w_to_sae(kappa, alpha, gamma=0.0, phit=0.0) -> TireSlips:
     return tire_slips_sae_to_iso_w(kappa, alpha, gamma, phit)
 
 
-def tire_forces_iso_w_to_sae(fx, fy, fz, mx, my, mz) -> TireLoads:
+def tire_forces_iso_w_to_sae(fx, fy, fz, mx, my, mz) -> TireForces:
     """Tire forces and moments from ISO-W (y left, z up) to SAE (y right, z down).
 
     F_x and M_x keep their signs; F_y, F_z, M_y and M_z change sign. The ISO-W normal force F_z is
@@ -152,9 +156,9 @@ def tire_forces_iso_w_to_sae(fx, fy, fz, mx, my, mz) -> TireLoads:
     """
     fx, fy, fz = flip_y_z(fx, fy, fz)
     mx, my, mz = rotation_iso8855_to_sae(mx, my, mz)
-    return TireLoads(fx, fy, fz, mx, my, mz)
+    return TireForces(fx, fy, fz, mx, my, mz)
 
 
-def tire_forces_sae_to_iso_w(fx, fy, fz, mx, my, mz) -> TireLoads:
+def tire_forces_sae_to_iso_w(fx, fy, fz, mx, my, mz) -> TireForces:
     """Tire forces and moments from SAE to ISO-W (the inverse of :func:`tire_forces_iso_w_to_sae`)."""
     return tire_forces_iso_w_to_sae(fx, fy, fz, mx, my, mz)

@@ -8,25 +8,9 @@ method that returns :class:`TireForces` in the ISO-W (TYDEX) axis system of ``.t
 
 from __future__ import annotations
 
-from typing import NamedTuple
-
-import numpy as np
+from ..conventions import TireForces
 
 __all__ = ["TireForces", "TireModel"]
-
-
-class TireForces(NamedTuple):
-    """Forces [N] and moments [N*m] at the contact centre, ISO-W axes.
-
-    fz is the normal load (positive in compression) the forces were computed for.
-    """
-
-    fx: np.ndarray
-    fy: np.ndarray
-    fz: np.ndarray
-    mx: np.ndarray
-    my: np.ndarray
-    mz: np.ndarray
 
 
 class TireModel:
