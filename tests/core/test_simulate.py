@@ -127,7 +127,8 @@ def test_blow_up_raises_simulation_error():
         simulate(Quadratic(), np.linspace(0, 2, 21), x0=[1.0], method="RK45")
     assert "RK45" in str(info.value) and info.value.time is not None and 0.9 < info.value.time <= 1.0
     with pytest.raises(SimulationError, match="'level' became non-finite") as info:
-        simulate(Quadratic(), np.linspace(0, 2, 201), x0=[1.0], method="rk4", check_stability=False)
+        with np.errstate(over="ignore", invalid="ignore"):
+            simulate(Quadratic(), np.linspace(0, 2, 201), x0=[1.0], method="rk4", check_stability=False)
     assert info.value.signal == "level"
 
 
@@ -204,3 +205,18 @@ def test_result_named_access_frame_and_units():
     with pytest.raises(KeyError, match="no signal named 'speed'"):
         r["speed"]
     assert r.wall_time > 0 and r.method == "exact"
+
+
+def test_plots_label_axes_with_units():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    t = np.linspace(0, 2, 201)
+    r = simulate(oscillator(), t, x0=[1.0, 0.0])
+    fig = r.plot(["position_velocity", "force"])
+    labels = [ax.get_ylabel() for ax in fig.axes]
+    assert labels == ["position velocity [m/s]", "force"] and fig.axes[-1].get_xlabel() == "time [s]"
+    fr = oscillator().frequency_response(np.logspace(-1, 1, 50))
+    fig = fr.plot(outputs=["position"])
+    assert fig.axes[0].get_xscale() == "log" and fig.axes[1].get_ylabel() == "phase [deg]"
+    assert fig.axes[1].get_xlabel() == "frequency [Hz]"
