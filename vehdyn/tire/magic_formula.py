@@ -251,16 +251,19 @@ class MagicFormula(TireModel):
         """
         c = self._c
         vx = c.LONGVL if vx is None else vx
-        if all(isinstance(v, (int, float)) for v in (fz, kappa, alpha, gamma, vx)) and not isinstance(fz, bool):
+        scalar = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in (fz, kappa, alpha, gamma, vx))
+        if scalar:
             try:
                 out = _kernel(ScalarOps, c, float(fz), float(kappa), float(alpha), float(gamma), 0.0, float(vx),
                               c.INFLPRES, None, limits, alpha_star, False, False)
-                return TireForces(out["fx"], out["fy"], out["fz"], out["mx"], out["my"], out["mz"])
+                return TireForces(*(float(out[k]) for k in TireForces._fields))
             except (ArithmeticError, ValueError):
-                pass  # a 0/0 or inf case: numpy's IEEE arithmetic below gives MFeval's values
+                pass  # a 0/0 or x/0 case: numpy's IEEE arithmetic below gives MFeval's values
         arrays = self._inputs(fz, kappa, alpha, gamma, vx, None, 0.0, None)
         out = self._run(arrays, limits, alpha_star, False, full=False)
-        return TireForces(out["fx"], out["fy"], out["fz"], out["mx"], out["my"], out["mz"])
+        if scalar:
+            return TireForces(*(float(out[k]) for k in TireForces._fields))
+        return TireForces(*(out[k] for k in TireForces._fields))
 
     # ------------------------------------------------------------------------------------------
     def _inputs(self, fz, kappa, alpha, gamma, vx, pressure, phit, omega):
