@@ -132,9 +132,10 @@ def lateral_pure(xp, c, s, gamma_star, turn_slip):
             c_hyp = c.PHYP1  # 4.85
             d_hyp = (c.PHYP2 + c.PHYP3 * dfz) * sign_vx  # 4.86
             e_hyp = min(c.PHYP4, 1.0) if s.limits else c.PHYP4  # 4.87
-            b_hyp = (kyg0 / (1 - s.eps_gamma)) / (c_hyp * d_hyp * kya0_p)  # 4.88, 4.89
+            b_hyp = xp.div(kyg0 / (1 - s.eps_gamma), c_hyp * d_hyp * kya0_p)  # 4.88, 4.89
             arg = b_hyp * r0 * s.phi
             shy_p = d_hyp * xp.sin(c_hyp * xp.atan(arg - e_hyp * (arg - xp.atan(arg)))) * sign_vx  # 4.80
+            shy_p = xp.where(d_hyp == 0, 0.0, shy_p)  # vx = 0: DHyp = 0, the limit (MFeval: 0*inf = NaN)
             zeta4 = 1 + shy_p - svy_gamma / kya_p  # 4.84
             shy = (c.PHY1 + c.PHY2 * dfz) * c.LHY + zeta4 - 1  # 4.E27 with zeta0 = 0
         else:

@@ -100,8 +100,10 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
     * Turn slip: Cr = zeta7 = 2/pi*acos(Mzp90/|Drp|) (MF-Tyre manual). MFeval evaluates this as
       written, which gives NaN at phit = 0 (0/0), -Inf or NaN when the camber stiffness Kzgr0 is
       0 (x/0) and a complex value when the ratio exceeds 1. vehdyn takes the phit -> 0 limit of
-      the ratio at phit = 0 and limits it to 1 (Cr = 0, i.e. Mzr = Dr), so Mz stays finite and
-      continuous; wherever MFeval's value is finite and real, the two agree.
+      the ratio at phit = 0 and limits it to [-1, 1] (|ratio| > 1: Cr = 0, i.e. Mzr = Dr, or
+      Cr = 2 where Gyk < 0), so Mz stays finite and continuous; wherever MFeval's value is finite
+      and real, the two agree. Where the turn-slip factors DHyp or DDrp are 0 (vx = 0, no load)
+      vehdyn uses their limits SHyp = 0 and Drp = 0, where MFeval's 0*Inf gives NaN.
     """
     r0, fz0p = c.UNLOADED_RADIUS, c.Fz0_prime
     dfz, gamma, gamma_star, alpha_star = s.dfz, s.gamma, s.gamma_star, s.alpha_star
@@ -133,12 +135,13 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
         kzgr0 = fz * r0 * (c.QDZ8 * c.QDZ9 * dfz + (c.QDZ10 + c.QDZ11 * dfz * xp.abs(gamma))) * c.LKZC  # 4.99
         b_drp = xp.div(kzgr0, c_drp * d_drp * (1 - s.eps_gamma))
         drp = d_drp * xp.sin(c_drp * xp.atan(b_drp * r0 * s.phit))
+        drp = xp.where(d_drp == 0, 0.0, drp)  # no load or no friction: the limit (MFeval: 0*NaN)
         mzp90 = mzp_inf * _TWO_OVER_PI * xp.atan(c.QCRP2 * r0 * xp.abs(s.phit)) * gyk  # 4.103
         ratio = xp.div(mzp90, xp.abs(drp))
         ratio_at_zero_phit = xp.div(mzp_inf * _TWO_OVER_PI * c.QCRP2 * gyk * xp.abs(1 - s.eps_gamma),
                                     xp.abs(kzgr0))
         ratio = xp.where(xp.isnan(ratio), ratio_at_zero_phit, ratio)
-        ratio = xp.where(xp.isnan(ratio), 1.0, xp.minimum(ratio, 1.0))
+        ratio = xp.where(xp.isnan(ratio), 1.0, xp.maximum(xp.minimum(ratio, 1.0), -1.0))
         cr = _TWO_OVER_PI * xp.acos(ratio)  # zeta7
         zeta8 = 1 + drp
         zeta0 = 0.0
