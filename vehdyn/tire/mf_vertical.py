@@ -89,7 +89,8 @@ def loaded_radius_mf61(c, fz, fx, fy, dpi, omega, r_omega):
     Solves Fz = (Q_FZ1*rho/R0 + Q_FZ2*(rho/R0)^2)*(1 + Q_V2*R0/V0*|omega| - (Q_FCX*Fx/Fz0)^2
     - (Q_FCY*Fy/Fz0)^2)*(1 + PFZ1*dpi)*Fz0 (Pacejka 2012 eq. A3.3) for rho, with
     Q_FZ1 = sqrt((Cz0*R0/Fz0)^2 - 4*Q_FZ2); Rl = R_omega - rho. ``fz`` is the load raised to FZMIN
-    (limit mode). At fz = 0 rho is reported as 1e-6 m (MFeval's guard against 0/0 in Fz/rho).
+    (limit mode). At fz = 0 rho is reported as 1e-6 m (MFeval's guard against 0/0 in Fz/rho);
+    where a positive load is so small that rho underflows to 0, Cz is the slope at rho = 0.
     """
     r0, fz0 = c.UNLOADED_RADIUS, c.FNOMIN
     q_fz1 = np.sqrt((c.VERTICAL_STIFFNESS * r0 / fz0) ** 2 - 4 * c.Q_FZ2)
@@ -103,7 +104,9 @@ def loaded_radius_mf61(c, fz, fx, fy, dpi, omega, r_omega):
     rho_free = np.fmax(x * r0, 0.0)
     loaded = np.fmax(r_omega - rho_free, 0.0)
     rho = np.where(fz == 0, 1e-6, rho_free)
-    return rho, loaded, fz / rho
+    # a load so small that rho underflows to 0: the stiffness is the slope at rho = 0
+    stiffness = np.where(rho > 0, fz / rho, q_fz1 * external / r0)
+    return rho, loaded, stiffness
 
 
 def _load_mf62(c, gamma, omega, r_omega, dpi, radius, fx, fy):
