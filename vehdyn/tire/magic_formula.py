@@ -41,7 +41,7 @@ from .tir import TirParameters, read_tir
 
 __all__ = ["MagicFormula", "MagicFormulaOutputs", "load_tire"]
 
-CHUNK_SIZE = 4096
+CHUNK_SIZE = 8192
 """Points evaluated per numpy pass (keeps the ~100 temporaries of a pass in cache)."""
 
 _OUTPUTS = (

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 
-from ._mf_ops import sign_nonzero
+from ._mf_ops import cos_atan, sign_nonzero
 from .mf_forces import _EPSILON, lateral_pure
 
 __all__ = ["overturning_moment", "rolling_resistance_moment", "aligning_moment"]
@@ -26,7 +26,7 @@ def overturning_moment(xp, c, s, fy):
     Below FZMIN the load is replaced by Fz*(Fz/FZMIN)^2 (MFeval). When both QSX1–QSX11 and
     QSX12–QSX14 are non-zero, MFeval uses eq. 49 of Besselink's draft paper, as here.
     """
-    fz = xp.where(s.fz < c.FZMIN, s.fz * (s.fz / c.FZMIN) ** 2, s.fz)
+    fz = xp.where(s.fz < c.FZMIN, s.fz * (s.fz / c.FZMIN) ** 2, s.fz) if c.FZMIN > 0 else s.fz
     fz0, r0, gamma = c.FNOMIN, c.UNLOADED_RADIUS, s.gamma
     if c.mx_draft_form:
         return r0 * fz * c.LMX * (
@@ -53,7 +53,9 @@ def rolling_resistance_moment(xp, c, s, fx):
     by sin(pi/2*(kappa + 1)/(h + 1)) for l <= kappa <= h, flips sign for kappa < l, and is 0 at
     vx = 0; it flips sign for vx < 0.
     """
-    fz = xp.where(s.fz_input < c.FZMIN, s.fz_input * (s.fz_input / c.FZMIN), s.fz_input)
+    fz = s.fz_input
+    if c.FZMIN > 0:
+        fz = xp.where(fz < c.FZMIN, fz * (fz / c.FZMIN), fz)
     vx, kappa = s.vx, s.kappa_input
     fz0, v0 = c.FNOMIN, c.LONGVL
     speed_terms = c.QSY1 + c.QSY2 * (fx / fz0) + c.QSY3 * xp.abs(vx / v0) + c.QSY4 * (vx / v0) ** 4
@@ -114,8 +116,8 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
     alpha_r = alpha_star + (pure.shy + pure.svy / kya_p)  # 4.E37, 4.E38
     alpha_t = alpha_star + sht  # 4.E34
     if s.turn_slip:
-        zeta5 = xp.cos(xp.atan(c.QDTP1 * r0 * s.phi))  # 4.91
-        zeta6 = xp.cos(xp.atan(c.QBRP1 * r0 * s.phi))  # 4.102
+        zeta5 = cos_atan(xp, c.QDTP1 * r0 * s.phi)  # 4.91
+        zeta6 = cos_atan(xp, c.QBRP1 * r0 * s.phi)  # 4.102
     else:
         zeta5 = zeta6 = 1.0
     dt = (c.QDZ1 + c.QDZ2 * dfz) * (1 - c.PPZ1 * s.dpi) * (1 + c.QDZ3 * gamma + c.QDZ4 * gamma**2) \
@@ -167,6 +169,6 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
         if s.camber_free:
             fy0_flat = pure.fy0
         else:
-            fy0_flat = lateral_pure(xp, c, s, 0.0 * gamma_star, s.turn_slip).fy0
+            fy0_flat = lateral_pure(xp, c, s, 0.0, s.turn_slip).fy0
         mz = -trail * (gyk * fy0_flat) + residual + arm * fx  # 4.E71, 4.E72, 4.E74
     return AligningMoment(mz, trail, residual)
