@@ -104,13 +104,18 @@ def test_scalar_and_array_calls_agree(name, data):
     limits, alpha_star = data.draw(st.booleans()), data.draw(st.booleans())
     model = tire(name)
     scalar = model.forces(fz, kappa, alpha, gamma, vx, limits=limits, alpha_star=alpha_star)
-    array = model.forces(np.array([fz, 1000.0]), np.array([kappa, 0.1]), np.array([alpha, 0.1]),
-                         np.array([gamma, 0.0]), np.array([vx, 10.0]), limits=limits, alpha_star=alpha_star)
+    few = model.forces(*(np.array([v, 0.5 * v]) for v in (fz, kappa, alpha, gamma, vx)),
+                       limits=limits, alpha_star=alpha_star)  # point-by-point path
+    n = mf_module.SMALL_BATCH + 1  # numpy path
+    many = model.forces(*(np.linspace(v, 0.5 * v, n) for v in (fz, kappa, alpha, gamma, vx)),
+                        limits=limits, alpha_star=alpha_star)
     full = model.evaluate(fz, kappa, alpha, gamma, vx, limits=limits, alpha_star=alpha_star)
     for field, value in zip(TireForces._fields, scalar):
         assert isinstance(value, float)
-        assert value == pytest.approx(getattr(array, field)[0], rel=1e-12, abs=1e-9), field
+        assert value == pytest.approx(getattr(many, field)[0], rel=1e-12, abs=1e-9), field
         assert value == pytest.approx(float(getattr(full, field)), rel=1e-12, abs=1e-9), field
+        assert getattr(few, field)[0] == value
+        assert getattr(few, field)[1] == pytest.approx(getattr(many, field)[-1], rel=1e-12, abs=1e-9), field
 
 
 @pytest.mark.parametrize("name", TIRES)

@@ -44,6 +44,9 @@ __all__ = ["MagicFormula", "MagicFormulaOutputs", "load_tire"]
 CHUNK_SIZE = 8192
 """Points evaluated per numpy pass (keeps the ~100 temporaries of a pass in cache)."""
 
+SMALL_BATCH = 8
+"""Up to this many points, :meth:`MagicFormula.forces` evaluates point by point on floats."""
+
 _OUTPUTS = (
     ("fx", "N", "longitudinal force"),
     ("fy", "N", "lateral force"),
@@ -247,23 +250,35 @@ class MagicFormula(TireModel):
         """Forces and moments only (no turn slip, no rolling-radius iteration).
 
         Same conventions and switches as :meth:`evaluate` (vx defaults to LONGVL). A call with
-        scalar inputs is evaluated on Python floats (no numpy overhead) and returns floats.
+        scalar inputs is evaluated on Python floats (no numpy overhead) and returns floats; up to
+        ``SMALL_BATCH`` points (a vehicle's wheels) are evaluated the same way, point by point.
         """
         c = self._c
         vx = c.LONGVL if vx is None else vx
         scalar = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in (fz, kappa, alpha, gamma, vx))
         if scalar:
-            try:
-                out = _kernel(ScalarOps, c, float(fz), float(kappa), float(alpha), float(gamma), 0.0, float(vx),
-                              c.INFLPRES, None, limits, alpha_star, False, False)
-                return TireForces(*(float(out[k]) for k in TireForces._fields))
-            except (ArithmeticError, ValueError):
-                pass  # a 0/0 or x/0 case: numpy's IEEE arithmetic below gives MFeval's values
+            return TireForces(*self._forces_at_point(float(fz), float(kappa), float(alpha), float(gamma), float(vx),
+                                                     limits, alpha_star))
         arrays = self._inputs(fz, kappa, alpha, gamma, vx, None, 0.0, None)
+        shape = arrays["shape"]
+        if math.prod(shape) <= SMALL_BATCH:  # a few wheels: float arithmetic beats numpy's call overhead
+            points = np.broadcast_arrays(*(arrays[k] for k in ("fz", "kappa", "alpha", "gamma", "vx")))
+            values = [self._forces_at_point(*map(float, p), limits, alpha_star)
+                      for p in zip(*(np.ravel(a) for a in points))]
+            return TireForces(*(np.array(v, dtype=float).reshape(shape) for v in zip(*values)))
         out = self._run(arrays, limits, alpha_star, False, full=False)
-        if scalar:
-            return TireForces(*(float(out[k]) for k in TireForces._fields))
         return TireForces(*(out[k] for k in TireForces._fields))
+
+    def _forces_at_point(self, fz, kappa, alpha, gamma, vx, limits, alpha_star):
+        """Forces at one point on Python floats; numpy (IEEE inf/nan) where floats raise."""
+        c = self._c
+        try:
+            out = _kernel(ScalarOps, c, fz, kappa, alpha, gamma, 0.0, vx, c.INFLPRES, None, limits, alpha_star,
+                          False, False)
+        except (ArithmeticError, ValueError):  # a 0/0 or x/0: numpy gives MFeval's values
+            arrays = self._inputs(fz, kappa, alpha, gamma, vx, None, 0.0, None)
+            out = self._run(arrays, limits, alpha_star, False, full=False)
+        return tuple(float(out[k]) for k in TireForces._fields)
 
     # ------------------------------------------------------------------------------------------
     def _inputs(self, fz, kappa, alpha, gamma, vx, pressure, phit, omega):
