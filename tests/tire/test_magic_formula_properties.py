@@ -196,3 +196,14 @@ def test_given_wheel_spin_is_used():
     assert given_.effective_radius == pytest.approx(estimated.effective_radius, rel=1e-9)
     faster = model.evaluate(4000.0, 0.0, 0.0, vx=20.0, omega=2 * estimated.omega)
     assert faster.effective_radius > estimated.effective_radius  # centrifugal growth, Q_V1 > 0
+
+
+def test_load_tire_by_path_or_shipped_name():
+    from vehdyn.tire import load_tire
+
+    by_name = load_tire("MagicFormula52_Parameters")
+    by_path = load_tire(vehdyn.data_path("tires", "MagicFormula52_Parameters.tir"))
+    assert by_name.version == by_path.version == "5.2"
+    assert by_name.params == by_path.params
+    with pytest.raises(vehdyn.TirFileError, match="cannot read"):
+        load_tire("no_such_tire")

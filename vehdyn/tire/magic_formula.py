@@ -27,11 +27,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
 
 from ..errors import ParameterError, TirFileError
+from ..params import data_path
 from ._mf_ops import NumpyOps, ScalarOps, sign_nonzero
 from .base import TireForces, TireModel
 from .mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure, turn_slip_spin
@@ -327,8 +329,20 @@ class MagicFormula(TireModel):
 
 
 def load_tire(path) -> MagicFormula:
-    """Load a tire model from a ``.tir`` file (a :class:`MagicFormula`)."""
-    return MagicFormula.from_tir(path)
+    """Load a Magic Formula tire from a ``.tir`` file, or a shipped one by name.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A file path, or the stem of a file in vehdyn's ``data/tires`` (``"MagicFormula61_Parameters"``,
+        ``"MagicFormula62_Parameters"``, ``"MagicFormula52_Parameters"``, ``"mf_185_80R14"``).
+    """
+    candidate = Path(path)
+    if not candidate.exists() and candidate.suffix == "" and len(candidate.parts) == 1:
+        shipped = data_path("tires", candidate.name + ".tir")
+        if shipped.exists():
+            candidate = shipped
+    return MagicFormula.from_tir(candidate)
 
 
 # ----------------------------------------------------------------------------------------------
