@@ -189,3 +189,18 @@ def test_tir_parameters_from_sections_mapping():
     params = TirParameters({"MODEL": {"FITTYP": 62}, "VERTICAL": {"FNOMIN": 5000.0}})
     assert params.version == "6.2" and params["FNOMIN"] == 5000.0
     assert "Q_FCY2" in params.defaulted and "PTX1" not in params.defaulted
+
+
+def test_unknown_keys_are_kept_and_listed():
+    """The MF 5.2 files carry MF-Tyre 5.x keys that MFeval ignores (its readTIR has no slot)."""
+    params = read_tir(tir_path("MagicFormula52_Parameters"))
+    assert set(params.unknown) == {"LGAX", "LGAY", "LGAZ", "LGYR", "QTZ1", "MBELT"}
+    assert set(params.unknown).isdisjoint(MFEVAL_DEFAULTS)
+    assert all(key in params.values for key in params.unknown)
+    assert read_tir(tir_path("MagicFormula61_Parameters")).unknown == ()
+
+
+def test_keys_are_case_insensitive_in_the_flat_view_and_verbatim_in_sections():
+    params = parse_tir("[Model]\nfittyp = 62\n[vertical]\nFnomin = 5000\n")
+    assert params.version == "6.2" and params["FNOMIN"] == 5000
+    assert params.sections["vertical"] == {"Fnomin": 5000}
