@@ -37,6 +37,7 @@ class NumpyOps:
     where = staticmethod(np.where)
     minimum = staticmethod(np.minimum)
     maximum = staticmethod(np.maximum)
+    clip = staticmethod(np.clip)
     # MATLAB max/min ignore NaN: fmax/fmin
     fmax = staticmethod(np.fmax)
     isnan = staticmethod(np.isnan)
@@ -88,6 +89,13 @@ class ScalarOps:
         if a != a or b != b:
             return math.nan
         return a if a >= b else b
+
+    @staticmethod
+    def clip(a, low, high):
+        """MATLAB's a(a < low) = low; a(a > high) = high (NaN stays NaN)."""
+        if a < low:
+            a = low
+        return high if a > high else a
 
     @staticmethod
     def fmax(a, b):

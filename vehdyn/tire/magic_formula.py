@@ -395,13 +395,13 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
         phit = xp.where(vx < 0, -phit, phit)
         speed_sum = xp.abs(vx) + xp.abs(xp.tan(alpha) * vx)
         alpha = xp.where(speed_sum < vxlow, alpha * (speed_sum / vxlow), alpha)
-        alpha = xp.where(alpha < c.ALPMIN, c.ALPMIN, xp.where(alpha > c.ALPMAX, c.ALPMAX, alpha))
-        gamma = xp.where(gamma < c.CAMMIN, c.CAMMIN, xp.where(gamma > c.CAMMAX, c.CAMMAX, gamma))
+        alpha = xp.clip(alpha, c.ALPMIN, c.ALPMAX)
+        gamma = xp.clip(gamma, c.CAMMIN, c.CAMMAX)
         fz = xp.where(fz > c.FZMAX, c.FZMAX, fz)
         fz_low = xp.where(fz < c.FZMIN, c.FZMIN, fz)
         fz_moment = xp.where(fz <= 0, 0.0, fz_low)
-        pressure = xp.where(pressure < c.PRESMIN, c.PRESMIN, xp.where(pressure > c.PRESMAX, c.PRESMAX, pressure))
-        kappa = xp.where(kappa < c.KPUMIN, c.KPUMIN, xp.where(kappa > c.KPUMAX, c.KPUMAX, kappa))
+        pressure = xp.clip(pressure, c.PRESMIN, c.PRESMAX)
+        kappa = xp.clip(kappa, c.KPUMIN, c.KPUMAX)
     else:
         low_speed = 1.0
         kappa_output = kappa
