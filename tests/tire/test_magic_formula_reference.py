@@ -201,3 +201,23 @@ def test_every_reference_call_is_covered():
             rows += len(ref)
         assert seen == set(calls.call_id)
         assert rows == calls.n_rows.sum()
+
+
+@pytest.mark.parametrize("name", TIRES)
+def test_single_point_evaluate_matches_mfeval(name):
+    """A single operating point is evaluated on floats: every 9th row of every sweep, all outputs."""
+    model = tire(name)
+    for sweep in SETS:
+        ref = reference(name, sweep)
+        for row in ref.iloc[::9].itertuples():
+            out = model.evaluate(float(row.in_Fz), float(row.in_kappa), float(row.in_alpha), float(row.in_gamma),
+                                 vx=float(row.in_Vx), pressure=float(row.in_P), phit=float(row.in_phit),
+                                 **use_mode_switches(int(row.useMode)))
+            for column, field in FORCE_LIKE.items():
+                expected = getattr(row, column)
+                if np.isfinite(expected):
+                    assert abs(out[field] - expected) <= max(1e-6, 1e-9 * abs(expected)), (sweep, row.call_id, column)
+            if np.isfinite(row.Rl_1pt):
+                for column, field in GEOMETRY.items():
+                    expected = getattr(row, column)
+                    assert abs(out[field] - expected) <= 1e-8 * abs(expected), (sweep, row.call_id, column)

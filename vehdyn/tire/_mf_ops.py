@@ -48,6 +48,8 @@ class NumpyOps:
     def div(a, b):
         return np.divide(a, b)
 
+    div_ieee = div
+
 
 def _sign(x):
     if x > 0:
@@ -117,6 +119,15 @@ class ScalarOps:
     def div(a, b):
         if b == 0:
             raise ScalarFallback("division by zero")
+        return a / b
+
+    @staticmethod
+    def div_ieee(a, b):
+        """a/b with IEEE results for b = 0 (nan for 0/0, signed inf otherwise)."""
+        if b == 0:
+            if a == 0 or a != a:
+                return math.nan
+            return math.copysign(math.inf, a) * math.copysign(1.0, b)
         return a / b
 
 

@@ -243,9 +243,22 @@ class MagicFormula(TireModel):
         Returns
         -------
         MagicFormulaOutputs
-            Arrays of the broadcast shape of the inputs.
+            Arrays of the broadcast shape of the inputs (0-d arrays for a single point, which is
+            evaluated on Python floats, without numpy's per-call overhead).
         """
-        arrays = self._inputs(fz, kappa, alpha, gamma, vx, pressure, phit, omega)
+        c = self._c
+        point = (fz, kappa, alpha, gamma, c.LONGVL if vx is None else vx, c.INFLPRES if pressure is None else pressure,
+                 phit, omega)
+        if all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)) for v in point):
+            # one operating point: float arithmetic (no numpy call overhead); numpy if a float op fails
+            fz, kappa, alpha, gamma, vx, pressure, phit, omega = (None if v is None else float(v) for v in point)
+            try:
+                out = _kernel(ScalarOps, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, alpha_star,
+                              turn_slip, True)
+                return MagicFormulaOutputs(**{k: np.asarray(v, dtype=float) for k, v in out.items()})
+            except (ArithmeticError, ValueError):
+                pass
+        arrays = self._inputs(*point)
         return MagicFormulaOutputs(**self._run(arrays, limits, alpha_star, turn_slip, full=True))
 
     def forces(self, fz, kappa, alpha, gamma=0.0, vx=None, *, limits=True, alpha_star=False) -> TireForces:
@@ -420,7 +433,7 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
     vc = xp.sqrt(vx**2 + (xp.tan(alpha) * xp.abs(vx)) ** 2)
     s.cos_alpha_prime = xp.cos(xp.acos(vx / (vc + 1e-6 * sign_nonzero(xp, vc))))  # 4.E6, 4.E6a
     if turn_slip or full:
-        re, r_omega, omega = rolling_radius(c, fz_input, kappa_input, vx, s.dpi, omega)
+        re, r_omega, omega = rolling_radius(xp, c, fz_input, kappa_input, vx, s.dpi, omega)
     if turn_slip:
         s.phi, s.eps_gamma = turn_slip_spin(xp, c, s, omega)
     fx0, mux, kxk = longitudinal_pure(xp, c, s)
@@ -433,11 +446,11 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
     if not full:
         return out
     if c.is_mf62:
-        rho, loaded, cz = loaded_radius_mf62(c, fz_input, fz, gamma, fx, fy, s.dpi, omega, r_omega)
+        rho, loaded, cz = loaded_radius_mf62(xp, c, fz_input, fz, gamma, fx, fy, s.dpi, omega, r_omega)
     else:
-        rho, loaded, cz = loaded_radius_mf61(c, fz_low, fx, fy, s.dpi, omega, r_omega)
-    half_length, half_width = contact_patch(c, fz_input, s.dpi)
-    cx, cy, sigma_x, sigma_y = carcass_stiffness(c, fz, gamma, s.dpi, kxk, pure.kya)
+        rho, loaded, cz = loaded_radius_mf61(xp, c, fz_low, fx, fy, s.dpi, omega, r_omega)
+    half_length, half_width = contact_patch(xp, c, fz_input, s.dpi)
+    cx, cy, sigma_x, sigma_y = carcass_stiffness(xp, c, fz, gamma, s.dpi, kxk, pure.kya)
     out.update(
         kappa=kappa_output, alpha=xp.where(vx == 0, 0.0, alpha_input), gamma=gamma_input, phit=phit, vx=vx,
         pressure=pressure, effective_radius=re, deflection=rho, contact_length=2 * half_length, trail=mz.trail,
