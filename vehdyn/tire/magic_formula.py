@@ -431,7 +431,8 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
         s.alpha_star, s.gamma_star = alpha, gamma
     s.camber_free = not xp.any(s.gamma_star != 0)
     vc = xp.sqrt(vx**2 + (xp.tan(alpha) * xp.abs(vx)) ** 2)
-    s.cos_alpha_prime = xp.cos(xp.acos(vx / (vc + 1e-6 * sign_nonzero(xp, vc))))  # 4.E6, 4.E6a
+    # cos(alpha') with alpha' = acos(vx/Vc') (4.E6, 4.E6a); |vx/Vc'| <= 1, so cos(acos(v)) = v
+    s.cos_alpha_prime = vx / (vc + 1e-6 * sign_nonzero(xp, vc))
     if turn_slip or full:
         re, r_omega, omega = rolling_radius(xp, c, fz_input, kappa_input, vx, s.dpi, omega)
     if turn_slip:

@@ -159,7 +159,10 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
     alpha_r_eq = xp.atan(xp.sqrt(xp.tan(alpha_r) ** 2 + kappa_term)) * xp.sign(alpha_r)  # A54
     alpha_t_eq = xp.atan(xp.sqrt(xp.tan(alpha_t) ** 2 + kappa_term)) * xp.sign(alpha_t)  # A55
     arm = r0 * (c.SSZ1 + c.SSZ2 * (fy / c.FNOMIN) + (c.SSZ3 + c.SSZ4 * dfz) * gamma) * c.LS  # A56
-    residual = dr * xp.cos(cr * xp.atan(br * alpha_r_eq)) * s.low_speed  # 4.E75
+    if s.turn_slip:
+        residual = dr * xp.cos(cr * xp.atan(br * alpha_r_eq)) * s.low_speed  # 4.E75
+    else:  # Cr = 1
+        residual = dr * cos_atan(xp, br * alpha_r_eq) * s.low_speed
     bta = bt * alpha_t_eq
     trail = dt * xp.cos(ct * xp.atan(bta - et * (bta - xp.atan(bta)))) * s.cos_alpha_prime \
         * c.LFZO * s.low_speed  # 4.E73
