@@ -18,15 +18,23 @@ Where MFeval's results are not finite vehdyn returns something else, on purpose:
 
 * turn-slip aligning moment at phit = 0 or with zero camber stiffness Kzgr0 (MFeval: NaN/-Inf),
   see :func:`vehdyn.tire.mf_moments.aligning_moment`;
-* MF 6.2 loaded radius where the vertical equation has no root (MFeval: Rl = NaN with
-  rho = 1e-12 m, Cz = 1e16 N/m): rho, Rl and Cz are all NaN;
-* MFeval's ``instKya`` (a finite difference between consecutive input rows) is not returned.
+* MF 6.2 loaded radius where the vertical equation Fz(Rl) = Fz has no root (MFeval: Rl = NaN
+  with rho = 1e-12 m, Cz = 1e16 N/m): rho, Rl and Cz are all NaN. This happens at large |Fy|
+  and, with camber, below the load that the camber deflection term alone produces;
+* MFeval's ``instKya`` (a finite difference between consecutive input rows) is not returned;
+* MFeval iterates omega/Re on the whole batch and stops when any row converges; vehdyn iterates
+  each point to convergence (MFeval's single-row result), so no output depends on other points.
+
+Domain: any finite inputs with |alpha| < pi/2. With ``limits=True`` (the default) every output
+is finite there, including vx = 0, fz = 0 and loads above FZMAX (except the MF 6.2 geometry
+noted above); with ``limits=False`` the equations are evaluated as written, outside the file's
+fitted ranges.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -39,7 +47,7 @@ from .base import TireForces, TireModel
 from .mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure, turn_slip_spin
 from .mf_moments import aligning_moment, overturning_moment, rolling_resistance_moment
 from .mf_vertical import carcass_stiffness, contact_patch, loaded_radius_mf61, loaded_radius_mf62, rolling_radius
-from .tir import TirParameters, read_tir
+from .tir import MFEVAL_DEFAULTS, TirParameters, read_tir
 
 __all__ = ["MagicFormula", "MagicFormulaOutputs", "load_tire"]
 
@@ -368,8 +376,6 @@ def _coefficients(params: TirParameters) -> SimpleNamespace:
         if isinstance(value, str):
             continue
         values[key] = float(value)
-    from .tir import MFEVAL_DEFAULTS
-
     for key, default in MFEVAL_DEFAULTS.items():
         if isinstance(default, str) or key in values:
             continue
