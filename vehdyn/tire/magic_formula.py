@@ -284,7 +284,7 @@ class MagicFormula(TireModel):
                                                      limits, alpha_star))
         arrays = self._inputs(fz, kappa, alpha, gamma, vx, None, 0.0, None)
         shape = arrays["shape"]
-        if math.prod(shape) <= SMALL_BATCH:  # a few wheels: float arithmetic beats numpy's call overhead
+        if 0 < math.prod(shape) <= SMALL_BATCH:  # a few wheels: float arithmetic beats numpy's call overhead
             points = np.broadcast_arrays(*(arrays[k] for k in ("fz", "kappa", "alpha", "gamma", "vx")))
             values = [self._forces_at_point(*map(float, p), limits, alpha_star)
                       for p in zip(*(np.ravel(a) for a in points))]
@@ -332,19 +332,23 @@ class MagicFormula(TireModel):
         shape = arrays.pop("shape")
         n = math.prod(shape)
         names = ("fz", "kappa", "alpha", "gamma", "phit", "vx", "pressure", "omega")
-        flat = {k: (None if arrays[k] is None else np.broadcast_to(arrays[k], shape).reshape(-1)) for k in names}
+        # inputs of one value stay 0-d (numpy broadcasts them, and constant terms cost one op)
+        flat = {}
+        for k in names:
+            a = arrays[k]
+            flat[k] = None if a is None else (a.reshape(()) if a.size == 1 else np.broadcast_to(a, shape).reshape(-1))
+
+        def chunk(a, part):
+            return a if a is None or a.ndim == 0 else a[part]
+
+        result = {}
         with np.errstate(all="ignore"):
-            if n <= CHUNK_SIZE:
-                out = _kernel(NumpyOps, c, *(flat[k] for k in names), limits, alpha_star, turn_slip, full)
-                return {k: np.broadcast_to(v, (n,)).reshape(shape) for k, v in out.items()}
-            result = None
-            for start in range(0, n, CHUNK_SIZE):
+            for start in range(0, max(n, 1), CHUNK_SIZE):
                 part = slice(start, min(start + CHUNK_SIZE, n))
-                out = _kernel(NumpyOps, c, *(None if flat[k] is None else flat[k][part] for k in names),
-                              limits, alpha_star, turn_slip, full)
-                if result is None:
-                    result = {k: np.empty(n) for k in out}
+                out = _kernel(NumpyOps, c, *(chunk(flat[k], part) for k in names), limits, alpha_star, turn_slip, full)
                 for k, v in out.items():
+                    if k not in result:
+                        result[k] = np.empty(n)
                     result[k][part] = v
         return {k: v.reshape(shape) for k, v in result.items()}
 
