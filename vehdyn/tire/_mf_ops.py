@@ -38,6 +38,7 @@ class NumpyOps:
     minimum = staticmethod(np.minimum)
     maximum = staticmethod(np.maximum)
     clip = staticmethod(np.clip)
+    copysign = staticmethod(np.copysign)
     # MATLAB max/min ignore NaN: fmax/fmin
     fmax = staticmethod(np.fmax)
     isnan = staticmethod(np.isnan)
@@ -74,6 +75,7 @@ class ScalarOps:
     log10 = staticmethod(math.log10)
     abs = staticmethod(abs)
     sign = staticmethod(_sign)
+    copysign = staticmethod(math.copysign)
     scalar = True
 
     @staticmethod
@@ -132,8 +134,12 @@ class ScalarOps:
 
 
 def sign_nonzero(xp, x):
-    """sign(x) with sign(0) = +1 (MFeval's guard against 0/0 in the stiffness factors B)."""
-    return xp.where(x == 0, 1.0, xp.sign(x))
+    """sign(x) with sign(0) = +1: MFeval's guard against 0/0 in the stiffness factors B.
+
+    Computed as copysign(1, x), which differs from MATLAB's form only for x = -0 (-1 instead of
+    +1), where the guarded quantity is a zero product and the result the same.
+    """
+    return xp.copysign(1.0, x)
 
 
 def cos_atan(xp, x):

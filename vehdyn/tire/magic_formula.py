@@ -401,7 +401,8 @@ def _coefficients(params: TirParameters) -> SimpleNamespace:
 
 def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, alpha_star, turn_slip, full):
     """One evaluation pass on arrays (numpy) or floats (``ScalarOps``); returns a dict of outputs."""
-    fz = xp.where(fz < 0, 0.0, fz)
+    fz = xp.maximum(fz, 0.0)
+    reverse = xp.where(vx < 0, -1.0, 1.0)  # MFeval flips Fx0, My (and Fy0 with alpha*) when vx < 0
     fz_input, kappa_input, alpha_input, gamma_input = fz, kappa, alpha, gamma
     if limits:
         vxlow = c.VXLOW
@@ -415,13 +416,13 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
         else:
             low_speed = 1.0
         kappa_output = kappa
-        phit = xp.where(vx < 0, -phit, phit)
+        phit = phit * reverse
         speed_sum = xp.abs(vx) + xp.abs(xp.tan(alpha) * vx)
         alpha = xp.where(speed_sum < vxlow, alpha * (speed_sum / vxlow), alpha)
         alpha = xp.clip(alpha, c.ALPMIN, c.ALPMAX)
         gamma = xp.clip(gamma, c.CAMMIN, c.CAMMAX)
-        fz = xp.where(fz > c.FZMAX, c.FZMAX, fz)
-        fz_low = xp.where(fz < c.FZMIN, c.FZMIN, fz)
+        fz = xp.minimum(fz, c.FZMAX)
+        fz_low = xp.maximum(fz, c.FZMIN)
         fz_moment = xp.where(fz <= 0, 0.0, fz_low)
         pressure = xp.clip(pressure, c.PRESMIN, c.PRESMAX)
         kappa = xp.clip(kappa, c.KPUMIN, c.KPUMAX)
@@ -430,6 +431,7 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
         kappa_output = kappa
         fz_low = fz_moment = fz
     s = SimpleNamespace(limits=limits, turn_slip=turn_slip, alpha_star_mode=alpha_star, low_speed=low_speed,
+                        reverse=reverse,
                         fz=fz, fz_input=fz_input, fz_moment=fz_moment, kappa=kappa, kappa_input=kappa_input,
                         alpha=alpha, gamma=gamma, phit=phit, vx=vx, pressure=pressure)
     s.dpi = (pressure - c.NOMPRES) / c.NOMPRES  # 4.E2b

@@ -76,7 +76,7 @@ def longitudinal_pure(xp, c, s):
         ex = xp.minimum(ex, 1.0)
     bk = bx * kappa_x
     fx0 = dx * xp.sin(cx * xp.atan(bk - ex * (bk - xp.atan(bk)))) + svx  # 4.E9
-    fx0 = xp.where(s.vx < 0, -fx0, fx0)
+    fx0 = fx0 * s.reverse
     return fx0, mux, kxk
 
 
@@ -157,7 +157,7 @@ def lateral_pure(xp, c, s, gamma_star, turn_slip):
     ba = by * alpha_y
     fy0 = dy * xp.sin(cy * xp.atan(ba - ey * (ba - xp.atan(ba)))) + svy  # 4.E19
     if s.alpha_star_mode:
-        fy0 = xp.where(s.vx < 0, -fy0, fy0)
+        fy0 = fy0 * s.reverse
     muy = xp.where(fz == 0, 0.0, muy)
     return LateralPure(fy0, muy, kya, shy, svy, by, cy, zeta2)
 

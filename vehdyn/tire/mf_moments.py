@@ -65,12 +65,12 @@ def rolling_resistance_moment(xp, c, s, fx):
         my = -c.UNLOADED_RADIUS * fz0 * c.LMY * (
             speed_terms + (c.QSY5 + c.QSY6 * (fz / fz0)) * s.gamma**2
         ) * ((fz / fz0) ** c.QSY7 * (s.pressure / c.NOMPRES) ** c.QSY8)
-    my = xp.where(vx < 0, -my, my)
+    my = my * s.reverse
     high = xp.div(c.VXLOW, xp.abs(vx)) - 1
     low = -1 - c.VXLOW - high
-    ramp = xp.sin(((math.pi / 2) * (kappa + 1)) / (high + 1))
-    my = xp.where((kappa >= low) & (kappa <= high) if not xp.scalar else (low <= kappa <= high),
-                  my * ramp, my)
+    in_ramp = (kappa >= low) & (kappa <= high) if not xp.scalar else (low <= kappa <= high)
+    if xp.any(in_ramp):
+        my = xp.where(in_ramp, my * xp.sin(((math.pi / 2) * (kappa + 1)) / (high + 1)), my)
     my = xp.where(kappa < low, -my, my)
     return xp.where(vx == 0, 0.0, my)
 
