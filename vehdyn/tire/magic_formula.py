@@ -418,12 +418,14 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
         kappa_output = kappa
         phit = phit * reverse
         speed_sum = xp.abs(vx) + xp.abs(xp.tan(alpha) * vx)
-        alpha = xp.where(speed_sum < vxlow, alpha * (speed_sum / vxlow), alpha)
+        slow = speed_sum < vxlow
+        if xp.any(slow):
+            alpha = xp.where(slow, alpha * (speed_sum / vxlow), alpha)
         alpha = xp.clip(alpha, c.ALPMIN, c.ALPMAX)
         gamma = xp.clip(gamma, c.CAMMIN, c.CAMMAX)
         fz = xp.minimum(fz, c.FZMAX)
         fz_low = xp.maximum(fz, c.FZMIN)
-        fz_moment = xp.where(fz <= 0, 0.0, fz_low)
+        fz_moment = xp.where(fz <= 0, 0.0, fz_low) if xp.any(fz <= 0) else fz_low
         pressure = xp.clip(pressure, c.PRESMIN, c.PRESMAX)
         kappa = xp.clip(kappa, c.KPUMIN, c.KPUMAX)
     else:
@@ -465,7 +467,8 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
     half_length, half_width = contact_patch(xp, c, fz_input, s.dpi)
     cx, cy, sigma_x, sigma_y = carcass_stiffness(xp, c, fz, gamma, s.dpi, kxk, pure.kya)
     out.update(
-        kappa=kappa_output, alpha=xp.where(vx == 0, 0.0, alpha_input), gamma=gamma_input, phit=phit, vx=vx,
+        kappa=kappa_output, alpha=xp.where(vx == 0, 0.0, alpha_input) if xp.any(vx == 0) else alpha_input,
+        gamma=gamma_input, phit=phit, vx=vx,
         pressure=pressure, effective_radius=re, deflection=rho, contact_length=2 * half_length, trail=mz.trail,
         mux=mux, muy=xp.abs(pure.muy) if limits else pure.muy, omega=omega, loaded_radius=loaded,
         contact_width=2 * half_width, residual_torque=mz.residual, cx=cx, cy=cy, cz=cz, kya=pure.kya,

@@ -26,7 +26,9 @@ def overturning_moment(xp, c, s, fy):
     Below FZMIN the load is replaced by Fz*(Fz/FZMIN)^2 (MFeval). When both QSX1–QSX11 and
     QSX12–QSX14 are non-zero, MFeval uses eq. 49 of Besselink's draft paper, as here.
     """
-    fz = xp.where(s.fz < c.FZMIN, s.fz * (s.fz / c.FZMIN) ** 2, s.fz) if c.FZMIN > 0 else s.fz
+    fz = s.fz
+    if c.FZMIN > 0 and xp.any(fz < c.FZMIN):
+        fz = xp.where(fz < c.FZMIN, fz * (fz / c.FZMIN) ** 2, fz)
     fz0, r0, gamma = c.FNOMIN, c.UNLOADED_RADIUS, s.gamma
     if c.mx_draft_form:
         return r0 * fz * c.LMX * (
@@ -54,7 +56,7 @@ def rolling_resistance_moment(xp, c, s, fx):
     vx = 0; it flips sign for vx < 0.
     """
     fz = s.fz_input
-    if c.FZMIN > 0:
+    if c.FZMIN > 0 and xp.any(fz < c.FZMIN):
         fz = xp.where(fz < c.FZMIN, fz * (fz / c.FZMIN), fz)
     vx, kappa = s.vx, s.kappa_input
     fz0, v0 = c.FNOMIN, c.LONGVL
@@ -71,8 +73,9 @@ def rolling_resistance_moment(xp, c, s, fx):
     in_ramp = (kappa >= low) & (kappa <= high) if not xp.scalar else (low <= kappa <= high)
     if xp.any(in_ramp):
         my = xp.where(in_ramp, my * xp.sin(((math.pi / 2) * (kappa + 1)) / (high + 1)), my)
-    my = xp.where(kappa < low, -my, my)
-    return xp.where(vx == 0, 0.0, my)
+    if xp.any(kappa < low):
+        my = xp.where(kappa < low, -my, my)
+    return xp.where(vx == 0, 0.0, my) if xp.any(vx == 0) else my
 
 
 class AligningMoment:
