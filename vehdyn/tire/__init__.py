@@ -1,7 +1,16 @@
-"""Tire laws, slip, transients and tire plots (ISO-W axes of ``.tir`` files; see :mod:`vehdyn.conventions`).
+"""Tire models in the ISO-W (TYDEX) axis system of ``.tir`` files (see :mod:`vehdyn.conventions`).
 
-Laws (each ``forces(fz, kappa, alpha, gamma=0.0, vx=...) -> TireForces``)
+API index
+---------
+Files
+    :func:`read_tir`, :func:`write_tir`, :class:`TirParameters` (``.defaulted``, ``.version``)
+Magic Formula (MF 5.2 / PAC2002, 6.1, 6.2; validated against MFeval 4.3.1)
+    :class:`MagicFormula` (``from_tir``, ``evaluate``, ``forces``), :class:`MagicFormulaOutputs`,
+    :func:`load_tire`
+Other laws (each ``forces(fz, kappa, alpha, gamma=0.0, vx=...) -> TireForces``)
     :class:`LinearTire`, :class:`BrushTire`, :class:`FialaTire`, :class:`DugoffTire`
+Interface of every tire law
+    :class:`TireModel`, :class:`TireForces`
 Registry (a vehicle file's ``tires.model``)
     :func:`tire_law`, :func:`tire_law_names`, :func:`register_tire_law`, :func:`tire_for_vehicle`
 Slip and transients
@@ -17,14 +26,22 @@ from .brush import BrushTire
 from .dugoff import DugoffTire
 from .fiala import FialaTire
 from .linear import LinearTire
+from .magic_formula import MagicFormula, MagicFormulaOutputs, load_tire
 from .plots import characteristic_values, describe_tire, plot_tire_characteristics
 from .registry import register_tire_law, tire_for_vehicle, tire_law, tire_law_names
 from .relaxation import TireRelaxation, relaxation_lengths
 from .slip import WheelSlip, regularized_speed, slip_velocities, theoretical_slip, wheel_slip
+from .tir import TirParameters, read_tir, write_tir
 
 __all__ = [
     "TireForces",
     "TireModel",
+    "MagicFormula",
+    "MagicFormulaOutputs",
+    "load_tire",
+    "TirParameters",
+    "read_tir",
+    "write_tir",
     "LinearTire",
     "BrushTire",
     "FialaTire",
