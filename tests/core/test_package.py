@@ -71,3 +71,12 @@ def test_cli_report_runs_one_study(tmp_path):
     html = (tmp_path / "index.html").read_text()
     assert "Integrator work-precision" in html and "work_precision.png" in html
     assert (tmp_path / "integrator_work_precision" / "work_precision.png").stat().st_size > 10_000
+
+
+def test_cli_tire_describes_file_and_writes_figures(tmp_path, capsys):
+    path = vehdyn.data_path("tires", "MagicFormula61_Parameters.tir")
+    assert main(["tire", str(path), "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "6.1" in out and "FNOMIN" in out
+    assert len(list(tmp_path.glob("*.png"))) >= 5
+    assert main(["tire", str(tmp_path / "missing.tir"), "--out", str(tmp_path)]) == 2
