@@ -25,3 +25,35 @@ def quarter_car(ms, mu, ks, cs, kt, ct=0.0):
         inputs=["road_displacement", "road_velocity"],
         outputs=["sprung_acceleration", "suspension_travel", "tire_deflection", "dynamic_tire_load"],
         output_matrix=Cout, feedthrough=Dout, name="quarter car")
+
+
+def half_car(m=1200.0, iy=1800.0, a=1.2, b=1.5, muf=40.0, mur=40.0, kf=30000.0, kr=32000.0, cf=2500.0, cr=2400.0,
+             ktf=200000.0, ktr=200000.0):
+    """4-DOF bounce-pitch half car (heave z up, pitch theta nose up), front/rear road displacement inputs.
+
+    Outputs: sprung acceleration at the CG, pitch acceleration, front and rear suspension travel, front and rear
+    dynamic tire load.
+    """
+    # q = [z, theta, zuf, zur]; front suspension deflection z - a theta - zuf, rear z + b theta - zur
+    Tf = np.array([1.0, -a, -1.0, 0.0])
+    Tr = np.array([1.0, b, 0.0, -1.0])
+    K = kf * np.outer(Tf, Tf) + kr * np.outer(Tr, Tr)
+    K[2, 2] += ktf
+    K[3, 3] += ktr
+    C = cf * np.outer(Tf, Tf) + cr * np.outer(Tr, Tr)
+    M = np.diag([m, iy, muf, mur])
+    F = np.zeros((4, 2))
+    F[2, 0], F[3, 1] = ktf, ktr
+    Minv = np.linalg.inv(M)
+    acc = -Minv @ np.hstack([K, C])
+    acc_in = Minv @ F
+    Cout = np.vstack([acc[0], acc[1], np.r_[Tf, 0, 0, 0, 0], np.r_[Tr, 0, 0, 0, 0],
+                      [0, 0, -ktf, 0, 0, 0, 0, 0], [0, 0, 0, -ktr, 0, 0, 0, 0]])
+    Dout = np.vstack([acc_in[0], acc_in[1], [0, 0], [0, 0], [ktf, 0], [0, ktr]])
+    return vehdyn.LinearModel.from_second_order(
+        M, C, K, F, dof=["sprung_displacement", "pitch_angle", "unsprung_displacement_front",
+                         "unsprung_displacement_rear"],
+        inputs=["road_displacement_front", "road_displacement_rear"],
+        outputs=["sprung_acceleration", "pitch_acceleration", "suspension_travel_front", "suspension_travel_rear",
+                 "dynamic_tire_load_front", "dynamic_tire_load_rear"],
+        output_matrix=Cout, feedthrough=Dout, name="half car")

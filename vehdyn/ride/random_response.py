@@ -14,9 +14,10 @@ inputs are held at zero. Three routes give the same numbers:
     gain to a uniform lift of the road, such as absolute displacements) have infinite variance;
     outputs with white-noise feedthrough (e.g. accelerations through tire damping) also return
     ``inf``. A rear input is the front one delayed through a Pade approximant of e^(-s tau) of
-    order ``pade_order`` (default 8), applied to the white noise before a copy of the shaping
-    filter; this is the only approximation of the route (its error shrinks fast with the order;
-    compare with ``"psd"``). Left and right tracks must be ``"identical"`` or ``"independent"``
+    order ``pade_order`` (default 10, at most 12) applied to the shaping filter's output; this is
+    the only approximation of the route. For a half car at 20 m/s, wheelbase 2.7 m (tau = 0.135 s)
+    the r.m.s. error against the exact delay of ``"psd"`` is 3 % at order 4, 4e-5 at order 8 and
+    3e-7 at order 10. Left and right tracks must be ``"identical"`` or ``"independent"``
     here (the isotropic coherence is not rational).
 ``"psd"`` (frequency-domain integral with a stated error)
     var(y) = int_0^inf sum_{s,t} H_s(f) S_st(f) H_t(f)^* df with the exact delay e^(-j 2 pi f tau),
@@ -137,7 +138,7 @@ def random_response(
     track_width: float | None = None,
     track_coherence: str = "isotropic",
     outputs=None,
-    pade_order: int = 8,
+    pade_order: int = 10,
     duration: float = 100.0,
     sample_rate: float = 500.0,
     seed=None,
@@ -214,69 +215,85 @@ def random_response(
 
 # --------------------------------------------------------------------------- Lyapunov route
 def pade_delay(delay: float, order: int):
-    """State-space (A, B, C, D) of the [order/order] Pade approximant of e^(-s delay) (scipy.signal.tf2ss)."""
-    from scipy import signal
+    """State-space (A, B, C, D) of the [order/order] Pade approximant of e^(-s delay).
 
-    if order < 1:
-        raise ParameterError(f"pade_order must be >= 1, got {order}", key="pade_order", value=order)
+    Built for a unit delay (coefficients c_k = (2m - k)! m! / ((2m)! k! (m - k)!)), balanced by a
+    diagonal similarity (the companion form is ill-conditioned beyond order 4) and scaled in time
+    (A / delay, B / delay).
+    """
+    from scipy import signal
+    from scipy.linalg import matrix_balance
+
+    if not 1 <= order <= 12:
+        raise ParameterError(f"pade_order must be 1 to 12 (higher orders lose accuracy to rounding), got {order}",
+                             key="pade_order", value=order)
+    if not delay > 0:
+        raise ParameterError(f"delay must be positive [s], got {delay}", key="delay", value=delay)
     m = order
     c = np.array([factorial(2 * m - k) * factorial(m) / (factorial(2 * m) * factorial(k) * factorial(m - k))
                   for k in range(m + 1)])
-    num = np.array([c[k] * (-delay) ** k for k in range(m + 1)])[::-1]
-    den = np.array([c[k] * delay**k for k in range(m + 1)])[::-1]
-    return signal.tf2ss(num, den)
+    num = (c * (-1.0) ** np.arange(m + 1))[::-1]
+    den = c[::-1]
+    A, B, C, D = signal.tf2ss(num, den)
+    _, (scale, _) = matrix_balance(A, permute=False, separate=True)
+    A = (A / scale[:, None]) * scale[None, :]
+    B = B / scale[:, None]
+    C = C * scale[None, :]
+    return A / delay, B / delay, C, D
 
 
 def _road_generator(channels, spectrum, V, tau, sources, pade_order):
-    """White noise -> every road input of the model, as one LinearModel (shaping filters, Pade delays)."""
+    """White noise -> every road input of the model, as one LinearModel (shaping filters, Pade delays).
+
+    One shaping-filter state per noise source (the road under the front axle, ``road_elevation_<k>``);
+    a rear input is that state passed through the Pade delay, its velocity the derivative of the
+    delay's output. Returns the model and the indices of the shaping-filter states.
+    """
     from ..linear import LinearModel
 
     a = 2.0 * np.pi * spectrum.cut_on * V
     sigma = spectrum.white_noise_gain(V)
-    n_src = len(sources)
-    blocks_A, blocks_B, rows_C, rows_D, states, outputs = [], [], [], [], [], []
-    branches = {}
-    for c in channels:
-        src = sources[c.track]
-        key = (src, c.delayed)
-        if key not in branches:
-            branches[key] = len(branches)
-    # state layout per branch: [pade states..., z]
-    offsets, n = {}, 0
-    pade = pade_delay(tau, pade_order) if any(d for _, d in branches) else None
-    for (src, delayed), b in branches.items():
-        npd = pade[0].shape[0] if delayed else 0
-        offsets[(src, delayed)] = (n, npd)
-        n += npd + 1
+    n_src = max(sources.values()) + 1
+    used = sorted({sources[c.track] for c in channels})
+    delayed_src = sorted({sources[c.track] for c in channels if c.delayed})
+    pade = pade_delay(tau, pade_order) if delayed_src else None
+    npd = pade[0].shape[0] if pade else 0
+    n = len(used) + npd * len(delayed_src)
+    xi = {k: j for j, k in enumerate(used)}
+    xp = {k: len(used) + j * npd for j, k in enumerate(delayed_src)}
     A = np.zeros((n, n))
     B = np.zeros((n, n_src))
-    for (src, delayed), (o, npd) in offsets.items():
-        z = o + npd
-        A[z, z] = -a
-        if delayed:
-            Ap, Bp, Cp, Dp = pade
-            A[o:z, o:z] = Ap
-            B[o:z, src] = Bp[:, 0]
-            A[z, o:z] = sigma * Cp[0]
-            B[z, src] = sigma * Dp[0, 0]
-            states += [f"road_delay_state_{src}_{k}" for k in range(npd)]
-        else:
-            B[z, src] = sigma
-        states.append(f"road_elevation_source_{src}" + ("_delayed" if delayed else ""))
+    states = [f"road_elevation_{k}" for k in used]
+    for k in used:
+        A[xi[k], xi[k]] = -a
+        B[xi[k], k] = sigma
+    for k in delayed_src:
+        Ap, Bp, _, _ = pade
+        o = xp[k]
+        A[o:o + npd, o:o + npd] = Ap
+        A[o:o + npd, xi[k]] = Bp[:, 0]
+        states += [f"road_delay_state_{k}_{j}" for j in range(npd)]
     C = np.zeros((len(channels), n))
     D = np.zeros((len(channels), n_src))
     for r, c in enumerate(channels):
-        src = sources[c.track]
-        o, npd = offsets[(src, c.delayed)]
-        z = o + npd
+        k = sources[c.track]
+        # displacement row (Cz, Dz) as a function of the state; velocity = its derivative
+        Cz = np.zeros(n)
+        if c.delayed:
+            _, _, Cp, Dp = pade
+            Cz[xp[k]:xp[k] + npd] = Cp[0]
+            Cz[xi[k]] = Dp[0, 0]
+        else:
+            Cz[xi[k]] = 1.0
         if c.kind == "displacement":
-            C[r, z] = 1.0
-        else:  # road velocity = dz/dt
-            C[r] = A[z]
-            D[r] = B[z]
-        outputs.append(f"road_{c.kind}{c.suffix}")
-    return LinearModel(A, B, C, D, states=states, inputs=[f"road_noise_{k}" for k in range(n_src)],
-                       outputs=outputs, name="road generator", phenomena={"road_input"})
+            C[r] = Cz
+        else:
+            C[r] = Cz @ A
+            D[r] = Cz @ B
+    outputs = [f"road_{c.kind}{c.suffix}" for c in channels]
+    model = LinearModel(A, B, C, D, states=states, inputs=[f"road_noise_{k}" for k in range(n_src)],
+                        outputs=outputs, name="road generator", phenomena={"road_input"})
+    return model, [xi[k] for k in used]
 
 
 def _sources(two_tracks, coherence):
@@ -285,24 +302,41 @@ def _sources(two_tracks, coherence):
     return {"left": 0, "right": 1, "coherent": 0}
 
 
-def stationary_covariance(A, B, *, tol: float = 1e-9):
-    """Stationary covariance of dx/dt = A x + B w (unit-intensity white w), splitting off zero-eigenvalue modes.
+def stationary_covariance(A, B, integrators=()):
+    """Stationary covariance of dx/dt = A x + B w (unit-intensity white noise w) with integrated-noise states.
 
-    Returns (X, R): X solves A X + X A^T + B B^T = 0 on the complement of the null space of A
-    (exactly: x = R xi + x_s, with xi the integrated-noise coordinates), R spans that null space.
+    Parameters
+    ----------
+    A, B : ndarray
+    integrators : sequence of int
+        States whose rows of A are zero (random walks, e.g. the ISO 8608 road without cut-on).
+
+    Returns
+    -------
+    X : ndarray
+        Covariance of x_s = x - R xi, the part of the state that is stationary: the solution of
+        A_s X + X A_s^T + B_s B_s^T = 0 with B_s = (I - R L) B, A_s = A - R L (L selects the
+        integrator states, R = the states' equilibrium for a unit value of each integrator, so that
+        A R = 0 and L R = I). Exact: x_s obeys dx_s/dt = A x_s + B_s w on an A-invariant subspace.
+    R : ndarray, shape (n, n_integrators)
+        An output y = C x has a stationary variance C X C^T only where C R = 0.
     """
-    from scipy.linalg import null_space, solve_continuous_lyapunov
+    from scipy.linalg import solve_continuous_lyapunov
 
-    scale = max(np.linalg.norm(A, 1), 1e-300)
-    R = null_space(A, rcond=tol)
-    if R.shape[1] == 0:
-        return solve_continuous_lyapunov(A, -B @ B.T), R
-    Lt = null_space(A.T, rcond=tol)
-    if Lt.shape[1] != R.shape[1]:
-        raise ParameterError("the model has a non-semisimple zero eigenvalue (a double integrator): no stationary "
-                             "response", key="model", value=None)
-    L = np.linalg.solve(Lt.T @ R, Lt.T)  # L R = I
-    P = np.eye(A.shape[0]) - R @ L
+    n = A.shape[0]
+    idx = list(integrators)
+    if not idx:
+        return solve_continuous_lyapunov(A, -B @ B.T), np.zeros((n, 0))
+    if np.any(A[idx] != 0):
+        raise ParameterError("integrator states must have zero rows in A", key="integrators", value=idx)
+    rest = [k for k in range(n) if k not in idx]
+    R = np.zeros((n, len(idx)))
+    R[idx, range(len(idx))] = 1.0
+    R[rest] = -np.linalg.solve(A[np.ix_(rest, rest)], A[np.ix_(rest, idx)])
+    L = np.zeros((len(idx), n))
+    L[range(len(idx)), idx] = 1.0
+    P = np.eye(n) - R @ L
+    scale = max(np.abs(np.linalg.eigvals(A[np.ix_(rest, rest)])).max(initial=0.0), 1.0)
     As = A - scale * (R @ L)
     Bs = P @ B
     X = solve_continuous_lyapunov(As, -Bs @ Bs.T)
@@ -316,17 +350,18 @@ def _lyapunov(model, channels, spectrum, V, tau, two_tracks, coherence, pade_ord
         raise ParameterError("the Lyapunov route needs track_coherence 'identical' or 'independent' (the isotropic "
                              "coherence is not rational); use method='psd' for it", key="track_coherence",
                              value=coherence)
-    gen = _road_generator(channels, spectrum, V, tau, _sources(two_tracks, coherence), pade_order)
-    aug = connect_in_series(gen, model)
+    gen, integrators = _road_generator(channels, spectrum, V, tau, _sources(two_tracks, coherence), pade_order)
+    aug = connect_in_series(gen, model)  # generator states first
+    integrators = integrators if spectrum.cut_on == 0 else []
     noise = [aug.index(name, "inputs") for name in gen.input_names]
     B = aug.B[:, noise]
     C = aug.C[: model.n_outputs]
     D = aug.D[: model.n_outputs][:, noise]
-    X, R = stationary_covariance(aug.A, B)
+    X, R = stationary_covariance(aug.A, B, integrators)
     var = np.einsum("ij,jk,ik->i", C, X, C)
     # unbounded: outputs that see an integrated-noise mode, or white noise directly
-    scale_c = np.maximum(np.abs(C).max(axis=1, initial=0.0), 1e-300)
-    drift = np.abs(C @ R).max(axis=1, initial=0.0) > 1e-8 * scale_c * max(1.0, np.abs(R).max(initial=0.0))
+    scale_c = np.abs(C) @ np.maximum(np.abs(R), 0.0).sum(axis=1) if R.size else np.zeros(C.shape[0])
+    drift = np.abs(C @ R).max(axis=1, initial=0.0) > 1e-9 * np.maximum(scale_c, 1e-300)
     white = np.abs(D).max(axis=1, initial=0.0) > 0
     var = np.where(drift | white, np.inf, var)
     return var, np.zeros_like(var), {"n_states": aug.n_states, "pade_order": pade_order if tau > 0 else 0}
@@ -337,8 +372,9 @@ _GL8 = np.polynomial.legendre.leggauss(8)
 _GL16 = np.polynomial.legendre.leggauss(16)
 
 
-def _psd_integrand(model, channels, spectrum, V, tau, two_tracks, coherence, track_width, f):
-    """Output PSD S_y(f) [unit^2/Hz], shape (n_outputs, n_f)."""
+def _psd_integrand(model, channels, spectrum, V, tau, two_tracks, coherence, track_width, f, envelope=False):
+    """Output PSD S_y(f) [unit^2/Hz], shape (n_outputs, n_f); ``envelope``: an upper bound without the oscillating
+    delay and coherence terms (sum of magnitudes), used for the tail estimates."""
     from .road import isotropic_coherence
 
     omega = 2.0 * np.pi * f
@@ -354,10 +390,14 @@ def _psd_integrand(model, channels, spectrum, V, tau, two_tracks, coherence, tra
             g = H[:, c.index, :]
             if c.kind == "velocity":
                 g = g * (1j * omega)
-            if c.delayed:
+            if envelope:
+                g = np.abs(g)
+            elif c.delayed:
                 g = g * np.exp(-1j * omega * tau)
             acc += g
         Ht[tr] = acc
+    if envelope:
+        return sum(np.abs(h) for h in Ht.values()) ** 2 * Gz
     if not two_tracks:
         return np.abs(Ht["coherent"]) ** 2 * Gz
     if coherence == "identical":
@@ -411,7 +451,7 @@ def _psd(model, channels, spectrum, V, tau, two_tracks, coherence, track_width):
     err = np.abs(I16 - I8).sum(axis=1)
     # power-law tails beyond the grid (head below f_lo, tail above f_hi)
     f2 = np.array([edges[0], edges[0] * 1.01, edges[-1] / 1.01, edges[-1]])
-    S2 = _psd_integrand(model, channels, spectrum, V, tau, two_tracks, coherence, track_width, f2)
+    S2 = _psd_integrand(model, channels, spectrum, V, tau, two_tracks, coherence, track_width, f2, envelope=True)
     with np.errstate(divide="ignore", invalid="ignore"):
         q = np.log(S2[:, 1] / S2[:, 0]) / np.log(1.01)  # S ~ f^q at the low end
         p = -np.log(S2[:, 3] / S2[:, 2]) / np.log(1.01)  # S ~ f^-p at the high end
