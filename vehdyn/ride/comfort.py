@@ -376,8 +376,8 @@ def comfort_category(total_value) -> str:
                              key="total_value", value=total_value)
     edges = _category_edges()
     names = np.array([r[0] for r in COMFORT_REACTIONS], dtype=object)
-    labels = names[np.searchsorted(edges, a, side="right")]
-    return str(labels) if labels.ndim == 0 else labels
+    index = np.searchsorted(edges, a, side="right")
+    return str(names[index]) if np.ndim(index) == 0 else names[index]
 
 
 def _category_edges() -> np.ndarray:

@@ -1,8 +1,24 @@
-"""A quarter car built with LinearModel.from_second_order (part A's QuarterCar lives in another branch)."""
+"""Shared fixtures of the ride tests: the reference cases copied to tests/data (see the note in that file) and
+ride models built with LinearModel.from_second_order (part A's QuarterCar lives in another branch)."""
+
+import json
+from pathlib import Path
 
 import numpy as np
+import pytest
 
 import vehdyn
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+
+
+def _cases():
+    return {c["id"]: c for c in json.loads((DATA / "ride_reference_cases.json").read_text())["cases"]}
+
+
+@pytest.fixture(scope="session")
+def cases():
+    return _cases()
 
 
 def quarter_car(ms, mu, ks, cs, kt, ct=0.0):
@@ -57,3 +73,11 @@ def half_car(m=1200.0, iy=1800.0, a=1.2, b=1.5, muf=40.0, mur=40.0, kf=30000.0, 
         outputs=["sprung_acceleration", "pitch_acceleration", "suspension_travel_front", "suspension_travel_rear",
                  "dynamic_tire_load_front", "dynamic_tire_load_rear"],
         output_matrix=Cout, feedthrough=Dout, name="half car")
+
+
+@pytest.fixture(scope="session")
+def models():
+    """Factories ``models.quarter_car(...)`` and ``models.half_car(...)``."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(quarter_car=quarter_car, half_car=half_car)
