@@ -7,7 +7,7 @@ Roads (:mod:`vehdyn.ride.road`)
     :func:`step`, :func:`iri` (ASTM E1926 golden car, :func:`golden_car`).
 Comfort (:mod:`vehdyn.ride.comfort`)
     :func:`weighting` / :data:`WEIGHTINGS` (Wk, Wd, Wf, Wc, We, Wj), :func:`weighting_factor`,
-    :func:`weighted_rms`, :func:`running_rms`, :func:`mtvv`, :func:`vibration_dose_value`,
+    :func:`weighted_rms`, :func:`rms`, :func:`running_rms`, :func:`mtvv`, :func:`vibration_dose_value`,
     :func:`crest_factor`, :func:`comfort_reactions`, :func:`comfort_category`.
 Random response (:mod:`vehdyn.ride.random_response`)
     :func:`random_response` (``"lyapunov"``, ``"psd"``, ``"simulation"``) -> :class:`RandomResponse`.
@@ -21,6 +21,7 @@ from .comfort import (
     comfort_reactions,
     crest_factor,
     mtvv,
+    rms,
     running_rms,
     vibration_dose_value,
     weighted_rms,
@@ -52,7 +53,7 @@ __all__ = [
     "synthesize_parallel_profiles", "isotropic_coherence", "bump", "pothole", "speed_hump", "step", "GOLDEN_CAR",
     "golden_car", "iri",
     # comfort
-    "Weighting", "WEIGHTINGS", "weighting", "weighting_factor", "weighted_rms", "running_rms", "mtvv",
+    "Weighting", "WEIGHTINGS", "weighting", "weighting_factor", "weighted_rms", "rms", "running_rms", "mtvv",
     "vibration_dose_value", "crest_factor", "COMFORT_REACTIONS", "comfort_reactions", "comfort_category",
     # random response
     "RandomResponse", "random_response",

@@ -137,29 +137,33 @@ class Weighting:
     def to_linear_model(self, input_name: str = "acceleration", output_name: str | None = None):
         """The weighting as a :class:`~vehdyn.LinearModel` (input acceleration, output weighted acceleration).
 
-        Append it to a ride model with :func:`vehdyn.connect_in_series` to get weighted responses
-        exactly (frequency response, Lyapunov covariance, exact-discretization simulation).
+        A cascade of the stages, each realized in controllable form in the time scale of its own
+        characteristic frequency (well conditioned, unlike one 8th-order polynomial). Append it to
+        a ride model with :func:`vehdyn.connect_in_series` to get weighted responses exactly
+        (frequency response, Lyapunov covariance, exact-discretization simulation).
         """
         from scipy import signal
 
         from ..linear import LinearModel
 
-        num, den = np.array([1.0]), np.array([1.0])
-        for b, a, _ in self._stages():
-            num, den = np.polymul(num, b), np.polymul(den, a)
-        num = np.trim_zeros(num, "f") if np.any(num) else np.array([0.0])
-        A, B, C, D = signal.tf2ss(num, den)
-        # balance the companion form (its coefficients span ~15 decades for Wk)
-        from scipy.linalg import matrix_balance
-
-        _, (scale, perm) = matrix_balance(A, permute=False, separate=True)
-        Tinv = 1.0 / scale
-        A = (Tinv[:, None] * A) * scale[None, :]
-        B = Tinv[:, None] * B
-        C = C * scale[None, :]
+        A = np.zeros((0, 0))
+        B = np.zeros((0, 1))
+        C = np.zeros((1, 0))
+        D = np.ones((1, 1))
+        for num, den, f_c in self._stages():
+            wc = 2.0 * np.pi * f_c
+            # the stage in s' = s / wc, then scaled back: A = wc A', B = wc B'
+            scale = wc ** np.arange(2, -1, -1)
+            b_num = np.trim_zeros(num * scale, "f")
+            a_, b_, c_, d_ = signal.tf2ss(b_num, den * scale)
+            a_, b_ = a_ * wc, b_ * wc
+            n1, n2 = A.shape[0], a_.shape[0]
+            A = np.block([[A, np.zeros((n1, n2))], [b_ @ C, a_]])
+            B = np.vstack([B, b_ @ D])
+            C = np.hstack([d_ @ C, c_])
+            D = d_ @ D
         out = output_name or f"weighted_{input_name}"
-        n = A.shape[0]
-        return LinearModel(A, B, C, D, states=[f"{self.name.lower()}_filter_state_{k}" for k in range(n)],
+        return LinearModel(A, B, C, D, states=[f"{self.name.lower()}_filter_state_{k}" for k in range(A.shape[0])],
                            inputs=[input_name], outputs=[out], name=f"ISO 2631-1 {self.name}")
 
     # ---------------------------------------------------------------- digital filter

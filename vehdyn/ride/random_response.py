@@ -352,8 +352,11 @@ def stationary_covariance(A, B, C, D=None, integrators=()):
         Rr = -np.linalg.solve(Arr, A[np.ix_(rest, idx)])
         Bp = B[rest] - Rr @ B[idx]
         drift_gain = C[:, rest] @ Rr + C[:, idx]
-        drift = np.abs(drift_gain).max(axis=1) > 1e-9 * np.maximum(np.abs(C[:, rest]) @ np.abs(Rr).sum(axis=1)
-                                                                    + np.abs(C[:, idx]).sum(axis=1), 1e-300)
+        # a true drift gain is of the order of |C| |R| (a rigid lift moves the states by O(|R|));
+        # rounding leaves ~ cond(A_rr) eps of it
+        tol = min(1e-3, max(1e-9, 1e3 * np.finfo(float).eps * np.linalg.cond(Arr)))
+        scale = np.abs(C).sum(axis=1) * max(1.0, np.abs(Rr).max(initial=0.0))
+        drift = np.abs(drift_gain).max(axis=1) > tol * np.maximum(scale, 1e-300)
         A, B, C = Arr, Bp, C[:, rest]
     else:
         drift = np.zeros(C.shape[0], dtype=bool)
@@ -436,6 +439,13 @@ class _Spectra:
             G = 1.0 / (s[None, :] - self.lam[:, None])  # (n, f), contiguous for BLAS
             H = np.stack([self.CV @ (G * self.WB[:, k:k + 1]) for k in range(self.WB.shape[1])])  # (m, p, f)
             H = H + self.D.T[:, :, None]
+            # where the modal terms cancel (far below or above the modes) their rounding can exceed |H|:
+            # solve those frequencies directly
+            aG = np.abs(G)
+            floor = np.stack([np.abs(self.CV) @ (aG * np.abs(self.WB[:, k:k + 1])) for k in range(self.WB.shape[1])])
+            bad = np.any(np.abs(H) < 1e4 * np.finfo(float).eps * floor, axis=(0, 1))
+            if bad.any():
+                H[:, :, bad] = np.moveaxis(self.model.frequency_response(omega[bad]).response[:, self.idx, :], 1, 0)
         else:
             H = np.moveaxis(self.model.frequency_response(omega).response[:, self.idx, :], 1, 0)
         H = np.where(self.velocity[:, None, None], H * s[None, None, :], H)
