@@ -8,7 +8,7 @@ classes A to E and speeds 5 to 40 m/s. The body acceleration stands in for the s
 so a_w here is the vertical overall vibration total value a_v with k_z = 1; the comfort label is the
 ISO 2631-1 Annex C reaction of the worse axle (overlapping ranges split at their geometric middle).
 The frequency-domain route (|Wk(f)|^2 times the PSD integral) checks the exact values, and one
-time-domain run (class C at 20 m/s, then a 3.7 m x 100 mm speed hump at 20 km/h) shows the
+time-domain run (class C at 20 m/s; a 3.7 m x 100 mm speed hump at 20 km/h) shows the
 digital Wk filter, the running r.m.s./MTVV, VDV and crest factor on a record.
 """
 
@@ -144,19 +144,22 @@ def run(study: Study) -> None:
     V = 20.0
     profile = synthesize_profile("C", V * duration, V / fs, seed=1)
     t, u = profile.road_inputs(V)
-    rough = vehdyn.simulate(car, t, u, method="exact")
+    z0 = profile.elevation[0]  # start on the road, at rest relative to it
+    rough = vehdyn.simulate(car, t, u, x0={"sprung_displacement": z0, "unsprung_displacement": z0}, method="exact")
     V_hump = 20.0 / 3.6
     x = np.arange(0.0, 40.0, V_hump / fs)
     hump = RoadProfile(x, speed_hump(x, 10.0, 3.7, 0.10))
     th, uh = hump.road_inputs(V_hump)
     bump = vehdyn.simulate(car, th, uh, method="exact")
     wk = weighting("Wk")
-    records = {"class C road, 72 km/h": (t, rough["sprung_acceleration"]),
-               "speed hump 3.7 m x 0.1 m, 20 km/h": (th, bump["sprung_acceleration"])}
+    settle = int(2.0 * fs)  # the first 2 s (start-up of the car on the road and of the Wk filter) are not assessed
+    records = {"class C road, 72 km/h": (t[settle:] - t[settle], rough["sprung_acceleration"], settle),
+               "speed hump 3.7 m x 0.1 m, 20 km/h": (th, bump["sprung_acceleration"], 0)}
     metrics = []
     fig, axes = new_figure(2, 2, width=11.0, height_per_row=2.6)
-    for k, (label, (tt, a)) in enumerate(records.items()):
-        aw_t = wk.filter(a, fs)
+    for k, (label, (tt, a_all, skip)) in enumerate(records.items()):
+        aw_t = wk.filter(a_all, fs)[skip:]
+        a = a_all[skip:]
         run_rms = running_rms(aw_t, fs, 1.0)
         metrics.append({"record": label, "a_w": rms(aw_t), "MTVV": mtvv(aw_t, fs), "VDV": vibration_dose_value(aw_t, fs),
                         "crest_factor": crest_factor(aw_t), "MTVV/a_w": mtvv(aw_t, fs) / rms(aw_t),
@@ -190,7 +193,9 @@ def run(study: Study) -> None:
         f"{worst.road_class}, {worst.speed_kmh:.0f} km/h: '{worst.comfort}'). For waviness 2 the road-velocity "
         "spectrum is white with intensity proportional to Gd(n0) V, so a_w grows as the square root of speed and "
         "doubles from one ISO 8608 class to the next. The PSD integral agrees with the exact covariance within "
-        f"{np.abs(check.relative_difference).max():.1e} (relative). The hump record's crest factor "
+        f"{np.abs(check.relative_difference).max():.1e} (relative), and the {duration - 2:.0f} s record filtered by "
+        f"the digital Wk gives a_w = {mt.a_w.iloc[0]:.3f} m/s^2 against the exact {check.aw_lyapunov['sedan']:.3f} "
+        "m/s^2 (a finite record of a random road). The hump record's crest factor "
         f"({mt.crest_factor.iloc[1]:.1f}) shows why ISO 2631-1 asks for MTVV or VDV on shocks.")
 
 
