@@ -156,3 +156,49 @@ def test_to_frame(car):
     assert df.attrs["units"]["dynamic_tire_load"] == car.output_signals[3].unit
     with pytest.raises(vehdyn.ParameterError, match="no output"):
         res["yaw_rate"]
+
+
+# --------------------------------------------------------------------------- building blocks
+def test_gauss_kronrod_constants_are_exact_on_polynomials():
+    """K15 integrates x^k exactly up to degree 22, the embedded G7 up to degree 13 (on [-1, 1])."""
+    from vehdyn.ride.random_response import GAUSS_7_IN_15, GAUSS_KRONROD_15
+
+    x, wk = GAUSS_KRONROD_15
+    for k in range(23):
+        exact = 0.0 if k % 2 else 2.0 / (k + 1)
+        assert np.sum(wk * x**k) == pytest.approx(exact, abs=1e-14), k
+        if k < 14:
+            assert np.sum(GAUSS_7_IN_15 * x**k) == pytest.approx(exact, abs=1e-14), k
+    assert abs(np.sum(GAUSS_7_IN_15 * x**14) - 2 / 15) > 1e-6  # and no further
+
+
+def test_lyapunov_route_equals_the_appended_shaping_filter(car):
+    """Appending the public shaping filter with connect_in_series and solving the Lyapunov equation directly."""
+    from scipy.linalg import solve_continuous_lyapunov
+
+    spec = RoadSpectrum.from_class("C", cut_on=0.03)
+    aug = vehdyn.connect_in_series(spec.shaping_filter(20.0), car)
+    X = solve_continuous_lyapunov(aug.A, -aug.B @ aug.B.T)  # unit-intensity white noise
+    C = aug.C[: car.n_outputs]
+    direct = np.sqrt(np.einsum("ij,jk,ik->i", C, X, C))
+    np.testing.assert_allclose(random_response(car, spec, 20.0).rms, direct, rtol=1e-10)
+
+
+def test_weighted_rms_in_the_frequency_domain(car):
+    """Wk appended as a state-space filter (Lyapunov) against quad of |Wk(f)|^2 |H(f)|^2 G(f) with weighting_factor."""
+    from scipy.integrate import quad
+
+    from vehdyn.ride import weighting, weighting_factor
+
+    wk = weighting("Wk").to_linear_model(input_name="sprung_acceleration", output_name="weighted_acceleration")
+    weighted = vehdyn.connect_in_series(car, wk)
+    exact = random_response(weighted, "C", 20.0, outputs=["weighted_acceleration"]).rms[0]
+    spec = RoadSpectrum.from_class("C")
+
+    def integrand(f):
+        H = car.frequency_response([2 * np.pi * f], outputs=["sprung_acceleration"], inputs=["road_displacement"])
+        return float(abs(H.response[0, 0, 0]) ** 2 * weighting_factor("Wk", f) ** 2 * spec.temporal_psd(f, 20.0))
+
+    var = sum(quad(integrand, a, b, limit=200, epsrel=1e-10)[0]
+              for a, b in ((1e-4, 0.4), (0.4, 2), (2, 20), (20, 200), (200, 1e4)))
+    assert exact == pytest.approx(np.sqrt(var), rel=1e-7)
