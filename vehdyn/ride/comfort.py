@@ -3,7 +3,7 @@
 Frequency weightings
 --------------------
 Each weighting W of ISO 2631-1, Annex A, is the product of four continuous-time stages
-(s = j 2 pi f, omega_i = 2 pi f_i; Annex A, eqs. A.1 to A.4 and Table A.2):
+(s = j 2 pi f, omega_i = 2 pi f_i; Annex A and its Table A.2 of parameters):
 
 * band limiting, high pass:  H_h(s) = s^2 / (s^2 + omega_1 s / Q_1 + omega_1^2)
 * band limiting, low pass:   H_l(s) = omega_2^2 / (s^2 + omega_2 s / Q_2 + omega_2^2), Q_1 = Q_2 = 1/sqrt(2)
@@ -41,9 +41,10 @@ least 20 times the highest frequency of interest (1 kHz for ride up to 50 Hz). F
 :meth:`Weighting.to_linear_model` with :func:`vehdyn.simulate` (exact discretization), or in the
 frequency domain :func:`weighting_factor`.
 
-Metrics (clause 6): weighted r.m.s. a_w (eq. 1), running r.m.s. a_w(t0) with integration time tau
-and the maximum transient vibration value MTVV (eqs. 2 and 3, linear integration), vibration dose
-value VDV (eq. 5), crest factor (clause 6.2.1), and the likely comfort reactions of Annex C.2.3.
+Metrics (clause 6 of the standard, basic and additional methods): weighted r.m.s. a_w, running
+r.m.s. a_w(t0) with integration time tau and the maximum transient vibration value MTVV (linear
+integration), fourth-power vibration dose value VDV, crest factor, and the likely comfort reactions
+of Annex C.2.3. (Equation and clause numbers are not cited: they were not re-read.)
 """
 
 from __future__ import annotations
@@ -279,13 +280,13 @@ def _samples(values, name="signal_values"):
 
 
 def rms(signal_values) -> np.ndarray:
-    """Root mean square over the last axis, sqrt(mean(a^2)) [unit of the signal] (ISO 2631-1 eq. 1)."""
+    """Root mean square over the last axis, sqrt(mean(a^2)) [unit of the signal] (ISO 2631-1, basic method)."""
     x = _samples(signal_values)
     return np.sqrt(np.mean(x**2, axis=-1))
 
 
 def weighted_rms(signal_values, sample_rate: float, name: str | Weighting = "Wk", *, settle: float = 0.0):
-    """Frequency-weighted r.m.s. a_w [m/s^2] of an acceleration record (ISO 2631-1 eq. 1).
+    """Frequency-weighted r.m.s. a_w [m/s^2] of an acceleration record (ISO 2631-1, basic method).
 
     Parameters
     ----------
@@ -307,7 +308,7 @@ def weighted_rms(signal_values, sample_rate: float, name: str | Weighting = "Wk"
 
 
 def running_rms(weighted_values, sample_rate: float, integration_time: float = 1.0) -> np.ndarray:
-    """Running r.m.s. a_w(t0) = [1/tau int_{t0-tau}^{t0} a_w^2 dt]^(1/2) (ISO 2631-1 eq. 2, linear integration).
+    """Running r.m.s. a_w(t0) = [1/tau int_{t0-tau}^{t0} a_w^2 dt]^(1/2) (ISO 2631-1, linear integration).
 
     Returns the value at every sample from the first full window on (``N - n_tau + 1`` values along
     the last axis), with tau = ``integration_time`` [s] (the standard recommends 1 s).
@@ -323,19 +324,19 @@ def running_rms(weighted_values, sample_rate: float, integration_time: float = 1
 
 
 def mtvv(weighted_values, sample_rate: float, integration_time: float = 1.0) -> np.ndarray:
-    """Maximum transient vibration value: the largest running r.m.s. (ISO 2631-1 eq. 3) [m/s^2]."""
+    """Maximum transient vibration value: the largest running r.m.s. (ISO 2631-1) [m/s^2]."""
     return np.max(running_rms(weighted_values, sample_rate, integration_time), axis=-1)
 
 
 def vibration_dose_value(weighted_values, sample_rate: float) -> np.ndarray:
-    """Fourth-power vibration dose value VDV = [int a_w^4 dt]^(1/4) [m/s^1.75] (ISO 2631-1 eq. 5, rectangle rule)."""
+    """Fourth-power vibration dose value VDV = [int a_w^4 dt]^(1/4) [m/s^1.75] (ISO 2631-1, rectangle rule)."""
     x = _samples(weighted_values, "weighted_values")
     fs = _positive(sample_rate, "sample_rate")
     return (np.sum(x**4, axis=-1) / fs) ** 0.25
 
 
 def crest_factor(weighted_values) -> np.ndarray:
-    """Crest factor: max |a_w| / r.m.s. a_w [-] (ISO 2631-1 clause 6.2.1; the basic method holds up to 9)."""
+    """Crest factor: max |a_w| / r.m.s. a_w [-] (ISO 2631-1: the basic method holds up to 9)."""
     x = _samples(weighted_values, "weighted_values")
     r = rms(x)
     return np.max(np.abs(x), axis=-1) / r

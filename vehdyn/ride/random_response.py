@@ -42,6 +42,7 @@ from __future__ import annotations
 import re
 import time as _time
 from dataclasses import dataclass, field
+from functools import lru_cache
 from math import factorial
 
 import numpy as np
@@ -227,15 +228,20 @@ def pade_delay(delay: float, order: int):
     diagonal similarity (the companion form is ill-conditioned beyond order 4) and scaled in time
     (A / delay, B / delay).
     """
+    if not (isinstance(order, (int, np.integer)) and 1 <= order <= 12):
+        raise ParameterError(f"pade_order must be an integer from 1 to 12 (higher orders lose accuracy to rounding), "
+                             f"got {order!r}", key="pade_order", value=order)
+    if not delay > 0:
+        raise ParameterError(f"delay must be positive [s], got {delay}", key="delay", value=delay)
+    A, B, C, D = _unit_pade(int(order))
+    return A / delay, B / delay, C.copy(), D.copy()
+
+
+@lru_cache(maxsize=16)
+def _unit_pade(m: int):
     from scipy import signal
     from scipy.linalg import matrix_balance
 
-    if not 1 <= order <= 12:
-        raise ParameterError(f"pade_order must be 1 to 12 (higher orders lose accuracy to rounding), got {order}",
-                             key="pade_order", value=order)
-    if not delay > 0:
-        raise ParameterError(f"delay must be positive [s], got {delay}", key="delay", value=delay)
-    m = order
     c = np.array([factorial(2 * m - k) * factorial(m) / (factorial(2 * m) * factorial(k) * factorial(m - k))
                   for k in range(m + 1)])
     num = (c * (-1.0) ** np.arange(m + 1))[::-1]
@@ -245,7 +251,9 @@ def pade_delay(delay: float, order: int):
     A = (A / scale[:, None]) * scale[None, :]
     B = B / scale[:, None]
     C = C * scale[None, :]
-    return A / delay, B / delay, C, D
+    for M in (A, B, C, D):
+        M.flags.writeable = False
+    return A, B, C, D
 
 
 def _road_generator(channels, spectrum, V, tau, sources, pade_order):
@@ -347,16 +355,18 @@ def stationary_covariance(A, B, C, D=None, integrators=()):
     if idx:
         if np.any(A[idx] != 0):
             raise ParameterError("integrator states must have zero rows in A", key="integrators", value=idx)
-        rest = np.setdiff1d(np.arange(A.shape[0]), idx)
+        rest = [k for k in range(A.shape[0]) if k not in idx]
         Arr = A[np.ix_(rest, rest)]
         Rr = -np.linalg.solve(Arr, A[np.ix_(rest, idx)])
         Bp = B[rest] - Rr @ B[idx]
         drift_gain = C[:, rest] @ Rr + C[:, idx]
         # a true drift gain is of the order of |C| |R| (a rigid lift moves the states by O(|R|));
         # rounding leaves ~ cond(A_rr) eps of it
-        tol = min(1e-3, max(1e-9, 1e3 * np.finfo(float).eps * np.linalg.cond(Arr)))
-        scale = np.abs(C).sum(axis=1) * max(1.0, np.abs(Rr).max(initial=0.0))
-        drift = np.abs(drift_gain).max(axis=1) > tol * np.maximum(scale, 1e-300)
+        scale = np.maximum(np.abs(C).sum(axis=1) * max(1.0, np.abs(Rr).max(initial=0.0)), 1e-300)
+        gain = np.abs(drift_gain).max(axis=1) / scale
+        drift = gain > 1e-9
+        if drift.any():  # only then is the conditioning worth its SVD
+            drift = gain > min(1e-3, max(1e-9, 1e3 * np.finfo(float).eps * np.linalg.cond(Arr)))
         A, B, C = Arr, Bp, C[:, rest]
     else:
         drift = np.zeros(C.shape[0], dtype=bool)
@@ -381,7 +391,10 @@ def _lyapunov(model, channels, spectrum, V, tau, two_tracks, coherence, pade_ord
     idx = [c.index for c in channels]
     Bm, Dm = model.B[:, idx], model.D[:, idx]
     ng = Ag.shape[0]
-    A = np.block([[Ag, np.zeros((ng, model.n_states))], [Bm @ Cg, model.A]])
+    A = np.zeros((ng + model.n_states,) * 2)
+    A[:ng, :ng] = Ag
+    A[ng:, :ng] = Bm @ Cg
+    A[ng:, ng:] = model.A
     B = np.vstack([Bg, Bm @ Dg])
     C = np.hstack([Dm @ Cg, model.C])
     D = Dm @ Dg

@@ -531,8 +531,8 @@ GOLDEN_CAR = {"tire_stiffness_ratio": 653.0, "spring_stiffness_ratio": 63.3, "ma
               "damping_ratio": 6.0, "speed": 80.0 / 3.6}
 """ASTM E1926 golden-car constants: k_t/m_s [1/s^2], k_s/m_s [1/s^2], m_u/m_s [-], c_s/m_s [1/s], speed [m/s]."""
 
-_IRI_BASE_LENGTH = 0.25  # moving-average base length [m] (ASTM E1926 sec. 8.2.1)
-_IRI_INIT_LENGTH = 11.0  # initialization length [m] (ASTM E1926 sec. 8.2.2, 0.5 s at 80 km/h)
+_IRI_BASE_LENGTH = 0.25  # moving-average base length [m] (ASTM E1926)
+_IRI_INIT_LENGTH = 11.0  # initialization length [m] (ASTM E1926; 0.5 s at 80 km/h)
 
 
 def golden_car():
