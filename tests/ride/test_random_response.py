@@ -202,3 +202,19 @@ def test_weighted_rms_in_the_frequency_domain(car):
     var = sum(quad(integrand, a, b, limit=200, epsrel=1e-10)[0]
               for a, b in ((1e-4, 0.4), (0.4, 2), (2, 20), (20, 200), (200, 1e4)))
     assert exact == pytest.approx(np.sqrt(var), rel=1e-7)
+
+
+def test_not_a_linear_model():
+    class Dummy(vehdyn.Model):
+        states = ("x",)
+        inputs = ("road_displacement",)
+        outputs = ("x",)
+
+        def rhs(self, t, x, u):
+            return -x
+
+        def output(self, t, x, u):
+            return x
+
+    with pytest.raises(vehdyn.ParameterError, match="LinearModel"):
+        random_response(Dummy(), "C", 10.0)

@@ -262,3 +262,29 @@ def test_iri_of_a_ramp_is_zero():
 def test_iri_scales_with_amplitude(scale):
     p = road.synthesize_profile("C", 300, 0.1, seed=11)
     assert road.iri(scale * p.elevation, 0.1) == pytest.approx(scale * road.iri(p), rel=1e-9)
+
+
+def test_more_parameter_errors():
+    with pytest.raises(vehdyn.ParameterError, match="waviness"):
+        road.RoadSpectrum(1e-4, waviness=7.0)
+    with pytest.raises(vehdyn.ParameterError, match="cut_on"):
+        road.RoadSpectrum(1e-4, cut_on=-0.1)
+    with pytest.raises(vehdyn.ParameterError, match="gd0"):
+        road.RoadSpectrum(0.0)
+    with pytest.raises(vehdyn.ParameterError, match="no spatial frequency"):
+        road.synthesize_profile("A", 10.0, 0.1, n_min=20.0)  # above the Nyquist frequency
+    with pytest.raises(vehdyn.ParameterError, match="spacing"):
+        road.synthesize_profile("A", 0.2, 0.1)
+    with pytest.raises(vehdyn.ParameterError, match="depth"):
+        road.pothole(np.linspace(0, 1, 11), 0.0, 0.5, -0.1)
+    with pytest.raises(vehdyn.ParameterError, match="shorter"):
+        road.iri(np.zeros(50), 0.1)
+    with pytest.raises(vehdyn.ParameterError, match="n_low"):
+        road.RoadSpectrum(1e-4).variance(1.0, 0.5)
+    with pytest.raises(vehdyn.ParameterError, match="track_width"):
+        road.isotropic_coherence(0.1, -1.0)
+
+
+def test_iri_of_a_flat_road_and_infinite_band_variance():
+    assert road.iri(np.zeros(1000), 0.1) == 0.0
+    assert road.RoadSpectrum(1e-4).variance(0.0, 1.0) == np.inf  # n^-2 has no finite variance down to n = 0
