@@ -218,3 +218,34 @@ def test_not_a_linear_model():
 
     with pytest.raises(vehdyn.ParameterError, match="LinearModel"):
         random_response(Dummy(), "C", 10.0)
+
+
+def test_four_corners_with_delays_and_tracks(models):
+    """Four quarter cars on the four corners (inputs *_front_left ... *_rear_right), output their mean acceleration."""
+    q = models.quarter_car(300, 60, 16000, 1000, 190000)
+    n = q.n_states
+    corners = ["front_left", "front_right", "rear_left", "rear_right"]
+    A = np.kron(np.eye(4), q.A)
+    B = np.kron(np.eye(4), q.B)
+    C = 0.25 * np.kron(np.ones((1, 4)), q.C[:1])
+    D = 0.25 * np.kron(np.ones((1, 4)), q.D[:1])
+    inputs = [f"road_{k}_{c}" for c in corners for k in ("displacement", "velocity")]
+    car4 = vehdyn.LinearModel(A, B, C, D, states=[f"x{k}" for k in range(4 * n)], inputs=inputs,
+                              outputs=["mean_acceleration"])
+    # two axles on one track: the same as a model with front and rear inputs only
+    two_axle = vehdyn.LinearModel(np.kron(np.eye(2), q.A), np.kron(np.eye(2), q.B),
+                                  0.5 * np.kron(np.ones((1, 2)), q.C[:1]), 0.5 * np.kron(np.ones((1, 2)), q.D[:1]),
+                                  states=[f"x{k}" for k in range(2 * n)],
+                                  inputs=[f"road_{k}_{c}" for c in ("front", "rear") for k in ("displacement",
+                                                                                                 "velocity")],
+                                  outputs=["mean_acceleration"])
+    ref = random_response(two_axle, "C", 20.0, method="psd", wheelbase=2.5).rms[0]
+    same = random_response(car4, "C", 20.0, method="psd", wheelbase=2.5, track_coherence="identical").rms[0]
+    assert same == pytest.approx(ref, rel=1e-9)
+    for coherence in ("identical", "independent"):
+        a = random_response(car4, "C", 20.0, wheelbase=2.5, track_coherence=coherence).rms[0]
+        b = random_response(car4, "C", 20.0, method="psd", wheelbase=2.5, track_coherence=coherence).rms[0]
+        assert a == pytest.approx(b, rel=1e-5), coherence
+    iso = random_response(car4, "C", 20.0, method="psd", wheelbase=2.5, track_width=1.5).rms[0]
+    indep = random_response(car4, "C", 20.0, method="psd", wheelbase=2.5, track_coherence="independent").rms[0]
+    assert indep < iso < same
