@@ -17,7 +17,10 @@ inputs are held at zero. Three routes give the same numbers:
     order ``pade_order`` (default 10, at most 12) applied to the shaping filter's output; this is
     the only approximation of the route. For a half car at 20 m/s, wheelbase 2.7 m (tau = 0.135 s)
     the r.m.s. error against the exact delay of ``"psd"`` is 3 % at order 4, 4e-5 at order 8 and
-    3e-7 at order 10. Left and right tracks must be ``"identical"`` or ``"independent"``
+    3e-7 at order 10; it grows as the speed falls (omega tau at wheel hop): 2e-5 at 40 m/s (rounding),
+    0.4 % at 5 m/s. At low speed use ``"psd"``. (Several Pade sections in series were tried: the
+    delay is then better, but the Lyapunov solution loses more to rounding in outputs such as the
+    tire load.) Left and right tracks must be ``"identical"`` or ``"independent"``
     here (the isotropic coherence is not rational).
 ``"psd"`` (frequency-domain integral with a stated error)
     var(y) = int_0^inf sum_{s,t} H_s(f) S_st(f) H_t(f)^* df with the exact delay e^(-j 2 pi f tau),
@@ -226,7 +229,9 @@ def pade_delay(delay: float, order: int):
 
     Built for a unit delay (coefficients c_k = (2m - k)! m! / ((2m)! k! (m - k)!)), balanced by a
     diagonal similarity (the companion form is ill-conditioned beyond order 4) and scaled in time
-    (A / delay, B / delay).
+    (A / delay, B / delay). It is all-pass (gain 1 at every frequency); the phase error of the
+    [10/10] approximant is 4e-11 rad at omega delay = 5, 3e-8 at 7, 4e-6 at 9, 2e-4 at 11 and 3e-2
+    at 15. (Orders above 10 gain little: rounding grows with the order.)
     """
     if not (isinstance(order, (int, np.integer)) and 1 <= order <= 12):
         raise ParameterError(f"pade_order must be an integer from 1 to 12 (higher orders lose accuracy to rounding), "
