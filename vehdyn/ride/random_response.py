@@ -17,8 +17,8 @@ inputs are held at zero. Three routes give the same numbers:
     order ``pade_order`` (default 10, at most 12) applied to the shaping filter's output; this is
     the only approximation of the route. For a half car at 20 m/s, wheelbase 2.7 m (tau = 0.135 s)
     the r.m.s. error against the exact delay of ``"psd"`` is 3 % at order 4, 4e-5 at order 8 and
-    3e-7 at order 10; it grows as the speed falls (omega tau at wheel hop): 2e-5 at 40 m/s (rounding),
-    0.4 % at 5 m/s. At low speed use ``"psd"``. (Several Pade sections in series were tried: the
+    3e-7 at order 10. At order 10 it grows as the speed falls (omega tau at wheel hop): 4e-8 at
+    40 m/s, 3e-7 at 20 m/s, 7e-4 at 10 m/s, 2 % at 5 m/s. At low speed use ``"psd"``. (Several Pade sections in series were tried: the
     delay is then better, but the Lyapunov solution loses more to rounding in outputs such as the
     tire load.) Left and right tracks must be ``"identical"`` or ``"independent"``
     here (the isotropic coherence is not rational).
