@@ -19,6 +19,7 @@ time / route time from the same run.
 
 from __future__ import annotations
 
+import os
 import platform
 import sys
 import time
@@ -107,7 +108,8 @@ def main():
     import vehdyn
 
     print(f"vehdyn {vehdyn.__version__}, numpy {np.__version__}, scipy {scipy.__version__}, "
-          f"Python {platform.python_version()} on {platform.machine()}")
+          f"Python {platform.python_version()} on {platform.machine()}, {os.cpu_count()} cores, load average "
+          f"{os.getloadavg()[0]:.1f} (timings of sub-millisecond routes suffer most from a loaded machine)")
     qc = quarter_car()
     r1 = run_case("1. quarter car (E-QC-ISO-C), class C, 20 m/s; reference: E-QC-ISO-C (7 significant digits, so "
                   "errors below ~5e-7 are its rounding)", qc,

@@ -314,9 +314,19 @@ def _sources(two_tracks, coherence):
 
 
 def _lyapunov_solve(A, Q):
-    """X with A X + X A^T + Q = 0: modal solution (one eigendecomposition), checked; Bartels-Stewart otherwise."""
+    """X with A X + X A^T + Q = 0.
+
+    Up to 10 states: one dense solve of the Kronecker form (I (x) A + A (x) I) vec X = -vec Q.
+    Larger: modal solution (one eigendecomposition), checked by its residual; scipy's Bartels-Stewart
+    solver if the check fails.
+    """
     from scipy.linalg import solve_continuous_lyapunov
 
+    n = A.shape[0]
+    if n <= 10:
+        eye = np.eye(n)
+        X = np.linalg.solve(np.kron(eye, A) + np.kron(A, eye), -Q.reshape(-1)).reshape(n, n)
+        return 0.5 * (X + X.T)
     lam, V = np.linalg.eig(A)
     try:
         W = np.linalg.solve(V, np.linalg.solve(V, Q.astype(complex)).conj().T).conj().T  # V^-1 Q V^-H
