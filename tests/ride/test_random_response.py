@@ -249,3 +249,32 @@ def test_four_corners_with_delays_and_tracks(models):
     iso = random_response(car4, "C", 20.0, method="psd", wheelbase=2.5, track_width=1.5).rms[0]
     indep = random_response(car4, "C", 20.0, method="psd", wheelbase=2.5, track_coherence="independent").rms[0]
     assert indep < iso < same
+
+
+@pytest.mark.parametrize("speed", [3.0, 20.0])
+@pytest.mark.parametrize("cut_on", [0.0, 0.05])
+def test_exact_delay_lyapunov_against_psd(half, speed, cut_on):
+    """Lagged covariances through e^(A tau): exact at any speed (the Pade route is 2 % off at 5 m/s)."""
+    spec = RoadSpectrum.from_class("C", cut_on=cut_on)
+    psd = random_response(half, spec, speed, method="psd", wheelbase=2.7)
+    exact = random_response(half, spec, speed, wheelbase=2.7, delay="exact")
+    np.testing.assert_allclose(exact.rms, psd.rms, rtol=1e-7)
+    assert np.all(np.abs(exact.rms - psd.rms) <= psd.error + 1e-9 * psd.rms)
+
+
+def test_exact_delay_with_independent_tracks(models):
+    q = models.quarter_car(300, 60, 16000, 1000, 190000)
+    corners = ["front_left", "front_right", "rear_left", "rear_right"]
+    car4 = vehdyn.LinearModel(np.kron(np.eye(4), q.A), np.kron(np.eye(4), q.B),
+                              np.vstack([0.25 * np.kron(np.ones((1, 4)), q.C[:1]),
+                                         np.kron(np.eye(4), q.C[1:2])[3]]),
+                              np.vstack([0.25 * np.kron(np.ones((1, 4)), q.D[:1]), np.zeros(8)]),
+                              states=[f"x{k}" for k in range(16)],
+                              inputs=[f"road_{k}_{c}" for c in corners for k in ("displacement", "velocity")],
+                              outputs=["mean_acceleration", "travel_rear_right"])
+    for coherence in ("identical", "independent"):
+        a = random_response(car4, "B", 8.0, wheelbase=2.5, track_coherence=coherence, delay="exact").rms
+        b = random_response(car4, "B", 8.0, method="psd", wheelbase=2.5, track_coherence=coherence).rms
+        np.testing.assert_allclose(a, b, rtol=1e-7)
+    with pytest.raises(vehdyn.ParameterError, match="delay"):
+        random_response(car4, "B", 8.0, wheelbase=2.5, track_coherence="identical", delay="approximate")

@@ -7,21 +7,27 @@ inputs are held at zero. Three routes give the same numbers:
 
 ``"lyapunov"`` (exact covariance)
     The road shaping filter (:meth:`RoadSpectrum.shaping_filter`, waviness 2) is appended to the
-    model with :func:`vehdyn.connect_in_series` and the state covariance X solves
+    model as :func:`vehdyn.connect_in_series` does and the state covariance X solves
     A X + X A^T + B B^T = 0 (unit-intensity white noise); var(y) = C X C^T. Without a cut-on
-    (the ISO spectrum itself) the road is an integrated white noise: the integrator modes are split
-    off exactly (projector on the null space of A) and outputs that see them (those with a non-zero
-    gain to a uniform lift of the road, such as absolute displacements) have infinite variance;
-    outputs with white-noise feedthrough (e.g. accelerations through tire damping) also return
-    ``inf``. A rear input is the front one delayed through a Pade approximant of e^(-s tau) of
-    order ``pade_order`` (default 10, at most 12) applied to the shaping filter's output; this is
-    the only approximation of the route. For a half car at 20 m/s, wheelbase 2.7 m (tau = 0.135 s)
-    the r.m.s. error against the exact delay of ``"psd"`` is 3 % at order 4, 4e-5 at order 8 and
-    3e-7 at order 10. At order 10 it grows as the speed falls (omega tau at wheel hop): 4e-8 at
-    40 m/s, 3e-7 at 20 m/s, 7e-4 at 10 m/s, 2 % at 5 m/s. At low speed use ``"psd"``. (Several Pade sections in series were tried: the
-    delay is then better, but the Lyapunov solution loses more to rounding in outputs such as the
-    tire load.) Left and right tracks must be ``"identical"`` or ``"independent"``
-    here (the isotropic coherence is not rational).
+    (the ISO spectrum itself) the road is an integrated white noise: the integrator states are
+    removed exactly by relative coordinates (:func:`stationary_covariance`), and outputs that see
+    them (non-zero gain to a uniform lift of the road, such as absolute displacements) have
+    infinite variance; outputs with white-noise feedthrough (e.g. a tire load through tire damping)
+    also return ``inf``.
+    Rear inputs, ``delay="pade"`` (default): the front road is delayed through a Pade approximant
+    of e^(-s tau) of order ``pade_order`` (default 10, at most 12) before it reaches the rear
+    inputs; this is then the only approximation of the route. For a half car (wheelbase 2.7 m) its
+    r.m.s. error against the exact delay is, at 20 m/s (tau = 0.135 s), 3 % at order 4, 4e-5 at
+    order 8 and 3e-7 at order 10; at order 10 it grows as the speed falls (omega tau at wheel hop):
+    4e-8 at 40 m/s, 7e-4 at 10 m/s, 2 % at 5 m/s. (Several Pade sections in series delay better
+    but lose more to rounding in outputs such as the tire load.)
+    ``delay="exact"``: no approximation. The state is the sum of one copy of the model per road
+    point (front, rear; left, right), each driven as if under the front axle by the same undelayed
+    road; the cross-covariance of two copies at lag tau is e^(A tau) P (plus, without cut-on, the
+    random-walk increment over tau, int_0^tau e^(A u) du = A^-1 (e^(A tau) - I)). It agrees with
+    ``"psd"`` within 1e-8 from 3 to 40 m/s.
+    Left and right tracks must be ``"identical"`` or ``"independent"`` in this route (the
+    isotropic coherence is not rational).
 ``"psd"`` (frequency-domain integral with a stated error)
     var(y) = int_0^inf sum_{s,t} H_s(f) S_st(f) H_t(f)^* df with the exact delay e^(-j 2 pi f tau),
     the temporal road PSD G_z(f) and the track coherence (isotropic by default), with H from the
@@ -149,6 +155,7 @@ def random_response(
     track_coherence: str = "isotropic",
     outputs=None,
     pade_order: int = 10,
+    delay: str = "pade",
     duration: float = 100.0,
     sample_rate: float = 500.0,
     seed=None,
@@ -174,7 +181,10 @@ def random_response(
     outputs : sequence of str, optional
         Restrict to these outputs.
     pade_order : int
-        Order of the Pade delay (``"lyapunov"`` only).
+        Order of the Pade delay (``"lyapunov"`` with ``delay="pade"``).
+    delay : {"pade", "exact"}
+        How the Lyapunov route delays the rear inputs: a Pade approximant appended to the road
+        filter (default), or exactly, through lagged covariances (see the module docstring).
     duration, sample_rate, seed, n_max : ``"simulation"`` only
         Seconds of road [s], sampling rate [Hz], random seed, highest spatial frequency of the
         profile [cycles/m] (default: the Nyquist frequency of the time grid).
@@ -205,7 +215,15 @@ def random_response(
         raise ParameterError(f"left/right road inputs with isotropic coherence need a positive track_width [m], got "
                              f"{track_width!r}", key="track_width", value=track_width)
     start = _time.perf_counter()
-    if method == "lyapunov":
+    if delay not in ("pade", "exact"):
+        raise ParameterError(f"delay must be 'pade' or 'exact', got {delay!r}", key="delay", value=delay)
+    if method == "lyapunov" and (delay == "exact" and tau > 0):
+        if two_tracks and track_coherence == "isotropic":
+            raise ParameterError("the Lyapunov route needs track_coherence 'identical' or 'independent' (the "
+                                 "isotropic coherence is not rational); use method='psd' for it",
+                                 key="track_coherence", value=track_coherence)
+        var, err, info = _lyapunov_exact_delay(model, channels, spectrum, V, tau, two_tracks, track_coherence)
+    elif method == "lyapunov":
         var, err, info = _lyapunov(model, channels, spectrum, V, tau, two_tracks, track_coherence, int(pade_order))
     elif method == "psd":
         var, err, info = _psd(model, channels, spectrum, V, tau, two_tracks, track_coherence, track_width)
@@ -416,6 +434,100 @@ def _lyapunov(model, channels, spectrum, V, tau, two_tracks, coherence, pade_ord
     Y = stationary_covariance(A, B, C, D, integrators if spectrum.cut_on == 0 else ())
     var = np.diag(Y).copy()
     return var, np.zeros_like(var), {"n_states": A.shape[0], "pade_order": pade_order if tau > 0 else 0}
+
+
+def _expm(A, t):
+    """e^(A t) through the eigendecomposition when it is well conditioned (small dense A), else scipy's expm."""
+    lam, V = np.linalg.eig(A)
+    if np.linalg.cond(V) < 1e6:
+        return ((V * np.exp(lam * t)) @ np.linalg.inv(V)).real
+    from scipy.linalg import expm
+
+    return expm(A * t)
+
+
+def _lyapunov_exact_delay(model, channels, spectrum, V, tau, two_tracks, coherence):
+    """Exact covariance with the exact delay: lagged covariances through the matrix exponential.
+
+    The model is linear, so its state is x(t) = sum_p x_p(t - tau_p): one copy x_p per road point
+    p = (source, axle), driven by that point's inputs as if it were under the front axle. All
+    copies and the road states xi share the undelayed noise: z = [xi; x_p ...], covariance P from
+    the Lyapunov equation, and Cov(z(t), z(t - tau)) = e^(A tau) P. Without cut-on the road is a
+    random walk: z' = z - R xi (relative coordinates, as in :func:`stationary_covariance`) and the
+    rear axle sees xi(t - tau) = xi(t) - Delta, whose increment Delta over tau has variance
+    tau B_xi B_xi^T and covariance int_0^tau e^(A'u) du B' B_xi^T = A'^-1 (e^(A' tau) - I) B' B_xi^T
+    with z'(t).
+    """
+
+    sources = _sources(two_tracks, coherence)
+    used = sorted({sources[c.track] for c in channels})
+    S = len(used)
+    col = {k: j for j, k in enumerate(used)}
+    a = 2.0 * np.pi * spectrum.cut_on * V
+    sigma = spectrum.white_noise_gain(V)
+    groups = sorted({(sources[c.track], c.delayed) for c in channels})
+    n, p_out = model.n_states, model.n_outputs
+    nz = S + n * len(groups)
+    A = np.zeros((nz, nz))
+    B = np.zeros((nz, S))
+    A[:S, :S] = -a * np.eye(S)
+    B[:S, :S] = sigma * np.eye(S)
+    E = []
+    white = np.zeros(p_out, dtype=bool)
+    for g, (src, delayed) in enumerate(groups):
+        o = S + g * n
+        A[o:o + n, o:o + n] = model.A
+        Eg = np.zeros((p_out, nz))
+        Eg[:, o:o + n] = model.C
+        j = col[src]
+        for c in channels:
+            if (sources[c.track], c.delayed) != (src, delayed):
+                continue
+            # road displacement = xi, road velocity = -a xi + sigma w
+            gain = 1.0 if c.kind == "displacement" else -a
+            A[o:o + n, j] += gain * model.B[:, c.index]
+            Eg[:, j] += gain * model.D[:, c.index]
+            if c.kind == "velocity":
+                B[o:o + n, j] += sigma * model.B[:, c.index]
+                white |= model.D[:, c.index] != 0
+        E.append(Eg)
+    front = [g for g, (_, d) in enumerate(groups) if not d]
+    rear = [g for g, (_, d) in enumerate(groups) if d]
+    if spectrum.cut_on > 0:
+        P = _lyapunov_solve(A, B @ B.T)
+        lag = _expm(A, tau) @ P  # Cov(z(t), z(t - tau))
+        Ez, var_extra, drift = E, np.zeros(p_out), np.zeros(p_out, dtype=bool)
+    else:
+        rest = np.arange(S, nz)
+        Arr = A[S:, S:]
+        Rr = -np.linalg.solve(Arr, A[S:, :S])
+        Bp = B[S:] - Rr @ B[:S]
+        G = [Eg[:, S:] @ Rr + Eg[:, :S] for Eg in E]
+        g_sum = sum(G)
+        scale = np.maximum(sum(np.abs(Eg).sum(axis=1) for Eg in E) * max(1.0, np.abs(Rr).max()), 1e-300)
+        drift = np.abs(g_sum).max(axis=1) / scale > 1e-9
+        g_rear = sum(G[g] for g in rear)
+        P = _lyapunov_solve(Arr, Bp @ Bp.T)
+        Phi = _expm(Arr, tau)
+        lag = Phi @ P
+        psi = np.linalg.solve(Arr, (Phi - np.eye(Arr.shape[0])) @ (Bp @ B[:S].T))  # Cov(z'(t), Delta)
+        Ez = [Eg[:, rest] for Eg in E]
+        cross = sum(Ez[g] @ psi for g in front)  # Cov(y_z, Delta)
+        var_extra = (-2.0 * np.einsum("ij,ij->i", cross, g_rear)
+                     + np.einsum("ij,jk,ik->i", g_rear, tau * (B[:S] @ B[:S].T), g_rear))
+    var = var_extra.copy()
+    for gp in range(len(groups)):
+        for gq in range(len(groups)):
+            dp, dq = groups[gp][1], groups[gq][1]
+            if dp == dq:
+                M = P
+            elif not dp:  # p front (t), q rear (t - tau)
+                M = lag
+            else:
+                M = lag.T
+            var += np.einsum("ij,jk,ik->i", Ez[gp], M, Ez[gq])
+    var = np.where(drift | white, np.inf, var)
+    return var, np.zeros_like(var), {"n_states": nz, "delay": "exact (matrix exponential)"}
 
 
 # --------------------------------------------------------------------------- PSD route
