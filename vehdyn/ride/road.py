@@ -37,8 +37,8 @@ Parallel tracks
     rho(n) = 2^(1 - nu) / Gamma(nu) z^nu K_nu(z), z = 2 pi n B, nu = w / 2 (rho = z K_1(z) for
     w = 2). See :func:`isotropic_coherence`.
 
-International Roughness Index (ASTM E1926-08; Sayers, Gillespie & Queiroz, World Bank Technical
-Paper 45/46, 1986)
+International Roughness Index (ASTM E1926; Sayers, Gillespie & Paterson, World Bank Technical
+Paper 46, 1986)
     The golden-car quarter car (k_t/m_s = 653 s^-2, k_s/m_s = 63.3 s^-2, m_u/m_s = 0.15,
     c_s/m_s = 6.0 s^-1) at 80 km/h over the profile smoothed by a 250 mm moving average; IRI is the
     mean rectified suspension velocity divided by the speed (m/m), quoted in m/km. See :func:`iri`.
