@@ -288,3 +288,26 @@ def test_more_parameter_errors():
 def test_iri_of_a_flat_road_and_infinite_band_variance():
     assert road.iri(np.zeros(1000), 0.1) == 0.0
     assert road.RoadSpectrum(1e-4).variance(0.0, 1.0) == np.inf  # n^-2 has no finite variance down to n = 0
+
+
+# ISO 8608 class limits of Gd(n0) [1e-6 m^3] (lower, upper); A has no lower limit, H no upper one
+ISO8608_LIMITS = {"A": (0, 32), "B": (32, 128), "C": (128, 512), "D": (512, 2048), "E": (2048, 8192),
+                  "F": (8192, 32768), "G": (32768, 131072), "H": (131072, np.inf)}
+
+
+def test_class_of_against_the_class_limits():
+    for letter, (lo, hi) in ISO8608_LIMITS.items():
+        assert road.iso8608_class_of(max(lo, 1.0) * 1e-6 * 1.001) == letter
+        if np.isfinite(hi):
+            assert road.iso8608_class_of(hi * 1e-6 * 0.999) == letter
+        assert road.iso8608_class_of(ISO8608_GEOMETRIC_MEANS[letter] * 1e-6) == letter
+
+
+@pytest.mark.parametrize("letter", ["B", "D"])
+def test_estimate_spectrum_of_a_synthesized_profile(letter):
+    p = road.synthesize_profile(letter, 1000.0, 0.05, seed=21)
+    gd0, cls = road.estimate_spectrum(p)
+    assert cls == letter
+    assert gd0 == pytest.approx(road.iso8608_class_value(letter), rel=0.15)
+    with pytest.raises(vehdyn.ParameterError, match="band"):
+        road.estimate_spectrum(p, n_low=20.0)

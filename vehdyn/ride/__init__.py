@@ -1,7 +1,8 @@
 """Ride: ISO 8608 roads, ISO 2631-1 comfort and the random response of linear ride models.
 
 Roads (:mod:`vehdyn.ride.road`)
-    :func:`iso8608_psd`, :data:`ISO8608_CLASSES`, :class:`RoadSpectrum` (PSD, band r.m.s., shaping
+    :func:`iso8608_psd`, :data:`ISO8608_CLASSES`, :func:`iso8608_class_of`,
+    :func:`estimate_spectrum` (Gd(n0) and class of a measured profile), :class:`RoadSpectrum` (PSD, band r.m.s., shaping
     filter), :class:`RoadProfile`, :func:`synthesize_profile`, :func:`synthesize_parallel_profiles`,
     :func:`isotropic_coherence`, events :func:`bump`, :func:`pothole`, :func:`speed_hump`,
     :func:`step`, :func:`iri` (ASTM E1926 golden car, :func:`golden_car`).
@@ -37,6 +38,8 @@ from .road import (
     bump,
     golden_car,
     iri,
+    estimate_spectrum,
+    iso8608_class_of,
     iso8608_class_value,
     iso8608_psd,
     isotropic_coherence,
@@ -49,7 +52,7 @@ from .road import (
 
 __all__ = [
     # road
-    "ISO8608_CLASSES", "iso8608_class_value", "iso8608_psd", "RoadSpectrum", "RoadProfile", "synthesize_profile",
+    "ISO8608_CLASSES", "iso8608_class_value", "iso8608_class_of", "estimate_spectrum", "iso8608_psd", "RoadSpectrum", "RoadProfile", "synthesize_profile",
     "synthesize_parallel_profiles", "isotropic_coherence", "bump", "pothole", "speed_hump", "step", "GOLDEN_CAR",
     "golden_car", "iri",
     # comfort

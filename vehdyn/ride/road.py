@@ -57,6 +57,8 @@ __all__ = [
     "ISO8608_REFERENCE_FREQUENCY",
     "iso8608_class_value",
     "iso8608_psd",
+    "iso8608_class_of",
+    "estimate_spectrum",
     "RoadSpectrum",
     "RoadProfile",
     "synthesize_profile",
@@ -465,6 +467,49 @@ def synthesize_parallel_profiles(
     cr[i] = A * (rho * e1 + np.sqrt(np.clip(1.0 - rho**2, 0.0, None)) * e2)
     empty = RoadProfile(x, np.zeros(N), cl)
     return RoadProfile(x, empty._spectral(1.0, cl), cl), RoadProfile(x, empty._spectral(1.0, cr), cr)
+
+
+def iso8608_class_of(gd0: float) -> str:
+    """ISO 8608 class letter of Gd(n0) [m^3]: classes are bands a factor 4 wide around the geometric means.
+
+    Lower limit of class X is its geometric mean / 2, upper limit geometric mean * 2 (A has no lower
+    limit; H no upper one).
+    """
+    g = _positive(gd0, "gd0")
+    k = int(np.floor(np.log(g / 16e-6 * 2.0) / np.log(4.0)))  # 0 for A: [8e-6, 32e-6) and below
+    return "ABCDEFGH"[min(max(k, 0), 7)]
+
+
+def estimate_spectrum(profile: "RoadProfile", n_low: float = 0.011, n_high: float = 2.83):
+    """Gd(n0) [m^3] and ISO 8608 class of a measured profile, for waviness 2.
+
+    The displacement PSD is estimated by Welch's method (Hann windows, segments of at least 1 / n_low
+    or a quarter of the profile), compensated by (n / n0)^2 and averaged first within each octave
+    band of [n_low, n_high] [cycles/m] (default: ISO 8608's range), then geometrically over the
+    octaves. Returns ``(gd0, class_letter)``.
+    """
+    from scipy.signal import welch
+
+    if not isinstance(profile, RoadProfile):
+        raise ParameterError("profile must be a RoadProfile", key="profile", value=type(profile).__name__)
+    lo, hi = _positive(n_low, "n_low"), _positive(n_high, "n_high")
+    nyq = 0.5 / profile.spacing
+    hi = min(hi, 0.8 * nyq)
+    if lo >= hi:
+        raise ParameterError(f"no band left between n_low = {lo} and min(n_high, 0.8 Nyquist) = {hi} cycles/m",
+                             key="n_low", value=lo)
+    N = profile.elevation.size
+    nperseg = int(min(N, max(N // 4, 2 ** np.ceil(np.log2(4.0 / (lo * profile.spacing))))))
+    n, G = welch(profile.elevation - profile.elevation.mean(), fs=1.0 / profile.spacing, nperseg=nperseg)
+    r = G * (n / ISO8608_REFERENCE_FREQUENCY) ** 2
+    edges = lo * 2.0 ** np.arange(0, np.log2(hi / lo) + 1e-9)
+    edges = np.append(edges, hi) if edges[-1] < hi else edges
+    means = [r[(n >= a) & (n < b)].mean() for a, b in zip(edges[:-1], edges[1:]) if np.any((n >= a) & (n < b))]
+    if not means:
+        raise ParameterError("the profile is too short for its band: no PSD estimate falls in it", key="profile",
+                             value=N * profile.spacing)
+    gd0 = float(np.exp(np.mean(np.log(means))))
+    return gd0, iso8608_class_of(gd0)
 
 
 # --------------------------------------------------------------------------- discrete events
