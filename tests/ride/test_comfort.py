@@ -180,3 +180,11 @@ def test_comfort_category_single_label():
                          "very uncomfortable", "very uncomfortable", "extremely uncomfortable",
                          "extremely uncomfortable"]
     assert comfort.comfort_category(0.2) == "not uncomfortable"
+
+
+def test_vibration_total_value():
+    assert comfort.vibration_total_value([0.3, 0.4]) == pytest.approx(0.5)
+    assert comfort.vibration_total_value([0.2, 0.2, 0.5], [1.4, 1.4, 1.0]) == pytest.approx(
+        np.sqrt(2 * 0.28**2 + 0.25))
+    with pytest.raises(vehdyn.ParameterError, match="weighted_rms_values"):
+        comfort.vibration_total_value([0.3, -0.1])

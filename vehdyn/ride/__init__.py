@@ -9,7 +9,7 @@ Roads (:mod:`vehdyn.ride.road`)
 Comfort (:mod:`vehdyn.ride.comfort`)
     :func:`weighting` / :data:`WEIGHTINGS` (Wk, Wd, Wf, Wc, We, Wj), :func:`weighting_factor`,
     :func:`weighted_rms`, :func:`rms`, :func:`running_rms`, :func:`mtvv`, :func:`vibration_dose_value`,
-    :func:`crest_factor`, :func:`comfort_reactions`, :func:`comfort_category`.
+    :func:`crest_factor`, :func:`vibration_total_value`, :func:`comfort_reactions`, :func:`comfort_category`.
 Random response (:mod:`vehdyn.ride.random_response`)
     :func:`random_response` (``"lyapunov"``, ``"psd"``, ``"simulation"``) -> :class:`RandomResponse`.
 """
@@ -25,6 +25,7 @@ from .comfort import (
     rms,
     running_rms,
     vibration_dose_value,
+    vibration_total_value,
     weighted_rms,
     weighting,
     weighting_factor,
@@ -57,7 +58,7 @@ __all__ = [
     "golden_car", "iri",
     # comfort
     "Weighting", "WEIGHTINGS", "weighting", "weighting_factor", "weighted_rms", "rms", "running_rms", "mtvv",
-    "vibration_dose_value", "crest_factor", "COMFORT_REACTIONS", "comfort_reactions", "comfort_category",
+    "vibration_dose_value", "vibration_total_value", "crest_factor", "COMFORT_REACTIONS", "comfort_reactions", "comfort_category",
     # random response
     "RandomResponse", "random_response",
 ]

@@ -66,6 +66,7 @@ __all__ = [
     "mtvv",
     "vibration_dose_value",
     "crest_factor",
+    "vibration_total_value",
     "COMFORT_REACTIONS",
     "comfort_reactions",
     "comfort_category",
@@ -340,6 +341,25 @@ def crest_factor(weighted_values) -> np.ndarray:
     x = _samples(weighted_values, "weighted_values")
     r = rms(x)
     return np.max(np.abs(x), axis=-1) / r
+
+
+def vibration_total_value(weighted_rms_values, factors=None) -> float:
+    """Vibration total value a_v = sqrt(sum_i (k_i a_wi)^2) [m/s^2] of several axes (ISO 2631-1).
+
+    Parameters
+    ----------
+    weighted_rms_values : array_like
+        Frequency-weighted r.m.s. a_wi of each axis [m/s^2].
+    factors : array_like, optional
+        Multiplying factors k_i [-] (1 by default, the seat-surface translational axes for comfort;
+        take the standard's factors for other axes or for health, e.g. 1.4 on x and y).
+    """
+    a = np.asarray(weighted_rms_values, dtype=float)
+    k = np.ones_like(a) if factors is None else np.asarray(factors, dtype=float)
+    if a.shape != k.shape or not (np.all(np.isfinite(a)) and np.all(a >= 0)):
+        raise ParameterError(f"weighted_rms_values must be non-negative numbers matching factors, got {a!r} and "
+                             f"{k!r}", key="weighted_rms_values", value=a)
+    return float(np.sqrt(np.sum((k * a) ** 2)))
 
 
 # --------------------------------------------------------------------------- comfort reactions
