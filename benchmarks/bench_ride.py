@@ -9,7 +9,8 @@ Run: ``python benchmarks/bench_ride.py``. Prints, from one run on this machine, 
 
 the r.m.s. of every output by the three routes of ``vehdyn.ride.random_response``:
 ``"lyapunov"`` (exact covariance with the shaping filter appended; for the half car with a Pade
-delay of order 10, and with ``delay="exact"``, lagged covariances), ``"psd"`` (frequency integral with exact delay and its stated error bound) and
+delay of order 10, and with ``delay="exact"``, lagged covariances), ``"psd"`` (frequency integral
+with exact delay and its stated error bound) and
 ``"simulation"`` (a sum-of-cosines road of 100 s at 1 kHz, exact-discretization simulation;
 its time includes the road synthesis). Errors are against the reference: the E-QC-ISO-C values
 (computed independently, see tests/data/ride_reference_cases.json) for the quarter car, the PSD

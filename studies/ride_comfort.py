@@ -135,7 +135,8 @@ def run(study: Study) -> None:
     aw_table.attrs["units"] = {c: "m/s^2" for c in aw_table.columns}
     study.table(aw_table, "weighted_rms", caption="Wk-weighted r.m.s. acceleration a_w, worse axle [m/s^2]")
     study.table(check, "frequency_domain_check",
-                caption="Class C, 20 m/s, front axle: exact (Lyapunov) a_w against the PSD integral with its error bound")
+                caption="Class C, 20 m/s, front axle: exact (Lyapunov) a_w against the PSD integral with its "
+                        "error bound")
 
     # time domain: class-C road at 20 m/s, then a speed hump at 20 km/h (sedan, front axle)
     fs = 1000.0
@@ -161,7 +162,8 @@ def run(study: Study) -> None:
         aw_t = wk.filter(a_all, fs)[skip:]
         a = a_all[skip:]
         run_rms = running_rms(aw_t, fs, 1.0)
-        metrics.append({"record": label, "a_w": rms(aw_t), "MTVV": mtvv(aw_t, fs), "VDV": vibration_dose_value(aw_t, fs),
+        metrics.append({"record": label, "a_w": rms(aw_t), "MTVV": mtvv(aw_t, fs),
+                        "VDV": vibration_dose_value(aw_t, fs),
                         "crest_factor": crest_factor(aw_t), "MTVV/a_w": mtvv(aw_t, fs) / rms(aw_t),
                         "VDV/(a_w T^0.25)": vibration_dose_value(aw_t, fs) / (rms(aw_t) * tt[-1] ** 0.25)})
         ax = axes[0, k]

@@ -9,9 +9,11 @@ Roads (:mod:`vehdyn.ride.road`)
 Comfort (:mod:`vehdyn.ride.comfort`)
     :func:`weighting` / :data:`WEIGHTINGS` (Wk, Wd, Wf, Wc, We, Wj), :func:`weighting_factor`,
     :func:`weighted_rms`, :func:`rms`, :func:`running_rms`, :func:`mtvv`, :func:`vibration_dose_value`,
-    :func:`crest_factor`, :func:`vibration_total_value`, :func:`comfort_reactions`, :func:`comfort_category`.
+    :func:`crest_factor`, :func:`vibration_total_value`, :func:`comfort_reactions`,
+    :func:`comfort_category`.
 Random response (:mod:`vehdyn.ride.random_response`)
-    :func:`random_response` (``"lyapunov"``, ``"psd"``, ``"simulation"``) -> :class:`RandomResponse`.
+    :func:`random_response` (``"lyapunov"`` with a Pade or exact delay, ``"psd"``, ``"simulation"``)
+    -> :class:`RandomResponse`; :func:`stationary_covariance`.
 """
 
 from .comfort import (
@@ -30,7 +32,7 @@ from .comfort import (
     weighting,
     weighting_factor,
 )
-from .random_response import RandomResponse, random_response
+from .random_response import RandomResponse, random_response, stationary_covariance
 from .road import (
     GOLDEN_CAR,
     ISO8608_CLASSES,
@@ -53,12 +55,13 @@ from .road import (
 
 __all__ = [
     # road
-    "ISO8608_CLASSES", "iso8608_class_value", "iso8608_class_of", "estimate_spectrum", "iso8608_psd", "RoadSpectrum", "RoadProfile", "synthesize_profile",
-    "synthesize_parallel_profiles", "isotropic_coherence", "bump", "pothole", "speed_hump", "step", "GOLDEN_CAR",
-    "golden_car", "iri",
+    "ISO8608_CLASSES", "iso8608_class_value", "iso8608_class_of", "iso8608_psd", "estimate_spectrum",
+    "RoadSpectrum", "RoadProfile", "synthesize_profile", "synthesize_parallel_profiles", "isotropic_coherence",
+    "bump", "pothole", "speed_hump", "step", "GOLDEN_CAR", "golden_car", "iri",
     # comfort
     "Weighting", "WEIGHTINGS", "weighting", "weighting_factor", "weighted_rms", "rms", "running_rms", "mtvv",
-    "vibration_dose_value", "vibration_total_value", "crest_factor", "COMFORT_REACTIONS", "comfort_reactions", "comfort_category",
+    "vibration_dose_value", "vibration_total_value", "crest_factor", "COMFORT_REACTIONS", "comfort_reactions",
+    "comfort_category",
     # random response
-    "RandomResponse", "random_response",
+    "RandomResponse", "random_response", "stationary_covariance",
 ]
