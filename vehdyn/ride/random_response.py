@@ -62,7 +62,6 @@ from .road import RoadSpectrum, synthesize_parallel_profiles, synthesize_profile
 __all__ = ["RandomResponse", "random_response", "road_channels", "pade_delay", "stationary_covariance"]
 
 _ROAD_INPUT = re.compile(r"^road_(displacement|velocity)(.*)$")
-_TRACKS = ("coherent", "left", "right")
 
 
 @dataclass(frozen=True)
