@@ -1,6 +1,7 @@
 """Ride comfort on ISO 8608 roads: ISO 2631-1 weighted acceleration against speed and road class.
 
-For each shipped vehicle (sedan, compact, van) a quarter car per axle is built from its data
+The inputs first: the ISO 8608 spectra with a synthesized class-C profile (and the class estimated
+back from it), and the six ISO 2631-1 weightings. Then, for each shipped vehicle (sedan, compact, van) a quarter car per axle is built from its data
 (sprung mass carried by one wheel, unsprung mass of one wheel, wheel rate, damper, tire stiffness),
 the ISO 2631-1 Wk weighting is appended to its body acceleration as a state-space filter, and the
 weighted r.m.s. a_w is computed exactly (Lyapunov equation with the ISO 8608 shaping filter) for road
@@ -20,9 +21,12 @@ import vehdyn
 from vehdyn.report import Study
 from vehdyn.ride import (
     COMFORT_REACTIONS,
+    WEIGHTINGS,
     RoadProfile,
+    RoadSpectrum,
     comfort_category,
     crest_factor,
+    estimate_spectrum,
     mtvv,
     random_response,
     rms,
@@ -74,7 +78,38 @@ def run(study: Study) -> None:
 
     from vehdyn.plotting import new_figure
 
+    from scipy.signal import welch
+
     speeds = np.array([5.0, 15.0, 25.0, 40.0]) if study.quick else np.linspace(5.0, 40.0, 15)
+
+    # the inputs: ISO 8608 spectra (with a synthesized class-C profile) and the ISO 2631-1 weightings
+    fig, axes = new_figure(1, 2, width=11.0, height_per_row=3.6)
+    n = np.geomspace(0.01, 10.0, 200)
+    for letter in CLASSES:
+        axes[0, 0].loglog(n, RoadSpectrum.from_class(letter).psd(n), label=f"class {letter}")
+    sample = synthesize_profile("C", 2000.0, 0.05, seed=3)
+    n_w, G_w = welch(sample.elevation, fs=1.0 / sample.spacing, nperseg=8192)
+    axes[0, 0].loglog(n_w[1:], G_w[1:], color="0.5", lw=0.6, label="synthesized C (Welch)")
+    gd0, letter = estimate_spectrum(sample)
+    axes[0, 0].set_xlabel("spatial frequency n [cycles/m]")
+    axes[0, 0].set_ylabel("displacement PSD Gd [m^3]")
+    axes[0, 0].set_title(f"ISO 8608 (estimate of the sample: Gd(n0) = {gd0 * 1e6:.0f}e-6 m^3, class {letter})",
+                         fontsize=8)
+    f = np.geomspace(0.02, 400.0, 400)
+    for name, w in WEIGHTINGS.items():
+        axes[0, 1].loglog(f, w.factor(f), label=f"{name}: {w.description}")
+    axes[0, 1].set_ylim(1e-3, 2)
+    axes[0, 1].set_xlabel("frequency [Hz]")
+    axes[0, 1].set_ylabel("weighting factor |W(f)| [-]")
+    axes[0, 1].set_title("ISO 2631-1 frequency weightings (Annex A filters)", fontsize=8)
+    for ax in axes[0]:
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=6)
+    fig.tight_layout()
+    study.figure(fig, "road_spectra_and_weightings",
+                 caption="ISO 8608 road classes A-E (geometric means, waviness 2) with a synthesized class-C profile, "
+                         "and the ISO 2631-1 weightings")
+
     cars = {}
     for name in VEHICLES:
         v = vehdyn.load_vehicle(name)
