@@ -234,9 +234,12 @@ def random_response(
                              value=method)
     wall = _time.perf_counter() - start
     rms = np.sqrt(var)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        rms_err = np.where(np.isfinite(var), np.where(rms > 0, err / (2 * np.where(rms > 0, rms, 1)), np.sqrt(err)),
-                           np.inf) if method != "simulation" else err
+    if method == "psd":  # error of the variance -> error of the r.m.s.
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rms_err = np.where(np.isfinite(var), np.where(rms > 0, err / (2 * np.where(rms > 0, rms, 1)),
+                                                          np.sqrt(err)), np.inf)
+    else:
+        rms_err = err
     return RandomResponse(model.output_signals, rms, np.asarray(rms_err, float), method, V, spectrum, wall, info)
 
 
