@@ -233,7 +233,7 @@ def random_response(
         raise ParameterError(f"method must be 'lyapunov', 'psd' or 'simulation', got {method!r}", key="method",
                              value=method)
     wall = _time.perf_counter() - start
-    rms = np.sqrt(var)
+    rms = np.sqrt(np.maximum(var, 0.0))  # a variance that cancels to zero may come out at -1e-30
     if method == "psd":  # error of the variance -> error of the r.m.s.
         with np.errstate(divide="ignore", invalid="ignore"):
             rms_err = np.where(np.isfinite(var), np.where(rms > 0, err / (2 * np.where(rms > 0, rms, 1)),
@@ -360,7 +360,24 @@ def _lyapunov_solve(A, Q):
     return solve_continuous_lyapunov(A, -Q)
 
 
-def stationary_covariance(A, B, C, D=None, integrators=()):
+def _drifts(gain, terms, row_sum, A_rest):
+    """Outputs that see an integrator (unbounded variance), from their gain to a unit integrator value.
+
+    A true gain is comparable to the terms it sums (``terms`` = |C_r| |R_r| + |C_xi|) and to the
+    output's coefficients (``row_sum`` = sum |C|, states moving by O(1) under a unit lift of the
+    road); rounding leaves about cond(A_rest) eps of the terms (taken as at most 1e-6: cond is a
+    pessimistic bound, and a real gain, such as the warp of a car with unequal tracks on independent
+    left and right random-walk tracks, can be a few 1e-4 of its terms).
+    """
+    g = np.abs(gain).max(axis=1)
+    t = np.maximum(np.max(terms, axis=1), 1e-300)
+    drift = (g > 1e-9 * t) & (g > 1e-9 * row_sum)
+    if drift.any():  # only then is the conditioning worth its SVD
+        drift &= g > min(1e-6, max(1e-9, 1e3 * np.finfo(float).eps * np.linalg.cond(A_rest))) * t
+    return drift
+
+
+def stationary_covariance(A, B, C, D=None, integrators=(), output_scale=None):
     """Stationary output covariance of dx/dt = A x + B w, y = C x + D w (unit-intensity white noise w).
 
     Parameters
@@ -368,6 +385,9 @@ def stationary_covariance(A, B, C, D=None, integrators=()):
     A, B, C, D : ndarray
     integrators : sequence of int
         States whose rows of A are zero (random walks, e.g. the ISO 8608 road without cut-on).
+    output_scale : array_like, optional
+        Typical size of each output per unit change of the states (default: the row sums of |C|);
+        a gain to an integrator below 1e-9 of it is taken as rounding.
 
     Returns
     -------
@@ -395,13 +415,9 @@ def stationary_covariance(A, B, C, D=None, integrators=()):
         Rr = -np.linalg.solve(Arr, A[np.ix_(rest, idx)])
         Bp = B[rest] - Rr @ B[idx]
         drift_gain = C[:, rest] @ Rr + C[:, idx]
-        # a true drift gain is of the order of |C| |R| (a rigid lift moves the states by O(|R|));
-        # rounding leaves ~ cond(A_rr) eps of it
-        scale = np.maximum(np.abs(C).sum(axis=1) * max(1.0, np.abs(Rr).max(initial=0.0)), 1e-300)
-        gain = np.abs(drift_gain).max(axis=1) / scale
-        drift = gain > 1e-9
-        if drift.any():  # only then is the conditioning worth its SVD
-            drift = gain > min(1e-3, max(1e-9, 1e3 * np.finfo(float).eps * np.linalg.cond(Arr)))
+        terms = np.abs(C[:, rest]) @ np.abs(Rr) + np.abs(C[:, idx])
+        row = np.abs(C).sum(axis=1) if output_scale is None else np.asarray(output_scale, dtype=float)
+        drift = _drifts(drift_gain, terms, row, Arr)
         A, B, C = Arr, Bp, C[:, rest]
     else:
         drift = np.zeros(C.shape[0], dtype=bool)
@@ -433,7 +449,9 @@ def _lyapunov(model, channels, spectrum, V, tau, two_tracks, coherence, pade_ord
     B = np.vstack([Bg, Bm @ Dg])
     C = np.hstack([Dm @ Cg, model.C])
     D = Dm @ Dg
-    Y = stationary_covariance(A, B, C, D, integrators if spectrum.cut_on == 0 else ())
+    # the model's own coefficients give each output's scale (the road generator's may be large: Pade states)
+    scale = np.abs(model.C).sum(axis=1) + np.abs(Dm).sum(axis=1)
+    Y = stationary_covariance(A, B, C, D, integrators if spectrum.cut_on == 0 else (), output_scale=scale)
     var = np.diag(Y).copy()
     return var, np.zeros_like(var), {"n_states": A.shape[0], "pade_order": pade_order if tau > 0 else 0}
 
@@ -506,8 +524,8 @@ def _lyapunov_exact_delay(model, channels, spectrum, V, tau, two_tracks, coheren
         Bp = B[S:] - Rr @ B[:S]
         G = [Eg[:, S:] @ Rr + Eg[:, :S] for Eg in E]
         g_sum = sum(G)
-        scale = np.maximum(sum(np.abs(Eg).sum(axis=1) for Eg in E) * max(1.0, np.abs(Rr).max()), 1e-300)
-        drift = np.abs(g_sum).max(axis=1) / scale > 1e-9
+        terms = sum(np.abs(Eg[:, S:]) @ np.abs(Rr) + np.abs(Eg[:, :S]) for Eg in E)
+        drift = _drifts(g_sum, terms, np.abs(model.C).sum(axis=1) + np.abs(model.D).sum(axis=1), Arr)
         g_rear = sum(G[g] for g in rear)
         P = _lyapunov_solve(Arr, Bp @ Bp.T)
         Phi = _expm(Arr, tau)
@@ -563,7 +581,8 @@ class _Spectra:
         idx = [c.index for c in channels]
         lam, Vm = np.linalg.eig(model.A)
         B = model.B[:, idx]
-        ok = np.linalg.cond(Vm) < 1e8 if lam.size else True
+        self.cond = float(np.linalg.cond(Vm)) if lam.size else 1.0
+        ok = self.cond < 1e8
         self.modal = bool(ok)
         if self.modal:
             self.lam, self.CV, self.WB = lam, model.C @ Vm, np.linalg.solve(Vm, B)
@@ -624,6 +643,7 @@ class _Spectra:
                     if oscillating:
                         phase = np.exp(-1j * omega * self.tau * (float(d1) - float(d2)))
                         osc += mult * rho * np.real(cross * phase)
+        self.auto = np.sum(np.abs(P) ** 2, axis=0) * Gz  # no cross terms: the scale of each output's PSD
         return steady * Gz, osc * Gz, env * Gz
 
 
@@ -687,23 +707,37 @@ def _psd(model, channels, spectrum, V, tau, two_tracks, coherence, track_width, 
     if tau > 0:
         dropped = (env[:, :nodes.size] * (nodes > f_c)) @ wk
     # power-law tails beyond the grid: S ~ f^q below lo and f^-p above hi, exponents fitted at the ends; the
-    # error of each tail is its change when the exponent is fitted a decade further in
-    Se = st[:, -8:] + env[:, -8:]
+    # error of each tail is its change when the exponent is fitted a decade further in. Below lo the delay
+    # terms do not oscillate (omega tau << 1) and may cancel (pitch, roll): the integrand itself is used;
+    # above hi their envelope bounds them. An end where the PSD is negligible against the output's scale
+    # (the integral of its PSD without cross terms, which cancel there) adds nothing but its bound.
+    Se = st[:, -8:] + np.concatenate([osc[:, -8:-4], np.zeros((st.shape[0], 4))], axis=1)
+    Se = np.maximum(Se, 0.0)
+    env_hi = env[:, -1] * hi  # the oscillating terms above hi, bounded by their envelope (~ S f)
+    scale = spectra.auto[:, :nodes.size] @ wk
     with np.errstate(divide="ignore", invalid="ignore"):
         q0 = np.log(Se[:, 1] / Se[:, 0]) / np.log(1.01)
         q1 = np.log(Se[:, 3] / Se[:, 2]) / np.log(1.01)
         p1 = -np.log(Se[:, 5] / Se[:, 4]) / np.log(1.01)
         p0 = -np.log(Se[:, 7] / Se[:, 6]) / np.log(1.01)
 
-        def head(q):
-            return np.where(Se[:, 0] == 0, 0.0, np.where(q > -1, Se[:, 0] * lo / (q + 1), np.inf))
+        def end(S_end, f_end, expo_term):
+            est = np.where(expo_term > 0, S_end * f_end / expo_term, np.inf)
+            tiny = S_end * f_end <= 1e-12 * scale
+            return np.where(S_end == 0, 0.0, np.where(tiny, 0.0, est)), np.where(tiny, S_end * f_end, 0.0)
 
-        def tail(p):
-            return np.where(Se[:, 7] == 0, 0.0, np.where(p > 1, Se[:, 7] * hi / (p - 1), np.inf))
-
-        var = var + head(q0) + tail(p0)
-        err = err + np.abs(head(q0) - head(q1)) + np.abs(tail(p0) - tail(p1)) + dropped
-        err = np.where(np.isfinite(var), err, np.inf)
+        head0, tiny_head = end(Se[:, 0], lo, q0 + 1)
+        head1, _ = end(Se[:, 0], lo, q1 + 1)
+        tail0, tiny_tail = end(Se[:, 7], hi, p0 - 1)
+        tail1, _ = end(Se[:, 7], hi, p1 - 1)
+        var = var + head0 + tail0
+        err = err + np.abs(head0 - head1) + np.abs(tail0 - tail1) + tiny_head + tiny_tail + dropped + env_hi
+        # rounding of the modal sums, ~ cond(V) eps of each output's scale; an output whose cross terms
+        # cancel its PSD (roll on identical left and right tracks) is zero to that rounding
+        rounding = 1e3 * np.finfo(float).eps * (spectra.cond if spectra.modal else 1.0) * scale
+        zero = np.abs(var) <= rounding
+        var, err = np.where(zero, 0.0, var), err + rounding
+        err = np.where(np.isfinite(var), np.nan_to_num(err, nan=np.inf), np.inf)
     return var, err, {"n_frequencies": int(f_all.size), "f_range_hz": (float(edges[0]), float(edges[-1]))}
 
 
