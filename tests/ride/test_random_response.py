@@ -278,3 +278,28 @@ def test_exact_delay_with_independent_tracks(models):
         np.testing.assert_allclose(a, b, rtol=1e-7)
     with pytest.raises(vehdyn.ParameterError, match="delay"):
         random_response(car4, "B", 8.0, wheelbase=2.5, track_coherence="identical", delay="approximate")
+
+
+def test_pitch_angle_is_finite_and_exact(half):
+    """A uniform lift does not pitch the car, so the pitch angle has a finite variance on the ISO road; the
+    PSD route's low-frequency end must use the (cancelling) delay terms themselves."""
+    pitch = vehdyn.LinearModel(half.A, half.B, np.eye(8)[1:2], np.zeros((1, 2)), states=half.states,
+                               inputs=half.inputs, outputs=["pitch_angle"])
+    a = random_response(pitch, "C", 20.0, wheelbase=2.7, delay="exact").rms[0]
+    b = random_response(pitch, "C", 20.0, method="psd", wheelbase=2.7)
+    assert np.isfinite(a) and a > 0
+    assert b.rms[0] == pytest.approx(a, rel=1e-7)
+    assert b.error[0] < 1e-6 * a
+
+
+def test_left_right_difference_on_identical_tracks_is_zero(models):
+    q = models.quarter_car(300, 60, 16000, 1000, 190000)
+    n = q.n_states
+    model = vehdyn.LinearModel(np.kron(np.eye(2), q.A), np.kron(np.eye(2), q.B),
+                               np.hstack([q.C[:1], -q.C[:1]]), np.hstack([q.D[:1], -q.D[:1]]),
+                               states=[f"x{k}" for k in range(2 * n)],
+                               inputs=["road_displacement_left", "road_velocity_left", "road_displacement_right",
+                                       "road_velocity_right"], outputs=["acceleration_difference"])
+    for method in ("lyapunov", "psd"):
+        res = random_response(model, "C", 20.0, method=method, track_coherence="identical")
+        assert res.rms[0] == pytest.approx(0.0, abs=1e-6)

@@ -685,9 +685,9 @@ def _psd(model, channels, spectrum, V, tau, two_tracks, coherence, track_width, 
         # terms' envelope integrates to less than rtol of the steady part: there they are dropped and
         # their envelope is counted in the error
         f0, w0, _ = _gauss_kronrod(edges)
-        st, _, env = spectra(f0, oscillating=False)
+        st, osc, env = spectra(f0)
         env_tail = np.cumsum((env * w0)[:, ::-1], axis=1)[:, ::-1]  # (outputs, f)
-        total = (st * w0).sum(axis=1)
+        total = np.abs(((st + osc) * w0).sum(axis=1))  # the delay terms may cancel most of it (pitch)
         ok = env_tail <= rtol * np.where(np.isfinite(total) & (total > 0), total, np.inf)[:, None]
         first = np.where(ok.any(axis=1), np.argmax(ok, axis=1), f0.size - 1)
         f_c = float(f0[first.max()])
