@@ -1,0 +1,169 @@
+"""Magic Formula moments: overturning Mx, rolling resistance My, aligning Mz (MF 5.2, 6.1, 6.2).
+
+Pacejka, *Tire and Vehicle Dynamics*, 3rd ed. (2012), eqs. 4.E31–4.E49 and 4.E68–4.E78, turn
+slip 4.91–4.104, with the substitutions MFeval 4.3.1 makes to match TNO MF-Tyre (noted at each
+equation): trail and residual-torque factors from Besselink et al. (2010) eqs. A54–A60, the MF 6.x
+rolling resistance of eq. A48, the TNO overturning-moment formula, and the empirical rules for
+loads below FZMIN and for rolling near standstill. ISO-W axes; see :mod:`vehdyn.tire.mf_forces`
+for the state ``s``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ._mf_ops import sign_nonzero
+from .mf_forces import _EPSILON, lateral_pure
+
+__all__ = ["overturning_moment", "rolling_resistance_moment", "aligning_moment"]
+
+_TWO_OVER_PI = 2.0 / math.pi
+
+
+def overturning_moment(xp, c, s, fy):
+    """Overturning moment Mx [N*m] (TNO MF-Tyre equation manual form of book eq. 4.E69).
+
+    Below FZMIN the load is replaced by Fz*(Fz/FZMIN)^2 (MFeval). When both QSX1–QSX11 and
+    QSX12–QSX14 are non-zero, MFeval uses eq. 49 of Besselink's draft paper, as here.
+    """
+    fz = xp.where(s.fz < c.FZMIN, s.fz * (s.fz / c.FZMIN) ** 2, s.fz)
+    fz0, r0, gamma = c.FNOMIN, c.UNLOADED_RADIUS, s.gamma
+    if c.mx_draft_form:
+        return r0 * fz * c.LMX * (
+            c.QSX1 * c.LVMX - c.QSX2 * gamma * (1 + c.PPMX1 * s.dpi) - c.QSX12 * gamma * xp.abs(gamma)
+            + c.QSX3 * fy / fz0
+            + c.QSX4 * xp.cos(c.QSX5 * xp.atan((c.QSX6 * fz / fz0) ** 2))
+            * xp.sin(c.QSX7 * gamma + c.QSX8 * xp.atan(c.QSX9 * fy / fz0))
+            + c.QSX10 * xp.atan(c.QSX11 * fz / fz0) * gamma
+        ) + r0 * fy * c.LMX * (c.QSX13 + c.QSX14 * xp.abs(gamma))
+    return r0 * fz * c.LMX * (
+        c.QSX1 * c.LVMX - c.QSX2 * gamma * (1 + c.PPMX1 * s.dpi) + c.QSX3 * (fy / fz0)
+        + c.QSX4 * xp.cos(c.QSX5 * xp.atan((c.QSX6 * (fz / fz0)) ** 2))
+        * xp.sin(c.QSX7 * gamma + c.QSX8 * xp.atan(c.QSX9 * (fy / fz0)))
+        + c.QSX10 * xp.atan(c.QSX11 * (fz / fz0)) * gamma
+    ) + r0 * c.LMX * (fy * (c.QSX13 + c.QSX14 * xp.abs(gamma)) - fz * c.QSX12 * gamma * xp.abs(gamma))
+
+
+def rolling_resistance_moment(xp, c, s, fx):
+    """Rolling resistance moment My [N*m] (MF 6.x: Besselink 2010 eq. A48; MF 5.2: MF-Tyre manual).
+
+    Negative when rolling forwards (ISO-W). Uses the unclamped load (``s.fz_input``) reduced to
+    Fz^2/FZMIN below FZMIN, the input speed and the input slip ratio. Near zero wheel speed
+    (MFeval's empirical rule), with h = VXLOW/|vx| - 1 and l = -1 - VXLOW - h, My is multiplied
+    by sin(pi/2*(kappa + 1)/(h + 1)) for l <= kappa <= h, flips sign for kappa < l, and is 0 at
+    vx = 0; it flips sign for vx < 0.
+    """
+    fz = xp.where(s.fz_input < c.FZMIN, s.fz_input * (s.fz_input / c.FZMIN), s.fz_input)
+    vx, kappa = s.vx, s.kappa_input
+    fz0, v0 = c.FNOMIN, c.LONGVL
+    speed_terms = c.QSY1 + c.QSY2 * (fx / fz0) + c.QSY3 * xp.abs(vx / v0) + c.QSY4 * (vx / v0) ** 4
+    if c.is_mf52:
+        my = -c.UNLOADED_RADIUS * fz * c.LMY * speed_terms
+    else:
+        my = -c.UNLOADED_RADIUS * fz0 * c.LMY * (
+            speed_terms + (c.QSY5 + c.QSY6 * (fz / fz0)) * s.gamma**2
+        ) * ((fz / fz0) ** c.QSY7 * (s.pressure / c.NOMPRES) ** c.QSY8)
+    my = xp.where(vx < 0, -my, my)
+    high = xp.div(c.VXLOW, xp.abs(vx)) - 1
+    low = -1 - c.VXLOW - high
+    ramp = xp.sin(((math.pi / 2) * (kappa + 1)) / (high + 1))
+    my = xp.where((kappa >= low) & (kappa <= high) if not xp.scalar else (low <= kappa <= high),
+                  my * ramp, my)
+    my = xp.where(kappa < low, -my, my)
+    return xp.where(vx == 0, 0.0, my)
+
+
+class AligningMoment:
+    """Aligning moment Mz [N*m], pneumatic trail t [m] and residual torque Mzr [N*m]."""
+
+    __slots__ = ("mz", "trail", "residual")
+
+    def __init__(self, mz, trail, residual):
+        self.mz, self.trail, self.residual = mz, trail, residual
+
+
+def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
+    """Aligning moment of combined slip (book eqs. 4.E31–4.E49, 4.E71–4.E78; MFeval's forms).
+
+    Parameters
+    ----------
+    pure : LateralPure
+        Pure lateral slip results at the actual camber.
+    fy, fx : combined-slip forces [N]; kxk : slip stiffness [N]; gyk : Gyk [-]; svyk : SVyk [N].
+
+    Notes
+    -----
+    * The trail and residual torque use the load raised to FZMIN (limit mode), the trail peak Dt
+      uses QDZ3*gamma (not |gamma|) and the slope Bt uses QBZ4, QBZ5 (Besselink 2010 A58, A60);
+      the equivalent slip angles use tan (A54, A55) and the arm s uses FNOMIN (A56); t is scaled
+      by LFZO (TNO). MF 6.x: Mz' = -t*Gyk*Fy0(gamma = 0); MF 5.2: Mz' = -t*(Fy - SVyk).
+    * Turn slip: Cr = zeta7 = 2/pi*acos(Mzp90/|Drp|) (MF-Tyre manual). MFeval evaluates this as
+      written, which gives NaN at phit = 0 (0/0), -Inf or NaN when the camber stiffness Kzgr0 is
+      0 (x/0) and a complex value when the ratio exceeds 1. vehdyn takes the phit -> 0 limit of
+      the ratio at phit = 0 and limits it to 1 (Cr = 0, i.e. Mzr = Dr), so Mz stays finite and
+      continuous; wherever MFeval's value is finite and real, the two agree.
+    """
+    r0, fz0p = c.UNLOADED_RADIUS, c.Fz0_prime
+    dfz, gamma, gamma_star, alpha_star = s.dfz, s.gamma, s.gamma_star, s.alpha_star
+    fz = s.fz_moment
+    # --- pure-slip trail and residual torque factors (book 4.E33-4.E47) ---
+    sht = c.QHZ1 + c.QHZ2 * dfz + (c.QHZ3 + c.QHZ4 * dfz) * gamma_star  # 4.E35
+    kya_p = pure.kya + _EPSILON * sign_nonzero(xp, pure.kya)  # 4.E39
+    alpha_r = alpha_star + (pure.shy + pure.svy / kya_p)  # 4.E37, 4.E38
+    alpha_t = alpha_star + sht  # 4.E34
+    if s.turn_slip:
+        zeta5 = xp.cos(xp.atan(c.QDTP1 * r0 * s.phi))  # 4.91
+        zeta6 = xp.cos(xp.atan(c.QBRP1 * r0 * s.phi))  # 4.102
+    else:
+        zeta5 = zeta6 = 1.0
+    dt = (c.QDZ1 + c.QDZ2 * dfz) * (1 - c.PPZ1 * s.dpi) * (1 + c.QDZ3 * gamma + c.QDZ4 * gamma**2) \
+        * fz * (r0 / fz0p) * c.LTR * zeta5  # A60 (4.E42, 4.E43)
+    bt = (c.QBZ1 + c.QBZ2 * dfz + c.QBZ3 * dfz**2) * (1 + c.QBZ4 * gamma + c.QBZ5 * xp.abs(gamma)) \
+        * c.LKY / c.LMUY  # A58 (4.E40)
+    ct = c.QCZ1  # 4.E41
+    et = (c.QEZ1 + c.QEZ2 * dfz + c.QEZ3 * dfz**2) \
+        * (1 + (c.QEZ4 + c.QEZ5 * gamma_star) * (2 / math.pi) * xp.atan(bt * ct * alpha_t))  # 4.E44
+    if s.limits:
+        et = xp.minimum(et, 1.0)
+    if s.turn_slip:
+        mzp_inf = c.QCRP1 * xp.abs(pure.muy) * r0 * fz * xp.sqrt(fz / fz0p) * c.LMP  # 4.95
+        mzp_inf = xp.where(mzp_inf < 0, 1e-6, mzp_inf)
+        c_drp = c.QDRP1  # 4.96
+        d_drp = mzp_inf / math.sin(0.5 * math.pi * c_drp)  # 4.94
+        kzgr0 = fz * r0 * (c.QDZ8 * c.QDZ9 * dfz + (c.QDZ10 + c.QDZ11 * dfz * xp.abs(gamma))) * c.LKZC  # 4.99
+        b_drp = xp.div(kzgr0, c_drp * d_drp * (1 - s.eps_gamma))
+        drp = d_drp * xp.sin(c_drp * xp.atan(b_drp * r0 * s.phit))
+        mzp90 = mzp_inf * _TWO_OVER_PI * xp.atan(c.QCRP2 * r0 * xp.abs(s.phit)) * gyk  # 4.103
+        ratio = xp.div(mzp90, xp.abs(drp))
+        ratio_at_zero_phit = xp.div(mzp_inf * _TWO_OVER_PI * c.QCRP2 * gyk * xp.abs(1 - s.eps_gamma),
+                                    xp.abs(kzgr0))
+        ratio = xp.where(xp.isnan(ratio), ratio_at_zero_phit, ratio)
+        ratio = xp.where(xp.isnan(ratio), 1.0, xp.minimum(ratio, 1.0))
+        cr = _TWO_OVER_PI * xp.acos(ratio)  # zeta7
+        zeta8 = 1 + drp
+        zeta0 = 0.0
+    else:
+        cr, zeta8, zeta0 = 1.0, 1.0, 1.0
+    dr = fz * r0 * ((c.QDZ6 + c.QDZ7 * dfz) * c.LRES * pure.zeta2
+                    + ((c.QDZ8 + c.QDZ9 * dfz) * (1 + c.PPZ2 * s.dpi)
+                       + (c.QDZ10 + c.QDZ11 * dfz) * xp.abs(gamma_star)) * gamma_star * c.LKZC * zeta0) \
+        * c.LMUY * xp.sign(s.vx) * xp.cos(alpha_star) + zeta8 - 1  # 4.E47 (MFeval adds zeta8 - 1)
+    br = (c.QBZ9 * c.LKY / c.LMUY + c.QBZ10 * pure.by * pure.cy) * zeta6  # 4.E45
+    # --- combined slip (A54-A56, 4.E71-4.E75) ---
+    kappa_term = (kxk / kya_p) ** 2 * s.kappa**2
+    alpha_r_eq = xp.atan(xp.sqrt(xp.tan(alpha_r) ** 2 + kappa_term)) * xp.sign(alpha_r)  # A54
+    alpha_t_eq = xp.atan(xp.sqrt(xp.tan(alpha_t) ** 2 + kappa_term)) * xp.sign(alpha_t)  # A55
+    arm = r0 * (c.SSZ1 + c.SSZ2 * (fy / c.FNOMIN) + (c.SSZ3 + c.SSZ4 * dfz) * gamma) * c.LS  # A56
+    residual = dr * xp.cos(cr * xp.atan(br * alpha_r_eq)) * s.low_speed  # 4.E75
+    bta = bt * alpha_t_eq
+    trail = dt * xp.cos(ct * xp.atan(bta - et * (bta - xp.atan(bta)))) * s.cos_alpha_prime \
+        * c.LFZO * s.low_speed  # 4.E73
+    if c.is_mf52:
+        mz = -trail * (fy - svyk) + residual + arm * fx
+    else:
+        if s.camber_free:
+            fy0_flat = pure.fy0
+        else:
+            fy0_flat = lateral_pure(xp, c, s, 0.0 * gamma_star, s.turn_slip).fy0
+        mz = -trail * (gyk * fy0_flat) + residual + arm * fx  # 4.E71, 4.E72, 4.E74
+    return AligningMoment(mz, trail, residual)

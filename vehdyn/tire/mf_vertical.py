@@ -1,0 +1,213 @@
+"""Magic Formula rolling radius, vertical model, contact patch and carcass stiffness.
+
+MF 6.1/6.2: Besselink, Schmeitz, Pacejka, "An improved Magic Formula/Swift tyre model that can
+handle inflation pressure changes", Vehicle System Dynamics 48 (2010) sup1, eqs. 1–19 (free and
+effective rolling radius, vertical stiffness, contact patch, relaxation lengths) and Pacejka
+(2012) eq. A3.3; MF 6.2: the MF-Tyre/MF-Swift 6.2 equation manual (loaded radius as the root of
+Fz(Rl)); MF 5.2: the MF-Tyre 5.2 manual (contact length, relaxation lengths). Implemented as
+MFeval 4.3.1 does, including its iteration rules. All functions work on numpy arrays only.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "rolling_radius",
+    "loaded_radius_mf61",
+    "loaded_radius_mf62",
+    "contact_patch",
+    "carcass_stiffness",
+]
+
+_EPS = np.finfo(float).eps
+_RADIUS_TOLERANCE = 1e-9  # [m], MFeval's convergence test on Re
+_MAX_ITERATIONS = 100
+
+
+def _free_radius(c, omega):
+    """Free rolling radius R_omega [m] with centrifugal growth (Besselink 2010 eq. 1)."""
+    r0 = c.UNLOADED_RADIUS
+    return r0 * (c.Q_RE0 + c.Q_V1 * ((omega * r0) / c.LONGVL) ** 2)
+
+
+def rolling_radius(c, fz, kappa, vx, dpi, omega=None):
+    """Effective rolling radius Re [m], free radius R_omega [m] and wheel spin omega [rad/s].
+
+    Re = R_omega - Fz0/Cz*(DREFF*atan(BREFF*Fz/Fz0) + FREFF*Fz/Fz0) (Besselink 2010 eq. 7),
+    Cz = VERTICAL_STIFFNESS*(1 + PFZ1*dpi). Without a measured spin, omega = (1 + kappa)*vx/Re
+    (book eq. 2.5) is found by fixed-point iteration from Re = 0.965*R0, each point iterated until
+    its own Re changes by less than 1e-9 m (MFeval's rule applied per point; MFeval stops the
+    whole batch when any point converges, see the reference README). With a given omega, MFeval
+    adds eps to it (to avoid R_omega = 0); so does this function.
+
+    Parameters
+    ----------
+    fz : load [N] (negative already set to 0, not clamped); kappa : input slip ratio [-];
+    vx : speed [m/s]; dpi : relative pressure change [-]; omega : wheel spin [rad/s] or None.
+    """
+    cz = c.VERTICAL_STIFFNESS * (1 + c.PFZ1 * dpi)
+    deflection_term = (c.FNOMIN / cz) * (c.DREFF * np.arctan(c.BREFF * (fz / c.FNOMIN))
+                                         + c.FREFF * (fz / c.FNOMIN))
+    if omega is not None:
+        omega = omega + _EPS
+        r_omega = _free_radius(c, omega)
+        return r_omega - deflection_term, r_omega, omega
+    shape = np.broadcast(fz, kappa, vx, dpi).shape
+    re = np.full(shape, c.UNLOADED_RADIUS * 0.965)
+    re_old = np.full(shape, c.UNLOADED_RADIUS)
+    omega = np.zeros(shape)
+    r_omega = np.broadcast_to(_free_radius(c, omega), shape).copy()
+    speed = kappa * vx + vx
+    deflection_term = np.broadcast_to(deflection_term, shape)
+    active = np.abs(re_old - re) > _RADIUS_TOLERANCE
+    for _ in range(_MAX_ITERATIONS):
+        if not active.any():
+            break
+        if active.all():
+            re_old = re
+            omega = np.broadcast_to(speed / re, shape)
+            r_omega = _free_radius(c, omega)
+            re = r_omega - deflection_term
+        else:
+            index = np.nonzero(active)
+            re_old = re.copy()
+            omega_new = np.broadcast_to(speed, shape)[index] / re[index]
+            omega = omega.copy()
+            omega[index] = omega_new
+            r_omega = r_omega.copy()
+            r_omega[index] = _free_radius(c, omega_new)
+            re = re.copy()
+            re[index] = r_omega[index] - deflection_term[index]
+        active = np.abs(re_old - re) > _RADIUS_TOLERANCE
+    return re, r_omega, omega
+
+
+def loaded_radius_mf61(c, fz, fx, fy, dpi, omega, r_omega):
+    """Deflection rho [m], loaded radius Rl [m] and vertical stiffness Fz/rho [N/m], MF 6.1 / 5.2.
+
+    Solves Fz = (Q_FZ1*rho/R0 + Q_FZ2*(rho/R0)^2)*(1 + Q_V2*R0/V0*|omega| - (Q_FCX*Fx/Fz0)^2
+    - (Q_FCY*Fy/Fz0)^2)*(1 + PFZ1*dpi)*Fz0 (Pacejka 2012 eq. A3.3) for rho, with
+    Q_FZ1 = sqrt((Cz0*R0/Fz0)^2 - 4*Q_FZ2); Rl = R_omega - rho. ``fz`` is the load raised to FZMIN
+    (limit mode). At fz = 0 rho is reported as 1e-6 m (MFeval's guard against 0/0 in Fz/rho).
+    """
+    r0, fz0 = c.UNLOADED_RADIUS, c.FNOMIN
+    q_fz1 = np.sqrt((c.VERTICAL_STIFFNESS * r0 / fz0) ** 2 - 4 * c.Q_FZ2)
+    external = (1 + c.Q_V2 * (r0 / c.LONGVL) * np.abs(omega) - (c.Q_FCX * fx / fz0) ** 2
+                - (c.Q_FCY * fy / fz0) ** 2) * (1 + c.PFZ1 * dpi) * fz0
+    a, b, cc = c.Q_FZ2, q_fz1, -(fz / external)
+    if a != 0:
+        x = (-b + np.sqrt(b**2 - 4 * a * cc)) / (2 * a)
+    else:  # linear load-deflection law (MFeval would divide by zero)
+        x = -cc / b
+    rho_free = np.fmax(x * r0, 0.0)
+    loaded = np.fmax(r_omega - rho_free, 0.0)
+    rho = np.where(fz == 0, 1e-6, rho_free)
+    return rho, loaded, fz / rho
+
+
+def _load_mf62(c, gamma, omega, r_omega, dpi, radius, fx, fy):
+    """Vertical load [N] and deflection [m] at a given loaded radius (MF 6.2 manual)."""
+    r0, fz0 = c.UNLOADED_RADIUS, c.FNOMIN
+    q_fz1 = np.sqrt((c.VERTICAL_STIFFNESS * r0 / fz0) ** 2 - 4 * c.Q_FZ2)
+    ratio = radius / r_omega
+    camber_shift = (c.Q_FYS1 + c.Q_FYS2 * ratio + c.Q_FYS3 * ratio**2) * gamma
+    rho_free = np.fmax(r_omega - radius, 0.0)
+    tread_width = (1.075 - 0.5 * c.ASPECT_RATIO) * c.WIDTH
+    rho_gamma = ((c.Q_CAM1 * radius + c.Q_CAM2 * radius**2) * gamma) ** 2 * (tread_width / 8) \
+        * np.abs(np.tan(gamma)) / ((c.Q_CAM1 * r_omega + c.Q_CAM2 * r_omega**2) * gamma) ** 2 \
+        - (c.Q_CAM3 * rho_free * np.abs(gamma))
+    rho_gamma = np.where(np.isnan(rho_gamma), 0.0, rho_gamma)
+    rho = np.fmax(rho_free + rho_gamma, 1e-12)
+    correction = (1 + c.Q_V2 * (r0 / c.LONGVL) * np.abs(omega) - ((c.Q_FCX * fx) / fz0) ** 2
+                  - ((rho / r0) ** c.Q_FCY2 * (c.Q_FCY * (fy - camber_shift) / fz0)) ** 2) * (1 + c.PFZ1 * dpi)
+    return correction * (q_fz1 * (rho / r0) + c.Q_FZ2 * (rho / r0) ** 2) * fz0, rho
+
+
+def loaded_radius_mf62(c, fz, fz_clamped, gamma, fx, fy, dpi, omega, r_omega):
+    """Deflection, loaded radius and vertical stiffness of MF 6.2.
+
+    The loaded radius is the root of Fz(Rl) = fz (MF 6.2 manual), found with MFeval's secant
+    iteration (start 0.95*R0 and R0, at most 18 updates, tolerance FNOMIN*1e-6 N per point).
+    Where the equation has no root (MFeval returns Rl = NaN, rho = 1e-12 m, Cz = 1e16 N/m), the
+    three outputs are NaN here. The stiffness is fz_clamped/rho (MFeval: the FZMAX-clamped load).
+    """
+    shape = np.broadcast(fz, gamma, fx, fy, dpi, omega, r_omega).shape
+    r0 = np.full(shape, c.UNLOADED_RADIUS)
+    tolerance = c.FNOMIN * 1e-6
+
+    def residual(radius):
+        return _load_mf62(c, gamma, omega, r_omega, dpi, radius, fx, fy)[0] - fz
+
+    x0, x1 = r0 * 0.95, r0
+    y0, y1 = residual(x0), residual(x1)
+    not_converged = np.ones(shape, dtype=bool)
+    x = x1.copy()
+    y = y1
+    for _ in range(3, 21):
+        trial = x1 - (x1 - x0) / (y1 - y0) * y1
+        x = np.where(not_converged, trial, x)
+        y = residual(x)
+        not_converged &= np.abs(y) > tolerance
+        if not not_converged.any():
+            break
+        better = np.abs(y1) < np.abs(y0)
+        x0 = np.where(better, x1, x0)
+        y0 = np.where(better, y1, y0)
+        x1, y1 = x, y
+    loaded = x
+    _, rho = _load_mf62(c, gamma, omega, r_omega, dpi, loaded, fx, fy)
+    rho = np.where(fz_clamped == 0, 1e-6, rho)
+    stiffness = fz_clamped / rho
+    failed = ~np.isfinite(loaded) | ~(np.abs(y) <= tolerance)
+    nan = np.nan
+    return np.where(failed, nan, rho), np.where(failed, nan, loaded), np.where(failed, nan, stiffness)
+
+
+def contact_patch(c, fz, dpi):
+    """Contact patch half length a [m] and half width b [m].
+
+    MF 6.x: a = R0*(Q_RA2*Fz/(Cz*R0) + Q_RA1*sqrt(Fz/(Cz*R0))), b = W*(Q_RB2*Fz/(Cz*R0) +
+    Q_RB1*(Fz/(Cz*R0))^(1/3)) (Besselink 2010 eqs. 9, 10); MF 5.2: a = R0*(Q_A2*Fz/Fz0 +
+    Q_A1*sqrt(Fz/Fz0)), b = W/2, with MFeval's empirical Q_A1, Q_A2 when both are 0. The load is
+    limited to the bottoming load (R0 - RIM_RADIUS - BOTTOM_OFFST)*Cz (MFeval).
+    """
+    r0, width, fz0 = c.UNLOADED_RADIUS, c.WIDTH, c.FNOMIN
+    cz = c.VERTICAL_STIFFNESS * (1 + c.PFZ1 * dpi)
+    bottoming = (r0 - fz / cz) - (c.RIM_RADIUS + c.BOTTOM_OFFST) < 0
+    fz = np.where(bottoming, (r0 - c.RIM_RADIUS - c.BOTTOM_OFFST) * cz, fz)
+    if c.is_mf52:
+        q_a1, q_a2 = c.Q_A1, c.Q_A2
+        if q_a1 == 0 and q_a2 == 0:
+            y = np.log10(r0 * (c.VERTICAL_STIFFNESS / fz0))
+            q_a1 = -0.0388 * y**3 + 0.2509 * y**2 + -0.6283 * y + 0.6279
+            q_a2 = 1.693 * q_a1**2
+        a = r0 * (q_a2 * (fz / fz0) + q_a1 * np.sqrt(fz / fz0))
+        b = np.broadcast_to(width / 2, np.shape(a))
+    else:
+        load = fz / (cz * r0)
+        a = r0 * (c.Q_RA2 * load + c.Q_RA1 * np.sqrt(load))
+        b = width * (c.Q_RB2 * load + c.Q_RB1 * load ** (1 / 3))
+    return a, b
+
+
+def carcass_stiffness(c, fz, gamma, dpi, kxk, kya):
+    """Carcass stiffnesses Cx, Cy [N/m] and relaxation lengths sigma_x, sigma_y [m].
+
+    Cx = cx0*(1 + PCFX1*dfz + PCFX2*dfz^2)*(1 + PCFX3*dpi), Cy likewise (Besselink 2010 eqs. 17,
+    18); MF 6.x: sigma = |K/C| (eq. 19); MF 5.2: sigma_x = (PTX1 + PTX2*dfz)*exp(-PTX3*dfz)*
+    LSGKP*R0*Fz/Fz0, sigma_y = PTY1*sin(2*atan(Fz/(PTY2*Fz0')))*(1 - PKY3*|gamma|)*R0*LFZO*LSGAL
+    (MF-Tyre 5.2 manual).
+    """
+    dfz = (fz - c.Fz0_prime) / c.Fz0_prime
+    cx = c.LONGITUDINAL_STIFFNESS * (1 + c.PCFX1 * dfz + c.PCFX2 * dfz**2) * (1 + c.PCFX3 * dpi)
+    cy = c.LATERAL_STIFFNESS * (1 + c.PCFY1 * dfz + c.PCFY2 * dfz**2) * (1 + c.PCFY3 * dpi)
+    if c.is_mf52:
+        r0 = c.UNLOADED_RADIUS
+        sigma_x = (c.PTX1 + c.PTX2 * dfz) * np.exp(-c.PTX3 * dfz) * c.LSGKP * r0 * fz / c.FNOMIN
+        sigma_y = c.PTY1 * np.sin(2 * np.arctan(fz / (c.PTY2 * c.Fz0_prime))) * (1 - c.PKY3 * np.abs(gamma)) \
+            * r0 * c.LFZO * c.LSGAL
+    else:
+        sigma_x = np.abs(kxk / cx)
+        sigma_y = np.abs(kya / cy)
+    return cx, cy, sigma_x, sigma_y

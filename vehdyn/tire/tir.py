@@ -1,0 +1,396 @@
+"""Reading and writing ``.tir`` tire property files (MSC/TNO "TeimOrbit" format).
+
+A ``.tir`` file is a list of ``[SECTION]`` headers followed by ``KEY = value`` lines; ``$`` starts a
+comment (also after a value), ``!`` starts a comment line, values are numbers or ``'quoted'``
+strings, and a few legacy sections (``[SHAPE]``) hold tables whose lines have no ``=``.
+
+:func:`read_tir` keeps every key verbatim, grouped by section, converts the dimensional
+parameters to SI once according to ``[UNITS]``, and fills the parameters a Magic Formula
+evaluation needs but the file lacks with MFeval 4.3.1's documented defaults
+(:data:`MFEVAL_DEFAULTS`), listing them in :attr:`TirParameters.defaulted`.
+:func:`write_tir` writes a file that :func:`read_tir` reads back to equal values (numbers are
+written with ``repr``, i.e. exactly).
+
+Version detection (Magic Formula variant of the file):
+
+* ``FITTYP = 6`` or ``21`` -> ``"5.2"``; ``61`` -> ``"6.1"``; ``62`` -> ``"6.2"``;
+* no ``FITTYP`` but ``PROPERTY_FILE_FORMAT = 'PAC2002'`` (or ``'MF_05'``) -> ``"5.2"``;
+* anything else -> ``None`` (the file is read, but :class:`vehdyn.tire.MagicFormula` refuses it).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from types import MappingProxyType
+from typing import Mapping
+
+from ..errors import TirFileError
+
+__all__ = ["TirParameters", "read_tir", "write_tir", "MFEVAL_DEFAULTS", "VERSION_BY_FITTYP"]
+
+VERSION_BY_FITTYP = {6: "5.2", 21: "5.2", 61: "6.1", 62: "6.2"}
+"""Magic Formula version for each supported ``FITTYP`` value."""
+
+_PAC2002_FORMATS = {"PAC2002", "MF_05"}
+
+# Sections whose body is a table (lines without '='), skipped by the parser and kept verbatim.
+_TABLE_SECTIONS = {"SHAPE"}
+
+# --- MFeval 4.3.1 readTIR defaults -------------------------------------------------------------
+# Values MFeval uses for a parameter that the file does not define (MFeval 4.3.1, readTIR.m).
+# Several are not neutral (QSY3, QSY4, QSY7, QSY8, RBX1, RBX2, RVY4, PKY4, Q_FZ2, FZMIN, FZMAX),
+# so a file that omits them is evaluated with these values, exactly as MFeval does.
+_COMMON_DEFAULTS = dict(
+    FITTYP=0, TYRESIDE="LEFT", LONGVL=16.7, VXLOW=1.0, ROAD_INCREMENT=0.01, ROAD_DIRECTION=1,
+    PROPERTY_FILE_FORMAT="default", USER_SUB_ID=815, N_TIRE_STATES=4, USE_MODE=124,
+    HMAX_LOCAL=2.5e-4, TIME_SWITCH_INTEG=0.1,
+    UNLOADED_RADIUS=0.3135, WIDTH=0.205, ASPECT_RATIO=0.6, RIM_RADIUS=0.1905, RIM_WIDTH=0.152,
+    INFLPRES=220000.0, NOMPRES=220000.0,
+    MASS=9.3, IXX=0.391, IYY=0.736, BELT_MASS=7.0, BELT_IXX=0.34, BELT_IYY=0.6, GRAVITY=-9.81,
+    FNOMIN=4000.0, VERTICAL_STIFFNESS=200000.0, VERTICAL_DAMPING=50.0, MC_CONTOUR_A=0.5,
+    MC_CONTOUR_B=0.5, BREFF=8.4, DREFF=0.27, FREFF=0.07, Q_RE0=1.0, Q_V1=0.0, Q_V2=0.0,
+    Q_FZ2=1.0e-4, Q_FCX=0.0, Q_FCY=0.0, Q_CAM=0.0, PFZ1=0.0, BOTTOM_OFFST=0.01,
+    BOTTOM_STIFF=2000000.0,
+    LONGITUDINAL_STIFFNESS=300000.0, LATERAL_STIFFNESS=100000.0, YAW_STIFFNESS=5000.0,
+    FREQ_LONG=80.0, FREQ_LAT=40.0, FREQ_YAW=50.0, FREQ_WINDUP=70.0, DAMP_LONG=0.04,
+    DAMP_LAT=0.04, DAMP_YAW=0.04, DAMP_WINDUP=0.04, DAMP_RESIDUAL=0.002, DAMP_VLOW=0.001,
+    Q_BVX=0.0, Q_BVT=0.0, PCFX1=0.0, PCFX2=0.0, PCFX3=0.0, PCFY1=0.0, PCFY2=0.0, PCFY3=0.0,
+    PCMZ1=0.0,
+    Q_RA1=0.5, Q_RA2=1.0, Q_RB1=1.0, Q_RB2=-1.0, ELLIPS_SHIFT=0.8, ELLIPS_LENGTH=1.0,
+    ELLIPS_HEIGHT=1.0, ELLIPS_ORDER=1.8, ELLIPS_MAX_STEP=0.025, ELLIPS_NWIDTH=10,
+    ELLIPS_NLENGTH=10,
+    PRESMIN=10000.0, PRESMAX=1000000.0, FZMIN=100.0, FZMAX=10000.0, KPUMIN=-1.5, KPUMAX=1.5,
+    ALPMIN=-1.5, ALPMAX=1.5, CAMMIN=-0.175, CAMMAX=0.175,
+    LFZO=1.0, LCX=1.0, LMUX=1.0, LEX=1.0, LKX=1.0, LHX=1.0, LVX=1.0, LCY=1.0, LMUY=1.0,
+    LEY=1.0, LKY=1.0, LHY=1.0, LVY=1.0, LTR=1.0, LRES=1.0, LXAL=1.0, LYKA=1.0, LVYKA=1.0,
+    LS=1.0, LKYC=1.0, LKZC=1.0, LVMX=1.0, LMX=1.0, LMY=1.0, LMP=1.0,
+    PCX1=1.65, PDX1=1.3, PDX2=-0.15, PDX3=0.0, PEX1=0.0, PEX2=0.0, PEX3=0.0, PEX4=0.0,
+    PKX1=20.0, PKX2=0.0, PKX3=0.0, PHX1=0.0, PHX2=0.0, PVX1=0.0, PVX2=0.0, PPX1=0.0, PPX2=0.0,
+    PPX3=0.0, PPX4=0.0, RBX1=20.0, RBX2=15.0, RBX3=0.0, RCX1=1.0, REX1=0.0, REX2=0.0, RHX1=0.0,
+    QSX1=0.0, QSX2=0.0, QSX3=0.0, QSX4=5.0, QSX5=1.0, QSX6=10.0, QSX7=0.0, QSX8=0.0, QSX9=0.4,
+    QSX10=0.0, QSX11=5.0, QSX12=0.0, QSX13=0.0, QSX14=0.0, PPMX1=0.0,
+    PCY1=1.3, PDY1=1.1, PDY2=-0.15, PDY3=0.0, PEY1=0.0, PEY2=0.0, PEY3=0.0, PEY4=0.0, PEY5=0.0,
+    PKY1=-20.0, PKY2=1.0, PKY3=0.0, PKY4=2.0, PKY5=0.0, PKY6=-1.0, PKY7=0.0, PHY1=0.0, PHY2=0.0,
+    PVY1=0.0, PVY2=0.0, PVY3=0.0, PVY4=0.0, PPY1=0.0, PPY2=0.0, PPY3=0.0, PPY4=0.0, PPY5=0.0,
+    RBY1=10.0, RBY2=10.0, RBY3=0.0, RBY4=0.0, RCY1=1.0, REY1=0.0, REY2=0.0, RHY1=0.0, RHY2=0.0,
+    RVY1=0.0, RVY2=0.0, RVY3=0.0, RVY4=20.0, RVY5=2.0, RVY6=10.0,
+    QSY1=0.01, QSY2=0.0, QSY3=4.0e-4, QSY4=4.0e-5, QSY5=0.0, QSY6=0.0, QSY7=0.85, QSY8=-0.4,
+    QBZ1=10.0, QBZ2=0.0, QBZ3=0.0, QBZ4=0.0, QBZ5=0.0, QBZ9=10.0, QBZ10=0.0, QCZ1=1.1,
+    QDZ1=0.12, QDZ2=0.0, QDZ3=0.0, QDZ4=0.0, QDZ6=0.0, QDZ7=0.0, QDZ8=-0.05, QDZ9=0.0,
+    QDZ10=0.0, QDZ11=0.0, QEZ1=0.0, QEZ2=0.0, QEZ3=0.0, QEZ4=0.0, QEZ5=0.0, QHZ1=0.0, QHZ2=0.0,
+    QHZ3=0.0, QHZ4=0.0, PPZ1=0.0, PPZ2=0.0, SSZ1=0.0, SSZ2=0.0, SSZ3=0.0, SSZ4=0.0,
+    PDXP1=0.4, PDXP2=0.0, PDXP3=0.0, PKYP1=1.0, PDYP1=0.4, PDYP2=0.0, PDYP3=0.0, PDYP4=0.0,
+    PHYP1=1.0, PHYP2=0.15, PHYP3=0.0, PHYP4=-4.0, PECP1=0.5, PECP2=0.0, QDTP1=10.0,
+    QCRP1=0.2, QCRP2=0.1, QBRP1=0.1, QDRP1=1.0,
+)
+_MF62_DEFAULTS = dict(
+    FUNCTION_NAME="default", SWITCH_INTEG=0, Q_FCY2=0.0, Q_CAM1=0.0, Q_CAM2=0.0, Q_CAM3=0.0,
+    Q_FYS1=0.0, Q_FYS2=0.0, Q_FYS3=0.0, ENV_C1=0.0, ENV_C2=0.0,
+)
+_MF52_DEFAULTS = dict(
+    Q_A1=0.0, Q_A2=0.0, PHY3=0.0, PTX1=0.0, PTX2=0.0, PTX3=0.0, PTY1=0.0, PTY2=0.0, LSGKP=1.0,
+    LSGAL=1.0,
+)
+MFEVAL_DEFAULTS: Mapping[str, float | str] = MappingProxyType(
+    {**_COMMON_DEFAULTS, **_MF62_DEFAULTS, **_MF52_DEFAULTS})
+"""Every parameter MFeval 4.3.1 knows, with the value it uses when a file lacks it."""
+
+# Parameters each version reads (MF 5.2 files never use the MF 6.2 vertical/camber parameters
+# and the MF 6.x files never use the MF 5.2 contact-length and relaxation parameters).
+_USED_BY_VERSION = {
+    "5.2": set(_COMMON_DEFAULTS) | set(_MF52_DEFAULTS),
+    "6.1": set(_COMMON_DEFAULTS),
+    "6.2": set(_COMMON_DEFAULTS) | set(_MF62_DEFAULTS),
+}
+
+# --- [UNITS] ------------------------------------------------------------------------------------
+_UNIT_FACTORS = {
+    "LENGTH": {"meter": 1.0, "metre": 1.0, "m": 1.0, "mm": 1e-3, "millimeter": 1e-3,
+               "cm": 1e-2, "centimeter": 1e-2, "km": 1e3, "kilometer": 1e3, "inch": 0.0254,
+               "in": 0.0254, "foot": 0.3048, "ft": 0.3048},
+    "FORCE": {"newton": 1.0, "n": 1.0, "kn": 1e3, "kilo_newton": 1e3, "kilonewton": 1e3,
+              "pound_force": 4.4482216152605, "lbf": 4.4482216152605,
+              "kilogram_force": 9.80665, "kgf": 9.80665, "dyne": 1e-5},
+    "ANGLE": {"radian": 1.0, "radians": 1.0, "rad": 1.0, "degree": math.pi / 180.0,
+              "degrees": math.pi / 180.0, "deg": math.pi / 180.0},
+    "MASS": {"kg": 1.0, "kilogram": 1.0, "gram": 1e-3, "g": 1e-3, "pound_mass": 0.45359237,
+             "lbm": 0.45359237, "tonne": 1e3},
+    "TIME": {"second": 1.0, "sec": 1.0, "s": 1.0, "millisecond": 1e-3, "ms": 1e-3,
+             "minute": 60.0, "min": 60.0, "hour": 3600.0},
+}
+# Dimension of the parameters that carry units, as exponents of (LENGTH, FORCE, ANGLE, MASS, TIME).
+# The Magic Formula coefficients themselves are dimensionless (they act on SI quantities).
+_L, _F, _A, _M, _T = range(5)
+
+
+def _dim(**exponents):
+    vector = [0, 0, 0, 0, 0]
+    for name, power in exponents.items():
+        vector[{"L": _L, "F": _F, "A": _A, "M": _M, "T": _T}[name]] = power
+    return tuple(vector)
+
+
+_PARAMETER_DIMENSIONS = {
+    **{k: _dim(L=1) for k in ("UNLOADED_RADIUS", "WIDTH", "RIM_RADIUS", "RIM_WIDTH",
+                              "BOTTOM_OFFST", "ROAD_INCREMENT", "HMAX_LOCAL")},
+    **{k: _dim(L=1, T=-1) for k in ("LONGVL", "VXLOW")},
+    **{k: _dim(F=1) for k in ("FNOMIN", "FZMIN", "FZMAX")},
+    **{k: _dim(F=1, L=-2) for k in ("INFLPRES", "NOMPRES", "PRESMIN", "PRESMAX")},
+    **{k: _dim(F=1, L=-1) for k in ("VERTICAL_STIFFNESS", "BOTTOM_STIFF",
+                                    "LONGITUDINAL_STIFFNESS", "LATERAL_STIFFNESS")},
+    "YAW_STIFFNESS": _dim(F=1, L=1, A=-1),
+    "VERTICAL_DAMPING": _dim(F=1, L=-1, T=1),
+    **{k: _dim(A=1) for k in ("ALPMIN", "ALPMAX", "CAMMIN", "CAMMAX")},
+    **{k: _dim(M=1) for k in ("MASS", "BELT_MASS")},
+    **{k: _dim(M=1, L=2) for k in ("IXX", "IYY", "BELT_IXX", "BELT_IYY")},
+    "GRAVITY": _dim(L=1, T=-2),
+    **{k: _dim(T=-1) for k in ("FREQ_LONG", "FREQ_LAT", "FREQ_YAW", "FREQ_WINDUP")},
+    "TIME_SWITCH_INTEG": _dim(T=1),
+}
+
+
+class TirParameters:
+    """The parameters of a ``.tir`` file.
+
+    Attributes
+    ----------
+    sections : Mapping[str, Mapping[str, float | int | str]]
+        Keys exactly as written in the file, grouped by section (values as read, before unit
+        conversion). Sections keep the file's order.
+    tables : Mapping[str, tuple[str, ...]]
+        Raw lines of table sections such as ``[SHAPE]`` (not evaluated, kept for writing).
+    values : Mapping[str, float | int | str]
+        Flat view used by the models: every parameter of every section except ``[UNITS]``,
+        converted to SI, plus the defaults for the parameters the file lacks.
+    defaulted : tuple[str, ...]
+        Names of the parameters the file lacks and that took :data:`MFEVAL_DEFAULTS` values
+        (only those the file's Magic Formula version uses).
+    units : Mapping[str, str]
+        The ``[UNITS]`` section (``LENGTH``, ``FORCE``, ``ANGLE``, ``MASS``, ``TIME``).
+    version : str or None
+        ``"5.2"``, ``"6.1"``, ``"6.2"``, or None when the file names no supported version.
+    path : str or None
+        The file read, if any.
+    """
+
+    def __init__(self, sections, *, tables=None, path=None):
+        self.sections = MappingProxyType({s: MappingProxyType(dict(kv)) for s, kv in sections.items()})
+        self.tables = MappingProxyType({s: tuple(lines) for s, lines in (tables or {}).items()})
+        self.path = None if path is None else str(path)
+        self.units = MappingProxyType({k: str(v) for k, v in self.sections.get("UNITS", {}).items()})
+        flat = {}
+        for section, entries in self.sections.items():
+            if section == "UNITS":
+                continue
+            for key, value in entries.items():
+                flat[key] = _to_si(key, value, self.units, self.path)
+        self.version = _detect_version(flat)
+        used = _USED_BY_VERSION.get(self.version or "6.2", set(MFEVAL_DEFAULTS))
+        defaulted = [k for k in MFEVAL_DEFAULTS if k in used and k not in flat]
+        for key in defaulted:
+            flat[key] = MFEVAL_DEFAULTS[key]
+        self.values = MappingProxyType(flat)
+        self.defaulted = tuple(defaulted)
+
+    def __getitem__(self, key: str):
+        return self.values[key]
+
+    def __contains__(self, key: str) -> bool:
+        return key in self.values
+
+    def get(self, key: str, default=None):
+        return self.values.get(key, default)
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, TirParameters):
+            return NotImplemented
+        return ({s: dict(kv) for s, kv in self.sections.items()}
+                == {s: dict(kv) for s, kv in other.sections.items()}
+                and dict(self.tables) == dict(other.tables))
+
+    __hash__ = None
+
+    def __repr__(self) -> str:
+        n = sum(len(kv) for kv in self.sections.values())
+        where = f" from {self.path!r}" if self.path else ""
+        return (f"TirParameters(version={self.version!r}, {n} keys in {len(self.sections)} sections,"
+                f" {len(self.defaulted)} defaulted{where})")
+
+
+def _to_si(key, value, units, path):
+    dimension = _PARAMETER_DIMENSIONS.get(key)
+    if dimension is None or isinstance(value, str) or not units:
+        return value
+    factor = 1.0
+    for quantity, power in zip(("LENGTH", "FORCE", "ANGLE", "MASS", "TIME"), dimension):
+        if power == 0 or quantity not in units:
+            continue
+        unit = units[quantity].strip().lower()
+        table = _UNIT_FACTORS[quantity]
+        if unit not in table:
+            raise TirFileError(f"unknown {quantity} unit {units[quantity]!r} in [UNITS] "
+                               f"(known: {', '.join(sorted(table))})", path=path)
+        factor *= table[unit] ** power
+    return value * factor if factor != 1.0 else value
+
+
+def _detect_version(flat):
+    fittyp = flat.get("FITTYP")
+    if fittyp is not None and not isinstance(fittyp, str):
+        return VERSION_BY_FITTYP.get(int(fittyp)) if float(fittyp).is_integer() else None
+    fmt = str(flat.get("PROPERTY_FILE_FORMAT", "")).strip().upper()
+    return "5.2" if fmt in _PAC2002_FORMATS else None
+
+
+def _parse_value(text: str, path, line_number):
+    text = text.strip()
+    if text.startswith("'") or text.startswith('"'):
+        quote = text[0]
+        end = text.find(quote, 1)
+        if end < 0:
+            raise TirFileError(f"unterminated string {text!r}", path=path, line=line_number)
+        if text[end + 1:].strip():
+            raise TirFileError(f"unexpected text after string: {text!r}", path=path, line=line_number)
+        return text[1:end]
+    if not text:
+        raise TirFileError("missing value after '='", path=path, line=line_number)
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        return float(text)
+    except ValueError:
+        raise TirFileError(f"value {text!r} is neither a number nor a quoted string",
+                           path=path, line=line_number) from None
+
+
+def _strip_comment(line: str) -> str:
+    """Drop a trailing ``$`` comment that is not inside a quoted string."""
+    quote = None
+    for i, ch in enumerate(line):
+        if quote:
+            if ch == quote:
+                quote = None
+        elif ch in "'\"":
+            quote = ch
+        elif ch == "$":
+            return line[:i]
+    return line
+
+
+def parse_tir(text: str, path=None) -> TirParameters:
+    """Parse the text of a ``.tir`` file (see :func:`read_tir`)."""
+    sections: dict[str, dict] = {}
+    tables: dict[str, list[str]] = {}
+    current = None
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        if not line or line.startswith("$") or line.startswith("!"):
+            continue
+        if line.startswith("["):
+            end = line.find("]")
+            name = line[1:end].strip() if end > 0 else ""
+            if end < 0 or not name or _strip_comment(line[end + 1:]).strip():
+                raise TirFileError(f"malformed section header {line!r}", path=path, line=number)
+            current = name.upper()
+            if current in _TABLE_SECTIONS:
+                tables.setdefault(current, [])
+            else:
+                sections.setdefault(current, {})
+            continue
+        if current in tables:
+            tables[current].append(raw.rstrip("\r\n"))
+            continue
+        body = _strip_comment(raw)
+        if "=" not in body:
+            if current is not None and not sections.get(current) and (line.startswith("{")):
+                # An unknown table section (first body line is a '{...}' header): keep it raw.
+                sections.pop(current, None)
+                tables[current] = [raw.rstrip("\r\n")]
+                continue
+            raise TirFileError(f"expected 'KEY = value', found {line!r}", path=path, line=number)
+        if current is None:
+            raise TirFileError("parameter before the first [SECTION] header", path=path, line=number)
+        key, _, value_text = body.partition("=")
+        key = key.strip()
+        if not key or not key.replace("_", "").isalnum():
+            raise TirFileError(f"invalid parameter name {key!r}", path=path, line=number)
+        if key in sections[current]:
+            raise TirFileError(f"{key} defined twice in [{current}]", path=path, line=number)
+        sections[current][key] = _parse_value(value_text, path, number)
+    if not sections:
+        raise TirFileError("no [SECTION] with parameters found", path=path)
+    return TirParameters(sections, tables=tables, path=path)
+
+
+def read_tir(path) -> TirParameters:
+    """Read a ``.tir`` tire property file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    TirParameters
+        Keys verbatim by section, the SI flat view with defaults, the defaulted names and the
+        detected Magic Formula version.
+
+    Raises
+    ------
+    TirFileError
+        If the file cannot be read or a line is malformed (the message gives the line number).
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="latin-1")
+    except OSError as exc:
+        raise TirFileError(f"cannot read the file ({exc.strerror})", path=str(path)) from None
+    return parse_tir(text, path=str(path))
+
+
+def _format_value(value) -> str:
+    if isinstance(value, str):
+        return f"'{value}'"
+    if isinstance(value, bool):
+        return str(int(value))
+    if isinstance(value, int):
+        return str(value)
+    return repr(float(value))
+
+
+def write_tir(params: TirParameters | Mapping[str, Mapping], path) -> Path:
+    """Write parameters to a ``.tir`` file that :func:`read_tir` reads back to equal values.
+
+    Parameters
+    ----------
+    params : TirParameters or mapping of section name to mapping of key to value
+        What to write: the file's sections as read (values in the file's units, not the SI view;
+        defaults are not written), table sections included.
+    path : str or pathlib.Path
+        Destination.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
+    if isinstance(params, TirParameters):
+        sections, tables = params.sections, params.tables
+    else:
+        sections, tables = params, {}
+    lines = ["$ written by vehdyn.tire.write_tir"]
+    order = list(sections) + [t for t in tables if t not in sections]
+    for section in order:
+        lines.append(f"[{section}]")
+        if section in tables:
+            lines.extend(tables[section])
+            continue
+        for key, value in sections[section].items():
+            lines.append(f"{key:<25}= {_format_value(value)}")
+    path = Path(path)
+    path.write_text("\n".join(lines) + "\n", encoding="latin-1")
+    return path
