@@ -33,7 +33,10 @@ def parameter(
     lt: float | None = None,
     le: float | None = None,
 ):
-    """A numeric field with its unit, description and bounds (``gt``, ``ge``, ``lt``, ``le``)."""
+    """A numeric field with its unit, description and bounds (``gt``, ``ge``, ``lt``, ``le``).
+
+    ``default=None`` makes the parameter optional: ``None`` is then accepted and means "not given".
+    """
     meta = {"unit": unit, "description": description, "gt": gt, "ge": ge, "lt": lt, "le": le}
     return dataclasses.field(default=default, metadata=meta)
 
@@ -87,6 +90,8 @@ class ParameterSet:
                     raise ParameterError(f"{key} must be one of {list(choices)}, got {value!r}", key=key, value=value)
                 continue
             if "unit" not in meta:
+                continue
+            if value is None and f.default is None:  # an optional parameter left unset
                 continue
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 raise ParameterError(f"{key} must be a number [{meta['unit']}], got {_type_name(value)} {value!r}",

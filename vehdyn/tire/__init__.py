@@ -1,4 +1,4 @@
-"""Tire models in the ISO-W (TYDEX) axis system of ``.tir`` files.
+"""Tire laws, slip, transients and tire plots (ISO-W axes of ``.tir`` files; see :mod:`vehdyn.conventions`).
 
 API index
 ---------
@@ -7,12 +7,26 @@ Files
 Magic Formula (MF 5.2 / PAC2002, 6.1, 6.2; validated against MFeval 4.3.1)
     :class:`MagicFormula` (``from_tir``, ``evaluate``, ``forces``), :class:`MagicFormulaOutputs`,
     :func:`load_tire`
+Laws (each ``forces(fz, kappa, alpha, gamma=0.0, vx=...) -> TireForces``)
+    :class:`LinearTire`, :class:`BrushTire`, :class:`FialaTire`, :class:`DugoffTire`
+Registry (a vehicle file's ``tires.model``)
+    :func:`tire_law`, :func:`tire_law_names`, :func:`register_tire_law`, :func:`tire_for_vehicle`
+Slip and transients
+    :func:`wheel_slip`, :func:`regularized_speed`, :func:`slip_velocities`, :func:`theoretical_slip`,
+    :class:`TireRelaxation`, :func:`relaxation_lengths`
 Interface of every tire law
     :class:`TireModel`, :class:`TireForces`
 """
 
 from .base import TireForces, TireModel
+from .brush import BrushTire
+from .dugoff import DugoffTire
+from .fiala import FialaTire
+from .linear import LinearTire
 from .magic_formula import MagicFormula, MagicFormulaOutputs, load_tire
+from .registry import register_tire_law, tire_for_vehicle, tire_law, tire_law_names
+from .relaxation import TireRelaxation, relaxation_lengths
+from .slip import WheelSlip, regularized_speed, slip_velocities, theoretical_slip, wheel_slip
 from .tir import TirParameters, read_tir, write_tir
 
 __all__ = [
@@ -24,4 +38,19 @@ __all__ = [
     "TirParameters",
     "read_tir",
     "write_tir",
+    "LinearTire",
+    "BrushTire",
+    "FialaTire",
+    "DugoffTire",
+    "tire_law",
+    "tire_law_names",
+    "register_tire_law",
+    "tire_for_vehicle",
+    "WheelSlip",
+    "wheel_slip",
+    "regularized_speed",
+    "slip_velocities",
+    "theoretical_slip",
+    "TireRelaxation",
+    "relaxation_lengths",
 ]

@@ -1,0 +1,250 @@
+"""Pacejka's brush tire model with a parabolic pressure distribution.
+
+The tread is a row of elastic bristles (stiffness ``c_p`` per unit length of the contact line and
+per unit deflection, [N/m^2]) attached to a rigid carcass. Over the contact patch ``-a <= x <= a``
+the normal pressure is parabolic, ``q_z(x) = 3 F_z / (4 a) (1 - x^2 / a^2)``. A bristle enters at
+the leading edge undeflected, adheres to the road while its elastic force ``c_p |e|`` stays below
+the static friction limit ``mu_0 q_z`` and slides, with the sliding friction ``mu_s q_z`` directed
+against the slip velocity, behind that point.
+
+In adhesion the deflection grows linearly with the distance travelled from the leading edge,
+``e = sigma (a - x)``, in the direction of the *theoretical slip* vector (Pacejka 2012,
+sec. 3.2.3)::
+
+    sigma_x = kappa / (1 + kappa),      sigma_y = tan(alpha) / (1 + kappa),
+
+so that for this isotropic brush all deflections are parallel and the combined-slip force is the
+pure-slip characteristic of ``sigma = |sigma_vec|`` projected on the direction of slip. With
+``theta = 2 c_p a^2 / (3 mu_0 F_z)`` and ``lambda = theta sigma`` (0 at zero slip, 1 where
+sliding reaches the leading edge), integrating over the adhesion range ``x_t <= x <= a``,
+``x_t = a (2 lambda - 1)``, and the sliding range ``-a <= x < x_t`` gives (``r = mu_s / mu_0``)::
+
+    F    = mu_0 F_z [3 lambda (1 - lambda)^2 + r (3 lambda^2 - 2 lambda^3)]
+    -int x q dx = mu_0 F_z a [-(3/2) lambda (1/6 - xi^2/2 + xi^3/3)
+                               - (3/4) r (xi^2/2 - xi^4/4 - 1/4)],   xi = 2 lambda - 1,
+
+for ``lambda <= 1`` and ``F = mu_s F_z``, zero moment, beyond (full sliding). With ``r = 1`` these
+are Pacejka's closed forms (sec. 3.2.1, pure side slip): ``F = mu F_z (3 lambda - 3 lambda^2 +
+lambda^3)`` and aligning moment ``mu F_z a lambda (1 - lambda)^3``; cornering stiffness and
+longitudinal slip stiffness both equal ``2 c_p a^2``; the pneumatic trail is ``a/3`` at zero slip
+and falls to zero at full sliding, ``tan(alpha_sl) = 3 mu F_z / (2 c_p a^2)``.
+
+Signs follow ISO-W (:mod:`vehdyn.conventions`): ``F_x = F sigma_x / sigma`` (driving positive),
+``F_y = -F sigma_y / sigma`` (a positive slip angle makes a negative side force) and a positive
+(self-aligning) ``M_z`` for positive slip angle. Reverse follows MFeval: ``kappa = -V_sx / V_x``
+with the signed speed (the wheel turns at ``omega R_e = (1 + kappa) V_x``, see
+:mod:`vehdyn.tire.slip`), so that ``F_x`` changes sign with ``vx`` at the same ``kappa``, ``F_y``
+does not, and the aligning moment changes sign (the patch is entered from the rear). A wheel that
+does not roll in its direction of travel (``1 + kappa <= 0``: locked or spinning the other way)
+slides fully.
+
+References
+----------
+H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, ch. 3:
+sec. 3.2.1 (pure side slip, parabolic pressure), 3.2.2 (pure longitudinal slip), 3.2.3
+(interaction: theoretical slip, combined slip; different static and sliding friction).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..params.base import ParameterSet, parameter
+from ._common import (all_scalars, broadcast_inputs, planar_forces, rolling_direction,
+                      scalar_rolling_direction)
+from .base import TireForces, TireModel
+
+__all__ = ["BrushTire", "brush_force_fraction", "brush_moment_fraction"]
+
+
+def brush_force_fraction(lam, sliding_ratio=1.0):
+    """Resultant force of the parabolic-pressure brush over ``mu_0 F_z``.
+
+    Parameters
+    ----------
+    lam : float or ndarray
+        ``theta sigma`` clipped to [0, 1] [-] (1: full sliding).
+    sliding_ratio : float
+        ``mu_s / mu_0`` [-].
+
+    Returns
+    -------
+    float or ndarray
+        ``3 lam (1 - lam)^2 + r (3 lam^2 - 2 lam^3)``; with ``r = 1`` this is
+        ``3 lam - 3 lam^2 + lam^3`` (Pacejka 2012, sec. 3.2.1; Fiala 1954).
+    """
+    one_minus = 1.0 - lam
+    return 3.0 * lam * one_minus * one_minus + sliding_ratio * lam * lam * (3.0 - 2.0 * lam)
+
+
+def brush_moment_fraction(lam, sliding_ratio=1.0):
+    """Self-aligning moment of the parabolic-pressure brush over ``mu_0 F_z a``.
+
+    The moment about the contact centre of the force distribution, positive when the force
+    acts behind the centre (restoring). With ``sliding_ratio = 1`` it equals
+    ``lam (1 - lam)^3``: ``a/3`` trail at zero slip, zero at full sliding (Pacejka 2012, sec. 3.2.1).
+    """
+    xi = 2.0 * lam - 1.0
+    xi2 = xi * xi
+    adhesion = -1.5 * lam * (1.0 / 6.0 - 0.5 * xi2 + xi2 * xi / 3.0)
+    sliding = -0.75 * sliding_ratio * (0.5 * xi2 - 0.25 * xi2 * xi2 - 0.25)
+    return adhesion + sliding
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class BrushTire(ParameterSet, TireModel):
+    """Brush tire with parabolic pressure, combined slip through the theoretical slip.
+
+    Parameters
+    ----------
+    contact_half_length : float
+        Half length ``a`` of the contact patch [m].
+    tread_stiffness : float
+        ``c_p``: tread stiffness per unit length of contact line [N/m^2].
+    mu : float
+        Peak (static) friction coefficient ``mu_0`` [-].
+    mu_sliding : float, optional
+        Sliding friction coefficient ``mu_s <= mu_0`` [-]; ``None`` (default) uses ``mu``.
+
+    Notes
+    -----
+    The carcass is rigid (no carcass compliance, sec. 3.3 of the reference), the model has no
+    camber or turn slip, and the moment of the longitudinal force about the laterally deflected
+    tread is neglected; ``M_x = M_y = 0``. See the module docstring for the equations.
+
+    Examples
+    --------
+    >>> tire = BrushTire(contact_half_length=0.08, tread_stiffness=5e6, mu=1.0)
+    >>> tire.cornering_stiffness           # 2 c_p a^2 [N/rad]
+    64000.0
+    """
+
+    contact_half_length: float = parameter("m", "half length a of the contact patch", gt=0)
+    tread_stiffness: float = parameter("N/m^2", "c_p: tread stiffness per unit length of contact line", gt=0)
+    mu: float = parameter("-", "peak (static) friction coefficient mu_0", gt=0)
+    mu_sliding: float | None = parameter("-", "sliding friction coefficient mu_s (None: equal to mu)",
+                                         default=None, gt=0)
+
+    name = "brush"
+
+    def check(self) -> None:
+        if self.mu_sliding is not None and self.mu_sliding > self.mu:
+            raise ParameterError(f"mu_sliding must be <= mu = {self.mu} [-], got {self.mu_sliding!r}",
+                                 key="mu_sliding", value=self.mu_sliding)
+
+    # ------------------------------------------------------------------ derived quantities
+    @property
+    def cornering_stiffness(self) -> float:
+        """Cornering stiffness ``2 c_p a^2`` [N/rad] (independent of load)."""
+        return 2.0 * self.tread_stiffness * self.contact_half_length**2
+
+    @property
+    def slip_stiffness(self) -> float:
+        """Longitudinal slip stiffness ``2 c_p a^2`` [N] (the isotropic brush's equals the cornering stiffness)."""
+        return self.cornering_stiffness
+
+    @property
+    def sliding_ratio(self) -> float:
+        """``mu_s / mu_0`` [-]."""
+        return 1.0 if self.mu_sliding is None else self.mu_sliding / self.mu
+
+    def full_sliding_slip(self, fz):
+        """Theoretical slip ``sigma_sl = 3 mu_0 F_z / (2 c_p a^2)`` [-] where the whole patch slides.
+
+        In pure side slip full sliding starts at ``tan(alpha) = sigma_sl``.
+        """
+        return 3.0 * self.mu * np.maximum(np.asarray(fz, dtype=float), 0.0) / self.cornering_stiffness
+
+    @classmethod
+    def from_cornering_stiffness(cls, cornering_stiffness: float, contact_half_length: float, mu: float,
+                                 mu_sliding: float | None = None) -> "BrushTire":
+        """The brush whose ``2 c_p a^2`` equals ``cornering_stiffness`` [N/rad]."""
+        if not cornering_stiffness > 0:
+            raise ParameterError(f"cornering_stiffness must be > 0 [N/rad], got {cornering_stiffness!r}",
+                                 key="cornering_stiffness", value=cornering_stiffness)
+        return cls(contact_half_length=contact_half_length,
+                   tread_stiffness=cornering_stiffness / (2.0 * contact_half_length**2), mu=mu,
+                   mu_sliding=mu_sliding)
+
+    @classmethod
+    def from_vehicle(cls, vehicle, axle: str = "front") -> "BrushTire":
+        """A brush tire for one wheel of ``vehicle``'s ``axle`` (see :func:`vehdyn.tire.tire_for_vehicle`).
+
+        The per-tire cornering stiffness is half the axle's; the contact half length is the chord
+        of the unloaded tire at its static deflection, ``a = sqrt(2 R delta - delta^2)`` with
+        ``delta = F_z / k_z`` (R the rolling radius, k_z the vertical stiffness).
+        """
+        from .registry import vehicle_tire_data
+
+        data = vehicle_tire_data(vehicle, axle)
+        return cls.from_cornering_stiffness(data.cornering_stiffness, data.contact_half_length, data.mu)
+
+    # ------------------------------------------------------------------ the law
+    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
+        """Steady-state forces and aligning moment (ISO-W); see :meth:`TireModel.forces`.
+
+        ``gamma`` is accepted and has no effect (the brush has no camber thrust). ``vx`` enters
+        only through its sign (rolling direction).
+        """
+        if all_scalars(fz, kappa, alpha, gamma, vx):
+            return self._forces_scalar(float(fz), float(kappa), float(alpha), float(vx))
+        fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+        direction = rolling_direction(vx)
+        tan_alpha = np.tan(alpha)
+        slip = np.hypot(kappa, tan_alpha)  # |V_s| / |V_x|
+        lam = self._adhesion_parameter(fz, kappa, slip)
+        r = self.sliding_ratio
+        force = self.mu * fz * brush_force_fraction(lam, r)
+        moment = self.mu * fz * self.contact_half_length * brush_moment_fraction(lam, r) * direction
+        has_slip = slip > 0.0
+        safe = np.where(has_slip, slip, 1.0)
+        ex = np.where(has_slip, kappa / safe, 0.0) * direction
+        ey = np.where(has_slip, tan_alpha / safe, 0.0)
+        return planar_forces(force * ex, -force * ey, fz, moment * ey)
+
+    def _adhesion_parameter(self, fz, kappa, slip):
+        """``lambda = theta sigma = C slip / (3 mu_0 F_z (1 + kappa))`` clipped at 1.
+
+        ``slip`` is ``|V_s| / |V_x|``; the rolling factor ``1 + kappa`` is ``V_r / V_x``.
+        Written without a division by zero: no load or no rolling means full sliding.
+        """
+        numerator = self.cornering_stiffness * slip
+        denominator = 3.0 * self.mu * fz * (1.0 + kappa)
+        adhering = numerator < denominator
+        return np.where(adhering, numerator / np.where(adhering, denominator, 1.0), 1.0)
+
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, vx: float) -> TireForces:
+        """The same equations for one point with :mod:`math` (no numpy overhead)."""
+        fz = max(fz, 0.0)
+        direction = scalar_rolling_direction(vx)
+        tan_alpha = math.tan(alpha)
+        slip = math.hypot(kappa, tan_alpha)
+        if slip == 0.0:
+            return planar_forces(0.0, 0.0, fz, 0.0)
+        numerator = self.cornering_stiffness * slip
+        denominator = 3.0 * self.mu * fz * (1.0 + kappa)
+        lam = numerator / denominator if numerator < denominator else 1.0
+        r = self.sliding_ratio
+        force = self.mu * fz * brush_force_fraction(lam, r)
+        moment = self.mu * fz * self.contact_half_length * brush_moment_fraction(lam, r) * direction
+        ey = tan_alpha / slip
+        return planar_forces(force * kappa / slip * direction, -force * ey, fz, moment * ey)
+
+    def pneumatic_trail(self, fz, kappa, alpha, vx=10.0):
+        """Pneumatic trail ``t = -M_z / F_y`` [m]; its limit ``a/3`` (sign of ``vx``) where F_y = 0.
+
+        Defined through the resultant force, so it is also the trail of the combined-slip force;
+        zero at full sliding (Pacejka 2012, sec. 3.2.1).
+        """
+        fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, 0.0, vx)
+        direction = rolling_direction(vx)
+        lam = self._adhesion_parameter(fz, kappa, np.hypot(kappa, np.tan(alpha)))
+        r = self.sliding_ratio
+        f = brush_force_fraction(lam, r)
+        small = lam < 1e-9
+        ratio = np.where(small, 1.0 / 3.0, brush_moment_fraction(lam, r) / np.where(small, 1.0, f))
+        return self.contact_half_length * ratio * direction

@@ -1,0 +1,127 @@
+"""Dugoff's tire model: linear stiffnesses with a friction-circle saturation.
+
+Dugoff, Fancher and Segel (1970) take a uniform pressure and linear tread stiffness. With the slip
+ratio ``kappa``, slip angle ``alpha``, ``rho = 1 + kappa`` (the rolling speed over the forward
+speed, ``omega R_e / V_x``) and::
+
+    S      = sqrt((C_kappa kappa)^2 + (C_alpha tan alpha)^2)
+    lambda = mu F_z rho / (2 S)
+    f      = lambda (2 - lambda)   (lambda < 1),   1   (lambda >= 1)
+    F_x    =  C_kappa kappa / rho f
+    F_y    = -C_alpha tan(alpha) / rho f
+
+(ISO-W signs: a positive slip angle makes a negative side force). The resultant is
+``S / rho`` while adhering and ``mu F_z (1 - lambda/2) < mu F_z`` once sliding has started, so
+``sqrt(F_x^2 + F_y^2) <= mu F_z``. The friction coefficient may fall with the sliding speed,
+``mu = mu_0 (1 - A_s |vx| sqrt(kappa^2 + tan^2 alpha))`` (Dugoff et al.'s road-adhesion reduction
+factor ``A_s`` [s/m], default 0), floored at zero.
+
+The equations are written in the resultant form above so that a locked or backwards-spinning
+wheel (``rho <= 0``) slides fully instead of dividing by zero. In reverse (``vx < 0``) ``kappa``
+keeps MFeval's meaning (``-V_sx / V_x``, see :mod:`vehdyn.tire.slip`): ``F_x`` and the trail moment
+change sign, ``F_y`` does not.
+
+References
+----------
+H. Dugoff, P. S. Fancher and L. Segel, "An analysis of tire traction properties and their
+influence on vehicle dynamic performance", SAE Technical Paper 700377, 1970.
+R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., Springer, 2012, ch. 13 (Dugoff's tire model).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..params.base import ParameterSet, parameter
+from ._common import (all_scalars, broadcast_inputs, planar_forces, rolling_direction,
+                      scalar_rolling_direction)
+from .base import TireForces, TireModel
+
+__all__ = ["DugoffTire"]
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class DugoffTire(ParameterSet, TireModel):
+    """Dugoff tire.
+
+    Parameters
+    ----------
+    cornering_stiffness : float
+        ``C_alpha`` [N/rad] (a positive magnitude).
+    slip_stiffness : float
+        ``C_kappa`` [N].
+    mu : float
+        Friction coefficient at zero sliding speed ``mu_0`` [-].
+    speed_friction_reduction : float
+        ``A_s`` [s/m]: friction reduction per unit sliding speed; default 0.
+    pneumatic_trail : float
+        ``t`` [m]: ``M_z = -t F_y`` rolling forwards; default 0 (Dugoff's model has no moment).
+    """
+
+    cornering_stiffness: float = parameter("N/rad", "C_alpha: cornering stiffness", gt=0)
+    slip_stiffness: float = parameter("N", "C_kappa: longitudinal slip stiffness", gt=0)
+    mu: float = parameter("-", "friction coefficient at zero sliding speed", gt=0)
+    speed_friction_reduction: float = parameter("s/m", "A_s: friction reduction per unit sliding speed",
+                                                default=0.0, ge=0)
+    pneumatic_trail: float = parameter("m", "pneumatic trail t", default=0.0, ge=0)
+
+    name = "dugoff"
+
+    @classmethod
+    def from_vehicle(cls, vehicle, axle: str = "front") -> "DugoffTire":
+        """A Dugoff tire for one wheel of ``vehicle``'s ``axle``; the slip stiffness is taken equal to
+        the cornering stiffness (isotropic brush) since vehicle files carry no slip stiffness."""
+        from .registry import vehicle_tire_data
+
+        data = vehicle_tire_data(vehicle, axle)
+        return cls(cornering_stiffness=data.cornering_stiffness, slip_stiffness=data.cornering_stiffness,
+                   mu=data.mu)
+
+    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
+        """Steady-state forces (ISO-W); see :meth:`TireModel.forces`. ``gamma`` has no effect."""
+        if all_scalars(fz, kappa, alpha, gamma, vx):
+            return self._forces_scalar(float(fz), float(kappa), float(alpha), float(vx))
+        fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+        direction = rolling_direction(vx)
+        tan_alpha = np.tan(alpha)
+        rolling = 1.0 + kappa
+        mu = self.mu * np.maximum(1.0 - self.speed_friction_reduction * np.abs(vx) * np.hypot(kappa, tan_alpha), 0.0)
+        limit = mu * fz
+        ux = self.slip_stiffness * kappa
+        uy = self.cornering_stiffness * tan_alpha
+        stiff_slip = np.hypot(ux, uy)  # S
+        adhering = 2.0 * stiff_slip <= limit * rolling  # lambda >= 1 (includes S = 0 under load)
+        moving = stiff_slip > 0.0
+        safe_slip = np.where(moving, stiff_slip, 1.0)
+        resultant = np.where(
+            adhering,
+            stiff_slip / np.where(adhering, rolling, 1.0),
+            limit - limit * limit * np.maximum(rolling, 0.0) / (4.0 * safe_slip),
+        )
+        resultant = np.where(moving, resultant, 0.0)
+        fx = resultant * ux / safe_slip * direction
+        fy = -resultant * uy / safe_slip
+        return planar_forces(fx, fy, fz, -self.pneumatic_trail * fy * direction)
+
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, vx: float) -> TireForces:
+        """The same equations for one point with :mod:`math` (no numpy overhead)."""
+        fz = max(fz, 0.0)
+        direction = scalar_rolling_direction(vx)
+        tan_alpha = math.tan(alpha)
+        rolling = 1.0 + kappa
+        mu = self.mu * max(1.0 - self.speed_friction_reduction * abs(vx) * math.hypot(kappa, tan_alpha), 0.0)
+        limit = mu * fz
+        ux = self.slip_stiffness * kappa
+        uy = self.cornering_stiffness * tan_alpha
+        stiff_slip = math.hypot(ux, uy)
+        if stiff_slip == 0.0:
+            return planar_forces(0.0, 0.0, fz, 0.0)
+        if 2.0 * stiff_slip <= limit * rolling:
+            resultant = stiff_slip / rolling
+        else:
+            resultant = limit - limit * limit * max(rolling, 0.0) / (4.0 * stiff_slip)
+        fy = -resultant * uy / stiff_slip
+        return planar_forces(resultant * ux / stiff_slip * direction, fy, fz, -self.pneumatic_trail * fy * direction)

@@ -1,0 +1,101 @@
+"""The linear tire: forces proportional to slip, optionally to load.
+
+::
+
+    F_x = C_kappa kappa f_z sign(vx),   F_y = (-C_alpha alpha + C_gamma gamma) f_z,   M_z = -t F_y sign(vx)
+
+with ``f_z = F_z / F_z0`` when a nominal load ``F_z0`` is given (constant cornering and slip
+*coefficients* ``C / F_z``, Pacejka 2012, ch. 1), else ``f_z = 1`` for a loaded tire; ``f_z = 0`` when ``F_z <= 0`` (lift-off).
+ISO-W signs (:mod:`vehdyn.conventions`): a positive slip angle makes a negative side force; in
+reverse ``kappa`` keeps MFeval's meaning (``-V_sx / V_x``, see :mod:`vehdyn.tire.slip`) and
+``sign(vx)`` (+1 at standstill) flips ``F_x`` and ``M_z``.
+
+The linear tire has no friction limit: it is valid for small slips only, roughly where the
+lateral acceleration stays below about half the friction limit (Pacejka 2012, ch. 1).
+
+References
+----------
+H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, ch. 1 (cornering stiffness, slip
+stiffness, pneumatic trail). R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., 2012, ch. 2
+(linear lateral tire model).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..params.base import ParameterSet, parameter
+from ._common import (all_scalars, broadcast_inputs, planar_forces, rolling_direction,
+                      scalar_rolling_direction)
+from .base import TireForces, TireModel
+
+__all__ = ["LinearTire"]
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class LinearTire(ParameterSet, TireModel):
+    """Linear tire.
+
+    Parameters
+    ----------
+    cornering_stiffness : float
+        ``C_alpha = -dF_y/dalpha`` [N/rad] (a positive magnitude), at ``nominal_load`` if given.
+    slip_stiffness : float, optional
+        ``C_kappa = dF_x/dkappa`` [N]; ``None`` uses ``cornering_stiffness`` (the isotropic brush value).
+    camber_stiffness : float
+        ``C_gamma = dF_y/dgamma`` [N/rad], ISO-W, signed; default 0.
+    pneumatic_trail : float
+        ``t`` [m]: ``M_z = -t F_y`` when rolling forwards; default 0.
+    nominal_load : float, optional
+        ``F_z0`` [N]: when given the stiffnesses scale with ``F_z / F_z0``.
+    """
+
+    cornering_stiffness: float = parameter("N/rad", "C_alpha: cornering stiffness", gt=0)
+    slip_stiffness: float | None = parameter("N", "C_kappa: longitudinal slip stiffness (None: cornering_stiffness)",
+                                             default=None, gt=0)
+    camber_stiffness: float = parameter("N/rad", "C_gamma: camber stiffness dFy/dgamma (ISO-W)", default=0.0)
+    pneumatic_trail: float = parameter("m", "pneumatic trail t", default=0.0, ge=0)
+    nominal_load: float | None = parameter("N", "F_z0: load at which the stiffnesses are given (None: no scaling)",
+                                           default=None, gt=0)
+
+    name = "linear"
+
+    @property
+    def longitudinal_stiffness(self) -> float:
+        """``C_kappa`` [N]: ``slip_stiffness`` or, when not given, ``cornering_stiffness``."""
+        return self.cornering_stiffness if self.slip_stiffness is None else self.slip_stiffness
+
+    @classmethod
+    def from_vehicle(cls, vehicle, axle: str = "front") -> "LinearTire":
+        """A linear tire for one wheel of ``vehicle``'s ``axle``: half the axle's cornering stiffness,
+        scaled with load about the static wheel load (see :func:`vehdyn.tire.tire_for_vehicle`)."""
+        from .registry import vehicle_tire_data
+
+        data = vehicle_tire_data(vehicle, axle)
+        return cls(cornering_stiffness=data.cornering_stiffness, nominal_load=data.static_load)
+
+    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
+        """Forces and aligning moment (ISO-W); see :meth:`TireModel.forces`."""
+        if all_scalars(fz, kappa, alpha, gamma, vx):
+            fz = max(float(fz), 0.0)
+            scale = self._load_factor_scalar(fz)
+            fy = (-self.cornering_stiffness * alpha + self.camber_stiffness * gamma) * scale
+            direction = scalar_rolling_direction(float(vx))
+            return planar_forces(self.longitudinal_stiffness * kappa * scale * direction, fy, fz,
+                                 -self.pneumatic_trail * fy * direction)
+        fz, kappa, alpha, gamma, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+        if self.nominal_load is None:
+            scale = np.where(fz > 0.0, 1.0, 0.0)
+        else:
+            scale = fz / self.nominal_load
+        fy = (-self.cornering_stiffness * alpha + self.camber_stiffness * gamma) * scale
+        direction = rolling_direction(vx)
+        return planar_forces(self.longitudinal_stiffness * kappa * scale * direction, fy, fz,
+                             -self.pneumatic_trail * fy * direction)
+
+    def _load_factor_scalar(self, fz: float) -> float:
+        if self.nominal_load is None:
+            return 1.0 if fz > 0.0 else 0.0
+        return fz / self.nominal_load
