@@ -1,0 +1,291 @@
+"""Linear single-track (bicycle) model: lateral velocity and yaw rate at constant speed.
+
+Equations (SAE J670 vehicle axes: x forward, y right, z down; a positive steer angle turns the
+vehicle to the right)::
+
+    m (dv/dt + u r) = F_yf + F_yr
+    I_z dr/dt       = a F_yf - b F_yr
+
+    F_yf = -C_f alpha_f,   alpha_f = (v + a r) / u - delta_f
+    F_yr = -C_r alpha_r,   alpha_r = (v - b r) / u - delta_r
+
+with u the forward speed [m/s], v the lateral velocity [m/s], r the yaw rate [rad/s], a and b the
+distances from the centre of gravity (CG) to the front and rear axles [m], C_f and C_r the
+cornering stiffnesses of the front and rear AXLES (both tires, positive, [N/rad]) and alpha the
+SAE slip angles (atan of lateral over longitudinal contact velocity, linearized), as defined in
+:mod:`vehdyn.conventions`. References: Gillespie, *Fundamentals of Vehicle Dynamics*, 1992,
+sec. 6 (eq. 6-15 to 6-24); Abe, *Vehicle Handling Dynamics*, 2009, sec. 3.2 (eq. 3.11-3.12, where
+K_f, K_r are per tire so that 2 K = C); Rajamani, *Vehicle Dynamics and Control*, 2nd ed., 2012,
+sec. 2.3 (eq. 2.31, per tire too). The sign of the slip angle differs from Gillespie's (who uses
+the angle of the wheel relative to the velocity); the forces are the same.
+
+Outputs are linear in the states and inputs: ``lateral_acceleration`` a_y = dv/dt + u r (of the CG,
+in the vehicle frame), ``sideslip_angle`` beta = v/u, ``path_curvature`` a_y/u^2 (of the CG path),
+the slip angles and the axle lateral forces.
+
+Tire lag (optional). With a relaxation length sigma > 0 on an axle, the force follows the transient
+slip angle alpha', a named state, through the first-order law (Pacejka, *Tire and Vehicle
+Dynamics*, 3rd ed., 2012, sec. 7.1.2, eq. 7.12 linearized; Rill, *Road Vehicle Dynamics*, 2012,
+sec. 3.10)::
+
+    (sigma / u) d(alpha')/dt + alpha' = alpha    ->    F_y = -C alpha'
+
+so that the axle force lags the kinematic slip angle by the time constant sigma/u.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..linear import LinearModel
+from ..params import ParameterSet, Vehicle
+from ..params.base import parameter
+from ..signals import Signal
+
+__all__ = ["BicycleParameters", "LinearBicycle", "bicycle_parameters"]
+
+_STATE_SIGNALS = (
+    Signal("lateral_velocity", "m/s", "body-frame lateral velocity v of the CG (right, SAE)"),
+    Signal("yaw_rate", "rad/s", "yaw rate r (positive turning right, SAE)"),
+)
+_LAG_SIGNALS = {
+    "front": Signal("front_transient_slip_angle", "rad",
+                    "front-axle transient slip angle alpha' of the relaxation-length law (SAE)"),
+    "rear": Signal("rear_transient_slip_angle", "rad",
+                   "rear-axle transient slip angle alpha' of the relaxation-length law (SAE)"),
+}
+_INPUT_SIGNALS = (
+    Signal("front_steer_angle", "rad", "front road-wheel steer angle (positive turns right, SAE)"),
+    Signal("rear_steer_angle", "rad", "rear road-wheel steer angle (positive turns right, SAE)"),
+)
+_OUTPUT_SIGNALS = (
+    Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the CG, dv/dt + u r (right, SAE)"),
+    Signal("sideslip_angle", "rad", "vehicle sideslip angle at the CG, beta = v / u"),
+    Signal("yaw_rate", "rad/s", "yaw rate r (positive turning right, SAE)"),
+    Signal("lateral_velocity", "m/s", "body-frame lateral velocity v of the CG"),
+    Signal("front_slip_angle", "rad", "front-axle kinematic slip angle (v + a r)/u - delta_f (SAE)"),
+    Signal("rear_slip_angle", "rad", "rear-axle kinematic slip angle (v - b r)/u - delta_r (SAE)"),
+    Signal("path_curvature", "1/m", "curvature of the CG path, a_y / u^2 (positive turning right)"),
+    Signal("front_lateral_force", "N", "lateral force of the front axle (both tires, SAE y)"),
+    Signal("rear_lateral_force", "N", "lateral force of the rear axle (both tires, SAE y)"),
+)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class BicycleParameters(ParameterSet):
+    """The classical parameters of the single-track model (axle cornering stiffnesses).
+
+    Build from textbook numbers directly, or from a :class:`~vehdyn.Vehicle` with
+    :func:`bicycle_parameters`. Textbooks that print cornering stiffness PER TIRE (Abe, Rajamani,
+    Wong) need it doubled here.
+    """
+
+    mass: float = parameter("kg", "total vehicle mass m", gt=0)
+    yaw_inertia: float = parameter("kg*m^2", "yaw moment of inertia I_z about the CG", gt=0)
+    a: float = parameter("m", "CG to front axle", gt=0)
+    b: float = parameter("m", "CG to rear axle", gt=0)
+    front_cornering_stiffness: float = parameter("N/rad", "front AXLE cornering stiffness C_f (both tires)", gt=0)
+    rear_cornering_stiffness: float = parameter("N/rad", "rear AXLE cornering stiffness C_r (both tires)", gt=0)
+    front_relaxation_length: float = parameter("m", "front tire lateral relaxation length (0: no lag)",
+                                               ge=0, default=0.0)
+    rear_relaxation_length: float = parameter("m", "rear tire lateral relaxation length (0: no lag)",
+                                              ge=0, default=0.0)
+
+    @property
+    def wheelbase(self) -> float:
+        """L = a + b [m]."""
+        return self.a + self.b
+
+    @property
+    def understeer_gradient(self) -> float:
+        """K = (m / L) (b / C_f - a / C_r) [rad/(m/s^2)] (Gillespie eq. 6-15 with W = m g b / L)."""
+        return self.mass / self.wheelbase * (self.b / self.front_cornering_stiffness
+                                             - self.a / self.rear_cornering_stiffness)
+
+
+def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
+    """The :class:`BicycleParameters` of a Vehicle, a LinearBicycle or a BicycleParameters.
+
+    For a Vehicle the axle cornering stiffnesses and relaxation lengths come from
+    ``vehicle.tires``, the yaw inertia from ``vehicle.mass.yaw_inertia`` (whole vehicle).
+    """
+    if isinstance(vehicle_or_model, BicycleParameters):
+        return vehicle_or_model
+    params = getattr(vehicle_or_model, "bicycle_parameters", None)
+    if isinstance(params, BicycleParameters):
+        return params
+    if isinstance(vehicle_or_model, Vehicle):
+        v = vehicle_or_model
+        return BicycleParameters(
+            mass=v.mass.mass,
+            yaw_inertia=v.mass.yaw_inertia,
+            a=v.geometry.cg_to_front_axle,
+            b=v.geometry.cg_to_rear_axle,
+            front_cornering_stiffness=v.tires.front_cornering_stiffness,
+            rear_cornering_stiffness=v.tires.rear_cornering_stiffness,
+            front_relaxation_length=v.tires.front_relaxation_length,
+            rear_relaxation_length=v.tires.rear_relaxation_length,
+        )
+    raise ParameterError(
+        f"expected a Vehicle, a LinearBicycle or BicycleParameters, got {type(vehicle_or_model).__name__}",
+        key="vehicle", value=vehicle_or_model)
+
+
+def check_speed(speed, *, allow_zero: bool = False, name: str = "speed") -> np.ndarray:
+    """``speed`` [m/s] as a float array, checked finite and positive (or >= 0)."""
+    s = np.asarray(speed, dtype=float)
+    bad = ~np.isfinite(s) | ((s < 0) if allow_zero else (s <= 0))
+    if np.any(bad):
+        value = s[bad].flat[0] if s.ndim else float(s)
+        word = "non-negative" if allow_zero else "positive"
+        raise ParameterError(f"{name} must be finite and {word} [m/s], got {value!r}", key=name, value=value)
+    return s
+
+
+class LinearBicycle(LinearModel):
+    """2-DOF lateral/yaw single-track model at constant forward speed, an exact LinearModel.
+
+    Parameters
+    ----------
+    vehicle : Vehicle or BicycleParameters
+        Mass, yaw inertia, axle positions and axle cornering stiffnesses (see
+        :func:`bicycle_parameters`).
+    speed : float
+        Constant forward speed u [m/s], > 0.
+    tire_lag : bool
+        Add first-order tire lag on each axle whose relaxation length is positive (states
+        ``front_transient_slip_angle``, ``rear_transient_slip_angle``), with the relaxation lengths of
+        ``vehicle.tires``. Default False (the classical 2-DOF model).
+
+    Attributes
+    ----------
+    bicycle_parameters : BicycleParameters
+    speed : float
+        [m/s].
+
+    Notes
+    -----
+    States ``lateral_velocity`` [m/s], ``yaw_rate`` [rad/s] (then the transient slip angles);
+    inputs ``front_steer_angle``, ``rear_steer_angle`` (road-wheel angles [rad]); outputs
+    ``lateral_acceleration``, ``sideslip_angle``, ``yaw_rate``, ``lateral_velocity``,
+    ``front_slip_angle``, ``rear_slip_angle``, ``path_curvature``, ``front_lateral_force``,
+    ``rear_lateral_force``. SAE signs: a positive front steer gives a positive yaw rate and a
+    positive lateral acceleration. Equations and references in the module docstring.
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> from vehdyn.handling import LinearBicycle
+    >>> car = LinearBicycle.from_parameters(mass=1500, yaw_inertia=2500, a=1.1, b=1.6,
+    ...     front_cornering_stiffness=110e3, rear_cornering_stiffness=120e3, speed=20.0)
+    >>> round(float(car.dc_gain()[car.index("yaw_rate", "outputs"), 0]), 4)
+    5.1344
+    """
+
+    phenomena = frozenset({"lateral", "yaw"})
+
+    def __init__(self, vehicle, speed: float, *, tire_lag: bool = False):
+        params = bicycle_parameters(vehicle)
+        u = float(check_speed(speed))
+        if not tire_lag:
+            params = dataclasses.replace(params, front_relaxation_length=0.0, rear_relaxation_length=0.0)
+        self.bicycle_parameters = params
+        self.speed = u
+        A, B, C, D, states = _state_space(params, u)
+        phenomena = {"lateral", "yaw"} | ({"tire_lag"} if len(states) > 2 else set())
+        super().__init__(A, B, C, D, states=states, inputs=_INPUT_SIGNALS, outputs=_OUTPUT_SIGNALS,
+                         name=f"LinearBicycle at {u:g} m/s", phenomena=phenomena)
+
+    @classmethod
+    def from_parameters(cls, *, mass: float, yaw_inertia: float, a: float, b: float,
+                        front_cornering_stiffness: float, rear_cornering_stiffness: float, speed: float,
+                        front_relaxation_length: float = 0.0, rear_relaxation_length: float = 0.0
+                        ) -> "LinearBicycle":
+        """A bicycle model from the classical numbers of a textbook problem.
+
+        Parameters
+        ----------
+        mass : float
+            Total mass m [kg].
+        yaw_inertia : float
+            I_z [kg*m^2].
+        a, b : float
+            CG to front and rear axle [m].
+        front_cornering_stiffness, rear_cornering_stiffness : float
+            AXLE cornering stiffnesses (both tires), positive [N/rad].
+        speed : float
+            Forward speed [m/s].
+        front_relaxation_length, rear_relaxation_length : float, optional
+            Relaxation lengths [m]; a positive value adds that axle's tire-lag state.
+        """
+        params = BicycleParameters(mass=mass, yaw_inertia=yaw_inertia, a=a, b=b,
+                                   front_cornering_stiffness=front_cornering_stiffness,
+                                   rear_cornering_stiffness=rear_cornering_stiffness,
+                                   front_relaxation_length=front_relaxation_length,
+                                   rear_relaxation_length=rear_relaxation_length)
+        lag = front_relaxation_length > 0 or rear_relaxation_length > 0
+        return cls(params, speed, tire_lag=lag)
+
+    def at_speed(self, speed: float) -> "LinearBicycle":
+        """The same vehicle at another forward speed [m/s]."""
+        p = self.bicycle_parameters
+        return type(self)(p, speed, tire_lag=p.front_relaxation_length > 0 or p.rear_relaxation_length > 0)
+
+    @property
+    def wheelbase(self) -> float:
+        """L = a + b [m]."""
+        return self.bicycle_parameters.wheelbase
+
+    def __repr__(self) -> str:
+        p = self.bicycle_parameters
+        return (f"<LinearBicycle at {self.speed:g} m/s: m={p.mass:g} kg, I_z={p.yaw_inertia:g} kg*m^2, "
+                f"a={p.a:g} m, b={p.b:g} m, C_f={p.front_cornering_stiffness:g} N/rad, "
+                f"C_r={p.rear_cornering_stiffness:g} N/rad, states {list(self.state_names)}>")
+
+
+def _state_space(p: BicycleParameters, u: float):
+    """Exact (A, B, C, D) and the state signals of the bicycle model at speed ``u``."""
+    m, iz, a, b = p.mass, p.yaw_inertia, p.a, p.b
+    cf, cr = p.front_cornering_stiffness, p.rear_cornering_stiffness
+    lag = {"front": p.front_relaxation_length, "rear": p.rear_relaxation_length}
+    lagged = [axle for axle in ("front", "rear") if lag[axle] > 0]
+    states = _STATE_SIGNALS + tuple(_LAG_SIGNALS[axle] for axle in lagged)
+    n = len(states)
+    # kinematic slip angles alpha = S x + T delta over the states [v, r, ...] and inputs [df, dr]
+    S = np.zeros((2, n))
+    S[0, :2] = [1.0 / u, a / u]
+    S[1, :2] = [1.0 / u, -b / u]
+    T = -np.eye(2)
+    # axle forces F = -C alpha_force, alpha_force = kinematic slip, or the transient slip state
+    stiff = np.array([cf, cr])
+    F_x = -stiff[:, None] * S
+    F_u = -stiff[:, None] * T
+    for k, axle in enumerate(lagged):
+        row = 0 if axle == "front" else 1
+        F_x[row] = 0.0
+        F_x[row, 2 + k] = -stiff[row]
+        F_u[row] = 0.0
+    # m (v' + u r) = Ff + Fr ;  Iz r' = a Ff - b Fr
+    lever = np.array([[1.0 / m, 1.0 / m], [a / iz, -b / iz]])
+    A = np.zeros((n, n))
+    B = np.zeros((n, 2))
+    A[:2] = lever @ F_x
+    A[0, 1] -= u
+    B[:2] = lever @ F_u
+    # transient slip: d(alpha')/dt = (u / sigma) (alpha - alpha')
+    for k, axle in enumerate(lagged):
+        row = 0 if axle == "front" else 1
+        rate = u / lag[axle]
+        A[2 + k] = rate * S[row]
+        A[2 + k, 2 + k] -= rate
+        B[2 + k] = rate * T[row]
+    # outputs: a_y = v' + u r, beta, r, v, alpha_f, alpha_r, curvature, Ff, Fr
+    ay_x = A[0].copy()
+    ay_x[1] += u
+    ay_u = B[0]
+    C = np.vstack([ay_x, np.eye(n)[0] / u, np.eye(n)[1], np.eye(n)[0], S[0], S[1], ay_x / u**2, F_x[0], F_x[1]])
+    D = np.vstack([ay_u, np.zeros(2), np.zeros(2), np.zeros(2), T[0], T[1], ay_u / u**2, F_u[0], F_u[1]])
+    return A, B, C, D, states

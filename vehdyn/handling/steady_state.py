@@ -1,0 +1,389 @@
+"""Steady-state cornering of the linear single-track model: understeer, gains, stability.
+
+Every function takes a :class:`~vehdyn.Vehicle`, a :class:`~vehdyn.handling.LinearBicycle` or
+:class:`~vehdyn.handling.BicycleParameters`; speeds default to the bicycle's speed and broadcast
+(numpy rules), so a whole speed sweep is one call. Closed forms (SAE signs, AXLE cornering
+stiffnesses C_f, C_r, CG to axles a, b, wheelbase L = a + b)::
+
+    K      = (m / L) (b / C_f - a / C_r)                  understeer gradient [rad/(m/s^2)]
+    delta_f - delta_r = L / R + K a_y                     steer for a turn of radius R
+    r / delta_f = u (1 - k) / (L + K u^2)                 (k = delta_r / delta_f, 0 for 2WS)
+    beta / delta_f = k + (b - m a u^2 / (L C_r)) (1 - k) / (L + K u^2)
+    u_char = sqrt(L / K) (K > 0),  u_crit = sqrt(-L / K) (K < 0)
+
+from the equilibrium of the model in :mod:`vehdyn.handling.bicycle` (Gillespie, *Fundamentals of
+Vehicle Dynamics*, 1992, eq. 6-15 to 6-22; Abe, *Vehicle Handling Dynamics*, 2009, sec. 3.3 and
+3.4; Milliken & Milliken, *Race Car Vehicle Dynamics*, 1995, ch. 5). The neutral steer point is
+where a lateral force produces no yaw: x_NSP = C_r L / (C_f + C_r) behind the front axle; the
+static margin is its distance behind the CG over L, and K = m (C_f + C_r) SM / (C_f C_r).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..units import GRAVITY
+from .bicycle import bicycle_parameters, check_speed
+
+__all__ = [
+    "understeer_gradient",
+    "understeer_gradient_deg_per_g",
+    "understeer_gradient_rad_per_g",
+    "stability_factor",
+    "characteristic_speed",
+    "critical_speed",
+    "zero_sideslip_speed",
+    "SteadyStateGains",
+    "steady_state_gains",
+    "NeutralSteerPoint",
+    "neutral_steer_point",
+    "static_margin",
+    "ackermann_steer_angle",
+    "AckermannWheelAngles",
+    "ackermann_wheel_angles",
+    "steer_angle_for",
+    "HandlingDiagram",
+    "handling_diagram",
+]
+
+
+def _speed_of(model, speed) -> np.ndarray:
+    if speed is None:
+        speed = getattr(model, "speed", None)
+        if speed is None:
+            raise ParameterError(f"a speed [m/s] is needed with a {type(model).__name__} (give speed=...)",
+                                 key="speed", value=None)
+    return check_speed(speed, allow_zero=True)
+
+
+# --------------------------------------------------------------------------- understeer
+def understeer_gradient(vehicle_or_bicycle) -> float:
+    """Understeer gradient K [rad/(m/s^2)].
+
+    K = (m / L)(b / C_f - a / C_r) = W_f / C_f - W_r / C_r per unit g (Gillespie eq. 6-15): the
+    extra road-wheel steer per unit lateral acceleration beyond the Ackermann angle L / R. K > 0
+    understeer, K = 0 neutral steer, K < 0 oversteer. (With roll steer, see
+    :meth:`vehdyn.handling.LateralYawRoll.understeer_gradient`.)
+    """
+    return float(bicycle_parameters(vehicle_or_bicycle).understeer_gradient)
+
+
+def understeer_gradient_rad_per_g(vehicle_or_bicycle, gravity: float = GRAVITY) -> float:
+    """Understeer gradient [rad/g] = K [rad/(m/s^2)] * g."""
+    return understeer_gradient(vehicle_or_bicycle) * gravity
+
+
+def understeer_gradient_deg_per_g(vehicle_or_bicycle, gravity: float = GRAVITY) -> float:
+    """Understeer gradient [deg/g] = K [rad/(m/s^2)] * g * 180 / pi."""
+    return float(np.rad2deg(understeer_gradient_rad_per_g(vehicle_or_bicycle, gravity)))
+
+
+def stability_factor(vehicle_or_bicycle) -> float:
+    """Abe's stability factor A = K / L [s^2/m^2]: r / delta = (u / L) / (1 + A u^2)."""
+    return understeer_gradient(vehicle_or_bicycle) / bicycle_parameters(vehicle_or_bicycle).wheelbase
+
+
+def characteristic_speed(vehicle_or_bicycle) -> float:
+    """Characteristic speed sqrt(L / K) [m/s] of an understeering vehicle.
+
+    The speed at which the steer angle needed on any radius is twice the Ackermann angle and at
+    which the yaw-rate gain per unit speed, r / (delta u), has halved. ``inf`` for a neutral or
+    oversteering vehicle (K <= 0), which has none.
+    """
+    K = understeer_gradient(vehicle_or_bicycle)
+    L = bicycle_parameters(vehicle_or_bicycle).wheelbase
+    return float(np.sqrt(L / K)) if K > 0 else float("inf")
+
+
+def critical_speed(vehicle_or_bicycle) -> float:
+    """Critical speed sqrt(-L / K) [m/s] of an oversteering vehicle (K < 0).
+
+    Above it the linear model has a real positive eigenvalue (the vehicle is directionally
+    unstable) and the steady-state gains change sign. ``inf`` when K >= 0 (never unstable).
+    """
+    K = understeer_gradient(vehicle_or_bicycle)
+    L = bicycle_parameters(vehicle_or_bicycle).wheelbase
+    return float(np.sqrt(-L / K)) if K < 0 else float("inf")
+
+
+def zero_sideslip_speed(vehicle_or_bicycle) -> float:
+    """Speed sqrt(b L C_r / (m a)) [m/s] at which the steady sideslip at the CG is zero (2WS).
+
+    Below it the CG sideslip has the sign of the steer angle, above it the opposite sign.
+    """
+    p = bicycle_parameters(vehicle_or_bicycle)
+    return float(np.sqrt(p.b * p.wheelbase * p.rear_cornering_stiffness / (p.mass * p.a)))
+
+
+# --------------------------------------------------------------------------- gains
+@dataclass(frozen=True)
+class SteadyStateGains:
+    """Steady-state responses per unit front road-wheel steer angle, against speed.
+
+    Attributes
+    ----------
+    speed : ndarray
+        [m/s].
+    rear_steer_ratio : ndarray
+        k = delta_r / delta_f used [-].
+    yaw_rate : ndarray
+        r / delta_f [1/s].
+    lateral_acceleration : ndarray
+        a_y / delta_f [(m/s^2)/rad].
+    sideslip_angle : ndarray
+        beta / delta_f [rad/rad].
+    path_curvature : ndarray
+        (1/R) / delta_f [1/(m*rad)].
+    """
+
+    speed: np.ndarray
+    rear_steer_ratio: np.ndarray
+    yaw_rate: np.ndarray
+    lateral_acceleration: np.ndarray
+    sideslip_angle: np.ndarray
+    path_curvature: np.ndarray
+
+    @property
+    def lateral_acceleration_g_per_deg(self) -> np.ndarray:
+        """a_y / delta_f in g per degree of road-wheel steer."""
+        return self.lateral_acceleration / GRAVITY * np.pi / 180.0
+
+    def to_frame(self):
+        """A pandas DataFrame indexed by speed with ``attrs["units"]``."""
+        import pandas as pd
+
+        df = pd.DataFrame({
+            "rear_steer_ratio": np.broadcast_to(self.rear_steer_ratio, self.speed.shape).ravel(),
+            "yaw_rate": np.ravel(self.yaw_rate),
+            "lateral_acceleration": np.ravel(self.lateral_acceleration),
+            "sideslip_angle": np.ravel(self.sideslip_angle),
+            "path_curvature": np.ravel(self.path_curvature),
+        }, index=pd.Index(np.ravel(self.speed), name="speed"))
+        df.attrs["units"] = {"speed": "m/s", "rear_steer_ratio": "-", "yaw_rate": "1/s",
+                             "lateral_acceleration": "(m/s^2)/rad", "sideslip_angle": "rad/rad",
+                             "path_curvature": "1/(m*rad)"}
+        return df
+
+
+def steady_state_gains(vehicle_or_bicycle, speed=None, *, rear_steer_ratio=0.0) -> SteadyStateGains:
+    """Steady-state yaw-rate, lateral-acceleration, sideslip and curvature gains.
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+    speed : float or array_like, optional
+        Forward speed [m/s]; defaults to the bicycle's.
+    rear_steer_ratio : float or array_like
+        k = delta_r / delta_f [-] (positive: rear wheels steer the same way as the front), e.g.
+        :func:`~vehdyn.handling.zero_sideslip_rear_steer_ratio`; 0 for front steer only.
+
+    Returns
+    -------
+    SteadyStateGains
+        Per unit front road-wheel angle; at or above the critical speed the gains are those of
+        the (unstable) equilibrium, infinite at u_crit exactly.
+    """
+    p = bicycle_parameters(vehicle_or_bicycle)
+    u = _speed_of(vehicle_or_bicycle, speed)
+    k = np.asarray(rear_steer_ratio, dtype=float)
+    L, K = p.wheelbase, p.understeer_gradient
+    with np.errstate(divide="ignore", invalid="ignore"):
+        denominator = L + K * u**2
+        yaw = u * (1.0 - k) / denominator
+        beta = k + (p.b - p.mass * p.a * u**2 / (L * p.rear_cornering_stiffness)) * (1.0 - k) / denominator
+        curvature = (1.0 - k) / denominator
+    u_b, k_b = np.broadcast_arrays(u, k)
+    return SteadyStateGains(speed=u_b, rear_steer_ratio=k_b, yaw_rate=yaw, lateral_acceleration=u * yaw,
+                            sideslip_angle=beta, path_curvature=curvature)
+
+
+# --------------------------------------------------------------------------- neutral steer point
+class NeutralSteerPoint(NamedTuple):
+    """Neutral steer point: where a lateral force on the vehicle makes no yaw moment [m]."""
+
+    from_front_axle: float
+    behind_cg: float
+
+
+def neutral_steer_point(vehicle_or_bicycle) -> NeutralSteerPoint:
+    """Position of the neutral steer point: C_r L / (C_f + C_r) behind the front axle [m].
+
+    ``behind_cg`` is positive when the point lies behind the CG (an understeering vehicle).
+    """
+    p = bicycle_parameters(vehicle_or_bicycle)
+    x = p.rear_cornering_stiffness * p.wheelbase / (p.front_cornering_stiffness + p.rear_cornering_stiffness)
+    return NeutralSteerPoint(float(x), float(x - p.a))
+
+
+def static_margin(vehicle_or_bicycle) -> float:
+    """Static margin SM = (neutral steer point behind the CG) / L [-]; positive for understeer."""
+    return neutral_steer_point(vehicle_or_bicycle).behind_cg / bicycle_parameters(vehicle_or_bicycle).wheelbase
+
+
+# --------------------------------------------------------------------------- steer angles
+def _wheelbase_of(vehicle_or_wheelbase) -> float:
+    if isinstance(vehicle_or_wheelbase, (int, float, np.floating, np.integer)):
+        L = float(vehicle_or_wheelbase)
+        if not (np.isfinite(L) and L > 0):
+            raise ParameterError(f"wheelbase must be positive [m], got {L!r}", key="wheelbase", value=L)
+        return L
+    wheelbase = getattr(vehicle_or_wheelbase, "wheelbase", None)
+    if wheelbase is not None:
+        return float(wheelbase)
+    return bicycle_parameters(vehicle_or_wheelbase).wheelbase
+
+
+def _radius(radius) -> np.ndarray:
+    R = np.asarray(radius, dtype=float)
+    if np.any(~np.isfinite(R) | (R == 0)):
+        raise ParameterError(f"radius must be finite and non-zero [m], got {radius!r}", key="radius", value=radius)
+    return R
+
+
+def ackermann_steer_angle(vehicle_or_wheelbase, radius, *, exact: bool = False):
+    """Ackermann (kinematic, low-speed) road-wheel steer angle of the single-track model [rad].
+
+    Parameters
+    ----------
+    vehicle_or_wheelbase : Vehicle, LinearBicycle, BicycleParameters or float
+        The vehicle, or its wheelbase L [m].
+    radius : float or array_like
+        Turn radius of the rear-axle centre [m]; positive for a right turn (SAE), negative left.
+    exact : bool
+        ``atan(L / R)`` instead of the small-angle L / R (Gillespie 1992, eq. 6-1).
+
+    Returns
+    -------
+    ndarray or float
+        Steer angle [rad], with the sign of the radius.
+    """
+    L = _wheelbase_of(vehicle_or_wheelbase)
+    R = _radius(radius)
+    return np.arctan(L / R) if exact else L / R
+
+
+class AckermannWheelAngles(NamedTuple):
+    """Road-wheel angles of the inner and outer front wheels in a kinematic turn [rad]."""
+
+    inner: np.ndarray
+    outer: np.ndarray
+
+
+def ackermann_wheel_angles(vehicle_or_wheelbase, radius, *, track: float | None = None,
+                           exact: bool = False) -> AckermannWheelAngles:
+    """Inner and outer front-wheel angles of perfect Ackermann geometry [rad].
+
+    delta_i = L / (R - t/2), delta_o = L / (R + t/2) (Gillespie eq. 6-2), or with atan when
+    ``exact``; R to the rear-axle centre, t the front track (``vehicle.geometry.front_track`` by
+    default). Signs follow the radius (positive right turn, SAE); the inner wheel is on the side
+    of the turn centre.
+    """
+    L = _wheelbase_of(vehicle_or_wheelbase)
+    if track is None:
+        geometry = getattr(vehicle_or_wheelbase, "geometry", None)
+        if geometry is None:
+            raise ParameterError("track [m] is needed unless a Vehicle is given", key="track", value=None)
+        track = geometry.front_track
+    if not (np.isfinite(track) and track > 0):
+        raise ParameterError(f"track must be positive [m], got {track!r}", key="track", value=track)
+    R = _radius(radius)
+    sign = np.sign(R)
+    Rabs = np.abs(R)
+    if np.any(Rabs <= track / 2):
+        raise ParameterError(f"radius must exceed half the track ({track / 2} m), got {radius!r}",
+                             key="radius", value=radius)
+    if exact:
+        return AckermannWheelAngles(sign * np.arctan(L / (Rabs - track / 2)), sign * np.arctan(L / (Rabs + track / 2)))
+    return AckermannWheelAngles(sign * L / (Rabs - track / 2), sign * L / (Rabs + track / 2))
+
+
+def steer_angle_for(vehicle_or_bicycle, radius, speed=None, *, rear_steer_ratio=0.0):
+    """Front road-wheel steer angle [rad] for a steady turn of radius ``radius`` at ``speed``.
+
+    delta_f (1 - k) = L / R + K u^2 / R (Gillespie eq. 6-17 in consistent units), the Ackermann
+    angle plus the understeer part K a_y. Radius positive for a right turn (SAE); ``speed``
+    defaults to the bicycle's; ``rear_steer_ratio`` k = delta_r / delta_f.
+    """
+    p = bicycle_parameters(vehicle_or_bicycle)
+    u = _speed_of(vehicle_or_bicycle, speed)
+    R = _radius(radius)
+    k = np.asarray(rear_steer_ratio, dtype=float)
+    return (p.wheelbase / R + understeer_gradient(vehicle_or_bicycle) * u**2 / R) / (1.0 - k)
+
+
+# --------------------------------------------------------------------------- handling diagram
+@dataclass(frozen=True)
+class HandlingDiagram:
+    """Road-wheel steer angle against lateral acceleration at constant radius or constant speed.
+
+    Attributes
+    ----------
+    lateral_acceleration : ndarray
+        [m/s^2].
+    steer_angle : ndarray
+        Front road-wheel angle [rad].
+    speed, radius : ndarray
+        [m/s], [m] at each point (one of them constant).
+    condition : str
+        ``"constant radius"`` or ``"constant speed"``.
+    """
+
+    lateral_acceleration: np.ndarray
+    steer_angle: np.ndarray
+    speed: np.ndarray
+    radius: np.ndarray
+    condition: str
+
+    def to_frame(self):
+        import pandas as pd
+
+        df = pd.DataFrame({"steer_angle": self.steer_angle, "speed": self.speed, "radius": self.radius},
+                          index=pd.Index(self.lateral_acceleration, name="lateral_acceleration"))
+        df.attrs["units"] = {"lateral_acceleration": "m/s^2", "steer_angle": "rad", "speed": "m/s", "radius": "m"}
+        df.attrs["condition"] = self.condition
+        return df
+
+    def plot(self, ax=None, label: str | None = None):
+        """Steer angle [deg] against lateral acceleration [g], the textbook's handling diagram."""
+        from ..plotting import new_figure
+
+        if ax is None:
+            fig, axes = new_figure(1, 1, height_per_row=3.6)
+            ax = axes[0, 0]
+        ax.plot(self.lateral_acceleration / GRAVITY, np.rad2deg(self.steer_angle), label=label or self.condition)
+        ax.set_xlabel("lateral acceleration [g]")
+        ax.set_ylabel("road-wheel steer angle [deg]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+        return ax.figure
+
+
+def handling_diagram(vehicle_or_bicycle, lateral_acceleration, *, radius=None, speed=None) -> HandlingDiagram:
+    """Linear handling diagram: steer angle against lateral acceleration.
+
+    Give ``radius`` [m] (constant-radius test, ISO 4138 method 1: u = sqrt(a_y R),
+    delta = L / R + K a_y) or ``speed`` [m/s] (constant-speed test: R = u^2 / a_y,
+    delta = (L / u^2 + K) a_y). The slope of the constant-radius line is K; of the constant-speed
+    line L / u^2 + K.
+    """
+    if (radius is None) == (speed is None):
+        raise ParameterError("give exactly one of radius or speed", key="radius", value=(radius, speed))
+    ay = np.asarray(lateral_acceleration, dtype=float)
+    if np.any(~np.isfinite(ay)):
+        raise ParameterError("lateral_acceleration must be finite", key="lateral_acceleration", value=ay)
+    p = bicycle_parameters(vehicle_or_bicycle)
+    K = understeer_gradient(vehicle_or_bicycle)
+    if radius is not None:
+        R = float(_radius(radius))
+        with np.errstate(invalid="ignore"):
+            u = np.sqrt(ay * R)
+        return HandlingDiagram(ay, p.wheelbase / R + K * ay, u, np.full_like(ay, R), "constant radius")
+    u = float(check_speed(speed))
+    with np.errstate(divide="ignore"):
+        R = u**2 / ay
+    return HandlingDiagram(ay, (p.wheelbase / u**2 + K) * ay, np.full_like(ay, u), R, "constant speed")
+

@@ -1,0 +1,358 @@
+"""Transient handling: ISO 7401 step-steer metrics, the yaw mode and steering frequency responses.
+
+Step-steer metrics (ISO 7401:2011, *Road vehicles - Lateral transient response test methods*,
+sec. 9.2; Abe, *Vehicle Handling Dynamics*, 2009, sec. 4.2) are computed from the time histories
+of any :class:`~vehdyn.SimulationResult` (a linear bicycle, a lateral-yaw-roll model, a nonlinear
+single track, a measurement), vectorized over a batch:
+
+* time origin: the instant the steer signal passes 50 % of its change;
+* steady-state value: the mean over the last ``steady_window`` seconds;
+* response time: from the origin to the first time the response reaches 90 % of its steady-state
+  change; rise time: 10 % to 90 %;
+* peak response time and peak value: the first maximum (in the direction of the steady state),
+  refined by a parabola through the three samples around it;
+* overshoot: (peak - steady) / steady.
+
+The yaw mode of the 2-DOF bicycle model (characteristic polynomial s^2 + 2 zeta w_n s + w_n^2;
+Abe 2009 eq. 4.9-4.10; Mitschke & Wallentowitz, *Dynamik der Kraftfahrzeuge*, 2014, sec. 25.3)::
+
+    w_n^2        = C_f C_r L^2 / (m I_z u^2) + (C_r b - C_f a) / I_z
+    2 zeta w_n   = (C_f + C_r) / (m u) + (C_f a^2 + C_r b^2) / (I_z u)
+    r / delta_f  = (C_f a / I_z s + C_f C_r L / (m I_z u)) / (s^2 + 2 zeta w_n s + w_n^2)
+    a_y/delta_f  = (C_f / m s^2 + C_f C_r b L / (m I_z u) s + C_f C_r L / (m I_z)) / (same)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from ..errors import ParameterError
+from .bicycle import LinearBicycle, bicycle_parameters, check_speed
+
+__all__ = [
+    "StepResponseMetrics",
+    "step_response_metrics",
+    "step_steer_metrics",
+    "YawMode",
+    "yaw_mode",
+    "yaw_rate_transfer_function",
+    "lateral_acceleration_transfer_function",
+    "steering_frequency_response",
+]
+
+
+# --------------------------------------------------------------------------- step metrics
+@dataclass(frozen=True)
+class StepResponseMetrics:
+    """ISO 7401 step-response metrics of one signal (arrays for a batched result).
+
+    Attributes
+    ----------
+    signal : str
+    unit : str
+        Unit of the signal.
+    step_time : float
+        The time origin: 50 % of the steer change [s].
+    initial_value, steady_state_value, peak_value : ndarray
+        [signal unit].
+    response_time : ndarray
+        Step time to 90 % of the steady-state change [s].
+    rise_time : ndarray
+        10 % to 90 % of the steady-state change [s].
+    peak_response_time : ndarray
+        Step time to the first peak [s] (NaN without an overshoot).
+    overshoot : ndarray
+        (peak - steady) / (steady - initial) [-] (0 without an overshoot).
+    """
+
+    signal: str
+    unit: str
+    step_time: float
+    initial_value: np.ndarray
+    steady_state_value: np.ndarray
+    response_time: np.ndarray
+    rise_time: np.ndarray
+    peak_value: np.ndarray
+    peak_response_time: np.ndarray
+    overshoot: np.ndarray
+
+    def as_dict(self) -> dict:
+        """The metrics as a dict of floats (or arrays for a batch)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+    def to_frame(self):
+        """One row per batch member, one column per metric, ``attrs["units"]``."""
+        import pandas as pd
+
+        names = ["initial_value", "steady_state_value", "response_time", "rise_time", "peak_value",
+                 "peak_response_time", "overshoot"]
+        df = pd.DataFrame({n: np.atleast_1d(getattr(self, n)) for n in names})
+        df.attrs["units"] = {"initial_value": self.unit, "steady_state_value": self.unit, "response_time": "s",
+                             "rise_time": "s", "peak_value": self.unit, "peak_response_time": "s",
+                             "overshoot": "-"}
+        df.attrs["signal"] = self.signal
+        return df
+
+
+def _crossing_time(t, z, level):
+    """First time z (shape (n_t, ...)) reaches ``level`` from below, by linear interpolation; NaN if never."""
+    above = z >= level
+    k = np.argmax(above, axis=0)
+    reached = np.take_along_axis(above, k[None], 0)[0]
+    k0 = np.maximum(k - 1, 0)
+    z0 = np.take_along_axis(z, k0[None], 0)[0]
+    z1 = np.take_along_axis(z, k[None], 0)[0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        w = np.where(z1 > z0, (level - z0) / (z1 - z0), 1.0)
+    w = np.clip(w, 0.0, 1.0)
+    tk = np.where(k == 0, t[0], t[k0] + w * (t[k] - t[k0]))
+    return np.where(reached, tk, np.nan)
+
+
+def _step_time(t, steer) -> float:
+    """Time at which the steer signal passes 50 % of its change (t[0] for a step at the start)."""
+    s0, s1 = steer[0], steer[-1]
+    change = s1 - s0
+    if abs(change) <= 1e-12 * max(abs(s1), 1e-300) or np.ptp(steer) == 0:
+        return float(t[0])  # the steer is already at its final value at t[0]: an ideal step at t[0]
+    z = (steer - s0) / change
+    return float(_crossing_time(t, z, 0.5))
+
+
+def step_response_metrics(result, signal: str = "yaw_rate", *, steer: str | None = "front_steer_angle",
+                          step_time: float | None = None, steady_window: float = 1.0,
+                          initial_value=None) -> StepResponseMetrics:
+    """ISO 7401 step-steer metrics of ``signal`` in a :class:`~vehdyn.SimulationResult`.
+
+    Parameters
+    ----------
+    result : SimulationResult
+        Any model's result (batched results give arrays of metrics).
+    signal : str
+        The response (``"yaw_rate"``, ``"lateral_acceleration"``, ``"roll_angle"`` ...).
+    steer : str or None
+        The steer signal in the result that defines the time origin (50 % of its change). When it
+        is constant over the run (an ideal step applied at ``time[0]`` to a vehicle at rest in its
+        straight-running state) the origin is ``time[0]``.
+    step_time : float, optional
+        The time origin [s], overriding ``steer``.
+    steady_window : float
+        The steady-state value is the mean over the last ``steady_window`` seconds [s].
+    initial_value : float or array_like, optional
+        Response before the step; by default the first sample, or 0 (straight running) for an
+        ideal step at ``time[0]``.
+
+    Returns
+    -------
+    StepResponseMetrics
+    """
+    t = np.asarray(result.time, dtype=float)
+    y = np.asarray(result[signal], dtype=float)
+    ideal_step = False
+    if step_time is None:
+        if steer is None:
+            raise ParameterError("give steer (a signal name) or step_time", key="steer", value=None)
+        s = np.asarray(result[steer], dtype=float)
+        if s.ndim > 1:
+            s = s[:, 0]
+        step_time = _step_time(t, s)
+        ideal_step = np.ptp(s) == 0
+    if not (t[0] <= step_time < t[-1]):
+        raise ParameterError(f"step_time {step_time} s is outside the run [{t[0]}, {t[-1]}] s",
+                             key="step_time", value=step_time)
+    if not (0 < steady_window <= t[-1] - step_time):
+        raise ParameterError(f"steady_window must be in (0, {t[-1] - step_time}] s, got {steady_window}",
+                             key="steady_window", value=steady_window)
+    if initial_value is None:
+        # straight running before an ideal step at time[0]; otherwise the first sample
+        initial_value = np.zeros(y.shape[1:]) if ideal_step else y[0]
+    y0 = np.asarray(initial_value, dtype=float)
+    ys = y[t >= t[-1] - steady_window].mean(axis=0)
+    change = ys - y0
+    after = t >= step_time
+    ta = t[after]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = (y[after] - y0) / change  # normalized response: 0 before, 1 at steady state
+    t90 = _crossing_time(ta, z, 0.9)
+    t10 = _crossing_time(ta, z, 0.1)
+    # first peak: the first local maximum of z above 1
+    interior = (z[1:-1] >= z[:-2]) & (z[1:-1] > z[2:]) & (z[1:-1] > 1.0)
+    has_peak = interior.any(axis=0)
+    k = np.argmax(interior, axis=0) + 1
+    zm1 = np.take_along_axis(z, (k - 1)[None], 0)[0]
+    z0 = np.take_along_axis(z, k[None], 0)[0]
+    zp1 = np.take_along_axis(z, (k + 1)[None], 0)[0]
+    curvature = zm1 - 2 * z0 + zp1
+    with np.errstate(divide="ignore", invalid="ignore"):
+        shift = np.where(curvature < 0, 0.5 * (zm1 - zp1) / curvature, 0.0)
+    shift = np.clip(shift, -1.0, 1.0)
+    h = np.where(shift >= 0, ta[np.minimum(k + 1, ta.size - 1)] - ta[k], ta[k] - ta[k - 1])
+    t_peak = ta[k] + shift * h
+    z_peak = z0 - 0.25 * (zm1 - zp1) * shift
+    overshoot = np.where(has_peak, z_peak - 1.0, 0.0)
+    peak_value = np.where(has_peak, y0 + z_peak * change, ys)
+    unit = result.unit(signal) if hasattr(result, "unit") else ""
+    return StepResponseMetrics(
+        signal=signal, unit=unit, step_time=float(step_time), initial_value=y0, steady_state_value=ys,
+        response_time=t90 - step_time, rise_time=t90 - t10, peak_value=peak_value,
+        peak_response_time=np.where(has_peak, t_peak - step_time, np.nan), overshoot=overshoot)
+
+
+def step_steer_metrics(result, signals=("yaw_rate", "lateral_acceleration"), **kwargs) -> dict:
+    """:func:`step_response_metrics` of several signals: ``{signal: StepResponseMetrics}``."""
+    return {s: step_response_metrics(result, s, **kwargs) for s in signals}
+
+
+# --------------------------------------------------------------------------- yaw mode
+@dataclass(frozen=True)
+class YawMode:
+    """The coupled sideslip/yaw mode of the 2-DOF bicycle model against speed.
+
+    Attributes
+    ----------
+    speed : ndarray
+        [m/s].
+    natural_frequency_squared : ndarray
+        w_n^2 [rad^2/s^2] (negative above the critical speed of an oversteering vehicle).
+    natural_frequency : ndarray
+        w_n [rad/s] (NaN where w_n^2 < 0).
+    damping_ratio : ndarray
+        zeta [-] (NaN where w_n^2 < 0; > 1 for two real eigenvalues).
+    eigenvalues : ndarray of complex, shape (2,) + speed.shape
+        Roots of s^2 + 2 zeta w_n s + w_n^2 [1/s]; the one with the larger real part first.
+    """
+
+    speed: np.ndarray
+    natural_frequency_squared: np.ndarray
+    natural_frequency: np.ndarray
+    damping_ratio: np.ndarray
+    eigenvalues: np.ndarray
+
+    @property
+    def natural_frequency_hz(self) -> np.ndarray:
+        """w_n / (2 pi) [Hz]."""
+        return self.natural_frequency / (2 * np.pi)
+
+    @property
+    def stable(self) -> np.ndarray:
+        """True where both eigenvalues have negative real parts."""
+        return np.all(self.eigenvalues.real < 0, axis=0)
+
+    def to_frame(self):
+        import pandas as pd
+
+        df = pd.DataFrame({
+            "natural_frequency": np.ravel(self.natural_frequency),
+            "natural_frequency_hz": np.ravel(self.natural_frequency_hz),
+            "damping_ratio": np.ravel(self.damping_ratio),
+            "eigenvalue_1_real": np.ravel(self.eigenvalues[0].real),
+            "eigenvalue_1_imag": np.ravel(self.eigenvalues[0].imag),
+            "eigenvalue_2_real": np.ravel(self.eigenvalues[1].real),
+            "eigenvalue_2_imag": np.ravel(self.eigenvalues[1].imag),
+        }, index=pd.Index(np.ravel(self.speed), name="speed"))
+        df.attrs["units"] = {"speed": "m/s", "natural_frequency": "rad/s", "natural_frequency_hz": "Hz",
+                             "damping_ratio": "-", "eigenvalue_1_real": "1/s", "eigenvalue_1_imag": "rad/s",
+                             "eigenvalue_2_real": "1/s", "eigenvalue_2_imag": "rad/s"}
+        return df
+
+
+def _speed(vehicle_or_bicycle, speed):
+    if speed is None:
+        speed = getattr(vehicle_or_bicycle, "speed", None)
+        if speed is None:
+            raise ParameterError("a speed [m/s] is needed (give speed=...)", key="speed", value=None)
+    return check_speed(speed)
+
+
+def _characteristic_polynomial(p, u):
+    m, iz, a, b = p.mass, p.yaw_inertia, p.a, p.b
+    cf, cr, L = p.front_cornering_stiffness, p.rear_cornering_stiffness, p.wheelbase
+    wn2 = cf * cr * L**2 / (m * iz * u**2) + (cr * b - cf * a) / iz
+    two_zeta_wn = (cf + cr) / (m * u) + (cf * a**2 + cr * b**2) / (iz * u)
+    return wn2, two_zeta_wn
+
+
+def yaw_mode(vehicle_or_bicycle, speed=None) -> YawMode:
+    """Natural frequency, damping and eigenvalues of the yaw mode against speed (closed form).
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+    speed : float or array_like, optional
+        [m/s]; defaults to the bicycle's.
+
+    Returns
+    -------
+    YawMode
+        For the 2-DOF model without tire lag (use ``LinearBicycle(..., tire_lag=True).modes()`` for
+        the model with lag).
+    """
+    p = bicycle_parameters(vehicle_or_bicycle)
+    u = _speed(vehicle_or_bicycle, speed)
+    wn2, c1 = _characteristic_polynomial(p, u)
+    disc = np.sqrt((0.25 * c1**2 - wn2).astype(complex))
+    eig = np.stack([-0.5 * c1 + disc, -0.5 * c1 - disc])
+    with np.errstate(invalid="ignore"):
+        wn = np.where(wn2 > 0, np.sqrt(np.abs(wn2)), np.nan)
+        zeta = c1 / (2 * wn)
+    return YawMode(speed=u, natural_frequency_squared=wn2, natural_frequency=wn, damping_ratio=zeta,
+                   eigenvalues=eig)
+
+
+def yaw_rate_transfer_function(vehicle_or_bicycle, speed=None):
+    """r / delta_f as ``(numerator, denominator)`` polynomial coefficients in s, highest power first.
+
+    Closed form in the module docstring; [1/s] at s = 0. Usable with ``control.tf(num, den)`` and
+    ``scipy.signal.freqs``.
+    """
+    p = bicycle_parameters(vehicle_or_bicycle)
+    u = float(_speed(vehicle_or_bicycle, speed))
+    wn2, c1 = _characteristic_polynomial(p, u)
+    cf, cr, L, m, iz = p.front_cornering_stiffness, p.rear_cornering_stiffness, p.wheelbase, p.mass, p.yaw_inertia
+    return np.array([cf * p.a / iz, cf * cr * L / (m * iz * u)]), np.array([1.0, c1, wn2])
+
+
+def lateral_acceleration_transfer_function(vehicle_or_bicycle, speed=None):
+    """a_y / delta_f as ``(numerator, denominator)`` coefficients in s, highest power first.
+
+    [(m/s^2)/rad]; closed form in the module docstring.
+    """
+    p = bicycle_parameters(vehicle_or_bicycle)
+    u = float(_speed(vehicle_or_bicycle, speed))
+    wn2, c1 = _characteristic_polynomial(p, u)
+    cf, cr, L, m, iz = p.front_cornering_stiffness, p.rear_cornering_stiffness, p.wheelbase, p.mass, p.yaw_inertia
+    return np.array([cf / m, cf * cr * p.b * L / (m * iz * u), cf * cr * L / (m * iz)]), np.array([1.0, c1, wn2])
+
+
+def steering_frequency_response(vehicle_or_bicycle, omega, speed=None, *,
+                                outputs=("yaw_rate", "lateral_acceleration", "sideslip_angle"),
+                                tire_lag: bool = False):
+    """Frequency response of the bicycle model to the front road-wheel steer angle.
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+    omega : array_like
+        Angular frequencies [rad/s].
+    speed : float, optional
+        [m/s]; defaults to the bicycle's.
+    outputs : sequence of str
+        Outputs of :class:`LinearBicycle`.
+    tire_lag : bool
+        Include tire lag (ignored for a LinearBicycle, which keeps its own states).
+
+    Returns
+    -------
+    FrequencyResponse
+        ``fr["yaw_rate", "front_steer_angle"]`` etc.
+    """
+    if isinstance(vehicle_or_bicycle, LinearBicycle) and (speed is None or speed == vehicle_or_bicycle.speed):
+        model = vehicle_or_bicycle
+    else:
+        if isinstance(vehicle_or_bicycle, LinearBicycle):
+            model = vehicle_or_bicycle.at_speed(float(_speed(vehicle_or_bicycle, speed)))
+        else:
+            model = LinearBicycle(vehicle_or_bicycle, float(_speed(vehicle_or_bicycle, speed)), tire_lag=tire_lag)
+    return model.frequency_response(omega, outputs=list(outputs), inputs=["front_steer_angle"])
