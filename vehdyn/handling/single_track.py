@@ -163,6 +163,14 @@ def _check_parameters(p: SingleTrackParameters) -> SingleTrackParameters:
     return p
 
 
+def _stack(rows) -> np.ndarray:
+    """Rows of scalars or arrays as one array with the batch axis last."""
+    if all(np.ndim(row) == 0 for row in rows):
+        return np.array(rows, dtype=float)
+    shape = np.broadcast_shapes(*(np.shape(row) for row in rows))
+    return np.stack([np.broadcast_to(row, shape) for row in rows])
+
+
 class SingleTrack(Model):
     """Nonlinear planar single-track model with any tire law (equations in the module docstring).
 
@@ -332,6 +340,7 @@ class SingleTrack(Model):
             Signal("yaw_angle", "rad", "heading psi"),
         ]
         self.declare(states=states, inputs=inputs, outputs=outputs)
+        self._state_keys, self._input_keys = self.state_names, self.input_names
         phenomena = {"longitudinal", "lateral", "yaw", "load_transfer", "tire_saturation", "aero"}
         if self.wheel_spin:
             phenomena.add("wheel_spin")
@@ -376,9 +385,8 @@ class SingleTrack(Model):
         p = self.parameters
         x = np.asarray(x, dtype=float)
         u = np.asarray(u, dtype=float)
-        names = self.state_names
-        s = dict(zip(names, x))
-        i = dict(zip(self.input_names, u))
+        s = dict(zip(self._state_keys, x))
+        i = dict(zip(self._input_keys, u))
         lon, lat, yaw_rate = s["longitudinal_velocity"], s["lateral_velocity"], s["yaw_rate"]
         steer = {"front": i["front_steer_angle"], "rear": i["rear_steer_angle"]}
         body_lateral = {"front": lat + p.a * yaw_rate, "rear": lat - p.b * yaw_rate}
@@ -397,7 +405,7 @@ class SingleTrack(Model):
             """Axle (fx, fy) in SAE wheel axes and the slips (alpha_sae, kappa) for axle load fz."""
             c, sn, vx, vy = kin[axle]
             speed = np.abs(vx)
-            direction = np.where(vx < 0.0, -1.0, 1.0)
+            direction = 1.0 - 2.0 * (vx < 0.0)  # sign(vx) with sign(0) = +1
             if self.tire_lag:
                 blend = self._low_speed_blend(speed)
                 sigma_y = getattr(p, f"{axle}_lateral_relaxation_length")
@@ -414,12 +422,12 @@ class SingleTrack(Model):
                 else:
                     kappa = -vsx / (direction * self._regularized(vx))
             else:
-                kappa = np.zeros_like(alpha)
+                kappa = 0.0 * alpha
             fx, fy = self._axle_tire_forces(axle, fz, kappa, alpha, direction * np.maximum(speed, 1e-3))
             if not self.wheel_spin:
                 limit = p.friction_coefficient * np.maximum(fz, 0.0)
                 demand = i[f"{axle}_longitudinal_force"]
-                fx = np.clip(demand, -limit, limit)
+                fx = np.minimum(np.maximum(demand, -limit), limit)
                 safe = np.where(limit > 0, limit, 1.0)
                 fy = fy * np.sqrt(np.maximum(1.0 - (fx / safe) ** 2, 0.0))
             return fx, fy, alpha, kappa
@@ -427,7 +435,7 @@ class SingleTrack(Model):
         def loads(x_force):
             front = static_front - p.cg_height * x_force / p.wheelbase - lift["front"]
             total = weight - lift["front"] - lift["rear"]
-            front = np.clip(front, 0.0, np.maximum(total, 0.0))
+            front = np.minimum(np.maximum(front, 0.0), np.maximum(total, 0.0))
             return front, np.maximum(total - front, 0.0)
 
         def body_x(forces):
@@ -540,8 +548,7 @@ class SingleTrack(Model):
                     vsx = vx - s[f"{axle}_wheel_speed"] * p.rolling_radius
                     sigma = getattr(p, f"{axle}_longitudinal_relaxation_length")
                     rows.append(-vsx - np.abs(vx) * s[f"{axle}_longitudinal_deflection"] / sigma)
-        shape = np.broadcast_shapes(*(np.shape(row) for row in rows))
-        return np.stack([np.broadcast_to(row, shape) for row in rows])
+        return _stack(rows)
 
     def output(self, t, x, u):
         """Outputs (see :attr:`outputs`)."""
@@ -553,8 +560,7 @@ class SingleTrack(Model):
         rows = [e["ay"], np.arctan2(lat, np.abs(lon)), r, lat, ff[2], fr[2],
                 e["ay"] / np.maximum(speed_squared, 0.25), ff[1], fr[1], e["ax"], lon, np.sqrt(speed_squared),
                 ff[0], fr[0], e["fz_f"], e["fz_r"], ff[3], fr[3], s["x"], s["y"], s["yaw_angle"]]
-        shape = np.broadcast_shapes(*(np.shape(row) for row in rows))
-        return np.stack([np.broadcast_to(row, shape) for row in rows])
+        return _stack(rows)
 
     # ------------------------------------------------------------------ operating points
     def straight_running(self, speed: float, **states) -> np.ndarray:
