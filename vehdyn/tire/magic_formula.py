@@ -27,11 +27,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
 
 from ..errors import ParameterError, TirFileError
+from ..params import data_path
 from ._mf_ops import NumpyOps, ScalarOps, sign_nonzero
 from .base import TireForces, TireModel
 from .mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure, turn_slip_spin
@@ -41,8 +43,11 @@ from .tir import TirParameters, read_tir
 
 __all__ = ["MagicFormula", "MagicFormulaOutputs", "load_tire"]
 
-CHUNK_SIZE = 4096
+CHUNK_SIZE = 8192
 """Points evaluated per numpy pass (keeps the ~100 temporaries of a pass in cache)."""
+
+SMALL_BATCH = 8
+"""Up to this many points, :meth:`MagicFormula.forces` evaluates point by point on floats."""
 
 _OUTPUTS = (
     ("fx", "N", "longitudinal force"),
@@ -238,29 +243,57 @@ class MagicFormula(TireModel):
         Returns
         -------
         MagicFormulaOutputs
-            Arrays of the broadcast shape of the inputs.
+            Arrays of the broadcast shape of the inputs (0-d arrays for a single point, which is
+            evaluated on Python floats, without numpy's per-call overhead).
         """
-        arrays = self._inputs(fz, kappa, alpha, gamma, vx, pressure, phit, omega)
+        c = self._c
+        point = (fz, kappa, alpha, gamma, c.LONGVL if vx is None else vx, c.INFLPRES if pressure is None else pressure,
+                 phit, omega)
+        if all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)) for v in point):
+            # one operating point: float arithmetic (no numpy call overhead); numpy if a float op fails
+            fz, kappa, alpha, gamma, vx, pressure, phit, omega = (None if v is None else float(v) for v in point)
+            try:
+                out = _kernel(ScalarOps, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, alpha_star,
+                              turn_slip, True)
+                return MagicFormulaOutputs(**{k: np.asarray(v, dtype=float) for k, v in out.items()})
+            except (ArithmeticError, ValueError):
+                pass
+        arrays = self._inputs(*point)
         return MagicFormulaOutputs(**self._run(arrays, limits, alpha_star, turn_slip, full=True))
 
     def forces(self, fz, kappa, alpha, gamma=0.0, vx=None, *, limits=True, alpha_star=False) -> TireForces:
         """Forces and moments only (no turn slip, no rolling-radius iteration).
 
         Same conventions and switches as :meth:`evaluate` (vx defaults to LONGVL). A call with
-        scalar inputs is evaluated on Python floats (no numpy overhead) and returns floats.
+        scalar inputs is evaluated on Python floats (no numpy overhead) and returns floats; up to
+        ``SMALL_BATCH`` points (a vehicle's wheels) are evaluated the same way, point by point.
         """
         c = self._c
         vx = c.LONGVL if vx is None else vx
-        if all(isinstance(v, (int, float)) for v in (fz, kappa, alpha, gamma, vx)) and not isinstance(fz, bool):
-            try:
-                out = _kernel(ScalarOps, c, float(fz), float(kappa), float(alpha), float(gamma), 0.0, float(vx),
-                              c.INFLPRES, None, limits, alpha_star, False, False)
-                return TireForces(out["fx"], out["fy"], out["fz"], out["mx"], out["my"], out["mz"])
-            except (ArithmeticError, ValueError):
-                pass  # a 0/0 or inf case: numpy's IEEE arithmetic below gives MFeval's values
+        scalar = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in (fz, kappa, alpha, gamma, vx))
+        if scalar:
+            return TireForces(*self._forces_at_point(float(fz), float(kappa), float(alpha), float(gamma), float(vx),
+                                                     limits, alpha_star))
         arrays = self._inputs(fz, kappa, alpha, gamma, vx, None, 0.0, None)
+        shape = arrays["shape"]
+        if math.prod(shape) <= SMALL_BATCH:  # a few wheels: float arithmetic beats numpy's call overhead
+            points = np.broadcast_arrays(*(arrays[k] for k in ("fz", "kappa", "alpha", "gamma", "vx")))
+            values = [self._forces_at_point(*map(float, p), limits, alpha_star)
+                      for p in zip(*(np.ravel(a) for a in points))]
+            return TireForces(*(np.array(v, dtype=float).reshape(shape) for v in zip(*values)))
         out = self._run(arrays, limits, alpha_star, False, full=False)
-        return TireForces(out["fx"], out["fy"], out["fz"], out["mx"], out["my"], out["mz"])
+        return TireForces(*(out[k] for k in TireForces._fields))
+
+    def _forces_at_point(self, fz, kappa, alpha, gamma, vx, limits, alpha_star):
+        """Forces at one point on Python floats; numpy (IEEE inf/nan) where floats raise."""
+        c = self._c
+        try:
+            out = _kernel(ScalarOps, c, fz, kappa, alpha, gamma, 0.0, vx, c.INFLPRES, None, limits, alpha_star,
+                          False, False)
+        except (ArithmeticError, ValueError):  # a 0/0 or x/0: numpy gives MFeval's values
+            arrays = self._inputs(fz, kappa, alpha, gamma, vx, None, 0.0, None)
+            out = self._run(arrays, limits, alpha_star, False, full=False)
+        return tuple(float(out[k]) for k in TireForces._fields)
 
     # ------------------------------------------------------------------------------------------
     def _inputs(self, fz, kappa, alpha, gamma, vx, pressure, phit, omega):
@@ -309,8 +342,20 @@ class MagicFormula(TireModel):
 
 
 def load_tire(path) -> MagicFormula:
-    """Load a tire model from a ``.tir`` file (a :class:`MagicFormula`)."""
-    return MagicFormula.from_tir(path)
+    """Load a Magic Formula tire from a ``.tir`` file, or a shipped one by name.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A file path, or the stem of a file in vehdyn's ``data/tires`` (``"MagicFormula61_Parameters"``,
+        ``"MagicFormula62_Parameters"``, ``"MagicFormula52_Parameters"``, ``"mf_185_80R14"``).
+    """
+    candidate = Path(path)
+    if not candidate.exists() and candidate.suffix == "" and len(candidate.parts) == 1:
+        shipped = data_path("tires", candidate.name + ".tir")
+        if shipped.exists():
+            candidate = shipped
+    return MagicFormula.from_tir(candidate)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -363,13 +408,13 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
         phit = xp.where(vx < 0, -phit, phit)
         speed_sum = xp.abs(vx) + xp.abs(xp.tan(alpha) * vx)
         alpha = xp.where(speed_sum < vxlow, alpha * (speed_sum / vxlow), alpha)
-        alpha = xp.where(alpha < c.ALPMIN, c.ALPMIN, xp.where(alpha > c.ALPMAX, c.ALPMAX, alpha))
-        gamma = xp.where(gamma < c.CAMMIN, c.CAMMIN, xp.where(gamma > c.CAMMAX, c.CAMMAX, gamma))
+        alpha = xp.clip(alpha, c.ALPMIN, c.ALPMAX)
+        gamma = xp.clip(gamma, c.CAMMIN, c.CAMMAX)
         fz = xp.where(fz > c.FZMAX, c.FZMAX, fz)
         fz_low = xp.where(fz < c.FZMIN, c.FZMIN, fz)
         fz_moment = xp.where(fz <= 0, 0.0, fz_low)
-        pressure = xp.where(pressure < c.PRESMIN, c.PRESMIN, xp.where(pressure > c.PRESMAX, c.PRESMAX, pressure))
-        kappa = xp.where(kappa < c.KPUMIN, c.KPUMIN, xp.where(kappa > c.KPUMAX, c.KPUMAX, kappa))
+        pressure = xp.clip(pressure, c.PRESMIN, c.PRESMAX)
+        kappa = xp.clip(kappa, c.KPUMIN, c.KPUMAX)
     else:
         low_speed = 1.0
         kappa_output = kappa
@@ -388,7 +433,7 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
     vc = xp.sqrt(vx**2 + (xp.tan(alpha) * xp.abs(vx)) ** 2)
     s.cos_alpha_prime = xp.cos(xp.acos(vx / (vc + 1e-6 * sign_nonzero(xp, vc))))  # 4.E6, 4.E6a
     if turn_slip or full:
-        re, r_omega, omega = rolling_radius(c, fz_input, kappa_input, vx, s.dpi, omega)
+        re, r_omega, omega = rolling_radius(xp, c, fz_input, kappa_input, vx, s.dpi, omega)
     if turn_slip:
         s.phi, s.eps_gamma = turn_slip_spin(xp, c, s, omega)
     fx0, mux, kxk = longitudinal_pure(xp, c, s)
@@ -401,11 +446,11 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
     if not full:
         return out
     if c.is_mf62:
-        rho, loaded, cz = loaded_radius_mf62(c, fz_input, fz, gamma, fx, fy, s.dpi, omega, r_omega)
+        rho, loaded, cz = loaded_radius_mf62(xp, c, fz_input, fz, gamma, fx, fy, s.dpi, omega, r_omega)
     else:
-        rho, loaded, cz = loaded_radius_mf61(c, fz_low, fx, fy, s.dpi, omega, r_omega)
-    half_length, half_width = contact_patch(c, fz_input, s.dpi)
-    cx, cy, sigma_x, sigma_y = carcass_stiffness(c, fz, gamma, s.dpi, kxk, pure.kya)
+        rho, loaded, cz = loaded_radius_mf61(xp, c, fz_low, fx, fy, s.dpi, omega, r_omega)
+    half_length, half_width = contact_patch(xp, c, fz_input, s.dpi)
+    cx, cy, sigma_x, sigma_y = carcass_stiffness(xp, c, fz, gamma, s.dpi, kxk, pure.kya)
     out.update(
         kappa=kappa_output, alpha=xp.where(vx == 0, 0.0, alpha_input), gamma=gamma_input, phit=phit, vx=vx,
         pressure=pressure, effective_radius=re, deflection=rho, contact_length=2 * half_length, trail=mz.trail,

@@ -15,7 +15,7 @@ The state ``s`` carries: ``fz`` (load after the FZMAX clamp) [N], ``kappa`` [-],
 
 from __future__ import annotations
 
-from ._mf_ops import sign_nonzero
+from ._mf_ops import cos_atan, sign_nonzero
 
 __all__ = [
     "longitudinal_pure",
@@ -56,8 +56,8 @@ def longitudinal_pure(xp, c, s):
     """
     dfz, dpi = s.dfz, s.dpi
     if s.turn_slip:
-        b_xp = c.PDXP1 * (1 + c.PDXP2 * dfz) * xp.cos(xp.atan(c.PDXP3 * s.kappa))  # 4.106
-        zeta1 = xp.cos(xp.atan(b_xp * c.UNLOADED_RADIUS * s.phi))  # 4.105
+        b_xp = c.PDXP1 * (1 + c.PDXP2 * dfz) * cos_atan(xp, c.PDXP3 * s.kappa)  # 4.106
+        zeta1 = cos_atan(xp, b_xp * c.UNLOADED_RADIUS * s.phi)  # 4.105
     else:
         zeta1 = 1.0
     cx = c.PCX1 * c.LCX  # 4.E11
@@ -108,10 +108,10 @@ def lateral_pure(xp, c, s, gamma_star, turn_slip):
     r0 = c.UNLOADED_RADIUS
     if turn_slip:
         phi = s.phi
-        zeta3 = xp.cos(xp.atan(c.PKYP1 * r0**2 * phi**2))  # 4.79
-        b_yp = c.PDYP1 * (1 + c.PDYP2 * dfz) * xp.cos(xp.atan(c.PDYP3 * xp.tan(s.alpha)))  # 4.78
+        zeta3 = cos_atan(xp, c.PKYP1 * r0**2 * phi**2)  # 4.79
+        b_yp = c.PDYP1 * (1 + c.PDYP2 * dfz) * cos_atan(xp, c.PDYP3 * xp.tan(s.alpha))  # 4.78
         r_phi = r0 * xp.abs(phi)
-        zeta2 = xp.cos(xp.atan(b_yp * (r_phi + c.PDYP4 * xp.sqrt(r_phi))))  # 4.77
+        zeta2 = cos_atan(xp, b_yp * (r_phi + c.PDYP4 * xp.sqrt(r_phi)))  # 4.77
     else:
         zeta2 = zeta3 = 1.0
     pressure_k = 1 + c.PPY2 * dpi
@@ -132,9 +132,10 @@ def lateral_pure(xp, c, s, gamma_star, turn_slip):
             c_hyp = c.PHYP1  # 4.85
             d_hyp = (c.PHYP2 + c.PHYP3 * dfz) * sign_vx  # 4.86
             e_hyp = min(c.PHYP4, 1.0) if s.limits else c.PHYP4  # 4.87
-            b_hyp = (kyg0 / (1 - s.eps_gamma)) / (c_hyp * d_hyp * kya0_p)  # 4.88, 4.89
+            b_hyp = xp.div(kyg0 / (1 - s.eps_gamma), c_hyp * d_hyp * kya0_p)  # 4.88, 4.89
             arg = b_hyp * r0 * s.phi
             shy_p = d_hyp * xp.sin(c_hyp * xp.atan(arg - e_hyp * (arg - xp.atan(arg)))) * sign_vx  # 4.80
+            shy_p = xp.where(d_hyp == 0, 0.0, shy_p)  # vx = 0: DHyp = 0, the limit (MFeval: 0*inf = NaN)
             zeta4 = 1 + shy_p - svy_gamma / kya_p  # 4.84
             shy = (c.PHY1 + c.PHY2 * dfz) * c.LHY + zeta4 - 1  # 4.E27 with zeta0 = 0
         else:
@@ -168,7 +169,7 @@ def longitudinal_combined(xp, c, s, fx0):
     if s.limits:
         exa = xp.minimum(exa, 1.0)
     shxa = c.RHX1  # 4.E57
-    bxa = (c.RBX1 + c.RBX3 * s.gamma_star**2) * xp.cos(xp.atan(c.RBX2 * s.kappa)) * c.LXAL  # 4.E54
+    bxa = (c.RBX1 + c.RBX3 * s.gamma_star**2) * cos_atan(xp, c.RBX2 * s.kappa) * c.LXAL  # 4.E54
     alpha_s = s.alpha_star + shxa  # 4.E53
     b0 = bxa * shxa
     gxa0 = xp.cos(cxa * xp.atan(b0 - exa * (b0 - xp.atan(b0))))  # 4.E52
@@ -184,7 +185,7 @@ def lateral_combined_factor(xp, c, s):
     if s.limits:
         eyk = xp.minimum(eyk, 1.0)
     cyk = c.RCY1  # 4.E63
-    byk = (c.RBY1 + c.RBY4 * s.gamma_star**2) * xp.cos(xp.atan(c.RBY2 * (s.alpha_star - c.RBY3))) * c.LYKA  # 4.E62
+    byk = (c.RBY1 + c.RBY4 * s.gamma_star**2) * cos_atan(xp, c.RBY2 * (s.alpha_star - c.RBY3)) * c.LYKA  # 4.E62
     kappa_s = s.kappa + shyk  # 4.E61
     b0 = byk * shyk
     gyk0 = xp.cos(cyk * xp.atan(b0 - eyk * (b0 - xp.atan(b0))))  # 4.E60
@@ -202,7 +203,7 @@ def lateral_combined(xp, c, s, pure: LateralPure):
         low-speed reduction).
     """
     dvyk = pure.muy * s.fz * (c.RVY1 + c.RVY2 * s.dfz + c.RVY3 * s.gamma_star) \
-        * xp.cos(xp.atan(c.RVY4 * s.alpha_star)) * pure.zeta2  # 4.E67
+        * cos_atan(xp, c.RVY4 * s.alpha_star) * pure.zeta2  # 4.E67
     svyk = dvyk * xp.sin(c.RVY5 * xp.atan(c.RVY6 * s.kappa)) * c.LVYKA  # 4.E66
     gyk = lateral_combined_factor(xp, c, s)
     svyk = svyk * s.low_speed

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 
-from ._mf_ops import sign_nonzero
+from ._mf_ops import cos_atan, sign_nonzero
 from .mf_forces import _EPSILON, lateral_pure
 
 __all__ = ["overturning_moment", "rolling_resistance_moment", "aligning_moment"]
@@ -26,7 +26,7 @@ def overturning_moment(xp, c, s, fy):
     Below FZMIN the load is replaced by Fz*(Fz/FZMIN)^2 (MFeval). When both QSX1–QSX11 and
     QSX12–QSX14 are non-zero, MFeval uses eq. 49 of Besselink's draft paper, as here.
     """
-    fz = xp.where(s.fz < c.FZMIN, s.fz * (s.fz / c.FZMIN) ** 2, s.fz)
+    fz = xp.where(s.fz < c.FZMIN, s.fz * (s.fz / c.FZMIN) ** 2, s.fz) if c.FZMIN > 0 else s.fz
     fz0, r0, gamma = c.FNOMIN, c.UNLOADED_RADIUS, s.gamma
     if c.mx_draft_form:
         return r0 * fz * c.LMX * (
@@ -53,7 +53,9 @@ def rolling_resistance_moment(xp, c, s, fx):
     by sin(pi/2*(kappa + 1)/(h + 1)) for l <= kappa <= h, flips sign for kappa < l, and is 0 at
     vx = 0; it flips sign for vx < 0.
     """
-    fz = xp.where(s.fz_input < c.FZMIN, s.fz_input * (s.fz_input / c.FZMIN), s.fz_input)
+    fz = s.fz_input
+    if c.FZMIN > 0:
+        fz = xp.where(fz < c.FZMIN, fz * (fz / c.FZMIN), fz)
     vx, kappa = s.vx, s.kappa_input
     fz0, v0 = c.FNOMIN, c.LONGVL
     speed_terms = c.QSY1 + c.QSY2 * (fx / fz0) + c.QSY3 * xp.abs(vx / v0) + c.QSY4 * (vx / v0) ** 4
@@ -100,8 +102,10 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
     * Turn slip: Cr = zeta7 = 2/pi*acos(Mzp90/|Drp|) (MF-Tyre manual). MFeval evaluates this as
       written, which gives NaN at phit = 0 (0/0), -Inf or NaN when the camber stiffness Kzgr0 is
       0 (x/0) and a complex value when the ratio exceeds 1. vehdyn takes the phit -> 0 limit of
-      the ratio at phit = 0 and limits it to 1 (Cr = 0, i.e. Mzr = Dr), so Mz stays finite and
-      continuous; wherever MFeval's value is finite and real, the two agree.
+      the ratio at phit = 0 and limits it to [-1, 1] (|ratio| > 1: Cr = 0, i.e. Mzr = Dr, or
+      Cr = 2 where Gyk < 0), so Mz stays finite and continuous; wherever MFeval's value is finite
+      and real, the two agree. Where the turn-slip factors DHyp or DDrp are 0 (vx = 0, no load)
+      vehdyn uses their limits SHyp = 0 and Drp = 0, where MFeval's 0*Inf gives NaN.
     """
     r0, fz0p = c.UNLOADED_RADIUS, c.Fz0_prime
     dfz, gamma, gamma_star, alpha_star = s.dfz, s.gamma, s.gamma_star, s.alpha_star
@@ -112,8 +116,8 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
     alpha_r = alpha_star + (pure.shy + pure.svy / kya_p)  # 4.E37, 4.E38
     alpha_t = alpha_star + sht  # 4.E34
     if s.turn_slip:
-        zeta5 = xp.cos(xp.atan(c.QDTP1 * r0 * s.phi))  # 4.91
-        zeta6 = xp.cos(xp.atan(c.QBRP1 * r0 * s.phi))  # 4.102
+        zeta5 = cos_atan(xp, c.QDTP1 * r0 * s.phi)  # 4.91
+        zeta6 = cos_atan(xp, c.QBRP1 * r0 * s.phi)  # 4.102
     else:
         zeta5 = zeta6 = 1.0
     dt = (c.QDZ1 + c.QDZ2 * dfz) * (1 - c.PPZ1 * s.dpi) * (1 + c.QDZ3 * gamma + c.QDZ4 * gamma**2) \
@@ -133,12 +137,13 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
         kzgr0 = fz * r0 * (c.QDZ8 * c.QDZ9 * dfz + (c.QDZ10 + c.QDZ11 * dfz * xp.abs(gamma))) * c.LKZC  # 4.99
         b_drp = xp.div(kzgr0, c_drp * d_drp * (1 - s.eps_gamma))
         drp = d_drp * xp.sin(c_drp * xp.atan(b_drp * r0 * s.phit))
+        drp = xp.where(d_drp == 0, 0.0, drp)  # no load or no friction: the limit (MFeval: 0*NaN)
         mzp90 = mzp_inf * _TWO_OVER_PI * xp.atan(c.QCRP2 * r0 * xp.abs(s.phit)) * gyk  # 4.103
         ratio = xp.div(mzp90, xp.abs(drp))
         ratio_at_zero_phit = xp.div(mzp_inf * _TWO_OVER_PI * c.QCRP2 * gyk * xp.abs(1 - s.eps_gamma),
                                     xp.abs(kzgr0))
         ratio = xp.where(xp.isnan(ratio), ratio_at_zero_phit, ratio)
-        ratio = xp.where(xp.isnan(ratio), 1.0, xp.minimum(ratio, 1.0))
+        ratio = xp.where(xp.isnan(ratio), 1.0, xp.maximum(xp.minimum(ratio, 1.0), -1.0))
         cr = _TWO_OVER_PI * xp.acos(ratio)  # zeta7
         zeta8 = 1 + drp
         zeta0 = 0.0
@@ -164,6 +169,6 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
         if s.camber_free:
             fy0_flat = pure.fy0
         else:
-            fy0_flat = lateral_pure(xp, c, s, 0.0 * gamma_star, s.turn_slip).fy0
+            fy0_flat = lateral_pure(xp, c, s, 0.0, s.turn_slip).fy0
         mz = -trail * (gyk * fy0_flat) + residual + arm * fx  # 4.E71, 4.E72, 4.E74
     return AligningMoment(mz, trail, residual)

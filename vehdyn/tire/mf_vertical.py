@@ -5,10 +5,13 @@ handle inflation pressure changes", Vehicle System Dynamics 48 (2010) sup1, eqs.
 effective rolling radius, vertical stiffness, contact patch, relaxation lengths) and Pacejka
 (2012) eq. A3.3; MF 6.2: the MF-Tyre/MF-Swift 6.2 equation manual (loaded radius as the root of
 Fz(Rl)); MF 5.2: the MF-Tyre 5.2 manual (contact length, relaxation lengths). Implemented as
-MFeval 4.3.1 does, including its iteration rules. All functions work on numpy arrays only.
+MFeval 4.3.1 does, including its iteration rules. Like :mod:`~vehdyn.tire.mf_forces`, every
+function takes ``xp`` (numpy or the float namespace of :mod:`vehdyn.tire._mf_ops`).
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -31,7 +34,7 @@ def _free_radius(c, omega):
     return r0 * (c.Q_RE0 + c.Q_V1 * ((omega * r0) / c.LONGVL) ** 2)
 
 
-def rolling_radius(c, fz, kappa, vx, dpi, omega=None):
+def rolling_radius(xp, c, fz, kappa, vx, dpi, omega=None):
     """Effective rolling radius Re [m], free radius R_omega [m] and wheel spin omega [rad/s].
 
     Re = R_omega - Fz0/Cz*(DREFF*atan(BREFF*Fz/Fz0) + FREFF*Fz/Fz0) (Besselink 2010 eq. 7),
@@ -47,12 +50,24 @@ def rolling_radius(c, fz, kappa, vx, dpi, omega=None):
     vx : speed [m/s]; dpi : relative pressure change [-]; omega : wheel spin [rad/s] or None.
     """
     cz = c.VERTICAL_STIFFNESS * (1 + c.PFZ1 * dpi)
-    deflection_term = (c.FNOMIN / cz) * (c.DREFF * np.arctan(c.BREFF * (fz / c.FNOMIN))
+    deflection_term = (c.FNOMIN / cz) * (c.DREFF * xp.atan(c.BREFF * (fz / c.FNOMIN))
                                          + c.FREFF * (fz / c.FNOMIN))
     if omega is not None:
         omega = omega + _EPS
         r_omega = _free_radius(c, omega)
         return r_omega - deflection_term, r_omega, omega
+    if xp.scalar:
+        re, re_old, omega = c.UNLOADED_RADIUS * 0.965, c.UNLOADED_RADIUS, 0.0
+        r_omega = _free_radius(c, omega)
+        speed = kappa * vx + vx
+        for _ in range(_MAX_ITERATIONS):
+            if not abs(re_old - re) > _RADIUS_TOLERANCE:
+                break
+            re_old = re
+            omega = speed / re
+            r_omega = _free_radius(c, omega)
+            re = r_omega - deflection_term
+        return re, r_omega, omega
     shape = np.broadcast(fz, kappa, vx, dpi).shape
     re = np.full(shape, c.UNLOADED_RADIUS * 0.965)
     re_old = np.full(shape, c.UNLOADED_RADIUS)
@@ -83,48 +98,51 @@ def rolling_radius(c, fz, kappa, vx, dpi, omega=None):
     return re, r_omega, omega
 
 
-def loaded_radius_mf61(c, fz, fx, fy, dpi, omega, r_omega):
+def loaded_radius_mf61(xp, c, fz, fx, fy, dpi, omega, r_omega):
     """Deflection rho [m], loaded radius Rl [m] and vertical stiffness Fz/rho [N/m], MF 6.1 / 5.2.
 
     Solves Fz = (Q_FZ1*rho/R0 + Q_FZ2*(rho/R0)^2)*(1 + Q_V2*R0/V0*|omega| - (Q_FCX*Fx/Fz0)^2
     - (Q_FCY*Fy/Fz0)^2)*(1 + PFZ1*dpi)*Fz0 (Pacejka 2012 eq. A3.3) for rho, with
     Q_FZ1 = sqrt((Cz0*R0/Fz0)^2 - 4*Q_FZ2); Rl = R_omega - rho. ``fz`` is the load raised to FZMIN
-    (limit mode). At fz = 0 rho is reported as 1e-6 m (MFeval's guard against 0/0 in Fz/rho).
+    (limit mode). At fz = 0 rho is reported as 1e-6 m (MFeval's guard against 0/0 in Fz/rho);
+    where a positive load is so small that rho underflows to 0, Cz is the slope at rho = 0.
     """
     r0, fz0 = c.UNLOADED_RADIUS, c.FNOMIN
-    q_fz1 = np.sqrt((c.VERTICAL_STIFFNESS * r0 / fz0) ** 2 - 4 * c.Q_FZ2)
-    external = (1 + c.Q_V2 * (r0 / c.LONGVL) * np.abs(omega) - (c.Q_FCX * fx / fz0) ** 2
+    q_fz1 = math.sqrt((c.VERTICAL_STIFFNESS * r0 / fz0) ** 2 - 4 * c.Q_FZ2)
+    external = (1 + c.Q_V2 * (r0 / c.LONGVL) * xp.abs(omega) - (c.Q_FCX * fx / fz0) ** 2
                 - (c.Q_FCY * fy / fz0) ** 2) * (1 + c.PFZ1 * dpi) * fz0
     a, b, cc = c.Q_FZ2, q_fz1, -(fz / external)
     if a != 0:
-        x = (-b + np.sqrt(b**2 - 4 * a * cc)) / (2 * a)
+        x = (-b + xp.sqrt(b**2 - 4 * a * cc)) / (2 * a)
     else:  # linear load-deflection law (MFeval would divide by zero)
         x = -cc / b
-    rho_free = np.fmax(x * r0, 0.0)
-    loaded = np.fmax(r_omega - rho_free, 0.0)
-    rho = np.where(fz == 0, 1e-6, rho_free)
-    return rho, loaded, fz / rho
+    rho_free = xp.fmax(x * r0, 0.0)
+    loaded = xp.fmax(r_omega - rho_free, 0.0)
+    rho = xp.where(fz == 0, 1e-6, rho_free)
+    # a load so small that rho underflows to 0: the stiffness is the slope at rho = 0
+    stiffness = xp.where(rho > 0, xp.div_ieee(fz, rho), q_fz1 * external / r0)
+    return rho, loaded, stiffness
 
 
-def _load_mf62(c, gamma, omega, r_omega, dpi, radius, fx, fy):
+def _load_mf62(xp, c, gamma, omega, r_omega, dpi, radius, fx, fy):
     """Vertical load [N] and deflection [m] at a given loaded radius (MF 6.2 manual)."""
     r0, fz0 = c.UNLOADED_RADIUS, c.FNOMIN
-    q_fz1 = np.sqrt((c.VERTICAL_STIFFNESS * r0 / fz0) ** 2 - 4 * c.Q_FZ2)
+    q_fz1 = math.sqrt((c.VERTICAL_STIFFNESS * r0 / fz0) ** 2 - 4 * c.Q_FZ2)
     ratio = radius / r_omega
     camber_shift = (c.Q_FYS1 + c.Q_FYS2 * ratio + c.Q_FYS3 * ratio**2) * gamma
-    rho_free = np.fmax(r_omega - radius, 0.0)
+    rho_free = xp.fmax(r_omega - radius, 0.0)
     tread_width = (1.075 - 0.5 * c.ASPECT_RATIO) * c.WIDTH
-    rho_gamma = ((c.Q_CAM1 * radius + c.Q_CAM2 * radius**2) * gamma) ** 2 * (tread_width / 8) \
-        * np.abs(np.tan(gamma)) / ((c.Q_CAM1 * r_omega + c.Q_CAM2 * r_omega**2) * gamma) ** 2 \
-        - (c.Q_CAM3 * rho_free * np.abs(gamma))
-    rho_gamma = np.where(np.isnan(rho_gamma), 0.0, rho_gamma)
-    rho = np.fmax(rho_free + rho_gamma, 1e-12)
-    correction = (1 + c.Q_V2 * (r0 / c.LONGVL) * np.abs(omega) - ((c.Q_FCX * fx) / fz0) ** 2
+    rho_gamma = xp.div_ieee(((c.Q_CAM1 * radius + c.Q_CAM2 * radius**2) * gamma) ** 2 * (tread_width / 8)
+                            * xp.abs(xp.tan(gamma)), ((c.Q_CAM1 * r_omega + c.Q_CAM2 * r_omega**2) * gamma) ** 2) \
+        - (c.Q_CAM3 * rho_free * xp.abs(gamma))
+    rho_gamma = xp.where(xp.isnan(rho_gamma), 0.0, rho_gamma)
+    rho = xp.fmax(rho_free + rho_gamma, 1e-12)
+    correction = (1 + c.Q_V2 * (r0 / c.LONGVL) * xp.abs(omega) - ((c.Q_FCX * fx) / fz0) ** 2
                   - ((rho / r0) ** c.Q_FCY2 * (c.Q_FCY * (fy - camber_shift) / fz0)) ** 2) * (1 + c.PFZ1 * dpi)
     return correction * (q_fz1 * (rho / r0) + c.Q_FZ2 * (rho / r0) ** 2) * fz0, rho
 
 
-def loaded_radius_mf62(c, fz, fz_clamped, gamma, fx, fy, dpi, omega, r_omega):
+def loaded_radius_mf62(xp, c, fz, fz_clamped, gamma, fx, fy, dpi, omega, r_omega):
     """Deflection, loaded radius and vertical stiffness of MF 6.2.
 
     The loaded radius is the root of Fz(Rl) = fz (MF 6.2 manual), found with MFeval's secant
@@ -132,39 +150,40 @@ def loaded_radius_mf62(c, fz, fz_clamped, gamma, fx, fy, dpi, omega, r_omega):
     Where the equation has no root (MFeval returns Rl = NaN, rho = 1e-12 m, Cz = 1e16 N/m), the
     three outputs are NaN here. The stiffness is fz_clamped/rho (MFeval: the FZMAX-clamped load).
     """
-    shape = np.broadcast(fz, gamma, fx, fy, dpi, omega, r_omega).shape
-    r0 = np.full(shape, c.UNLOADED_RADIUS)
+    if xp.scalar:
+        r0, not_converged = c.UNLOADED_RADIUS, True
+    else:
+        shape = np.broadcast(fz, gamma, fx, fy, dpi, omega, r_omega).shape
+        r0, not_converged = np.full(shape, c.UNLOADED_RADIUS), np.ones(shape, dtype=bool)
     tolerance = c.FNOMIN * 1e-6
 
     def residual(radius):
-        return _load_mf62(c, gamma, omega, r_omega, dpi, radius, fx, fy)[0] - fz
+        return _load_mf62(xp, c, gamma, omega, r_omega, dpi, radius, fx, fy)[0] - fz
 
     x0, x1 = r0 * 0.95, r0
     y0, y1 = residual(x0), residual(x1)
-    not_converged = np.ones(shape, dtype=bool)
-    x = x1.copy()
-    y = y1
+    x, y = x1, y1
     for _ in range(3, 21):
-        trial = x1 - (x1 - x0) / (y1 - y0) * y1
-        x = np.where(not_converged, trial, x)
+        trial = x1 - xp.div_ieee(x1 - x0, y1 - y0) * y1
+        x = xp.where(not_converged, trial, x)
         y = residual(x)
-        not_converged &= np.abs(y) > tolerance
-        if not not_converged.any():
+        not_converged = not_converged & (xp.abs(y) > tolerance)
+        if not xp.any(not_converged):
             break
-        better = np.abs(y1) < np.abs(y0)
-        x0 = np.where(better, x1, x0)
-        y0 = np.where(better, y1, y0)
+        better = xp.abs(y1) < xp.abs(y0)
+        x0 = xp.where(better, x1, x0)
+        y0 = xp.where(better, y1, y0)
         x1, y1 = x, y
     loaded = x
-    _, rho = _load_mf62(c, gamma, omega, r_omega, dpi, loaded, fx, fy)
-    rho = np.where(fz_clamped == 0, 1e-6, rho)
+    _, rho = _load_mf62(xp, c, gamma, omega, r_omega, dpi, loaded, fx, fy)
+    rho = xp.where(fz_clamped == 0, 1e-6, rho)
     stiffness = fz_clamped / rho
-    failed = ~np.isfinite(loaded) | ~(np.abs(y) <= tolerance)
-    nan = np.nan
-    return np.where(failed, nan, rho), np.where(failed, nan, loaded), np.where(failed, nan, stiffness)
+    failed = xp.isnan(loaded) | (xp.abs(loaded) == math.inf) | (xp.abs(y) > tolerance) | xp.isnan(y)
+    nan = math.nan
+    return xp.where(failed, nan, rho), xp.where(failed, nan, loaded), xp.where(failed, nan, stiffness)
 
 
-def contact_patch(c, fz, dpi):
+def contact_patch(xp, c, fz, dpi):
     """Contact patch half length a [m] and half width b [m].
 
     MF 6.x: a = R0*(Q_RA2*Fz/(Cz*R0) + Q_RA1*sqrt(Fz/(Cz*R0))), b = W*(Q_RB2*Fz/(Cz*R0) +
@@ -175,23 +194,23 @@ def contact_patch(c, fz, dpi):
     r0, width, fz0 = c.UNLOADED_RADIUS, c.WIDTH, c.FNOMIN
     cz = c.VERTICAL_STIFFNESS * (1 + c.PFZ1 * dpi)
     bottoming = (r0 - fz / cz) - (c.RIM_RADIUS + c.BOTTOM_OFFST) < 0
-    fz = np.where(bottoming, (r0 - c.RIM_RADIUS - c.BOTTOM_OFFST) * cz, fz)
+    fz = xp.where(bottoming, (r0 - c.RIM_RADIUS - c.BOTTOM_OFFST) * cz, fz)
     if c.is_mf52:
         q_a1, q_a2 = c.Q_A1, c.Q_A2
         if q_a1 == 0 and q_a2 == 0:
-            y = np.log10(r0 * (c.VERTICAL_STIFFNESS / fz0))
+            y = math.log10(r0 * (c.VERTICAL_STIFFNESS / fz0))
             q_a1 = -0.0388 * y**3 + 0.2509 * y**2 + -0.6283 * y + 0.6279
             q_a2 = 1.693 * q_a1**2
-        a = r0 * (q_a2 * (fz / fz0) + q_a1 * np.sqrt(fz / fz0))
-        b = np.broadcast_to(width / 2, np.shape(a))
+        a = r0 * (q_a2 * (fz / fz0) + q_a1 * xp.sqrt(fz / fz0))
+        b = width / 2 + 0.0 * a
     else:
         load = fz / (cz * r0)
-        a = r0 * (c.Q_RA2 * load + c.Q_RA1 * np.sqrt(load))
+        a = r0 * (c.Q_RA2 * load + c.Q_RA1 * xp.sqrt(load))
         b = width * (c.Q_RB2 * load + c.Q_RB1 * load ** (1 / 3))
     return a, b
 
 
-def carcass_stiffness(c, fz, gamma, dpi, kxk, kya):
+def carcass_stiffness(xp, c, fz, gamma, dpi, kxk, kya):
     """Carcass stiffnesses Cx, Cy [N/m] and relaxation lengths sigma_x, sigma_y [m].
 
     Cx = cx0*(1 + PCFX1*dfz + PCFX2*dfz^2)*(1 + PCFX3*dpi), Cy likewise (Besselink 2010 eqs. 17,
@@ -204,10 +223,10 @@ def carcass_stiffness(c, fz, gamma, dpi, kxk, kya):
     cy = c.LATERAL_STIFFNESS * (1 + c.PCFY1 * dfz + c.PCFY2 * dfz**2) * (1 + c.PCFY3 * dpi)
     if c.is_mf52:
         r0 = c.UNLOADED_RADIUS
-        sigma_x = (c.PTX1 + c.PTX2 * dfz) * np.exp(-c.PTX3 * dfz) * c.LSGKP * r0 * fz / c.FNOMIN
-        sigma_y = c.PTY1 * np.sin(2 * np.arctan(fz / (c.PTY2 * c.Fz0_prime))) * (1 - c.PKY3 * np.abs(gamma)) \
-            * r0 * c.LFZO * c.LSGAL
+        sigma_x = (c.PTX1 + c.PTX2 * dfz) * xp.exp(-c.PTX3 * dfz) * c.LSGKP * r0 * fz / c.FNOMIN
+        sigma_y = c.PTY1 * xp.sin(2 * xp.atan(xp.div_ieee(fz, c.PTY2 * c.Fz0_prime))) \
+            * (1 - c.PKY3 * xp.abs(gamma)) * r0 * c.LFZO * c.LSGAL
     else:
-        sigma_x = np.abs(kxk / cx)
-        sigma_y = np.abs(kya / cy)
+        sigma_x = xp.abs(xp.div_ieee(kxk, cx))
+        sigma_y = xp.abs(xp.div_ieee(kya, cy))
     return cx, cy, sigma_x, sigma_y

@@ -36,6 +36,8 @@ _PAC2002_FORMATS = {"PAC2002", "MF_05"}
 
 # Sections whose body is a table (lines without '='), skipped by the parser and kept verbatim.
 _TABLE_SECTIONS = {"SHAPE"}
+# Header keys that describe the file, not the tire.
+_IGNORED_KEYS = {"FILE_TYPE", "FILE_VERSION", "FILE_FORMAT"}
 
 # --- MFeval 4.3.1 readTIR defaults -------------------------------------------------------------
 # Values MFeval uses for a parameter that the file does not define (MFeval 4.3.1, readTIR.m).
@@ -161,11 +163,14 @@ class TirParameters:
     tables : Mapping[str, tuple[str, ...]]
         Raw lines of table sections such as ``[SHAPE]`` (not evaluated, kept for writing).
     values : Mapping[str, float | int | str]
-        Flat view used by the models: every parameter of every section except ``[UNITS]``,
-        converted to SI, plus the defaults for the parameters the file lacks.
+        Flat view used by the models: every parameter of every section except ``[UNITS]``
+        (names upper-cased, as ``.tir`` keys are case-insensitive), converted to SI, plus the
+        defaults for the parameters the file lacks.
     defaulted : tuple[str, ...]
         Names of the parameters the file lacks and that took :data:`MFEVAL_DEFAULTS` values
         (only those the file's Magic Formula version uses).
+    unknown : tuple[str, ...]
+        Keys of the file that no Magic Formula version uses (kept in ``values``, not evaluated).
     units : Mapping[str, str]
         The ``[UNITS]`` section (``LENGTH``, ``FORCE``, ``ANGLE``, ``MASS``, ``TIME``).
     version : str or None
@@ -178,13 +183,17 @@ class TirParameters:
         self.sections = MappingProxyType({s: MappingProxyType(dict(kv)) for s, kv in sections.items()})
         self.tables = MappingProxyType({s: tuple(lines) for s, lines in (tables or {}).items()})
         self.path = None if path is None else str(path)
-        self.units = MappingProxyType({k: str(v) for k, v in self.sections.get("UNITS", {}).items()})
+        units = {}
+        for section, entries in self.sections.items():
+            if section.upper() == "UNITS":
+                units.update({k.upper(): str(v) for k, v in entries.items()})
+        self.units = MappingProxyType(units)
         flat = {}
         for section, entries in self.sections.items():
-            if section == "UNITS":
+            if section.upper() == "UNITS":
                 continue
             for key, value in entries.items():
-                flat[key] = _to_si(key, value, self.units, self.path)
+                flat[key.upper()] = _to_si(key.upper(), value, self.units, self.path)
         self.version = _detect_version(flat)
         used = _USED_BY_VERSION.get(self.version or "6.2", set(MFEVAL_DEFAULTS))
         defaulted = [k for k in MFEVAL_DEFAULTS if k in used and k not in flat]
@@ -192,6 +201,7 @@ class TirParameters:
             flat[key] = MFEVAL_DEFAULTS[key]
         self.values = MappingProxyType(flat)
         self.defaulted = tuple(defaulted)
+        self.unknown = tuple(k for k in flat if k not in MFEVAL_DEFAULTS and k not in _IGNORED_KEYS)
 
     def __getitem__(self, key: str):
         return self.values[key]
@@ -294,8 +304,8 @@ def parse_tir(text: str, path=None) -> TirParameters:
             name = line[1:end].strip() if end > 0 else ""
             if end < 0 or not name or _strip_comment(line[end + 1:]).strip():
                 raise TirFileError(f"malformed section header {line!r}", path=path, line=number)
-            current = name.upper()
-            if current in _TABLE_SECTIONS:
+            current = name
+            if current.upper() in _TABLE_SECTIONS:
                 tables.setdefault(current, [])
             else:
                 sections.setdefault(current, {})
