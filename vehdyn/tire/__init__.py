@@ -16,6 +16,9 @@ Slip and transients
     :class:`TireRelaxation`, :func:`relaxation_lengths`
 Interface of every tire law
     :class:`TireModel`, :class:`TireForces`
+Plots
+    :func:`plot_tire_characteristics`, :func:`characteristic_values`, :func:`describe_tire`
+    (matplotlib and pandas imported on use)
 """
 
 from .base import TireForces, TireModel
@@ -24,6 +27,7 @@ from .dugoff import DugoffTire
 from .fiala import FialaTire
 from .linear import LinearTire
 from .magic_formula import MagicFormula, MagicFormulaOutputs, load_tire
+from .plots import characteristic_values, describe_tire, plot_tire_characteristics
 from .registry import register_tire_law, tire_for_vehicle, tire_law, tire_law_names
 from .relaxation import TireRelaxation, relaxation_lengths
 from .slip import WheelSlip, regularized_speed, slip_velocities, theoretical_slip, wheel_slip
@@ -53,4 +57,7 @@ __all__ = [
     "theoretical_slip",
     "TireRelaxation",
     "relaxation_lengths",
+    "plot_tire_characteristics",
+    "describe_tire",
+    "characteristic_values",
 ]

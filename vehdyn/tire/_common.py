@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from .base import TireForces
+from .base import TireForces, TireModel
 
 
 def all_scalars(*values) -> bool:
@@ -45,3 +45,51 @@ def planar_forces(fx, fy, fz, mz) -> TireForces:
 def scalar_sign(value: float) -> float:
     """math's sign: -1, 0 or +1."""
     return math.copysign(1.0, value) if value != 0.0 else 0.0
+
+
+#: Points per block of a vectorized evaluation: the temporaries of one block stay in the CPU cache.
+CHUNK_POINTS = 8192
+
+
+def evaluate_chunked(kernel, fz, kappa, alpha, gamma, vx) -> TireForces:
+    """Apply ``kernel(fz, kappa, alpha, gamma, vx) -> (fx, fy, mz)`` block-wise over broadcast inputs.
+
+    ``fz`` is clipped at 0 first. Inputs of more than :data:`CHUNK_POINTS` points are flattened and
+    evaluated in blocks of that size, which keeps the law's temporaries in cache (about twice as
+    fast at a million points as one pass over whole arrays).
+    """
+    fz, kappa, alpha, gamma, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+    n = fz.size
+    shape = fz.shape
+    if n <= CHUNK_POINTS:
+        # kernels work in place on arrays, so 0-d inputs go through as 1-element arrays
+        fx, fy, mz = kernel(*(a.reshape(-1) for a in (fz, kappa, alpha, gamma, vx)))
+        return planar_forces(fx.reshape(shape), fy.reshape(shape), fz, mz.reshape(shape))
+    flat = [np.ascontiguousarray(a).reshape(-1) for a in (fz, kappa, alpha, gamma, vx)]
+    out = np.empty((3, n))
+    for start in range(0, n, CHUNK_POINTS):
+        block = slice(start, start + CHUNK_POINTS)
+        out[0, block], out[1, block], out[2, block] = kernel(*(a[block] for a in flat))
+    return planar_forces(out[0].reshape(shape), out[1].reshape(shape), flat[0].reshape(shape), out[2].reshape(shape))
+
+
+class VectorizedTire(TireModel):
+    """A tire law written twice: ``_kernel`` on arrays, ``_forces_scalar`` on floats with :mod:`math`.
+
+    :meth:`forces` sends all-scalar calls to the scalar path (no numpy overhead, and the per-point
+    baseline of ``benchmarks/bench_tire.py``) and everything else, in cache-sized blocks, to the
+    kernel. Subclasses implement ``_kernel(fz, kappa, alpha, gamma, vx) -> (fx, fy, mz)`` for float
+    arrays of one shape with ``fz >= 0``, and ``_forces_scalar(fz, kappa, alpha, gamma, vx)`` for floats.
+    """
+
+    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
+        """Steady-state forces and moments (ISO-W); see :meth:`TireModel.forces`."""
+        if all_scalars(fz, kappa, alpha, gamma, vx):
+            return self._forces_scalar(float(fz), float(kappa), float(alpha), float(gamma), float(vx))
+        return evaluate_chunked(self._kernel, fz, kappa, alpha, gamma, vx)
+
+    def _kernel(self, fz, kappa, alpha, gamma, vx):
+        raise NotImplementedError
+
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
+        raise NotImplementedError

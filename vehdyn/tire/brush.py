@@ -19,9 +19,8 @@ pure-slip characteristic of ``sigma = |sigma_vec|`` projected on the direction o
 sliding reaches the leading edge), integrating over the adhesion range ``x_t <= x <= a``,
 ``x_t = a (2 lambda - 1)``, and the sliding range ``-a <= x < x_t`` gives (``r = mu_s / mu_0``)::
 
-    F    = mu_0 F_z [3 lambda (1 - lambda)^2 + r (3 lambda^2 - 2 lambda^3)]
-    -int x q dx = mu_0 F_z a [-(3/2) lambda (1/6 - xi^2/2 + xi^3/3)
-                               - (3/4) r (xi^2/2 - xi^4/4 - 1/4)],   xi = 2 lambda - 1,
+    F           = mu_0 F_z [3 lambda (1 - lambda)^2 + r (3 lambda^2 - 2 lambda^3)]
+    -int x q dx = mu_0 F_z a lambda (1 - lambda)^2 [1 - lambda + 3 (r - 1) lambda]
 
 for ``lambda <= 1`` and ``F = mu_s F_z``, zero moment, beyond (full sliding). With ``r = 1`` these
 are Pacejka's closed forms (sec. 3.2.1, pure side slip): ``F = mu F_z (3 lambda - 3 lambda^2 +
@@ -54,9 +53,9 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params.base import ParameterSet, parameter
-from ._common import (all_scalars, broadcast_inputs, planar_forces, rolling_direction,
+from ._common import (VectorizedTire, broadcast_inputs, planar_forces, rolling_direction,
                       scalar_rolling_direction)
-from .base import TireForces, TireModel
+from .base import TireForces
 
 __all__ = ["BrushTire", "brush_force_fraction", "brush_moment_fraction"]
 
@@ -69,7 +68,7 @@ def brush_force_fraction(lam, sliding_ratio=1.0):
     lam : float or ndarray
         ``theta sigma`` clipped to [0, 1] [-] (1: full sliding).
     sliding_ratio : float
-        ``mu_s / mu_0`` [-].
+        ``r = mu_s / mu_0`` [-].
 
     Returns
     -------
@@ -77,26 +76,30 @@ def brush_force_fraction(lam, sliding_ratio=1.0):
         ``3 lam (1 - lam)^2 + r (3 lam^2 - 2 lam^3)``; with ``r = 1`` this is
         ``3 lam - 3 lam^2 + lam^3`` (Pacejka 2012, sec. 3.2.1; Fiala 1954).
     """
-    one_minus = 1.0 - lam
-    return 3.0 * lam * one_minus * one_minus + sliding_ratio * lam * lam * (3.0 - 2.0 * lam)
+    cubic = lam * (3.0 + lam * (lam - 3.0))  # the r = 1 force, in Horner form
+    if sliding_ratio == 1.0:
+        return cubic
+    return cubic + (sliding_ratio - 1.0) * lam * lam * (3.0 - 2.0 * lam)
 
 
 def brush_moment_fraction(lam, sliding_ratio=1.0):
     """Self-aligning moment of the parabolic-pressure brush over ``mu_0 F_z a``.
 
-    The moment about the contact centre of the force distribution, positive when the force
-    acts behind the centre (restoring). With ``sliding_ratio = 1`` it equals
-    ``lam (1 - lam)^3``: ``a/3`` trail at zero slip, zero at full sliding (Pacejka 2012, sec. 3.2.1).
+    The moment about the contact centre of the force distribution, ``-int x q dx``, positive when
+    the force acts behind the centre (restoring): integrating ``x`` times the adhesion and sliding
+    forces of the module docstring gives
+    ``lam - 6 lam^2 + 9 lam^3 - 4 lam^4 + 3 r lam^2 (1 - lam)^2 = lam (1 - lam)^2 [1 - lam + 3 (r - 1) lam]``.
+    With ``r = 1`` it is ``lam (1 - lam)^3``: trail ``a/3`` at zero slip, zero at full sliding
+    (Pacejka 2012, sec. 3.2.1).
     """
-    xi = 2.0 * lam - 1.0
-    xi2 = xi * xi
-    adhesion = -1.5 * lam * (1.0 / 6.0 - 0.5 * xi2 + xi2 * xi / 3.0)
-    sliding = -0.75 * sliding_ratio * (0.5 * xi2 - 0.25 * xi2 * xi2 - 0.25)
-    return adhesion + sliding
+    rest = 1.0 - lam
+    if sliding_ratio == 1.0:
+        return lam * rest * rest * rest
+    return lam * rest * rest * (rest + 3.0 * (sliding_ratio - 1.0) * lam)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class BrushTire(ParameterSet, TireModel):
+class BrushTire(ParameterSet, VectorizedTire):
     """Brush tire with parabolic pressure, combined slip through the theoretical slip.
 
     Parameters
@@ -184,27 +187,26 @@ class BrushTire(ParameterSet, TireModel):
         return cls.from_cornering_stiffness(data.cornering_stiffness, data.contact_half_length, data.mu)
 
     # ------------------------------------------------------------------ the law
-    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
-        """Steady-state forces and aligning moment (ISO-W); see :meth:`TireModel.forces`.
-
-        ``gamma`` is accepted and has no effect (the brush has no camber thrust). ``vx`` enters
-        only through its sign (rolling direction).
-        """
-        if all_scalars(fz, kappa, alpha, gamma, vx):
-            return self._forces_scalar(float(fz), float(kappa), float(alpha), float(vx))
-        fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+    def _kernel(self, fz, kappa, alpha, gamma, vx):
+        """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
         direction = rolling_direction(vx)
         tan_alpha = np.tan(alpha)
         slip = np.hypot(kappa, tan_alpha)  # |V_s| / |V_x|
         lam = self._adhesion_parameter(fz, kappa, slip)
         r = self.sliding_ratio
-        force = self.mu * fz * brush_force_fraction(lam, r)
-        moment = self.mu * fz * self.contact_half_length * brush_moment_fraction(lam, r) * direction
+        mu_fz = self.mu * fz
+        # resultant force and moment over the slip (bounded: F <= C slip), times the direction cosines
         has_slip = slip > 0.0
-        safe = np.where(has_slip, slip, 1.0)
-        ex = np.where(has_slip, kappa / safe, 0.0) * direction
-        ey = np.where(has_slip, tan_alpha / safe, 0.0)
-        return planar_forces(force * ex, -force * ey, fz, moment * ey)
+        force = np.divide(mu_fz * brush_force_fraction(lam, r), slip, out=np.zeros_like(slip), where=has_slip)
+        fy = force * tan_alpha
+        np.negative(fy, out=fy)
+        moment = np.divide(mu_fz * (self.contact_half_length * brush_moment_fraction(lam, r)), slip,
+                           out=np.zeros_like(slip), where=has_slip)
+        moment *= tan_alpha
+        moment *= direction
+        force *= kappa
+        force *= direction
+        return force, fy, moment
 
     def _adhesion_parameter(self, fz, kappa, slip):
         """``lambda = theta sigma = C slip / (3 mu_0 F_z (1 + kappa))`` clipped at 1.
@@ -213,11 +215,10 @@ class BrushTire(ParameterSet, TireModel):
         Written without a division by zero: no load or no rolling means full sliding.
         """
         numerator = self.cornering_stiffness * slip
-        denominator = 3.0 * self.mu * fz * (1.0 + kappa)
-        adhering = numerator < denominator
-        return np.where(adhering, numerator / np.where(adhering, denominator, 1.0), 1.0)
+        denominator = (3.0 * self.mu) * fz * (1.0 + kappa)
+        return np.divide(numerator, denominator, out=np.ones_like(numerator), where=numerator < denominator)
 
-    def _forces_scalar(self, fz: float, kappa: float, alpha: float, vx: float) -> TireForces:
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
         """The same equations for one point with :mod:`math` (no numpy overhead)."""
         fz = max(fz, 0.0)
         direction = scalar_rolling_direction(vx)

@@ -36,15 +36,14 @@ import math
 import numpy as np
 
 from ..params.base import ParameterSet, parameter
-from ._common import (all_scalars, broadcast_inputs, planar_forces, rolling_direction,
-                      scalar_rolling_direction)
-from .base import TireForces, TireModel
+from ._common import VectorizedTire, planar_forces, rolling_direction, scalar_rolling_direction
+from .base import TireForces
 
 __all__ = ["DugoffTire"]
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class DugoffTire(ParameterSet, TireModel):
+class DugoffTire(ParameterSet, VectorizedTire):
     """Dugoff tire.
 
     Parameters
@@ -59,6 +58,11 @@ class DugoffTire(ParameterSet, TireModel):
         ``A_s`` [s/m]: friction reduction per unit sliding speed; default 0.
     pneumatic_trail : float
         ``t`` [m]: ``M_z = -t F_y`` rolling forwards; default 0 (Dugoff's model has no moment).
+
+    Notes
+    -----
+    No camber (``gamma`` has no effect); ``vx`` enters through its sign and, with
+    ``speed_friction_reduction``, through the sliding speed. ``M_x = M_y = 0``.
     """
 
     cornering_stiffness: float = parameter("N/rad", "C_alpha: cornering stiffness", gt=0)
@@ -80,33 +84,31 @@ class DugoffTire(ParameterSet, TireModel):
         return cls(cornering_stiffness=data.cornering_stiffness, slip_stiffness=data.cornering_stiffness,
                    mu=data.mu)
 
-    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
-        """Steady-state forces (ISO-W); see :meth:`TireModel.forces`. ``gamma`` has no effect."""
-        if all_scalars(fz, kappa, alpha, gamma, vx):
-            return self._forces_scalar(float(fz), float(kappa), float(alpha), float(vx))
-        fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+    def _kernel(self, fz, kappa, alpha, gamma, vx):
+        """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
         direction = rolling_direction(vx)
         tan_alpha = np.tan(alpha)
         rolling = 1.0 + kappa
-        mu = self.mu * np.maximum(1.0 - self.speed_friction_reduction * np.abs(vx) * np.hypot(kappa, tan_alpha), 0.0)
-        limit = mu * fz
+        limit = self.mu * fz
+        if self.speed_friction_reduction:
+            limit *= np.maximum(1.0 - self.speed_friction_reduction * np.abs(vx) * np.hypot(kappa, tan_alpha), 0.0)
         ux = self.slip_stiffness * kappa
         uy = self.cornering_stiffness * tan_alpha
         stiff_slip = np.hypot(ux, uy)  # S
         adhering = 2.0 * stiff_slip <= limit * rolling  # lambda >= 1 (includes S = 0 under load)
-        moving = stiff_slip > 0.0
-        safe_slip = np.where(moving, stiff_slip, 1.0)
-        resultant = np.where(
-            adhering,
-            stiff_slip / np.where(adhering, rolling, 1.0),
-            limit - limit * limit * np.maximum(rolling, 0.0) / (4.0 * safe_slip),
-        )
-        resultant = np.where(moving, resultant, 0.0)
-        fx = resultant * ux / safe_slip * direction
-        fy = -resultant * uy / safe_slip
-        return planar_forces(fx, fy, fz, -self.pneumatic_trail * fy * direction)
+        # resultant over S: 1/rho while adhering, mu F_z (1 - lambda/2) / S once sliding;
+        # each branch with harmless denominators where the other applies
+        sliding_part = limit - limit * limit * np.maximum(rolling, 0.0) / np.where(adhering, 1.0, 4.0 * stiff_slip)
+        per_slip = np.divide(sliding_part, stiff_slip, out=np.zeros_like(stiff_slip),
+                             where=~adhering & (stiff_slip > 0.0))
+        np.divide(1.0, rolling, out=per_slip, where=adhering & (stiff_slip > 0.0))
+        fx = per_slip * ux
+        fx *= direction
+        fy = per_slip * uy
+        np.negative(fy, out=fy)
+        return fx, fy, (-self.pneumatic_trail) * fy * direction
 
-    def _forces_scalar(self, fz: float, kappa: float, alpha: float, vx: float) -> TireForces:
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
         """The same equations for one point with :mod:`math` (no numpy overhead)."""
         fz = max(fz, 0.0)
         direction = scalar_rolling_direction(vx)

@@ -37,9 +37,8 @@ import math
 import numpy as np
 
 from ..params.base import ParameterSet, parameter
-from ._common import (all_scalars, broadcast_inputs, planar_forces, rolling_direction,
-                      scalar_rolling_direction, scalar_sign)
-from .base import TireForces, TireModel
+from ._common import VectorizedTire, planar_forces, rolling_direction, scalar_rolling_direction, scalar_sign
+from .base import TireForces
 from .brush import brush_force_fraction, brush_moment_fraction
 
 __all__ = ["FialaTire"]
@@ -49,12 +48,11 @@ def _saturation(stiffness, slip_magnitude, limit):
     """``min(stiffness |slip| / (3 limit), 1)`` without a division by zero (limit 0: fully sliding)."""
     numerator = stiffness * slip_magnitude
     denominator = 3.0 * limit
-    adhering = numerator < denominator
-    return np.where(adhering, numerator / np.where(adhering, denominator, 1.0), 1.0)
+    return np.divide(numerator, denominator, out=np.ones_like(numerator), where=numerator < denominator)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class FialaTire(ParameterSet, TireModel):
+class FialaTire(ParameterSet, VectorizedTire):
     """Fiala tire: closed-form brush side force and aligning moment, friction-circle coupling.
 
     Parameters
@@ -102,30 +100,32 @@ class FialaTire(ParameterSet, TireModel):
         return cls(cornering_stiffness=data.cornering_stiffness, mu=data.mu,
                    contact_half_length=data.contact_half_length)
 
-    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
-        """Steady-state forces and aligning moment (ISO-W); see :meth:`TireModel.forces`.
-
-        ``gamma`` has no effect; ``vx`` enters only through its sign (rolling direction).
-        """
-        if all_scalars(fz, kappa, alpha, gamma, vx):
-            return self._forces_scalar(float(fz), float(kappa), float(alpha), float(vx))
-        fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+    def _kernel(self, fz, kappa, alpha, gamma, vx):
+        """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
         limit = self.mu * fz
         lam_x = _saturation(self.longitudinal_stiffness, np.abs(kappa), limit)
         direction = rolling_direction(vx)
-        fx = limit * brush_force_fraction(lam_x) * np.sign(kappa) * direction
-        lateral_limit = np.sqrt(np.maximum(limit * limit - fx * fx, 0.0))
+        fx = limit * brush_force_fraction(lam_x)
+        fx *= np.sign(kappa)
+        fx *= direction
+        lateral_limit = limit * limit
+        lateral_limit -= fx * fx
+        np.maximum(lateral_limit, 0.0, out=lateral_limit)
+        np.sqrt(lateral_limit, out=lateral_limit)
         tan_alpha = np.tan(alpha)
         lam_y = _saturation(self.cornering_stiffness, np.abs(tan_alpha), lateral_limit)
         side = np.sign(tan_alpha)
-        fy = -lateral_limit * brush_force_fraction(lam_y) * side
+        fy = lateral_limit * brush_force_fraction(lam_y)
+        fy *= side
+        np.negative(fy, out=fy)
         if self.contact_half_length is None:
-            mz = np.zeros_like(fy)
-        else:
-            mz = lateral_limit * self.contact_half_length * brush_moment_fraction(lam_y) * side * direction
-        return planar_forces(fx, fy, fz, mz)
+            return fx, fy, np.zeros_like(fy)
+        mz = lateral_limit * (self.contact_half_length * brush_moment_fraction(lam_y))
+        mz *= side
+        mz *= direction
+        return fx, fy, mz
 
-    def _forces_scalar(self, fz: float, kappa: float, alpha: float, vx: float) -> TireForces:
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
         """The same equations for one point with :mod:`math` (no numpy overhead)."""
         fz = max(fz, 0.0)
         limit = self.mu * fz

@@ -24,18 +24,16 @@ from __future__ import annotations
 
 import dataclasses
 
-import numpy as np
 
 from ..params.base import ParameterSet, parameter
-from ._common import (all_scalars, broadcast_inputs, planar_forces, rolling_direction,
-                      scalar_rolling_direction)
-from .base import TireForces, TireModel
+from ._common import VectorizedTire, planar_forces, rolling_direction, scalar_rolling_direction
+from .base import TireForces
 
 __all__ = ["LinearTire"]
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class LinearTire(ParameterSet, TireModel):
+class LinearTire(ParameterSet, VectorizedTire):
     """Linear tire.
 
     Parameters
@@ -76,26 +74,25 @@ class LinearTire(ParameterSet, TireModel):
         data = vehicle_tire_data(vehicle, axle)
         return cls(cornering_stiffness=data.cornering_stiffness, nominal_load=data.static_load)
 
-    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
-        """Forces and aligning moment (ISO-W); see :meth:`TireModel.forces`."""
-        if all_scalars(fz, kappa, alpha, gamma, vx):
-            fz = max(float(fz), 0.0)
-            scale = self._load_factor_scalar(fz)
-            fy = (-self.cornering_stiffness * alpha + self.camber_stiffness * gamma) * scale
-            direction = scalar_rolling_direction(float(vx))
-            return planar_forces(self.longitudinal_stiffness * kappa * scale * direction, fy, fz,
-                                 -self.pneumatic_trail * fy * direction)
-        fz, kappa, alpha, gamma, vx = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+    def _kernel(self, fz, kappa, alpha, gamma, vx):
+        """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
         if self.nominal_load is None:
-            scale = np.where(fz > 0.0, 1.0, 0.0)
+            scale = (fz > 0.0).astype(float)
         else:
             scale = fz / self.nominal_load
-        fy = (-self.cornering_stiffness * alpha + self.camber_stiffness * gamma) * scale
         direction = rolling_direction(vx)
-        return planar_forces(self.longitudinal_stiffness * kappa * scale * direction, fy, fz,
-                             -self.pneumatic_trail * fy * direction)
+        fy = (self.camber_stiffness * gamma - self.cornering_stiffness * alpha) * scale
+        fx = (self.longitudinal_stiffness * kappa) * scale * direction
+        return fx, fy, (-self.pneumatic_trail) * fy * direction
 
-    def _load_factor_scalar(self, fz: float) -> float:
+    def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
+        """The same equations for one point (no numpy overhead)."""
+        fz = max(fz, 0.0)
         if self.nominal_load is None:
-            return 1.0 if fz > 0.0 else 0.0
-        return fz / self.nominal_load
+            scale = 1.0 if fz > 0.0 else 0.0
+        else:
+            scale = fz / self.nominal_load
+        direction = scalar_rolling_direction(vx)
+        fy = (self.camber_stiffness * gamma - self.cornering_stiffness * alpha) * scale
+        fx = (self.longitudinal_stiffness * kappa) * scale * direction
+        return planar_forces(fx, fy, fz, (-self.pneumatic_trail) * fy * direction)

@@ -1,8 +1,8 @@
 """First-order tire relaxation: transient slips as named states that vehicle models embed.
 
-A tire builds its force only after it has rolled about one relaxation length. The single-contact-
-point model of Pacejka (2012, sec. 7.2, and sec. 8.2 for its use with the Magic Formula) lets the
-slips that drive the steady-state law lag the kinematic slips::
+A tire builds its force only after it has rolled about one relaxation length. The
+single-contact-point transient model (Pacejka 2012, ch. 8; its string-model basis in ch. 5 and 7)
+lets the slips that drive the steady-state law lag the kinematic slips::
 
     sigma_kappa d(kappa')/dt + |V_x| kappa' = -V_sx sign(V_x)
     sigma_alpha d(q')/dt     + |V_x| q'     =  V_sy                   q' = tan(alpha')
@@ -14,7 +14,7 @@ follow from ``law.forces(fz, kappa', alpha')``. The equations divide by no speed
 through standstill, where ``sigma q'`` is the lateral deflection of a tire that acts as a spring.
 
 Relaxation lengths are given, or computed at each instant from the normal load with the ``.tir``
-file's values as MFeval computes them (Pacejka 2012, sec. 4.3.4 and 8.2; MFeval 4.3.1):
+file's values as MFeval 4.3.1 computes them (Pacejka 2012, ch. 4 and 8):
 
 * MF 6.1 / 6.2 (``FITTYP`` 61, 62): ``sigma_kappa = K_xkappa / C_x`` and
   ``sigma_alpha = |K_yalpha / C_y|``, slip stiffness over carcass stiffness, with

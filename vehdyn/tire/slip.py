@@ -3,8 +3,8 @@
 All quantities are in the ISO-W wheel axes of the ``.tir`` file and MFeval (x forward in the wheel
 plane, y to the left; :mod:`vehdyn.conventions` converts from the SAE vehicle axes). With ``V_x``,
 ``V_y`` the velocity of the wheel centre (≈ of the contact centre), ``omega`` the wheel spin
-(positive rolling forwards) and ``R_e`` the effective rolling radius (Pacejka 2012, sec. 1.2 and
-sec. 4.3.1)::
+(positive rolling forwards) and ``R_e`` the effective rolling radius (Pacejka 2012, ch. 1 and
+ch. 4; MFeval's definitions)::
 
     V_r  = omega R_e                    rolling speed
     V_sx = V_x - V_r,   V_sy = V_y      slip velocity of the contact point

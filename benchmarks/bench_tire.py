@@ -1,0 +1,101 @@
+"""Tire-law throughput: points per second of ``forces`` (and of the Magic Formula when present).
+
+For every law, ``forces`` is timed on 1e3, 1e5 and 1e6 combined-slip points (random loads, slip
+ratios, slip angles and speeds, both directions of travel) and compared, in the same run, with a
+plain per-point Python loop of the same equations (the laws' scalar path, which uses :mod:`math`).
+The error column is the largest difference between the vectorized and the per-point results,
+relative to mu F_z. ``MagicFormula.evaluate`` (MF 6.1, combined slip, all outputs) and
+``MagicFormula.forces`` are timed the same way when :mod:`vehdyn.tire.magic_formula` is importable.
+
+Run: ``python benchmarks/bench_tire.py [--quick]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from vehdyn import data_path
+from vehdyn.tire import BrushTire, DugoffTire, FialaTire, LinearTire
+
+SIZES = (1_000, 100_000, 1_000_000)
+LOOP_POINTS = 20_000  # points timed in the per-point loop (its rate does not depend on the size)
+
+
+def inputs(n, rng):
+    """Random combined-slip inputs: loads 0-8 kN, |kappa| <= 0.3, |alpha| <= 0.25 rad, |vx| <= 40 m/s."""
+    return (rng.uniform(0.0, 8000.0, n), rng.uniform(-0.3, 0.3, n), rng.uniform(-0.25, 0.25, n),
+            np.zeros(n), rng.uniform(-40.0, 40.0, n))
+
+
+def best_time(function, repeats):
+    best = np.inf
+    for _ in range(repeats):
+        start = time.perf_counter()
+        function()
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def loop_rate_and_error(law, args, reference):
+    """Points/s of a per-point Python loop over the law's scalar path, and its largest deviation."""
+    fz, kappa, alpha, gamma, vx = (a[:LOOP_POINTS].tolist() for a in args)
+    start = time.perf_counter()
+    rows = [law.forces(fz[i], kappa[i], alpha[i], gamma[i], vx[i]) for i in range(len(fz))]
+    rate = len(fz) / (time.perf_counter() - start)
+    fx = np.array([r.fx for r in rows])
+    fy = np.array([r.fy for r in rows])
+    scale = np.maximum(getattr(law, "mu", 1.0) * np.asarray(fz), 1.0)
+    error = max(np.max(np.abs(fx - reference.fx[:LOOP_POINTS]) / scale),
+                np.max(np.abs(fy - reference.fy[:LOOP_POINTS]) / scale))
+    return rate, error
+
+
+def main(quick: bool = False) -> None:
+    rng = np.random.default_rng(1)
+    sizes = SIZES[:2] if quick else SIZES
+    laws = {
+        "linear": LinearTire(cornering_stiffness=80000.0, slip_stiffness=100000.0, nominal_load=4000.0),
+        "brush": BrushTire(contact_half_length=0.08, tread_stiffness=6e6, mu=1.0, mu_sliding=0.8),
+        "fiala": FialaTire(cornering_stiffness=80000.0, mu=1.0, contact_half_length=0.08),
+        "dugoff": DugoffTire(cornering_stiffness=80000.0, slip_stiffness=100000.0, mu=1.0),
+    }
+    data = {n: inputs(n, rng) for n in sizes}
+    print(f"{'law':<22}{'points':>10}{'time [s]':>12}{'M points/s':>12}{'loop M pts/s':>14}{'ratio':>9}"
+          f"{'max error':>12}")
+    for name, law in laws.items():
+        reference = law.forces(*data[max(sizes)])
+        loop_rate, error = loop_rate_and_error(law, data[max(sizes)], reference)
+        for n in sizes:
+            seconds = best_time(lambda: law.forces(*data[n]), 9 if n < 1_000_000 else 5)
+            rate = n / seconds
+            print(f"{name + '.forces':<22}{n:>10}{seconds:>12.3e}{rate / 1e6:>12.2f}{loop_rate / 1e6:>14.3f}"
+                  f"{rate / loop_rate:>9.0f}{error:>12.1e}")
+    try:
+        from vehdyn.tire.magic_formula import MagicFormula
+    except ImportError:
+        print("\nMagicFormula: vehdyn.tire.magic_formula is not importable in this checkout; skipped.")
+        return
+    tire = MagicFormula.from_tir(data_path("tires", "MagicFormula61_Parameters.tir"))
+    for method in ("evaluate", "forces"):
+        function = getattr(tire, method)
+        fz0, kappa0, alpha0, gamma0, vx0 = (a[:2000].tolist() for a in data[max(sizes)])
+        start = time.perf_counter()
+        for i in range(len(fz0)):
+            function(fz0[i], kappa0[i], alpha0[i], gamma0[i], vx0[i])
+        loop_rate = len(fz0) / (time.perf_counter() - start)
+        for n in sizes:
+            fz, kappa, alpha, gamma, vx = data[n]
+            fz = fz + 500.0  # away from zero load, where MF-specific limits apply
+            seconds = best_time(lambda: function(fz, kappa, alpha, gamma, vx), 3)
+            rate = n / seconds
+            print(f"{'MF6.1.' + method:<22}{n:>10}{seconds:>12.3e}{rate / 1e6:>12.2f}{loop_rate / 1e6:>14.3f}"
+                  f"{rate / loop_rate:>9.0f}{'':>12}")
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="1e3 and 1e5 points only")
+    main(parser.parse_args().quick)
