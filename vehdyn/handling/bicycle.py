@@ -145,6 +145,16 @@ def check_speed(speed, *, allow_zero: bool = False, name: str = "speed") -> np.n
     return s
 
 
+def speed_of(model, speed=None, *, allow_zero: bool = False) -> np.ndarray:
+    """``speed`` [m/s] checked, or the model's own ``speed`` when ``speed`` is None."""
+    if speed is None:
+        speed = getattr(model, "speed", None)
+        if speed is None:
+            raise ParameterError(f"a speed [m/s] is needed with a {type(model).__name__} (give speed=...)",
+                                 key="speed", value=None)
+    return check_speed(speed, allow_zero=allow_zero)
+
+
 class LinearBicycle(LinearModel):
     """2-DOF lateral/yaw single-track model at constant forward speed, an exact LinearModel.
 

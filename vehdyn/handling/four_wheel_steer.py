@@ -28,7 +28,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..linear import LinearModel, connect_in_series
 from ..signals import Signal
-from .bicycle import LinearBicycle, bicycle_parameters, check_speed
+from .bicycle import LinearBicycle, bicycle_parameters, check_speed, speed_of
 from .steady_state import steady_state_gains
 
 __all__ = [
@@ -59,11 +59,7 @@ def zero_sideslip_rear_steer_ratio(vehicle_or_bicycle, speed=None):
         module docstring).
     """
     p = bicycle_parameters(vehicle_or_bicycle)
-    if speed is None:
-        speed = getattr(vehicle_or_bicycle, "speed", None)
-        if speed is None:
-            raise ParameterError("a speed [m/s] is needed (give speed=...)", key="speed", value=None)
-    u = check_speed(speed, allow_zero=True)
+    u = speed_of(vehicle_or_bicycle, speed, allow_zero=True)
     L = p.wheelbase
     k = -(p.b - p.mass * p.a * u**2 / (L * p.rear_cornering_stiffness)) / (
         p.a + p.mass * p.b * u**2 / (L * p.front_cornering_stiffness))

@@ -213,6 +213,14 @@ class LateralYawRoll(LinearModel):
     tire_compliance : bool
         With a Vehicle: tires' vertical compliance in series with the suspension roll stiffness.
 
+    Attributes
+    ----------
+    parameters : LateralYawRollParameters
+    speed : float
+        [m/s].
+    mass_matrix : ndarray, shape (4, 4)
+        The matrix M of M dx/dt = ... over [v, r, p, phi] (the Hessian of T in v, r, p, and 1).
+
     Notes
     -----
     Derivation, equations, assumptions and references in the module docstring. Outputs:
@@ -234,7 +242,7 @@ class LateralYawRoll(LinearModel):
         u = float(check_speed(speed))
         self.parameters = params
         self.speed = u
-        A, B, C, D = _state_space(params, u)
+        A, B, C, D, self.mass_matrix = _state_space(params, u)
         super().__init__(A, B, C, D, states=_STATES, inputs=_INPUTS, outputs=_OUTPUTS,
                          name=f"LateralYawRoll at {u:g} m/s", phenomena={"lateral", "yaw", "roll"})
 
@@ -355,4 +363,4 @@ def _state_space(p: LateralYawRollParameters, u: float):
     eye = np.eye(4)
     C = np.vstack([ay_x, eye[0] / u, eye[1], eye[0], eye[3], eye[2], S[0], S[1], ay_x / u**2, F_x[0], F_x[1]])
     D = np.vstack([ay_u, np.zeros((5, 2)), T[0], T[1], ay_u / u**2, F_u[0], F_u[1]])
-    return A, B, C, D
+    return A, B, C, D, M

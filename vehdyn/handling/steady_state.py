@@ -27,7 +27,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..units import GRAVITY
-from .bicycle import bicycle_parameters, check_speed
+from .bicycle import bicycle_parameters, check_speed, speed_of
 
 __all__ = [
     "understeer_gradient",
@@ -49,15 +49,6 @@ __all__ = [
     "HandlingDiagram",
     "handling_diagram",
 ]
-
-
-def _speed_of(model, speed) -> np.ndarray:
-    if speed is None:
-        speed = getattr(model, "speed", None)
-        if speed is None:
-            raise ParameterError(f"a speed [m/s] is needed with a {type(model).__name__} (give speed=...)",
-                                 key="speed", value=None)
-    return check_speed(speed, allow_zero=True)
 
 
 # --------------------------------------------------------------------------- understeer
@@ -188,7 +179,7 @@ def steady_state_gains(vehicle_or_bicycle, speed=None, *, rear_steer_ratio=0.0) 
         the (unstable) equilibrium, infinite at u_crit exactly.
     """
     p = bicycle_parameters(vehicle_or_bicycle)
-    u = _speed_of(vehicle_or_bicycle, speed)
+    u = speed_of(vehicle_or_bicycle, speed, allow_zero=True)
     k = np.asarray(rear_steer_ratio, dtype=float)
     L, K = p.wheelbase, p.understeer_gradient
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -309,7 +300,7 @@ def steer_angle_for(vehicle_or_bicycle, radius, speed=None, *, rear_steer_ratio=
     defaults to the bicycle's; ``rear_steer_ratio`` k = delta_r / delta_f.
     """
     p = bicycle_parameters(vehicle_or_bicycle)
-    u = _speed_of(vehicle_or_bicycle, speed)
+    u = speed_of(vehicle_or_bicycle, speed, allow_zero=True)
     R = _radius(radius)
     k = np.asarray(rear_steer_ratio, dtype=float)
     return (p.wheelbase / R + understeer_gradient(vehicle_or_bicycle) * u**2 / R) / (1.0 - k)

@@ -29,7 +29,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from ..errors import ParameterError
-from .bicycle import LinearBicycle, bicycle_parameters, check_speed
+from .bicycle import LinearBicycle, bicycle_parameters, speed_of
 
 __all__ = [
     "StepResponseMetrics",
@@ -258,14 +258,6 @@ class YawMode:
         return df
 
 
-def _speed(vehicle_or_bicycle, speed):
-    if speed is None:
-        speed = getattr(vehicle_or_bicycle, "speed", None)
-        if speed is None:
-            raise ParameterError("a speed [m/s] is needed (give speed=...)", key="speed", value=None)
-    return check_speed(speed)
-
-
 def _characteristic_polynomial(p, u):
     m, iz, a, b = p.mass, p.yaw_inertia, p.a, p.b
     cf, cr, L = p.front_cornering_stiffness, p.rear_cornering_stiffness, p.wheelbase
@@ -290,7 +282,7 @@ def yaw_mode(vehicle_or_bicycle, speed=None) -> YawMode:
         the model with lag).
     """
     p = bicycle_parameters(vehicle_or_bicycle)
-    u = _speed(vehicle_or_bicycle, speed)
+    u = speed_of(vehicle_or_bicycle, speed)
     wn2, c1 = _characteristic_polynomial(p, u)
     disc = np.sqrt((0.25 * c1**2 - wn2).astype(complex))
     eig = np.stack([-0.5 * c1 + disc, -0.5 * c1 - disc])
@@ -308,7 +300,7 @@ def yaw_rate_transfer_function(vehicle_or_bicycle, speed=None):
     ``scipy.signal.freqs``.
     """
     p = bicycle_parameters(vehicle_or_bicycle)
-    u = float(_speed(vehicle_or_bicycle, speed))
+    u = float(speed_of(vehicle_or_bicycle, speed))
     wn2, c1 = _characteristic_polynomial(p, u)
     cf, cr, L, m, iz = p.front_cornering_stiffness, p.rear_cornering_stiffness, p.wheelbase, p.mass, p.yaw_inertia
     return np.array([cf * p.a / iz, cf * cr * L / (m * iz * u)]), np.array([1.0, c1, wn2])
@@ -320,7 +312,7 @@ def lateral_acceleration_transfer_function(vehicle_or_bicycle, speed=None):
     [(m/s^2)/rad]; closed form in the module docstring.
     """
     p = bicycle_parameters(vehicle_or_bicycle)
-    u = float(_speed(vehicle_or_bicycle, speed))
+    u = float(speed_of(vehicle_or_bicycle, speed))
     wn2, c1 = _characteristic_polynomial(p, u)
     cf, cr, L, m, iz = p.front_cornering_stiffness, p.rear_cornering_stiffness, p.wheelbase, p.mass, p.yaw_inertia
     return np.array([cf / m, cf * cr * p.b * L / (m * iz * u), cf * cr * L / (m * iz)]), np.array([1.0, c1, wn2])
@@ -352,7 +344,7 @@ def steering_frequency_response(vehicle_or_bicycle, omega, speed=None, *,
         model = vehicle_or_bicycle
     else:
         if isinstance(vehicle_or_bicycle, LinearBicycle):
-            model = vehicle_or_bicycle.at_speed(float(_speed(vehicle_or_bicycle, speed)))
+            model = vehicle_or_bicycle.at_speed(float(speed_of(vehicle_or_bicycle, speed)))
         else:
-            model = LinearBicycle(vehicle_or_bicycle, float(_speed(vehicle_or_bicycle, speed)), tire_lag=tire_lag)
+            model = LinearBicycle(vehicle_or_bicycle, float(speed_of(vehicle_or_bicycle, speed)), tire_lag=tire_lag)
     return model.frequency_response(omega, outputs=list(outputs), inputs=["front_steer_angle"])
