@@ -110,6 +110,7 @@ from .maneuvers import (  # noqa: E402
     sine_steer,
     sine_with_dwell,
     sine_with_dwell_metrics,
+    spin_out_time,
     step_steer,
 )
 
@@ -136,4 +137,5 @@ __all__ += [
     "DoubleLaneChangeTrack",
     "double_lane_change_track",
     "lane_change_outcome",
+    "spin_out_time",
 ]

@@ -27,7 +27,8 @@ from ..errors import ParameterError
 
 __all__ = ["step_steer", "ramp_steer", "sine_steer", "sine_with_dwell", "sine_with_dwell_metrics",
            "SineWithDwellMetrics", "constant_radius_test", "crosswind_gust", "braking_in_turn",
-           "BrakingInTurn", "DoubleLaneChangeTrack", "double_lane_change_track", "lane_change_outcome"]
+           "BrakingInTurn", "DoubleLaneChangeTrack", "double_lane_change_track", "lane_change_outcome",
+           "spin_out_time"]
 
 
 def _finite(name, value, positive=False):
@@ -347,3 +348,14 @@ def lane_change_outcome(track: DoubleLaneChangeTrack, result) -> dict:
         if margin < worst:
             worst, where = float(margin), k
     return {"passed": bool(worst >= 0), "worst_margin": worst, "section": where}
+
+
+def spin_out_time(result, sideslip_limit: float = np.pi / 4):
+    """The first time [s] at which |sideslip angle| exceeds ``sideslip_limit`` [rad], or None.
+
+    A sideslip of 45 degrees at the CG is far beyond what a driver can recover; it marks the
+    vehicle as spun out (the simulation itself carries on through the spin).
+    """
+    beta = np.abs(np.asarray(result["sideslip_angle"], dtype=float))
+    over = np.nonzero(beta > float(sideslip_limit))[0]
+    return float(result.time[over[0]]) if over.size else None

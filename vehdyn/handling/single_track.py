@@ -264,6 +264,7 @@ class SingleTrack(Model):
             rear_lift_factor=half_rho_a * aero.rear_lift_coefficient, gravity=float(gravity)))
         static = self.parameters.static_axle_loads()
         self._mirrored = {axle: self._needs_mirror(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
+        self._peak_slip = {axle: self._peak_slips(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
         self._declare_signals()
 
     # ------------------------------------------------------------------ construction helpers
@@ -409,7 +410,9 @@ class SingleTrack(Model):
             if self.tire_lag:
                 blend = self._low_speed_blend(speed)
                 sigma_y = getattr(p, f"{axle}_lateral_relaxation_length")
-                tan_alpha = s[f"{axle}_lateral_deflection"] / sigma_y + blend * vy / self.low_speed_damping_speed
+                tan_alpha = self._sliding_slip(s[f"{axle}_lateral_deflection"] / sigma_y, vy / self._regularized(vx),
+                                               self._peak_slip[axle][1])
+                tan_alpha = tan_alpha + blend * vy / self.low_speed_damping_speed
             else:
                 tan_alpha = vy / self._regularized(vx)
             alpha = np.arctan(tan_alpha)
@@ -417,7 +420,9 @@ class SingleTrack(Model):
                 vsx = vx - s[f"{axle}_wheel_speed"] * p.rolling_radius
                 if self.tire_lag:
                     sigma_x = getattr(p, f"{axle}_longitudinal_relaxation_length")
-                    slip = s[f"{axle}_longitudinal_deflection"] / sigma_x - blend * vsx / self.low_speed_damping_speed
+                    slip = self._sliding_slip(s[f"{axle}_longitudinal_deflection"] / sigma_x,
+                                              -vsx / self._regularized(vx), self._peak_slip[axle][0])
+                    slip = slip - blend * vsx / self.low_speed_damping_speed
                     kappa = slip * direction
                 else:
                     kappa = -vsx / (direction * self._regularized(vx))
@@ -512,6 +517,37 @@ class SingleTrack(Model):
         return abs(float(f.fy)) > 1e-9 * max(float(load), 1.0)
 
     @staticmethod
+    def _peak_slips(tire, load):
+        """(slip ratio, tan slip angle) [-] at which the law's pure-slip force peaks at ``load``.
+
+        The tire deflection cannot grow beyond what the peak force needs: past it the contact patch
+        slides (Pacejka 2012, sec. 7.2 and 8.2; Rill, *Road Vehicle Dynamics*, 2012, sec. 3.10).
+        A law without a peak (linear) gives slip ratio 1 and slip angle 80 degrees.
+        """
+        kappa = np.linspace(0.0, 1.0, 401)
+        alpha = np.linspace(0.0, np.radians(80.0), 401)
+        fx = np.abs(np.asarray(tire.forces(np.full(kappa.size, float(load)), kappa, 0.0 * kappa, 0.0, 20.0).fx))
+        fy = np.abs(np.asarray(tire.forces(np.full(alpha.size, float(load)), 0.0 * alpha, alpha, 0.0, 20.0).fy))
+        kx = kappa[np.argmax(fx >= (1 - 1e-9) * fx.max())]
+        ay = alpha[np.argmax(fy >= (1 - 1e-9) * fy.max())]
+        return max(float(kx), 0.01), max(float(np.tan(ay)), 0.01)
+
+    @staticmethod
+    def _sliding_slip(transient, kinematic, peak):
+        """The slip that makes the force: the transient (deflection) slip, or the kinematic slip when
+        the deflection sits at its peak-force limit and the kinematic slip lies beyond it (sliding)."""
+        sliding = (np.abs(transient) >= 0.999 * peak) & (transient * kinematic > 0) & \
+            (np.abs(kinematic) > np.abs(transient))
+        return np.where(sliding, kinematic, transient)
+
+    @staticmethod
+    def _limit_deflection_rate(rate, slip, peak):
+        """Deflection rate with its outward part faded out over the last 5 % before the peak slip."""
+        room = np.minimum(np.maximum((peak - np.abs(slip)) / (0.05 * peak), 0.0), 1.0)
+        outward = rate * slip > 0
+        return np.where(outward, rate * room, rate)
+
+    @staticmethod
     def _regularized(vx):
         speed = np.abs(vx)
         v0 = _REGULARIZATION_SPEED
@@ -541,13 +577,17 @@ class SingleTrack(Model):
             for axle in _AXLES:
                 vx, vy = e["kin"][axle][2], e["kin"][axle][3]
                 sigma = getattr(p, f"{axle}_lateral_relaxation_length")
-                rows.append(vy - np.abs(vx) * s[f"{axle}_lateral_deflection"] / sigma)
+                deflection = s[f"{axle}_lateral_deflection"]
+                rate = vy - np.abs(vx) * deflection / sigma
+                rows.append(self._limit_deflection_rate(rate, deflection / sigma, self._peak_slip[axle][1]))
             if self.wheel_spin:
                 for axle in _AXLES:
                     vx = e["kin"][axle][2]
                     vsx = vx - s[f"{axle}_wheel_speed"] * p.rolling_radius
                     sigma = getattr(p, f"{axle}_longitudinal_relaxation_length")
-                    rows.append(-vsx - np.abs(vx) * s[f"{axle}_longitudinal_deflection"] / sigma)
+                    deflection = s[f"{axle}_longitudinal_deflection"]
+                    rate = -vsx - np.abs(vx) * deflection / sigma
+                    rows.append(self._limit_deflection_rate(rate, deflection / sigma, self._peak_slip[axle][0]))
         return _stack(rows)
 
     def output(self, t, x, u):
