@@ -77,8 +77,10 @@ def run(vehdyn, model, time_grid, method, **options):
 def error(result, reference, grid_reference):
     worst = 0.0
     for name in ("yaw_rate", "lateral_velocity"):
-        ref = np.interp(result.time, grid_reference, reference[name])
-        worst = max(worst, float(np.max(np.abs(result[name] - ref)) / np.max(np.abs(ref))))
+        ref = reference[name]
+        # every grid holds the reference's 50 ms instants: compare there, no interpolation error
+        ours = np.interp(grid_reference, result.time, result[name])
+        worst = max(worst, float(np.max(np.abs(ours - ref)) / np.max(np.abs(ref))))
     return worst
 
 
@@ -96,7 +98,7 @@ def work_precision(vehdyn, base, steer, drag, quick):
     for method, options in cases:
         cpu, result = run(vehdyn, model, grid, method, **options)
         rows.append((f"{method} rtol={options['rtol']:.0e}", cpu, result.nfev, error(result, reference, grid)))
-    for dt in ((0.02, 0.01, 0.005) if not quick else (0.01,)):
+    for dt in ((0.025, 0.01, 0.005) if not quick else (0.01,)):
         rk_grid = np.linspace(0.0, DURATION, int(round(DURATION / dt)) + 1)
         cpu, result = run(vehdyn, model, rk_grid, "rk4")
         rows.append((f"rk4 dt={dt:g} s", cpu, result.nfev, error(result, reference, grid)))

@@ -265,7 +265,7 @@ class NonlinearHandlingDiagram:
         from ..plotting import new_figure
 
         if ax is None:
-            fig, ax = new_figure()
+            ax = new_figure()[1][0, 0]
         g = 9.81
         ax.plot(self.lateral_acceleration / g, np.degrees(self.steer_angle), label="steer angle")
         ax.plot(self.lateral_acceleration / g, np.degrees(self.sideslip_angle), label="sideslip angle")
