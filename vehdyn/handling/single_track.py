@@ -104,10 +104,10 @@ class SingleTrackParameters:
         mu of the friction ellipse (force mode).
     front_lateral_relaxation_length, rear_lateral_relaxation_length : m
     front_longitudinal_relaxation_length, rear_longitudinal_relaxation_length : m
-    drag_area : m^2
-        0.5 rho c_x A / (rho/2) ... stored as the product 0.5 rho c_x A [kg/m].
-    front_lift, rear_lift : kg/m
-        0.5 rho c_l A of each axle.
+    drag_factor : kg/m
+        0.5 rho c_x A, so that F_drag = drag_factor u |u|.
+    front_lift_factor, rear_lift_factor : kg/m
+        0.5 rho c_l A of each axle (lift = factor u^2).
     gravity : m/s^2
     """
 
