@@ -151,3 +151,28 @@ def test_non_finite_input_is_reported_not_propagated():
     model = SingleTrack(SEDAN, LinearTire(cornering_stiffness=4e4), LinearTire(cornering_stiffness=4e4))
     with pytest.raises(vehdyn.ParameterError, match="front_steer_angle"):
         vehdyn.simulate(model, np.linspace(0, 1, 11), {"front_steer_angle": np.nan}, x0=model.straight_running(10.0))
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_MF_SPIN = SingleTrack(SEDAN, wheel_spin=True)  # the vehicle's Magic Formula tires, every state
+
+
+@settings(max_examples=60, deadline=None)
+@given(u=st.floats(-40, 40), v=st.floats(-20, 20), r=st.floats(-3, 3), psi=st.floats(-10, 10),
+       omega=st.floats(-150, 150), rho_y=st.floats(-0.5, 0.5), rho_x=st.floats(-0.5, 0.5),
+       steer=st.floats(-0.6, 0.6), torque=st.floats(-3000, 3000), brake=st.floats(0, 5000))
+def test_rhs_and_outputs_are_finite_everywhere_on_the_domain(u, v, r, psi, omega, rho_y, rho_x, steer, torque, brake):
+    # standstill, reverse, sliding sideways, spinning and locked wheels: never a NaN or an inf
+    m = _MF_SPIN
+    x = m.state_vector(longitudinal_velocity=u, lateral_velocity=v, yaw_rate=r, yaw_angle=psi,
+                       front_wheel_speed=omega, rear_wheel_speed=-omega / 2, front_lateral_deflection=rho_y,
+                       rear_lateral_deflection=-rho_y, front_longitudinal_deflection=rho_x,
+                       rear_longitudinal_deflection=-rho_x)
+    inputs = m.input_vector(front_steer_angle=steer, rear_drive_torque=torque, front_brake_torque=brake)
+    assert np.all(np.isfinite(m.rhs(0.0, x, inputs)))
+    y = dict(zip(m.output_names, m.output(0.0, x, inputs)))
+    assert all(np.isfinite(value) for value in y.values())
+    # the tire forces never exceed what friction allows (peak Magic Formula friction, with margin)
+    assert abs(y["front_lateral_force"]) <= 1.5 * y["front_normal_load"]
