@@ -232,3 +232,14 @@ def test_load_tire_by_path_or_shipped_name():
     assert by_name.params == by_path.params
     with pytest.raises(vehdyn.TirFileError, match="cannot read"):
         load_tire("no_such_tire")
+
+
+def test_empty_and_zero_dimensional_inputs():
+    model = tire("MagicFormula61_Parameters")
+    assert model.evaluate(np.array([]), 0.0, 0.0).cz.shape == (0,)
+    assert model.forces(np.zeros((0, 3)), 0.0, 0.0).fx.shape == (0, 3)
+    out = model.evaluate(np.float64(3000.0), np.array(0.1), 0.0)
+    assert out.fx.shape == () and np.isfinite(out.fx)
+    few = model.forces([[3000.0], [4000.0]], [0.0, 0.1, 0.2], 0.05)
+    assert few.fy.shape == (2, 3)
+    few.fy[0, 0] = 0.0  # outputs are writable arrays

@@ -204,3 +204,13 @@ def test_keys_are_case_insensitive_in_the_flat_view_and_verbatim_in_sections():
     params = parse_tir("[Model]\nfittyp = 62\n[vertical]\nFnomin = 5000\n")
     assert params.version == "6.2" and params["FNOMIN"] == 5000
     assert params.sections["vertical"] == {"Fnomin": 5000}
+
+
+def test_parameters_are_a_read_only_mapping_of_the_flat_si_values():
+    params = read_tir(tir_path("mf_185_80R14"))
+    flat = dict(params)
+    assert flat == params.to_dict() == dict(params.values)
+    assert len(params) == len(flat) and "FNOMIN" in params and params.get("NOPE") is None
+    assert flat["QSY7"] == 0.85  # a defaulted value is part of the view
+    with pytest.raises(TypeError):
+        params["FNOMIN"] = 1.0

@@ -18,15 +18,23 @@ Where MFeval's results are not finite vehdyn returns something else, on purpose:
 
 * turn-slip aligning moment at phit = 0 or with zero camber stiffness Kzgr0 (MFeval: NaN/-Inf),
   see :func:`vehdyn.tire.mf_moments.aligning_moment`;
-* MF 6.2 loaded radius where the vertical equation has no root (MFeval: Rl = NaN with
-  rho = 1e-12 m, Cz = 1e16 N/m): rho, Rl and Cz are all NaN;
-* MFeval's ``instKya`` (a finite difference between consecutive input rows) is not returned.
+* MF 6.2 loaded radius where the vertical equation Fz(Rl) = Fz has no root (MFeval: Rl = NaN
+  with rho = 1e-12 m, Cz = 1e16 N/m): rho, Rl and Cz are all NaN. This happens at large |Fy|
+  and, with camber, below the load that the camber deflection term alone produces;
+* MFeval's ``instKya`` (a finite difference between consecutive input rows) is not returned;
+* MFeval iterates omega/Re on the whole batch and stops when any row converges; vehdyn iterates
+  each point to convergence (MFeval's single-row result), so no output depends on other points.
+
+Domain: any finite inputs with |alpha| < pi/2. With ``limits=True`` (the default) every output
+is finite there, including vx = 0, fz = 0 and loads above FZMAX (except the MF 6.2 geometry
+noted above); with ``limits=False`` the equations are evaluated as written, outside the file's
+fitted ranges.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -39,7 +47,7 @@ from .base import TireForces, TireModel
 from .mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure, turn_slip_spin
 from .mf_moments import aligning_moment, overturning_moment, rolling_resistance_moment
 from .mf_vertical import carcass_stiffness, contact_patch, loaded_radius_mf61, loaded_radius_mf62, rolling_radius
-from .tir import TirParameters, read_tir
+from .tir import MFEVAL_DEFAULTS, TirParameters, read_tir
 
 __all__ = ["MagicFormula", "MagicFormulaOutputs", "load_tire"]
 
@@ -276,7 +284,7 @@ class MagicFormula(TireModel):
                                                      limits, alpha_star))
         arrays = self._inputs(fz, kappa, alpha, gamma, vx, None, 0.0, None)
         shape = arrays["shape"]
-        if math.prod(shape) <= SMALL_BATCH:  # a few wheels: float arithmetic beats numpy's call overhead
+        if 0 < math.prod(shape) <= SMALL_BATCH:  # a few wheels: float arithmetic beats numpy's call overhead
             points = np.broadcast_arrays(*(arrays[k] for k in ("fz", "kappa", "alpha", "gamma", "vx")))
             values = [self._forces_at_point(*map(float, p), limits, alpha_star)
                       for p in zip(*(np.ravel(a) for a in points))]
@@ -324,19 +332,23 @@ class MagicFormula(TireModel):
         shape = arrays.pop("shape")
         n = math.prod(shape)
         names = ("fz", "kappa", "alpha", "gamma", "phit", "vx", "pressure", "omega")
-        flat = {k: (None if arrays[k] is None else np.broadcast_to(arrays[k], shape).reshape(-1)) for k in names}
+        # inputs of one value stay 0-d (numpy broadcasts them, and constant terms cost one op)
+        flat = {}
+        for k in names:
+            a = arrays[k]
+            flat[k] = None if a is None else (a.reshape(()) if a.size == 1 else np.broadcast_to(a, shape).reshape(-1))
+
+        def chunk(a, part):
+            return a if a is None or a.ndim == 0 else a[part]
+
+        result = {}
         with np.errstate(all="ignore"):
-            if n <= CHUNK_SIZE:
-                out = _kernel(NumpyOps, c, *(flat[k] for k in names), limits, alpha_star, turn_slip, full)
-                return {k: np.broadcast_to(v, (n,)).reshape(shape) for k, v in out.items()}
-            result = None
-            for start in range(0, n, CHUNK_SIZE):
+            for start in range(0, max(n, 1), CHUNK_SIZE):
                 part = slice(start, min(start + CHUNK_SIZE, n))
-                out = _kernel(NumpyOps, c, *(None if flat[k] is None else flat[k][part] for k in names),
-                              limits, alpha_star, turn_slip, full)
-                if result is None:
-                    result = {k: np.empty(n) for k in out}
+                out = _kernel(NumpyOps, c, *(chunk(flat[k], part) for k in names), limits, alpha_star, turn_slip, full)
                 for k, v in out.items():
+                    if k not in result:
+                        result[k] = np.empty(n)
                     result[k][part] = v
         return {k: v.reshape(shape) for k, v in result.items()}
 
@@ -368,8 +380,6 @@ def _coefficients(params: TirParameters) -> SimpleNamespace:
         if isinstance(value, str):
             continue
         values[key] = float(value)
-    from .tir import MFEVAL_DEFAULTS
-
     for key, default in MFEVAL_DEFAULTS.items():
         if isinstance(default, str) or key in values:
             continue
@@ -391,7 +401,8 @@ def _coefficients(params: TirParameters) -> SimpleNamespace:
 
 def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, alpha_star, turn_slip, full):
     """One evaluation pass on arrays (numpy) or floats (``ScalarOps``); returns a dict of outputs."""
-    fz = xp.where(fz < 0, 0.0, fz)
+    fz = xp.maximum(fz, 0.0)
+    reverse = xp.where(vx < 0, -1.0, 1.0)  # MFeval flips Fx0, My (and Fy0 with alpha*) when vx < 0
     fz_input, kappa_input, alpha_input, gamma_input = fz, kappa, alpha, gamma
     if limits:
         vxlow = c.VXLOW
@@ -405,14 +416,16 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
         else:
             low_speed = 1.0
         kappa_output = kappa
-        phit = xp.where(vx < 0, -phit, phit)
+        phit = phit * reverse
         speed_sum = xp.abs(vx) + xp.abs(xp.tan(alpha) * vx)
-        alpha = xp.where(speed_sum < vxlow, alpha * (speed_sum / vxlow), alpha)
+        slow = speed_sum < vxlow
+        if xp.any(slow):
+            alpha = xp.where(slow, alpha * (speed_sum / vxlow), alpha)
         alpha = xp.clip(alpha, c.ALPMIN, c.ALPMAX)
         gamma = xp.clip(gamma, c.CAMMIN, c.CAMMAX)
-        fz = xp.where(fz > c.FZMAX, c.FZMAX, fz)
-        fz_low = xp.where(fz < c.FZMIN, c.FZMIN, fz)
-        fz_moment = xp.where(fz <= 0, 0.0, fz_low)
+        fz = xp.minimum(fz, c.FZMAX)
+        fz_low = xp.maximum(fz, c.FZMIN)
+        fz_moment = xp.where(fz <= 0, 0.0, fz_low) if xp.any(fz <= 0) else fz_low
         pressure = xp.clip(pressure, c.PRESMIN, c.PRESMAX)
         kappa = xp.clip(kappa, c.KPUMIN, c.KPUMAX)
     else:
@@ -420,6 +433,7 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
         kappa_output = kappa
         fz_low = fz_moment = fz
     s = SimpleNamespace(limits=limits, turn_slip=turn_slip, alpha_star_mode=alpha_star, low_speed=low_speed,
+                        reverse=reverse,
                         fz=fz, fz_input=fz_input, fz_moment=fz_moment, kappa=kappa, kappa_input=kappa_input,
                         alpha=alpha, gamma=gamma, phit=phit, vx=vx, pressure=pressure)
     s.dpi = (pressure - c.NOMPRES) / c.NOMPRES  # 4.E2b
@@ -431,7 +445,8 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
         s.alpha_star, s.gamma_star = alpha, gamma
     s.camber_free = not xp.any(s.gamma_star != 0)
     vc = xp.sqrt(vx**2 + (xp.tan(alpha) * xp.abs(vx)) ** 2)
-    s.cos_alpha_prime = xp.cos(xp.acos(vx / (vc + 1e-6 * sign_nonzero(xp, vc))))  # 4.E6, 4.E6a
+    # cos(alpha') with alpha' = acos(vx/Vc') (4.E6, 4.E6a); |vx/Vc'| <= 1, so cos(acos(v)) = v
+    s.cos_alpha_prime = vx / (vc + 1e-6 * sign_nonzero(xp, vc))
     if turn_slip or full:
         re, r_omega, omega = rolling_radius(xp, c, fz_input, kappa_input, vx, s.dpi, omega)
     if turn_slip:
@@ -452,7 +467,8 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
     half_length, half_width = contact_patch(xp, c, fz_input, s.dpi)
     cx, cy, sigma_x, sigma_y = carcass_stiffness(xp, c, fz, gamma, s.dpi, kxk, pure.kya)
     out.update(
-        kappa=kappa_output, alpha=xp.where(vx == 0, 0.0, alpha_input), gamma=gamma_input, phit=phit, vx=vx,
+        kappa=kappa_output, alpha=xp.where(vx == 0, 0.0, alpha_input) if xp.any(vx == 0) else alpha_input,
+        gamma=gamma_input, phit=phit, vx=vx,
         pressure=pressure, effective_radius=re, deflection=rho, contact_length=2 * half_length, trail=mz.trail,
         mux=mux, muy=xp.abs(pure.muy) if limits else pure.muy, omega=omega, loaded_radius=loaded,
         contact_width=2 * half_width, residual_torque=mz.residual, cx=cx, cy=cy, cz=cz, kya=pure.kya,

@@ -63,7 +63,8 @@ def longitudinal_pure(xp, c, s):
     cx = c.PCX1 * c.LCX  # 4.E11
     mux = (c.PDX1 + c.PDX2 * dfz) * (1 + c.PPX3 * dpi + c.PPX4 * dpi**2) \
         * (1 - c.PDX3 * s.gamma**2) * c.LMUX  # 4.E13
-    mux = xp.where(s.fz == 0, 0.0, mux)
+    if xp.any(s.fz == 0):
+        mux = xp.where(s.fz == 0, 0.0, mux)
     dx = mux * s.fz * zeta1  # 4.E12
     kxk = s.fz * (c.PKX1 + c.PKX2 * dfz) * xp.exp(c.PKX3 * dfz) \
         * (1 + c.PPX1 * dpi + c.PPX2 * dpi**2) * c.LKX  # 4.E15
@@ -76,7 +77,7 @@ def longitudinal_pure(xp, c, s):
         ex = xp.minimum(ex, 1.0)
     bk = bx * kappa_x
     fx0 = dx * xp.sin(cx * xp.atan(bk - ex * (bk - xp.atan(bk)))) + svx  # 4.E9
-    fx0 = xp.where(s.vx < 0, -fx0, fx0)
+    fx0 = fx0 * s.reverse
     return fx0, mux, kxk
 
 
@@ -157,8 +158,9 @@ def lateral_pure(xp, c, s, gamma_star, turn_slip):
     ba = by * alpha_y
     fy0 = dy * xp.sin(cy * xp.atan(ba - ey * (ba - xp.atan(ba)))) + svy  # 4.E19
     if s.alpha_star_mode:
-        fy0 = xp.where(s.vx < 0, -fy0, fy0)
-    muy = xp.where(fz == 0, 0.0, muy)
+        fy0 = fy0 * s.reverse
+    if xp.any(fz == 0):
+        muy = xp.where(fz == 0, 0.0, muy)
     return LateralPure(fy0, muy, kya, shy, svy, by, cy, zeta2)
 
 

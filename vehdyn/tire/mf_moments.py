@@ -26,7 +26,9 @@ def overturning_moment(xp, c, s, fy):
     Below FZMIN the load is replaced by Fz*(Fz/FZMIN)^2 (MFeval). When both QSX1–QSX11 and
     QSX12–QSX14 are non-zero, MFeval uses eq. 49 of Besselink's draft paper, as here.
     """
-    fz = xp.where(s.fz < c.FZMIN, s.fz * (s.fz / c.FZMIN) ** 2, s.fz) if c.FZMIN > 0 else s.fz
+    fz = s.fz
+    if c.FZMIN > 0 and xp.any(fz < c.FZMIN):
+        fz = xp.where(fz < c.FZMIN, fz * (fz / c.FZMIN) ** 2, fz)
     fz0, r0, gamma = c.FNOMIN, c.UNLOADED_RADIUS, s.gamma
     if c.mx_draft_form:
         return r0 * fz * c.LMX * (
@@ -54,7 +56,7 @@ def rolling_resistance_moment(xp, c, s, fx):
     vx = 0; it flips sign for vx < 0.
     """
     fz = s.fz_input
-    if c.FZMIN > 0:
+    if c.FZMIN > 0 and xp.any(fz < c.FZMIN):
         fz = xp.where(fz < c.FZMIN, fz * (fz / c.FZMIN), fz)
     vx, kappa = s.vx, s.kappa_input
     fz0, v0 = c.FNOMIN, c.LONGVL
@@ -65,14 +67,15 @@ def rolling_resistance_moment(xp, c, s, fx):
         my = -c.UNLOADED_RADIUS * fz0 * c.LMY * (
             speed_terms + (c.QSY5 + c.QSY6 * (fz / fz0)) * s.gamma**2
         ) * ((fz / fz0) ** c.QSY7 * (s.pressure / c.NOMPRES) ** c.QSY8)
-    my = xp.where(vx < 0, -my, my)
+    my = my * s.reverse
     high = xp.div(c.VXLOW, xp.abs(vx)) - 1
     low = -1 - c.VXLOW - high
-    ramp = xp.sin(((math.pi / 2) * (kappa + 1)) / (high + 1))
-    my = xp.where((kappa >= low) & (kappa <= high) if not xp.scalar else (low <= kappa <= high),
-                  my * ramp, my)
-    my = xp.where(kappa < low, -my, my)
-    return xp.where(vx == 0, 0.0, my)
+    in_ramp = (kappa >= low) & (kappa <= high) if not xp.scalar else (low <= kappa <= high)
+    if xp.any(in_ramp):
+        my = xp.where(in_ramp, my * xp.sin(((math.pi / 2) * (kappa + 1)) / (high + 1)), my)
+    if xp.any(kappa < low):
+        my = xp.where(kappa < low, -my, my)
+    return xp.where(vx == 0, 0.0, my) if xp.any(vx == 0) else my
 
 
 class AligningMoment:
@@ -159,7 +162,10 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
     alpha_r_eq = xp.atan(xp.sqrt(xp.tan(alpha_r) ** 2 + kappa_term)) * xp.sign(alpha_r)  # A54
     alpha_t_eq = xp.atan(xp.sqrt(xp.tan(alpha_t) ** 2 + kappa_term)) * xp.sign(alpha_t)  # A55
     arm = r0 * (c.SSZ1 + c.SSZ2 * (fy / c.FNOMIN) + (c.SSZ3 + c.SSZ4 * dfz) * gamma) * c.LS  # A56
-    residual = dr * xp.cos(cr * xp.atan(br * alpha_r_eq)) * s.low_speed  # 4.E75
+    if s.turn_slip:
+        residual = dr * xp.cos(cr * xp.atan(br * alpha_r_eq)) * s.low_speed  # 4.E75
+    else:  # Cr = 1
+        residual = dr * cos_atan(xp, br * alpha_r_eq) * s.low_speed
     bta = bt * alpha_t_eq
     trail = dt * xp.cos(ct * xp.atan(bta - et * (bta - xp.atan(bta)))) * s.cos_alpha_prime \
         * c.LFZO * s.low_speed  # 4.E73

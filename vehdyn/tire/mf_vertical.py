@@ -72,28 +72,22 @@ def rolling_radius(xp, c, fz, kappa, vx, dpi, omega=None):
     re = np.full(shape, c.UNLOADED_RADIUS * 0.965)
     re_old = np.full(shape, c.UNLOADED_RADIUS)
     omega = np.zeros(shape)
-    r_omega = np.broadcast_to(_free_radius(c, omega), shape).copy()
+    r_omega = np.broadcast_to(_free_radius(c, omega), shape)
     speed = kappa * vx + vx
-    deflection_term = np.broadcast_to(deflection_term, shape)
     active = np.abs(re_old - re) > _RADIUS_TOLERANCE
     for _ in range(_MAX_ITERATIONS):
         if not active.any():
             break
+        omega_new = speed / re
+        r_omega_new = _free_radius(c, omega_new)
+        re_new = r_omega_new - deflection_term
         if active.all():
-            re_old = re
-            omega = np.broadcast_to(speed / re, shape)
-            r_omega = _free_radius(c, omega)
-            re = r_omega - deflection_term
-        else:
-            index = np.nonzero(active)
-            re_old = re.copy()
-            omega_new = np.broadcast_to(speed, shape)[index] / re[index]
-            omega = omega.copy()
-            omega[index] = omega_new
-            r_omega = r_omega.copy()
-            r_omega[index] = _free_radius(c, omega_new)
-            re = re.copy()
-            re[index] = r_omega[index] - deflection_term[index]
+            re_old, omega, r_omega, re = re, omega_new, r_omega_new, re_new
+        else:  # points that have converged keep their values (MFeval's single-point result)
+            re_old = np.where(active, re, re_old)
+            omega = np.where(active, omega_new, omega)
+            r_omega = np.where(active, r_omega_new, r_omega)
+            re = np.where(active, re_new, re)
         active = np.abs(re_old - re) > _RADIUS_TOLERANCE
     return re, r_omega, omega
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 from types import MappingProxyType
-from typing import Mapping
+from collections.abc import Mapping
 
 from ..errors import TirFileError
 
@@ -152,8 +152,11 @@ _PARAMETER_DIMENSIONS = {
 }
 
 
-class TirParameters:
+class TirParameters(Mapping):
     """The parameters of a ``.tir`` file.
+
+    A read-only mapping ``{KEY: value}`` over :attr:`values` (flat, upper-case keys, SI, with the
+    defaults), with the file's structure kept alongside.
 
     Attributes
     ----------
@@ -206,11 +209,15 @@ class TirParameters:
     def __getitem__(self, key: str):
         return self.values[key]
 
-    def __contains__(self, key: str) -> bool:
-        return key in self.values
+    def __iter__(self):
+        return iter(self.values)
 
-    def get(self, key: str, default=None):
-        return self.values.get(key, default)
+    def __len__(self) -> int:
+        return len(self.values)
+
+    def to_dict(self) -> dict:
+        """The flat SI values (with defaults) as a plain dict."""
+        return dict(self.values)
 
     def __eq__(self, other) -> bool:
         if not isinstance(other, TirParameters):
