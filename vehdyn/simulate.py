@@ -525,9 +525,7 @@ def _outputs(model, t, x, u):
         if Y.shape != (model.n_outputs, X.shape[1]):
             raise ValueError
     except Exception:
-        if extra:  # parameters with a batch axis do not broadcast against folded time: one call per sample time
-            return np.stack([np.asarray(model.output(t[k], x[:, k], uu[:, k]), dtype=float) for k in range(n_t)],
-                            axis=1)
-        Y = np.stack([np.asarray(model.output(T[k], X[:, k], U[:, k]), dtype=float) for k in range(X.shape[1])],
-                     axis=1)
+        # one call per time sample, keeping the batch axis (models whose parameters are arrays along
+        # the batch axis cannot take time folded into it)
+        Y = np.stack([np.asarray(model.output(t[k], x[:, k], uu[:, k]), dtype=float) for k in range(n_t)], axis=1)
     return Y.reshape((model.n_outputs, n_t) + extra)

@@ -86,3 +86,56 @@ __all__ = [
     "yaw_mode",
     "yaw_rate_transfer_function",
 ]
+
+# Nonlinear single track, its steady state, manoeuvres and the preview driver (issue 7)
+from .single_track import SingleTrack, SingleTrackParameters  # noqa: E402
+from .nonlinear_steady_state import (  # noqa: E402
+    NonlinearHandlingDiagram,
+    SteadyStateCornering,
+    limit_lateral_acceleration,
+    nonlinear_handling_diagram,
+    steady_state_cornering,
+)
+from .driver import DriverInTheLoop, PreviewDriver  # noqa: E402
+from .maneuvers import (  # noqa: E402
+    BrakingInTurn,
+    DoubleLaneChangeTrack,
+    SineWithDwellMetrics,
+    braking_in_turn,
+    constant_radius_test,
+    crosswind_gust,
+    double_lane_change_track,
+    lane_change_outcome,
+    ramp_steer,
+    sine_steer,
+    sine_with_dwell,
+    sine_with_dwell_metrics,
+    spin_out_time,
+    step_steer,
+)
+
+__all__ += [
+    "SingleTrack",
+    "SingleTrackParameters",
+    "SteadyStateCornering",
+    "steady_state_cornering",
+    "NonlinearHandlingDiagram",
+    "nonlinear_handling_diagram",
+    "limit_lateral_acceleration",
+    "PreviewDriver",
+    "DriverInTheLoop",
+    "step_steer",
+    "ramp_steer",
+    "sine_steer",
+    "sine_with_dwell",
+    "sine_with_dwell_metrics",
+    "SineWithDwellMetrics",
+    "constant_radius_test",
+    "crosswind_gust",
+    "braking_in_turn",
+    "BrakingInTurn",
+    "DoubleLaneChangeTrack",
+    "double_lane_change_track",
+    "lane_change_outcome",
+    "spin_out_time",
+]

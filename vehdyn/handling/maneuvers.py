@@ -1,0 +1,361 @@
+"""Standard handling manoeuvres: input signals, scenario helpers and their metrics.
+
+Steer inputs are road-wheel angles [rad] in SAE signs (positive turns right) and are returned as
+vectorized callables ``delta(t)`` for :func:`vehdyn.simulate`'s ``inputs``. Test procedures:
+
+* step steer (ISO 7401:2011, sec. 6.2: steer ramp completed within 0.15 s) and its metrics
+  (:func:`vehdyn.handling.step_steer_metrics`);
+* ramp steer (ISO 7401 / ISO 4138 slow ramp), sine steer (ISO 7401 continuous sine);
+* constant-radius test (ISO 4138:2012, sec. 6.2): the steady state on a circle with growing speed,
+  from :func:`~vehdyn.handling.nonlinear_handling_diagram`;
+* sine with dwell (FMVSS 126, 49 CFR 571.126, S7.7): 0.7 Hz sine whose second peak dwells 0.5 s;
+  metrics S5.2.1-S5.2.3 (yaw-rate ratios 1.0 s and 1.75 s after completion of steer, lateral
+  displacement 1.07 s after the beginning of steer);
+* crosswind gust (a 1 - cos gust on the aerodynamic side force and yaw moment);
+* braking in a turn (ISO 7975:2019): from a steady turn, brake at a constant deceleration demand;
+* ISO 3888-1:2018 double lane change track (:func:`double_lane_change_track`), driven by
+  :class:`~vehdyn.handling.PreviewDriver`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ParameterError
+
+__all__ = ["step_steer", "ramp_steer", "sine_steer", "sine_with_dwell", "sine_with_dwell_metrics",
+           "SineWithDwellMetrics", "constant_radius_test", "crosswind_gust", "braking_in_turn",
+           "BrakingInTurn", "DoubleLaneChangeTrack", "double_lane_change_track", "lane_change_outcome",
+           "spin_out_time"]
+
+
+def _finite(name, value, positive=False):
+    value = float(value)
+    if not np.isfinite(value) or (positive and value <= 0):
+        raise ParameterError(f"{name} must be finite{' and > 0' if positive else ''}, got {value!r}", key=name,
+                             value=value)
+    return value
+
+
+def step_steer(amplitude: float, start: float = 0.5, rise_time: float = 0.15):
+    """Step steer of ``amplitude`` [rad] beginning at ``start`` [s], a linear ramp over ``rise_time`` [s]."""
+    amplitude, start = _finite("amplitude", amplitude), _finite("start", start)
+    rise_time = _finite("rise_time", rise_time, positive=True)
+    return lambda t: amplitude * np.clip((np.asarray(t, dtype=float) - start) / rise_time, 0.0, 1.0)
+
+
+def ramp_steer(rate: float, start: float = 0.0):
+    """Ramp steer of ``rate`` [rad/s] from ``start`` [s]."""
+    rate, start = _finite("rate", rate), _finite("start", start)
+    return lambda t: rate * np.maximum(np.asarray(t, dtype=float) - start, 0.0)
+
+
+def sine_steer(amplitude: float, frequency: float, start: float = 0.0, cycles: float | None = None):
+    """Sine steer amplitude sin(2 pi f (t - start)) [rad] from ``start``, for ``cycles`` periods (None: forever)."""
+    amplitude, start = _finite("amplitude", amplitude), _finite("start", start)
+    frequency = _finite("frequency", frequency, positive=True)
+    end = np.inf if cycles is None else start + _finite("cycles", cycles, positive=True) / frequency
+
+    def delta(t):
+        t = np.asarray(t, dtype=float)
+        on = (t >= start) & (t <= end)
+        return np.where(on, amplitude * np.sin(2 * np.pi * frequency * (t - start)), 0.0)
+
+    return delta
+
+
+def sine_with_dwell(amplitude: float, frequency: float = 0.7, dwell: float = 0.5, start: float = 1.0):
+    """FMVSS 126 sine with dwell: a ``frequency`` sine whose second peak is held for ``dwell`` [s].
+
+    delta = A sin(2 pi f tau) for tau = t - start in [0, 3/(4f)], then -A for ``dwell`` s, then
+    A sin(2 pi f (tau - dwell)) until tau = 1/f + dwell (completion of steer), then 0.
+    The first lobe has the sign of ``amplitude`` [rad].
+    """
+    amplitude, start = _finite("amplitude", amplitude), _finite("start", start)
+    frequency = _finite("frequency", frequency, positive=True)
+    dwell = _finite("dwell", dwell)
+    if dwell < 0:
+        raise ParameterError(f"dwell must be >= 0 [s], got {dwell}", key="dwell", value=dwell)
+    quarter3 = 0.75 / frequency
+
+    def delta(t):
+        tau = np.asarray(t, dtype=float) - start
+        first = (tau >= 0) & (tau <= quarter3)
+        hold = (tau > quarter3) & (tau <= quarter3 + dwell)
+        last = (tau > quarter3 + dwell) & (tau <= 1.0 / frequency + dwell)
+        wave = np.sin(2 * np.pi * frequency * np.where(last, tau - dwell, tau))
+        return amplitude * np.where(first | last, wave, np.where(hold, -1.0, 0.0))
+
+    delta.completion_of_steer = start + 1.0 / frequency + dwell
+    delta.beginning_of_steer = start
+    return delta
+
+
+@dataclass(frozen=True)
+class SineWithDwellMetrics:
+    """FMVSS 126 metrics (S5.2).
+
+    Attributes
+    ----------
+    peak_yaw_rate : float
+        Largest |yaw rate| after the steer reversal (the second lobe) [rad/s].
+    yaw_rate_ratio_1000ms, yaw_rate_ratio_1750ms : float
+        Yaw rate 1.0 s and 1.75 s after completion of steer over the peak [-] (limits 0.35, 0.20).
+    lateral_displacement : float
+        |y| of the CG 1.07 s after the beginning of steer [m] (limit >= 1.83 m for GVWR <= 3500 kg).
+    stable : bool
+        Both ratios within their limits.
+    """
+
+    peak_yaw_rate: float
+    yaw_rate_ratio_1000ms: float
+    yaw_rate_ratio_1750ms: float
+    lateral_displacement: float
+    stable: bool
+
+
+def sine_with_dwell_metrics(result, steer) -> SineWithDwellMetrics:
+    """FMVSS 126 metrics of a simulated sine with dwell (``steer`` from :func:`sine_with_dwell`)."""
+    t = result.time
+    r = np.asarray(result["yaw_rate"], dtype=float)
+    y = np.asarray(result["y"], dtype=float)
+    cos, bos = steer.completion_of_steer, steer.beginning_of_steer
+    delta = steer(t)
+    first_sign = np.sign(delta[np.argmax(np.abs(delta) > 0)]) if np.any(delta != 0) else 1.0
+    reversal = t[np.argmax((t > bos) & (np.sign(delta) == -first_sign))]
+    after = t >= reversal
+    peak = float(np.max(np.abs(r[after]))) if np.any(after) else float("nan")
+
+    def at(signal, time):
+        if time > t[-1]:
+            raise ParameterError(f"the simulation ends at {t[-1]} s, before {time} s that the metric needs",
+                                 key="time", value=time)
+        return float(np.interp(time, t, signal))
+
+    r1, r175 = at(r, cos + 1.0), at(r, cos + 1.75)
+    ratio1 = abs(r1) / peak if peak > 0 else 0.0
+    ratio175 = abs(r175) / peak if peak > 0 else 0.0
+    displacement = abs(at(y, bos + 1.07) - at(y, bos))
+    return SineWithDwellMetrics(peak, ratio1, ratio175, displacement, bool(ratio1 <= 0.35 and ratio175 <= 0.20))
+
+
+def constant_radius_test(model, radius: float, *, driven_axle: str = "rear", step: float = 0.25):
+    """ISO 4138 constant-radius test of a SingleTrack model: steady turns on ``radius`` [m] to the limit.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by lateral acceleration [m/s^2]: steer angle, sideslip, speed and the understeer
+        gradient d(delta)/d(a_y) [rad/(m/s^2)] (on a constant radius the kinematic steer L/R is
+        constant, so the whole slope is understeer; ISO 4138 sec. 8).
+    """
+    from .nonlinear_steady_state import nonlinear_handling_diagram
+
+    diagram = nonlinear_handling_diagram(model, radius=radius, driven_axle=driven_axle, step=step)
+    frame = diagram.to_frame()
+    frame["understeer_gradient"] = np.gradient(diagram.steer_angle, diagram.lateral_acceleration) \
+        if diagram.steer_angle.size > 1 else np.nan
+    frame.attrs["units"]["understeer_gradient"] = "rad/(m/s^2)"
+    frame.attrs["limit_lateral_acceleration"] = diagram.limit_lateral_acceleration
+    return frame
+
+
+def crosswind_gust(vehicle, speed: float, gust_speed: float, *, start: float = 1.0, duration: float = 1.0,
+                   side_force_derivative: float = 2.0, yaw_moment_derivative: float = 0.3,
+                   side_area: float | None = None):
+    """Inputs ``external_lateral_force`` and ``external_yaw_moment`` of a 1 - cos crosswind gust.
+
+    The wind w(t) = w_g (1 - cos(2 pi (t - start)/duration)) / 2 blows toward +y (SAE: from the
+    left to the right); with the resultant air speed V_r^2 = u^2 + w^2 and the aerodynamic sideslip
+    beta_w = atan(w / u), the linearized aerodynamic side force and yaw moment are (Hucho,
+    *Aerodynamics of Road Vehicles*, 4th ed., 1998, sec. 4.4; Wong, *Theory of Ground Vehicles*,
+    4th ed., 2008, sec. 3.2)::
+
+        F_y = 0.5 rho V_r^2 A C_Y,beta beta_w,      M_z = 0.5 rho V_r^2 A L C_N,beta beta_w
+
+    with A the side (reference) area and L the wheelbase. The defaults C_Y,beta = 2.0 /rad and
+    C_N,beta = 0.3 /rad (referred to the frontal area) are typical of passenger cars in Hucho's
+    data, not measured values of the shipped vehicles; positive C_N,beta turns the nose downwind.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+    speed : float
+        Forward speed u [m/s] at which the gust is met.
+    gust_speed : float
+        Peak crosswind w_g [m/s] (positive toward the right).
+    start, duration : float
+        [s].
+    side_force_derivative, yaw_moment_derivative : float
+        C_Y,beta and C_N,beta [1/rad].
+    side_area : float, optional
+        Reference area [m^2] (default the frontal area).
+
+    Returns
+    -------
+    dict
+        ``{"external_lateral_force": f(t), "external_yaw_moment": g(t)}`` for ``simulate``.
+    """
+    speed, gust_speed = _finite("speed", speed, positive=True), _finite("gust_speed", gust_speed)
+    start, duration = _finite("start", start), _finite("duration", duration, positive=True)
+    area = vehicle.aero.frontal_area if side_area is None else _finite("side_area", side_area, positive=True)
+    rho, length = vehicle.aero.air_density, vehicle.geometry.wheelbase
+
+    def wind(t):
+        tau = (np.asarray(t, dtype=float) - start) / duration
+        return np.where((tau >= 0) & (tau <= 1), 0.5 * gust_speed * (1 - np.cos(2 * np.pi * tau)), 0.0)
+
+    def pressure_angle(t):
+        w = wind(t)
+        return 0.5 * rho * (speed**2 + w**2) * area * np.arctan2(w, speed)
+
+    return {"external_lateral_force": lambda t: side_force_derivative * pressure_angle(t),
+            "external_yaw_moment": lambda t: yaw_moment_derivative * length * pressure_angle(t)}
+
+
+@dataclass(frozen=True)
+class BrakingInTurn:
+    """Braking in a turn (ISO 7975): the result and the metrics 1 s after brake onset.
+
+    Attributes
+    ----------
+    result : SimulationResult
+    initial : SteadyStateCornering
+    yaw_rate_ratio : float
+        Yaw rate 1 s after brake onset over the initial yaw rate [-].
+    sideslip_change : float
+        Sideslip change over that second [rad].
+    mean_deceleration : float
+        Mean longitudinal deceleration over that second [m/s^2] (positive braking).
+    """
+
+    result: object
+    initial: object
+    yaw_rate_ratio: float
+    sideslip_change: float
+    mean_deceleration: float
+
+
+def braking_in_turn(model, *, radius: float = 100.0, lateral_acceleration: float = 5.0, deceleration: float = 4.0,
+                    brake_front_share: float = 0.65, brake_start: float = 1.0, duration: float = 4.0,
+                    method: str = "RK45", rtol: float = 1e-6):
+    """ISO 7975 braking in a turn with a force-mode SingleTrack model.
+
+    The vehicle starts in the steady turn (radius [m], a_y [m/s^2]); at ``brake_start`` the drive is
+    released and braking forces m * ``deceleration`` split ``brake_front_share`` : rest between the
+    axles are applied (clipped by the tire friction in the model); the steer is held.
+    """
+    from ..simulate import simulate
+    from .nonlinear_steady_state import steady_state_cornering
+
+    if model.wheel_spin:
+        raise ParameterError("braking_in_turn drives a force-mode SingleTrack (wheel_spin=False)", key="model",
+                             value=model)
+    share = _finite("brake_front_share", brake_front_share)
+    if not 0 <= share <= 1:
+        raise ParameterError(f"brake_front_share must be in [0, 1], got {share}", key="brake_front_share", value=share)
+    deceleration = _finite("deceleration", deceleration, positive=True)
+    brake_start, duration = _finite("brake_start", brake_start), _finite("duration", duration, positive=True)
+    initial = steady_state_cornering(model, lateral_acceleration=lateral_acceleration, radius=radius)
+    force = float(model.parameters.mass) * deceleration
+    drive = initial.drive
+    time = np.linspace(0.0, brake_start + duration, int(round((brake_start + duration) / 0.01)) + 1)
+    braking = time >= brake_start
+    inputs = {"front_steer_angle": np.full(time.size, initial.steer_angle),
+              "front_longitudinal_force": np.where(braking, -share * force, 0.0),
+              "rear_longitudinal_force": np.where(braking, -(1 - share) * force, drive)}
+    result = simulate(model, time, inputs, x0=initial.state, method=method, rtol=rtol, hold="zoh")
+    t1 = brake_start + 1.0
+    r = result["yaw_rate"]
+    beta = result["sideslip_angle"]
+    u = result["longitudinal_velocity"]
+    return BrakingInTurn(result, initial, float(np.interp(t1, time, r) / initial.yaw_rate),
+                         float(np.interp(t1, time, beta) - np.interp(brake_start, time, beta)),
+                         float((np.interp(brake_start, time, u) - np.interp(t1, time, u)) / 1.0))
+
+
+@dataclass(frozen=True)
+class DoubleLaneChangeTrack:
+    """The ISO 3888-1 severe lane-change track (SAE earth axes: y to the right; the change is to the left).
+
+    Attributes
+    ----------
+    sections : list of (x_start, x_end, y_left, y_right)
+        The three coned lanes [m] (y_left < y_right in SAE).
+    path_x, path_y : ndarray
+        A centre-line path through the lanes for a driver (cosine transitions) [m].
+    vehicle_width : float
+        [m].
+    """
+
+    sections: list
+    path_x: np.ndarray
+    path_y: np.ndarray
+    vehicle_width: float
+
+
+def double_lane_change_track(vehicle_width: float, *, lateral_offset: float = 3.5, run_in: float = 30.0,
+                             run_out: float = 30.0) -> DoubleLaneChangeTrack:
+    """ISO 3888-1:2018 double lane change: cone lanes and a centre-line path.
+
+    Section 1 (length 15 m, width 1.1 b + 0.25), section 2 (30 m), section 3 (25 m, width b + 1, its
+    right boundary ``lateral_offset`` = 3.5 m left of section 1's), section 4 (25 m), section 5
+    (15 m, width 1.3 b + 0.25), with b the vehicle width; sections 1 and 5 share their right
+    boundary (ISO 3888-1, Fig. 1 and Table 1).
+
+    Parameters
+    ----------
+    vehicle_width : float
+        b [m].
+    """
+    b = _finite("vehicle_width", vehicle_width, positive=True)
+    offset = _finite("lateral_offset", lateral_offset, positive=True)
+    w1, w3, w5 = 1.1 * b + 0.25, b + 1.0, 1.3 * b + 0.25
+    # x from the start of section 1; right boundary of lane 1 at y = w1 / 2 (lane 1 centred on y = 0)
+    right1 = w1 / 2
+    sections = [(0.0, 15.0, right1 - w1, right1),
+                (45.0, 70.0, right1 - offset - w3, right1 - offset),
+                (95.0, 110.0, right1 - w5, right1)]
+    centres = [0.5 * (s[2] + s[3]) for s in sections]
+    x = np.linspace(-run_in, 110.0 + run_out, 1401)
+    y = np.full_like(x, centres[0])
+
+    def blend(x0, x1, y0, y1):
+        s = np.clip((x - x0) / (x1 - x0), 0, 1)
+        return y0 + (y1 - y0) * 0.5 * (1 - np.cos(np.pi * s))
+
+    y = np.where(x <= 70.0, blend(15.0, 45.0, centres[0], centres[1]), blend(70.0, 95.0, centres[1], centres[2]))
+    return DoubleLaneChangeTrack(sections, x, y, b)
+
+
+def lane_change_outcome(track: DoubleLaneChangeTrack, result) -> dict:
+    """Whether a run stayed inside the cones: ``{"passed", "worst_margin", "section"}``.
+
+    The vehicle is a rectangle of the track's width centred on the CG path (yaw neglected in the
+    width, a standard simplification); the margin is the smallest distance [m] from its side to a
+    cone line inside the coned sections (negative: a cone is hit).
+    """
+    x, y = np.asarray(result["x"]), np.asarray(result["y"])
+    half = track.vehicle_width / 2
+    worst, where = np.inf, None
+    for k, (x0, x1, left, right) in enumerate(track.sections):
+        inside = (x >= x0) & (x <= x1)
+        if not np.any(inside):
+            return {"passed": False, "worst_margin": -np.inf, "section": k}
+        margin = np.minimum((y[inside] - half) - left, right - (y[inside] + half)).min()
+        if margin < worst:
+            worst, where = float(margin), k
+    return {"passed": bool(worst >= 0), "worst_margin": worst, "section": where}
+
+
+def spin_out_time(result, sideslip_limit: float = np.pi / 4):
+    """The first time [s] at which |sideslip angle| exceeds ``sideslip_limit`` [rad], or None.
+
+    A sideslip of 45 degrees at the CG is far beyond what a driver can recover; it marks the
+    vehicle as spun out (the simulation itself carries on through the spin).
+    """
+    beta = np.abs(np.asarray(result["sideslip_angle"], dtype=float))
+    over = np.nonzero(beta > float(sideslip_limit))[0]
+    return float(result.time[over[0]]) if over.size else None

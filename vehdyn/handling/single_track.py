@@ -1,0 +1,683 @@
+"""Nonlinear single-track model: planar motion with any tire law, from standstill to the limit.
+
+Equations (SAE J670 vehicle axes: x forward, y right, z down; positive steer turns right; the
+two tires of an axle are lumped on the centre line, each carrying half the axle load)::
+
+    m (du/dt - v r) = F_xf cos(d_f) - F_yf sin(d_f) + F_xr cos(d_r) - F_yr sin(d_r) - F_drag
+    m (dv/dt + u r) = F_xf sin(d_f) + F_yf cos(d_f) + F_xr sin(d_r) + F_yr cos(d_r) + F_ext
+    I_z dr/dt       = a (F_xf sin(d_f) + F_yf cos(d_f)) - b (F_xr sin(d_r) + F_yr cos(d_r)) + M_ext
+    dX/dt = u cos(psi) - v sin(psi),   dY/dt = u sin(psi) + v cos(psi),   dpsi/dt = r
+
+(Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 1.3, eq. 1.43 with the forces
+resolved through the steer angles; Rajamani, *Vehicle Dynamics and Control*, 2nd ed., 2012,
+sec. 2.3 and 2.5; X, Y earth-fixed in SAE orientation: Y to the right of the initial heading).
+F_x, F_y are the axle forces in wheel axes (SAE), F_drag = 0.5 rho c_x A u|u|, F_ext and M_ext
+external lateral force and yaw moment at the CG (wind, :func:`vehdyn.handling.maneuvers.crosswind_gust`).
+
+Wheel-centre velocities in the wheel axes (SAE; front: lateral velocity v + a r, rear: v - b r)::
+
+    V_x = u cos(d) + V_y,body sin(d),   V_y = -u sin(d) + V_y,body cos(d)
+
+Normal loads: quasi-static longitudinal load transfer (Gillespie, *Fundamentals of Vehicle
+Dynamics*, 1992, eq. 2-18) through the CG height h, plus aerodynamic lift::
+
+    F_zf = m g b / L - h X / L - L_f,    F_zr = m g a / L + h X / L - L_r,
+    X = sum of the body-x tire forces (= m (du/dt - v r) + F_drag)
+
+(with wheel spin the forces depend on the loads: two fixed-point passes from the static loads).
+
+An axle whose load would become negative (the vehicle would tip over that axle) is held at zero
+and the other axle carries the whole weight; the output ``front_normal_load`` shows it.
+
+Tire relaxation (``tire_lag=True``, the default): each axle has a lateral tire deflection state
+rho_y (and, with wheel spin, a longitudinal one rho_x) of the single-contact-point transient model
+(Pacejka 2012, sec. 7.2.1 eq. 7.9-7.12 and sec. 8.2)::
+
+    d(rho_y)/dt = V_sy - |V_x| rho_y / sigma_y,     tan(alpha') = rho_y / sigma_y
+    d(rho_x)/dt = -V_sx - |V_x| rho_x / sigma_x,    s_x = rho_x / sigma_x
+
+with V_sx = V_x - omega R_e, V_sy = V_y the slip velocities. The tire law sees alpha' and
+kappa' = s_x sign(V_x) (MFeval's signed slip ratio; the laws flip F_x with sign(V_x), so the force
+is continuous through standstill). No speed appears in a denominator: at standstill the tire is a
+spring of stiffness C / sigma. Below ``low_speed_damping_speed`` v_l a damping term fades in
+(Pacejka 2012, sec. 8.7, eq. 8.125-8.126, the "k_Vlow" damping of MF-Tyre)::
+
+    tan(alpha') <- tan(alpha') + w V_sy / v_l,   s_x <- s_x - w V_sx / v_l,
+    w = (1 + cos(pi |V_x| / v_l)) / 2 for |V_x| < v_l, else 0
+
+which damps the otherwise undamped tire-spring oscillation of a parked or creeping vehicle (it is
+zero, and so changes nothing, at speeds above v_l). Without tire lag the slips are the steady-state
+ones, tan(alpha) = V_y / D(V_x) and kappa = -V_sx / (sign(V_x) D(V_x)), with the regularized speed
+D of :func:`vehdyn.tire.regularized_speed` (exact above 0.5 m/s): valid at speed only.
+
+Longitudinal input, two modes:
+
+* ``wheel_spin=False`` (default): the axle longitudinal forces are inputs
+  (``front_longitudinal_force``, ``rear_longitudinal_force``, wheel axes, N), clipped at
+  mu F_z; the lateral force of the law at zero slip ratio is reduced by the friction ellipse
+  sqrt(1 - (F_x / (mu F_z))^2) (Rajamani 2012, sec. 13.7; mu = ``vehicle.tires.friction_coefficient``).
+* ``wheel_spin=True``: each axle has a spin state omega (both wheels together, inertia 2 I_w)::
+
+      2 I_w d(omega)/dt = T_drive - T_brake sat(omega / omega_b) - R_e F_x
+
+  and the tire law computes F_x and F_y from the (transient) slips with its own combined-slip
+  rule. The brake torque opposes the spin; sat(z) = z / sqrt(1 + z^2) regularizes its sign
+  within ``brake_regularization_speed`` omega_b so that a locked wheel stops without chatter.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..conventions import tire_forces_iso_w_to_sae, tire_slips_sae_to_iso_w
+from ..errors import ParameterError
+from ..model import Model
+from ..params import Vehicle
+from ..signals import Signal
+from ..units import GRAVITY
+
+__all__ = ["SingleTrack", "SingleTrackParameters"]
+
+_AXLES = ("front", "rear")
+_REGULARIZATION_SPEED = 0.5  # [m/s], the default v_0 of vehdyn.tire.slip
+
+
+@dataclass(frozen=True)
+class SingleTrackParameters:
+    """Numbers of the single-track model; each may be a float or an array across batch variants.
+
+    Attributes
+    ----------
+    mass : kg
+    yaw_inertia : kg*m^2
+    a, b : m
+        CG to front and rear axle.
+    cg_height : m
+    rolling_radius : m
+        Effective rolling radius R_e.
+    wheel_spin_inertia : kg*m^2
+        One wheel.
+    friction_coefficient : -
+        mu of the friction ellipse (force mode).
+    front_lateral_relaxation_length, rear_lateral_relaxation_length : m
+    front_longitudinal_relaxation_length, rear_longitudinal_relaxation_length : m
+    drag_factor : kg/m
+        0.5 rho c_x A, so that F_drag = drag_factor u |u|.
+    front_lift_factor, rear_lift_factor : kg/m
+        0.5 rho c_l A of each axle (lift = factor u^2).
+    gravity : m/s^2
+    """
+
+    mass: object
+    yaw_inertia: object
+    a: object
+    b: object
+    cg_height: object
+    rolling_radius: object
+    wheel_spin_inertia: object
+    friction_coefficient: object
+    front_lateral_relaxation_length: object
+    rear_lateral_relaxation_length: object
+    front_longitudinal_relaxation_length: object
+    rear_longitudinal_relaxation_length: object
+    drag_factor: object
+    front_lift_factor: object
+    rear_lift_factor: object
+    gravity: float = GRAVITY
+
+    @property
+    def wheelbase(self):
+        return self.a + self.b
+
+    def static_axle_loads(self):
+        """(front, rear) static axle loads [N]."""
+        w = self.mass * self.gravity
+        return w * self.b / self.wheelbase, w * self.a / self.wheelbase
+
+
+_POSITIVE = ("mass", "yaw_inertia", "a", "b", "cg_height", "rolling_radius", "wheel_spin_inertia",
+             "friction_coefficient", "front_lateral_relaxation_length", "rear_lateral_relaxation_length",
+             "front_longitudinal_relaxation_length", "rear_longitudinal_relaxation_length")
+
+
+def _check_parameters(p: SingleTrackParameters) -> SingleTrackParameters:
+    sizes = set()
+    for field in dataclasses.fields(p):
+        value = np.asarray(getattr(p, field.name), dtype=float)
+        if not np.all(np.isfinite(value)):
+            raise ParameterError(f"SingleTrack parameter {field.name} must be finite, got {getattr(p, field.name)!r}",
+                                 key=field.name, value=getattr(p, field.name))
+        if field.name in _POSITIVE and np.any(value <= 0):
+            bad = value[value <= 0].flat[0] if value.ndim else float(value)
+            raise ParameterError(f"SingleTrack parameter {field.name} must be > 0, got {bad!r}", key=field.name,
+                                 value=bad)
+        if value.ndim > 1:
+            raise ParameterError(f"SingleTrack parameter {field.name} must be a scalar or a 1-D array across "
+                                 f"variants, got shape {value.shape}", key=field.name, value=value.shape)
+        if value.ndim == 1:
+            sizes.add(value.size)
+    if len(sizes) > 1:
+        raise ParameterError(f"SingleTrack parameter arrays differ in length: {sorted(sizes)}", key="variants",
+                             value=sorted(sizes))
+    return p
+
+
+def _stack(rows) -> np.ndarray:
+    """Rows of scalars or arrays as one array with the batch axis last."""
+    if all(np.ndim(row) == 0 for row in rows):
+        return np.array(rows, dtype=float)
+    shape = np.broadcast_shapes(*(np.shape(row) for row in rows))
+    return np.stack([np.broadcast_to(row, shape) for row in rows])
+
+
+class SingleTrack(Model):
+    """Nonlinear planar single-track model with any tire law (equations in the module docstring).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Masses, geometry, tire data (rolling radius, wheel inertia, mu, relaxation lengths), aero.
+    front_tire, rear_tire : TireModel, optional
+        The law of ONE tire of each axle (ISO-W, :class:`vehdyn.tire.TireModel`); the axle force
+        is twice the tire's at half the axle load. Default: the vehicle's law
+        (``vehicle.tires.model``, the Magic Formula from its ``.tir`` file) through
+        :func:`vehdyn.tire.tire_for_vehicle`.
+    wheel_spin : bool
+        Wheel-spin states and torque inputs (True) or axle-force inputs (False, default).
+    tire_lag : bool
+        Tire deflection (relaxation) states, needed for low speed and standstill (default True).
+    longitudinal_relaxation_length : float or (float, float), optional
+        sigma_x [m] of the front and rear tires; default from the vehicle's ``.tir`` file at the
+        static loads (:func:`vehdyn.tire.relaxation_lengths`), else the lateral lengths.
+    low_speed_damping_speed : float
+        v_l [m/s] below which the tire-spring damping fades in (default 2 m/s).
+    brake_regularization_speed : float
+        omega_b [rad/s] of the brake-torque sign regularization (default 1 rad/s).
+    gravity : float
+        [m/s^2].
+
+    Signals
+    -------
+    states
+        ``longitudinal_velocity`` u, ``lateral_velocity`` v, ``yaw_rate`` r, ``x``, ``y``,
+        ``yaw_angle`` psi; with wheel spin ``front_wheel_speed``, ``rear_wheel_speed`` [rad/s];
+        with tire lag ``front_lateral_deflection``, ``rear_lateral_deflection`` [m] (and with wheel
+        spin ``front_longitudinal_deflection``, ``rear_longitudinal_deflection``).
+    inputs
+        ``front_steer_angle``, ``rear_steer_angle`` [rad]; ``front_longitudinal_force``,
+        ``rear_longitudinal_force`` [N] or ``front_drive_torque``, ``rear_drive_torque``,
+        ``front_brake_torque``, ``rear_brake_torque`` [N*m] (per axle, brake torques >= 0);
+        ``external_lateral_force`` [N], ``external_yaw_moment`` [N*m] (wind).
+    outputs
+        See :attr:`outputs` (accelerations, sideslip, slips, axle forces and loads, position).
+
+    Notes
+    -----
+    Parameters may vary across a batch: :meth:`variants` returns a model whose mass, inertia,
+    axle positions, CG height or relaxation lengths are arrays, and one ``simulate`` call with
+    ``x0`` of shape (n_states, n_variants) runs them all.
+    """
+
+    def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, wheel_spin: bool = False,
+                 tire_lag: bool = True, longitudinal_relaxation_length=None, low_speed_damping_speed: float = 2.0,
+                 brake_regularization_speed: float = 1.0, gravity: float = GRAVITY):
+        if not isinstance(vehicle, Vehicle):
+            raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
+                                 value=vehicle)
+        from ..tire import TireModel, tire_for_vehicle
+
+        tires = {}
+        for axle, tire in zip(_AXLES, (front_tire, rear_tire)):
+            if tire is None:
+                tire = tire_for_vehicle(vehicle, axle)
+            if not isinstance(tire, TireModel):
+                raise ParameterError(f"{axle}_tire must be a vehdyn.tire.TireModel, got {type(tire).__name__}",
+                                     key=f"{axle}_tire", value=tire)
+            tires[axle] = tire
+        self.front_tire, self.rear_tire = tires["front"], tires["rear"]
+        self.vehicle = vehicle
+        self.wheel_spin = bool(wheel_spin)
+        self.tire_lag = bool(tire_lag)
+        for name, value in (("low_speed_damping_speed", low_speed_damping_speed),
+                            ("brake_regularization_speed", brake_regularization_speed), ("gravity", gravity)):
+            if not (np.isfinite(value) and value > 0):
+                raise ParameterError(f"{name} must be a finite number > 0, got {value!r}", key=name, value=value)
+        self.low_speed_damping_speed = float(low_speed_damping_speed)
+        self.brake_regularization_speed = float(brake_regularization_speed)
+        t, g, m, aero = vehicle.tires, vehicle.geometry, vehicle.mass, vehicle.aero
+        lateral = (t.front_relaxation_length, t.rear_relaxation_length)
+        if self.tire_lag and min(lateral) <= 0:
+            raise ParameterError("tire_lag needs positive tires.front_relaxation_length and "
+                                 f"tires.rear_relaxation_length, got {lateral}", key="tires.front_relaxation_length",
+                                 value=lateral)
+        lateral = tuple(s if s > 0 else 1.0 for s in lateral)  # unused without tire lag
+        longitudinal = self._longitudinal_lengths(vehicle, longitudinal_relaxation_length, lateral, gravity)
+        half_rho_a = 0.5 * aero.air_density * aero.frontal_area
+        self.parameters = _check_parameters(SingleTrackParameters(
+            mass=m.mass, yaw_inertia=m.yaw_inertia, a=g.cg_to_front_axle, b=g.cg_to_rear_axle, cg_height=m.cg_height,
+            rolling_radius=t.rolling_radius, wheel_spin_inertia=t.wheel_spin_inertia,
+            friction_coefficient=t.friction_coefficient,
+            front_lateral_relaxation_length=lateral[0], rear_lateral_relaxation_length=lateral[1],
+            front_longitudinal_relaxation_length=longitudinal[0], rear_longitudinal_relaxation_length=longitudinal[1],
+            drag_factor=half_rho_a * aero.drag_coefficient, front_lift_factor=half_rho_a * aero.front_lift_coefficient,
+            rear_lift_factor=half_rho_a * aero.rear_lift_coefficient, gravity=float(gravity)))
+        static = self.parameters.static_axle_loads()
+        self._mirrored = {axle: self._needs_mirror(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
+        self._peak_slip = {axle: self._peak_slips(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
+        self._declare_signals()
+
+    # ------------------------------------------------------------------ construction helpers
+    @staticmethod
+    def _longitudinal_lengths(vehicle, given, lateral, gravity):
+        if given is not None:
+            values = np.broadcast_to(np.asarray(given, dtype=float), (2,))
+            if not np.all(np.isfinite(values)) or np.any(values <= 0):
+                raise ParameterError(f"longitudinal_relaxation_length must be > 0 [m], got {given!r}",
+                                     key="longitudinal_relaxation_length", value=given)
+            return float(values[0]), float(values[1])
+        try:
+            from ..tire import read_tir, relaxation_lengths
+
+            loads = np.asarray(vehicle.static_axle_loads(gravity)) / 2.0
+            sigma_x, _ = relaxation_lengths(read_tir(vehicle.tir_path()), loads)
+            if np.all(np.isfinite(sigma_x)) and np.all(sigma_x > 0):
+                return float(sigma_x[0]), float(sigma_x[1])
+        except Exception:  # no usable .tir file: fall back to the lateral lengths (documented)
+            pass
+        return lateral
+
+    def _declare_signals(self):
+        states = [Signal("longitudinal_velocity", "m/s", "body-frame forward velocity u of the CG"),
+                  Signal("lateral_velocity", "m/s", "body-frame lateral velocity v of the CG (right, SAE)"),
+                  Signal("yaw_rate", "rad/s", "yaw rate r (positive turning right, SAE)"),
+                  Signal("x", "m", "earth-fixed X of the CG (initial heading direction)"),
+                  Signal("y", "m", "earth-fixed Y of the CG (right of the initial heading, SAE)"),
+                  Signal("yaw_angle", "rad", "heading psi (positive turning right, SAE)")]
+        if self.wheel_spin:
+            states += [Signal(f"{axle}_wheel_speed", "rad/s", f"spin of the {axle} wheels (positive rolling forwards)")
+                       for axle in _AXLES]
+        if self.tire_lag:
+            states += [Signal(f"{axle}_lateral_deflection", "m",
+                              f"lateral deflection of the {axle} tires' contact point (SAE y, relaxation state)")
+                       for axle in _AXLES]
+            if self.wheel_spin:
+                states += [Signal(f"{axle}_longitudinal_deflection", "m",
+                                  f"longitudinal deflection of the {axle} tires (relaxation state, + driving)")
+                           for axle in _AXLES]
+        inputs = [Signal("front_steer_angle", "rad", "front road-wheel steer angle (positive turns right, SAE)"),
+                  Signal("rear_steer_angle", "rad", "rear road-wheel steer angle (positive turns right, SAE)")]
+        if self.wheel_spin:
+            inputs += [Signal(f"{axle}_drive_torque", "N*m", f"drive torque on the {axle} axle (both wheels)")
+                       for axle in _AXLES]
+            inputs += [Signal(f"{axle}_brake_torque", "N*m", f"brake torque magnitude on the {axle} axle (>= 0)")
+                       for axle in _AXLES]
+        else:
+            inputs += [Signal(f"{axle}_longitudinal_force", "N",
+                              f"longitudinal force of the {axle} axle in wheel axes (+ driving)") for axle in _AXLES]
+        inputs += [Signal("external_lateral_force", "N", "lateral force at the CG, e.g. wind (SAE y, right)"),
+                   Signal("external_yaw_moment", "N*m", "yaw moment about the CG, e.g. wind (SAE z)")]
+        outputs = [
+            Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the CG, dv/dt + u r (right, SAE)"),
+            Signal("sideslip_angle", "rad", "vehicle sideslip at the CG, atan2(v, |u|)"),
+            Signal("yaw_rate", "rad/s", "yaw rate r"),
+            Signal("lateral_velocity", "m/s", "body-frame lateral velocity v"),
+            Signal("front_slip_angle", "rad", "front slip angle acting in the tire law (transient with lag, SAE)"),
+            Signal("rear_slip_angle", "rad", "rear slip angle acting in the tire law (transient with lag, SAE)"),
+            Signal("path_curvature", "1/m", "curvature of the CG path a_y / V^2 (V^2 floored at 0.25 m^2/s^2)"),
+            Signal("front_lateral_force", "N", "lateral force of the front axle in wheel axes (SAE y)"),
+            Signal("rear_lateral_force", "N", "lateral force of the rear axle in wheel axes (SAE y)"),
+            Signal("longitudinal_acceleration", "m/s^2", "longitudinal acceleration of the CG, du/dt - v r"),
+            Signal("longitudinal_velocity", "m/s", "body-frame forward velocity u"),
+            Signal("speed", "m/s", "speed of the CG sqrt(u^2 + v^2)"),
+            Signal("front_longitudinal_force", "N", "longitudinal force of the front axle in wheel axes"),
+            Signal("rear_longitudinal_force", "N", "longitudinal force of the rear axle in wheel axes"),
+            Signal("front_normal_load", "N", "normal load of the front axle"),
+            Signal("rear_normal_load", "N", "normal load of the rear axle"),
+            Signal("front_slip_ratio", "-", "front slip ratio acting in the tire law (0 in force mode)"),
+            Signal("rear_slip_ratio", "-", "rear slip ratio acting in the tire law (0 in force mode)"),
+            Signal("x", "m", "earth-fixed X of the CG"),
+            Signal("y", "m", "earth-fixed Y of the CG (SAE)"),
+            Signal("yaw_angle", "rad", "heading psi"),
+        ]
+        self.declare(states=states, inputs=inputs, outputs=outputs)
+        self._state_keys, self._input_keys = self.state_names, self.input_names
+        phenomena = {"longitudinal", "lateral", "yaw", "load_transfer", "tire_saturation", "aero"}
+        if self.wheel_spin:
+            phenomena.add("wheel_spin")
+        if self.tire_lag:
+            phenomena.add("tire_lag")
+        self.phenomena = frozenset(phenomena)
+
+    def variants(self, **arrays) -> "SingleTrack":
+        """A copy whose parameters (fields of :class:`SingleTrackParameters`) take the given values.
+
+        Arrays (1-D, one entry per variant) make a batch model: simulate it with ``x0`` of shape
+        (n_states, n_variants). Example: ``model.variants(mass=np.linspace(1000, 1600, 1000))``.
+
+        Raises
+        ------
+        ParameterError
+            For an unknown name, a non-finite or non-positive value, or arrays of different lengths.
+        """
+        names = {f.name for f in dataclasses.fields(SingleTrackParameters)}
+        unknown = sorted(set(arrays) - names)
+        if unknown:
+            raise ParameterError(f"SingleTrack has no parameter {unknown[0]!r}; the parameters are {sorted(names)}",
+                                 key=unknown[0], value=arrays[unknown[0]])
+        new = object.__new__(type(self))
+        new.__dict__.update(self.__dict__)
+        values = {k: (np.asarray(v, dtype=float) if np.ndim(v) else float(v)) for k, v in arrays.items()}
+        new.parameters = _check_parameters(dataclasses.replace(self.parameters, **values))
+        return new
+
+    @property
+    def n_variants(self) -> int | None:
+        """Number of batch variants, or None for a model with scalar parameters."""
+        for field in dataclasses.fields(self.parameters):
+            value = getattr(self.parameters, field.name)
+            if np.ndim(value) == 1:
+                return int(np.size(value))
+        return None
+
+    # ------------------------------------------------------------------ the equations
+    def _evaluate(self, x, u):
+        """Everything rhs and output need, as a dict of arrays (shape of the batch)."""
+        p = self.parameters
+        x = np.asarray(x, dtype=float)
+        u = np.asarray(u, dtype=float)
+        s = dict(zip(self._state_keys, x))
+        i = dict(zip(self._input_keys, u))
+        lon, lat, yaw_rate = s["longitudinal_velocity"], s["lateral_velocity"], s["yaw_rate"]
+        steer = {"front": i["front_steer_angle"], "rear": i["rear_steer_angle"]}
+        body_lateral = {"front": lat + p.a * yaw_rate, "rear": lat - p.b * yaw_rate}
+        out = {}
+        static_front, static_rear = p.static_axle_loads()
+        lift = {"front": p.front_lift_factor * lon * lon, "rear": p.rear_lift_factor * lon * lon}
+        kin = {}
+        for axle in _AXLES:
+            c, sn = np.cos(steer[axle]), np.sin(steer[axle])
+            vx = lon * c + body_lateral[axle] * sn
+            vy = -lon * sn + body_lateral[axle] * c
+            kin[axle] = (c, sn, vx, vy)
+        weight = p.mass * p.gravity
+
+        def axle_forces(axle, fz):
+            """Axle (fx, fy) in SAE wheel axes and the slips (alpha_sae, kappa) for axle load fz."""
+            c, sn, vx, vy = kin[axle]
+            speed = np.abs(vx)
+            direction = 1.0 - 2.0 * (vx < 0.0)  # sign(vx) with sign(0) = +1
+            if self.tire_lag:
+                blend = self._low_speed_blend(speed)
+                sigma_y = getattr(p, f"{axle}_lateral_relaxation_length")
+                tan_alpha = self._sliding_slip(s[f"{axle}_lateral_deflection"] / sigma_y, vy / self._regularized(vx),
+                                               self._peak_slip[axle][1])
+                tan_alpha = tan_alpha + blend * vy / self.low_speed_damping_speed
+            else:
+                tan_alpha = vy / self._regularized(vx)
+            alpha = np.arctan(tan_alpha)
+            if self.wheel_spin:
+                vsx = vx - s[f"{axle}_wheel_speed"] * p.rolling_radius
+                if self.tire_lag:
+                    sigma_x = getattr(p, f"{axle}_longitudinal_relaxation_length")
+                    slip = self._sliding_slip(s[f"{axle}_longitudinal_deflection"] / sigma_x,
+                                              -vsx / self._regularized(vx), self._peak_slip[axle][0])
+                    slip = slip - blend * vsx / self.low_speed_damping_speed
+                    kappa = slip * direction
+                else:
+                    kappa = -vsx / (direction * self._regularized(vx))
+            else:
+                kappa = 0.0 * alpha
+            fx, fy = self._axle_tire_forces(axle, fz, kappa, alpha, direction * np.maximum(speed, 1e-3))
+            if not self.wheel_spin:
+                limit = p.friction_coefficient * np.maximum(fz, 0.0)
+                demand = i[f"{axle}_longitudinal_force"]
+                fx = np.minimum(np.maximum(demand, -limit), limit)
+                safe = np.where(limit > 0, limit, 1.0)
+                fy = fy * np.sqrt(np.maximum(1.0 - (fx / safe) ** 2, 0.0))
+            return fx, fy, alpha, kappa
+
+        def loads(x_force):
+            front = static_front - p.cg_height * x_force / p.wheelbase - lift["front"]
+            total = weight - lift["front"] - lift["rear"]
+            front = np.minimum(np.maximum(front, 0.0), np.maximum(total, 0.0))
+            return front, np.maximum(total - front, 0.0)
+
+        def body_x(forces):
+            total = 0.0
+            for axle in _AXLES:
+                c, sn = kin[axle][0], kin[axle][1]
+                fx, fy = forces[axle][0], forces[axle][1]
+                total = total + fx * c - fy * sn
+            return total
+
+        # quasi-static load transfer: the longitudinal forces depend on the loads and the loads on
+        # the forces; with force inputs the dependence is explicit, with wheel spin two fixed-point
+        # passes from the static loads: the iteration contracts by about mu h / L (~0.2), so the
+        # load transfer is within (mu h / L)^2 ~ 4 % of its converged value
+        if self.wheel_spin:
+            fz_f, fz_r = static_front - lift["front"], static_rear - lift["rear"]
+            for _ in range(2):
+                forces = {"front": axle_forces("front", fz_f), "rear": axle_forces("rear", fz_r)}
+                fz_f, fz_r = loads(body_x(forces))
+        else:
+            x_demand = 0.0
+            for axle in _AXLES:
+                x_demand = x_demand + i[f"{axle}_longitudinal_force"] * kin[axle][0]
+            fz_f, fz_r = loads(x_demand)
+        forces = {"front": axle_forces("front", fz_f), "rear": axle_forces("rear", fz_r)}
+        fx_body = body_x(forces)
+        fy_body = 0.0
+        moment = i["external_yaw_moment"]
+        for axle, arm in (("front", p.a), ("rear", -p.b)):
+            c, sn = kin[axle][0], kin[axle][1]
+            lateral = forces[axle][0] * sn + forces[axle][1] * c
+            fy_body = fy_body + lateral
+            moment = moment + arm * lateral
+        drag = p.drag_factor * lon * np.abs(lon)
+        ax = (fx_body - drag) / p.mass
+        ay = (fy_body + i["external_lateral_force"]) / p.mass
+        out.update(state=s, inputs=i, kin=kin, forces=forces, fz_f=fz_f, fz_r=fz_r, ax=ax, ay=ay,
+                   yaw_acceleration=moment / p.yaw_inertia)
+        return out
+
+    def _axle_tire_forces(self, axle, fz, kappa, alpha, vx):
+        """Axle forces (fx, fy) [N] in SAE wheel axes from the law of one tire at half the load.
+
+        The two tires of an axle are mirror images: when the law has a lateral force at zero slip
+        (ply-steer and conicity shifts of a Magic Formula file), the axle force is the tire's plus
+        its mirror image's, F_y = F_y(alpha) - F_y(-alpha), F_x = F_x(alpha) + F_x(-alpha), so that
+        a vehicle with zero steer runs straight. Laws without such shifts are evaluated once.
+        """
+        tire = self.front_tire if axle == "front" else self.rear_tire
+        slips = tire_slips_sae_to_iso_w(kappa, alpha)
+        load = 0.5 * fz
+        scalar = np.ndim(load) == 0 and np.ndim(slips.kappa) == 0 and np.ndim(slips.alpha) == 0 and np.ndim(vx) == 0
+        if scalar:  # one vehicle: Python floats take the laws' fast scalar path
+            load, kap, alp, vx = float(load), float(slips.kappa), float(slips.alpha), float(vx)
+        else:
+            kap, alp = slips.kappa, slips.alpha
+        if self._mirrored[axle]:
+            if scalar:
+                f, g = tire.forces(load, kap, alp, 0.0, vx), tire.forces(load, kap, -alp, 0.0, vx)
+                fx_iso, fy_iso = f.fx + g.fx, f.fy - g.fy
+            else:
+                both = tire.forces(np.stack(np.broadcast_arrays(load, load)), np.stack(np.broadcast_arrays(kap, kap)),
+                                   np.stack(np.broadcast_arrays(alp, -alp)), 0.0,
+                                   np.stack(np.broadcast_arrays(vx, vx)))
+                fx_iso, fy_iso = both.fx[0] + both.fx[1], both.fy[0] - both.fy[1]
+        else:
+            f = tire.forces(load, kap, alp, 0.0, vx)
+            fx_iso, fy_iso = 2.0 * f.fx, 2.0 * f.fy
+        sae = tire_forces_iso_w_to_sae(fx_iso, fy_iso, 0.0, 0.0, 0.0, 0.0)
+        return sae.fx, sae.fy
+
+    @staticmethod
+    def _needs_mirror(tire, load) -> bool:
+        """True when ``tire`` makes a lateral force at zero slip (at the static load, 20 m/s)."""
+        f = tire.forces(float(load), 0.0, 0.0, 0.0, 20.0)
+        return abs(float(f.fy)) > 1e-9 * max(float(load), 1.0)
+
+    @staticmethod
+    def _peak_slips(tire, load):
+        """(slip ratio, tan slip angle) [-] at which the law's pure-slip force peaks at ``load``.
+
+        The tire deflection cannot grow beyond what the peak force needs: past it the contact patch
+        slides (Pacejka 2012, sec. 7.2 and 8.2; Rill, *Road Vehicle Dynamics*, 2012, sec. 3.10).
+        A law without a peak (linear) gives slip ratio 1 and slip angle 80 degrees.
+        """
+        kappa = np.linspace(0.0, 1.0, 401)
+        alpha = np.linspace(0.0, np.radians(80.0), 401)
+        fx = np.abs(np.asarray(tire.forces(np.full(kappa.size, float(load)), kappa, 0.0 * kappa, 0.0, 20.0).fx))
+        fy = np.abs(np.asarray(tire.forces(np.full(alpha.size, float(load)), 0.0 * alpha, alpha, 0.0, 20.0).fy))
+        kx = kappa[np.argmax(fx >= (1 - 1e-9) * fx.max())]
+        ay = alpha[np.argmax(fy >= (1 - 1e-9) * fy.max())]
+        return max(float(kx), 0.01), max(float(np.tan(ay)), 0.01)
+
+    @staticmethod
+    def _sliding_slip(transient, kinematic, peak):
+        """The slip that makes the force: the transient (deflection) slip, or the kinematic slip when
+        the deflection sits at its peak-force limit and the kinematic slip lies beyond it (sliding)."""
+        sliding = (np.abs(transient) >= 0.999 * peak) & (transient * kinematic > 0) & \
+            (np.abs(kinematic) > np.abs(transient))
+        return np.where(sliding, kinematic, transient)
+
+    @staticmethod
+    def _limit_deflection_rate(rate, slip, peak):
+        """Deflection rate with its outward part faded out over the last 5 % before the peak slip."""
+        room = np.minimum(np.maximum((peak - np.abs(slip)) / (0.05 * peak), 0.0), 1.0)
+        outward = rate * slip > 0
+        return np.where(outward, rate * room, rate)
+
+    @staticmethod
+    def _regularized(vx):
+        speed = np.abs(vx)
+        v0 = _REGULARIZATION_SPEED
+        return np.where(speed >= v0, speed, (vx * vx + v0 * v0) / (2.0 * v0))
+
+    def _low_speed_blend(self, speed):
+        ratio = np.minimum(speed / self.low_speed_damping_speed, 1.0)
+        return 0.5 * (1.0 + np.cos(np.pi * ratio))
+
+    def rhs(self, t, x, u):
+        """State derivatives (equations in the module docstring)."""
+        e = self._evaluate(x, u)
+        p = self.parameters
+        s, i = e["state"], e["inputs"]
+        lon, lat, r, psi = s["longitudinal_velocity"], s["lateral_velocity"], s["yaw_rate"], s["yaw_angle"]
+        cpsi, spsi = np.cos(psi), np.sin(psi)
+        rows = [e["ax"] + lat * r, e["ay"] - lon * r, e["yaw_acceleration"],
+                lon * cpsi - lat * spsi, lon * spsi + lat * cpsi, r]
+        if self.wheel_spin:
+            inertia = 2.0 * p.wheel_spin_inertia
+            for axle in _AXLES:
+                omega = s[f"{axle}_wheel_speed"]
+                z = omega / self.brake_regularization_speed
+                brake = np.abs(i[f"{axle}_brake_torque"]) * z / np.sqrt(1.0 + z * z)
+                rows.append((i[f"{axle}_drive_torque"] - brake - p.rolling_radius * e["forces"][axle][0]) / inertia)
+        if self.tire_lag:
+            for axle in _AXLES:
+                vx, vy = e["kin"][axle][2], e["kin"][axle][3]
+                sigma = getattr(p, f"{axle}_lateral_relaxation_length")
+                deflection = s[f"{axle}_lateral_deflection"]
+                rate = vy - np.abs(vx) * deflection / sigma
+                rows.append(self._limit_deflection_rate(rate, deflection / sigma, self._peak_slip[axle][1]))
+            if self.wheel_spin:
+                for axle in _AXLES:
+                    vx = e["kin"][axle][2]
+                    vsx = vx - s[f"{axle}_wheel_speed"] * p.rolling_radius
+                    sigma = getattr(p, f"{axle}_longitudinal_relaxation_length")
+                    deflection = s[f"{axle}_longitudinal_deflection"]
+                    rate = -vsx - np.abs(vx) * deflection / sigma
+                    rows.append(self._limit_deflection_rate(rate, deflection / sigma, self._peak_slip[axle][0]))
+        return _stack(rows)
+
+    def output(self, t, x, u):
+        """Outputs (see :attr:`outputs`)."""
+        e = self._evaluate(x, u)
+        s = e["state"]
+        lon, lat, r = s["longitudinal_velocity"], s["lateral_velocity"], s["yaw_rate"]
+        speed_squared = lon * lon + lat * lat
+        ff, fr = e["forces"]["front"], e["forces"]["rear"]
+        rows = [e["ay"], np.arctan2(lat, np.abs(lon)), r, lat, ff[2], fr[2],
+                e["ay"] / np.maximum(speed_squared, 0.25), ff[1], fr[1], e["ax"], lon, np.sqrt(speed_squared),
+                ff[0], fr[0], e["fz_f"], e["fz_r"], ff[3], fr[3], s["x"], s["y"], s["yaw_angle"]]
+        return _stack(rows)
+
+    # ------------------------------------------------------------------ operating points
+    def straight_running(self, speed: float, **states) -> np.ndarray:
+        """State vector of straight running at ``speed`` [m/s] (wheels rolling freely, tires relaxed).
+
+        Keyword arguments set other states by name (``x=..., yaw_angle=...``).
+        """
+        values = {"longitudinal_velocity": speed}
+        if self.wheel_spin:
+            for axle in _AXLES:
+                values[f"{axle}_wheel_speed"] = speed / self.parameters.rolling_radius
+        values.update(states)
+        return self.state_vector(values)
+
+    def linearize(self, x0=None, u0=None, t: float = 0.0, *, speed: float | None = None):
+        """Linearize about ``(x0, u0)``, or about straight running at ``speed`` [m/s].
+
+        With ``speed`` given (and no ``x0``), the operating point is :meth:`straight_running`; in
+        force mode the rear axle force balances the aerodynamic drag so that the speed is an
+        equilibrium. See :meth:`vehdyn.Model.linearize`; :meth:`lateral_yaw` extracts the
+        lateral-yaw block that the linear bicycle model describes.
+        """
+        if speed is not None:
+            if x0 is not None:
+                raise ParameterError("give either x0 or speed, not both", key="speed", value=speed)
+            x0 = self.straight_running(speed)
+            if u0 is None:  # hold the speed: the rear axle balances the drag
+                drag = float(np.asarray(self.parameters.drag_factor)) * speed * abs(speed)
+                if self.wheel_spin:
+                    u0 = {"rear_drive_torque": drag * float(np.asarray(self.parameters.rolling_radius))}
+                else:
+                    u0 = {"rear_longitudinal_force": drag}
+        return super().linearize(x0, u0, t)
+
+    def lateral_yaw(self, speed: float):
+        """The lateral-yaw linearization at straight running at ``speed`` [m/s].
+
+        States ``lateral_velocity``, ``yaw_rate`` (and the lateral deflections with tire lag), inputs
+        ``front_steer_angle``, ``rear_steer_angle``, and the first nine outputs (those of
+        :class:`~vehdyn.handling.LinearBicycle`): with linear tires and no tire lag its matrices are
+        the bicycle model's (evaluated at zero longitudinal force, the constant-speed assumption of
+        the bicycle model). In straight running these states decouple from the others exactly
+        (every coupling term is proportional to v, r or the steer angle), so the block is exact.
+        """
+        from ..linear import LinearModel
+
+        full = self.linearize(speed=speed, u0=self.input_vector())
+        keep = [self.index("lateral_velocity"), self.index("yaw_rate")]
+        if self.tire_lag:
+            keep += [self.index(f"{axle}_lateral_deflection") for axle in _AXLES]
+        inputs = [self.index("front_steer_angle", "inputs"), self.index("rear_steer_angle", "inputs")]
+        outputs = list(range(9))
+        return LinearModel(full.A[np.ix_(keep, keep)], full.B[np.ix_(keep, inputs)],
+                           full.C[np.ix_(outputs, keep)], full.D[np.ix_(outputs, inputs)],
+                           states=[self.states[k] for k in keep], inputs=[self.inputs[k] for k in inputs],
+                           outputs=[self.outputs[k] for k in outputs], name=f"SingleTrack lateral-yaw at {speed:g} m/s")
+
+    def axle_cornering_stiffness(self, fz=None, eps: float = 1e-6):
+        """Cornering stiffnesses (front, rear) of the AXLES [N/rad] at loads ``fz`` (default static).
+
+        -dF_y/d(alpha) at zero slip of two tires, each at half the axle load, by a central
+        difference of the tire law (SAE sign: positive).
+        """
+        loads = self.parameters.static_axle_loads() if fz is None else fz
+        out = []
+        for tire, load in zip((self.front_tire, self.rear_tire), loads):
+            plus = tire.forces(0.5 * np.asarray(load, float), 0.0, eps, 0.0, 20.0).fy
+            minus = tire.forces(0.5 * np.asarray(load, float), 0.0, -eps, 0.0, 20.0).fy
+            # ISO-W: F_y falls with alpha for the usual tire; the SAE stiffness is the same magnitude
+            out.append(-2.0 * (np.asarray(plus) - np.asarray(minus)) / (2 * eps))
+        return tuple(out)
+
+    def __repr__(self) -> str:
+        return (f"<SingleTrack of {self.vehicle.name!r}: tires {type(self.front_tire).__name__}/"
+                f"{type(self.rear_tire).__name__}, wheel_spin={self.wheel_spin}, tire_lag={self.tire_lag}, "
+                f"{self.n_states} states>")
