@@ -80,3 +80,10 @@ def test_cli_tire_describes_file_and_writes_figures(tmp_path, capsys):
     assert "6.1" in out and "FNOMIN" in out
     assert len(list(tmp_path.glob("*.png"))) >= 5
     assert main(["tire", str(tmp_path / "missing.tir"), "--out", str(tmp_path)]) == 2
+
+
+def test_readme_quick_start_runs(capsys):
+    readme = (ROOT / "README.md").read_text()
+    code = re.findall(r"```python\n(.*?)```", readme, re.S)[0]
+    exec(compile(code, "README.md quick start", "exec"), {})
+    assert "rad/s" in capsys.readouterr().out
