@@ -38,11 +38,9 @@ from .active import (
     SemiActiveQuarterCar,
     compare_suspensions,
     groundhook,
-    iso8608_velocity_intensity,
     lqr_quarter_car,
     relative_quarter_car,
     skyhook,
-    white_noise_rms,
 )
 from .analysis import (
     BouncePitchCentres,
@@ -124,8 +122,6 @@ __all__ = [
     "LQRDesign",
     "lqr_quarter_car",
     "relative_quarter_car",
-    "white_noise_rms",
-    "iso8608_velocity_intensity",
     "compare_suspensions",
 
     # road

@@ -197,6 +197,9 @@ def random_response(
     if not isinstance(model, LinearModel):
         raise ParameterError(f"model must be a LinearModel, got {type(model).__name__} (linearize it first)",
                              key="model", value=model)
+    if not model.is_stable():
+        raise ParameterError(f"{model.name!r} is not asymptotically stable: its response to a random road has no "
+                             "stationary variance", key="model", value=model.name)
     spectrum = road if isinstance(road, RoadSpectrum) else RoadSpectrum.from_class(road)
     V = float(speed)
     if not (np.isfinite(V) and V > 0):
