@@ -14,21 +14,24 @@ inputs are held at zero. Three routes give the same numbers:
     them (non-zero gain to a uniform lift of the road, such as absolute displacements) have
     infinite variance; outputs with white-noise feedthrough (e.g. a tire load through tire damping)
     also return ``inf``.
-    Rear inputs, ``delay="pade"`` (default): the front road is delayed through a Pade approximant
-    of e^(-s tau) of order ``pade_order`` (default 10, at most 12) before it reaches the rear
-    inputs; this is then the only approximation of the route. For a half car (wheelbase 2.7 m) its
-    r.m.s. error against the exact delay is, at 20 m/s (tau = 0.135 s), 3 % at order 4, 4e-5 at
-    order 8 and 3e-7 at order 10; at order 10 it grows as the speed falls (omega tau at wheel hop):
-    4e-8 at 40 m/s, 7e-4 at 10 m/s, 2 % at 5 m/s. (Several Pade sections in series delay better
-    but lose more to rounding in outputs such as the tire load.)
-    ``delay="exact"``: no approximation. The state is the sum of one copy of the model per road
-    point (front, rear; left, right), each driven as if under the front axle by the same undelayed
-    road; the cross-covariance of two copies at lag tau is e^(A tau) P (plus, without cut-on, the
-    random-walk increment over tau, int_0^tau e^(A u) du = A^-1 (e^(A tau) - I)). It agrees with
-    ``"psd"`` within 1e-8 from 3 to 40 m/s.
+    Rear inputs, ``delay="exact"`` (default): no approximation. The state is the sum of one copy
+    of the model per road point (front, rear; left, right), each driven as if under the front axle
+    by the same undelayed road; the cross-covariance of two copies at lag tau is e^(A tau) P (plus,
+    without cut-on, the random-walk increment over tau, int_0^tau e^(A u) du =
+    A^-1 (e^(A tau) - I)). It agrees with ``"psd"`` within 1e-8 from 3 to 40 m/s, at about the
+    cost of the Pade route.
+    ``delay="pade"``: the front road is delayed through the Pade approximant of e^(-s tau)
+    (:func:`vehdyn.ride.wheelbase.pade_delay`) of order ``pade_order`` (default 10, at most 12)
+    before it reaches the rear inputs; this is then the only approximation of the route. For a
+    half car (wheelbase 2.7 m) its r.m.s. error against the exact delay is, at 20 m/s
+    (tau = 0.135 s), 3 % at order 4, 4e-5 at order 8 and 3e-7 at order 10; at order 10 it grows as
+    the speed falls (omega tau at wheel hop): 4e-8 at 40 m/s, 7e-4 at 10 m/s, 2 % at 5 m/s.
+    (Several Pade sections in series delay better but lose more to rounding in outputs such as the
+    tire load.) Kept for comparison with the state-space models of
+    :func:`vehdyn.ride.with_wheelbase_delay`, which use the same approximant.
     Left and right tracks must be ``"identical"`` or ``"independent"`` in this route (the
     isotropic coherence is not rational).
-``"psd"`` (frequency-domain integral with a stated error)
+``"psd"`` (frequency-domain integral with a stated error; exact delay)
     var(y) = int_0^inf sum_{s,t} H_s(f) S_st(f) H_t(f)^* df with the exact delay e^(-j 2 pi f tau),
     the temporal road PSD G_z(f) and the track coherence (isotropic by default), with H from the
     modal form of A (one eigendecomposition). The integral is taken over ln f on Gauss-Kronrod
@@ -44,8 +47,9 @@ inputs are held at zero. Three routes give the same numbers:
     Tested on part A's QuarterCar, BouncePitch and FullCar (all outputs, three vehicles): the
     routes agree within 2e-9 (exact delay) and 4e-6 (Pade), and agree on which outputs are
     unbounded.
-``"simulation"`` (time domain, for checking)
-    A sum-of-cosines profile (:func:`synthesize_profile`) of ``duration`` seconds of road,
+``"simulation"`` (time domain, for checking; exact delay)
+    A sum-of-cosines profile (:func:`synthesize_profile`) of ``duration`` seconds of road, sampled
+    under each axle by :meth:`RoadProfile.road_inputs` (the rear shifted exactly by the wheelbase),
     exact-discretization simulation (:func:`vehdyn.simulate`), r.m.s. after a settling time, and
     its statistical standard error from batch means.
 """
@@ -55,15 +59,14 @@ from __future__ import annotations
 import re
 import time as _time
 from dataclasses import dataclass, field
-from functools import lru_cache
-from math import factorial
 
 import numpy as np
 
 from ..errors import ParameterError
 from .road import RoadSpectrum, synthesize_parallel_profiles, synthesize_profile
+from .wheelbase import pade_delay
 
-__all__ = ["RandomResponse", "random_response", "road_channels", "pade_delay", "stationary_covariance"]
+__all__ = ["RandomResponse", "random_response", "road_channels", "stationary_covariance"]
 
 _ROAD_INPUT = re.compile(r"^road_(displacement|velocity)(.*)$")
 
@@ -158,7 +161,7 @@ def random_response(
     track_coherence: str = "isotropic",
     outputs=None,
     pade_order: int = 10,
-    delay: str = "pade",
+    delay: str = "exact",
     duration: float = 100.0,
     sample_rate: float = 500.0,
     seed=None,
@@ -185,9 +188,10 @@ def random_response(
         Restrict to these outputs.
     pade_order : int
         Order of the Pade delay (``"lyapunov"`` with ``delay="pade"``).
-    delay : {"pade", "exact"}
-        How the Lyapunov route delays the rear inputs: a Pade approximant appended to the road
-        filter (default), or exactly, through lagged covariances (see the module docstring).
+    delay : {"exact", "pade"}
+        How the Lyapunov route delays the rear inputs: exactly, through lagged covariances
+        (default), or by a Pade approximant appended to the road filter (see the module docstring).
+        The ``"psd"`` and ``"simulation"`` routes always use the exact delay.
     duration, sample_rate, seed, n_max : ``"simulation"`` only
         Seconds of road [s], sampling rate [Hz], random seed, highest spatial frequency of the
         profile [cycles/m] (default: the Nyquist frequency of the time grid).
@@ -220,9 +224,12 @@ def random_response(
     if two_tracks and track_coherence == "isotropic" and (track_width is None or not track_width > 0):
         raise ParameterError(f"left/right road inputs with isotropic coherence need a positive track_width [m], got "
                              f"{track_width!r}", key="track_width", value=track_width)
-    start = _time.perf_counter()
     if delay not in ("pade", "exact"):
-        raise ParameterError(f"delay must be 'pade' or 'exact', got {delay!r}", key="delay", value=delay)
+        raise ParameterError(f"delay must be 'exact' or 'pade', got {delay!r}", key="delay", value=delay)
+    if not (isinstance(pade_order, (int, np.integer)) and 1 <= pade_order <= 12):
+        raise ParameterError(f"pade_order must be an integer from 1 to 12 (higher orders lose accuracy to rounding), "
+                             f"got {pade_order!r}", key="pade_order", value=pade_order)
+    start = _time.perf_counter()
     if method == "lyapunov" and (delay == "exact" and tau > 0):
         if two_tracks and track_coherence == "isotropic":
             raise ParameterError("the Lyapunov route needs track_coherence 'identical' or 'independent' (the "
@@ -251,43 +258,6 @@ def random_response(
 
 
 # --------------------------------------------------------------------------- Lyapunov route
-def pade_delay(delay: float, order: int):
-    """State-space (A, B, C, D) of the [order/order] Pade approximant of e^(-s delay).
-
-    Built for a unit delay (coefficients c_k = (2m - k)! m! / ((2m)! k! (m - k)!)), balanced by a
-    diagonal similarity (the companion form is ill-conditioned beyond order 4) and scaled in time
-    (A / delay, B / delay). It is all-pass (gain 1 at every frequency); the phase error of the
-    [10/10] approximant is 4e-11 rad at omega delay = 5, 3e-8 at 7, 4e-6 at 9, 2e-4 at 11 and 3e-2
-    at 15. (Orders above 10 gain little: rounding grows with the order.)
-    """
-    if not (isinstance(order, (int, np.integer)) and 1 <= order <= 12):
-        raise ParameterError(f"pade_order must be an integer from 1 to 12 (higher orders lose accuracy to rounding), "
-                             f"got {order!r}", key="pade_order", value=order)
-    if not delay > 0:
-        raise ParameterError(f"delay must be positive [s], got {delay}", key="delay", value=delay)
-    A, B, C, D = _unit_pade(int(order))
-    return A / delay, B / delay, C.copy(), D.copy()
-
-
-@lru_cache(maxsize=16)
-def _unit_pade(m: int):
-    from scipy import signal
-    from scipy.linalg import matrix_balance
-
-    c = np.array([factorial(2 * m - k) * factorial(m) / (factorial(2 * m) * factorial(k) * factorial(m - k))
-                  for k in range(m + 1)])
-    num = (c * (-1.0) ** np.arange(m + 1))[::-1]
-    den = c[::-1]
-    A, B, C, D = signal.tf2ss(num, den)
-    _, (scale, _) = matrix_balance(A, permute=False, separate=True)
-    A = (A / scale[:, None]) * scale[None, :]
-    B = B / scale[:, None]
-    C = C * scale[None, :]
-    for M in (A, B, C, D):
-        M.flags.writeable = False
-    return A, B, C, D
-
-
 def _road_generator(channels, spectrum, V, tau, sources, pade_order):
     """White noise -> every road input of the model: matrices (A, B, C, D) and the integrator states.
 

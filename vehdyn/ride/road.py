@@ -308,31 +308,59 @@ class RoadProfile:
         z = np.interp(self.distance - offset, self.distance, self.elevation)
         return RoadProfile(self.distance, z)
 
-    def road_inputs(self, speed: float, offsets: dict[str, float] | None = None):
+    def sample(self, position):
+        """Elevation z [m] and slope dz/dx [-] at any positions ``position`` [m] (array).
+
+        Linear interpolation of the grid values (the slope from :meth:`slope`: spectral for
+        synthesized profiles, central differences otherwise); before the start and after the end
+        the elevation is held and the slope is zero.
+        """
+        pos = np.asarray(position, dtype=float)
+        z = np.interp(pos, self.distance, self.elevation)
+        inside = (pos >= self.distance[0]) & (pos <= self.distance[-1])
+        return z, np.where(inside, np.interp(pos, self.distance, self.slope()), 0.0)
+
+    def road_inputs(self, speed: float, offsets: dict[str, float] | None = None, time=None):
         """Time grid and ride-model inputs for driving over the profile at ``speed`` [m/s].
+
+        The one implementation of "the road under each wheel" (exact delay in the time domain):
+        :func:`vehdyn.ride.road_inputs` calls it with the wheel positions of a ride model.
 
         Parameters
         ----------
+        speed : float
+            V [m/s] (constant).
         offsets : dict, optional
             ``{suffix: distance behind the first axle [m]}``, e.g. ``{"_front": 0.0, "_rear": 2.7}``;
             default ``{"": 0.0}`` (inputs ``road_displacement`` and ``road_velocity``).
+        time : array_like, optional
+            Time grid [s]; default the profile's own grid, t = (x - x_0) / V.
 
         Returns
         -------
         time : ndarray
-            t = x / V [s].
+            [s]; at t the first axle is at x_0 + V t, a wheel ``offset`` behind it at
+            x_0 + V t - offset.
         inputs : dict
             ``road_displacement<suffix>`` [m] and ``road_velocity<suffix>`` = V dz/dx [m/s] for each
-            suffix, ready for :func:`vehdyn.simulate`.
+            suffix, ready for :func:`vehdyn.simulate`. On the profile's own grid a synthesized
+            profile is shifted exactly (:meth:`shifted`); otherwise the profile is sampled by
+            :meth:`sample` (linear interpolation, elevation held beyond the ends).
         """
         V = _positive(speed, "speed")
         offsets = {"": 0.0} if offsets is None else offsets
+        own_grid = time is None
+        t = (self.distance - self.distance[0]) / V if own_grid else np.asarray(time, dtype=float)
         inputs = {}
         for suffix, off in offsets.items():
-            p = self if off == 0 else self.shifted(off)
-            inputs[f"road_displacement{suffix}"] = p.elevation
-            inputs[f"road_velocity{suffix}"] = V * p.slope()
-        return (self.distance - self.distance[0]) / V, inputs
+            if own_grid and (off == 0 or self.coefficients is not None):
+                p = self if off == 0 else self.shifted(off)
+                z, slope = p.elevation, p.slope()
+            else:
+                z, slope = self.sample(self.distance[0] + V * t - off)
+            inputs[f"road_displacement{suffix}"] = z
+            inputs[f"road_velocity{suffix}"] = V * slope
+        return t, inputs
 
     def _frequencies(self) -> np.ndarray:
         return np.arange(self.coefficients.size) / self.length
