@@ -57,7 +57,7 @@ POSITIONS = {"front": "front_left", "rear": "rear_left"}  # body above these whe
 
 
 def weighted(model, outputs: dict[str, str]) -> vehdyn.LinearModel:
-    """``model`` with ISO 2631-1 Wk appended to each output of ``outputs`` ({output: weighted name}), only those kept."""
+    """``model`` with ISO 2631-1 Wk appended to each output of ``outputs`` ({output: weighted name}); those kept."""
     wk = weighting("Wk")
     for name, label in outputs.items():
         model = vehdyn.connect_in_series(model, wk.to_linear_model(input_name=name, output_name=label))
@@ -225,7 +225,8 @@ def run(study: Study) -> None:
     aw_table = pick.pivot_table(index=["vehicle", "road_class"], columns="speed_kmh", values="aw")
     aw_table.columns = [f"aw at {c:.0f} km/h" for c in aw_table.columns]
     aw_table.attrs["units"] = {c: "m/s^2" for c in aw_table.columns}
-    study.table(aw_table, "weighted_rms", caption="Wk-weighted r.m.s. acceleration a_w, full car, worse position [m/s^2]")
+    study.table(aw_table, "weighted_rms",
+                caption="Wk-weighted r.m.s. acceleration a_w, full car, worse position [m/s^2]")
     study.table(check, "frequency_domain_check",
                 caption="Full car on identical left and right tracks, class C, 20 m/s: exact (Lyapunov, exact "
                         "delay) a_w above the front wheel against the PSD integral with its error bound; largest "

@@ -702,9 +702,9 @@ def _psd(model, channels, spectrum, V, tau, two_tracks, coherence, track_width, 
     edges = _log_edges(model, spectrum, V, **grid)
     dropped = 0.0
     if tau > 0:
-        # resolve the delay's oscillation (panels <= 1/tau: one period of e^(-j 2 pi f tau) per 15 nodes) up to f_c, beyond which the oscillating
-        # terms' envelope integrates to less than rtol of the steady part: there they are dropped and
-        # their envelope is counted in the error
+        # resolve the delay's oscillation (panels <= 1/tau: one period of e^(-j 2 pi f tau) per 15 nodes) up
+        # to f_c, beyond which the oscillating terms' envelope integrates to less than rtol of the steady part:
+        # there they are dropped and their envelope is counted in the error
         f0, w0, _ = _gauss_kronrod(edges)
         st, osc, env = spectra(f0)
         env_tail = np.cumsum((env * w0)[:, ::-1], axis=1)[:, ::-1]  # (outputs, f)
