@@ -181,7 +181,8 @@ def random_response(
     method : {"lyapunov", "psd", "simulation"}
         See the module docstring.
     wheelbase : float, optional
-        [m]; needed when the model has rear inputs.
+        [m]; needed when the model has rear inputs (default: ``model.wheelbase`` where the model
+        has one, as :class:`~vehdyn.ride.BouncePitch` and :class:`~vehdyn.ride.FullCar`).
     track_width : float, optional
         [m]; needed for left/right inputs with the isotropic coherence.
     track_coherence : {"isotropic", "identical", "independent"}
@@ -210,6 +211,8 @@ def random_response(
     V = float(speed)
     if not (np.isfinite(V) and V > 0):
         raise ParameterError(f"speed must be positive [m/s], got {speed!r}", key="speed", value=speed)
+    if wheelbase is None:  # a BouncePitch or FullCar knows its own
+        wheelbase = getattr(model, "wheelbase", None)
     if outputs is not None:
         model = model.select(outputs=outputs)
     channels = road_channels(model)
