@@ -609,26 +609,19 @@ _IRI_INIT_LENGTH = 11.0  # initialization length [m] (ASTM E1926; 0.5 s at 80 km
 
 
 def golden_car():
-    """The IRI golden-car quarter car per unit sprung mass as a :class:`~vehdyn.LinearModel`.
+    """The IRI golden-car quarter car per unit sprung mass, a :class:`~vehdyn.ride.QuarterCar`.
 
-    States ``sprung_displacement``, ``unsprung_displacement`` and their velocities; input
-    ``road_displacement``; outputs ``suspension_velocity`` (sprung minus unsprung) and the states.
+    Sprung mass 1, unsprung mass, spring, damper and tire rates of :data:`GOLDEN_CAR` (ratios to
+    the sprung mass), no tire damping; the signals of every vehdyn quarter car (inputs
+    ``road_displacement`` and ``road_velocity``, output ``suspension_velocity`` among others).
     Equations (m_s = 1): zs'' = -k2 (zs - zu) - c (zs' - zu'); mu zu'' = k2 (zs - zu) + c (zs' - zu')
     - k1 (zu - zr).
     """
-    from ..linear import LinearModel
+    from .quarter_car import QuarterCar
 
     g = GOLDEN_CAR
-    k1, k2, mu, c = g["tire_stiffness_ratio"], g["spring_stiffness_ratio"], g["mass_ratio"], g["damping_ratio"]
-    M = np.diag([1.0, mu])
-    C = np.array([[c, -c], [-c, c]])
-    K = np.array([[k2, -k2], [-k2, k2 + k1]])
-    F = np.array([[0.0], [k1]])
-    out = np.vstack([np.array([[0, 0, 1.0, -1.0]]), np.eye(4)])
-    return LinearModel.from_second_order(
-        M, C, K, F, dof=["sprung_displacement", "unsprung_displacement"], inputs=["road_displacement"],
-        outputs=["suspension_velocity", "sprung_displacement", "unsprung_displacement", "sprung_velocity",
-                 "unsprung_velocity"], output_matrix=out, name="IRI golden car")
+    return QuarterCar(sprung_mass=1.0, unsprung_mass=g["mass_ratio"], spring_rate=g["spring_stiffness_ratio"],
+                      damping=g["damping_ratio"], tire_stiffness=g["tire_stiffness_ratio"], name="IRI golden car")
 
 
 def iri(profile: RoadProfile | np.ndarray, spacing: float | None = None, *, smoothing: bool = True) -> float:
