@@ -4,8 +4,10 @@ The sedan's front corner (vehdyn.ride.QuarterCar.from_vehicle) on an ISO 8608 cl
 whose road velocity is white with one-sided PSD (2 pi n0)^2 G_d(n0) V. Ideal skyhook, groundhook and
 hybrid dampers and an LQR controller (designed through LinearModel.to_control() and python-control's
 lqr) are compared with the passive car on comfort (r.m.s. body acceleration), suspension travel and
-road holding (r.m.s. dynamic tire load), exactly, from the Lyapunov equation. A clipped semi-active
-skyhook damper, which is nonlinear, is simulated in the time domain; the passive car simulated the
+road holding (r.m.s. dynamic tire load), exactly, from the Lyapunov equation with the road's
+shaping filter appended (vehdyn.ride.random_response). A clipped semi-active
+skyhook damper, which is nonlinear, is simulated in the time domain on a road synthesized by the
+same shaping filter (synthesize_profile(..., method="white_noise")); the passive car simulated the
 same way shows the statistical error of that estimate. Last, the response to a single bump.
 """
 
@@ -14,10 +16,10 @@ import numpy as np
 import vehdyn
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
-from vehdyn.ride import (QuarterCar, SemiActiveQuarterCar, compare_suspensions, groundhook,
-                         iso8608_velocity_intensity, lqr_quarter_car, relative_quarter_car, skyhook, white_noise_rms)
+from vehdyn.ride import (QuarterCar, RoadSpectrum, SemiActiveQuarterCar, compare_suspensions, groundhook,
+                         lqr_quarter_car, random_response, relative_quarter_car, skyhook, synthesize_profile)
 
-CLASS_C = 256e-6  # m^3
+ROAD = RoadSpectrum.from_class("C")  # Gd(n0) = 256e-6 m^3, waviness 2
 SPEED = 20.0  # m/s
 MEASURES = ["sprung_acceleration", "suspension_travel", "dynamic_tire_load"]
 
@@ -27,19 +29,16 @@ def critical(qc: QuarterCar, zeta: float) -> float:
     return 2 * zeta * np.sqrt(p.spring_rate * p.sprung_mass)
 
 
-def white_road(t, G, seed):
-    """White road velocity (zero-order hold, variance G / (2 dt)) and its integral, the elevation."""
-    rng = np.random.default_rng(seed)
-    dt = t[1] - t[0]
-    v = rng.standard_normal(t.size) * np.sqrt(G / (2 * dt))
-    return {"road_displacement": np.concatenate([[0.0], np.cumsum(v[:-1]) * dt]), "road_velocity": v}
+def exact_rms(model, outputs=MEASURES) -> dict[str, float]:
+    """Exact r.m.s. on the class-C road at SPEED (Lyapunov route of random_response)."""
+    res = random_response(model, ROAD, SPEED, outputs=outputs)
+    return dict(zip(res.output_names, res.rms))
 
 
 def run(study: Study) -> None:
     import pandas as pd
 
     qc = QuarterCar.from_vehicle(vehdyn.load_vehicle("sedan"), "front")
-    G = iso8608_velocity_intensity(CLASS_C, SPEED)
     c_nominal = qc.parameters.damping
     c_sky = critical(qc, 0.7)
     soft = qc.replace(damping=critical(qc, 0.1))
@@ -48,7 +47,7 @@ def run(study: Study) -> None:
 
     # LQR: best comfort with travel and tire load no worse than passive, over a small weight grid
     passive = relative_quarter_car(qc, actuator=False)
-    ref = white_noise_rms(passive, {"road_velocity": G}, outputs=MEASURES)
+    ref = exact_rms(passive)
     grid_t = [3e3, 3e4] if study.quick else np.logspace(3, 5.5, 8)
     grid_d = [1e4, 1e5, 1e6] if study.quick else np.logspace(3.5, 6.5, 8)
     best = None
@@ -56,7 +55,7 @@ def run(study: Study) -> None:
         for wd in grid_d:
             d = lqr_quarter_car(qc, {"sprung_acceleration": 1.0, "suspension_travel": wt, "tire_deflection": wd},
                                 force_weight=1e-8)
-            r = white_noise_rms(d.closed_loop, {"road_velocity": G}, outputs=MEASURES)
+            r = exact_rms(d.closed_loop)
             if r["suspension_travel"] <= ref["suspension_travel"] and r["dynamic_tire_load"] <= ref["dynamic_tire_load"]:
                 if best is None or r["sprung_acceleration"] < best[1]["sprung_acceleration"]:
                     best = (d, r)
@@ -69,12 +68,12 @@ def run(study: Study) -> None:
         "hybrid": skyhook(relative_quarter_car(soft), 0.5 * c_sky, 0.5 * c_ground),
         "lqr": lqr.closed_loop,
     }
-    table = compare_suspensions(systems, G)
+    table = compare_suspensions(systems, ROAD, SPEED)
 
     # semi-active: time domain, with the passive car simulated the same way for the statistical error
     duration = 8.0 if study.quick else 120.0
-    t = np.arange(0.0, duration, 2e-3)
-    road = white_road(t, G, seed=2026)
+    profile = synthesize_profile(ROAD, SPEED * duration, SPEED * 2e-3, seed=2026, method="white_noise")
+    t, road = profile.road_inputs(SPEED)
     semi = SemiActiveQuarterCar(qc, skyhook_damping=c_sky, min_damping=0.2 * c_nominal, max_damping=3.0 * c_nominal)
     settle = t > 1.0
     for label, model, method in (("semi-active skyhook (sim)", semi, "rk4"), ("passive (sim)", qc, "exact")):
@@ -111,12 +110,10 @@ def run(study: Study) -> None:
     # ---------------------------------------------------------------- LQR trade-off against the passive family
     fig, axes = new_figure(1, 2, width=10.0, height_per_row=4.0)
     zetas = np.linspace(0.1, 1.0, 6 if study.quick else 15)
-    pas = [white_noise_rms(relative_quarter_car(qc.replace(damping=critical(qc, z)), actuator=False),
-                           {"road_velocity": G}, outputs=MEASURES) for z in zetas]
+    pas = [exact_rms(relative_quarter_car(qc.replace(damping=critical(qc, z)), actuator=False)) for z in zetas]
     rho = np.logspace(2.5, 5, 5 if study.quick else 12)
-    act = [white_noise_rms(lqr_quarter_car(qc, {"sprung_acceleration": 1.0, "suspension_travel": r,
-                                                 "tire_deflection": 10 * r}, force_weight=1e-8).closed_loop,
-                           {"road_velocity": G}, outputs=MEASURES) for r in rho]
+    act = [exact_rms(lqr_quarter_car(qc, {"sprung_acceleration": 1.0, "suspension_travel": r,
+                                           "tire_deflection": 10 * r}, force_weight=1e-8).closed_loop) for r in rho]
     for ax, x in zip(axes[0], ("dynamic_tire_load", "suspension_travel")):
         scale = 1e3 if x == "suspension_travel" else 1.0
         ax.plot([p[x] * scale for p in pas], [p["sprung_acceleration"] for p in pas], "o-", label="passive, zeta 0.1..1")

@@ -5,7 +5,8 @@ classic family of frequency responses per unit road elevation — body transmiss
 travel and dynamic tire load — for body damping ratios from 0.1 to 1. Then the trade-off carpet:
 r.m.s. body acceleration (comfort), r.m.s. dynamic tire load (road holding) and r.m.s. suspension
 travel on an ISO 8608 class-C road (G_d(n0) = 256e-6 m^3, waviness 2) at 20 m/s, over spring rate
-and damping, computed exactly from the Lyapunov equation of the model in relative coordinates.
+and damping, computed exactly from the Lyapunov equation of the model with the road's shaping
+filter appended (vehdyn.ride.random_response).
 """
 
 import numpy as np
@@ -13,10 +14,11 @@ import numpy as np
 import vehdyn
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
-from vehdyn.ride import (QuarterCar, dynamic_tire_load_response, iso8608_velocity_intensity, relative_quarter_car,
-                         ride_modes, suspension_travel_response, transmissibility, white_noise_rms)
+from vehdyn.ride import (QuarterCar, RoadSpectrum, dynamic_tire_load_response, random_response, ride_modes,
+                         suspension_travel_response, transmissibility)
 
-CLASS_C = 256e-6  # m^3, ISO 8608 geometric mean of class C at n0 = 0.1 cycles/m
+ROAD = RoadSpectrum.from_class("C")  # Gd(n0) = 256e-6 m^3 at n0 = 0.1 cycles/m, waviness 2
+MEASURES = ["sprung_acceleration", "suspension_travel", "dynamic_tire_load"]
 SPEED = 20.0  # m/s
 
 
@@ -70,7 +72,6 @@ def run(study: Study) -> None:
                  "load per unit road elevation for body damping ratios 0.1 to 1 (sedan front corner)")
 
     # ---------------------------------------------------------------- trade-off carpet
-    G = iso8608_velocity_intensity(CLASS_C, SPEED)
     spring_scale = np.array([0.5, 0.75, 1.0, 1.5, 2.0]) if study.quick else np.linspace(0.5, 2.0, 7)
     zeta_grid = np.array([0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0]) if study.quick else np.linspace(0.08, 1.0, 13)
     fig, axes = new_figure(1, 2, width=10.0, height_per_row=4.2)
@@ -83,10 +84,7 @@ def run(study: Study) -> None:
             for j, z in enumerate(zeta_grid):
                 qc = base.replace(spring_rate=s * base.parameters.spring_rate)
                 qc = qc.replace(damping=damping_for_ratio(qc, z))
-                r = white_noise_rms(relative_quarter_car(qc, actuator=False), {"road_velocity": G},
-                                    outputs=["sprung_acceleration", "suspension_travel", "dynamic_tire_load"])
-                acc[i, j], travel[i, j], load[i, j] = r["sprung_acceleration"], r["suspension_travel"], \
-                    r["dynamic_tire_load"]
+                acc[i, j], travel[i, j], load[i, j] = random_response(qc, ROAD, SPEED, outputs=MEASURES).rms
         if name == vehicles[0]:
             for i, s in enumerate(spring_scale):
                 axes[0, 0].plot(load[i], acc[i], "-", color="tab:blue", lw=1)
@@ -99,10 +97,7 @@ def run(study: Study) -> None:
         i1 = int(np.argmin(np.abs(spring_scale - 1.0)))
         rows.append({"vehicle": name, "zeta_best_comfort": zeta_grid[np.argmin(acc[i1])],
                      "zeta_best_road_holding": zeta_grid[np.argmin(load[i1])],
-                     "rms_acceleration_at_nominal": white_noise_rms(relative_quarter_car(base, actuator=False),
-                                                                    {"road_velocity": G},
-                                                                    outputs=["sprung_acceleration"])[
-                                                                        "sprung_acceleration"]})
+                     "rms_acceleration_at_nominal": random_response(base, ROAD, SPEED)["sprung_acceleration"]})
     axes[0, 0].set_xlabel("r.m.s. dynamic tire load [N]")
     axes[0, 0].set_ylabel("r.m.s. body acceleration [m/s^2]")
     axes[0, 1].set_xlabel("r.m.s. suspension travel [mm]")

@@ -1,16 +1,24 @@
 """Ride comfort on ISO 8608 roads: ISO 2631-1 weighted acceleration against speed and road class.
 
 The inputs first: the ISO 8608 spectra with a synthesized class-C profile (and the class estimated
-back from it), and the six ISO 2631-1 weightings. Then, for each shipped vehicle (sedan, compact, van) a quarter car per axle is built from its data
-(sprung mass carried by one wheel, unsprung mass of one wheel, wheel rate, damper, tire stiffness),
-the ISO 2631-1 Wk weighting is appended to its body acceleration as a state-space filter, and the
-weighted r.m.s. a_w is computed exactly (Lyapunov equation with the ISO 8608 shaping filter) for road
-classes A to E and speeds 5 to 40 m/s. The body acceleration stands in for the seat (no seat model),
-so a_w here is the vertical overall vibration total value a_v with k_z = 1; the comfort label is the
-ISO 2631-1 Annex C reaction of the worse axle (overlapping ranges split at their geometric middle).
-The frequency-domain route (|Wk(f)|^2 times the PSD integral) checks the exact values, and one
-time-domain run (class C at 20 m/s; a 3.7 m x 100 mm speed hump at 20 km/h) shows the
-digital Wk filter, the running r.m.s./MTVV, VDV and crest factor on a record.
+back from it), and the six ISO 2631-1 weightings. Then, for each shipped vehicle (sedan, compact,
+van), the ride models of vehdyn.ride built from its data: the 7-DOF FullCar (heave, pitch, roll,
+four wheels, anti-roll bars) on two parallel tracks with the isotropic left-right coherence of
+ISO 8608 roads and the exact wheelbase delay, the 4-DOF BouncePitch half car (exact delay) and a
+QuarterCar per axle. The ISO 2631-1 Wk weighting is appended to the body's vertical acceleration
+above the front and rear wheels as a state-space filter, and the weighted r.m.s. a_w is computed
+for road classes A to E (the models are linear: a_w scales with sqrt(Gd(n0))) and speeds 5 to
+40 m/s: for the full car by the frequency-domain route
+(the isotropic coherence is not rational; the integral states its error bound), for the half and
+quarter cars exactly (Lyapunov equation with the ISO 8608 shaping filter, lagged covariances for
+the delay). The body above the wheels stands in for the seats (no seat model), so a_w here is the
+vertical overall vibration total value a_v with k_z = 1; the comfort label is the ISO 2631-1 Annex C
+reaction of the worse position of the full car (overlapping ranges split at their geometric
+middle). A model comparison at class C shows what the wheelbase delay (half car) and roll on
+partly coherent tracks (full car) add to the quarter car; the two routes are checked against each
+other on the full car with identical tracks. Last, one time-domain run of the sedan's front quarter
+car (class C at 20 m/s; a 3.7 m x 100 mm speed hump at 20 km/h) shows the digital Wk filter, the
+running r.m.s./MTVV, VDV and crest factor on a record.
 """
 
 from __future__ import annotations
@@ -22,11 +30,15 @@ from vehdyn.report import Study
 from vehdyn.ride import (
     COMFORT_REACTIONS,
     WEIGHTINGS,
+    BouncePitch,
+    FullCar,
+    QuarterCar,
     RoadProfile,
     RoadSpectrum,
     comfort_category,
     crest_factor,
     estimate_spectrum,
+    iso8608_class_value,
     mtvv,
     random_response,
     rms,
@@ -41,35 +53,42 @@ VEHICLES = ("sedan", "compact", "van")
 CLASSES = "ABCDE"
 
 
-def quarter_car(vehicle, axle: str) -> vehdyn.LinearModel:
-    """Quarter car of one corner of ``vehicle`` (axle "front" or "rear") as a LinearModel.
+POSITIONS = {"front": "front_left", "rear": "rear_left"}  # body above these wheels (symmetric cars)
 
-    ms zs'' = -ks (zs - zu) - cs (zs' - zu'); mu zu'' = ks (zs - zu) + cs (zs' - zu') - kt (zu - zr) - ct (zu' - zr');
-    sprung mass per wheel from the sprung CG position (static moment balance), unsprung mass half the axle's.
+
+def weighted(model, outputs: dict[str, str]) -> vehdyn.LinearModel:
+    """``model`` with ISO 2631-1 Wk appended to each output of ``outputs`` ({output: weighted name}); those kept."""
+    wk = weighting("Wk")
+    for name, label in outputs.items():
+        model = vehdyn.connect_in_series(model, wk.to_linear_model(input_name=name, output_name=label))
+    return model.select(outputs=list(outputs.values()))
+
+
+def ride_models(vehicle) -> dict:
+    """Wk-weighted body acceleration above the front and rear wheels: full car, half car, quarter cars.
+
+    Outputs ``aw_front`` and ``aw_rear`` [m/s^2] (the quarter cars one each), and the keyword
+    arguments of :func:`vehdyn.ride.random_response` each needs.
     """
-    g, m, s, t = vehicle.geometry, vehicle.mass, vehicle.suspension, vehicle.tires
-    share = g.sprung_cg_to_rear_axle / g.wheelbase if axle == "front" else g.sprung_cg_to_front_axle / g.wheelbase
-    ms = m.sprung_mass * share / 2.0
-    mu = (m.front_unsprung_mass if axle == "front" else m.rear_unsprung_mass) / 2.0
-    ks = s.front_spring_rate if axle == "front" else s.rear_spring_rate
-    cs = s.front_damping if axle == "front" else s.rear_damping
-    kt, ct = t.vertical_stiffness, t.vertical_damping
-    M = np.diag([ms, mu])
-    C = np.array([[cs, -cs], [-cs, cs + ct]])
-    K = np.array([[ks, -ks], [-ks, ks + kt]])
-    F = np.array([[0.0, 0.0], [kt, ct]])
-    acc = -np.linalg.solve(M, np.hstack([K, C]))[0]
-    out = np.array([acc, [1.0, -1.0, 0.0, 0.0]])
-    return vehdyn.LinearModel.from_second_order(
-        M, C, K, F, dof=["sprung_displacement", "unsprung_displacement"],
-        inputs=["road_displacement", "road_velocity"], outputs=["sprung_acceleration", "suspension_travel"],
-        output_matrix=out, name=f"{vehicle.name} {axle} quarter car")
+    full = FullCar.from_vehicle(vehicle)
+    half = BouncePitch.from_vehicle(vehicle)
+    track = 0.5 * (vehicle.geometry.front_track + vehicle.geometry.rear_track)
+    models = {
+        "full car": (weighted(full, {f"sprung_acceleration_{c}": f"aw_{axle}" for axle, c in POSITIONS.items()}),
+                     dict(wheelbase=full.wheelbase, track_width=track, method="psd")),
+        "half car": (weighted(half, {f"sprung_acceleration_{axle}": f"aw_{axle}" for axle in POSITIONS}),
+                     dict(wheelbase=half.wheelbase)),
+    }
+    for axle in POSITIONS:
+        models[f"quarter car {axle}"] = (weighted(QuarterCar.from_vehicle(vehicle, axle=axle),
+                                                  {"sprung_acceleration": f"aw_{axle}"}), {})
+    return models
 
 
-def weighted_car(car: vehdyn.LinearModel) -> vehdyn.LinearModel:
-    """The car with ISO 2631-1 Wk appended to its body acceleration (output ``weighted_acceleration``)."""
-    wk = weighting("Wk").to_linear_model(input_name="sprung_acceleration", output_name="weighted_acceleration")
-    return vehdyn.connect_in_series(car, wk)
+def a_w(models, key, road, speed) -> dict[str, float]:
+    model, kw = models[key]
+    res = random_response(model, road, speed, **kw)
+    return dict(zip(res.output_names, res.rms))
 
 
 def run(study: Study) -> None:
@@ -110,33 +129,49 @@ def run(study: Study) -> None:
                  caption="ISO 8608 road classes A-E (geometric means, waviness 2) with a synthesized class-C profile, "
                          "and the ISO 2631-1 weightings")
 
-    cars = {}
-    for name in VEHICLES:
-        v = vehdyn.load_vehicle(name)
-        cars[name] = {axle: weighted_car(quarter_car(v, axle)) for axle in ("front", "rear")}
+    cars = {name: ride_models(vehdyn.load_vehicle(name)) for name in VEHICLES}
 
-    # exact weighted r.m.s. over the grid (Lyapunov route)
+    # weighted r.m.s. of the full car over the grid (PSD route with the isotropic track coherence). The models are
+    # linear and every class has the spectrum of class C times Gd(n0) / Gd_C(n0): one response per speed, scaled
     rows = []
-    for name, axles in cars.items():
-        for road_class in CLASSES:
-            for V in speeds:
-                aw = {axle: random_response(model, road_class, V, outputs=["weighted_acceleration"]).rms[0]
-                      for axle, model in axles.items()}
+    for name, models in cars.items():
+        for V in speeds:
+            aw_c = a_w(models, "full car", "C", V)
+            for road_class in CLASSES:
+                scale = np.sqrt(iso8608_class_value(road_class) / iso8608_class_value("C"))
                 rows.append({"vehicle": name, "road_class": road_class, "speed_kmh": V * 3.6,
-                             "aw_front": aw["front"], "aw_rear": aw["rear"]})
+                             **{k: v * scale for k, v in aw_c.items()}})
     grid = pd.DataFrame(rows)
     grid["aw"] = grid[["aw_front", "aw_rear"]].max(axis=1)
     grid["comfort"] = comfort_category(grid["aw"].to_numpy())
 
-    # frequency-domain check at one point per vehicle: int |Wk|^2 |H|^2 G df against the Lyapunov value
+    # the ladder of models at class C: what the wheelbase delay and roll add to the quarter car
+    ladder = []
+    for name, models in cars.items():
+        for V in speeds:
+            row = {"vehicle": name, "speed_kmh": V * 3.6}
+            for key in models:
+                aw = (grid[(grid.vehicle == name) & (grid.road_class == "C") & np.isclose(grid.speed_kmh, V * 3.6)]
+                      .iloc[0][["aw_front", "aw_rear"]].to_dict() if key == "full car" else a_w(models, key, "C", V))
+                for axle in POSITIONS:
+                    if f"aw_{axle}" in aw:
+                        row[f"{key.replace('quarter car ' + axle, 'quarter car')} {axle}"] = aw[f"aw_{axle}"]
+            ladder.append(row)
+    ladder = pd.DataFrame(ladder)
+
+    # the two routes on the full car with identical left and right tracks (the Lyapunov route needs a rational
+    # coherence): exact covariance with the exact delay against the PSD integral and its stated error bound
     checks = []
-    for name, axles in cars.items():
-        exact = random_response(axles["front"], "C", 20.0, outputs=["weighted_acceleration"])
-        psd = random_response(axles["front"], "C", 20.0, method="psd", outputs=["weighted_acceleration"])
-        checks.append({"vehicle": name, "aw_lyapunov": exact.rms[0], "aw_psd": psd.rms[0],
-                       "psd_error_bound": psd.error[0], "relative_difference": psd.rms[0] / exact.rms[0] - 1})
+    for name, models in cars.items():
+        model, kw = models["full car"]
+        exact = random_response(model, "C", 20.0, wheelbase=kw["wheelbase"], track_coherence="identical")
+        psd = random_response(model, "C", 20.0, wheelbase=kw["wheelbase"], track_coherence="identical",
+                              method="psd")
+        checks.append({"vehicle": name, "aw_front_lyapunov": exact["aw_front"], "aw_front_psd": psd["aw_front"],
+                       "psd_error_bound": psd.error[0],
+                       "relative_difference": float(np.max(np.abs(psd.rms / exact.rms - 1)))})
     check = pd.DataFrame(checks).set_index("vehicle")
-    check.attrs["units"] = {"aw_lyapunov": "m/s^2", "aw_psd": "m/s^2", "psd_error_bound": "m/s^2"}
+    check.attrs["units"] = {"aw_front_lyapunov": "m/s^2", "aw_front_psd": "m/s^2", "psd_error_bound": "m/s^2"}
 
     # figure 1: a_w against speed, one panel per vehicle, comfort bands
     fig, axes = new_figure(1, len(VEHICLES), width=12.0, height_per_row=4.0, sharey=True)
@@ -157,25 +192,49 @@ def run(study: Study) -> None:
     axes[0, -1].legend(fontsize=6, ncol=2)
     fig.tight_layout()
     study.figure(fig, "weighted_acceleration_vs_speed",
-                 caption="ISO 2631-1 Wk-weighted r.m.s. body acceleration (front axle solid, rear dashed) on ISO 8608 "
-                         "roads A-E; grey lines: lower limits of the Annex C comfort reactions")
+                 caption="Full car (7 DOF, isotropic parallel tracks, exact wheelbase delay): ISO 2631-1 Wk-weighted "
+                         "r.m.s. body acceleration above the front (solid) and rear (dashed) wheels on ISO 8608 roads "
+                         "A-E; grey lines: lower limits of the Annex C comfort reactions")
+
+    # figure 2: the ladder of models at class C
+    fig, axes = new_figure(1, len(VEHICLES), width=12.0, height_per_row=3.6, sharey=True)
+    styles = {"full car": "-", "half car": "--", "quarter car": ":"}
+    for ax, name in zip(axes[0], VEHICLES):
+        sub = ladder[ladder.vehicle == name]
+        for axle, color in (("front", "C0"), ("rear", "C1")):
+            for key, style in styles.items():
+                ax.plot(sub.speed_kmh, sub[f"{key} {axle}"], style, color=color, label=f"{key}, {axle}")
+        ax.set_title(f"{name}, class C")
+        ax.set_xlabel("speed [km/h]")
+        ax.grid(True, alpha=0.3)
+    axes[0, 0].set_ylabel("a_w above the wheel [m/s^2]")
+    axes[0, -1].legend(fontsize=6)
+    fig.tight_layout()
+    study.figure(fig, "model_ladder",
+                 caption="Class C: a_w by the quarter car of each axle, the half car (wheelbase delay: pitch) and the "
+                         "full car (plus roll on partly coherent tracks)")
+    lad = ladder.set_index(["vehicle", "speed_kmh"])
+    lad.attrs["units"] = {c: "m/s^2" for c in lad.columns}
+    study.table(lad, "model_ladder", caption="a_w [m/s^2] above the front and rear wheels by model, class C")
 
     # table: comfort label at three speeds
     pick = grid[np.isin(np.round(grid.speed_kmh, 6), np.round(speeds[[0, len(speeds) // 2, -1]] * 3.6, 6))]
     table = pick.pivot_table(index=["vehicle", "road_class"], columns="speed_kmh", values="comfort", aggfunc="first")
     table.columns = [f"{c:.0f} km/h" for c in table.columns]
-    study.table(table, "comfort_category", caption="ISO 2631-1 Annex C comfort reaction (worse axle)")
+    study.table(table, "comfort_category", caption="ISO 2631-1 Annex C comfort reaction (full car, worse position)")
     aw_table = pick.pivot_table(index=["vehicle", "road_class"], columns="speed_kmh", values="aw")
     aw_table.columns = [f"aw at {c:.0f} km/h" for c in aw_table.columns]
     aw_table.attrs["units"] = {c: "m/s^2" for c in aw_table.columns}
-    study.table(aw_table, "weighted_rms", caption="Wk-weighted r.m.s. acceleration a_w, worse axle [m/s^2]")
+    study.table(aw_table, "weighted_rms",
+                caption="Wk-weighted r.m.s. acceleration a_w, full car, worse position [m/s^2]")
     study.table(check, "frequency_domain_check",
-                caption="Class C, 20 m/s, front axle: exact (Lyapunov) a_w against the PSD integral with its "
-                        "error bound")
+                caption="Full car on identical left and right tracks, class C, 20 m/s: exact (Lyapunov, exact "
+                        "delay) a_w above the front wheel against the PSD integral with its error bound; largest "
+                        "relative difference over both positions")
 
     # time domain: class-C road at 20 m/s, then a speed hump at 20 km/h (sedan, front axle)
     fs = 1000.0
-    car = quarter_car(vehdyn.load_vehicle("sedan"), "front")
+    car = QuarterCar.from_vehicle(vehdyn.load_vehicle("sedan"), axle="front")
     duration = 20.0 if study.quick else 60.0
     V = 20.0
     profile = synthesize_profile("C", V * duration, V / fs, seed=1)
@@ -228,10 +287,12 @@ def run(study: Study) -> None:
         f"Across the grid a_w ranges from {best.aw:.3f} m/s^2 ({best.vehicle}, class {best.road_class}, "
         f"{best.speed_kmh:.0f} km/h: '{best.comfort}') to {worst.aw:.2f} m/s^2 ({worst.vehicle}, class "
         f"{worst.road_class}, {worst.speed_kmh:.0f} km/h: '{worst.comfort}'). For waviness 2 the road-velocity "
-        "spectrum is white with intensity proportional to Gd(n0) V, so a_w grows as the square root of speed and "
-        "doubles from one ISO 8608 class to the next. The PSD integral agrees with the exact covariance within "
-        f"{np.abs(check.relative_difference).max():.1e} (relative), and the {duration - 2:.0f} s record filtered by "
-        f"the digital Wk gives a_w = {mt.a_w.iloc[0]:.3f} m/s^2 against the exact {check.aw_lyapunov['sedan']:.3f} "
+        "spectrum is white with intensity proportional to Gd(n0) V, so a_w doubles from one ISO 8608 class to the "
+        "next and, for a quarter car, grows as the square root of speed; the wheelbase delay (pitch) and roll on "
+        "partly coherent tracks bend the full car's curves away from that law. The PSD integral agrees with the "
+        f"exact covariance within {np.abs(check.relative_difference).max():.1e} (relative), and the "
+        f"{duration - 2:.0f} s record filtered by the digital Wk gives a_w = {mt.a_w.iloc[0]:.3f} m/s^2 against the "
+        f"exact {a_w(cars['sedan'], 'quarter car front', 'C', V)['aw_front']:.3f} "
         "m/s^2 (a finite record of a random road). The hump record's crest factor "
         f"({mt.crest_factor.iloc[1]:.1f}) shows why ISO 2631-1 asks for MTVV or VDV on shocks.")
 

@@ -6,8 +6,8 @@ import scipy.integrate
 import scipy.linalg
 
 import vehdyn
-from vehdyn.ride import (QuarterCar, SemiActiveQuarterCar, compare_suspensions, groundhook,
-                         iso8608_velocity_intensity, lqr_quarter_car, relative_quarter_car, skyhook, white_noise_rms)
+from vehdyn.ride import (QuarterCar, RoadSpectrum, SemiActiveQuarterCar, compare_suspensions, groundhook,
+                         lqr_quarter_car, random_response, relative_quarter_car, skyhook)
 
 from .conftest import check, load_case
 
@@ -20,16 +20,31 @@ def iso_c_car(**changes):
     return QuarterCar(**kw)
 
 
-def iso_c_intensity():
+def iso_c_road():
+    """(RoadSpectrum, speed [m/s]) of E-QC-ISO-C."""
     i = {k: v[0] for k, v in load_case("E-QC-ISO-C")["inputs"].items()}
-    return iso8608_velocity_intensity(i["Gd(n0)_class_C"], i["V"], i["n0"])
+    return RoadSpectrum(gd0=i["Gd(n0)_class_C"], waviness=i["waviness_w"]), i["V"]
+
+
+def iso_c_intensity():
+    """One-sided road-velocity PSD [(m/s)^2/Hz] of E-QC-ISO-C: twice the square of the shaping filter's gain."""
+    spectrum, speed = iso_c_road()
+    return 2.0 * spectrum.white_noise_gain(speed) ** 2
+
+
+def white_noise_rms(model, outputs=None):
+    """R.m.s. on the E-QC-ISO-C road by the Lyapunov route, as a dict."""
+    res = random_response(model, *iso_c_road(), outputs=outputs)
+    return dict(zip(res.output_names, res.rms))
 
 
 def test_passive_rms_on_class_c_road():
     exp = load_case("E-QC-ISO-C")["expected"]
-    G = iso_c_intensity()
-    check(G, exp["road_velocity_PSD_white_Gzr'"], "velocity PSD")
-    rms = white_noise_rms(relative_quarter_car(iso_c_car(), actuator=False), {"road_velocity": G})
+    spectrum, speed = iso_c_road()
+    f = np.array([0.3, 3.0, 30.0])  # white: (2 pi f)^2 G_z(f) is the same at every frequency
+    for G in (iso_c_intensity(), *((2 * np.pi * f) ** 2 * spectrum.temporal_psd(f, speed))):
+        check(G, exp["road_velocity_PSD_white_Gzr'"], "velocity PSD")
+    rms = white_noise_rms(relative_quarter_car(iso_c_car(), actuator=False))
     check(rms["sprung_acceleration"], exp["rms_body_acceleration"], "acceleration")
     check(rms["suspension_travel"], exp["rms_suspension_travel"], "travel")
     check(rms["tire_deflection"], exp["rms_tyre_deflection"], "tire deflection")
@@ -58,7 +73,7 @@ def test_lyapunov_rms_equals_psd_integral():
     var = scipy.integrate.trapezoid(np.abs(fr.response[:, 0]) ** 2 * G, f, axis=-1)
     # tail above f_max: the tire load tends to k_t z_r = k_t z_r' / (j w), |H|^2 = k_t^2 / (2 pi f)^2
     var[1] += qc.parameters.tire_stiffness**2 * G / (4 * np.pi**2 * f_max)
-    rms = white_noise_rms(rel, {"road_velocity": G}, outputs=["suspension_travel", "dynamic_tire_load"])
+    rms = white_noise_rms(rel, outputs=["suspension_travel", "dynamic_tire_load"])
     assert np.sqrt(var[0]) == pytest.approx(rms["suspension_travel"], rel=1e-4)
     assert np.sqrt(var[1]) == pytest.approx(rms["dynamic_tire_load"], rel=1e-4)
 
@@ -107,12 +122,11 @@ def test_lqr_gain_solves_the_riccati_equation_and_is_optimal():
     np.testing.assert_allclose(design.gain, K, rtol=1e-6)
     assert design.closed_loop.is_stable()
     # expected cost from the closed loop's covariance equals the Riccati value (G/2) b' S b
-    G = iso_c_intensity()
-    rms = white_noise_rms(design.closed_loop, {"road_velocity": G}, outputs=list(weights) + ["actuator_force"])
+    rms = white_noise_rms(design.closed_loop, outputs=list(weights) + ["actuator_force"])
     cost = sum(w * rms[k] ** 2 for k, w in weights.items()) + r * rms["actuator_force"] ** 2
-    assert cost == pytest.approx(design.cost(G), rel=1e-6)
+    assert cost == pytest.approx(design.cost(*iso_c_road()), rel=1e-6)
     # the passive car (K = 0) is an admissible feedback: its cost cannot be lower
-    passive = white_noise_rms(relative_quarter_car(qc, actuator=False), {"road_velocity": G}, outputs=list(weights))
+    passive = white_noise_rms(relative_quarter_car(qc, actuator=False), outputs=list(weights))
     assert sum(w * passive[k] ** 2 for k, w in weights.items()) > cost
 
 
@@ -126,10 +140,15 @@ def test_lqr_with_expensive_force_tends_to_passive():
 
 def test_comparison_table():
     qc = iso_c_car()
-    G = iso_c_intensity()
     df = compare_suspensions({"passive": relative_quarter_car(qc, actuator=False),
-                              "lqr": lqr_quarter_car(qc).closed_loop}, G)
-    assert list(df.index) == ["passive", "lqr"]
+                              "lqr": lqr_quarter_car(qc).closed_loop, "absolute": qc}, *iso_c_road())
+    assert list(df.index) == ["passive", "lqr", "absolute"]
+    # the relative form and the absolute quarter car (road displacement and velocity) are the same car
+    np.testing.assert_allclose(df.loc["absolute", ["sprung_acceleration", "suspension_travel", "dynamic_tire_load"]],
+                               df.loc["passive", ["sprung_acceleration", "suspension_travel", "dynamic_tire_load"]],
+                               rtol=1e-9)
+    exp = load_case("E-QC-ISO-C")["expected"]
+    check(df.loc["passive", "sprung_acceleration"], exp["rms_body_acceleration"], "acceleration")
     np.testing.assert_allclose(df.loc["passive", ["sprung_acceleration_ratio", "suspension_travel_ratio"]], 1.0)
     assert df.attrs["units"]["dynamic_tire_load"] == "N"
     assert np.isfinite(df.loc["lqr", "actuator_force"])
@@ -187,12 +206,12 @@ def test_bad_inputs_of_the_active_functions():
     with pytest.raises(vehdyn.ParameterError):
         lqr_quarter_car(qc, force_weight=0.0)
     with pytest.raises(vehdyn.ParameterError):
-        iso8608_velocity_intensity(-1.0, 20.0)
+        compare_suspensions({"passive": relative_quarter_car(qc, actuator=False)}, "C", -20.0)
     with pytest.raises(vehdyn.ParameterError):
         relative_quarter_car("not a quarter car")
     unstable = vehdyn.LinearModel([[1.0]], [[1.0]], states=["x"], inputs=["road_velocity"])
     with pytest.raises(vehdyn.ParameterError):
-        white_noise_rms(unstable, {"road_velocity": 1.0})
-    # an output fed through by the noise has infinite variance
+        white_noise_rms(unstable)
+    # an output fed through by the white road velocity has infinite variance
     qct = relative_quarter_car(iso_c_car(tire_damping=100.0), actuator=False)
-    assert white_noise_rms(qct, {"road_velocity": 1.0}, outputs=["dynamic_tire_load"])["dynamic_tire_load"] == np.inf
+    assert white_noise_rms(qct, outputs=["dynamic_tire_load"])["dynamic_tire_load"] == np.inf

@@ -82,9 +82,9 @@ def half(models):
 def test_front_rear_exact_delay_against_pade(half):
     psd = random_response(half, "C", 20.0, method="psd", wheelbase=2.7)
     assert np.all(psd.error < 1e-4 * psd.rms)
-    lyap = random_response(half, "C", 20.0, method="lyapunov", wheelbase=2.7, pade_order=10)
+    lyap = random_response(half, "C", 20.0, method="lyapunov", wheelbase=2.7, delay="pade", pade_order=10)
     np.testing.assert_allclose(lyap.rms, psd.rms, rtol=1e-5)
-    coarse = random_response(half, "C", 20.0, method="lyapunov", wheelbase=2.7, pade_order=4)
+    coarse = random_response(half, "C", 20.0, method="lyapunov", wheelbase=2.7, delay="pade", pade_order=4)
     assert np.max(np.abs(coarse.rms / psd.rms - 1)) > 1e-3  # the Pade order matters
 
 

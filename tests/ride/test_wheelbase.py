@@ -115,3 +115,44 @@ def test_bad_profile_and_order(half_car):
         road_inputs(half_car, [0, 1], 10.0, [0.0, 1.0], [0.0, 0.0, 1.0])
     with pytest.raises(vehdyn.ParameterError):
         with_wheelbase_delay(half_car, 10.0, order=0)
+
+
+def test_pade_routes_share_one_delay(half_car):
+    """random_response's Padé route and with_wheelbase_delay + the road's shaping filter + stationary_covariance
+    build the same Padé-delayed car in two ways: equal variances; the exact delay (default) differs by the
+    Padé error only."""
+    from vehdyn.ride import RoadSpectrum, random_response, stationary_covariance
+
+    speed, outputs = 10.0, ["sprung_acceleration", "pitch_acceleration", "suspension_travel_rear"]
+    spectrum = RoadSpectrum.from_class("C", cut_on=0.01)
+    pade = random_response(half_car, spectrum, speed, outputs=outputs, delay="pade", pade_order=6)
+    delayed = with_wheelbase_delay(half_car, speed, order=6).select(outputs=outputs)
+    car = vehdyn.connect_in_series(spectrum.shaping_filter(speed), delayed)
+    Y = stationary_covariance(car.A, car.B, car.C, car.D)
+    np.testing.assert_allclose(pade.rms, np.sqrt(np.diag(Y))[:3], rtol=1e-9)  # then the filter's own outputs
+    exact = random_response(half_car, spectrum, speed, outputs=outputs)  # wheelbase from the model
+    assert 1e-6 < np.max(np.abs(pade.rms / exact.rms - 1)) < 0.05
+
+
+def test_road_inputs_on_any_time_grid_sample_the_profile_exactly_at_the_nodes():
+    """Synthesized profile: on a time grid whose positions fall on the profile's nodes the inputs are the sum of
+    cosines itself (independent, direct evaluation); off the profile the elevation is held, the velocity zero."""
+    from vehdyn.ride import synthesize_profile
+
+    p = synthesize_profile("C", 32.0, 0.05, seed=2, n_max=4.0)
+    n = np.arange(p.coefficients.size) / p.length
+
+    def direct(x, deriv=False):
+        e = np.exp(2j * np.pi * np.outer(x, n))
+        return np.real(e @ (p.coefficients * (2j * np.pi * n if deriv else 1)))
+
+    V = 10.0
+    t = np.arange(0, 400) * p.spacing / V  # nodes 0..399
+    offset = 20 * p.spacing
+    _, u = p.road_inputs(V, {"_front": 0.0, "_rear": offset}, time=t)
+    np.testing.assert_allclose(u["road_displacement_front"], direct(V * t), atol=1e-12)
+    np.testing.assert_allclose(u["road_velocity_front"], V * direct(V * t, True), atol=1e-9)
+    inside = V * t >= offset
+    np.testing.assert_allclose(u["road_displacement_rear"][inside], direct(V * t[inside] - offset), atol=1e-12)
+    np.testing.assert_allclose(u["road_displacement_rear"][~inside], p.elevation[0])
+    assert np.all(u["road_velocity_rear"][~inside] == 0.0)

@@ -1,36 +1,53 @@
-"""Ride dynamics, from road to seat: models, analysis, roads, comfort, random response, active suspension.
+"""Ride dynamics, from road to seat: models, wheelbase delay, analysis, roads, comfort, random response, active.
 
 Models (each an exact :class:`vehdyn.LinearModel` with named signals)
-    :class:`QuarterCar`, :class:`BouncePitch`, :class:`FullCar`
-Road input at every wheel (wheelbase delay)
+    :class:`QuarterCar`, :class:`BouncePitch` (4-DOF half car, or the 2-DOF body-only model),
+    :class:`FullCar` (7 DOF, anti-roll bars), their parameter sets :class:`QuarterCarParameters`,
+    :class:`BouncePitchParameters`, :class:`FullCarParameters`; ``from_vehicle(vehicle)`` builds
+    each from the shipped vehicle data.
+Wheelbase delay, the road at every wheel (:mod:`~vehdyn.ride.wheelbase`)
     :func:`road_frequency_response` (exact, frequency domain), :func:`road_inputs` (exact, time
-    domain), :func:`with_wheelbase_delay` (Padé, state space), :func:`wheel_delays`
-Analysis
-    :func:`ride_modes`, :func:`bounce_pitch_centres`, :func:`olley_criteria`,
+    domain, through :meth:`RoadProfile.road_inputs`), :func:`with_wheelbase_delay` (Padé, state
+    space, through :func:`~vehdyn.ride.wheelbase.pade_delay`), :func:`wheel_delays`,
+    :func:`~vehdyn.ride.wheelbase.wheel_offsets`.
+Analysis (:mod:`~vehdyn.ride.analysis`)
+    :func:`ride_modes` / :class:`RideModes`, :func:`bounce_pitch_centres` /
+    :class:`BouncePitchCentres`, :func:`olley_criteria` / :class:`OlleyCheck`,
     :func:`axle_ride_rates`, :func:`transmissibility`, :func:`suspension_travel_response`,
-    :func:`dynamic_tire_load_response`
-Active and semi-active suspension
-    :func:`skyhook`, :func:`groundhook`, :class:`SemiActiveQuarterCar`, :func:`lqr_quarter_car`,
-    :func:`relative_quarter_car`, :func:`white_noise_rms`, :func:`iso8608_velocity_intensity`,
-    :func:`compare_suspensions`
+    :func:`dynamic_tire_load_response` (per unit road elevation; exact delay with a speed).
+Roads (:mod:`~vehdyn.ride.road`)
+    :func:`iso8608_psd`, :data:`ISO8608_CLASSES`, :func:`iso8608_class_value`,
+    :func:`iso8608_class_of`, :func:`estimate_spectrum` (Gd(n0) and class of a measured profile),
+    :class:`RoadSpectrum` (PSD, band r.m.s., shaping filter), :class:`RoadProfile` (shift, slope,
+    sampling, inputs under each wheel), :func:`synthesize_profile`,
+    :func:`synthesize_parallel_profiles`, :func:`isotropic_coherence`; events :func:`bump`,
+    :func:`pothole`, :func:`speed_hump`, :func:`step`; :func:`iri` (ASTM E1926 golden car,
+    :func:`golden_car`, :data:`GOLDEN_CAR`).
+Comfort (:mod:`~vehdyn.ride.comfort`)
+    :func:`weighting` / :data:`WEIGHTINGS` / :class:`Weighting` (ISO 2631-1 Wk, Wd, Wf, Wc, We, Wj:
+    frequency domain, digital filter, state space), :func:`weighting_factor`, :func:`weighted_rms`,
+    :func:`rms`, :func:`running_rms`, :func:`mtvv`, :func:`vibration_dose_value`,
+    :func:`crest_factor`, :func:`vibration_total_value`, :data:`COMFORT_REACTIONS`,
+    :func:`comfort_reactions`, :func:`comfort_category`.
+Random response (:mod:`~vehdyn.ride.random_response`)
+    :func:`random_response` -> :class:`RandomResponse`: r.m.s. of every output on an ISO 8608 road
+    by the ``"lyapunov"`` route (exact covariance; rear wheels by the exact delay, or a Padé delay
+    with ``delay="pade"``), the ``"psd"`` route (frequency integral, exact delay, stated error) or
+    the ``"simulation"`` route (time domain, exact delay); :func:`stationary_covariance` (exact
+    covariance of any linear model under white noise, random-walk states removed exactly).
+Active and semi-active suspension (:mod:`~vehdyn.ride.active`)
+    :func:`skyhook`, :func:`groundhook`, :class:`SemiActiveQuarterCar`, :func:`lqr_quarter_car` /
+    :class:`LQRDesign`, :func:`relative_quarter_car`, :func:`compare_suspensions` (exact r.m.s.
+    on an ISO 8608 road through :func:`random_response`).
 
-Signs: vertical displacements upward (road-profile convention), pitch nose up, roll right side
-down (SAE angles); suspension travel positive in rebound, tire deflection and dynamic tire load
-positive in compression. See :mod:`vehdyn.ride._ride_model`.
-Roads (:mod:`vehdyn.ride.road`)
-    :func:`iso8608_psd`, :data:`ISO8608_CLASSES`, :func:`iso8608_class_of`,
-    :func:`estimate_spectrum` (Gd(n0) and class of a measured profile), :class:`RoadSpectrum` (PSD, band r.m.s., shaping
-    filter), :class:`RoadProfile`, :func:`synthesize_profile`, :func:`synthesize_parallel_profiles`,
-    :func:`isotropic_coherence`, events :func:`bump`, :func:`pothole`, :func:`speed_hump`,
-    :func:`step`, :func:`iri` (ASTM E1926 golden car, :func:`golden_car`).
-Comfort (:mod:`vehdyn.ride.comfort`)
-    :func:`weighting` / :data:`WEIGHTINGS` (Wk, Wd, Wf, Wc, We, Wj), :func:`weighting_factor`,
-    :func:`weighted_rms`, :func:`rms`, :func:`running_rms`, :func:`mtvv`, :func:`vibration_dose_value`,
-    :func:`crest_factor`, :func:`vibration_total_value`, :func:`comfort_reactions`,
-    :func:`comfort_category`.
-Random response (:mod:`vehdyn.ride.random_response`)
-    :func:`random_response` (``"lyapunov"`` with a Pade or exact delay, ``"psd"``, ``"simulation"``)
-    -> :class:`RandomResponse`; :func:`stationary_covariance`.
+Signals and signs: vertical displacements and road elevation are positive up (road-profile
+convention), pitch nose up and roll right side down (SAE angles). Suspension travel is positive in
+rebound (z_body - z_wheel), tire deflection (z_road - z_wheel) and dynamic tire load positive in
+compression; actuator and damper forces positive when they extend the suspension (up on the body).
+Road inputs are ``road_displacement<suffix>`` [m] and ``road_velocity<suffix>`` [m/s] with the
+corner suffix (``""`` for a quarter car, ``_front``/``_rear``, ``_front_left`` ... for a full car;
+one profile per track: ``""`` or ``_left``/``_right``), in every model, shaping filter, profile
+and route alike. See :mod:`vehdyn.ride._ride_model`.
 """
 
 from .active import (
@@ -38,11 +55,9 @@ from .active import (
     SemiActiveQuarterCar,
     compare_suspensions,
     groundhook,
-    iso8608_velocity_intensity,
     lqr_quarter_car,
     relative_quarter_car,
     skyhook,
-    white_noise_rms,
 )
 from .analysis import (
     BouncePitchCentres,
@@ -124,8 +139,6 @@ __all__ = [
     "LQRDesign",
     "lqr_quarter_car",
     "relative_quarter_car",
-    "white_noise_rms",
-    "iso8608_velocity_intensity",
     "compare_suspensions",
 
     # road

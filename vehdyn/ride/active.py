@@ -15,12 +15,13 @@
   E[sum w_i y_i^2 + r f^2] with y the sprung acceleration, suspension travel and tire deflection
   (or any outputs). :func:`lqr_quarter_car` builds the weights over the outputs, exports the plant
   with :meth:`~vehdyn.LinearModel.to_control` and calls python-control's ``lqr``.
-* **Comparison** on white road velocity — the ISO 8608 road of waviness 2 seen at speed V has the
-  one-sided velocity PSD G = (2 pi n0)^2 G_d(n0) V [(m/s)^2/Hz] (ISO 8608:2016, Annex C;
-  :func:`iso8608_velocity_intensity`) — with exact r.m.s. values from the Lyapunov equation
-  A X + X A' + B W B' = 0, W = G / 2 (:func:`white_noise_rms`; Newland, *Random Vibrations*,
-  3rd ed., 1993, ch. 7), ranked on comfort (r.m.s. sprung acceleration), suspension travel and road
-  holding (r.m.s. dynamic tire load).
+* **Comparison** on an ISO 8608 road (:class:`~vehdyn.ride.RoadSpectrum`; waviness 2, so the
+  road velocity seen at speed V is white with one-sided PSD (2 pi n0)^2 G_d(n0) V [(m/s)^2/Hz],
+  :meth:`~vehdyn.ride.RoadSpectrum.white_noise_gain`) with exact r.m.s. values from the Lyapunov
+  equation of the model with the road's shaping filter appended
+  (:func:`vehdyn.ride.random_response`, :func:`vehdyn.ride.stationary_covariance`; Newland,
+  *Random Vibrations*, 3rd ed., 1993, ch. 7), ranked on comfort (r.m.s. sprung acceleration),
+  suspension travel and road holding (r.m.s. dynamic tire load).
 """
 
 from __future__ import annotations
@@ -35,6 +36,8 @@ from ..linear import LinearModel
 from ..model import Model
 from ..signals import Signal
 from .quarter_car import QuarterCar
+from .random_response import random_response
+from .road import RoadSpectrum
 
 __all__ = [
     "relative_quarter_car",
@@ -43,13 +46,15 @@ __all__ = [
     "SemiActiveQuarterCar",
     "LQRDesign",
     "lqr_quarter_car",
-    "iso8608_velocity_intensity",
-    "white_noise_rms",
     "compare_suspensions",
 ]
 
 #: The three measures of :func:`compare_suspensions`.
 COMPARISON_OUTPUTS = ("sprung_acceleration", "suspension_travel", "dynamic_tire_load")
+
+
+def _spectrum(road) -> RoadSpectrum:
+    return road if isinstance(road, RoadSpectrum) else RoadSpectrum.from_class(road)
 
 
 def _require_quarter_car(qc):
@@ -263,10 +268,16 @@ class LQRDesign:
     weights: dict
     poles: np.ndarray
 
-    def cost(self, road_velocity_intensity: float) -> float:
-        """Expected cost E[sum w y^2 + r f^2] for white road velocity of one-sided PSD G: (G/2) B_w' S B_w."""
+    def cost(self, road, speed: float) -> float:
+        """Expected cost E[sum w y^2 + r f^2] [-] on the ISO 8608 road ``road`` at ``speed`` [m/s].
+
+        ``road`` is a :class:`~vehdyn.ride.RoadSpectrum`, a class letter or Gd(n0) [m^3] (waviness
+        2: the road velocity is sigma w, w unit-intensity white noise,
+        sigma = :meth:`~vehdyn.ride.RoadSpectrum.white_noise_gain`); the cost is sigma^2 b_w' S b_w.
+        """
+        sigma = _spectrum(road).white_noise_gain(speed)
         bw = self.plant.B[:, self.plant.index("road_velocity", "inputs")]
-        return float(0.5 * road_velocity_intensity * bw @ self.riccati @ bw)
+        return float(sigma**2 * bw @ self.riccati @ bw)
 
 
 def lqr_quarter_car(qc: QuarterCar, weights: Mapping[str, float] | None = None, force_weight: float = 1e-8,
@@ -321,96 +332,38 @@ def lqr_quarter_car(qc: QuarterCar, weights: Mapping[str, float] | None = None, 
                      weights={**weights, "actuator_force": float(force_weight)}, poles=np.asarray(E))
 
 
-def iso8608_velocity_intensity(roughness: float, speed: float, reference_wavenumber: float = 0.1) -> float:
-    """One-sided PSD of the road velocity [(m/s)^2/Hz] of an ISO 8608 road of waviness 2 at ``speed``.
-
-    G(f) = (2 pi n0)^2 G_d(n0) V, flat in frequency (ISO 8608:2016, eq. for w = 2).
-
-    Parameters
-    ----------
-    roughness : float
-        G_d(n0) [m^3], e.g. 256e-6 for class C (geometric mean).
-    speed : float
-        V [m/s].
-    reference_wavenumber : float
-        n0 [cycles/m] (0.1 in the standard).
-    """
-    for key, val in (("roughness", roughness), ("speed", speed), ("reference_wavenumber", reference_wavenumber)):
-        if not (np.isfinite(val) and val > 0):
-            raise ParameterError(f"{key} must be positive, got {val!r}", key=key, value=val)
-    return float((2 * np.pi * reference_wavenumber) ** 2 * roughness * speed)
-
-
-def white_noise_rms(model: LinearModel, intensities: Mapping[str, float], outputs=None) -> dict[str, float]:
-    """Exact stationary r.m.s. of outputs under white-noise inputs, by the Lyapunov equation.
-
-    Parameters
-    ----------
-    model : LinearModel
-        Asymptotically stable.
-    intensities : mapping
-        ``{input name: one-sided PSD G [unit^2/Hz]}``; independent white noises (other inputs zero).
-    outputs : sequence of str, optional
-        Default: all outputs not fed through by a noise input (those have infinite variance).
-
-    Returns
-    -------
-    dict
-        ``{output: rms}``: sqrt(diag(C X C')) with A X + X A' + B W B' = 0, W = diag(G / 2).
-    """
-    import scipy.linalg
-
-    if not model.is_stable():
-        raise ParameterError(f"{model.name} is not asymptotically stable; its white-noise response has no "
-                             "stationary variance", key="model", value=model.name)
-    cols = [model.index(name, "inputs") for name in intensities]
-    G = np.array([float(v) for v in intensities.values()])
-    if np.any(~np.isfinite(G)) or np.any(G < 0):
-        raise ParameterError(f"intensities must be non-negative, got {dict(intensities)}", key="intensities",
-                             value=dict(intensities))
-    B = model.B[:, cols]
-    X = scipy.linalg.solve_continuous_lyapunov(model.A, -(B * (G / 2)) @ B.T)
-    fed = np.abs(model.D[:, cols]) @ G > 0
-    if outputs is None:
-        outputs = [n for k, n in enumerate(model.output_names) if not fed[k]]
-    out = {}
-    for name in outputs:
-        k = model.index(name, "outputs")
-        if fed[k]:
-            out[name] = float("inf")
-        else:
-            c = model.C[k]
-            out[name] = float(np.sqrt(max(c @ X @ c, 0.0)))
-    return out
-
-
-def compare_suspensions(systems: Mapping[str, LinearModel], road_velocity_intensity: float,
-                        reference: str | None = None):
-    """R.m.s. comfort, suspension travel and road holding of suspensions on the same white road velocity.
+def compare_suspensions(systems: Mapping[str, LinearModel], road, speed: float, reference: str | None = None):
+    """R.m.s. comfort, suspension travel and road holding of suspensions on the same ISO 8608 road.
 
     Parameters
     ----------
     systems : mapping
-        ``{label: LinearModel}`` with input ``road_velocity`` and outputs ``sprung_acceleration``,
-        ``suspension_travel`` and ``dynamic_tire_load`` (e.g. :func:`relative_quarter_car` closed
-        by :func:`skyhook` or :func:`lqr_quarter_car`, or ``relative_quarter_car(qc, False)``).
-    road_velocity_intensity : float
-        One-sided PSD [(m/s)^2/Hz] (see :func:`iso8608_velocity_intensity`).
+        ``{label: LinearModel}`` with a road input (``road_velocity``, or ``road_displacement`` and
+        ``road_velocity``) and outputs ``sprung_acceleration``, ``suspension_travel`` and
+        ``dynamic_tire_load`` (e.g. :func:`relative_quarter_car` closed by :func:`skyhook` or
+        :func:`lqr_quarter_car`, ``relative_quarter_car(qc, False)``, or a :class:`QuarterCar`).
+    road : RoadSpectrum, class letter or Gd(n0) [m^3]
+        The road (:class:`~vehdyn.ride.RoadSpectrum`).
+    speed : float
+        [m/s].
     reference : str, optional
         Label whose values the ``*_ratio`` columns divide by (default: the first).
 
     Returns
     -------
     pandas.DataFrame
-        One row per system: r.m.s. of the three measures (and of ``actuator_force`` where present)
-        and ratios to the reference; ``attrs["units"]``.
+        One row per system: r.m.s. of the three measures (and of ``actuator_force`` where present),
+        exact from :func:`vehdyn.ride.random_response` (Lyapunov route), and ratios to the
+        reference; ``attrs["units"]``.
     """
     import pandas as pd
 
+    spectrum = _spectrum(road)
     rows = {}
     for label, sys in systems.items():
         outs = list(COMPARISON_OUTPUTS) + (["actuator_force"] if "actuator_force" in sys.output_names else [])
-        rows[label] = white_noise_rms(sys, {"road_velocity": road_velocity_intensity}, outputs=outs)
+        res = random_response(sys, spectrum, speed, outputs=outs)
+        rows[label] = dict(zip(res.output_names, res.rms))
     df = pd.DataFrame(rows).T
     ref = reference if reference is not None else next(iter(systems))
     for col in COMPARISON_OUTPUTS:

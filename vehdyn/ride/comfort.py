@@ -142,7 +142,8 @@ class Weighting:
         A cascade of the stages, each realized in controllable form in the time scale of its own
         characteristic frequency (well conditioned, unlike one 8th-order polynomial). Append it to
         a ride model with :func:`vehdyn.connect_in_series` to get weighted responses exactly
-        (frequency response, Lyapunov covariance, exact-discretization simulation).
+        (frequency response, Lyapunov covariance, exact-discretization simulation); its states are
+        named ``<output_name>_<weighting>_state_<k>``, so filters on several outputs can be appended.
         """
         from scipy import signal
 
@@ -165,7 +166,8 @@ class Weighting:
             C = np.hstack([d_ @ C, c_])
             D = d_ @ D
         out = output_name or f"weighted_{input_name}"
-        return LinearModel(A, B, C, D, states=[f"{self.name.lower()}_filter_state_{k}" for k in range(A.shape[0])],
+        # states named after the output, so that several weighted outputs can be appended to one model
+        return LinearModel(A, B, C, D, states=[f"{out}_{self.name.lower()}_state_{k}" for k in range(A.shape[0])],
                            inputs=[input_name], outputs=[out], name=f"ISO 2631-1 {self.name}")
 
     # ---------------------------------------------------------------- digital filter

@@ -14,26 +14,31 @@ inputs are held at zero. Three routes give the same numbers:
     them (non-zero gain to a uniform lift of the road, such as absolute displacements) have
     infinite variance; outputs with white-noise feedthrough (e.g. a tire load through tire damping)
     also return ``inf``.
-    Rear inputs, ``delay="pade"`` (default): the front road is delayed through a Pade approximant
-    of e^(-s tau) of order ``pade_order`` (default 10, at most 12) before it reaches the rear
-    inputs; this is then the only approximation of the route. For a half car (wheelbase 2.7 m) its
-    r.m.s. error against the exact delay is, at 20 m/s (tau = 0.135 s), 3 % at order 4, 4e-5 at
-    order 8 and 3e-7 at order 10; at order 10 it grows as the speed falls (omega tau at wheel hop):
-    4e-8 at 40 m/s, 7e-4 at 10 m/s, 2 % at 5 m/s. (Several Pade sections in series delay better
-    but lose more to rounding in outputs such as the tire load.)
-    ``delay="exact"``: no approximation. The state is the sum of one copy of the model per road
-    point (front, rear; left, right), each driven as if under the front axle by the same undelayed
-    road; the cross-covariance of two copies at lag tau is e^(A tau) P (plus, without cut-on, the
-    random-walk increment over tau, int_0^tau e^(A u) du = A^-1 (e^(A tau) - I)). It agrees with
-    ``"psd"`` within 1e-8 from 3 to 40 m/s.
+    Rear inputs, ``delay="exact"`` (default): no approximation. The state is the sum of one copy
+    of the model per road point (front, rear; left, right), each driven as if under the front axle
+    by the same undelayed road; the cross-covariance of two copies at lag tau is e^(A tau) P (plus,
+    without cut-on, the random-walk increment over tau, int_0^tau e^(A u) du =
+    A^-1 (e^(A tau) - I)). It agrees with ``"psd"`` within 1e-8 from 3 to 40 m/s, at about the
+    cost of the Pade route.
+    ``delay="pade"``: the front road is delayed through the Pade approximant of e^(-s tau)
+    (:func:`vehdyn.ride.wheelbase.pade_delay`) of order ``pade_order`` (default 10, at most 12)
+    before it reaches the rear inputs; this is then the only approximation of the route. For a
+    half car (wheelbase 2.7 m) its r.m.s. error against the exact delay is, at 20 m/s
+    (tau = 0.135 s), 3 % at order 4, 4e-5 at order 8 and 3e-7 at order 10; at order 10 it grows as
+    the speed falls (omega tau at wheel hop): 4e-8 at 40 m/s, 7e-4 at 10 m/s, 2 % at 5 m/s.
+    (Several Pade sections in series delay better but lose more to rounding in outputs such as the
+    tire load.) Kept for comparison with the state-space models of
+    :func:`vehdyn.ride.with_wheelbase_delay`, which use the same approximant.
     Left and right tracks must be ``"identical"`` or ``"independent"`` in this route (the
     isotropic coherence is not rational).
-``"psd"`` (frequency-domain integral with a stated error)
+``"psd"`` (frequency-domain integral with a stated error; exact delay)
     var(y) = int_0^inf sum_{s,t} H_s(f) S_st(f) H_t(f)^* df with the exact delay e^(-j 2 pi f tau),
     the temporal road PSD G_z(f) and the track coherence (isotropic by default), with H from the
-    modal form of A (one eigendecomposition). The integral is taken over ln f on Gauss-Kronrod
+    modal form of A (one eigendecomposition; the products with the modal residues taken in blocks
+    of frequencies). The integral is taken over ln f on Gauss-Kronrod
     7-15 panels (4 per decade, 4 more across every mode's half-power band and, with a delay, no
-    wider than 1/(4 tau) up to the frequency f_c beyond which the envelope of the oscillating delay
+    wider than 1/tau, one period of the delay's phase, up to the frequency f_c beyond which the
+    envelope of the oscillating delay
     terms integrates to less than 1e-6 of the variance) from 1e-3 times the lowest to 1e3 times the
     highest natural frequency; beyond, power-law tails fitted at the ends are added. The reported
     error bound is the sum over the panels of |K15 - G7| (the 15-point Kronrod result is kept; the
@@ -44,8 +49,9 @@ inputs are held at zero. Three routes give the same numbers:
     Tested on part A's QuarterCar, BouncePitch and FullCar (all outputs, three vehicles): the
     routes agree within 2e-9 (exact delay) and 4e-6 (Pade), and agree on which outputs are
     unbounded.
-``"simulation"`` (time domain, for checking)
-    A sum-of-cosines profile (:func:`synthesize_profile`) of ``duration`` seconds of road,
+``"simulation"`` (time domain, for checking; exact delay)
+    A sum-of-cosines profile (:func:`synthesize_profile`) of ``duration`` seconds of road, sampled
+    under each axle by :meth:`RoadProfile.road_inputs` (the rear shifted exactly by the wheelbase),
     exact-discretization simulation (:func:`vehdyn.simulate`), r.m.s. after a settling time, and
     its statistical standard error from batch means.
 """
@@ -55,15 +61,14 @@ from __future__ import annotations
 import re
 import time as _time
 from dataclasses import dataclass, field
-from functools import lru_cache
-from math import factorial
 
 import numpy as np
 
 from ..errors import ParameterError
 from .road import RoadSpectrum, synthesize_parallel_profiles, synthesize_profile
+from .wheelbase import pade_delay
 
-__all__ = ["RandomResponse", "random_response", "road_channels", "pade_delay", "stationary_covariance"]
+__all__ = ["RandomResponse", "random_response", "road_channels", "stationary_covariance"]
 
 _ROAD_INPUT = re.compile(r"^road_(displacement|velocity)(.*)$")
 
@@ -158,7 +163,7 @@ def random_response(
     track_coherence: str = "isotropic",
     outputs=None,
     pade_order: int = 10,
-    delay: str = "pade",
+    delay: str = "exact",
     duration: float = 100.0,
     sample_rate: float = 500.0,
     seed=None,
@@ -176,7 +181,8 @@ def random_response(
     method : {"lyapunov", "psd", "simulation"}
         See the module docstring.
     wheelbase : float, optional
-        [m]; needed when the model has rear inputs.
+        [m]; needed when the model has rear inputs (default: ``model.wheelbase`` where the model
+        has one, as :class:`~vehdyn.ride.BouncePitch` and :class:`~vehdyn.ride.FullCar`).
     track_width : float, optional
         [m]; needed for left/right inputs with the isotropic coherence.
     track_coherence : {"isotropic", "identical", "independent"}
@@ -185,9 +191,10 @@ def random_response(
         Restrict to these outputs.
     pade_order : int
         Order of the Pade delay (``"lyapunov"`` with ``delay="pade"``).
-    delay : {"pade", "exact"}
-        How the Lyapunov route delays the rear inputs: a Pade approximant appended to the road
-        filter (default), or exactly, through lagged covariances (see the module docstring).
+    delay : {"exact", "pade"}
+        How the Lyapunov route delays the rear inputs: exactly, through lagged covariances
+        (default), or by a Pade approximant appended to the road filter (see the module docstring).
+        The ``"psd"`` and ``"simulation"`` routes always use the exact delay.
     duration, sample_rate, seed, n_max : ``"simulation"`` only
         Seconds of road [s], sampling rate [Hz], random seed, highest spatial frequency of the
         profile [cycles/m] (default: the Nyquist frequency of the time grid).
@@ -197,10 +204,15 @@ def random_response(
     if not isinstance(model, LinearModel):
         raise ParameterError(f"model must be a LinearModel, got {type(model).__name__} (linearize it first)",
                              key="model", value=model)
+    if not model.is_stable():
+        raise ParameterError(f"{model.name!r} is not asymptotically stable: its response to a random road has no "
+                             "stationary variance", key="model", value=model.name)
     spectrum = road if isinstance(road, RoadSpectrum) else RoadSpectrum.from_class(road)
     V = float(speed)
     if not (np.isfinite(V) and V > 0):
         raise ParameterError(f"speed must be positive [m/s], got {speed!r}", key="speed", value=speed)
+    if wheelbase is None:  # a BouncePitch or FullCar knows its own
+        wheelbase = getattr(model, "wheelbase", None)
     if outputs is not None:
         model = model.select(outputs=outputs)
     channels = road_channels(model)
@@ -217,9 +229,12 @@ def random_response(
     if two_tracks and track_coherence == "isotropic" and (track_width is None or not track_width > 0):
         raise ParameterError(f"left/right road inputs with isotropic coherence need a positive track_width [m], got "
                              f"{track_width!r}", key="track_width", value=track_width)
-    start = _time.perf_counter()
     if delay not in ("pade", "exact"):
-        raise ParameterError(f"delay must be 'pade' or 'exact', got {delay!r}", key="delay", value=delay)
+        raise ParameterError(f"delay must be 'exact' or 'pade', got {delay!r}", key="delay", value=delay)
+    if not (isinstance(pade_order, (int, np.integer)) and 1 <= pade_order <= 12):
+        raise ParameterError(f"pade_order must be an integer from 1 to 12 (higher orders lose accuracy to rounding), "
+                             f"got {pade_order!r}", key="pade_order", value=pade_order)
+    start = _time.perf_counter()
     if method == "lyapunov" and (delay == "exact" and tau > 0):
         if two_tracks and track_coherence == "isotropic":
             raise ParameterError("the Lyapunov route needs track_coherence 'identical' or 'independent' (the "
@@ -248,43 +263,6 @@ def random_response(
 
 
 # --------------------------------------------------------------------------- Lyapunov route
-def pade_delay(delay: float, order: int):
-    """State-space (A, B, C, D) of the [order/order] Pade approximant of e^(-s delay).
-
-    Built for a unit delay (coefficients c_k = (2m - k)! m! / ((2m)! k! (m - k)!)), balanced by a
-    diagonal similarity (the companion form is ill-conditioned beyond order 4) and scaled in time
-    (A / delay, B / delay). It is all-pass (gain 1 at every frequency); the phase error of the
-    [10/10] approximant is 4e-11 rad at omega delay = 5, 3e-8 at 7, 4e-6 at 9, 2e-4 at 11 and 3e-2
-    at 15. (Orders above 10 gain little: rounding grows with the order.)
-    """
-    if not (isinstance(order, (int, np.integer)) and 1 <= order <= 12):
-        raise ParameterError(f"pade_order must be an integer from 1 to 12 (higher orders lose accuracy to rounding), "
-                             f"got {order!r}", key="pade_order", value=order)
-    if not delay > 0:
-        raise ParameterError(f"delay must be positive [s], got {delay}", key="delay", value=delay)
-    A, B, C, D = _unit_pade(int(order))
-    return A / delay, B / delay, C.copy(), D.copy()
-
-
-@lru_cache(maxsize=16)
-def _unit_pade(m: int):
-    from scipy import signal
-    from scipy.linalg import matrix_balance
-
-    c = np.array([factorial(2 * m - k) * factorial(m) / (factorial(2 * m) * factorial(k) * factorial(m - k))
-                  for k in range(m + 1)])
-    num = (c * (-1.0) ** np.arange(m + 1))[::-1]
-    den = c[::-1]
-    A, B, C, D = signal.tf2ss(num, den)
-    _, (scale, _) = matrix_balance(A, permute=False, separate=True)
-    A = (A / scale[:, None]) * scale[None, :]
-    B = B / scale[:, None]
-    C = C * scale[None, :]
-    for M in (A, B, C, D):
-        M.flags.writeable = False
-    return A, B, C, D
-
-
 def _road_generator(channels, spectrum, V, tau, sources, pade_order):
     """White noise -> every road input of the model: matrices (A, B, C, D) and the integrator states.
 
@@ -337,30 +315,54 @@ def _sources(two_tracks, coherence):
     return {"left": 0, "right": 1, "coherent": 0}
 
 
-def _lyapunov_solve(A, Q):
+def _eigen(A, blocks: int = 1, max_cond: float = 1e6):
+    """Eigendecomposition (lam, V, V^-1) of A, or None when V is singular or its 1-norm condition exceeds max_cond.
+
+    With ``blocks`` > 1, A is block-diagonal with that many equal blocks (copies of one model):
+    one eigendecomposition of the block serves them all.
+    """
+    n = A.shape[0] // blocks
+    lam, V = np.linalg.eig(A[:n, :n])
+    try:
+        Vi = np.linalg.inv(V)
+    except np.linalg.LinAlgError:
+        return None
+    if np.linalg.norm(V, 1) * np.linalg.norm(Vi, 1) > max_cond:
+        return None
+    if blocks > 1:
+        Vb, Vib = np.zeros((2, n * blocks, n * blocks), dtype=V.dtype)
+        for k in range(blocks):
+            Vb[k * n:(k + 1) * n, k * n:(k + 1) * n] = V
+            Vib[k * n:(k + 1) * n, k * n:(k + 1) * n] = Vi
+        lam, V, Vi = np.tile(lam, blocks), Vb, Vib
+    return lam, V, Vi
+
+
+def _lyapunov_solve(A, Q, eigen=None):
     """X with A X + X A^T + Q = 0.
 
-    Up to 10 states: one dense solve of the Kronecker form (I (x) A + A (x) I) vec X = -vec Q.
-    Larger: modal solution (one eigendecomposition), checked by its residual; scipy's Bartels-Stewart
-    solver if the check fails.
+    Up to 10 states (and no eigendecomposition at hand): one dense solve of the Kronecker form
+    (I (x) A + A (x) I) vec X = -vec Q. Otherwise the modal solution from ``eigen`` (see
+    :func:`_eigen`; computed when not given), checked by its residual; scipy's Bartels-Stewart
+    solver if the check fails or the eigenvectors are ill-conditioned.
     """
-    from scipy.linalg import solve_continuous_lyapunov
-
     n = A.shape[0]
-    if n <= 10:
+    if n <= 10 and eigen is None:
         eye = np.eye(n)
-        X = np.linalg.solve(np.kron(eye, A) + np.kron(A, eye), -Q.reshape(-1)).reshape(n, n)
+        K = (eye[:, None, :, None] * A[None, :, None, :] + A[:, None, :, None] * eye[None, :, None, :])
+        X = np.linalg.solve(K.reshape(n * n, n * n), -Q.reshape(-1)).reshape(n, n)
         return 0.5 * (X + X.T)
-    lam, V = np.linalg.eig(A)
-    try:
-        W = np.linalg.solve(V, np.linalg.solve(V, Q.astype(complex)).conj().T).conj().T  # V^-1 Q V^-H
-    except np.linalg.LinAlgError:
-        W = None
-    if W is not None:
+    if eigen is None:
+        eigen = _eigen(A, max_cond=np.inf)  # the residual check below judges the result
+    if eigen is not None:
+        lam, V, Vi = eigen
+        W = Vi @ Q @ Vi.conj().T
         X = (V @ (W / -(lam[:, None] + lam.conj()[None, :])) @ V.conj().T).real
         scale = np.abs(Q).max() + np.abs(A).max() * np.abs(X).max()
         if np.abs(A @ X + X @ A.T + Q).max() <= 1e-10 * scale:
             return X
+    from scipy.linalg import solve_continuous_lyapunov
+
     return solve_continuous_lyapunov(A, -Q)
 
 
@@ -460,11 +462,11 @@ def _lyapunov(model, channels, spectrum, V, tau, two_tracks, coherence, pade_ord
     return var, np.zeros_like(var), {"n_states": A.shape[0], "pade_order": pade_order if tau > 0 else 0}
 
 
-def _expm(A, t):
-    """e^(A t) through the eigendecomposition when it is well conditioned (small dense A), else scipy's expm."""
-    lam, V = np.linalg.eig(A)
-    if np.linalg.cond(V) < 1e6:
-        return ((V * np.exp(lam * t)) @ np.linalg.inv(V)).real
+def _expm(A, t, eigen=None):
+    """e^(A t) from the eigendecomposition ``eigen`` (:func:`_eigen`) when it is well conditioned, else scipy's expm."""
+    if eigen is not None:
+        lam, V, Vi = eigen
+        return ((V * np.exp(lam * t)) @ Vi).real
     from scipy.linalg import expm
 
     return expm(A * t)
@@ -518,8 +520,9 @@ def _lyapunov_exact_delay(model, channels, spectrum, V, tau, two_tracks, coheren
     front = [g for g, (_, d) in enumerate(groups) if not d]
     rear = [g for g, (_, d) in enumerate(groups) if d]
     if spectrum.cut_on > 0:
-        P = _lyapunov_solve(A, B @ B.T)
-        lag = _expm(A, tau) @ P  # Cov(z(t), z(t - tau))
+        eigen = _eigen(A)  # one eigendecomposition for the Lyapunov equation and the matrix exponential
+        P = _lyapunov_solve(A, B @ B.T, eigen)
+        lag = _expm(A, tau, eigen) @ P  # Cov(z(t), z(t - tau))
         Ez, var_extra, drift = E, np.zeros(p_out), np.zeros(p_out, dtype=bool)
     else:
         rest = np.arange(S, nz)
@@ -531,8 +534,11 @@ def _lyapunov_exact_delay(model, channels, spectrum, V, tau, two_tracks, coheren
         terms = sum(np.abs(Eg[:, S:]) @ np.abs(Rr) + np.abs(Eg[:, :S]) for Eg in E)
         drift = _drifts(g_sum, terms, np.abs(model.C).sum(axis=1) + np.abs(model.D).sum(axis=1), Arr)
         g_rear = sum(G[g] for g in rear)
-        P = _lyapunov_solve(Arr, Bp @ Bp.T)
-        Phi = _expm(Arr, tau)
+        # Arr is block-diagonal, one copy of the model per road point: one eigendecomposition of the model
+        # serves the Lyapunov equation and the matrix exponential
+        eigen = _eigen(Arr, blocks=len(groups))
+        P = _lyapunov_solve(Arr, Bp @ Bp.T, eigen)
+        Phi = _expm(Arr, tau, eigen)
         lag = Phi @ P
         psi = np.linalg.solve(Arr, (Phi - np.eye(Arr.shape[0])) @ (Bp @ B[:S].T))  # Cov(z'(t), Delta)
         Ez = [Eg[:, rest] for Eg in E]
@@ -573,6 +579,9 @@ GAUSS_7_IN_15 = np.concatenate([np.r_[0, _WG[0], 0, _WG[1], 0, _WG[2], 0], [_WG[
 """Weights of the 7-point Gauss rule on the 15 Kronrod nodes (zero on the Kronrod-only nodes)."""
 
 
+_BLOCK = 256  # frequencies per matrix product in the PSD route
+
+
 class _Spectra:
     """Output PSD of a model on the road, evaluated through the modal form of A (one eigendecomposition)."""
 
@@ -590,6 +599,10 @@ class _Spectra:
         self.modal = bool(ok)
         if self.modal:
             self.lam, self.CV, self.WB = lam, model.C @ Vm, np.linalg.solve(Vm, B)
+            # residues R[k * p + i, j] = CV[i, j] WB[j, k] of input k, output i, mode j
+            self.residues = (self.CV[:, :, None] * self.WB[None, :, :]).transpose(2, 0, 1).reshape(-1, lam.size)
+            self.abs_residues = (np.abs(self.CV)[:, :, None] * np.abs(self.WB)[None, :, :]).transpose(
+                2, 0, 1).reshape(-1, lam.size)
         self.model, self.idx, self.D = model, idx, model.D[:, idx]
         # road points: (track, delayed) -> channels; each point has one transfer function
         self.points = sorted({(c.track, c.delayed) for c in channels})
@@ -602,12 +615,19 @@ class _Spectra:
         s = 1j * omega
         if self.modal:
             G = 1.0 / (s[None, :] - self.lam[:, None])  # (n, f), contiguous for BLAS
-            H = np.stack([self.CV @ (G * self.WB[:, k:k + 1]) for k in range(self.WB.shape[1])])  # (m, p, f)
-            H = H + self.D.T[:, :, None]
-            # where the modal terms cancel (far below or above the modes) their rounding can exceed |H|:
-            # solve those frequencies directly
+            m, p = self.WB.shape[1], self.CV.shape[0]
+            # H[k, i, f] = sum_j CV[i, j] WB[j, k] G[j, f]: one product with the residue matrix; and the same in
+            # absolute values, the size of the terms, where the modal terms cancel (far below or above the
+            # modes) their rounding can exceed |H|: those frequencies are solved directly. The frequency axis is
+            # taken in blocks: multithreaded BLAS on one long product of small matrices is several times slower.
+            H = np.empty((m * p, s.size), dtype=complex)
+            floor = np.empty((m * p, s.size))
             aG = np.abs(G)
-            floor = np.stack([np.abs(self.CV) @ (aG * np.abs(self.WB[:, k:k + 1])) for k in range(self.WB.shape[1])])
+            for i in range(0, s.size, _BLOCK):
+                H[:, i:i + _BLOCK] = self.residues @ G[:, i:i + _BLOCK]
+                floor[:, i:i + _BLOCK] = self.abs_residues @ aG[:, i:i + _BLOCK]
+            H = H.reshape(m, p, s.size) + self.D.T[:, :, None]
+            floor = floor.reshape(m, p, s.size)
             bad = np.any(np.abs(H) < 1e4 * np.finfo(float).eps * floor, axis=(0, 1))
             if bad.any():
                 H[:, :, bad] = np.moveaxis(self.model.frequency_response(omega[bad]).response[:, self.idx, :], 1, 0)
@@ -685,9 +705,9 @@ def _psd(model, channels, spectrum, V, tau, two_tracks, coherence, track_width, 
     edges = _log_edges(model, spectrum, V, **grid)
     dropped = 0.0
     if tau > 0:
-        # resolve the delay's oscillation (panels <= 1/(4 tau)) up to f_c, beyond which the oscillating
-        # terms' envelope integrates to less than rtol of the steady part: there they are dropped and
-        # their envelope is counted in the error
+        # resolve the delay's oscillation (panels <= 1/tau: one period of e^(-j 2 pi f tau) per 15 nodes) up
+        # to f_c, beyond which the oscillating terms' envelope integrates to less than rtol of the steady part:
+        # there they are dropped and their envelope is counted in the error
         f0, w0, _ = _gauss_kronrod(edges)
         st, osc, env = spectra(f0)
         env_tail = np.cumsum((env * w0)[:, ::-1], axis=1)[:, ::-1]  # (outputs, f)
@@ -697,7 +717,7 @@ def _psd(model, channels, spectrum, V, tau, two_tracks, coherence, track_width, 
         ok = env_tail <= rtol * np.where(np.isfinite(total) & (total > floor), total, np.inf)[:, None]
         first = np.where(ok.any(axis=1), np.argmax(ok, axis=1), 0)
         f_c = float(f0[first.max()])
-        lin = np.arange(0.0, f_c, 1.0 / (4 * tau))[1:]
+        lin = np.arange(0.0, f_c, 1.0 / tau)[1:]
         edges = np.unique(np.concatenate([edges, lin, [f_c]]))
     nodes, wk, wg = _gauss_kronrod(edges)
     lo, hi = edges[0], edges[-1]

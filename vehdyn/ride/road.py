@@ -308,31 +308,59 @@ class RoadProfile:
         z = np.interp(self.distance - offset, self.distance, self.elevation)
         return RoadProfile(self.distance, z)
 
-    def road_inputs(self, speed: float, offsets: dict[str, float] | None = None):
+    def sample(self, position):
+        """Elevation z [m] and slope dz/dx [-] at any positions ``position`` [m] (array).
+
+        Linear interpolation of the grid values (the slope from :meth:`slope`: spectral for
+        synthesized profiles, central differences otherwise); before the start and after the end
+        the elevation is held and the slope is zero.
+        """
+        pos = np.asarray(position, dtype=float)
+        z = np.interp(pos, self.distance, self.elevation)
+        inside = (pos >= self.distance[0]) & (pos <= self.distance[-1])
+        return z, np.where(inside, np.interp(pos, self.distance, self.slope()), 0.0)
+
+    def road_inputs(self, speed: float, offsets: dict[str, float] | None = None, time=None):
         """Time grid and ride-model inputs for driving over the profile at ``speed`` [m/s].
+
+        The one implementation of "the road under each wheel" (exact delay in the time domain):
+        :func:`vehdyn.ride.road_inputs` calls it with the wheel positions of a ride model.
 
         Parameters
         ----------
+        speed : float
+            V [m/s] (constant).
         offsets : dict, optional
             ``{suffix: distance behind the first axle [m]}``, e.g. ``{"_front": 0.0, "_rear": 2.7}``;
             default ``{"": 0.0}`` (inputs ``road_displacement`` and ``road_velocity``).
+        time : array_like, optional
+            Time grid [s]; default the profile's own grid, t = (x - x_0) / V.
 
         Returns
         -------
         time : ndarray
-            t = x / V [s].
+            [s]; at t the first axle is at x_0 + V t, a wheel ``offset`` behind it at
+            x_0 + V t - offset.
         inputs : dict
             ``road_displacement<suffix>`` [m] and ``road_velocity<suffix>`` = V dz/dx [m/s] for each
-            suffix, ready for :func:`vehdyn.simulate`.
+            suffix, ready for :func:`vehdyn.simulate`. On the profile's own grid a synthesized
+            profile is shifted exactly (:meth:`shifted`); otherwise the profile is sampled by
+            :meth:`sample` (linear interpolation, elevation held beyond the ends).
         """
         V = _positive(speed, "speed")
         offsets = {"": 0.0} if offsets is None else offsets
+        own_grid = time is None
+        t = (self.distance - self.distance[0]) / V if own_grid else np.asarray(time, dtype=float)
         inputs = {}
         for suffix, off in offsets.items():
-            p = self if off == 0 else self.shifted(off)
-            inputs[f"road_displacement{suffix}"] = p.elevation
-            inputs[f"road_velocity{suffix}"] = V * p.slope()
-        return (self.distance - self.distance[0]) / V, inputs
+            if own_grid and (off == 0 or self.coefficients is not None):
+                p = self if off == 0 else self.shifted(off)
+                z, slope = p.elevation, p.slope()
+            else:
+                z, slope = self.sample(self.distance[0] + V * t - off)
+            inputs[f"road_displacement{suffix}"] = z
+            inputs[f"road_velocity{suffix}"] = V * slope
+        return t, inputs
 
     def _frequencies(self) -> np.ndarray:
         return np.arange(self.coefficients.size) / self.length
@@ -581,26 +609,19 @@ _IRI_INIT_LENGTH = 11.0  # initialization length [m] (ASTM E1926; 0.5 s at 80 km
 
 
 def golden_car():
-    """The IRI golden-car quarter car per unit sprung mass as a :class:`~vehdyn.LinearModel`.
+    """The IRI golden-car quarter car per unit sprung mass, a :class:`~vehdyn.ride.QuarterCar`.
 
-    States ``sprung_displacement``, ``unsprung_displacement`` and their velocities; input
-    ``road_displacement``; outputs ``suspension_velocity`` (sprung minus unsprung) and the states.
+    Sprung mass 1, unsprung mass, spring, damper and tire rates of :data:`GOLDEN_CAR` (ratios to
+    the sprung mass), no tire damping; the signals of every vehdyn quarter car (inputs
+    ``road_displacement`` and ``road_velocity``, output ``suspension_velocity`` among others).
     Equations (m_s = 1): zs'' = -k2 (zs - zu) - c (zs' - zu'); mu zu'' = k2 (zs - zu) + c (zs' - zu')
     - k1 (zu - zr).
     """
-    from ..linear import LinearModel
+    from .quarter_car import QuarterCar
 
     g = GOLDEN_CAR
-    k1, k2, mu, c = g["tire_stiffness_ratio"], g["spring_stiffness_ratio"], g["mass_ratio"], g["damping_ratio"]
-    M = np.diag([1.0, mu])
-    C = np.array([[c, -c], [-c, c]])
-    K = np.array([[k2, -k2], [-k2, k2 + k1]])
-    F = np.array([[0.0], [k1]])
-    out = np.vstack([np.array([[0, 0, 1.0, -1.0]]), np.eye(4)])
-    return LinearModel.from_second_order(
-        M, C, K, F, dof=["sprung_displacement", "unsprung_displacement"], inputs=["road_displacement"],
-        outputs=["suspension_velocity", "sprung_displacement", "unsprung_displacement", "sprung_velocity",
-                 "unsprung_velocity"], output_matrix=out, name="IRI golden car")
+    return QuarterCar(sprung_mass=1.0, unsprung_mass=g["mass_ratio"], spring_rate=g["spring_stiffness_ratio"],
+                      damping=g["damping_ratio"], tire_stiffness=g["tire_stiffness_ratio"], name="IRI golden car")
 
 
 def iri(profile: RoadProfile | np.ndarray, spacing: float | None = None, *, smoothing: bool = True) -> float:

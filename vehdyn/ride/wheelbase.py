@@ -2,27 +2,36 @@
 
 A vehicle at speed V meets, at its rear wheels, the road its front wheels met tau = L / V earlier
 (L the wheelbase). vehdyn's ride models keep one road input per wheel; this module ties them to
-one profile per track in three ways:
+one profile per track, and holds the one implementation of each form of the delay:
 
 * **Frequency domain, exact**: :func:`road_frequency_response` multiplies the rear wheels'
   responses by exp(-j omega tau) and adds them to the front's (Gillespie, *Fundamentals of Vehicle
   Dynamics*, 1992, ch. 5, "wheelbase filtering"). Used by :mod:`vehdyn.ride.analysis`
-  (transmissibility and the other frequency responses) whenever a speed is given.
+  (transmissibility and the other frequency responses) whenever a speed is given; the ``"psd"``
+  route of :func:`vehdyn.ride.random_response` applies the same factor to the road spectra.
 * **Time domain, exact**: :func:`road_inputs` samples a road profile under each wheel at its own
-  position (front at V t, rear at V t - L), for :func:`vehdyn.simulate`.
-* **State space, approximate**: :func:`with_wheelbase_delay` appends a Padé approximant of the
-  delay so that eigenvalues, Lyapunov covariances and LQR designs can see the whole car driven by
-  one profile per track. Its error: the [n/n] Padé approximant P has |P(j omega)| = 1 exactly, and
-  |P(j omega) - exp(-j omega tau)| < 1e-3 for omega tau < 1.5 n - 3.5 and < 1e-2 for
-  omega tau < 1.6 n - 2.3 (n = 4..10, checked numerically in the tests); above that the delayed
-  input is wrong in phase. With the default n = 6 and a 2.6 m wheelbase at 20 m/s (tau = 0.13 s)
-  it is good to 1e-2 up to 9 Hz: enough for the body modes, not for wheel hop — use the exact
-  routes for those (Franklin, Powell & Emami-Naeini, *Feedback Control of Dynamic Systems*, 6th ed.,
-  sec. 5.6.3; Golub & Van Loan, *Matrix Computations*, 4th ed., sec. 9.3.1).
+  position (front at V t, rear at V t - L) through :meth:`vehdyn.ride.RoadProfile.road_inputs`,
+  for :func:`vehdyn.simulate`; the ``"simulation"`` route of :func:`vehdyn.ride.random_response`
+  uses the same method.
+* **State space, approximate**: :func:`pade_delay` is the [n/n] Padé approximant of e^(-s tau)
+  as a state space (balanced). :func:`with_wheelbase_delay` appends it to a ride model so that
+  eigenvalues, time simulations and LQR designs can see the whole car driven by one profile per
+  track; the ``delay="pade"`` option of :func:`vehdyn.ride.random_response` appends it to the road
+  shaping filter (its default, ``delay="exact"``, needs no approximation). Its error: the [n/n]
+  Padé approximant P has |P(j omega)| = 1 exactly, and |P(j omega) - exp(-j omega tau)| < 1e-3 for
+  omega tau < 1.5 n - 3.5 and < 1e-2 for omega tau < 1.6 n - 2.3 (n = 4..10, checked numerically
+  in the tests); above that the delayed input is wrong in phase. The phase error of the [10/10]
+  approximant is 4e-11 rad at omega tau = 5, 3e-8 at 7, 4e-6 at 9, 2e-4 at 11 and 3e-2 at 15;
+  orders above 10 gain little (rounding grows with the order; at most 12 is accepted). With
+  n = 6 and a 2.6 m wheelbase at 20 m/s (tau = 0.13 s) it is good to 1e-2 up to 9 Hz: enough for
+  the body modes, not for wheel hop — use the exact routes for those (Franklin, Powell &
+  Emami-Naeini, *Feedback Control of Dynamic Systems*, 6th ed., sec. 5.6.3; Golub & Van Loan,
+  *Matrix Computations*, 4th ed., sec. 9.3.1).
 """
 
 from __future__ import annotations
 
+from functools import lru_cache
 from math import factorial
 
 import numpy as np
@@ -31,8 +40,10 @@ from ..errors import ParameterError
 from ..linear import LinearModel, connect_in_series
 from ..results import FrequencyResponse
 from ..signals import Signal
+from .road import RoadProfile
 
-__all__ = ["wheel_delays", "pade_coefficients", "road_frequency_response", "road_inputs", "with_wheelbase_delay"]
+__all__ = ["wheel_offsets", "wheel_delays", "pade_coefficients", "pade_delay", "road_frequency_response",
+           "road_inputs", "with_wheelbase_delay"]
 
 
 def _check_speed(speed) -> float:
@@ -57,11 +68,15 @@ def _tracks(model) -> list[str]:
     return out
 
 
+def wheel_offsets(model) -> np.ndarray:
+    """Distance of each corner of a ride model behind its front axle [m]: x_front - x_i."""
+    x = np.array([c.x for c in model.corners])
+    return x.max() - x
+
+
 def wheel_delays(model, speed: float) -> np.ndarray:
     """Delay of the road input at each corner behind the front axle [s]: (x_front - x_i) / V."""
-    v = _check_speed(speed)
-    x = np.array([c.x for c in model.corners])
-    return (x.max() - x) / v
+    return wheel_offsets(model) / _check_speed(speed)
 
 
 def pade_coefficients(order: int) -> np.ndarray:
@@ -74,6 +89,40 @@ def pade_coefficients(order: int) -> np.ndarray:
     n = int(order)
     return np.array([factorial(2 * n - k) * factorial(n) / (factorial(2 * n) * factorial(k) * factorial(n - k))
                      for k in range(n + 1)])
+
+
+def pade_delay(delay: float, order: int):
+    """State space (A, B, C, D) of the [order/order] Padé approximant of e^(-s delay) [delay in s].
+
+    Built for a unit delay from :func:`pade_coefficients`, balanced by a diagonal similarity (the
+    companion form is ill-conditioned beyond order 4) and scaled in time (A / delay, B / delay).
+    All-pass; see the module docstring for its phase error. ``order`` from 1 to 12.
+    """
+    if not (isinstance(order, (int, np.integer)) and 1 <= order <= 12):
+        raise ParameterError(f"order of the Padé delay must be an integer from 1 to 12 (higher orders lose accuracy "
+                             f"to rounding), got {order!r}", key="order", value=order)
+    if not delay > 0:
+        raise ParameterError(f"delay must be positive [s], got {delay}", key="delay", value=delay)
+    A, B, C, D = _unit_pade(int(order))
+    return A / delay, B / delay, C.copy(), D.copy()
+
+
+@lru_cache(maxsize=16)
+def _unit_pade(order: int):
+    from scipy import signal
+    from scipy.linalg import matrix_balance
+
+    c = pade_coefficients(order)
+    num = (c * (-1.0) ** np.arange(order + 1))[::-1]  # descending powers of s
+    den = c[::-1]
+    A, B, C, D = signal.tf2ss(num, den)
+    _, (scale, _) = matrix_balance(A, permute=False, separate=True)
+    A = (A / scale[:, None]) * scale[None, :]
+    B = B / scale[:, None]
+    C = C * scale[None, :]
+    for M in (A, B, C, D):
+        M.flags.writeable = False
+    return A, B, C, D
 
 
 def road_frequency_response(model, omega, speed: float | None = None, outputs=None) -> FrequencyResponse:
@@ -129,7 +178,7 @@ def road_inputs(model, time, speed: float, distance, elevation, elevation_right=
     speed : float
         Forward speed V [m/s] (constant).
     distance : array_like
-        Increasing distances along the road [m] at which the profile is given.
+        Uniformly spaced, increasing distances along the road [m] at which the profile is given.
     elevation : array_like
         Road elevation [m] at ``distance`` (the left track of a full car, or both tracks when
         ``elevation_right`` is None).
@@ -141,44 +190,28 @@ def road_inputs(model, time, speed: float, distance, elevation, elevation_right=
     dict
         ``{road_displacement<sfx>: array, road_velocity<sfx>: array}`` for every corner, ready for
         ``vehdyn.simulate(model, time, inputs=...)``. The front wheels are at s = V t, a wheel x_i
-        behind them at s = V t - (x_front - x_i); the profile is interpolated linearly and its
-        velocity is V dz/ds (slope by central differences); before the profile's start and after its
-        end the elevation is held.
+        behind them at s = V t - (x_front - x_i); the profile is sampled by
+        :meth:`vehdyn.ride.RoadProfile.road_inputs` (linear interpolation, velocity V dz/ds with
+        the slope by central differences; before the profile's start and after its end the
+        elevation is held and the velocity is zero).
     """
     v = _check_speed(speed)
-    t = np.asarray(time, dtype=float)
     s = np.asarray(distance, dtype=float)
-    if s.ndim != 1 or s.size < 2 or np.any(np.diff(s) <= 0):
-        raise ParameterError("distance must be a strictly increasing 1-D array of at least 2 points [m]",
-                             key="distance", value=s.shape)
     profiles = {}
-    for track, z in (("left", elevation), ("right", elevation if elevation_right is None else elevation_right)):
+    for track, z, key in (("left", elevation, "elevation"),
+                          ("right", elevation if elevation_right is None else elevation_right, "elevation_right")):
         z = np.asarray(z, dtype=float)
-        if z.shape != s.shape:
-            raise ParameterError(f"elevation must have the shape of distance {s.shape}, got {z.shape}",
-                                 key="elevation" if track == "left" else "elevation_right", value=z.shape)
-        profiles[track] = (z, np.gradient(z, s))
+        if s.ndim != 1 or z.shape != s.shape:
+            raise ParameterError(f"{key} must have the shape of distance {s.shape}, got {z.shape}", key=key,
+                                 value=z.shape)
+        profiles[track] = RoadProfile(s, z)
     profiles[""] = profiles["left"]
-    x = np.array([c.x for c in model.corners])
     out = {}
-    for c, xi in zip(model.corners, x):
-        z, slope = profiles[c.track]
-        pos = v * t - (x.max() - xi)
-        out[f"road_displacement{c.suffix}"] = np.interp(pos, s, z)
-        inside = (pos >= s[0]) & (pos <= s[-1])
-        out[f"road_velocity{c.suffix}"] = np.where(inside, v * np.interp(pos, s, slope), 0.0)
+    for c, offset in zip(model.corners, wheel_offsets(model)):
+        # RoadProfile puts the first axle at distance[0] + V t: shift so that it is at V t
+        _, u = profiles[c.track].road_inputs(v, {c.suffix: offset + s[0]}, time=time)
+        out.update(u)
     return out
-
-
-def _pade_state_space(delay: float, order: int):
-    """(A, B, C, D) of the [n/n] Padé approximant of exp(-s delay), in controllable form."""
-    from scipy import signal
-
-    c = pade_coefficients(order)
-    num = (c * (-1.0) ** np.arange(order + 1))[::-1]  # descending powers of p = s * delay
-    den = c[::-1]
-    A, B, C, D = signal.tf2ss(num / den[0], den / den[0])
-    return A / delay, B / delay, C, D
 
 
 def with_wheelbase_delay(model, speed: float, order: int = 6) -> LinearModel:
@@ -220,7 +253,7 @@ def with_wheelbase_delay(model, speed: float, order: int = 6) -> LinearModel:
             if tau[k] == 0:
                 D[i_out, i_in] = 1.0
                 continue
-            A, B, C, Dp = _pade_state_space(tau[k], order)
+            A, B, C, Dp = pade_delay(tau[k], order)
             blocks_A.append(A)
             blocks_B.append(B)
             blocks_C.append(C)
