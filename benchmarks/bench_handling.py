@@ -18,6 +18,7 @@ Run: ``python benchmarks/bench_handling.py [--quick]``. Prints, from one run on 
 
 from __future__ import annotations
 
+import _timing  # noqa: F401  first: pins BLAS to one thread before numpy loads
 import platform
 import sys
 import time

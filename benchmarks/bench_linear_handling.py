@@ -8,12 +8,14 @@ of repeated runs measured in this process; ratios are against vehdyn "exact".
 Run: ``PYTHONPATH=. python benchmarks/bench_linear_handling.py``
 """
 
+from _timing import best_time  # first: pins BLAS to one thread before numpy loads
 import time
 
 import numpy as np
 
 import vehdyn
 from vehdyn.handling import LinearBicycle
+
 
 DELTA = np.deg2rad(1.0)
 
@@ -24,15 +26,6 @@ def reference(car, t):
     # x(t) = V diag((e^(lam t) - 1) / lam) V^-1 B delta
     x = (V @ (((np.exp(np.outer(lam, t)) - 1.0) / lam[:, None]) * b[:, None])).real
     return car.C @ x + car.D[:, :1] * DELTA
-
-
-def timed(fun, repeats):
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        out = fun()
-        times.append(time.perf_counter() - start)
-    return float(np.median(times)), out
 
 
 def main(repeats: int = 5) -> None:
@@ -60,7 +53,7 @@ def main(repeats: int = 5) -> None:
     }
     rows = []
     for name, fun in runs.items():
-        seconds, y = timed(fun, repeats)
+        seconds, y = best_time(fun, repeats)
         rows.append((name, seconds, float(np.max(np.abs(y - ref[yaw])) / scale)))
     base = rows[0][1]
     print(f"10-s step steer, sedan at 25 m/s, {t.size} samples; yaw-rate error relative to its peak")

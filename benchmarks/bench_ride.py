@@ -26,6 +26,7 @@ with ``OPENBLAS_NUM_THREADS=1``).
 
 from __future__ import annotations
 
+from _timing import best_time  # first: pins BLAS to one thread before numpy loads
 import os
 import platform
 import sys
@@ -34,20 +35,12 @@ from pathlib import Path
 
 import numpy as np
 
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 # E-QC-ISO-C expected r.m.s. (shared reference cases; computed by Lyapunov and frequency integral, 1e-5)
 E_QC_ISO_C = {"sprung_acceleration": 1.258668, "suspension_travel": 0.01348764, "tire_deflection": 0.005466187,
               "dynamic_tire_load": 1038.575}
-
-
-def best_time(fun, repeats=7):
-    best, out = np.inf, None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fun()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def quarter_car():

@@ -13,19 +13,12 @@ Run: ``python benchmarks/bench_rigid_body.py``. Prints, from one run on this mac
 
 from __future__ import annotations
 
+from _timing import best_time  # first: pins BLAS to one thread before numpy loads
 import platform
 import time
 
 import numpy as np
 
-
-def best_time(fun, repeats=5):
-    best, out = np.inf, None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fun()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def main():

@@ -15,6 +15,7 @@ Run: ``python benchmarks/bench_simulate.py``. Prints, from one run on this machi
 
 from __future__ import annotations
 
+from _timing import best_time  # first: pins BLAS to one thread before numpy loads
 import os
 import platform
 import subprocess
@@ -23,15 +24,6 @@ import time
 
 import numpy as np
 
-
-def best_time(fun, repeats=7):
-    best = np.inf
-    out = None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fun()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def system():
