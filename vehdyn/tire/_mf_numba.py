@@ -1,0 +1,130 @@
+"""Compiled backend of :class:`~vehdyn.tire.MagicFormula`: the same equations under numba.
+
+Imported only on first use of ``backend="numba"`` (numba is optional: ``pip install vehdyn[fast]``).
+Nothing here restates an equation. The equation functions of :mod:`~vehdyn.tire.mf_forces`,
+:mod:`~vehdyn.tire.mf_moments`, :mod:`~vehdyn.tire.mf_vertical` and the passes of
+:mod:`~vehdyn.tire.magic_formula` are registered with ``numba.extending.register_jitable`` (the
+Python functions stay as they are) and called, one point at a time, with ``xp`` = :data:`OPS`: the
+float functions of :class:`~vehdyn.tire._mf_ops.ScalarOps` compiled, with ``div`` giving IEEE
+inf/nan like numpy (``error_model="numpy"``). The loops below are compiled with ``cache=True``; the
+cache is keyed on the source of every module that contributes equations (see :func:`_source_stamp`),
+so editing an equation recompiles.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import types
+from pathlib import Path
+
+import numba
+import numpy as np
+from numba.extending import register_jitable
+
+from . import _mf_ops, magic_formula, mf_forces, mf_moments, mf_vertical
+from ._mf_ops import ScalarOps
+
+__all__ = ["OPS", "run"]
+
+_JIT_OPTIONS = {"error_model": "numpy"}  # x/0 = inf, 0/0 = nan (MFeval's MATLAB and numpy), no exceptions
+
+# ---- xp for compiled code: math functions and ScalarOps' float functions, compiled -------------
+OPS = types.ModuleType("vehdyn.tire._mf_numba.OPS")
+OPS.__doc__ = "The ``xp`` namespace of the equations inside numba-compiled code (one point, floats)."
+for _name in ("sin", "cos", "tan", "atan", "acos", "sqrt", "exp", "log10", "copysign"):
+    setattr(OPS, _name, getattr(math, _name))
+for _name in ("where", "minimum", "maximum", "clip", "fmax", "isnan", "any", "all", "full_broadcast", "div_ieee"):
+    setattr(OPS, _name, numba.njit(**_JIT_OPTIONS)(getattr(ScalarOps, _name)))
+OPS.div = OPS.div_ieee  # ScalarOps.div raises for numpy to take over; compiled code is IEEE itself
+OPS.sign = numba.njit(**_JIT_OPTIONS)(_mf_ops._sign)
+OPS.abs = numba.njit(**_JIT_OPTIONS)(lambda x: abs(x))
+OPS.scalar = True
+
+# ---- the equation functions, callable from compiled code ----------------------------------------
+_EQUATION_MODULES = (_mf_ops, mf_forces, mf_moments, mf_vertical, magic_formula)
+_EQUATIONS = (
+    (_mf_ops, ("sign_nonzero", "cos_atan")),
+    (mf_forces, ("turn_slip_spin", "longitudinal_pure", "lateral_pure", "longitudinal_combined",
+                 "lateral_combined_factor", "lateral_combined")),
+    (mf_moments, ("overturning_moment", "rolling_resistance_moment", "aligning_moment")),
+    (mf_vertical, ("_free_radius", "rolling_radius", "loaded_radius_mf61", "_load_mf62", "loaded_radius_mf62",
+                   "contact_patch", "carcass_stiffness")),
+    (magic_formula, ("_forces_pass", "_forces_kernel", "_full_kernel")),
+)
+for _module, _names in _EQUATIONS:
+    for _name in _names:
+        register_jitable(**_JIT_OPTIONS)(getattr(_module, _name))
+
+_forces_kernel = magic_formula._forces_kernel
+_full_kernel = magic_formula._full_kernel
+
+
+@register_jitable
+def _at(values, i):
+    """values[i], or values[0] for an input of one value (broadcast without a copy)."""
+    return values[min(i, values.shape[0] - 1)]
+
+
+def _forces_loop(c, fz, kappa, alpha, gamma, vx, pressure, limits, alpha_star, out):
+    for i in numba.prange(out.shape[1]):
+        result = _forces_kernel(OPS, c, _at(fz, i), _at(kappa, i), _at(alpha, i), _at(gamma, i), _at(vx, i),
+                                _at(pressure, i), limits, alpha_star)
+        for k in range(6):
+            out[k, i] = result[k]
+
+
+def _full_loop(c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omega_given, limits, alpha_star, turn_slip,
+               out):
+    for i in numba.prange(out.shape[1]):
+        result = _full_kernel(OPS, c, _at(fz, i), _at(kappa, i), _at(alpha, i), _at(gamma, i), _at(phit, i),
+                              _at(vx, i), _at(pressure, i), _at(omega, i), omega_given, limits, alpha_star,
+                              turn_slip)
+        for k in range(29):
+            out[k, i] = result[k]
+
+
+def _source_stamp() -> str:
+    """A digest of every module whose source the compiled loops contain."""
+    digest = hashlib.sha256()
+    for module in (*_EQUATION_MODULES, __import__(__name__, fromlist=["_"])):
+        digest.update(Path(module.__file__).read_bytes())
+    return digest.hexdigest()[:16]
+
+
+_COMPILED = {}
+
+
+def _compiled(loop, parallel: bool):
+    """The loop compiled (cached on disk, per equation-source digest), serial or with threads."""
+    key = (loop.__name__, parallel)
+    if key not in _COMPILED:
+        # a copy of the loop under a name that carries the source digest: numba's on-disk cache is
+        # keyed on the qualified name and this file's timestamp only, not on the functions it calls
+        name = f"{loop.__name__}_{'parallel' if parallel else 'serial'}_{_source_stamp()}"
+        function = types.FunctionType(loop.__code__, loop.__globals__, name, loop.__defaults__, loop.__closure__)
+        function.__qualname__ = name
+        _COMPILED[key] = numba.njit(cache=True, parallel=parallel, **_JIT_OPTIONS)(function)
+    return _COMPILED[key]
+
+
+def _as_vector(value):
+    """An input as a float64 vector (length n, or 1 for one value), or None."""
+    if value is None:
+        return None
+    return np.ascontiguousarray(np.reshape(value, -1), dtype=np.float64)
+
+
+def run(c, inputs, switches, full: bool, n: int, parallel: bool = False):
+    """Evaluate n points compiled: ``inputs`` as for the numpy kernels (flat or 0-d arrays, None).
+
+    Returns a tuple of output vectors (length n) in the kernels' order.
+    """
+    vectors = [_as_vector(v) for v in inputs]
+    if full:
+        out = np.empty((29, n))
+        _compiled(_full_loop, parallel)(c, *vectors, *(bool(s) for s in switches), out)
+    else:
+        out = np.empty((6, n))
+        _compiled(_forces_loop, parallel)(c, *vectors, *(bool(s) for s in switches), out)
+    return tuple(out)
