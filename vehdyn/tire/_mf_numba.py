@@ -14,6 +14,8 @@ so editing an equation recompiles.
 from __future__ import annotations
 
 import hashlib
+import os
+from concurrent.futures import ThreadPoolExecutor
 import math
 import types
 from pathlib import Path
@@ -63,11 +65,11 @@ _full_kernel = magic_formula._full_kernel
 @register_jitable
 def _at(values, i):
     """values[i], or values[0] for an input of one value (broadcast without a copy)."""
-    return values[min(i, values.shape[0] - 1)]
+    return values[i] if values.shape[0] > 1 else values[0]
 
 
 def _forces_loop(c, fz, kappa, alpha, gamma, vx, pressure, limits, alpha_star, out):
-    for i in numba.prange(out.shape[1]):
+    for i in range(out.shape[1]):
         result = _forces_kernel(OPS, c, _at(fz, i), _at(kappa, i), _at(alpha, i), _at(gamma, i), _at(vx, i),
                                 _at(pressure, i), limits, alpha_star)
         for k in range(6):
@@ -76,7 +78,7 @@ def _forces_loop(c, fz, kappa, alpha, gamma, vx, pressure, limits, alpha_star, o
 
 def _full_loop(c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omega_given, limits, alpha_star, turn_slip,
                out):
-    for i in numba.prange(out.shape[1]):
+    for i in range(out.shape[1]):
         result = _full_kernel(OPS, c, _at(fz, i), _at(kappa, i), _at(alpha, i), _at(gamma, i), _at(phit, i),
                               _at(vx, i), _at(pressure, i), _at(omega, i), omega_given, limits, alpha_star,
                               turn_slip)
@@ -95,36 +97,46 @@ def _source_stamp() -> str:
 _COMPILED = {}
 
 
-def _compiled(loop, parallel: bool):
-    """The loop compiled (cached on disk, per equation-source digest), serial or with threads."""
-    key = (loop.__name__, parallel)
-    if key not in _COMPILED:
+def _compiled(loop):
+    """The loop compiled (cached on disk, per equation-source digest), releasing the GIL."""
+    if loop.__name__ not in _COMPILED:
         # a copy of the loop under a name that carries the source digest: numba's on-disk cache is
         # keyed on the qualified name and this file's timestamp only, not on the functions it calls
-        name = f"{loop.__name__}_{'parallel' if parallel else 'serial'}_{_source_stamp()}"
+        name = f"{loop.__name__}_{_source_stamp()}"
         function = types.FunctionType(loop.__code__, loop.__globals__, name, loop.__defaults__, loop.__closure__)
         function.__qualname__ = name
-        _COMPILED[key] = numba.njit(cache=True, parallel=parallel, **_JIT_OPTIONS)(function)
-    return _COMPILED[key]
+        _COMPILED[loop.__name__] = numba.njit(cache=True, nogil=True, **_JIT_OPTIONS)(function)
+    return _COMPILED[loop.__name__]
 
 
 def _as_vector(value):
-    """An input as a float64 vector (length n, or 1 for one value), or None."""
-    if value is None:
-        return None
+    """An input as a float64 vector (length n, or 1 for one value)."""
     return np.ascontiguousarray(np.reshape(value, -1), dtype=np.float64)
 
 
-def run(c, inputs, switches, full: bool, n: int, parallel: bool = False):
-    """Evaluate n points compiled: ``inputs`` as for the numpy kernels (flat or 0-d arrays, None).
+_PARALLEL_MIN_POINTS = 20_000  # below, one thread
 
-    Returns a tuple of output vectors (length n) in the kernels' order.
+
+def run(c, inputs, switches, full: bool, n: int, parallel: bool = False):
+    """Evaluate n points compiled: ``inputs`` as for the numpy kernels (flat or 0-d arrays).
+
+    With ``parallel``, the points are split into one block per core, evaluated in threads (the
+    compiled loop releases the GIL). Returns a tuple of output vectors (length n) in the kernels'
+    order.
     """
     vectors = [_as_vector(v) for v in inputs]
-    if full:
-        out = np.empty((29, n))
-        _compiled(_full_loop, parallel)(c, *vectors, *(bool(s) for s in switches), out)
+    flags = tuple(bool(s) for s in switches)
+    out = np.empty((29 if full else 6, n))
+    loop = _compiled(_full_loop if full else _forces_loop)
+
+    def block(start, stop):
+        loop(c, *(v if v.shape[0] == 1 else v[start:stop] for v in vectors), *flags, out[:, start:stop])
+
+    threads = min(os.cpu_count() or 1, n // _PARALLEL_MIN_POINTS) if parallel else 1
+    if threads <= 1:
+        block(0, n)
     else:
-        out = np.empty((6, n))
-        _compiled(_forces_loop, parallel)(c, *vectors, *(bool(s) for s in switches), out)
+        edges = np.linspace(0, n, threads + 1).astype(int)
+        with ThreadPoolExecutor(threads) as pool:
+            list(pool.map(block, edges[:-1], edges[1:]))
     return tuple(out)

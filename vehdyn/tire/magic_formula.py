@@ -59,10 +59,10 @@ SMALL_BATCH = 8
 
 BACKEND = "auto"
 """Default ``backend`` of :meth:`MagicFormula.evaluate` and :meth:`MagicFormula.forces`: ``"auto"``
-(numba if installed, else numpy), ``"numpy"`` or ``"numba"``."""
+(the faster one measured: numpy, see :func:`_backend`), ``"numpy"`` or ``"numba"``."""
 
 NUMBA_PARALLEL = False
-"""Whether the numba backend spreads a call over threads (``numba.prange``); False: one core."""
+"""Whether the numba backend splits a call into one block per core, evaluated in threads; False: one core."""
 
 _OUTPUTS = (
     ("fx", "N", "longitudinal force"),
@@ -257,8 +257,8 @@ class MagicFormula(TireModel):
         backend : {None, "auto", "numpy", "numba"}
             ``"numpy"``: vectorized, chunked numpy (single points on Python floats). ``"numba"``:
             the same equations compiled by numba into one per-point loop (optional dependency;
-            compiled on first use and cached on disk). ``"auto"``: numba when it is installed
-            (single points still on floats). None: the module-level ``BACKEND``.
+            compiled on first use and cached on disk). ``"auto"``: the faster one as measured
+            (currently numpy). None: the module-level ``BACKEND``.
 
         Returns
         -------
@@ -387,10 +387,16 @@ def _is_number(value) -> bool:
 
 
 def _backend(backend) -> str:
-    """Resolve ``backend`` (None: the module's ``BACKEND``) to ``"numpy"`` or ``"numba"``."""
+    """Resolve ``backend`` (None: the module's ``BACKEND``) to ``"numpy"`` or ``"numba"``.
+
+    ``"auto"`` is numpy: on the development machine (AVX-512 Xeon, numpy 2 with SIMD arctan/tan,
+    numba without SVML) the compiled per-point loop is slower than the chunked numpy passes
+    (``benchmarks/bench_tire.py``), because each point's ~50 atan/sin/cos form a chain of scalar
+    libm calls while numpy evaluates each of them for 8 points at a time.
+    """
     backend = BACKEND if backend is None else backend
     if backend == "auto":
-        return "numba" if numba_available() else "numpy"
+        return "numpy"
     if backend == "numba":
         if not numba_available():
             raise ParameterError("backend='numba' needs the optional package numba (pip install vehdyn[fast])",
