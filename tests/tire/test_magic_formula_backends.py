@@ -7,7 +7,6 @@ backend switch, its errors and the lazy import are tested.
 
 from __future__ import annotations
 
-import functools
 import subprocess
 import sys
 
@@ -16,18 +15,16 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-import vehdyn
 from vehdyn.errors import ParameterError
-from vehdyn.tire import MagicFormula
 from vehdyn.tire import magic_formula as mf_module
+
+from .conftest import mf_domain, shipped_tire
 
 TIRES = ("MagicFormula61_Parameters", "MagicFormula62_Parameters", "MagicFormula52_Parameters", "mf_185_80R14")
 needs_numba = pytest.mark.skipif(not mf_module.numba_available(), reason="numba is not installed")
 
 
-@functools.cache
-def tire(name: str) -> MagicFormula:
-    return MagicFormula.from_tir(vehdyn.data_path("tires", name + ".tir"))
+tire = shipped_tire
 
 
 def output_scales(model: MagicFormula) -> dict:
@@ -42,17 +39,10 @@ def output_scales(model: MagicFormula) -> dict:
 
 
 def points(name):
-    """Batches of operating points in the documented domain (as the property tests draw them)."""
+    """Batches of operating points in the documented domain (as the property tests draw them),
+    with an inflation pressure each."""
     c = tire(name)._c
-    one = st.tuples(
-        st.one_of(st.just(0.0), st.floats(0.0, 1.5 * c.FZMAX)),  # fz
-        st.one_of(st.just(0.0), st.just(-1.0), st.floats(-2.0, 2.0)),  # kappa
-        st.one_of(st.just(0.0), st.floats(-1.5, 1.5)),  # alpha
-        st.one_of(st.just(0.0), st.floats(-0.4, 0.4)),  # gamma
-        st.one_of(st.just(0.0), st.floats(-2 * c.VXLOW, 2 * c.VXLOW), st.floats(-60.0, 60.0)),  # vx
-        st.one_of(st.just(0.0), st.floats(-0.5, 0.5)),  # phit
-        st.floats(0.8 * c.NOMPRES, 1.2 * c.NOMPRES),  # pressure
-    )
+    one = st.tuples(mf_domain(name), st.floats(0.8 * c.NOMPRES, 1.2 * c.NOMPRES)).map(lambda p: (*p[0], p[1]))
     return st.lists(one, min_size=1, max_size=40).map(lambda rows: np.array(rows).T)
 
 
