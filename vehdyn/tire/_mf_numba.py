@@ -13,6 +13,7 @@ so editing an equation recompiles.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
 from concurrent.futures import ThreadPoolExecutor
@@ -114,6 +115,14 @@ def _as_vector(value):
     return np.ascontiguousarray(np.reshape(value, -1), dtype=np.float64)
 
 
+@functools.lru_cache(maxsize=64)
+def _record(c):
+    """The coefficients as a numpy record with the same field names (the equations read ``c.PCX1``
+    from either): numba passes a record by reference, where a tuple of ~280 floats would be copied
+    into every call of an equation function."""
+    return np.array([tuple(c)], dtype=[(name, np.float64) for name in c._fields])[0]
+
+
 _PARALLEL_MIN_POINTS = 20_000  # below, one thread
 
 
@@ -124,6 +133,7 @@ def run(c, inputs, switches, full: bool, n: int, parallel: bool = False):
     compiled loop releases the GIL). Returns a tuple of output vectors (length n) in the kernels'
     order.
     """
+    c = _record(c)
     vectors = [_as_vector(v) for v in inputs]
     flags = tuple(bool(s) for s in switches)
     out = np.empty((29 if full else 6, n))
