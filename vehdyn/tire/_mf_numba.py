@@ -9,16 +9,20 @@ float functions of :class:`~vehdyn.tire._mf_ops.ScalarOps` compiled, with ``div`
 inf/nan like numpy (``error_model="numpy"``). The loops below are compiled with ``cache=True``; the
 cache is keyed on the source of every module that contributes equations (see :func:`_source_stamp`),
 so editing an equation recompiles.
+
+Speed (``benchmarks/bench_tire.py``): a point costs ~50 scalar libm calls (atan, sin, cos, tan) in
+a chain, where numpy evaluates each of them for 8 points at once (AVX-512); on the development
+machine this loop is therefore slower than the numpy backend, and ``backend="auto"`` uses numpy.
 """
 
 from __future__ import annotations
 
 import functools
 import hashlib
-import os
-from concurrent.futures import ThreadPoolExecutor
 import math
+import os
 import types
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numba

@@ -14,6 +14,11 @@ the TNO MF-Tyre manuals; they live in :mod:`~vehdyn.tire.mf_forces`,
 :mod:`~vehdyn.tire.mf_moments` and :mod:`~vehdyn.tire.mf_vertical`. This module handles inputs
 (limits, low-speed rules), vectorization and the result record.
 
+Two backends run the same equation functions: numpy (vectorized, in chunks of ``CHUNK_SIZE``
+points; single points on Python floats) and, optionally, numba (``backend="numba"``; numba is
+imported and the loop compiled on first use, see :mod:`vehdyn.tire._mf_numba`). Both are tested
+against every MFeval reference row and against each other (1e-12).
+
 Where MFeval's results are not finite vehdyn returns something else, on purpose:
 
 * turn-slip aligning moment at phit = 0 or with zero camber stiffness Kzgr0 (MFeval: NaN/-Inf),
