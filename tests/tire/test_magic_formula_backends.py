@@ -119,3 +119,21 @@ def test_import_does_not_import_numba():
             "print('numba' in sys.modules)")
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert result.stdout.strip() == "False"
+
+
+@needs_numba
+def test_numba_threads_give_the_serial_results(monkeypatch):
+    """NUMBA_PARALLEL splits a call into one block per core: same numbers as one block, bit for bit."""
+    from vehdyn.tire import _mf_numba
+
+    model = tire("MagicFormula62_Parameters")
+    rng = np.random.default_rng(4)
+    n = 4 * _mf_numba._PARALLEL_MIN_POINTS + 7
+    args = (rng.uniform(0.0, 9000.0, n), rng.uniform(-0.5, 0.5, n), rng.uniform(-0.4, 0.4, n), 0.03,
+            rng.uniform(-30.0, 30.0, n))
+    serial = model.evaluate(*args, backend="numba")
+    monkeypatch.setattr(_mf_numba.os, "cpu_count", lambda: 3)
+    monkeypatch.setattr(mf_module, "NUMBA_PARALLEL", True)
+    threaded = model.evaluate(*args, backend="numba")
+    for field in serial.keys():
+        np.testing.assert_array_equal(threaded[field], serial[field], err_msg=field)
