@@ -5,7 +5,8 @@ ratios, slip angles and speeds, both directions of travel) and compared, in the 
 plain per-point Python loop of the same equations (the laws' scalar path, which uses :mod:`math`).
 The error column is the largest difference between the vectorized and the per-point results,
 relative to mu F_z. ``MagicFormula.evaluate`` (MF 6.1, combined slip, all outputs) and
-``MagicFormula.forces`` are timed the same way when :mod:`vehdyn.tire.magic_formula` is importable.
+``MagicFormula.forces`` are timed the same way on each backend: numpy, and numba (when installed)
+on one core and on all cores.
 
 Run: ``python benchmarks/bench_tire.py [--quick]``.
 """
@@ -13,6 +14,7 @@ Run: ``python benchmarks/bench_tire.py [--quick]``.
 from __future__ import annotations
 
 import argparse
+import os
 import time
 
 import numpy as np
@@ -74,25 +76,62 @@ def main(quick: bool = False) -> None:
             print(f"{name + '.forces':<22}{n:>10}{seconds:>12.3e}{rate / 1e6:>12.2f}{loop_rate / 1e6:>14.3f}"
                   f"{rate / loop_rate:>9.0f}{error:>12.1e}")
     try:
-        from vehdyn.tire.magic_formula import MagicFormula
+        from vehdyn.tire import magic_formula
     except ImportError:
         print("\nMagicFormula: vehdyn.tire.magic_formula is not importable in this checkout; skipped.")
         return
-    tire = MagicFormula.from_tir(data_path("tires", "MagicFormula61_Parameters.tir"))
-    for method in ("evaluate", "forces"):
+    magic_formula_rates(data, sizes)
+
+
+def magic_formula_rates(data, sizes) -> None:
+    """MF 6.1 ``evaluate`` (all outputs, combined slip) and ``forces`` on each backend.
+
+    numpy: vectorized, chunked (one core). numba: the same equation functions compiled into one
+    per-point loop, serial (one core) and, as a second figure, in one thread per core.
+    The loop column is a plain per-point Python loop of the same equations (the float path of a
+    scalar call). The error column is the largest difference from the numpy backend relative to
+    the output's nominal size (FNOMIN for forces, FNOMIN*R0 for moments)."""
+    from vehdyn.tire import magic_formula
+
+    tire = magic_formula.MagicFormula.from_tir(data_path("tires", "MagicFormula61_Parameters.tir"))
+    backends = [("numpy", False)]
+    if magic_formula.numba_available():
+        backends += [("numba", False), ("numba", True)]
+        threads = os.cpu_count()
+    else:
+        print("\nMagicFormula: numba is not installed; numpy backend only (pip install vehdyn[fast]).")
+    scale = {"fx": tire.nominal_load, "fy": tire.nominal_load, "mz": tire.nominal_load * tire.unloaded_radius}
+    print(f"\n{'MF 6.1':<22}{'backend':>14}{'points':>10}{'time [s]':>12}{'M points/s':>12}{'loop M pts/s':>14}"
+          f"{'ratio':>9}{'max error':>12}")
+    for method in ("forces", "evaluate"):
         function = getattr(tire, method)
         fz0, kappa0, alpha0, gamma0, vx0 = (a[:2000].tolist() for a in data[max(sizes)])
         start = time.perf_counter()
         for i in range(len(fz0)):
-            function(fz0[i], kappa0[i], alpha0[i], gamma0[i], vx0[i])
+            function(fz0[i], kappa0[i], alpha0[i], gamma0[i], vx0[i], backend="numpy")
         loop_rate = len(fz0) / (time.perf_counter() - start)
-        for n in sizes:
-            fz, kappa, alpha, gamma, vx = data[n]
-            fz = fz + 500.0  # away from zero load, where MF-specific limits apply
-            seconds = best_time(lambda: function(fz, kappa, alpha, gamma, vx), 3)
-            rate = n / seconds
-            print(f"{'MF6.1.' + method:<22}{n:>10}{seconds:>12.3e}{rate / 1e6:>12.2f}{loop_rate / 1e6:>14.3f}"
-                  f"{rate / loop_rate:>9.0f}{'':>12}")
+        for backend, parallel in backends:
+            magic_formula.NUMBA_PARALLEL = parallel
+            try:
+                function(*(a[:10] for a in data[min(sizes)]), backend=backend)  # compile (or load the cache)
+                for n in sizes:
+                    fz, kappa, alpha, gamma, vx = data[n]
+                    fz = fz + 500.0  # away from zero load, where MF-specific limits apply
+                    seconds = best_time(lambda: function(fz, kappa, alpha, gamma, vx, backend=backend), 3)
+                    rate = n / seconds
+                    error = 0.0
+                    if backend != "numpy":
+                        ours = function(fz, kappa, alpha, gamma, vx, backend=backend)
+                        reference = function(fz, kappa, alpha, gamma, vx, backend="numpy")
+                        error = max(np.max(np.abs(getattr(ours, k) - getattr(reference, k))) / s
+                                    for k, s in scale.items())
+                    label = backend + (f" {threads} thr" if parallel else " 1 core")
+                    print(f"{'MF6.1.' + method:<22}{label:>14}{n:>10}{seconds:>12.3e}{rate / 1e6:>12.2f}"
+                          f"{loop_rate / 1e6:>14.3f}{rate / loop_rate:>9.0f}{error:>12.1e}")
+            finally:
+                magic_formula.NUMBA_PARALLEL = False
+    print("Goal (issue 4, one core): forces >= 10 M points/s, evaluate >= 3 M points/s "
+          "(MFeval/Octave: 0.54 M/s, full outputs).")
 
 
 if __name__ == "__main__":

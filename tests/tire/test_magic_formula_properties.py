@@ -13,6 +13,8 @@ import vehdyn
 from vehdyn.tire import MagicFormula, MagicFormulaOutputs, TireForces, TireModel, TirParameters, read_tir
 from vehdyn.tire import magic_formula as mf_module
 
+from .conftest import mf_domain
+
 TIRES = ("MagicFormula61_Parameters", "MagicFormula62_Parameters", "MagicFormula52_Parameters", "mf_185_80R14")
 PROPERTY_SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
@@ -45,15 +47,7 @@ def shift_free(name: str) -> MagicFormula:
 
 def domain(name):
     """Strategy for one operating point in the documented domain (limits on)."""
-    c = tire(name)._c
-    return st.tuples(
-        st.one_of(st.just(0.0), st.floats(0.0, 1.5 * c.FZMAX)),  # fz
-        st.one_of(st.just(0.0), st.just(-1.0), st.floats(-2.0, 2.0)),  # kappa
-        st.one_of(st.just(0.0), st.floats(-1.5, 1.5)),  # alpha
-        st.one_of(st.just(0.0), st.floats(-0.4, 0.4)),  # gamma
-        st.one_of(st.just(0.0), st.floats(-2 * c.VXLOW, 2 * c.VXLOW), st.floats(-60.0, 60.0)),  # vx
-        st.one_of(st.just(0.0), st.floats(-0.5, 0.5)),  # phit
-    )
+    return mf_domain(name)
 
 
 @pytest.mark.parametrize("name", TIRES)

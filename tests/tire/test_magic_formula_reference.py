@@ -18,9 +18,12 @@ import pytest
 
 import vehdyn
 from vehdyn.tire import MagicFormula
+from vehdyn.tire.magic_formula import numba_available
 
 DATA = Path(__file__).resolve().parent.parent / "data" / "mf_reference"
 TIRES = ("MagicFormula61_Parameters", "MagicFormula62_Parameters", "MagicFormula52_Parameters", "mf_185_80R14")
+# every array test runs on both backends: numpy, and the numba-compiled loop where numba is installed
+BACKENDS = ("numpy", "numba") if numba_available() else ("numpy",)
 SETS = ("pure_long", "pure_lat", "combined", "lowspeed", "limits", "modes", "turnslip", "reverse")
 
 # MFeval column -> MagicFormulaOutputs field, compared at rel 1e-9 / abs 1e-6
@@ -52,14 +55,14 @@ def reference(name: str, sweep: str) -> pd.DataFrame:
 
 
 @functools.cache
-def evaluated(name: str, sweep: str) -> pd.DataFrame:
+def evaluated(name: str, sweep: str, backend: str = "numpy") -> pd.DataFrame:
     """vehdyn's outputs for every row of a reference file, row-aligned with it."""
     ref = reference(name, sweep)
     frames = []
     for use_mode, rows in ref.groupby("useMode", sort=False):
         out = tire(name).evaluate(rows.in_Fz.values, rows.in_kappa.values, rows.in_alpha.values,
                                   rows.in_gamma.values, vx=rows.in_Vx.values, pressure=rows.in_P.values,
-                                  phit=rows.in_phit.values, **use_mode_switches(int(use_mode)))
+                                  phit=rows.in_phit.values, **use_mode_switches(int(use_mode)), backend=backend)
         frame = out.to_frame()
         frame.index = rows.index
         frames.append(frame)
@@ -80,10 +83,11 @@ def nonfinite_reference(name, sweep, column):
     return ~np.isfinite(reference(name, sweep)[column].values)
 
 
+@pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("sweep", SETS)
 @pytest.mark.parametrize("name", TIRES)
-def test_forces_moments_and_force_like_outputs_match_mfeval(name, sweep):
-    ref, ours = reference(name, sweep), evaluated(name, sweep)
+def test_forces_moments_and_force_like_outputs_match_mfeval(name, sweep, backend):
+    ref, ours = reference(name, sweep), evaluated(name, sweep, backend)
     failures = {}
     for column, field in FORCE_LIKE.items():
         n_bad, worst = mismatches(ours[field], ref[column], rel=1e-9, abs_=1e-6)
@@ -97,10 +101,11 @@ def test_forces_moments_and_force_like_outputs_match_mfeval(name, sweep):
             assert sweep == "turnslip" and column in ("Mz", "Mzr"), (name, sweep, column)
 
 
+@pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("sweep", SETS)
 @pytest.mark.parametrize("name", TIRES)
-def test_rolling_radius_deflection_spin_and_vertical_stiffness_match_single_row_mfeval(name, sweep):
-    ref, ours = reference(name, sweep), evaluated(name, sweep)
+def test_rolling_radius_deflection_spin_and_vertical_stiffness_match_single_row_mfeval(name, sweep, backend):
+    ref, ours = reference(name, sweep), evaluated(name, sweep, backend)
     # rows where the MF 6.2 vertical equation has no root: MFeval's rho and Cz there are sentinels
     # (tested in test_mf62_loaded_radius_without_root_is_nan)
     rooted = np.isfinite(ref["Rl_1pt"].values)
@@ -113,13 +118,14 @@ def test_rolling_radius_deflection_spin_and_vertical_stiffness_match_single_row_
     assert rooted.all() or name == "MagicFormula62_Parameters"
 
 
+@pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("sweep", ("pure_lat", "combined"))
-def test_mf62_loaded_radius_without_root_is_nan(sweep):
+def test_mf62_loaded_radius_without_root_is_nan(sweep, backend):
     """Where the MF 6.2 Fz(Rl) equation has no root (Fz = 1.5*FNOMIN, vx = 1 m/s, large |Fy|),
     MFeval returns a non-finite Rl (NaN in a batch, Inf for the row alone) with the sentinels rho = 1e-12 m and Cz = Fz/1e-12 N/m;
     vehdyn returns NaN for all three, so that no sentinel can pass for a deflection."""
     name = "MagicFormula62_Parameters"
-    ref, ours = reference(name, sweep), evaluated(name, sweep)
+    ref, ours = reference(name, sweep), evaluated(name, sweep, backend)
     no_root = ~np.isfinite(ref["Rl_1pt"].values)
     assert no_root.sum() == {"pure_lat": 90, "combined": 42}[sweep]  # counts stated in the README
     np.testing.assert_array_equal(ref["rho_1pt"].values[no_root], 1e-12)
@@ -130,14 +136,15 @@ def test_mf62_loaded_radius_without_root_is_nan(sweep):
     assert np.isfinite(ours["fy"].values[no_root]).all()
 
 
+@pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("name", TIRES)
-def test_turn_slip_aligning_moment_where_mfeval_is_not_finite(name):
+def test_turn_slip_aligning_moment_where_mfeval_is_not_finite(name, backend):
     """MFeval 4.3.1 evaluates Cr = zeta7 = 2/pi*acos(Mzp90/|Drp|) as written: at phit = 0 it is 0/0
     (Mz = Mzr = NaN, all files), and with Kzgr0 = 0 (QDZ10 = 0: the two MF 5.2 files at FNOMIN)
     x/0 = Inf makes Mz = Mzr = -Inf or NaN. vehdyn takes the phit -> 0 limit of the ratio at phit
     = 0 and limits the ratio to 1 (Cr = 0), so Mz and Mzr are finite and continuous in phit.
     Asserted: finite values, continuity in phit, and the finite MFeval rows agree (test above)."""
-    ref, ours = reference(name, "turnslip"), evaluated(name, "turnslip")
+    ref, ours = reference(name, "turnslip"), evaluated(name, "turnslip", backend)
     bad = nonfinite_reference(name, "turnslip", "Mz")
     assert (bad == nonfinite_reference(name, "turnslip", "Mzr")).all()
     expected_bad = {"MagicFormula61_Parameters": 175, "MagicFormula62_Parameters": 175}.get(name, len(ref))
@@ -147,7 +154,8 @@ def test_turn_slip_aligning_moment_where_mfeval_is_not_finite(name):
     model = tire(name)
     for use_mode, group in rows.groupby("useMode"):
         args = (group.in_Fz.values, group.in_kappa.values, group.in_alpha.values, group.in_gamma.values)
-        kwargs = dict(vx=group.in_Vx.values, pressure=group.in_P.values, **use_mode_switches(int(use_mode)))
+        kwargs = dict(vx=group.in_Vx.values, pressure=group.in_P.values, **use_mode_switches(int(use_mode)),
+                      backend=backend)
         at = model.evaluate(*args, phit=group.in_phit.values, **kwargs)
         for step in (1e-7, -1e-7):
             near = model.evaluate(*args, phit=group.in_phit.values + step * np.maximum(1.0, np.abs(group.in_phit.values)),
@@ -157,16 +165,17 @@ def test_turn_slip_aligning_moment_where_mfeval_is_not_finite(name):
             assert np.all(np.abs(near.residual_torque - at.residual_torque) <= 1e-4 * scale)
 
 
+@pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("sweep", ("pure_long", "pure_lat", "combined", "lowspeed", "limits", "modes", "reverse"))
 @pytest.mark.parametrize("name", TIRES)
-def test_forces_method_matches_mfeval(name, sweep):
+def test_forces_method_matches_mfeval(name, sweep, backend):
     """``forces`` (no rolling-radius iteration, no extras) gives MFeval's Fx, Fy, Fz, Mx, My, Mz."""
     ref = reference(name, sweep)
     for use_mode, rows in ref.groupby("useMode"):
         switches = use_mode_switches(int(use_mode))
         del switches["turn_slip"]
         f = tire(name).forces(rows.in_Fz.values, rows.in_kappa.values, rows.in_alpha.values, rows.in_gamma.values,
-                              vx=rows.in_Vx.values, **switches)
+                              vx=rows.in_Vx.values, **switches, backend=backend)
         for column, value in zip(("Fx", "Fy", "Fz", "Mx", "My", "Mz"), f):
             n_bad, worst = mismatches(value, rows[column], rel=1e-9, abs_=1e-6)
             assert n_bad == 0, (name, sweep, use_mode, column, n_bad, worst)

@@ -6,6 +6,11 @@ Python floats (a single operating point without numpy's per-call overhead, ~10x 
 :class:`ScalarOps` fails where a float operation has no IEEE result in Python (ZeroDivisionError,
 a math domain ValueError, or :class:`ScalarFallback` from ``div``); the caller then repeats the
 point with numpy, whose IEEE rules give the inf/nan that MFeval's MATLAB code relies on.
+
+The float functions of :class:`ScalarOps` are also what the optional compiled backend
+(:mod:`vehdyn.tire._mf_numba`) runs: numba compiles them, with ``div = div_ieee``, and the
+equation modules themselves, into one per-point loop. Everything an equation calls through
+``xp`` must therefore work on Python floats, numpy arrays and under ``numba.njit``.
 """
 
 from __future__ import annotations
@@ -15,6 +20,11 @@ import math
 import numpy as np
 
 __all__ = ["ScalarOps", "ScalarFallback", "NumpyOps", "sign_nonzero", "cos_atan"]
+
+
+def _full_broadcast(value, arrays):
+    """An array of the broadcast shape of ``arrays`` (a tuple) filled with ``value``."""
+    return np.full(np.broadcast_shapes(*(np.shape(a) for a in arrays)), value)
 
 
 class ScalarFallback(ArithmeticError):
@@ -57,6 +67,8 @@ class NumpyOps:
     fmax = staticmethod(np.fmax)
     isnan = staticmethod(np.isnan)
     any = staticmethod(np.any)
+    all = staticmethod(np.all)
+    full_broadcast = staticmethod(_full_broadcast)
     scalar = False
 
     @staticmethod
@@ -130,6 +142,15 @@ class ScalarOps:
     @staticmethod
     def any(a):
         return bool(a)
+
+    @staticmethod
+    def all(a):
+        return bool(a)
+
+    @staticmethod
+    def full_broadcast(value, arrays):
+        """``value`` itself: a single point has no shape."""
+        return value
 
     @staticmethod
     def div(a, b):

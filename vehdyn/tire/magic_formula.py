@@ -14,6 +14,11 @@ the TNO MF-Tyre manuals; they live in :mod:`~vehdyn.tire.mf_forces`,
 :mod:`~vehdyn.tire.mf_moments` and :mod:`~vehdyn.tire.mf_vertical`. This module handles inputs
 (limits, low-speed rules), vectorization and the result record.
 
+Two backends run the same equation functions: numpy (vectorized, in chunks of ``CHUNK_SIZE``
+points; single points on Python floats) and, optionally, numba (``backend="numba"``; numba is
+imported and the loop compiled on first use, see :mod:`vehdyn.tire._mf_numba`). Both are tested
+against every MFeval reference row and against each other (1e-12).
+
 Where MFeval's results are not finite vehdyn returns something else, on purpose:
 
 * turn-slip aligning moment at phit = 0 or with zero camber stiffness Kzgr0 (MFeval: NaN/-Inf),
@@ -36,7 +41,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from types import SimpleNamespace
+from collections import namedtuple
 
 import numpy as np
 
@@ -56,6 +61,13 @@ CHUNK_SIZE = 8192
 
 SMALL_BATCH = 8
 """Up to this many points, :meth:`MagicFormula.forces` evaluates point by point on floats."""
+
+BACKEND = "auto"
+"""Default ``backend`` of :meth:`MagicFormula.evaluate` and :meth:`MagicFormula.forces`: ``"auto"``
+(the faster one measured: numpy, see :func:`_backend`), ``"numpy"`` or ``"numba"``."""
+
+NUMBA_PARALLEL = False
+"""Whether the numba backend splits a call into one block per core, evaluated in threads; False: one core."""
 
 _OUTPUTS = (
     ("fx", "N", "longitudinal force"),
@@ -218,7 +230,7 @@ class MagicFormula(TireModel):
 
     # ------------------------------------------------------------------------------------------
     def evaluate(self, fz, kappa, alpha, gamma=0.0, vx=None, pressure=None, phit=0.0, omega=None, *,
-                 limits=True, alpha_star=False, turn_slip=False) -> MagicFormulaOutputs:
+                 limits=True, alpha_star=False, turn_slip=False, backend=None) -> MagicFormulaOutputs:
         """Steady-state evaluation with every output MFeval returns.
 
         Parameters
@@ -247,6 +259,11 @@ class MagicFormula(TireModel):
             eqs. 4.E3, 4.E4). False (digit 1, TNO MF-Tyre): alpha* = alpha, gamma* = gamma.
         turn_slip : bool
             useMode units digit 2: include turn slip and spin (book eqs. 4.75–4.106).
+        backend : {None, "auto", "numpy", "numba"}
+            ``"numpy"``: vectorized, chunked numpy (single points on Python floats). ``"numba"``:
+            the same equations compiled by numba into one per-point loop (optional dependency;
+            compiled on first use and cached on disk). ``"auto"``: the faster one as measured
+            (currently numpy). None: the module-level ``BACKEND``.
 
         Returns
         -------
@@ -257,51 +274,60 @@ class MagicFormula(TireModel):
         c = self._c
         point = (fz, kappa, alpha, gamma, c.LONGVL if vx is None else vx, c.INFLPRES if pressure is None else pressure,
                  phit, omega)
-        if all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)) for v in point):
+        explicit_numba = backend == "numba" or (backend is None and BACKEND == "numba")
+        backend = _backend(backend)
+        if not explicit_numba and all(v is None or _is_number(v) for v in point):
             # one operating point: float arithmetic (no numpy call overhead); numpy if a float op fails
             fz, kappa, alpha, gamma, vx, pressure, phit, omega = (None if v is None else float(v) for v in point)
             try:
-                out = _kernel(ScalarOps, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, alpha_star,
-                              turn_slip, True)
-                return MagicFormulaOutputs(**{k: np.asarray(v, dtype=float) for k, v in out.items()})
+                out = _full_kernel(ScalarOps, c, fz, kappa, alpha, gamma, phit, vx, pressure,
+                                   0.0 if omega is None else omega, omega is not None, limits, alpha_star, turn_slip)
+                return MagicFormulaOutputs(*(np.asarray(v, dtype=float) for v in out))
             except (ArithmeticError, ValueError):
                 pass
         arrays = self._inputs(*point)
-        return MagicFormulaOutputs(**self._run(arrays, limits, alpha_star, turn_slip, full=True))
+        switches = (limits, alpha_star, turn_slip)
+        return MagicFormulaOutputs(*self._run(arrays, switches, full=True, backend=backend))
 
-    def forces(self, fz, kappa, alpha, gamma=0.0, vx=None, *, limits=True, alpha_star=False) -> TireForces:
+    def forces(self, fz, kappa, alpha, gamma=0.0, vx=None, *, limits=True, alpha_star=False,
+               backend=None) -> TireForces:
         """Forces and moments only (no turn slip, no rolling-radius iteration).
 
-        Same conventions and switches as :meth:`evaluate` (vx defaults to LONGVL). A call with
-        scalar inputs is evaluated on Python floats (no numpy overhead) and returns floats; up to
-        ``SMALL_BATCH`` points (a vehicle's wheels) are evaluated the same way, point by point.
+        Same conventions and switches as :meth:`evaluate` (vx defaults to LONGVL, the pressure is
+        INFLPRES). A call with scalar inputs returns floats; unless ``backend="numba"`` is asked
+        for, scalar inputs and up to ``SMALL_BATCH`` points (a vehicle's wheels) are evaluated
+        point by point on Python floats, which beats both array backends' call overhead.
         """
         c = self._c
         vx = c.LONGVL if vx is None else vx
-        scalar = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in (fz, kappa, alpha, gamma, vx))
-        if scalar:
+        explicit_numba = backend == "numba" or (backend is None and BACKEND == "numba")
+        backend = _backend(backend)
+        scalar = all(_is_number(v) for v in (fz, kappa, alpha, gamma, vx))
+        if scalar and not explicit_numba:
             return TireForces(*self._forces_at_point(float(fz), float(kappa), float(alpha), float(gamma), float(vx),
                                                      limits, alpha_star))
-        arrays = self._inputs(fz, kappa, alpha, gamma, vx, None, 0.0, None)
+        arrays = self._inputs(fz, kappa, alpha, gamma, vx, c.INFLPRES, 0.0, None)
         shape = arrays["shape"]
-        if 0 < math.prod(shape) <= SMALL_BATCH:  # a few wheels: float arithmetic beats numpy's call overhead
+        if scalar:  # compiled on request: floats all the same
+            return TireForces(*(float(v) for v in self._run(arrays, (limits, alpha_star), full=False,
+                                                            backend=backend)))
+        if not explicit_numba and 0 < math.prod(shape) <= SMALL_BATCH:
+            # a few wheels: float arithmetic beats numpy's call overhead
             points = np.broadcast_arrays(*(arrays[k] for k in ("fz", "kappa", "alpha", "gamma", "vx")))
             values = [self._forces_at_point(*map(float, p), limits, alpha_star)
                       for p in zip(*(np.ravel(a) for a in points))]
             return TireForces(*(np.array(v, dtype=float).reshape(shape) for v in zip(*values)))
-        out = self._run(arrays, limits, alpha_star, False, full=False)
-        return TireForces(*(out[k] for k in TireForces._fields))
+        return TireForces(*self._run(arrays, (limits, alpha_star), full=False, backend=backend))
 
     def _forces_at_point(self, fz, kappa, alpha, gamma, vx, limits, alpha_star):
         """Forces at one point on Python floats; numpy (IEEE inf/nan) where floats raise."""
         c = self._c
         try:
-            out = _kernel(ScalarOps, c, fz, kappa, alpha, gamma, 0.0, vx, c.INFLPRES, None, limits, alpha_star,
-                          False, False)
+            out = _forces_kernel(ScalarOps, c, fz, kappa, alpha, gamma, vx, c.INFLPRES, limits, alpha_star)
         except (ArithmeticError, ValueError):  # a 0/0 or x/0: numpy gives MFeval's values
-            arrays = self._inputs(fz, kappa, alpha, gamma, vx, None, 0.0, None)
-            out = self._run(arrays, limits, alpha_star, False, full=False)
-        return tuple(float(out[k]) for k in TireForces._fields)
+            arrays = self._inputs(fz, kappa, alpha, gamma, vx, c.INFLPRES, 0.0, None)
+            out = self._run(arrays, (limits, alpha_star), full=False, backend="numpy")
+        return tuple(float(v) for v in out)
 
     # ------------------------------------------------------------------------------------------
     def _inputs(self, fz, kappa, alpha, gamma, vx, pressure, phit, omega):
@@ -327,30 +353,77 @@ class MagicFormula(TireModel):
         arrays["shape"] = shape
         return arrays
 
-    def _run(self, arrays, limits, alpha_star, turn_slip, full):
-        c = self._c
+    def _run(self, arrays, switches, full, backend):
+        """All points of ``arrays`` (from :meth:`_inputs`) through the full or the forces kernel:
+        a tuple of output arrays of the broadcast shape."""
         shape = arrays.pop("shape")
         n = math.prod(shape)
-        names = ("fz", "kappa", "alpha", "gamma", "phit", "vx", "pressure", "omega")
-        # inputs of one value stay 0-d (numpy broadcasts them, and constant terms cost one op)
-        flat = {}
-        for k in names:
-            a = arrays[k]
-            flat[k] = None if a is None else (a.reshape(()) if a.size == 1 else np.broadcast_to(a, shape).reshape(-1))
+        names = _FULL_INPUTS if full else _FORCES_INPUTS
+        # inputs of one value stay 0-d / length 1 (constant terms cost one op; no copies)
+        flat = [None if arrays[k] is None else (arrays[k].reshape(()) if arrays[k].size == 1
+                                                 else np.broadcast_to(arrays[k], shape).reshape(-1)) for k in names]
+        if full:  # omega: given, or estimated (a placeholder value and the flag)
+            switches = (flat[-1] is not None, *switches)
+            flat[-1] = np.zeros(()) if flat[-1] is None else flat[-1]
+        if backend == "numba" and n > 0:
+            from . import _mf_numba
 
-        def chunk(a, part):
-            return a if a is None or a.ndim == 0 else a[part]
-
-        result = {}
+            outputs = _mf_numba.run(self._c, flat, switches, full, n, parallel=NUMBA_PARALLEL)
+            return tuple(row.reshape(shape) for row in outputs)
+        kernel = _full_kernel if full else _forces_kernel
+        result = None
         with np.errstate(all="ignore"):
             for start in range(0, max(n, 1), CHUNK_SIZE):
                 part = slice(start, min(start + CHUNK_SIZE, n))
-                out = _kernel(NumpyOps, c, *(chunk(flat[k], part) for k in names), limits, alpha_star, turn_slip, full)
-                for k, v in out.items():
-                    if k not in result:
-                        result[k] = np.empty(n)
-                    result[k][part] = v
-        return {k: v.reshape(shape) for k, v in result.items()}
+                out = kernel(NumpyOps, self._c, *(a if a.ndim == 0 else a[part] for a in flat), *switches)
+                if result is None:
+                    result = tuple(np.empty(n) for _ in out)
+                for target, value in zip(result, out):
+                    target[part] = value
+        return tuple(v.reshape(shape) for v in result)
+
+
+_FULL_INPUTS = ("fz", "kappa", "alpha", "gamma", "phit", "vx", "pressure", "omega")
+_FORCES_INPUTS = ("fz", "kappa", "alpha", "gamma", "vx", "pressure")
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _backend(backend) -> str:
+    """Resolve ``backend`` (None: the module's ``BACKEND``) to ``"numpy"`` or ``"numba"``.
+
+    ``"auto"`` is numpy: on the development machine (AVX-512 Xeon, numpy 2 with SIMD arctan/tan,
+    numba without SVML) the compiled per-point loop is slower than the chunked numpy passes
+    (``benchmarks/bench_tire.py``), because each point's ~50 atan/sin/cos form a chain of scalar
+    libm calls while numpy evaluates each of them for 8 points at a time.
+    """
+    backend = BACKEND if backend is None else backend
+    if backend == "auto":
+        return "numpy"
+    if backend == "numba":
+        if not numba_available():
+            raise ParameterError("backend='numba' needs the optional package numba (pip install vehdyn[fast])",
+                                 key="backend", value=backend)
+        return backend
+    if backend == "numpy":
+        return backend
+    raise ParameterError(f"backend must be 'auto', 'numpy' or 'numba', got {backend!r}", key="backend",
+                         value=backend)
+
+
+_NUMBA_AVAILABLE = None
+
+
+def numba_available() -> bool:
+    """Whether the compiled backend can be used (numba is installed; it is imported on first use)."""
+    global _NUMBA_AVAILABLE
+    if _NUMBA_AVAILABLE is None:
+        import importlib.util
+
+        _NUMBA_AVAILABLE = importlib.util.find_spec("numba") is not None
+    return _NUMBA_AVAILABLE
 
 
 def load_tire(path) -> MagicFormula:
@@ -374,33 +447,46 @@ def load_tire(path) -> MagicFormula:
 _POSITIVE = ("FNOMIN", "UNLOADED_RADIUS", "LONGVL", "NOMPRES", "VXLOW", "VERTICAL_STIFFNESS")
 
 
-def _coefficients(params: TirParameters) -> SimpleNamespace:
+_FLAGS = ("Fz0_prime", "is_mf52", "is_mf62", "mx_draft_form")
+MFCoefficients = namedtuple("MFCoefficients", sorted(
+    key for key, value in MFEVAL_DEFAULTS.items() if not isinstance(value, str)) + list(_FLAGS))
+MFCoefficients.__doc__ = """The numeric ``.tir`` coefficients (SI, MFeval's defaults where missing) as floats, plus
+Fz0' = LFZO*FNOMIN (eq. 4.E1) and the version flags (1.0/0.0). One float tuple type for every file,
+so the compiled backend compiles once for all tires."""
+
+
+def _coefficients(params: TirParameters) -> MFCoefficients:
     values = {}
-    for key, value in params.values.items():
-        if isinstance(value, str):
-            continue
+    for key in MFCoefficients._fields[:-len(_FLAGS)]:
+        value = params.values.get(key, MFEVAL_DEFAULTS[key])
+        if isinstance(value, str):  # a string where a number is needed
+            raise ParameterError(f"{key} must be a number, got {value!r}", key=key, value=value)
         values[key] = float(value)
-    for key, default in MFEVAL_DEFAULTS.items():
-        if isinstance(default, str) or key in values:
-            continue
-        if key in params.values:  # a string where a number is needed
-            raise ParameterError(f"{key} must be a number, got {params.values[key]!r}", key=key,
-                                 value=params.values[key])
-        values[key] = float(default)
     for key in _POSITIVE:
         if not values[key] > 0:
             raise ParameterError(f"{key} must be > 0, got {values[key]!r}", key=key, value=values[key])
-    c = SimpleNamespace(**values)
-    c.is_mf52 = params.version == "5.2"
-    c.is_mf62 = params.version == "6.2"
-    c.Fz0_prime = c.LFZO * c.FNOMIN  # 4.E1
-    c.mx_draft_form = any((c.QSX12, c.QSX13, c.QSX14)) and any(
-        getattr(c, f"QSX{i}") for i in range(1, 12))
-    return c
+    values["Fz0_prime"] = values["LFZO"] * values["FNOMIN"]  # 4.E1
+    values["is_mf52"] = float(params.version == "5.2")
+    values["is_mf62"] = float(params.version == "6.2")
+    values["mx_draft_form"] = float(any(values[f"QSX{i}"] for i in (12, 13, 14))
+                                    and any(values[f"QSX{i}"] for i in range(1, 12)))
+    return MFCoefficients(**values)
 
 
-def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, alpha_star, turn_slip, full):
-    """One evaluation pass on arrays (numpy) or floats (``ScalarOps``); returns a dict of outputs."""
+MFState = namedtuple("MFState", (
+    "limits", "turn_slip", "alpha_star_mode", "low_speed", "reverse", "fz", "fz_input", "fz_moment", "kappa",
+    "kappa_input", "alpha", "gamma", "phit", "vx", "pressure", "dpi", "dfz", "alpha_star", "gamma_star",
+    "camber_free", "cos_alpha_prime", "phi", "eps_gamma"))
+MFState.__doc__ = """Post-processed inputs of one evaluation and the quantities every equation shares
+(see :mod:`vehdyn.tire.mf_forces`)."""
+
+
+def _forces_pass(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omega_given, limits, alpha_star, turn_slip,
+                 full):
+    """Inputs (limits, low-speed rules), forces and moments of one pass on arrays or floats.
+
+    Returns the six forces and moments and what :func:`_full_pass` needs besides.
+    """
     fz = xp.maximum(fz, 0.0)
     reverse = xp.where(vx < 0, -1.0, 1.0)  # MFeval flips Fx0, My (and Fy0 with alpha*) when vx < 0
     fz_input, kappa_input, alpha_input, gamma_input = fz, kappa, alpha, gamma
@@ -432,46 +518,62 @@ def _kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, limits, a
         low_speed = 1.0
         kappa_output = kappa
         fz_low = fz_moment = fz
-    s = SimpleNamespace(limits=limits, turn_slip=turn_slip, alpha_star_mode=alpha_star, low_speed=low_speed,
-                        reverse=reverse,
-                        fz=fz, fz_input=fz_input, fz_moment=fz_moment, kappa=kappa, kappa_input=kappa_input,
-                        alpha=alpha, gamma=gamma, phit=phit, vx=vx, pressure=pressure)
-    s.dpi = (pressure - c.NOMPRES) / c.NOMPRES  # 4.E2b
-    s.dfz = (fz - c.Fz0_prime) / c.Fz0_prime  # 4.E2a
+    dpi = (pressure - c.NOMPRES) / c.NOMPRES  # 4.E2b
+    dfz = (fz - c.Fz0_prime) / c.Fz0_prime  # 4.E2a
     if alpha_star:
-        s.alpha_star = xp.tan(alpha) * xp.sign(vx)  # 4.E3
-        s.gamma_star = xp.sin(gamma)  # 4.E4
+        alpha_s = xp.tan(alpha) * xp.sign(vx)  # 4.E3
+        gamma_s = xp.sin(gamma)  # 4.E4
     else:
-        s.alpha_star, s.gamma_star = alpha, gamma
-    s.camber_free = not xp.any(s.gamma_star != 0)
+        alpha_s, gamma_s = alpha, gamma
     vc = xp.sqrt(vx**2 + (xp.tan(alpha) * xp.abs(vx)) ** 2)
     # cos(alpha') with alpha' = acos(vx/Vc') (4.E6, 4.E6a); |vx/Vc'| <= 1, so cos(acos(v)) = v
-    s.cos_alpha_prime = vx / (vc + 1e-6 * sign_nonzero(xp, vc))
+    cos_alpha_prime = vx / (vc + 1e-6 * sign_nonzero(xp, vc))
     if turn_slip or full:
-        re, r_omega, omega = rolling_radius(xp, c, fz_input, kappa_input, vx, s.dpi, omega)
+        re, r_omega, spin = rolling_radius(xp, c, fz_input, kappa_input, vx, dpi, omega, omega_given)
+    else:  # not needed
+        re = r_omega = spin = 0.0
     if turn_slip:
-        s.phi, s.eps_gamma = turn_slip_spin(xp, c, s, omega)
+        phi, eps_gamma = turn_slip_spin(xp, c, alpha, vx, phit, gamma, dfz, spin)
+    else:
+        phi = eps_gamma = 0.0
+    s = MFState(limits=limits, turn_slip=turn_slip, alpha_star_mode=alpha_star, low_speed=low_speed,
+                reverse=reverse, fz=fz, fz_input=fz_input, fz_moment=fz_moment, kappa=kappa,
+                kappa_input=kappa_input, alpha=alpha, gamma=gamma, phit=phit, vx=vx, pressure=pressure, dpi=dpi,
+                dfz=dfz, alpha_star=alpha_s, gamma_star=gamma_s, camber_free=not xp.any(gamma_s != 0),
+                cos_alpha_prime=cos_alpha_prime, phi=phi, eps_gamma=eps_gamma)
     fx0, mux, kxk = longitudinal_pure(xp, c, s)
     pure = lateral_pure(xp, c, s, s.gamma_star, turn_slip)
     fx = longitudinal_combined(xp, c, s, fx0)
     fy, gyk, svyk = lateral_combined(xp, c, s, pure)
     mz = aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk)
-    out = dict(fx=fx, fy=fy, fz=fz_input, mx=overturning_moment(xp, c, s, fy),
-               my=rolling_resistance_moment(xp, c, s, fx), mz=mz.mz)
-    if not full:
-        return out
+    forces = (fx, fy, fz_input, overturning_moment(xp, c, s, fy), rolling_resistance_moment(xp, c, s, fx), mz.mz)
+    extras = (s, pure, mz, mux, kxk, re, r_omega, spin, fz_low, kappa_output, alpha_input, gamma_input)
+    return forces, extras
+
+
+def _forces_kernel(xp, c, fz, kappa, alpha, gamma, vx, pressure, limits, alpha_star):
+    """Fx, Fy, Fz, Mx, My, Mz (no turn slip, no rolling radius): :meth:`MagicFormula.forces`."""
+    return _forces_pass(xp, c, fz, kappa, alpha, gamma, 0.0, vx, pressure, 0.0, False, limits, alpha_star, False,
+                        False)[0]
+
+
+def _full_kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omega_given, limits, alpha_star,
+                 turn_slip):
+    """Every output of :meth:`MagicFormula.evaluate`, in the order of ``MagicFormulaOutputs``
+    (``omega`` is used if ``omega_given``, else estimated)."""
+    forces, extras = _forces_pass(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omega_given, limits,
+                                  alpha_star, turn_slip, True)
+    fx, fy, fz_input, mx, my, mz = forces
+    s, pure, moment, mux, kxk, re, r_omega, spin, fz_low, kappa_output, alpha_input, gamma_input = extras
     if c.is_mf62:
-        rho, loaded, cz = loaded_radius_mf62(xp, c, fz_input, fz, gamma, fx, fy, s.dpi, omega, r_omega)
+        rho, loaded, cz = loaded_radius_mf62(xp, c, fz_input, s.fz, s.gamma, fx, fy, s.dpi, spin, r_omega)
     else:
-        rho, loaded, cz = loaded_radius_mf61(xp, c, fz_low, fx, fy, s.dpi, omega, r_omega)
+        rho, loaded, cz = loaded_radius_mf61(xp, c, fz_low, fx, fy, s.dpi, spin, r_omega)
     half_length, half_width = contact_patch(xp, c, fz_input, s.dpi)
-    cx, cy, sigma_x, sigma_y = carcass_stiffness(xp, c, fz, gamma, s.dpi, kxk, pure.kya)
-    out.update(
-        kappa=kappa_output, alpha=xp.where(vx == 0, 0.0, alpha_input) if xp.any(vx == 0) else alpha_input,
-        gamma=gamma_input, phit=phit, vx=vx,
-        pressure=pressure, effective_radius=re, deflection=rho, contact_length=2 * half_length, trail=mz.trail,
-        mux=mux, muy=xp.abs(pure.muy) if limits else pure.muy, omega=omega, loaded_radius=loaded,
-        contact_width=2 * half_width, residual_torque=mz.residual, cx=cx, cy=cy, cz=cz, kya=pure.kya,
-        sigma_x=sigma_x, sigma_y=sigma_y, kxk=kxk,
-    )
-    return out
+    cx, cy, sigma_x, sigma_y = carcass_stiffness(xp, c, s.fz, s.gamma, s.dpi, kxk, pure.kya)
+    vx = s.vx
+    alpha_out = xp.where(vx == 0, 0.0, alpha_input) if xp.any(vx == 0) else alpha_input
+    muy = xp.abs(pure.muy) if limits else pure.muy
+    return (fx, fy, fz_input, mx, my, mz, kappa_output, alpha_out, gamma_input, s.phit, vx, s.pressure, re, rho,
+            2 * half_length, moment.trail, mux, muy, spin, loaded, 2 * half_width, moment.residual, cx, cy, cz,
+            pure.kya, sigma_x, sigma_y, kxk)

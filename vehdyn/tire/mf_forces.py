@@ -10,10 +10,13 @@ The state ``s`` carries: ``fz`` (load after the FZMAX clamp) [N], ``kappa`` [-],
 ``gamma`` [rad] (after limits and low-speed reduction), ``alpha_star``, ``gamma_star`` (eqs. 4.E3,
 4.E4 or the plain angles), ``vx`` [m/s], ``dfz``, ``dpi`` (eqs. 4.E2a, b), ``low_speed``
 (smooth low-speed factor, 1 above VXLOW), ``phi`` [1/m] (spin, turn-slip mode) and the flags
-``limits`` and ``turn_slip``.
+``limits`` and ``turn_slip`` (a :class:`vehdyn.tire.magic_formula.MFState`). Results travel in
+named tuples, so that numba can compile these functions unchanged (see :mod:`vehdyn.tire._mf_numba`).
 """
 
 from __future__ import annotations
+
+from collections import namedtuple
 
 from ._mf_ops import cos_atan, sign_nonzero
 
@@ -29,19 +32,21 @@ __all__ = [
 _EPSILON = 1e-6  # MFeval's singularity guard (book eq. 4.E6a, epsilon_x = epsilon_y = epsilon_K)
 
 
-def turn_slip_spin(xp, c, s, omega):
+def turn_slip_spin(xp, c, alpha, vx, phit, gamma, dfz, omega):
     """Spin phi [1/m] of the turn-slip model and the camber reduction eps_gamma (book 4.75, 4.76, 4.90).
 
     MFeval's sign: phi = -phit' - (1 - eps_g)*omega*sin(gamma)/Vc' (book eq. 4.76 without its
     leading minus, for z-up road axes), Vc' = |V| replaced by VXLOW*sign(Vx) below VXLOW.
+    Inputs after the limits and low-speed rules: alpha, gamma [rad], vx [m/s], phit [1/m],
+    dfz [-] (eq. 4.E2a), omega [rad/s].
     """
-    v_sy = -xp.tan(s.alpha) * xp.abs(s.vx)
-    speed = xp.sqrt(s.vx**2 + v_sy**2)
-    eps_gamma = c.PECP1 * (1 + c.PECP2 * s.dfz)
-    below = xp.abs(s.vx) < c.VXLOW
-    protected = xp.where(below, c.VXLOW * xp.where(s.vx < 0, -1.0, 1.0), speed)
-    yaw_rate = -s.phit * protected
-    phi = (1 / protected) * (yaw_rate - (1 - eps_gamma) * omega * xp.sin(s.gamma))
+    v_sy = -xp.tan(alpha) * xp.abs(vx)
+    speed = xp.sqrt(vx**2 + v_sy**2)
+    eps_gamma = c.PECP1 * (1 + c.PECP2 * dfz)
+    below = xp.abs(vx) < c.VXLOW
+    protected = xp.where(below, c.VXLOW * xp.where(vx < 0, -1.0, 1.0), speed)
+    yaw_rate = -phit * protected
+    phi = (1 / protected) * (yaw_rate - (1 - eps_gamma) * omega * xp.sin(gamma))
     return phi, eps_gamma
 
 
@@ -81,14 +86,8 @@ def longitudinal_pure(xp, c, s):
     return fx0, mux, kxk
 
 
-class LateralPure:
-    """Intermediate results of :func:`lateral_pure` needed by the aligning moment."""
-
-    __slots__ = ("fy0", "muy", "kya", "shy", "svy", "by", "cy", "zeta2")
-
-    def __init__(self, fy0, muy, kya, shy, svy, by, cy, zeta2):
-        self.fy0, self.muy, self.kya, self.shy, self.svy = fy0, muy, kya, shy, svy
-        self.by, self.cy, self.zeta2 = by, cy, zeta2
+LateralPure = namedtuple("LateralPure", "fy0 muy kya shy svy by cy zeta2")
+LateralPure.__doc__ = "Intermediate results of :func:`lateral_pure` needed by the aligning moment."
 
 
 def lateral_pure(xp, c, s, gamma_star, turn_slip):

@@ -11,6 +11,7 @@ for the state ``s``.
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 from ._mf_ops import cos_atan, sign_nonzero
 from .mf_forces import _EPSILON, lateral_pure
@@ -70,7 +71,7 @@ def rolling_resistance_moment(xp, c, s, fx):
     my = my * s.reverse
     high = xp.div(c.VXLOW, xp.abs(vx)) - 1
     low = -1 - c.VXLOW - high
-    in_ramp = (kappa >= low) & (kappa <= high) if not xp.scalar else (low <= kappa <= high)
+    in_ramp = (kappa >= low) & (kappa <= high)
     if xp.any(in_ramp):
         my = xp.where(in_ramp, my * xp.sin(((math.pi / 2) * (kappa + 1)) / (high + 1)), my)
     if xp.any(kappa < low):
@@ -78,13 +79,8 @@ def rolling_resistance_moment(xp, c, s, fx):
     return xp.where(vx == 0, 0.0, my) if xp.any(vx == 0) else my
 
 
-class AligningMoment:
-    """Aligning moment Mz [N*m], pneumatic trail t [m] and residual torque Mzr [N*m]."""
-
-    __slots__ = ("mz", "trail", "residual")
-
-    def __init__(self, mz, trail, residual):
-        self.mz, self.trail, self.residual = mz, trail, residual
+AligningMoment = namedtuple("AligningMoment", "mz trail residual")
+AligningMoment.__doc__ = "Aligning moment Mz [N*m], pneumatic trail t [m] and residual torque Mzr [N*m]."
 
 
 def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):

@@ -12,8 +12,7 @@ function takes ``xp`` (numpy or the float namespace of :mod:`vehdyn.tire._mf_ops
 from __future__ import annotations
 
 import math
-
-import numpy as np
+import sys
 
 __all__ = [
     "rolling_radius",
@@ -23,7 +22,7 @@ __all__ = [
     "carcass_stiffness",
 ]
 
-_EPS = np.finfo(float).eps
+_EPS = sys.float_info.epsilon
 _RADIUS_TOLERANCE = 1e-9  # [m], MFeval's convergence test on Re
 _MAX_ITERATIONS = 100
 
@@ -34,7 +33,7 @@ def _free_radius(c, omega):
     return r0 * (c.Q_RE0 + c.Q_V1 * ((omega * r0) / c.LONGVL) ** 2)
 
 
-def rolling_radius(xp, c, fz, kappa, vx, dpi, omega=None):
+def rolling_radius(xp, c, fz, kappa, vx, dpi, omega, omega_given):
     """Effective rolling radius Re [m], free radius R_omega [m] and wheel spin omega [rad/s].
 
     Re = R_omega - Fz0/Cz*(DREFF*atan(BREFF*Fz/Fz0) + FREFF*Fz/Fz0) (Besselink 2010 eq. 7),
@@ -47,48 +46,37 @@ def rolling_radius(xp, c, fz, kappa, vx, dpi, omega=None):
     Parameters
     ----------
     fz : load [N] (negative already set to 0, not clamped); kappa : input slip ratio [-];
-    vx : speed [m/s]; dpi : relative pressure change [-]; omega : wheel spin [rad/s] or None.
+    vx : speed [m/s]; dpi : relative pressure change [-]; omega : wheel spin [rad/s], used if
+    ``omega_given`` (a bool for the whole call), else estimated.
     """
     cz = c.VERTICAL_STIFFNESS * (1 + c.PFZ1 * dpi)
     deflection_term = (c.FNOMIN / cz) * (c.DREFF * xp.atan(c.BREFF * (fz / c.FNOMIN))
                                          + c.FREFF * (fz / c.FNOMIN))
-    if omega is not None:
-        omega = omega + _EPS
-        r_omega = _free_radius(c, omega)
-        return r_omega - deflection_term, r_omega, omega
-    if xp.scalar:
-        re, re_old, omega = c.UNLOADED_RADIUS * 0.965, c.UNLOADED_RADIUS, 0.0
-        r_omega = _free_radius(c, omega)
-        speed = kappa * vx + vx
-        for _ in range(_MAX_ITERATIONS):
-            if not abs(re_old - re) > _RADIUS_TOLERANCE:
-                break
-            re_old = re
-            omega = speed / re
-            r_omega = _free_radius(c, omega)
-            re = r_omega - deflection_term
-        return re, r_omega, omega
-    shape = np.broadcast(fz, kappa, vx, dpi).shape
-    re = np.full(shape, c.UNLOADED_RADIUS * 0.965)
-    re_old = np.full(shape, c.UNLOADED_RADIUS)
-    omega = np.zeros(shape)
-    r_omega = np.broadcast_to(_free_radius(c, omega), shape)
+    if omega_given:
+        spin = omega + _EPS
+        r_omega = _free_radius(c, spin)
+        return r_omega - deflection_term, r_omega, spin
+    points = (fz, kappa, vx, dpi)
+    re = xp.full_broadcast(c.UNLOADED_RADIUS * 0.965, points)
+    re_old = xp.full_broadcast(c.UNLOADED_RADIUS, points)
+    omega = xp.full_broadcast(0.0, points)
+    r_omega = xp.full_broadcast(_free_radius(c, 0.0), points)
     speed = kappa * vx + vx
-    active = np.abs(re_old - re) > _RADIUS_TOLERANCE
+    active = xp.abs(re_old - re) > _RADIUS_TOLERANCE
     for _ in range(_MAX_ITERATIONS):
-        if not active.any():
+        if not xp.any(active):
             break
         omega_new = speed / re
         r_omega_new = _free_radius(c, omega_new)
         re_new = r_omega_new - deflection_term
-        if active.all():
+        if xp.all(active):
             re_old, omega, r_omega, re = re, omega_new, r_omega_new, re_new
         else:  # points that have converged keep their values (MFeval's single-point result)
-            re_old = np.where(active, re, re_old)
-            omega = np.where(active, omega_new, omega)
-            r_omega = np.where(active, r_omega_new, r_omega)
-            re = np.where(active, re_new, re)
-        active = np.abs(re_old - re) > _RADIUS_TOLERANCE
+            re_old = xp.where(active, re, re_old)
+            omega = xp.where(active, omega_new, omega)
+            r_omega = xp.where(active, r_omega_new, r_omega)
+            re = xp.where(active, re_new, re)
+        active = xp.abs(re_old - re) > _RADIUS_TOLERANCE
     return re, r_omega, omega
 
 
@@ -144,11 +132,8 @@ def loaded_radius_mf62(xp, c, fz, fz_clamped, gamma, fx, fy, dpi, omega, r_omega
     Where the equation has no root (MFeval returns Rl = NaN, rho = 1e-12 m, Cz = 1e16 N/m), the
     three outputs are NaN here. The stiffness is fz_clamped/rho (MFeval: the FZMAX-clamped load).
     """
-    if xp.scalar:
-        r0, not_converged = c.UNLOADED_RADIUS, True
-    else:
-        shape = np.broadcast(fz, gamma, fx, fy, dpi, omega, r_omega).shape
-        r0, not_converged = np.full(shape, c.UNLOADED_RADIUS), np.ones(shape, dtype=bool)
+    points = (fz, gamma, fx, fy, dpi, omega, r_omega)
+    r0, not_converged = xp.full_broadcast(c.UNLOADED_RADIUS, points), xp.full_broadcast(True, points)
     tolerance = c.FNOMIN * 1e-6
 
     def residual(radius):

@@ -1,0 +1,139 @@
+"""MagicFormula's two backends: numpy and the numba-compiled loop over the same equation functions.
+
+The MFeval reference tests (test_magic_formula_reference.py) run on both backends; here the two
+are compared with each other on random inputs across the documented domain (hypothesis), and the
+backend switch, its errors and the lazy import are tested.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from vehdyn.errors import ParameterError
+from vehdyn.tire import magic_formula as mf_module
+
+from .conftest import mf_domain, shipped_tire
+
+TIRES = ("MagicFormula61_Parameters", "MagicFormula62_Parameters", "MagicFormula52_Parameters", "mf_185_80R14")
+needs_numba = pytest.mark.skipif(not mf_module.numba_available(), reason="numba is not installed")
+
+
+tire = shipped_tire
+
+
+def output_scales(model: MagicFormula) -> dict:
+    """The size of each output at nominal conditions, by unit: the yardstick for 'relative' where an
+    output crosses zero (Mz, Mx, trail, residual torque), in which case a ratio of the values
+    themselves says nothing."""
+    c = model._c
+    by_unit = {"N": c.FNOMIN, "N*m": c.FNOMIN * c.UNLOADED_RADIUS, "m": c.UNLOADED_RADIUS, "-": 1.0, "rad": 1.0,
+               "1/m": 1.0 / c.UNLOADED_RADIUS, "m/s": c.LONGVL, "Pa": c.NOMPRES,
+               "rad/s": c.LONGVL / c.UNLOADED_RADIUS, "N/m": c.FNOMIN / c.UNLOADED_RADIUS, "N/rad": c.FNOMIN}
+    return {name: by_unit[unit] for name, unit in mf_module.MagicFormulaOutputs.units.items()}
+
+
+def points(name):
+    """Batches of operating points in the documented domain (as the property tests draw them),
+    with an inflation pressure each."""
+    c = tire(name)._c
+    one = st.tuples(mf_domain(name), st.floats(0.8 * c.NOMPRES, 1.2 * c.NOMPRES)).map(lambda p: (*p[0], p[1]))
+    return st.lists(one, min_size=1, max_size=40).map(lambda rows: np.array(rows).T)
+
+
+@needs_numba
+@pytest.mark.parametrize("name", TIRES)
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_numba_and_numpy_backends_agree_to_1e_12(name, data):
+    """Every output of evaluate (and forces) agrees to 1e-12 relative, all three mode switches:
+    |numba - numpy| <= 1e-12*(|numpy| + the output's nominal size). The two use different sin/cos
+    (libm in the compiled loop, a half-angle tangent in numpy: a few ulps apart)."""
+    fz, kappa, alpha, gamma, vx, phit, pressure = data.draw(points(name))
+    switches = dict(limits=data.draw(st.booleans()), alpha_star=data.draw(st.booleans()),
+                    turn_slip=data.draw(st.booleans()))
+    if not switches["limits"]:  # the equations as written: keep to the fitted ranges
+        c = tire(name)._c
+        fz, vx = np.clip(fz, c.FZMIN + 1.0, c.FZMAX), np.where(np.abs(vx) < 1.0, 1.0, vx)
+        kappa, alpha = np.clip(kappa, -0.9, 0.9), np.clip(alpha, -0.6, 0.6)
+    model = tire(name)
+    scales = output_scales(model)
+    ours = model.evaluate(fz, kappa, alpha, gamma, vx, pressure, phit, **switches, backend="numba")
+    reference = model.evaluate(fz, kappa, alpha, gamma, vx, pressure, phit, **switches, backend="numpy")
+    for field in ours.keys():
+        a, b = ours[field], reference[field]
+        np.testing.assert_array_equal(np.isnan(a), np.isnan(b), err_msg=field)
+        both = ~np.isnan(b)
+        assert np.all(np.abs(a - b)[both] <= 1e-12 * (np.abs(b[both]) + scales[field])), field
+    del switches["turn_slip"]
+    f_ours = model.forces(fz, kappa, alpha, gamma, vx, **switches, backend="numba")
+    f_ref = model.forces(fz, kappa, alpha, gamma, vx, **switches, backend="numpy")
+    for field, a, b in zip(f_ours._fields, f_ours, f_ref):
+        assert np.all(np.abs(a - b) <= 1e-12 * (np.abs(b) + scales[field])), field
+
+
+@needs_numba
+def test_numba_backend_broadcasts_given_spin_and_scalar_calls():
+    """Broadcast shapes, a given wheel spin and scalar calls on the compiled path give the numpy
+    path's values (to 1e-12) and its types."""
+    model = tire("MagicFormula61_Parameters")
+    fz, alpha = np.array([[2000.0], [4000.0], [6000.0]]), np.linspace(-0.2, 0.2, 5)
+    for omega in (None, 60.0):
+        a = model.evaluate(fz, 0.05, alpha, 0.02, vx=20.0, omega=omega, backend="numba")
+        b = model.evaluate(fz, 0.05, alpha, 0.02, vx=20.0, omega=omega, backend="numpy")
+        for field in a.keys():
+            assert a[field].shape == (3, 5)
+            np.testing.assert_allclose(a[field], b[field], rtol=1e-12, atol=1e-9, err_msg=field)
+    f = model.forces(4000.0, 0.05, 0.1, backend="numba")
+    g = model.forces(4000.0, 0.05, 0.1, backend="numpy")
+    assert all(isinstance(v, float) for v in f)
+    np.testing.assert_allclose(f, g, rtol=1e-12)
+    assert model.evaluate(4000.0, 0.05, 0.1, backend="numba").fy.shape == ()
+
+
+def test_backend_switch_and_errors(monkeypatch):
+    model = tire("MagicFormula61_Parameters")
+    with pytest.raises(ParameterError, match="backend"):
+        model.forces(np.ones(20) * 4000.0, 0.0, 0.1, backend="fortran")
+    assert mf_module._backend("auto") == "numpy"  # the faster one measured (bench_tire.py)
+    monkeypatch.setattr(mf_module, "_NUMBA_AVAILABLE", False)
+    assert mf_module._backend("auto") == "numpy"
+    with pytest.raises(ParameterError, match="numba"):
+        model.evaluate(np.ones(20) * 4000.0, 0.0, 0.1, backend="numba")
+    monkeypatch.setattr(mf_module, "BACKEND", "numpy")
+    assert mf_module._backend(None) == "numpy"
+    assert np.isfinite(model.evaluate(np.ones(20) * 4000.0, 0.0, 0.1).fy).all()
+
+
+def test_import_does_not_import_numba():
+    """numba is compiled on first use only: importing vehdyn and vehdyn.tire, building a tire and
+    evaluating on the numpy backend leave it unimported."""
+    code = ("import sys, numpy as np, vehdyn, vehdyn.tire\n"
+            "t = vehdyn.tire.load_tire('MagicFormula61_Parameters')\n"
+            "t.forces(np.ones(50) * 4000.0, 0.0, 0.1, backend='numpy'); t.forces(4000.0, 0.0, 0.1)\n"
+            "print('numba' in sys.modules)")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert result.stdout.strip() == "False"
+
+
+@needs_numba
+def test_numba_threads_give_the_serial_results(monkeypatch):
+    """NUMBA_PARALLEL splits a call into one block per core: same numbers as one block, bit for bit."""
+    from vehdyn.tire import _mf_numba
+
+    model = tire("MagicFormula62_Parameters")
+    rng = np.random.default_rng(4)
+    n = 4 * _mf_numba._PARALLEL_MIN_POINTS + 7
+    args = (rng.uniform(0.0, 9000.0, n), rng.uniform(-0.5, 0.5, n), rng.uniform(-0.4, 0.4, n), 0.03,
+            rng.uniform(-30.0, 30.0, n))
+    serial = model.evaluate(*args, backend="numba")
+    monkeypatch.setattr(_mf_numba.os, "cpu_count", lambda: 3)
+    monkeypatch.setattr(mf_module, "NUMBA_PARALLEL", True)
+    threaded = model.evaluate(*args, backend="numba")
+    for field in serial.keys():
+        np.testing.assert_array_equal(threaded[field], serial[field], err_msg=field)
