@@ -13,6 +13,7 @@ Run: ``python benchmarks/bench_tire.py [--quick]``.
 
 from __future__ import annotations
 
+from _timing import best_time  # first: pins BLAS to one thread before numpy loads
 import argparse
 import os
 import time
@@ -30,15 +31,6 @@ def inputs(n, rng):
     """Random combined-slip inputs: loads 0-8 kN, |kappa| <= 0.3, |alpha| <= 0.25 rad, |vx| <= 40 m/s."""
     return (rng.uniform(0.0, 8000.0, n), rng.uniform(-0.3, 0.3, n), rng.uniform(-0.25, 0.25, n),
             np.zeros(n), rng.uniform(-40.0, 40.0, n))
-
-
-def best_time(function, repeats):
-    best = np.inf
-    for _ in range(repeats):
-        start = time.perf_counter()
-        function()
-        best = min(best, time.perf_counter() - start)
-    return best
 
 
 def loop_rate_and_error(law, args, reference):
@@ -71,7 +63,7 @@ def main(quick: bool = False) -> None:
         reference = law.forces(*data[max(sizes)])
         loop_rate, error = loop_rate_and_error(law, data[max(sizes)], reference)
         for n in sizes:
-            seconds = best_time(lambda: law.forces(*data[n]), 9 if n < 1_000_000 else 5)
+            seconds, _ = best_time(lambda: law.forces(*data[n]), 9 if n < 1_000_000 else 5)
             rate = n / seconds
             print(f"{name + '.forces':<22}{n:>10}{seconds:>12.3e}{rate / 1e6:>12.2f}{loop_rate / 1e6:>14.3f}"
                   f"{rate / loop_rate:>9.0f}{error:>12.1e}")
@@ -117,7 +109,7 @@ def magic_formula_rates(data, sizes) -> None:
                 for n in sizes:
                     fz, kappa, alpha, gamma, vx = data[n]
                     fz = fz + 500.0  # away from zero load, where MF-specific limits apply
-                    seconds = best_time(lambda: function(fz, kappa, alpha, gamma, vx, backend=backend), 3)
+                    seconds, _ = best_time(lambda: function(fz, kappa, alpha, gamma, vx, backend=backend), 3)
                     rate = n / seconds
                     error = 0.0
                     if backend != "numpy":
