@@ -14,7 +14,7 @@ from typing import Iterable
 
 from .errors import ParameterError
 
-__all__ = ["Signal", "GLOSSARY", "as_signals", "names_of"]
+__all__ = ["Signal", "GLOSSARY", "STEER_INPUTS", "as_signals", "names_of"]
 
 _NAME = re.compile(r"^[a-z][a-z0-9_]*$")
 
@@ -32,9 +32,9 @@ GLOSSARY: dict[str, tuple[str, str]] = {
     "yaw_angle": ("rad", "Euler yaw (heading) angle psi"),
     "sideslip_angle": ("rad", "vehicle sideslip beta = atan(v/u)"),
     "course_angle": ("rad", "course angle nu = psi + beta"),
-    "steer_angle": ("rad", "road-wheel steer angle"),
-    "front_steer_angle": ("rad", "front road-wheel steer angle"),
-    "rear_steer_angle": ("rad", "rear road-wheel steer angle"),
+    "steer_angle": ("rad", "road-wheel steer angle (positive turns right, SAE)"),
+    "front_steer_angle": ("rad", "front road-wheel steer angle (positive turns right, SAE)"),
+    "rear_steer_angle": ("rad", "rear road-wheel steer angle (positive turns right, SAE)"),
     "lateral_acceleration": ("m/s^2", "lateral acceleration of the CG"),
     "longitudinal_acceleration": ("m/s^2", "longitudinal acceleration of the CG"),
     "vertical_acceleration": ("m/s^2", "vertical acceleration"),
@@ -132,3 +132,7 @@ def as_signals(items: Iterable[str | Signal] | None, kind: str = "signals") -> t
 def names_of(signals: Iterable[Signal]) -> tuple[str, ...]:
     """The names of ``signals`` as a tuple of strings."""
     return tuple(s.name for s in signals)
+
+
+#: The front and rear road-wheel steer inputs shared by the handling models (SAE: positive turns right).
+STEER_INPUTS: tuple[Signal, ...] = (Signal("front_steer_angle"), Signal("rear_steer_angle"))

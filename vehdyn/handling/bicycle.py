@@ -43,7 +43,7 @@ from ..errors import ParameterError
 from ..linear import LinearModel
 from ..params import ParameterSet, Vehicle
 from ..params.base import parameter
-from ..signals import Signal
+from ..signals import STEER_INPUTS, Signal
 
 __all__ = ["BicycleParameters", "LinearBicycle", "bicycle_parameters"]
 
@@ -57,10 +57,7 @@ _LAG_SIGNALS = {
     "rear": Signal("rear_transient_slip_angle", "rad",
                    "rear-axle transient slip angle alpha' of the relaxation-length law (SAE)"),
 }
-_INPUT_SIGNALS = (
-    Signal("front_steer_angle", "rad", "front road-wheel steer angle (positive turns right, SAE)"),
-    Signal("rear_steer_angle", "rad", "rear road-wheel steer angle (positive turns right, SAE)"),
-)
+_INPUT_SIGNALS = STEER_INPUTS
 _OUTPUT_SIGNALS = (
     Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the CG, dv/dt + u r (right, SAE)"),
     Signal("sideslip_angle", "rad", "vehicle sideslip angle at the CG, beta = v / u"),

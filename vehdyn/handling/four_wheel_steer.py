@@ -27,7 +27,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..linear import LinearModel, connect_in_series
-from ..signals import Signal
+from ..signals import STEER_INPUTS, Signal
 from .bicycle import LinearBicycle, bicycle_parameters, check_speed, speed_of
 from .steady_state import steady_state_gains
 
@@ -39,8 +39,7 @@ __all__ = [
     "compare_four_wheel_steering",
 ]
 
-_FRONT = Signal("front_steer_angle", "rad", "front road-wheel steer angle (positive turns right, SAE)")
-_REAR = Signal("rear_steer_angle", "rad", "rear road-wheel steer angle (positive turns right, SAE)")
+_FRONT, _REAR = STEER_INPUTS
 
 
 def zero_sideslip_rear_steer_ratio(vehicle_or_bicycle, speed=None):

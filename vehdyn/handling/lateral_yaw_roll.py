@@ -75,7 +75,7 @@ from ..errors import ParameterError
 from ..linear import LinearModel
 from ..params import ParameterSet, Vehicle
 from ..params.base import parameter
-from ..signals import Signal
+from ..signals import STEER_INPUTS, Signal
 from ..units import GRAVITY
 from .bicycle import BicycleParameters, LinearBicycle, check_speed
 
@@ -87,10 +87,7 @@ _STATES = (
     Signal("roll_rate", "rad/s", "roll rate p of the sprung mass about the roll axis"),
     Signal("roll_angle", "rad", "roll angle phi of the sprung mass (positive right side down, SAE)"),
 )
-_INPUTS = (
-    Signal("front_steer_angle", "rad", "front road-wheel steer angle (positive turns right, SAE)"),
-    Signal("rear_steer_angle", "rad", "rear road-wheel steer angle (positive turns right, SAE)"),
-)
+_INPUTS = STEER_INPUTS
 _OUTPUTS = (
     Signal("lateral_acceleration", "m/s^2", "dv/dt + u r of the non-rolling frame at the total CG"),
     Signal("sideslip_angle", "rad", "vehicle sideslip angle at the CG, v / u"),

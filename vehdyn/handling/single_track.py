@@ -76,7 +76,7 @@ from ..conventions import tire_forces_iso_w_to_sae, tire_slips_sae_to_iso_w
 from ..errors import ParameterError
 from ..model import Model
 from ..params import Vehicle
-from ..signals import Signal
+from ..signals import STEER_INPUTS, Signal
 from ..units import GRAVITY
 
 __all__ = ["SingleTrack", "SingleTrackParameters"]
@@ -307,8 +307,7 @@ class SingleTrack(Model):
                 states += [Signal(f"{axle}_longitudinal_deflection", "m",
                                   f"longitudinal deflection of the {axle} tires (relaxation state, + driving)")
                            for axle in _AXLES]
-        inputs = [Signal("front_steer_angle", "rad", "front road-wheel steer angle (positive turns right, SAE)"),
-                  Signal("rear_steer_angle", "rad", "rear road-wheel steer angle (positive turns right, SAE)")]
+        inputs = list(STEER_INPUTS)
         if self.wheel_spin:
             inputs += [Signal(f"{axle}_drive_torque", "N*m", f"drive torque on the {axle} axle (both wheels)")
                        for axle in _AXLES]
