@@ -27,7 +27,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..linear import LinearModel, connect_in_series
-from ..signals import STEER_INPUTS, Signal
+from ..signals import STEER_INPUTS
 from .bicycle import LinearBicycle, bicycle_parameters, check_speed, speed_of
 from .steady_state import steady_state_gains
 
