@@ -179,3 +179,22 @@ def test_signals_and_phenomena():
     assert {"front_wheel_speed", "rear_longitudinal_deflection"} <= set(model.state_names)
     assert {"wheel_spin", "tire_lag", "load_transfer", "aero"} <= model.phenomena
     assert {"front_brake_torque", "external_lateral_force"} <= set(model.input_names)
+
+
+def test_default_longitudinal_relaxation_lengths_belong_to_the_tire_law():
+    # a Magic Formula tire: K_xkappa / C_x at half the static axle load, checked against the MF 5.2
+    # closed form sigma_kappa = (PTX1 + PTX2 dfz) exp(-PTX3 dfz) LSGKP R_0 F_z / F_z0 (PAC2002, as MFeval)
+    vehicle = vehdyn.load_vehicle("sedan")
+    model = SingleTrack(vehicle, wheel_spin=True)
+    p = model.front_tire.params
+    for axle, load in zip(("front", "rear"), vehicle.static_axle_loads()):
+        fz = 0.5 * load
+        dfz = (fz - p["FNOMIN"] * p["LFZO"]) / (p["FNOMIN"] * p["LFZO"])
+        closed = ((p["PTX1"] + p["PTX2"] * dfz) * np.exp(-p["PTX3"] * dfz) * p["LSGKP"] * p["UNLOADED_RADIUS"]
+                  * fz / p["FNOMIN"])
+        assert getattr(model.parameters, f"{axle}_longitudinal_relaxation_length") == pytest.approx(closed, rel=1e-12)
+    # another law carries no longitudinal length of its own: the vehicle file's lateral lengths
+    fiala = SingleTrack(vehicle, FialaTire.from_vehicle(vehicle, "front"), FialaTire.from_vehicle(vehicle, "rear"),
+                        wheel_spin=True)
+    assert fiala.parameters.front_longitudinal_relaxation_length == vehicle.tires.front_relaxation_length
+    assert fiala.parameters.rear_longitudinal_relaxation_length == vehicle.tires.rear_relaxation_length

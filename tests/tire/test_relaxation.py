@@ -9,7 +9,8 @@ import pytest
 import vehdyn
 from vehdyn import ParameterError
 from vehdyn.tire import TireRelaxation, relaxation_lengths
-from vehdyn.tire.relaxation import tir_version
+from vehdyn.tire import MagicFormula, read_tir
+from vehdyn.tire.tir import MFEVAL_DEFAULTS
 
 DATA = Path(__file__).resolve().parent.parent / "data" / "tire_relaxation"
 FILES = ["MagicFormula52_Parameters", "mf_185_80R14", "MagicFormula61_Parameters", "MagicFormula62_Parameters"]
@@ -33,24 +34,33 @@ def test_lengths_match_mfeval(stem):
         np.testing.assert_allclose(sy, rows.sigmay, rtol=1e-12)
 
 
-def test_version_detection():
-    assert tir_version({"FITTYP": 61}) == "6.1"
-    assert tir_version({"MODEL": {"FITTYP": "62"}}) == "6.2"
-    assert tir_version({"FITTYP": 6}) == "5.2"
-    assert tir_version({"property_file_format": "'PAC2002'"}) == "5.2"
+def test_unknown_version_names_fittyp():
+    tir = tir_values("MagicFormula61_Parameters")
     with pytest.raises(ParameterError, match="FITTYP"):
-        tir_version({"FITTYP": 7})
-    with pytest.raises(ParameterError, match="FITTYP"):
-        tir_version({})
+        relaxation_lengths({**tir, "FITTYP": 7}, 5000.0)
+    with pytest.raises(ParameterError, match="tire"):
+        relaxation_lengths(3.0, 5000.0)
+    with pytest.raises(ParameterError, match="PKY1"):
+        relaxation_lengths({**tir, "PKY1": [1.0]}, 5000.0)
 
 
-def test_grouped_mapping_and_missing_keys():
+def test_grouped_mapping_path_and_model_agree():
     tir = tir_values("MagicFormula61_Parameters")
     grouped = {"MODEL": {"FITTYP": tir["FITTYP"]}, "REST": {k: v for k, v in tir.items() if k != "FITTYP"}}
     assert relaxation_lengths(grouped, 5000.0)[1] == pytest.approx(relaxation_lengths(tir, 5000.0)[1], rel=1e-15)
-    del grouped["REST"]["LATERAL_STIFFNESS"]
-    with pytest.raises(ParameterError, match="LATERAL_STIFFNESS"):
-        relaxation_lengths(grouped, 5000.0)
+    path = vehdyn.data_path("tires", "mf_185_80R14.tir")
+    from_path = relaxation_lengths(path, [2000.0, 4000.0])
+    from_model = relaxation_lengths(MagicFormula.from_tir(path), [2000.0, 4000.0])
+    np.testing.assert_array_equal(from_path, from_model)
+
+
+def test_missing_keys_take_mfeval_defaults():
+    # MFeval's readTIR fills a key a file lacks with its default; so does a mapping here
+    tir = tir_values("MagicFormula61_Parameters")
+    lacking = {k: v for k, v in tir.items() if k != "LATERAL_STIFFNESS"}
+    explicit = {**lacking, "LATERAL_STIFFNESS": MFEVAL_DEFAULTS["LATERAL_STIFFNESS"]}
+    assert relaxation_lengths(lacking, 5000.0)[1] == relaxation_lengths(explicit, 5000.0)[1]
+    assert relaxation_lengths(lacking, 5000.0)[1] != relaxation_lengths(tir, 5000.0)[1]
 
 
 def test_step_response_is_first_order_with_time_constant_sigma_over_v():

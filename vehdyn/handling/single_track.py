@@ -190,8 +190,9 @@ class SingleTrack(Model):
     tire_lag : bool
         Tire deflection (relaxation) states, needed for low speed and standstill (default True).
     longitudinal_relaxation_length : float or (float, float), optional
-        sigma_x [m] of the front and rear tires; default from the vehicle's ``.tir`` file at the
-        static loads (:func:`vehdyn.tire.relaxation_lengths`), else the lateral lengths.
+        sigma_x [m] of the front and rear tires; default: for a Magic Formula tire its own value at
+        half the static axle load (:func:`vehdyn.tire.relaxation_lengths`, K_xkappa / C_x), for
+        other laws the lateral lengths (the vehicle file's ``tires.*_relaxation_length``).
     low_speed_damping_speed : float
         v_l [m/s] below which the tire-spring damping fades in (default 2 m/s).
     brake_regularization_speed : float
@@ -254,7 +255,7 @@ class SingleTrack(Model):
                                  f"tires.rear_relaxation_length, got {lateral}", key="tires.front_relaxation_length",
                                  value=lateral)
         lateral = tuple(s if s > 0 else 1.0 for s in lateral)  # unused without tire lag
-        longitudinal = self._longitudinal_lengths(vehicle, longitudinal_relaxation_length, lateral, gravity)
+        longitudinal = self._longitudinal_lengths(vehicle, tires, longitudinal_relaxation_length, lateral, gravity)
         half_rho_a = 0.5 * aero.air_density * aero.frontal_area
         self.parameters = _check_parameters(SingleTrackParameters(
             mass=m.mass, yaw_inertia=m.yaw_inertia, a=g.cg_to_front_axle, b=g.cg_to_rear_axle, cg_height=m.cg_height,
@@ -271,23 +272,21 @@ class SingleTrack(Model):
 
     # ------------------------------------------------------------------ construction helpers
     @staticmethod
-    def _longitudinal_lengths(vehicle, given, lateral, gravity):
+    def _longitudinal_lengths(vehicle, tires, given, lateral, gravity):
         if given is not None:
             values = np.broadcast_to(np.asarray(given, dtype=float), (2,))
             if not np.all(np.isfinite(values)) or np.any(values <= 0):
                 raise ParameterError(f"longitudinal_relaxation_length must be > 0 [m], got {given!r}",
                                      key="longitudinal_relaxation_length", value=given)
             return float(values[0]), float(values[1])
-        try:
-            from ..tire import read_tir, relaxation_lengths
+        from ..tire import MagicFormula, relaxation_lengths
 
-            loads = np.asarray(vehicle.static_axle_loads(gravity)) / 2.0
-            sigma_x, _ = relaxation_lengths(read_tir(vehicle.tir_path()), loads)
-            if np.all(np.isfinite(sigma_x)) and np.all(sigma_x > 0):
-                return float(sigma_x[0]), float(sigma_x[1])
-        except Exception:  # no usable .tir file: fall back to the lateral lengths (documented)
-            pass
-        return lateral
+        lengths = []
+        for axle, load, fallback in zip(_AXLES, vehicle.static_axle_loads(gravity), lateral):
+            tire = tires[axle]
+            sigma = float(relaxation_lengths(tire, 0.5 * load)[0]) if isinstance(tire, MagicFormula) else fallback
+            lengths.append(sigma if np.isfinite(sigma) and sigma > 0 else fallback)
+        return tuple(lengths)
 
     def _declare_signals(self):
         states = [Signal("longitudinal_velocity", "m/s", "body-frame forward velocity u of the CG"),

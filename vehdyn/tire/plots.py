@@ -26,24 +26,15 @@ _DEFAULT_NOMINAL_LOAD = 4000.0  # [N], for laws that carry no load of their own
 _STIFFNESS_STEP = 1e-7  # slip step [rad or -] of the central differences at zero slip
 
 
-def _tir_parameters(tire) -> dict:
-    """The ``.tir`` values of a Magic Formula tire (flat, upper-case keys), else ``{}``."""
-    from .relaxation import _flat_parameters
-
-    for attribute in ("params", "parameters", "tir"):
-        if hasattr(tire, attribute):
-            try:
-                return _flat_parameters(getattr(tire, attribute))
-            except Exception:  # not a mapping of .tir values
-                continue
-    return {}
+def _tir_parameters(tire) -> Mapping:
+    """The ``.tir`` values of a Magic Formula tire (flat, upper-case keys, SI), else ``{}``."""
+    params = getattr(tire, "params", None)
+    return params if isinstance(params, Mapping) else {}
 
 
 def nominal_load(tire) -> float:
-    """A representative load [N] of ``tire``: its ``FNOMIN`` or ``nominal_load``, else 4000 N."""
-    value = _tir_parameters(tire).get("FNOMIN")
-    if value is None:
-        value = getattr(tire, "nominal_load", None)
+    """A representative load [N] of ``tire``: its ``nominal_load`` (``FNOMIN`` of a ``.tir``), else 4000 N."""
+    value = getattr(tire, "nominal_load", None)
     try:
         value = float(value)
     except (TypeError, ValueError):

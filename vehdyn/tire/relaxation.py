@@ -13,119 +13,84 @@ with ``V_sx``, ``V_sy`` the slip velocities and ``V_x`` the forward speed of the
 follow from ``law.forces(fz, kappa', alpha')``. The equations divide by no speed, so they hold
 through standstill, where ``sigma q'`` is the lateral deflection of a tire that acts as a spring.
 
-Relaxation lengths are given, or computed at each instant from the normal load with the ``.tir``
-file's values as MFeval 4.3.1 computes them (Pacejka 2012, ch. 4 and 8):
-
-* MF 6.1 / 6.2 (``FITTYP`` 61, 62): ``sigma_kappa = K_xkappa / C_x`` and
-  ``sigma_alpha = |K_yalpha / C_y|``, slip stiffness over carcass stiffness, with
-  ``C_x = LONGITUDINAL_STIFFNESS (1 + PCFX1 dfz + PCFX2 dfz^2)(1 + PCFX3 dpi)`` (likewise ``C_y``),
-  ``K_xkappa = F_z (PKX1 + PKX2 dfz) exp(PKX3 dfz)(1 + PPX1 dpi + PPX2 dpi^2) LKX`` and
-  ``K_yalpha = PKY1 F_z0' (1 + PPY1 dpi)(1 - PKY3 |gamma|)
-  sin(PKY4 atan(F_z / ((PKY2 + PKY5 gamma^2)(1 + PPY2 dpi) F_z0'))) LKY``;
-* MF 5.2 / PAC2002 (``FITTYP`` 6 or 21): ``sigma_kappa = (PTX1 + PTX2 dfz) exp(-PTX3 dfz) LSGKP R_0
-  F_z / F_z0`` and ``sigma_alpha = PTY1 sin(2 atan(F_z / (PTY2 F_z0'))) (1 - PKY3 |gamma|) R_0 LFZO
-  LSGAL``,
-
-where ``F_z0' = FNOMIN LFZO``, ``dfz = (F_z - F_z0') / F_z0'``, ``dpi = (p - NOMPRES) / NOMPRES``
-and ``R_0 = UNLOADED_RADIUS`` (turn slip not included).
+Relaxation lengths are given, or computed at each instant from the normal load by the Magic Formula
+of a ``.tir`` file, exactly as MFeval 4.3.1 computes them (Pacejka 2012, ch. 4 and 8): MF 6.1 / 6.2
+``sigma_kappa = K_xkappa / C_x`` and ``sigma_alpha = |K_yalpha / C_y|`` (slip stiffness over carcass
+stiffness), MF 5.2 / PAC2002 the ``PTX``/``PTY`` formulas. The equations live in one place,
+:func:`vehdyn.tire.mf_vertical.carcass_stiffness`; :func:`relaxation_lengths` evaluates them through
+:class:`~vehdyn.tire.MagicFormula` at zero slip (the stiffnesses do not depend on the slips; turn
+slip not included).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from os import PathLike
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, TirFileError
 from ..model import Model
 from ..signals import Signal
 
-__all__ = ["TireRelaxation", "relaxation_lengths", "tir_version"]
+__all__ = ["TireRelaxation", "relaxation_lengths"]
 
-# MFeval's defaults for coefficients a file may lack (readTIR); the rest are required.
-_DEFAULTS = {
-    "LFZO": 1.0, "LKX": 1.0, "LKY": 1.0, "LSGKP": 1.0, "LSGAL": 1.0,
-    "PKX2": 0.0, "PKX3": 0.0, "PPX1": 0.0, "PPX2": 0.0,
-    "PKY3": 0.0, "PKY4": 2.0, "PKY5": 0.0, "PPY1": 0.0, "PPY2": 0.0,
-    "PCFX1": 0.0, "PCFX2": 0.0, "PCFX3": 0.0, "PCFY1": 0.0, "PCFY2": 0.0, "PCFY3": 0.0,
-    "PTX2": 0.0, "PTX3": 0.0,
-}
-
-
-def _flat_parameters(tir) -> dict:
-    """Upper-case ``{KEY: value}`` from a flat or section-grouped mapping of ``.tir`` values."""
-    if not isinstance(tir, Mapping):
-        for attribute in ("params", "parameters"):
-            inner = getattr(tir, attribute, None)
-            if isinstance(inner, Mapping):
-                tir = inner
-                break
-        else:
-            to_dict = getattr(tir, "to_dict", None)
-            tir = to_dict() if callable(to_dict) else tir
-    if not isinstance(tir, Mapping):
-        raise ParameterError(f"tir must be a mapping of .tir keys to values, got {type(tir).__name__}",
-                             key="tir", value=tir)
-    flat: dict = {}
-    for key, value in tir.items():
-        if isinstance(value, Mapping):
-            flat.update({str(k).upper(): v for k, v in value.items()})
-        else:
-            flat[str(key).upper()] = value
-    return flat
-
-
-def _number(params: dict, key: str) -> float:
-    if key in params:
-        value = params[key]
-    elif key in _DEFAULTS:
-        return _DEFAULTS[key]
-    else:
-        raise ParameterError(f"the .tir parameters lack {key}, needed for the relaxation lengths",
-                             key=key, value=None)
-    try:
-        return float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f".tir parameter {key} must be a number, got {value!r}", key=key, value=value) from None
-
-
-def tir_version(tir) -> str:
-    """``"6.1"``, ``"6.2"`` or ``"5.2"`` from ``FITTYP`` (61, 62; 6 or 21) or ``PROPERTY_FILE_FORMAT``."""
-    params = _flat_parameters(tir)
-    fittyp = params.get("FITTYP")
-    if fittyp is not None:
+def _tir_value(key, value):
+    """A mapping's value as the ``.tir`` reader gives it: a number, or a string without quotes."""
+    if isinstance(value, str):
+        text = value.strip().strip("'\"")
         try:
-            code = int(float(fittyp))
-        except (TypeError, ValueError):
-            code = None
-        versions = {61: "6.1", 62: "6.2", 6: "5.2", 21: "5.2"}
-        if code in versions:
-            return versions[code]
-        raise ParameterError(f"FITTYP = {fittyp!r} is not a Magic Formula version vehdyn knows (61, 62, 6, 21)",
-                             key="FITTYP", value=fittyp)
-    if str(params.get("PROPERTY_FILE_FORMAT", "")).strip("'\" ").upper() == "PAC2002":
-        return "5.2"
-    raise ParameterError("the .tir parameters have neither FITTYP nor PROPERTY_FILE_FORMAT = 'PAC2002'",
-                         key="FITTYP", value=None)
+            number = float(text)
+        except ValueError:
+            return text
+        return int(number) if number.is_integer() and "." not in text and "e" not in text.lower() else number
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+        raise ParameterError(f".tir parameter {key} must be a number or a string, got {value!r}", key=key, value=value)
+    return value
 
 
-def relaxation_lengths(tir, fz, gamma=0.0, pressure=None, *, limits: bool = True):
-    """Longitudinal and lateral relaxation lengths [m] from a ``.tir`` file's values, as MFeval.
+def _magic_formula(tire):
+    """A :class:`~vehdyn.tire.MagicFormula` from a model, ``TirParameters``, a path or a mapping."""
+    from .magic_formula import MagicFormula
+    from .tir import TirParameters, read_tir
+
+    if isinstance(tire, MagicFormula):
+        return tire
+    if isinstance(tire, TirParameters):
+        return MagicFormula(tire)
+    if isinstance(tire, (str, PathLike)):
+        return MagicFormula.from_tir(tire)
+    if not isinstance(tire, Mapping):
+        raise ParameterError(f"tire must be a MagicFormula, .tir parameters, a .tir path or a mapping of .tir keys, "
+                             f"got {type(tire).__name__}", key="tire", value=tire)
+    grouped = all(isinstance(v, Mapping) for v in tire.values())
+    sections = {str(k): dict(v) for k, v in tire.items()} if grouped else {"PARAMETERS": dict(tire)}
+    for entries in sections.values():
+        for key, value in entries.items():
+            entries[key] = _tir_value(key, value)
+    try:
+        return MagicFormula(TirParameters(sections))
+    except TirFileError as error:
+        raise ParameterError(str(error), key="FITTYP", value=sections) from None
+
+
+def relaxation_lengths(tire, fz, gamma=0.0, pressure=None, *, limits: bool = True):
+    """Longitudinal and lateral relaxation lengths [m] of a Magic Formula tire, as MFeval.
 
     Parameters
     ----------
-    tir : mapping
-        ``{KEY: value}`` of the ``.tir`` file (flat, or grouped by section), e.g. what
-        :func:`vehdyn.tire.read_tir` returns.
+    tire : MagicFormula, TirParameters, path or mapping
+        The tire: a model, what :func:`vehdyn.tire.read_tir` returns, a ``.tir`` path, or a mapping
+        ``{KEY: value}`` of ``.tir`` values in SI (flat, or grouped by section); keys it lacks take
+        MFeval's defaults (:data:`vehdyn.tire.tir.MFEVAL_DEFAULTS`), as in a file.
     fz : array_like
         Normal load [N]; negative values count as 0.
     gamma : array_like
         Inclination angle [rad].
     pressure : array_like, optional
-        Inflation pressure [Pa] (MF 6.x); default ``INFLPRES`` or, lacking it, ``NOMPRES``.
+        Inflation pressure [Pa] (MF 6.x); default ``INFLPRES``.
     limits : bool
-        Clamp ``fz`` to ``FZMAX``, ``gamma`` to ``[CAMMIN, CAMMAX]`` and the pressure to
-        ``[PRESMIN, PRESMAX]`` where the file gives them (MFeval's useMode 1xx).
+        Clamp the inputs to the file's ranges (MFeval's useMode 1xx).
 
     Returns
     -------
@@ -133,44 +98,8 @@ def relaxation_lengths(tir, fz, gamma=0.0, pressure=None, *, limits: bool = True
         ``(sigma_kappa, sigma_alpha)`` [m], broadcast over the inputs (equations in the module
         docstring).
     """
-    p = _flat_parameters(tir)
-    version = tir_version(p)
-    fz = np.maximum(np.asarray(fz, dtype=float), 0.0)
-    gamma = np.asarray(gamma, dtype=float)
-    if limits:
-        if "FZMAX" in p:
-            fz = np.minimum(fz, _number(p, "FZMAX"))
-        if "CAMMIN" in p and "CAMMAX" in p:
-            gamma = np.clip(gamma, _number(p, "CAMMIN"), _number(p, "CAMMAX"))
-    nominal = _number(p, "FNOMIN") * _number(p, "LFZO")
-    dfz = (fz - nominal) / nominal
-    radius = _number(p, "UNLOADED_RADIUS")
-    if version == "5.2":
-        sigma_kappa = ((_number(p, "PTX1") + _number(p, "PTX2") * dfz) * np.exp(-_number(p, "PTX3") * dfz)
-                       * _number(p, "LSGKP") * radius * fz / _number(p, "FNOMIN"))
-        sigma_alpha = (_number(p, "PTY1") * np.sin(2.0 * np.arctan(fz / (_number(p, "PTY2") * nominal)))
-                       * (1.0 - _number(p, "PKY3") * np.abs(gamma)) * radius * _number(p, "LFZO")
-                       * _number(p, "LSGAL"))
-        return np.broadcast_arrays(sigma_kappa, sigma_alpha)
-    nominal_pressure = _number(p, "NOMPRES")
-    if pressure is None:
-        pressure = _number(p, "INFLPRES") if "INFLPRES" in p else nominal_pressure
-    pressure = np.asarray(pressure, dtype=float)
-    if limits and "PRESMIN" in p and "PRESMAX" in p:
-        pressure = np.clip(pressure, _number(p, "PRESMIN"), _number(p, "PRESMAX"))
-    dpi = (pressure - nominal_pressure) / nominal_pressure
-    slip_stiffness = (fz * (_number(p, "PKX1") + _number(p, "PKX2") * dfz) * np.exp(_number(p, "PKX3") * dfz)
-                      * (1.0 + _number(p, "PPX1") * dpi + _number(p, "PPX2") * dpi**2) * _number(p, "LKX"))
-    cornering_stiffness = (
-        _number(p, "PKY1") * nominal * (1.0 + _number(p, "PPY1") * dpi) * (1.0 - _number(p, "PKY3") * np.abs(gamma))
-        * np.sin(_number(p, "PKY4") * np.arctan(
-            fz / ((_number(p, "PKY2") + _number(p, "PKY5") * gamma**2) * (1.0 + _number(p, "PPY2") * dpi) * nominal)))
-        * _number(p, "LKY"))
-    carcass_x = (_number(p, "LONGITUDINAL_STIFFNESS") * (1.0 + _number(p, "PCFX1") * dfz + _number(p, "PCFX2") * dfz**2)
-                 * (1.0 + _number(p, "PCFX3") * dpi))
-    carcass_y = (_number(p, "LATERAL_STIFFNESS") * (1.0 + _number(p, "PCFY1") * dfz + _number(p, "PCFY2") * dfz**2)
-                 * (1.0 + _number(p, "PCFY3") * dpi))
-    return np.broadcast_arrays(slip_stiffness / carcass_x, np.abs(cornering_stiffness / carcass_y))
+    out = _magic_formula(tire).evaluate(fz, 0.0, 0.0, gamma, pressure=pressure, limits=limits)
+    return np.broadcast_arrays(out.sigma_x, out.sigma_y)
 
 
 def _positive_length(name: str, value) -> float:
@@ -225,8 +154,8 @@ class TireRelaxation(Model):
 
         Parameters
         ----------
-        tir : mapping
-            The ``.tir`` file's values (flat or grouped by section).
+        tir : MagicFormula, TirParameters, path or mapping
+            The tire (see :func:`relaxation_lengths`).
         gamma, pressure
             Inclination [rad] and inflation pressure [Pa] at which the lengths are evaluated.
         minimum_length : float
@@ -234,9 +163,9 @@ class TireRelaxation(Model):
             when a wheel lifts off.
         """
         model = cls.__new__(cls)
-        flat = _flat_parameters(tir)
-        relaxation_lengths(flat, 1.0, gamma, pressure)  # check the parameters now, not inside a solver
-        model._tir = (flat, float(gamma), pressure, _positive_length("minimum_length", minimum_length))
+        tire = _magic_formula(tir)
+        relaxation_lengths(tire, 1.0, gamma, pressure)  # check the parameters now, not inside a solver
+        model._tir = (tire, float(gamma), pressure, _positive_length("minimum_length", minimum_length))
         model.longitudinal_relaxation_length = model.lateral_relaxation_length = None
         model._declare(prefix, load_input=True)
         return model
