@@ -9,7 +9,7 @@ Run: ``python benchmarks/bench_handling.py [--quick]``. Prints, from one run on 
    backend (``backend="compiled"``: numba RK45/DOP853 on the compiled rhs, the steer as the
    closed-form :func:`~vehdyn.handling.sine_steer` signal) at several tolerances, with the ratio of
    its CPU time to solve_ivp's at the same method and tolerance; its one-off compile (or cache
-   load) time is printed separately and excluded from the rows (best of 5 runs);
+   load) time is printed separately and excluded from the rows (best of 15 runs);
 2. the same manoeuvre with commonroad-vehicle-models' single-track drift model (STD, vehicle 2
    with the sedan's mass, inertia, geometry, wheel data and .tir coefficients mapped onto it)
    under solve_ivp RK45, when that package is installed: CPU time and the
@@ -142,7 +142,7 @@ def compiled_rows(vehdyn, base, steer, drag, reference, grid, quick):
         cases = cases[:2] + cases[3:4] + cases[6:7]
     rows = []
     for method, rtol, atol in cases:
-        cpu, result = _timing.best_time(lambda: once(method, rtol, atol), repeats=5)
+        cpu, result = _timing.best_time(lambda: once(method, rtol, atol), repeats=15)
         rows.append((f"compiled {method} rtol={rtol:.0e} atol={atol:.0e}", method, rtol, atol, cpu, result.nfev,
                      error(result, reference, grid)))
     return first, rows
@@ -220,7 +220,7 @@ def main(quick: bool = False):
           "|x - x_ref| / max |x_ref|")
     print("   goal of the issue: <= 10 ms at <= 1e-6; rows above show where this implementation stands")
 
-    print("\n1b. the same run on the compiled backend (simulate(..., backend='compiled'), numba); best of 5, "
+    print("\n1b. the same run on the compiled backend (simulate(..., backend='compiled'), numba); best of 15, "
           "wall clock of the whole simulate call (inputs, integration, outputs)")
     first, fast_rows = compiled_rows(vehdyn, model, steer, drag, reference, grid, quick)
     if first is None:
