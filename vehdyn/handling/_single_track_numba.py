@@ -135,11 +135,11 @@ def _placeholder_record():
 def tire_law(tire, mirrored: bool, axle: str) -> TireLaw:
     """The compiled description of ``tire`` (a MagicFormula or LinearTire), else ParameterError."""
     if isinstance(tire, MagicFormula):
-        return TireLaw(_MAGIC_FORMULA, bool(mirrored), _mf_numba._record(tire._c), np.zeros(3))
+        return TireLaw(_MAGIC_FORMULA, bool(mirrored), _mf_numba._record(tire._c), (0.0, 0.0, 0.0))
     if isinstance(tire, LinearTire):
         # camber (zero in the single track) and the trail (M_z is not used) do not enter
-        numbers = np.array([tire.cornering_stiffness, tire.longitudinal_stiffness,
-                            0.0 if tire.nominal_load is None else tire.nominal_load])
+        numbers = (float(tire.cornering_stiffness), float(tire.longitudinal_stiffness),
+                   0.0 if tire.nominal_load is None else float(tire.nominal_load))
         return TireLaw(_LINEAR, bool(mirrored), _placeholder_record(), numbers)
     raise ParameterError(f"the compiled SingleTrack supports the MagicFormula and LinearTire laws; the {axle} tire is "
                          f"a {type(tire).__name__}: use backend='numpy'", key=f"{axle}_tire", value=type(tire).__name__)
@@ -156,4 +156,6 @@ def compiled_model(model) -> CompiledModel:
     tires = (tire_law(model.front_tire, model._mirrored["front"], "front"),
              tire_law(model.rear_tire, model._mirrored["rear"], "rear"))
     rhs, output, key = compiled_functions()
-    return CompiledModel(rhs, output, key, (k, tires, model._state_index, model._input_index))
+    # tuples, not arrays: passed by value, without reference counting on every call
+    index = (tuple(int(i) for i in model._state_index), tuple(int(i) for i in model._input_index))
+    return CompiledModel(rhs, output, key, (k, tires, *index))
