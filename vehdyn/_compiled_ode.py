@@ -61,6 +61,7 @@ _STATUS = {-1: "step size underflow (the step fell below 10 ulp of t: the proble
            -2: "non-finite state or derivative at every step size down to the underflow limit", -3: "too many steps"}
 
 
+@functools.lru_cache(maxsize=None)
 def numba_available() -> bool:
     """Whether numba (the optional dependency of the compiled backend) can be imported."""
     import importlib.util

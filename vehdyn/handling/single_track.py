@@ -473,9 +473,14 @@ class SingleTrack(Model):
         or linear law compiled; every mode (force or wheel spin, with or without tire lag). Raises
         ParameterError for another tire law or a batch model (array parameters).
         """
+        cached = self.__dict__.get("_compiled_model")
+        if cached is not None and cached[0] is self.parameters:  # variants() get new parameters
+            return cached[1]
         from . import _single_track_numba
 
-        return _single_track_numba.compiled_model(self)
+        compiled = _single_track_numba.compiled_model(self)
+        self._compiled_model = (self.parameters, compiled)
+        return compiled
 
     def rhs(self, t, x, u):
         """State derivatives (equations in the module docstring)."""
