@@ -45,7 +45,7 @@ def test_compiled_rhs_and_outputs_equal_the_numpy_ones(key, data):
 
 def sine_run(backend, method, rtol, sampled, model=None):
     model = MODELS[("magic_formula", False, True)] if model is None else model
-    t = np.linspace(0.0, 4.0, 81)
+    t = np.linspace(0.0, 2.0, 41)
     steer = sine_steer(np.radians(2.0), 0.5)
     drag = float(model.parameters.drag_factor) * 20.0**2
     inputs = {"front_steer_angle": steer(t) if sampled else steer, "rear_longitudinal_force": drag}
@@ -53,11 +53,16 @@ def sine_run(backend, method, rtol, sampled, model=None):
                            atol=rtol * 1e-3, backend=backend)
 
 
+@pytest.fixture(scope="module")
+def solve_ivp_reference():
+    return sine_run("numpy", "DOP853", 1e-11, sampled=True)
+
+
 @pytest.mark.parametrize("method", ["RK45", "DOP853"])
-def test_compiled_simulation_equals_solve_ivp(method):
+def test_compiled_simulation_equals_solve_ivp(method, solve_ivp_reference):
     # the same ODE (sampled steer, first-order hold on both backends) at a tight tolerance
     compiled = sine_run("compiled", method, 1e-10, sampled=True)
-    reference = sine_run("numpy", "DOP853", 1e-11, sampled=True)
+    reference = solve_ivp_reference
     assert "compiled" in compiled.method_reason and "compiled" not in reference.method_reason
     for name in ("yaw_rate", "lateral_velocity", "lateral_acceleration", "front_lateral_force"):
         scale = np.max(np.abs(reference[name]))
@@ -77,7 +82,7 @@ def test_manoeuvre_signal_in_closed_form_equals_the_steer_computed_inside_the_rh
         def rhs(self, t, x, u):
             return base.rhs(t, x, base.input_vector(front_steer_angle=float(steer(t)), rear_longitudinal_force=drag))
 
-    t = np.linspace(0.0, 4.0, 81)
+    t = np.linspace(0.0, 2.0, 41)
     reference = vehdyn.simulate(Steered(), t, x0=base.straight_running(20.0), method="DOP853", rtol=1e-10,
                                 atol=1e-13, backend="numpy")
     compiled = sine_run("compiled", "DOP853", 1e-10, sampled=False)
