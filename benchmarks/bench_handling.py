@@ -5,7 +5,11 @@ Run: ``python benchmarks/bench_handling.py [--quick]``. Prints, from one run on 
 1. work-precision of a 10-s sine steer (0.5 Hz, 2 deg road-wheel amplitude, 20 m/s, shipped sedan
    with its mf_185_80R14.tir tires, tire lag on, force mode): CPU time and max error of yaw rate
    and lateral velocity (relative to their peak) against a DOP853 run at rtol 1e-12, for
-   solve_ivp methods at several tolerances and fixed-step rk4 at several steps;
+   solve_ivp methods at several tolerances and fixed-step rk4 at several steps, and the compiled
+   backend (``backend="compiled"``: numba RK45/DOP853 on the compiled rhs, the steer as the
+   closed-form :func:`~vehdyn.handling.sine_steer` signal) at several tolerances, with the ratio of
+   its CPU time to solve_ivp's at the same method and tolerance; its one-off compile (or cache
+   load) time is printed separately and excluded from the rows (best of 15 runs);
 2. the same manoeuvre with commonroad-vehicle-models' single-track drift model (STD, vehicle 2
    with the sedan's mass, inertia, geometry, wheel data and .tir coefficients mapped onto it)
    under solve_ivp RK45, when that package is installed: CPU time and the
@@ -18,7 +22,7 @@ Run: ``python benchmarks/bench_handling.py [--quick]``. Prints, from one run on 
 
 from __future__ import annotations
 
-import _timing  # noqa: F401  first: pins BLAS to one thread before numpy loads
+import _timing  # first: pins BLAS to one thread before numpy loads
 import platform
 import sys
 import time
@@ -116,6 +120,55 @@ def work_precision(vehdyn, base, steer, drag, quick):
     return rows, reference, grid
 
 
+def compiled_rows(vehdyn, base, steer, drag, reference, grid, quick):
+    """Compiled backend on the same ODE (steer in closed form, rear force balancing the drag)."""
+    from vehdyn._compiled_ode import numba_available
+
+    if not numba_available():
+        return None, []
+    inputs = {"front_steer_angle": steer, "rear_longitudinal_force": drag}
+    x0 = base.straight_running(SPEED)
+
+    def once(method, rtol, atol):
+        return vehdyn.simulate(base, grid, inputs, x0=x0, method=method, rtol=rtol, atol=atol, backend="compiled")
+
+    start = time.perf_counter()
+    once("RK45", 1e-3, 1e-6)
+    once("DOP853", 1e-3, 1e-6)
+    first = time.perf_counter() - start
+    cases = [("RK45", r, r * 1e-3) for r in (1e-4, 1e-6, 1e-8)] + [("DOP853", r, r * 1e-3) for r in (1e-6, 1e-9)]
+    cases += [("RK45", 1e-5, 1e-6), ("RK45", 1e-6, 1e-7), ("RK45", 1e-7, 1e-8), ("DOP853", 1e-7, 1e-8)]
+    if quick:
+        cases = cases[:2] + cases[3:4] + cases[6:7]
+    rows = []
+    for method, rtol, atol in cases:
+        cpu, result = _timing.best_time(lambda: once(method, rtol, atol), repeats=15)
+        rows.append((f"compiled {method} rtol={rtol:.0e} atol={atol:.0e}", method, rtol, atol, cpu, result.nfev,
+                     error(result, reference, grid), result.wall_time))
+    return first, rows
+
+
+def rhs_call_time(base, steer, drag, calls=20000):
+    """Best time [s] of one compiled rhs call at points along the straight run (a compiled loop)."""
+    import numba
+
+    compiled = base.compiled_rhs()
+    rhs = compiled.rhs
+
+    @numba.njit
+    def loop(n, x, u, args, out):
+        for i in range(n):
+            x[1] = 1e-6 * (i % 1000)  # vary the state a little
+            rhs(0.0, x, u, args, out)
+
+    x = base.straight_running(SPEED)
+    u = base.input_vector(front_steer_angle=0.02, rear_longitudinal_force=drag)
+    out = np.empty(base.n_states)
+    loop(10, x, u, compiled.args, out)
+    best, _ = _timing.best_time(lambda: loop(calls, x, u, compiled.args, out), repeats=5)
+    return best / calls
+
+
 def commonroad(reference, grid, rtol):
     try:
         from vehiclemodels.init_std import init_std
@@ -188,6 +241,28 @@ def main(quick: bool = False):
           "|x - x_ref| / max |x_ref|")
     print("   goal of the issue: <= 10 ms at <= 1e-6; rows above show where this implementation stands")
 
+    print("\n1b. the same run on the compiled backend (simulate(..., backend='compiled'), numba); best of 15, "
+          "wall clock of the whole simulate call (inputs, integration, outputs)")
+    first, fast_rows = compiled_rows(vehdyn, model, steer, drag, reference, grid, quick)
+    if first is None:
+        print("   skipped: numba is not installed (pip install vehdyn[fast])")
+    else:
+        print(f"   first two calls (compile, or load from numba's on-disk cache): {first:.1f} s, not in the rows")
+        numpy_rows = {r[0]: r[1] for r in rows}
+        print(f"{'method':<40}{'time [ms]':>10}{'rhs calls':>11}{'max rel. error':>16}{'solve_ivp/compiled':>20}")
+        for name, method, rtol, atol, cpu, nfev, err, _ in fast_rows:
+            slow = numpy_rows.get(f"{method} rtol={rtol:.0e}") if atol == rtol * 1e-3 else None
+            ratio = f"{slow / cpu:.0f}x" if slow else "-"
+            print(f"{name:<40}{cpu * 1e3:>10.2f}{nfev:>11d}{err:>16.2e}{ratio:>20}")
+        good = [r for r in fast_rows if r[6] <= 1e-6]
+        if good:
+            best = min(good, key=lambda r: r[4])
+            per_call = rhs_call_time(model, steer, drag)
+            print(f"   fastest at <= 1e-6: {best[0]}, {best[4] * 1e3:.2f} ms (goal <= 10 ms): {best[5]} rhs calls of "
+                  f"{per_call * 1e6:.2f} us = {best[5] * per_call * 1e3:.2f} ms; integration in all "
+                  f"{best[7] * 1e3:.2f} ms (of the best run); outputs at {grid.size} instants and Python "
+                  f"{(best[4] - best[7]) * 1e3:.2f} ms")
+
     print("\n2. commonroad-vehicle-models STD (vehicle 2), same manoeuvre, solve_ivp RK45 rtol 1e-6")
     cr = commonroad(reference, grid, 1e-6)
     if cr is None:
@@ -197,6 +272,10 @@ def main(quick: bool = False):
         cpu, nfev, peak_theirs, peak_ours = cr
         print(f"   STD: {cpu * 1e3:.1f} ms CPU, {nfev} rhs calls; vehdyn RK45 1e-6: {ours[1] * 1e3:.1f} ms "
               f"-> ratio vehdyn/STD = {ours[1] / cpu:.2f}")
+        same = [r for r in fast_rows if r[1] == "RK45" and r[2] == 1e-6 and r[3] == 1e-9]
+        if same:
+            print(f"   vehdyn compiled RK45 1e-6: {same[0][4] * 1e3:.2f} ms -> ratio vehdyn compiled/STD = "
+                  f"{same[0][4] / cpu:.4f} (STD {cpu / same[0][4]:.0f}x slower)")
         print(f"   peak yaw rate: STD {peak_theirs:.5f} rad/s, vehdyn {peak_ours:.5f} rad/s (STD's simplified "
               f"Magic Formula with the mapped coefficients vs the full MF 5.2 of mf_185_80R14.tir: a model "
               f"difference, not an error)")

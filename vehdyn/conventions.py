@@ -48,6 +48,8 @@ __all__ = [
     "tire_slips_iso_w_to_sae",
     "tire_forces_iso_w_to_sae",
     "tire_forces_sae_to_iso_w",
+    "planar_tire_slips_sae_to_iso_w",
+    "planar_tire_forces_iso_w_to_sae",
 ]
 
 
@@ -162,3 +164,21 @@ def tire_forces_iso_w_to_sae(fx, fy, fz, mx, my, mz) -> TireForces:
 def tire_forces_sae_to_iso_w(fx, fy, fz, mx, my, mz) -> TireForces:
     """Tire forces and moments from SAE to ISO-W (the inverse of :func:`tire_forces_iso_w_to_sae`)."""
     return tire_forces_iso_w_to_sae(fx, fy, fz, mx, my, mz)
+
+
+def planar_tire_slips_sae_to_iso_w(kappa, alpha):
+    """Slip ratio and slip angle from SAE to ISO-W: ``(kappa, -alpha)``.
+
+    The planar part of :func:`tire_slips_sae_to_iso_w` in plain arithmetic (no numpy call), so that
+    it works on floats, on arrays and inside numba-compiled code alike.
+    """
+    return kappa, -alpha
+
+
+def planar_tire_forces_iso_w_to_sae(fx, fy):
+    """Longitudinal and lateral tire force from ISO-W to SAE: ``(fx, -fy)``.
+
+    The planar part of :func:`tire_forces_iso_w_to_sae` in plain arithmetic (floats, arrays and
+    numba-compiled code).
+    """
+    return fx, -fy

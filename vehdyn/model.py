@@ -229,6 +229,17 @@ class Model:
         """
         return None
 
+    def compiled_rhs(self):
+        """The right-hand side compiled for ``simulate(..., backend="compiled")``, or ``None`` (default).
+
+        A model that has one returns a :class:`vehdyn._compiled_ode.CompiledModel` ``(rhs, output,
+        key, args)``: numba-compiled ``rhs(t, x, u, args, dxdt)`` writing dx/dt of one vehicle (1-D
+        ``x``, ``u``) into ``dxdt`` and ``output(t, x, u, args, y)`` (or None), a short name of their
+        source (for the compiled-code cache) and the tuple of numbers they read. It raises
+        :class:`~vehdyn.ParameterError` when its present configuration has no compiled form.
+        """
+        return None
+
     # ------------------------------------------------------------------ services
     def state_vector(self, values=None, **named) -> np.ndarray:
         """A state vector from a mapping or array (``None`` is zeros); keywords set named states."""

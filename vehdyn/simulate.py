@@ -21,6 +21,12 @@ any ``scipy.integrate.solve_ivp`` method
     ``"exact"`` for a linear model; otherwise ``"LSODA"`` when the linearization at the initial
     point is stiff over the run, ``"DOP853"`` when ``rtol < 1e-8``, else ``"RK45"``. The choice and
     its reason are in ``result.method`` and ``result.method_reason``.
+
+Backends (``backend=``): ``"numpy"`` runs the methods above on the model's ``rhs``;
+``"compiled"`` runs ``"RK45"`` and ``"DOP853"`` compiled (numba, optional) on the model's
+:meth:`~vehdyn.Model.compiled_rhs` for one vehicle (:mod:`vehdyn._compiled_ode`); ``"auto"``
+(default) takes the compiled one when the method is one of those two, numba is installed, the
+model has a compiled rhs and there is no batch, and says so in ``result.method_reason``.
 """
 
 from __future__ import annotations
@@ -395,6 +401,7 @@ def simulate(
     first_step: float | None = None,
     substeps: int = 1,
     check_stability: bool = True,
+    backend: str = "auto",
 ) -> SimulationResult:
     """Simulate ``model`` over the time grid ``time``.
 
@@ -424,6 +431,9 @@ def simulate(
     check_stability : bool
         rk4 only: refuse a step outside RK4's stability region for the fastest eigenvalue of the
         linearization at the initial point.
+    backend : {"auto", "numpy", "compiled"}
+        See the module docstring; ``"compiled"`` raises ParameterError where it cannot run (numba
+        missing, a model without a compiled rhs, a batch, another method), naming why.
 
     Returns
     -------
@@ -462,9 +472,20 @@ def simulate(
             f"method 'exact' needs a LinearModel; {type(model).__name__} is not linear "
             "(use model.linearize() first, or a solve_ivp method)", key="method", value=method)
 
+    compiled, why = _compiled_backend(model, method, backend, x0v, u)
+    if compiled is not None:
+        reason = f"{reason}; {why}" if reason else why
+
     counters = {"nfev": 0, "njev": 0, "nlu": 0, "n_steps": t.size - 1, "message": ""}
     start = _time.perf_counter()
-    if method == "exact":
+    if compiled is not None:
+        from . import _compiled_ode
+
+        x, stats = _compiled_ode.solve(compiled.rhs, compiled.key, compiled.args, t, x0v,
+                                       _compiled_ode.input_table(model, inputs, t, u, hold), method, rtol, atol,
+                                       first_step, max_step)
+        counters.update(stats)
+    elif method == "exact":
         x, n_expm = _simulate_exact(model, t, u, x0v, hold)
         counters["message"] = f"exact {hold} discretization ({n_expm} matrix exponential{'s' if n_expm > 1 else ''})"
     elif method == "rk4":
@@ -485,7 +506,10 @@ def simulate(
             f"state {model.state_names[i]!r} became non-finite at t = {t[k]:.6g} s ({method})",
             time=float(t[k]), signal=model.state_names[i],
         )
-    y = _outputs(model, t, x, u)
+    if compiled is not None and compiled.output is not None:
+        y = _compiled_ode.outputs(compiled, model.n_outputs, t, x, u)
+    else:
+        y = _outputs(model, t, x, u)
     if u.ndim < x.ndim:
         u = np.broadcast_to(u[..., None], u.shape + x.shape[2:])
     return SimulationResult(
@@ -502,6 +526,39 @@ def simulate(
         options={"rtol": rtol, "atol": atol, "hold": hold, "substeps": substeps},
         **counters,
     )
+
+
+def _compiled_backend(model, method, backend, x0, u):
+    """(compiled rhs, key, args) and the reason when the compiled backend runs, else (None, "")."""
+    from . import _compiled_ode
+
+    backends = ("auto", "numpy", "compiled")
+    if backend not in backends:
+        raise ParameterError(f"backend must be one of {backends}, got {backend!r}", key="backend", value=backend)
+    if backend == "numpy":
+        return None, ""
+    explicit = backend == "compiled"
+    problem = None
+    if method not in _compiled_ode.METHODS:
+        problem = f"method {method!r} (the compiled backend integrates with {_compiled_ode.METHODS})"
+    elif x0.ndim > 1 or u.ndim > 2:
+        problem = "a batch (the compiled backend runs one vehicle; batches run vectorized on numpy)"
+    elif not _compiled_ode.numba_available():
+        problem = "numba is not installed (pip install vehdyn[fast])"
+    else:
+        try:
+            compiled = model.compiled_rhs()
+        except ParameterError:
+            if explicit:
+                raise
+            return None, ""
+        if compiled is None:
+            problem = f"{type(model).__name__} has no compiled rhs"
+    if problem is not None:
+        if explicit:
+            raise ParameterError(f"backend='compiled' cannot run: {problem}", key="backend", value=backend)
+        return None, ""
+    return compiled, f"compiled backend ({method} on {type(model).__name__}'s compiled rhs, numba)"
 
 
 def _outputs(model, t, x, u):

@@ -1,7 +1,9 @@
 """Standard handling manoeuvres: input signals, scenario helpers and their metrics.
 
 Steer inputs are road-wheel angles [rad] in SAE signs (positive turns right) and are returned as
-vectorized callables ``delta(t)`` for :func:`vehdyn.simulate`'s ``inputs``. Test procedures:
+vectorized callables ``delta(t)`` for :func:`vehdyn.simulate`'s ``inputs``: closed-form
+:class:`~vehdyn.piecewise_signal.PiecewiseSignal` s, which the compiled backend evaluates exactly
+between samples and whose kinks it steps onto (``simulate(..., backend="compiled")``). Test procedures:
 
 * step steer (ISO 7401:2011, sec. 6.2: steer ramp completed within 0.15 s) and its metrics
   (:func:`vehdyn.handling.step_steer_metrics`);
@@ -24,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError
+from ..piecewise_signal import PiecewiseSignal
 
 __all__ = ["step_steer", "ramp_steer", "sine_steer", "sine_with_dwell", "sine_with_dwell_metrics",
            "SineWithDwellMetrics", "constant_radius_test", "crosswind_gust", "braking_in_turn",
@@ -39,34 +42,30 @@ def _finite(name, value, positive=False):
     return value
 
 
-def step_steer(amplitude: float, start: float = 0.5, rise_time: float = 0.15):
+def step_steer(amplitude: float, start: float = 0.5, rise_time: float = 0.15) -> PiecewiseSignal:
     """Step steer of ``amplitude`` [rad] beginning at ``start`` [s], a linear ramp over ``rise_time`` [s]."""
     amplitude, start = _finite("amplitude", amplitude), _finite("start", start)
     rise_time = _finite("rise_time", rise_time, positive=True)
-    return lambda t: amplitude * np.clip((np.asarray(t, dtype=float) - start) / rise_time, 0.0, 1.0)
+    end = start + rise_time
+    return PiecewiseSignal([[start, end, 0.0, amplitude / rise_time, 0.0, 0.0, 0.0],
+                            [end, np.inf, amplitude, 0.0, 0.0, 0.0, 0.0]])
 
 
-def ramp_steer(rate: float, start: float = 0.0):
+def ramp_steer(rate: float, start: float = 0.0) -> PiecewiseSignal:
     """Ramp steer of ``rate`` [rad/s] from ``start`` [s]."""
     rate, start = _finite("rate", rate), _finite("start", start)
-    return lambda t: rate * np.maximum(np.asarray(t, dtype=float) - start, 0.0)
+    return PiecewiseSignal([[start, np.inf, 0.0, rate, 0.0, 0.0, 0.0]])
 
 
-def sine_steer(amplitude: float, frequency: float, start: float = 0.0, cycles: float | None = None):
+def sine_steer(amplitude: float, frequency: float, start: float = 0.0, cycles: float | None = None) -> PiecewiseSignal:
     """Sine steer amplitude sin(2 pi f (t - start)) [rad] from ``start``, for ``cycles`` periods (None: forever)."""
     amplitude, start = _finite("amplitude", amplitude), _finite("start", start)
     frequency = _finite("frequency", frequency, positive=True)
     end = np.inf if cycles is None else start + _finite("cycles", cycles, positive=True) / frequency
-
-    def delta(t):
-        t = np.asarray(t, dtype=float)
-        on = (t >= start) & (t <= end)
-        return np.where(on, amplitude * np.sin(2 * np.pi * frequency * (t - start)), 0.0)
-
-    return delta
+    return PiecewiseSignal([[start, end, 0.0, 0.0, amplitude, 2 * np.pi * frequency, 0.0]])
 
 
-def sine_with_dwell(amplitude: float, frequency: float = 0.7, dwell: float = 0.5, start: float = 1.0):
+def sine_with_dwell(amplitude: float, frequency: float = 0.7, dwell: float = 0.5, start: float = 1.0) -> PiecewiseSignal:
     """FMVSS 126 sine with dwell: a ``frequency`` sine whose second peak is held for ``dwell`` [s].
 
     delta = A sin(2 pi f tau) for tau = t - start in [0, 3/(4f)], then -A for ``dwell`` s, then
@@ -78,16 +77,14 @@ def sine_with_dwell(amplitude: float, frequency: float = 0.7, dwell: float = 0.5
     dwell = _finite("dwell", dwell)
     if dwell < 0:
         raise ParameterError(f"dwell must be >= 0 [s], got {dwell}", key="dwell", value=dwell)
-    quarter3 = 0.75 / frequency
-
-    def delta(t):
-        tau = np.asarray(t, dtype=float) - start
-        first = (tau >= 0) & (tau <= quarter3)
-        hold = (tau > quarter3) & (tau <= quarter3 + dwell)
-        last = (tau > quarter3 + dwell) & (tau <= 1.0 / frequency + dwell)
-        wave = np.sin(2 * np.pi * frequency * np.where(last, tau - dwell, tau))
-        return amplitude * np.where(first | last, wave, np.where(hold, -1.0, 0.0))
-
+    omega, quarter3 = 2 * np.pi * frequency, 0.75 / frequency
+    pieces = [[start, start + quarter3, 0.0, 0.0, amplitude, omega, 0.0]]
+    if dwell > 0:
+        pieces.append([start + quarter3, start + quarter3 + dwell, -amplitude, 0.0, 0.0, 0.0, 0.0])
+    # the last quarter period continues the sine from its trough: phase 3 pi / 2
+    pieces.append([start + quarter3 + dwell, start + 1.0 / frequency + dwell, 0.0, 0.0, amplitude, omega,
+                   1.5 * np.pi])
+    delta = PiecewiseSignal(pieces)
     delta.completion_of_steer = start + 1.0 / frequency + dwell
     delta.beginning_of_steer = start
     return delta

@@ -63,6 +63,15 @@ Longitudinal input, two modes:
   and the tire law computes F_x and F_y from the (transient) slips with its own combined-slip
   rule. The brake torque opposes the spin; sat(z) = z / sqrt(1 + z^2) regularizes its sign
   within ``brake_regularization_speed`` omega_b so that a locked wheel stops without chatter.
+
+The equations are written once, as pure functions over an ``xp`` namespace, in
+:mod:`~vehdyn.handling.single_track_equations`: :meth:`SingleTrack.rhs` and ``output`` run them on
+numpy arrays (with a batch axis), and :meth:`SingleTrack.compiled_rhs` compiles them with numba
+(optional: ``pip install vehdyn[fast]``) for ``simulate(model, t, inputs, method="RK45" or
+"DOP853")``, which uses the compiled backend by default (``backend="auto"``) for one vehicle
+with Magic Formula or linear tires (brush, Fiala and Dugoff laws and batch models run on numpy).
+Give steer inputs as the closed-form signals of :mod:`~vehdyn.handling.maneuvers` to have them
+evaluated exactly inside the compiled steps (see :mod:`vehdyn._compiled_ode`).
 """
 
 from __future__ import annotations
@@ -72,17 +81,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..conventions import tire_forces_iso_w_to_sae, tire_slips_sae_to_iso_w
 from ..errors import ParameterError
 from ..model import Model
 from ..params import Vehicle
 from ..signals import STEER_INPUTS, Signal
 from ..units import GRAVITY
+from . import single_track_equations as equations
 
 __all__ = ["SingleTrack", "SingleTrackParameters"]
 
 _AXLES = ("front", "rear")
-_REGULARIZATION_SPEED = 0.5  # [m/s], the default v_0 of vehdyn.tire.slip
 
 
 @dataclass(frozen=True)
@@ -341,7 +349,12 @@ class SingleTrack(Model):
             Signal("yaw_angle", "rad", "heading psi"),
         ]
         self.declare(states=states, inputs=inputs, outputs=outputs)
-        self._state_keys, self._input_keys = self.state_names, self.input_names
+        # positions of the model's signals in the equations' fixed order (-1: not a signal of this model)
+        self._state_index = np.array([self.state_names.index(n) if n in self.state_names else -1
+                                      for n in equations.STATES], dtype=np.int64)
+        self._input_index = np.array([self.input_names.index(n) if n in self.input_names else -1
+                                      for n in equations.INPUTS], dtype=np.int64)
+        self._state_order = [equations.STATES.index(n) for n in self.state_names]
         phenomena = {"longitudinal", "lateral", "yaw", "load_transfer", "tire_saturation", "aero"}
         if self.wheel_spin:
             phenomena.add("wheel_spin")
@@ -381,136 +394,54 @@ class SingleTrack(Model):
         return None
 
     # ------------------------------------------------------------------ the equations
-    def _evaluate(self, x, u):
-        """Everything rhs and output need, as a dict of arrays (shape of the batch)."""
+    # They live in single_track_equations (one source for numpy and the compiled backend); the
+    # methods below map the model's vectors onto them and supply the tire laws.
+    def _constants(self) -> equations.Constants:
         p = self.parameters
+        fields = {f.name: getattr(p, f.name) for f in dataclasses.fields(p)}
+        return equations.Constants(
+            **fields, low_speed_damping_speed=self.low_speed_damping_speed,
+            brake_regularization_speed=self.brake_regularization_speed,
+            front_peak_slip_ratio=self._peak_slip["front"][0], front_peak_tan_slip_angle=self._peak_slip["front"][1],
+            rear_peak_slip_ratio=self._peak_slip["rear"][0], rear_peak_tan_slip_angle=self._peak_slip["rear"][1],
+            wheel_spin=self.wheel_spin, tire_lag=self.tire_lag)
+
+    def _evaluate(self, x, u):
+        """(named states, named inputs, Evaluation) at x, u (numpy arrays, optional batch axis)."""
         x = np.asarray(x, dtype=float)
         u = np.asarray(u, dtype=float)
-        s = dict(zip(self._state_keys, x))
-        i = dict(zip(self._input_keys, u))
-        lon, lat, yaw_rate = s["longitudinal_velocity"], s["lateral_velocity"], s["yaw_rate"]
-        steer = {"front": i["front_steer_angle"], "rear": i["rear_steer_angle"]}
-        body_lateral = {"front": lat + p.a * yaw_rate, "rear": lat - p.b * yaw_rate}
-        out = {}
-        static_front, static_rear = p.static_axle_loads()
-        lift = {"front": p.front_lift_factor * lon * lon, "rear": p.rear_lift_factor * lon * lon}
-        kin = {}
-        for axle in _AXLES:
-            c, sn = np.cos(steer[axle]), np.sin(steer[axle])
-            vx = lon * c + body_lateral[axle] * sn
-            vy = -lon * sn + body_lateral[axle] * c
-            kin[axle] = (c, sn, vx, vy)
-        weight = p.mass * p.gravity
+        states = equations.named_states(x, self._state_index)
+        inputs = equations.named_inputs(u, self._input_index)
+        k = self._constants()
+        return states, inputs, k, equations.evaluate(equations.NUMPY, self, k, states, inputs)
 
-        def axle_forces(axle, fz):
-            """Axle (fx, fy) in SAE wheel axes and the slips (alpha_sae, kappa) for axle load fz."""
-            c, sn, vx, vy = kin[axle]
-            speed = np.abs(vx)
-            direction = 1.0 - 2.0 * (vx < 0.0)  # sign(vx) with sign(0) = +1
-            if self.tire_lag:
-                blend = self._low_speed_blend(speed)
-                sigma_y = getattr(p, f"{axle}_lateral_relaxation_length")
-                tan_alpha = self._sliding_slip(s[f"{axle}_lateral_deflection"] / sigma_y, vy / self._regularized(vx),
-                                               self._peak_slip[axle][1])
-                tan_alpha = tan_alpha + blend * vy / self.low_speed_damping_speed
-            else:
-                tan_alpha = vy / self._regularized(vx)
-            alpha = np.arctan(tan_alpha)
-            if self.wheel_spin:
-                vsx = vx - s[f"{axle}_wheel_speed"] * p.rolling_radius
-                if self.tire_lag:
-                    sigma_x = getattr(p, f"{axle}_longitudinal_relaxation_length")
-                    slip = self._sliding_slip(s[f"{axle}_longitudinal_deflection"] / sigma_x,
-                                              -vsx / self._regularized(vx), self._peak_slip[axle][0])
-                    slip = slip - blend * vsx / self.low_speed_damping_speed
-                    kappa = slip * direction
-                else:
-                    kappa = -vsx / (direction * self._regularized(vx))
-            else:
-                kappa = 0.0 * alpha
-            fx, fy = self._axle_tire_forces(axle, fz, kappa, alpha, direction * np.maximum(speed, 1e-3))
-            if not self.wheel_spin:
-                limit = p.friction_coefficient * np.maximum(fz, 0.0)
-                demand = i[f"{axle}_longitudinal_force"]
-                fx = np.minimum(np.maximum(demand, -limit), limit)
-                safe = np.where(limit > 0, limit, 1.0)
-                fy = fy * np.sqrt(np.maximum(1.0 - (fx / safe) ** 2, 0.0))
-            return fx, fy, alpha, kappa
+    def axle_law_forces(self, axle, fz, kappa, alpha, vx):
+        """Axle forces (fx, fy) [N] in ISO-W from the law of one tire at half the load ``fz`` [N].
 
-        def loads(x_force):
-            front = static_front - p.cg_height * x_force / p.wheelbase - lift["front"]
-            total = weight - lift["front"] - lift["rear"]
-            front = np.minimum(np.maximum(front, 0.0), np.maximum(total, 0.0))
-            return front, np.maximum(total - front, 0.0)
-
-        def body_x(forces):
-            total = 0.0
-            for axle in _AXLES:
-                c, sn = kin[axle][0], kin[axle][1]
-                fx, fy = forces[axle][0], forces[axle][1]
-                total = total + fx * c - fy * sn
-            return total
-
-        # quasi-static load transfer: the longitudinal forces depend on the loads and the loads on
-        # the forces; with force inputs the dependence is explicit, with wheel spin two fixed-point
-        # passes from the static loads: the iteration contracts by about mu h / L (~0.2), so the
-        # load transfer is within (mu h / L)^2 ~ 4 % of its converged value
-        if self.wheel_spin:
-            fz_f, fz_r = static_front - lift["front"], static_rear - lift["rear"]
-            for _ in range(2):
-                forces = {"front": axle_forces("front", fz_f), "rear": axle_forces("rear", fz_r)}
-                fz_f, fz_r = loads(body_x(forces))
-        else:
-            x_demand = 0.0
-            for axle in _AXLES:
-                x_demand = x_demand + i[f"{axle}_longitudinal_force"] * kin[axle][0]
-            fz_f, fz_r = loads(x_demand)
-        forces = {"front": axle_forces("front", fz_f), "rear": axle_forces("rear", fz_r)}
-        fx_body = body_x(forces)
-        fy_body = 0.0
-        moment = i["external_yaw_moment"]
-        for axle, arm in (("front", p.a), ("rear", -p.b)):
-            c, sn = kin[axle][0], kin[axle][1]
-            lateral = forces[axle][0] * sn + forces[axle][1] * c
-            fy_body = fy_body + lateral
-            moment = moment + arm * lateral
-        drag = p.drag_factor * lon * np.abs(lon)
-        ax = (fx_body - drag) / p.mass
-        ay = (fy_body + i["external_lateral_force"]) / p.mass
-        out.update(state=s, inputs=i, kin=kin, forces=forces, fz_f=fz_f, fz_r=fz_r, ax=ax, ay=ay,
-                   yaw_acceleration=moment / p.yaw_inertia)
-        return out
-
-    def _axle_tire_forces(self, axle, fz, kappa, alpha, vx):
-        """Axle forces (fx, fy) [N] in SAE wheel axes from the law of one tire at half the load.
-
-        The two tires of an axle are mirror images: when the law has a lateral force at zero slip
-        (ply-steer and conicity shifts of a Magic Formula file), the axle force is the tire's plus
-        its mirror image's, F_y = F_y(alpha) - F_y(-alpha), F_x = F_x(alpha) + F_x(-alpha), so that
-        a vehicle with zero steer runs straight. Laws without such shifts are evaluated once.
+        ``axle`` is 0 (front) or 1 (rear); ``kappa``, ``alpha`` the ISO-W slips, ``vx`` the signed
+        wheel-centre speed [m/s]. The two tires of an axle are mirror images: when the law has a
+        lateral force at zero slip (ply-steer and conicity shifts of a Magic Formula file), the axle
+        force is the tire's plus its mirror image's, F_y = F_y(alpha) - F_y(-alpha),
+        F_x = F_x(alpha) + F_x(-alpha), so that a vehicle with zero steer runs straight. Laws
+        without such shifts are evaluated once.
         """
-        tire = self.front_tire if axle == "front" else self.rear_tire
-        slips = tire_slips_sae_to_iso_w(kappa, alpha)
+        name = _AXLES[axle]
+        tire = self.front_tire if axle == 0 else self.rear_tire
         load = 0.5 * fz
-        scalar = np.ndim(load) == 0 and np.ndim(slips.kappa) == 0 and np.ndim(slips.alpha) == 0 and np.ndim(vx) == 0
+        scalar = np.ndim(load) == 0 and np.ndim(kappa) == 0 and np.ndim(alpha) == 0 and np.ndim(vx) == 0
         if scalar:  # one vehicle: Python floats take the laws' fast scalar path
-            load, kap, alp, vx = float(load), float(slips.kappa), float(slips.alpha), float(vx)
+            load, kap, alp, vx = float(load), float(kappa), float(alpha), float(vx)
         else:
-            kap, alp = slips.kappa, slips.alpha
-        if self._mirrored[axle]:
+            kap, alp = kappa, alpha
+        if self._mirrored[name]:
             if scalar:
                 f, g = tire.forces(load, kap, alp, 0.0, vx), tire.forces(load, kap, -alp, 0.0, vx)
-                fx_iso, fy_iso = f.fx + g.fx, f.fy - g.fy
-            else:
-                both = tire.forces(np.stack(np.broadcast_arrays(load, load)), np.stack(np.broadcast_arrays(kap, kap)),
-                                   np.stack(np.broadcast_arrays(alp, -alp)), 0.0,
-                                   np.stack(np.broadcast_arrays(vx, vx)))
-                fx_iso, fy_iso = both.fx[0] + both.fx[1], both.fy[0] - both.fy[1]
-        else:
-            f = tire.forces(load, kap, alp, 0.0, vx)
-            fx_iso, fy_iso = 2.0 * f.fx, 2.0 * f.fy
-        sae = tire_forces_iso_w_to_sae(fx_iso, fy_iso, 0.0, 0.0, 0.0, 0.0)
-        return sae.fx, sae.fy
+                return f.fx + g.fx, f.fy - g.fy
+            both = tire.forces(np.stack(np.broadcast_arrays(load, load)), np.stack(np.broadcast_arrays(kap, kap)),
+                               np.stack(np.broadcast_arrays(alp, -alp)), 0.0, np.stack(np.broadcast_arrays(vx, vx)))
+            return both.fx[0] + both.fx[1], both.fy[0] - both.fy[1]
+        f = tire.forces(load, kap, alp, 0.0, vx)
+        return 2.0 * f.fx, 2.0 * f.fy
 
     @staticmethod
     def _needs_mirror(tire, load) -> bool:
@@ -534,75 +465,32 @@ class SingleTrack(Model):
         ay = alpha[np.argmax(fy >= (1 - 1e-9) * fy.max())]
         return max(float(kx), 0.01), max(float(np.tan(ay)), 0.01)
 
-    @staticmethod
-    def _sliding_slip(transient, kinematic, peak):
-        """The slip that makes the force: the transient (deflection) slip, or the kinematic slip when
-        the deflection sits at its peak-force limit and the kinematic slip lies beyond it (sliding)."""
-        sliding = (np.abs(transient) >= 0.999 * peak) & (transient * kinematic > 0) & \
-            (np.abs(kinematic) > np.abs(transient))
-        return np.where(sliding, kinematic, transient)
+    def compiled_rhs(self):
+        """The rhs compiled by numba for ``simulate(..., backend="compiled")`` (see :meth:`vehdyn.Model.compiled_rhs`).
 
-    @staticmethod
-    def _limit_deflection_rate(rate, slip, peak):
-        """Deflection rate with its outward part faded out over the last 5 % before the peak slip."""
-        room = np.minimum(np.maximum((peak - np.abs(slip)) / (0.05 * peak), 0.0), 1.0)
-        outward = rate * slip > 0
-        return np.where(outward, rate * room, rate)
+        The same equations (:mod:`~vehdyn.handling.single_track_equations`) with the Magic Formula
+        or linear law compiled; every mode (force or wheel spin, with or without tire lag). Raises
+        ParameterError for another tire law or a batch model (array parameters).
+        """
+        cached = self.__dict__.get("_compiled_model")
+        if cached is not None and cached[0] is self.parameters:  # variants() get new parameters
+            return cached[1]
+        from . import _single_track_numba
 
-    @staticmethod
-    def _regularized(vx):
-        speed = np.abs(vx)
-        v0 = _REGULARIZATION_SPEED
-        return np.where(speed >= v0, speed, (vx * vx + v0 * v0) / (2.0 * v0))
-
-    def _low_speed_blend(self, speed):
-        ratio = np.minimum(speed / self.low_speed_damping_speed, 1.0)
-        return 0.5 * (1.0 + np.cos(np.pi * ratio))
+        compiled = _single_track_numba.compiled_model(self)
+        self._compiled_model = (self.parameters, compiled)
+        return compiled
 
     def rhs(self, t, x, u):
         """State derivatives (equations in the module docstring)."""
-        e = self._evaluate(x, u)
-        p = self.parameters
-        s, i = e["state"], e["inputs"]
-        lon, lat, r, psi = s["longitudinal_velocity"], s["lateral_velocity"], s["yaw_rate"], s["yaw_angle"]
-        cpsi, spsi = np.cos(psi), np.sin(psi)
-        rows = [e["ax"] + lat * r, e["ay"] - lon * r, e["yaw_acceleration"],
-                lon * cpsi - lat * spsi, lon * spsi + lat * cpsi, r]
-        if self.wheel_spin:
-            inertia = 2.0 * p.wheel_spin_inertia
-            for axle in _AXLES:
-                omega = s[f"{axle}_wheel_speed"]
-                z = omega / self.brake_regularization_speed
-                brake = np.abs(i[f"{axle}_brake_torque"]) * z / np.sqrt(1.0 + z * z)
-                rows.append((i[f"{axle}_drive_torque"] - brake - p.rolling_radius * e["forces"][axle][0]) / inertia)
-        if self.tire_lag:
-            for axle in _AXLES:
-                vx, vy = e["kin"][axle][2], e["kin"][axle][3]
-                sigma = getattr(p, f"{axle}_lateral_relaxation_length")
-                deflection = s[f"{axle}_lateral_deflection"]
-                rate = vy - np.abs(vx) * deflection / sigma
-                rows.append(self._limit_deflection_rate(rate, deflection / sigma, self._peak_slip[axle][1]))
-            if self.wheel_spin:
-                for axle in _AXLES:
-                    vx = e["kin"][axle][2]
-                    vsx = vx - s[f"{axle}_wheel_speed"] * p.rolling_radius
-                    sigma = getattr(p, f"{axle}_longitudinal_relaxation_length")
-                    deflection = s[f"{axle}_longitudinal_deflection"]
-                    rate = -vsx - np.abs(vx) * deflection / sigma
-                    rows.append(self._limit_deflection_rate(rate, deflection / sigma, self._peak_slip[axle][0]))
-        return _stack(rows)
+        states, inputs, k, e = self._evaluate(x, u)
+        rates = equations.derivatives(equations.NUMPY, k, e, states, inputs)
+        return _stack([rates[j] for j in self._state_order])
 
     def output(self, t, x, u):
         """Outputs (see :attr:`outputs`)."""
-        e = self._evaluate(x, u)
-        s = e["state"]
-        lon, lat, r = s["longitudinal_velocity"], s["lateral_velocity"], s["yaw_rate"]
-        speed_squared = lon * lon + lat * lat
-        ff, fr = e["forces"]["front"], e["forces"]["rear"]
-        rows = [e["ay"], np.arctan2(lat, np.abs(lon)), r, lat, ff[2], fr[2],
-                e["ay"] / np.maximum(speed_squared, 0.25), ff[1], fr[1], e["ax"], lon, np.sqrt(speed_squared),
-                ff[0], fr[0], e["fz_f"], e["fz_r"], ff[3], fr[3], s["x"], s["y"], s["yaw_angle"]]
-        return _stack(rows)
+        states, _, _, e = self._evaluate(x, u)
+        return _stack(equations.outputs(equations.NUMPY, states, e))
 
     # ------------------------------------------------------------------ operating points
     def straight_running(self, speed: float, **states) -> np.ndarray:

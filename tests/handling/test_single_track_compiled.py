@@ -1,0 +1,113 @@
+"""The compiled SingleTrack (one source with the numpy equations) against the numpy rhs and solve_ivp."""
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import vehdyn
+from vehdyn.handling import SingleTrack, sine_steer
+from vehdyn.tire import FialaTire, LinearTire
+
+pytest.importorskip("numba")
+
+SEDAN = vehdyn.load_vehicle("sedan")
+LINEAR = (LinearTire(cornering_stiffness=SEDAN.tires.front_cornering_stiffness / 2, nominal_load=3000.0),
+          LinearTire(cornering_stiffness=SEDAN.tires.rear_cornering_stiffness / 2))
+MODELS = {(law, spin, lag): SingleTrack(SEDAN, *(LINEAR if law == "linear" else (None, None)), wheel_spin=spin,
+                                        tire_lag=lag)
+          for law in ("magic_formula", "linear") for spin in (False, True) for lag in (False, True)}
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(key=st.sampled_from(sorted(MODELS)), data=st.data())
+def test_compiled_rhs_and_outputs_equal_the_numpy_ones(key, data):
+    model = MODELS[key]
+    compiled = model.compiled_rhs()
+    floats = st.floats(-1.0, 1.0)
+    x = np.array(data.draw(st.lists(floats, min_size=model.n_states, max_size=model.n_states)))
+    u = np.array(data.draw(st.lists(floats, min_size=model.n_inputs, max_size=model.n_inputs)))
+    x[0] = data.draw(st.floats(-35.0, 35.0))  # from reverse through standstill to speed
+    if model.wheel_spin:
+        x[6:8] = x[0] / model.parameters.rolling_radius * (1 + 0.3 * x[6:8])
+    if model.tire_lag:
+        x[-4 if model.wheel_spin else -2:] *= 0.05  # deflections [m]
+    u[2:] *= 3000.0  # forces [N] or torques [N m]
+    dxdt = np.empty(model.n_states)
+    compiled.rhs(0.0, x, u, compiled.args, dxdt)
+    expected = model.rhs(0.0, x, u)
+    assert np.allclose(dxdt, expected, rtol=1e-12, atol=1e-12 * max(1.0, np.max(np.abs(expected))))
+    y = np.empty(model.n_outputs)
+    compiled.output(0.0, x, u, compiled.args, y)
+    expected = model.output(0.0, x, u)
+    assert np.allclose(y, expected, rtol=1e-12, atol=1e-12 * max(1.0, np.max(np.abs(expected))))
+
+
+def sine_run(backend, method, rtol, sampled, model=None):
+    model = MODELS[("magic_formula", False, True)] if model is None else model
+    t = np.linspace(0.0, 2.0, 41)
+    steer = sine_steer(np.radians(2.0), 0.5)
+    drag = float(model.parameters.drag_factor) * 20.0**2
+    inputs = {"front_steer_angle": steer(t) if sampled else steer, "rear_longitudinal_force": drag}
+    return vehdyn.simulate(model, t, inputs, x0=model.straight_running(20.0), method=method, rtol=rtol,
+                           atol=rtol * 1e-3, backend=backend)
+
+
+@pytest.fixture(scope="module")
+def solve_ivp_reference():
+    return sine_run("numpy", "DOP853", 1e-11, sampled=True)
+
+
+@pytest.mark.parametrize("method", ["RK45", "DOP853"])
+def test_compiled_simulation_equals_solve_ivp(method, solve_ivp_reference):
+    # the same ODE (sampled steer, first-order hold on both backends) at a tight tolerance
+    compiled = sine_run("compiled", method, 1e-10, sampled=True)
+    reference = solve_ivp_reference
+    assert "compiled" in compiled.method_reason and "compiled" not in reference.method_reason
+    for name in ("yaw_rate", "lateral_velocity", "lateral_acceleration", "front_lateral_force"):
+        scale = np.max(np.abs(reference[name]))
+        assert np.max(np.abs(compiled[name] - reference[name])) < 1e-7 * scale, name
+
+
+def test_manoeuvre_signal_in_closed_form_equals_the_steer_computed_inside_the_rhs():
+    # the independent reference: a numpy model whose rhs computes delta(t) itself (no sampling)
+    base = MODELS[("magic_formula", False, True)]
+    steer = sine_steer(np.radians(2.0), 0.5)
+    drag = float(base.parameters.drag_factor) * 20.0**2
+
+    class Steered(vehdyn.Model):
+        def __init__(self):
+            self.declare(states=base.states)
+
+        def rhs(self, t, x, u):
+            return base.rhs(t, x, base.input_vector(front_steer_angle=float(steer(t)), rear_longitudinal_force=drag))
+
+    t = np.linspace(0.0, 2.0, 41)
+    reference = vehdyn.simulate(Steered(), t, x0=base.straight_running(20.0), method="DOP853", rtol=1e-10,
+                                atol=1e-13, backend="numpy")
+    compiled = sine_run("compiled", "DOP853", 1e-10, sampled=False)
+    for name in ("yaw_rate", "lateral_velocity"):
+        ref = reference[name]
+        assert np.max(np.abs(compiled[name] - ref)) < 1e-7 * np.max(np.abs(ref)), name
+
+
+def test_unsupported_tire_law_is_named_and_auto_falls_back():
+    fiala = FialaTire.from_vehicle(SEDAN, "front")
+    model = SingleTrack(SEDAN, fiala, fiala)
+    with pytest.raises(vehdyn.ParameterError, match="FialaTire") as info:
+        sine_run("compiled", "RK45", 1e-6, sampled=False, model=model)
+    assert info.value.key == "front_tire"
+    result = sine_run("auto", "RK45", 1e-4, sampled=False, model=model)
+    assert "compiled" not in result.method_reason and np.all(np.isfinite(result.states))
+
+
+def test_batch_model_refuses_the_compiled_backend_and_auto_runs_numpy():
+    base = MODELS[("magic_formula", False, True)]
+    batch = base.variants(mass=[1000.0, 1200.0])
+    t = np.linspace(0.0, 0.2, 3)
+    x0 = np.repeat(base.straight_running(20.0)[:, None], 2, axis=1)
+    with pytest.raises(vehdyn.ParameterError, match="batch"):
+        vehdyn.simulate(batch, t, x0=x0, method="RK45", backend="compiled")
+    with pytest.raises(vehdyn.ParameterError, match="variants"):
+        batch.compiled_rhs()
+    assert "compiled" not in vehdyn.simulate(batch, t, x0=x0, method="RK45").method_reason

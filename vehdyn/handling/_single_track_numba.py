@@ -1,0 +1,161 @@
+"""Compiled right-hand side of :class:`~vehdyn.handling.SingleTrack` (numba, optional).
+
+Imported only when the compiled backend is used. Nothing here restates a single-track equation:
+the functions of :mod:`~vehdyn.handling.single_track_equations` are registered with
+``register_jitable`` and run with a compiled ``xp`` (:data:`XP`) whose ``axle_tire_forces`` calls
+the axle's tire law: the Magic Formula through the compiled equations of
+:mod:`vehdyn.tire._mf_numba` (``magic_formula._forces_kernel`` on the coefficient record, the same
+call as :meth:`MagicFormula.forces` with its defaults ``limits=True``, ``alpha_star=False``), or
+the linear law. Other laws (brush, Fiala, Dugoff) have no compiled form: the model then refuses
+the compiled backend and names the law.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import sys
+import types
+from collections import namedtuple
+
+import numba
+import numpy as np
+from numba.extending import register_jitable
+
+from .. import conventions
+from .._compiled_ode import CompiledModel, source_stamp
+from ..errors import ParameterError
+from ..tire import _mf_numba, magic_formula
+from ..tire.linear import LinearTire
+from ..tire.magic_formula import MagicFormula
+from . import single_track_equations as equations
+
+__all__ = ["XP", "compiled_model", "compiled_functions"]
+
+_JIT = {"error_model": "numpy"}
+_MAGIC_FORMULA, _LINEAR = 0, 1
+
+for _function in (conventions.planar_tire_slips_sae_to_iso_w, conventions.planar_tire_forces_iso_w_to_sae):
+    register_jitable(**_JIT)(_function)
+for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_speed_blend", "sliding_slip",
+              "limit_deflection_rate", "axle_forces", "normal_loads", "evaluate", "derivatives", "outputs", "net_wheel_torque",
+              "deflection_rate"):
+    register_jitable(**_JIT)(getattr(equations, _name))
+
+TireLaw = namedtuple("TireLaw", ("kind", "mirrored", "coefficients", "linear"))
+TireLaw.__doc__ = """The law of one axle's tires for compiled code: ``kind`` (0 Magic Formula, 1 linear),
+``mirrored`` (axle force = tire + mirror image, see :meth:`SingleTrack.axle_law_forces`), the
+Magic Formula coefficient record (a placeholder for other laws) and the linear law's numbers
+(cornering, slip and camber stiffness, pneumatic trail, nominal load or 0 for none)."""
+
+
+def _linear_law(numbers, fz, kappa, alpha, vx):
+    """(F_x, F_y) ISO-W of :class:`~vehdyn.tire.LinearTire` (its equations, module docstring) at one point."""
+    cornering, slip, nominal = numbers[0], numbers[1], numbers[2]
+    fz = max(fz, 0.0)
+    if nominal > 0.0:
+        scale = fz / nominal
+    else:
+        scale = 1.0 if fz > 0.0 else 0.0
+    direction = -1.0 if vx < 0.0 else 1.0
+    return slip * kappa * scale * direction, -cornering * alpha * scale
+
+
+def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
+    """ISO-W axle forces (fx, fy) [N]: two tires at half the load ``fz`` (see ``SingleTrack.axle_law_forces``)."""
+    law = tires[axle]
+    load = 0.5 * fz
+    if law.kind == _MAGIC_FORMULA:
+        c = law.coefficients
+        f = magic_formula._forces_kernel(_mf_numba.OPS, c, load, kappa, alpha, 0.0, vx, c.INFLPRES, True, False)
+        if law.mirrored:
+            g = magic_formula._forces_kernel(_mf_numba.OPS, c, load, kappa, -alpha, 0.0, vx, c.INFLPRES, True, False)
+            return f[0] + g[0], f[1] - g[1]
+        return 2.0 * f[0], 2.0 * f[1]
+    fx, fy = _linear_law(law.linear, load, kappa, alpha, vx)
+    if law.mirrored:
+        gx, gy = _linear_law(law.linear, load, kappa, -alpha, vx)
+        return fx + gx, fy - gy
+    return 2.0 * fx, 2.0 * fy
+
+
+XP = types.ModuleType("vehdyn.handling._single_track_numba.XP")
+XP.__doc__ = "The ``xp`` of the single-track equations in compiled code (floats; the tire laws compiled)."
+for _name in ("cos", "sin", "atan", "sqrt", "atan2"):
+    setattr(XP, _name, getattr(math, _name))
+for _name in ("abs", "where", "minimum", "maximum"):
+    setattr(XP, _name, getattr(_mf_numba.OPS, _name))
+XP.axle_tire_forces = numba.njit(**_JIT)(_axle_tire_forces)
+register_jitable(**_JIT)(_linear_law)
+
+
+def _rhs(t, x, u, args, dxdt):
+    """dx/dt of a SingleTrack at (t, x, u) into ``dxdt``; ``args`` from :func:`rhs_and_args`."""
+    k, tires, state_index, input_index = args
+    states = equations.named_states(x, state_index)
+    inputs = equations.named_inputs(u, input_index)
+    e = equations.evaluate(XP, tires, k, states, inputs)
+    rates = equations.derivatives(XP, k, e, states, inputs)
+    for j in range(len(rates)):
+        if state_index[j] >= 0:
+            dxdt[state_index[j]] = rates[j]
+
+
+def _output(t, x, u, args, y):
+    """The outputs of a SingleTrack at (t, x, u) into ``y``."""
+    k, tires, state_index, input_index = args
+    states = equations.named_states(x, state_index)
+    e = equations.evaluate(XP, tires, k, states, equations.named_inputs(u, input_index))
+    values = equations.outputs(XP, states, e)
+    for j in range(len(values)):
+        y[j] = values[j]
+
+
+@functools.lru_cache(maxsize=None)
+def compiled_functions():
+    """(rhs, output, cache key): compiled on first call, cached on disk per source digest."""
+    from ..tire import mf_forces, mf_moments, mf_vertical
+
+    from ..tire import _mf_ops
+
+    key = "single_track_" + source_stamp(equations, conventions, magic_formula, mf_forces, mf_moments, mf_vertical,
+                                         _mf_ops, _mf_numba, sys.modules[__name__])
+    compiled = []
+    for python, name in ((_rhs, key + "_rhs"), (_output, key + "_output")):
+        function = types.FunctionType(python.__code__, python.__globals__, name, python.__defaults__)
+        function.__qualname__ = name
+        compiled.append(numba.njit(cache=True, **_JIT)(function))
+    return compiled[0], compiled[1], key
+
+
+def _placeholder_record():
+    return np.zeros(1, dtype=[(name, np.float64) for name in magic_formula.MFCoefficients._fields])[0]
+
+
+def tire_law(tire, mirrored: bool, axle: str) -> TireLaw:
+    """The compiled description of ``tire`` (a MagicFormula or LinearTire), else ParameterError."""
+    if isinstance(tire, MagicFormula):
+        return TireLaw(_MAGIC_FORMULA, bool(mirrored), _mf_numba._record(tire._c), (0.0, 0.0, 0.0))
+    if isinstance(tire, LinearTire):
+        # camber (zero in the single track) and the trail (M_z is not used) do not enter
+        numbers = (float(tire.cornering_stiffness), float(tire.longitudinal_stiffness),
+                   0.0 if tire.nominal_load is None else float(tire.nominal_load))
+        return TireLaw(_LINEAR, bool(mirrored), _placeholder_record(), numbers)
+    raise ParameterError(f"the compiled SingleTrack supports the MagicFormula and LinearTire laws; the {axle} tire is "
+                         f"a {type(tire).__name__}: use backend='numpy'", key=f"{axle}_tire", value=type(tire).__name__)
+
+
+def compiled_model(model) -> CompiledModel:
+    """The compiled rhs and outputs of a SingleTrack with scalar parameters."""
+    if model.n_variants is not None:
+        raise ParameterError("the compiled SingleTrack runs one vehicle; this model has array parameters "
+                             f"({model.n_variants} variants): use backend='numpy'", key="variants",
+                             value=model.n_variants)
+    k = model._constants()
+    k = k._replace(**{name: float(getattr(k, name)) for name in k._fields if name not in ("wheel_spin", "tire_lag")})
+    tires = (tire_law(model.front_tire, model._mirrored["front"], "front"),
+             tire_law(model.rear_tire, model._mirrored["rear"], "rear"))
+    rhs, output, key = compiled_functions()
+    # tuples, not arrays: passed by value, without reference counting on every call
+    index = (tuple(int(i) for i in model._state_index), tuple(int(i) for i in model._input_index))
+    return CompiledModel(rhs, output, key, (k, tires, *index))

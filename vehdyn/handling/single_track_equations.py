@@ -1,0 +1,265 @@
+"""The equations of :class:`~vehdyn.handling.SingleTrack` as pure functions over an ``xp`` namespace.
+
+One source for both backends (the pattern of :mod:`vehdyn.tire._mf_ops`): the functions below
+use only ``xp.cos``, ``xp.sin``, ``xp.atan``, ``xp.sqrt``, ``xp.abs``, ``xp.where``,
+``xp.minimum``, ``xp.maximum`` and ``xp.axle_tire_forces`` (the tire law of an axle), and plain
+arithmetic, so that they run
+
+* on numpy arrays with a trailing batch axis (:data:`NUMPY`, what ``SingleTrack.rhs`` and
+  ``output`` use; the tire law is the model's :class:`~vehdyn.tire.TireModel`), and
+* on floats inside numba-compiled code (:mod:`vehdyn.handling._single_track_numba` registers
+  these functions with ``register_jitable`` and supplies a compiled ``xp``).
+
+The equations, their signs and references are in the docstring of
+:mod:`vehdyn.handling.single_track`. Signals travel in a fixed order (:data:`STATES`,
+:data:`INPUTS`); a model's own vectors hold a subset, mapped through an index (-1: absent, 0.0).
+"""
+
+from __future__ import annotations
+
+import math
+from collections import namedtuple
+
+import numpy as np
+
+from ..conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slips_sae_to_iso_w
+from ..tire._mf_ops import NumpyOps
+
+__all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate", "derivatives", "outputs"]
+
+STATES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y", "yaw_angle", "front_wheel_speed",
+          "rear_wheel_speed", "front_lateral_deflection", "rear_lateral_deflection", "front_longitudinal_deflection",
+          "rear_longitudinal_deflection")
+"""Every state a SingleTrack can have, in the order of :func:`evaluate` and :func:`derivatives`."""
+
+INPUTS = ("front_steer_angle", "rear_steer_angle", "front_longitudinal_force", "rear_longitudinal_force",
+          "front_drive_torque", "rear_drive_torque", "front_brake_torque", "rear_brake_torque",
+          "external_lateral_force", "external_yaw_moment")
+"""Every input a SingleTrack can have, in the order of :func:`evaluate`."""
+
+REGULARIZATION_SPEED = 0.5  # [m/s], the default v_0 of vehdyn.tire.slip
+
+Constants = namedtuple("Constants", (
+    "mass", "yaw_inertia", "a", "b", "cg_height", "rolling_radius", "wheel_spin_inertia", "friction_coefficient",
+    "front_lateral_relaxation_length", "rear_lateral_relaxation_length", "front_longitudinal_relaxation_length",
+    "rear_longitudinal_relaxation_length", "drag_factor", "front_lift_factor", "rear_lift_factor", "gravity",
+    "low_speed_damping_speed", "brake_regularization_speed", "front_peak_slip_ratio", "front_peak_tan_slip_angle",
+    "rear_peak_slip_ratio", "rear_peak_tan_slip_angle", "wheel_spin", "tire_lag"))
+Constants.__doc__ = """What the equations read: the fields of :class:`SingleTrackParameters` (floats, or arrays
+across batch variants on numpy), the model's options and the peak-force slips of the two laws
+(the limits of the tire deflections); ``wheel_spin`` and ``tire_lag`` are bools."""
+
+Evaluation = namedtuple("Evaluation", (
+    "longitudinal_acceleration", "lateral_acceleration", "yaw_acceleration", "front_longitudinal_force",
+    "front_lateral_force", "front_slip_angle", "front_slip_ratio", "rear_longitudinal_force", "rear_lateral_force",
+    "rear_slip_angle", "rear_slip_ratio", "front_normal_load", "rear_normal_load", "front_vx", "front_vy",
+    "rear_vx", "rear_vy"))
+Evaluation.__doc__ = """Accelerations of the CG (du/dt - v r, dv/dt + u r [m/s^2], dr/dt [rad/s^2]), axle forces
+in SAE wheel axes [N], the slips acting in the laws (SAE slip angle [rad], slip ratio [-]), normal
+loads [N] and the wheel-centre velocities in wheel axes [m/s]."""
+
+
+class NUMPY(NumpyOps):
+    """``xp`` of the equations on numpy arrays: the Magic Formula's, with numpy's own sin and cos
+    (not the half-angle forms) and the tire law ``tires.axle_law_forces``."""
+
+    cos = staticmethod(np.cos)
+    sin = staticmethod(np.sin)
+    atan2 = staticmethod(np.arctan2)
+
+    @staticmethod
+    def axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
+        """ISO-W axle forces (fx, fy) [N] of ``axle`` (0 front, 1 rear) from ISO-W slips."""
+        return tires.axle_law_forces(axle, fz, kappa, alpha, vx)
+
+
+def _at(values, i):
+    """values[i], or zero (of values[0]'s shape) for i = -1: a signal the model lacks."""
+    return values[i] if i >= 0 else 0.0 * values[0]
+
+
+def named_states(x, index):
+    """The states of a model's vector ``x`` in the order of :data:`STATES` (``index``: position of
+    each in ``x``, -1 where the model lacks it)."""
+    return (_at(x, index[0]), _at(x, index[1]), _at(x, index[2]), _at(x, index[3]), _at(x, index[4]),
+            _at(x, index[5]), _at(x, index[6]), _at(x, index[7]), _at(x, index[8]), _at(x, index[9]),
+            _at(x, index[10]), _at(x, index[11]))
+
+
+def named_inputs(u, index):
+    """The inputs of a model's vector ``u`` in the order of :data:`INPUTS` (see :func:`named_states`)."""
+    return (_at(u, index[0]), _at(u, index[1]), _at(u, index[2]), _at(u, index[3]), _at(u, index[4]),
+            _at(u, index[5]), _at(u, index[6]), _at(u, index[7]), _at(u, index[8]), _at(u, index[9]))
+
+
+def regularized_speed(xp, vx):
+    """|vx| above v_0, (vx^2 + v_0^2) / (2 v_0) below (:func:`vehdyn.tire.regularized_speed`)."""
+    v0 = REGULARIZATION_SPEED
+    return xp.where(xp.abs(vx) >= v0, xp.abs(vx), (vx * vx + v0 * v0) / (2.0 * v0))
+
+
+def low_speed_blend(xp, speed, damping_speed):
+    """w = (1 + cos(pi |V_x| / v_l)) / 2 below v_l, 0 above (Pacejka 2012, eq. 8.126)."""
+    return 0.5 * (1.0 + xp.cos(math.pi * xp.minimum(speed / damping_speed, 1.0)))
+
+
+def sliding_slip(xp, transient, kinematic, peak):
+    """The slip that makes the force: the transient (deflection) slip, or the kinematic slip when
+    the deflection sits at its peak-force limit and the kinematic slip lies beyond it (sliding)."""
+    at_limit = xp.where(xp.abs(transient) >= 0.999 * peak, 1.0, 0.0)
+    beyond = xp.where(transient * kinematic > 0, 1.0, 0.0) * xp.where(xp.abs(kinematic) > xp.abs(transient), 1.0, 0.0)
+    return xp.where(at_limit * beyond > 0, kinematic, transient)
+
+
+def limit_deflection_rate(xp, rate, slip, peak):
+    """Deflection rate with its outward part faded out over the last 5 % before the peak slip."""
+    room = xp.minimum(xp.maximum((peak - xp.abs(slip)) / (0.05 * peak), 0.0), 1.0)
+    return xp.where(rate * slip > 0, rate * room, rate)
+
+
+def axle_forces(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection,
+                lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle, force_demand):
+    """Axle forces (fx, fy) in SAE wheel axes [N] and the slips (alpha SAE [rad], kappa [-]) at load ``fz``."""
+    speed = xp.abs(vx)
+    direction = xp.where(vx < 0.0, -1.0, 1.0)  # sign(vx) with sign(0) = +1
+    blend = low_speed_blend(xp, speed, k.low_speed_damping_speed)
+    if k.tire_lag:
+        tan_alpha = sliding_slip(xp, lateral_deflection / lateral_length, vy / regularized_speed(xp, vx),
+                                 peak_tan_slip_angle)
+        tan_alpha = tan_alpha + blend * vy / k.low_speed_damping_speed
+    else:
+        tan_alpha = vy / regularized_speed(xp, vx)
+    alpha = xp.atan(tan_alpha)
+    if k.wheel_spin:
+        vsx = vx - wheel_speed * k.rolling_radius
+        if k.tire_lag:
+            slip = sliding_slip(xp, longitudinal_deflection / longitudinal_length, -vsx / regularized_speed(xp, vx),
+                                peak_slip_ratio)
+            slip = slip - blend * vsx / k.low_speed_damping_speed
+            kappa = slip * direction
+        else:
+            kappa = -vsx / (direction * regularized_speed(xp, vx))
+    else:
+        kappa = 0.0 * alpha
+    kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
+    fx_iso, fy_iso = xp.axle_tire_forces(tires, axle, fz, kappa_iso, alpha_iso, direction * xp.maximum(speed, 1e-3))
+    fx, fy = planar_tire_forces_iso_w_to_sae(fx_iso, fy_iso)
+    if not k.wheel_spin:  # force mode: the demand, clipped by friction; the friction ellipse on F_y
+        limit = k.friction_coefficient * xp.maximum(fz, 0.0)
+        fx = xp.minimum(xp.maximum(force_demand, -limit), limit)
+        safe = xp.where(limit > 0, limit, 1.0)
+        fy = fy * xp.sqrt(xp.maximum(1.0 - (fx / safe) ** 2, 0.0))
+    return fx, fy, alpha, kappa
+
+
+def normal_loads(xp, k, x_force, front_lift, rear_lift):
+    """Axle loads (front, rear) [N] with quasi-static load transfer by the body-x tire force
+    ``x_force`` [N]; an axle that would lift off carries 0 and the other the whole weight."""
+    wheelbase = k.a + k.b
+    weight = k.mass * k.gravity
+    front = weight * k.b / wheelbase - k.cg_height * x_force / wheelbase - front_lift
+    total = weight - front_lift - rear_lift
+    front = xp.minimum(xp.maximum(front, 0.0), xp.maximum(total, 0.0))
+    return front, xp.maximum(total - front, 0.0)
+
+
+def evaluate(xp, tires, k, states, inputs):
+    """Forces, loads and accelerations at ``states``, ``inputs`` (tuples in the order of
+    :data:`STATES`, :data:`INPUTS`): an :class:`Evaluation`."""
+    (lon, lat, yaw_rate, _x, _y, _yaw, front_wheel_speed, rear_wheel_speed, front_lateral_deflection,
+     rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection) = states
+    (front_steer, rear_steer, front_force, rear_force, _fd, _rd, _fb, _rb, external_force, external_moment) = inputs
+    front_lift, rear_lift = k.front_lift_factor * lon * lon, k.rear_lift_factor * lon * lon
+    cf, sf = xp.cos(front_steer), xp.sin(front_steer)
+    cr, sr = xp.cos(rear_steer), xp.sin(rear_steer)
+    front_body_lateral, rear_body_lateral = lat + k.a * yaw_rate, lat - k.b * yaw_rate
+    vxf, vyf = lon * cf + front_body_lateral * sf, -lon * sf + front_body_lateral * cf
+    vxr, vyr = lon * cr + rear_body_lateral * sr, -lon * sr + rear_body_lateral * cr
+
+    def front(fz):
+        return axle_forces(xp, tires, 0, k, fz, vxf, vyf, front_wheel_speed, front_lateral_deflection,
+                           front_longitudinal_deflection, k.front_lateral_relaxation_length,
+                           k.front_longitudinal_relaxation_length, k.front_peak_slip_ratio,
+                           k.front_peak_tan_slip_angle, front_force)
+
+    def rear(fz):
+        return axle_forces(xp, tires, 1, k, fz, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
+                           rear_longitudinal_deflection, k.rear_lateral_relaxation_length,
+                           k.rear_longitudinal_relaxation_length, k.rear_peak_slip_ratio,
+                           k.rear_peak_tan_slip_angle, rear_force)
+
+    # quasi-static load transfer: the longitudinal forces depend on the loads and the loads on
+    # the forces; with force inputs the dependence is explicit, with wheel spin two fixed-point
+    # passes from the static loads: the iteration contracts by about mu h / L (~0.2), so the
+    # load transfer is within (mu h / L)^2 ~ 4 % of its converged value
+    if k.wheel_spin:
+        weight, wheelbase = k.mass * k.gravity, k.a + k.b
+        fz_f, fz_r = weight * k.b / wheelbase - front_lift, weight * k.a / wheelbase - rear_lift
+        for _ in range(2):
+            f, r = front(fz_f), rear(fz_r)
+            fz_f, fz_r = normal_loads(xp, k, f[0] * cf - f[1] * sf + r[0] * cr - r[1] * sr, front_lift, rear_lift)
+    else:
+        fz_f, fz_r = normal_loads(xp, k, front_force * cf + rear_force * cr, front_lift, rear_lift)
+    f, r = front(fz_f), rear(fz_r)
+    fx_body = f[0] * cf - f[1] * sf + r[0] * cr - r[1] * sr
+    front_lateral, rear_lateral = f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr
+    moment = external_moment + k.a * front_lateral - k.b * rear_lateral
+    drag = k.drag_factor * lon * xp.abs(lon)
+    return Evaluation((fx_body - drag) / k.mass, (front_lateral + rear_lateral + external_force) / k.mass,
+                      moment / k.yaw_inertia, f[0], f[1], f[2], f[3], r[0], r[1], r[2], r[3], fz_f, fz_r,
+                      vxf, vyf, vxr, vyr)
+
+
+def derivatives(xp, k, e, states, inputs):
+    """d/dt of every entry of :data:`STATES` (0.0 for a state the model lacks) from an :class:`Evaluation`."""
+    (lon, lat, yaw_rate, _x, _y, yaw, front_wheel_speed, rear_wheel_speed, front_lateral_deflection,
+     rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection) = states
+    (_fs, _rs, _ff, _rf, front_drive, rear_drive, front_brake, rear_brake, _fe, _me) = inputs
+    zero = 0.0 * lon
+    cpsi, spsi = xp.cos(yaw), xp.sin(yaw)
+    d_front_wheel = d_rear_wheel = d_front_lateral = d_rear_lateral = d_front_longitudinal = zero
+    d_rear_longitudinal = zero
+    if k.wheel_spin:
+        inertia = 2.0 * k.wheel_spin_inertia
+        d_front_wheel = net_wheel_torque(xp, k, front_wheel_speed, front_drive, front_brake,
+                                         e.front_longitudinal_force) / inertia
+        d_rear_wheel = net_wheel_torque(xp, k, rear_wheel_speed, rear_drive, rear_brake,
+                                        e.rear_longitudinal_force) / inertia
+    if k.tire_lag:
+        d_front_lateral = deflection_rate(xp, e.front_vy, e.front_vx, front_lateral_deflection,
+                                          k.front_lateral_relaxation_length, k.front_peak_tan_slip_angle)
+        d_rear_lateral = deflection_rate(xp, e.rear_vy, e.rear_vx, rear_lateral_deflection,
+                                         k.rear_lateral_relaxation_length, k.rear_peak_tan_slip_angle)
+        if k.wheel_spin:
+            d_front_longitudinal = deflection_rate(
+                xp, -(e.front_vx - front_wheel_speed * k.rolling_radius), e.front_vx, front_longitudinal_deflection,
+                k.front_longitudinal_relaxation_length, k.front_peak_slip_ratio)
+            d_rear_longitudinal = deflection_rate(
+                xp, -(e.rear_vx - rear_wheel_speed * k.rolling_radius), e.rear_vx, rear_longitudinal_deflection,
+                k.rear_longitudinal_relaxation_length, k.rear_peak_slip_ratio)
+    return (e.longitudinal_acceleration + lat * yaw_rate, e.lateral_acceleration - lon * yaw_rate,
+            e.yaw_acceleration, lon * cpsi - lat * spsi, lon * spsi + lat * cpsi, yaw_rate, d_front_wheel,
+            d_rear_wheel, d_front_lateral, d_rear_lateral, d_front_longitudinal, d_rear_longitudinal)
+
+
+def net_wheel_torque(xp, k, wheel_speed, drive, brake, longitudinal_force):
+    """Torque on the two wheels of an axle [N*m]: drive - brake sat(omega / omega_b) - R_e F_x."""
+    z = wheel_speed / k.brake_regularization_speed
+    return drive - xp.abs(brake) * z / xp.sqrt(1.0 + z * z) - k.rolling_radius * longitudinal_force
+
+
+def deflection_rate(xp, slip_velocity, vx, deflection, length, peak):
+    """d(rho)/dt = V_s - |V_x| rho / sigma, its outward part limited at the peak slip."""
+    rate = slip_velocity - xp.abs(vx) * deflection / length
+    return limit_deflection_rate(xp, rate, deflection / length, peak)
+
+
+def outputs(xp, states, e):
+    """The outputs of :class:`~vehdyn.handling.SingleTrack` (in the order of its ``outputs``)."""
+    lon, lat, yaw_rate = states[0], states[1], states[2]
+    speed_squared = lon * lon + lat * lat
+    return (e.lateral_acceleration, xp.atan2(lat, xp.abs(lon)), yaw_rate, lat, e.front_slip_angle,
+            e.rear_slip_angle, e.lateral_acceleration / xp.maximum(speed_squared, 0.25), e.front_lateral_force,
+            e.rear_lateral_force, e.longitudinal_acceleration, lon, xp.sqrt(speed_squared),
+            e.front_longitudinal_force, e.rear_longitudinal_force, e.front_normal_load, e.rear_normal_load,
+            e.front_slip_ratio, e.rear_slip_ratio, states[3], states[4], states[5])
