@@ -5,7 +5,8 @@ API index
 Model contract
     :class:`Signal`, :class:`Model`, :class:`LinearModel`, :func:`connect_in_series`
 Simulation and results
-    :func:`simulate`, :class:`SimulationResult`, :class:`FrequencyResponse`, :class:`Modes`
+    :func:`simulate` (backends "numpy" and "compiled"), :class:`PiecewiseSignal` (closed-form inputs),
+    :class:`SimulationResult`, :class:`FrequencyResponse`, :class:`Modes`
 Parameters
     :func:`load_vehicle`, :func:`shipped_vehicles`, :class:`Vehicle` (and its groups in
     :mod:`vehdyn.params`), :func:`data_path`
@@ -29,6 +30,7 @@ from .errors import ParameterError, SimulationError, TirFileError, VehdynError
 from .linear import LinearModel, connect_in_series
 from .model import Model
 from .params import Vehicle, data_path, load_vehicle, shipped_vehicles
+from .piecewise_signal import PiecewiseSignal
 from .results import FrequencyResponse, SimulationResult
 from .signals import Signal
 from .simulate import simulate
@@ -41,6 +43,7 @@ __all__ = [
     "LinearModel",
     "connect_in_series",
     "simulate",
+    "PiecewiseSignal",
     "SimulationResult",
     "FrequencyResponse",
     "Modes",

@@ -25,7 +25,7 @@ from numba.extending import register_jitable
 from .. import conventions
 from .._compiled_ode import CompiledModel, source_stamp
 from ..errors import ParameterError
-from ..tire import _mf_numba, magic_formula
+from ..tire import _mf_numba, linear, magic_formula
 from ..tire.linear import LinearTire
 from ..tire.magic_formula import MagicFormula
 from . import single_track_equations as equations
@@ -45,20 +45,8 @@ for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_s
 TireLaw = namedtuple("TireLaw", ("kind", "mirrored", "coefficients", "linear"))
 TireLaw.__doc__ = """The law of one axle's tires for compiled code: ``kind`` (0 Magic Formula, 1 linear),
 ``mirrored`` (axle force = tire + mirror image, see :meth:`SingleTrack.axle_law_forces`), the
-Magic Formula coefficient record (a placeholder for other laws) and the linear law's numbers
-(cornering, slip and camber stiffness, pneumatic trail, nominal load or 0 for none)."""
-
-
-def _linear_law(numbers, fz, kappa, alpha, vx):
-    """(F_x, F_y) ISO-W of :class:`~vehdyn.tire.LinearTire` (its equations, module docstring) at one point."""
-    cornering, slip, nominal = numbers[0], numbers[1], numbers[2]
-    fz = max(fz, 0.0)
-    if nominal > 0.0:
-        scale = fz / nominal
-    else:
-        scale = 1.0 if fz > 0.0 else 0.0
-    direction = -1.0 if vx < 0.0 else 1.0
-    return slip * kappa * scale * direction, -cornering * alpha * scale
+Magic Formula coefficient record (a placeholder for other laws) and the linear law's coefficients
+(:attr:`LinearTire.coefficients`; zeros for a Magic Formula)."""
 
 
 def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
@@ -72,9 +60,9 @@ def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
             g = magic_formula._forces_kernel(_mf_numba.OPS, c, load, kappa, -alpha, 0.0, vx, c.INFLPRES, True, False)
             return f[0] + g[0], f[1] - g[1]
         return 2.0 * f[0], 2.0 * f[1]
-    fx, fy = _linear_law(law.linear, load, kappa, alpha, vx)
+    fx, fy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, load, kappa, alpha, 0.0, vx)
     if law.mirrored:
-        gx, gy = _linear_law(law.linear, load, kappa, -alpha, vx)
+        gx, gy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, load, kappa, -alpha, 0.0, vx)
         return fx + gx, fy - gy
     return 2.0 * fx, 2.0 * fy
 
@@ -86,7 +74,7 @@ for _name in ("cos", "sin", "atan", "sqrt", "atan2"):
 for _name in ("abs", "where", "minimum", "maximum"):
     setattr(XP, _name, getattr(_mf_numba.OPS, _name))
 XP.axle_tire_forces = numba.njit(**_JIT)(_axle_tire_forces)
-register_jitable(**_JIT)(_linear_law)
+register_jitable(**_JIT)(linear.linear_tire_law)
 
 
 def _rhs(t, x, u, args, dxdt):
@@ -119,7 +107,7 @@ def compiled_functions():
     from ..tire import _mf_ops
 
     key = "single_track_" + source_stamp(equations, conventions, magic_formula, mf_forces, mf_moments, mf_vertical,
-                                         _mf_ops, _mf_numba, sys.modules[__name__])
+                                         _mf_ops, _mf_numba, linear, sys.modules[__name__])
     compiled = []
     for python, name in ((_rhs, key + "_rhs"), (_output, key + "_output")):
         function = types.FunctionType(python.__code__, python.__globals__, name, python.__defaults__)
@@ -135,12 +123,9 @@ def _placeholder_record():
 def tire_law(tire, mirrored: bool, axle: str) -> TireLaw:
     """The compiled description of ``tire`` (a MagicFormula or LinearTire), else ParameterError."""
     if isinstance(tire, MagicFormula):
-        return TireLaw(_MAGIC_FORMULA, bool(mirrored), _mf_numba._record(tire._c), (0.0, 0.0, 0.0))
+        return TireLaw(_MAGIC_FORMULA, bool(mirrored), _mf_numba._record(tire._c), (0.0, 0.0, 0.0, 0.0, 0.0))
     if isinstance(tire, LinearTire):
-        # camber (zero in the single track) and the trail (M_z is not used) do not enter
-        numbers = (float(tire.cornering_stiffness), float(tire.longitudinal_stiffness),
-                   0.0 if tire.nominal_load is None else float(tire.nominal_load))
-        return TireLaw(_LINEAR, bool(mirrored), _placeholder_record(), numbers)
+        return TireLaw(_LINEAR, bool(mirrored), _placeholder_record(), tire.coefficients)
     raise ParameterError(f"the compiled SingleTrack supports the MagicFormula and LinearTire laws; the {axle} tire is "
                          f"a {type(tire).__name__}: use backend='numpy'", key=f"{axle}_tire", value=type(tire).__name__)
 

@@ -24,12 +24,42 @@ from __future__ import annotations
 
 import dataclasses
 
-
 from ..params.base import ParameterSet, parameter
-from ._common import VectorizedTire, planar_forces, rolling_direction, scalar_rolling_direction
+from ._common import VectorizedTire, planar_forces
+from ._mf_ops import NumpyOps, ScalarOps
 from .base import TireForces
 
-__all__ = ["LinearTire"]
+__all__ = ["LinearTire", "linear_tire_law"]
+
+
+def linear_tire_law(xp, coefficients, fz, kappa, alpha, gamma, vx):
+    """``(F_x, F_y, M_z)`` [N, N, N m] of the linear law (module docstring), ISO-W.
+
+    Written against the array namespace ``xp`` (:mod:`vehdyn.tire._mf_ops`), so that numpy arrays,
+    Python floats and numba-compiled callers (:mod:`vehdyn.handling._single_track_numba`) run this
+    one source.
+
+    Parameters
+    ----------
+    xp : namespace
+        ``NumpyOps``, ``ScalarOps`` or a compiled equivalent.
+    coefficients : tuple of float
+        ``(C_alpha [N/rad], C_kappa [N], C_gamma [N/rad], t [m], F_z0 [N] or 0 for no load scaling)``
+        (:attr:`LinearTire.coefficients`).
+    fz, kappa, alpha, gamma, vx
+        Normal load [N] (negative counts as 0), slip ratio [-], slip angle [rad], inclination [rad],
+        forward speed [m/s].
+    """
+    cornering, slip, camber, trail, nominal = coefficients
+    fz = xp.maximum(fz, 0.0)
+    if nominal > 0.0:
+        scale = fz / nominal
+    else:
+        scale = xp.where(fz > 0.0, 1.0, 0.0)
+    direction = xp.where(vx < 0.0, -1.0, 1.0)  # +1 at standstill: the side the patch is entered from
+    fy = (camber * gamma - cornering * alpha) * scale
+    fx = slip * kappa * scale * direction
+    return fx, fy, -trail * fy * direction
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -74,25 +104,17 @@ class LinearTire(ParameterSet, VectorizedTire):
         data = vehicle_tire_data(vehicle, axle)
         return cls(cornering_stiffness=data.cornering_stiffness, nominal_load=data.static_load)
 
+    @property
+    def coefficients(self) -> tuple:
+        """``(C_alpha, C_kappa, C_gamma, t, F_z0 or 0)``: the numbers :func:`linear_tire_law` reads."""
+        return (float(self.cornering_stiffness), float(self.longitudinal_stiffness), float(self.camber_stiffness),
+                float(self.pneumatic_trail), 0.0 if self.nominal_load is None else float(self.nominal_load))
+
     def _kernel(self, fz, kappa, alpha, gamma, vx):
-        """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
-        if self.nominal_load is None:
-            scale = (fz > 0.0).astype(float)
-        else:
-            scale = fz / self.nominal_load
-        direction = rolling_direction(vx)
-        fy = (self.camber_stiffness * gamma - self.cornering_stiffness * alpha) * scale
-        fx = (self.longitudinal_stiffness * kappa) * scale * direction
-        return fx, fy, (-self.pneumatic_trail) * fy * direction
+        """``(F_x, F_y, M_z)`` for float arrays of one shape."""
+        return linear_tire_law(NumpyOps, self.coefficients, fz, kappa, alpha, gamma, vx)
 
     def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
         """The same equations for one point (no numpy overhead)."""
-        fz = max(fz, 0.0)
-        if self.nominal_load is None:
-            scale = 1.0 if fz > 0.0 else 0.0
-        else:
-            scale = fz / self.nominal_load
-        direction = scalar_rolling_direction(vx)
-        fy = (self.camber_stiffness * gamma - self.cornering_stiffness * alpha) * scale
-        fx = (self.longitudinal_stiffness * kappa) * scale * direction
-        return planar_forces(fx, fy, fz, (-self.pneumatic_trail) * fy * direction)
+        fx, fy, mz = linear_tire_law(ScalarOps, self.coefficients, fz, kappa, alpha, gamma, vx)
+        return planar_forces(fx, fy, max(fz, 0.0), mz)
