@@ -29,18 +29,21 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from . import _mf_ops, magic_formula, mf_forces, mf_moments, mf_vertical
+from . import _fast_math, _mf_ops, magic_formula, mf_forces, mf_moments, mf_vertical
 from ._mf_ops import ScalarOps
 
 __all__ = ["OPS", "run"]
 
 _JIT_OPTIONS = {"error_model": "numpy"}  # x/0 = inf, 0/0 = nan (MFeval's MATLAB and numpy), no exceptions
+_INLINE = {"forceinline": True}  # LLVM alwaysinline: one flat loop body that LLVM can vectorize
 
 # ---- xp for compiled code: math functions and ScalarOps' float functions, compiled -------------
 OPS = types.ModuleType("vehdyn.tire._mf_numba.OPS")
 OPS.__doc__ = "The ``xp`` namespace of the equations inside numba-compiled code (one point, floats)."
-for _name in ("sin", "cos", "tan", "atan", "acos", "sqrt", "exp", "log10", "copysign"):
+for _name in ("sqrt", "copysign"):
     setattr(OPS, _name, getattr(math, _name))
+for _name in ("sin", "cos", "tan", "atan", "acos", "exp", "log10", "pow"):
+    setattr(OPS, _name, getattr(_fast_math, "fast_" + _name))
 for _name in ("where", "minimum", "maximum", "clip", "fmax", "isnan", "any", "all", "full_broadcast", "div_ieee"):
     setattr(OPS, _name, numba.njit(**_JIT_OPTIONS)(getattr(ScalarOps, _name)))
 OPS.div = OPS.div_ieee  # ScalarOps.div raises for numpy to take over; compiled code is IEEE itself
@@ -49,7 +52,7 @@ OPS.abs = numba.njit(**_JIT_OPTIONS)(lambda x: abs(x))
 OPS.scalar = True
 
 # ---- the equation functions, callable from compiled code ----------------------------------------
-_EQUATION_MODULES = (_mf_ops, mf_forces, mf_moments, mf_vertical, magic_formula)
+_EQUATION_MODULES = (_fast_math, _mf_ops, mf_forces, mf_moments, mf_vertical, magic_formula)
 _EQUATIONS = (
     (_mf_ops, ("sign_nonzero", "cos_atan")),
     (mf_forces, ("turn_slip_spin", "longitudinal_pure", "lateral_pure", "longitudinal_combined",
@@ -61,7 +64,7 @@ _EQUATIONS = (
 )
 for _module, _names in _EQUATIONS:
     for _name in _names:
-        register_jitable(**_JIT_OPTIONS)(getattr(_module, _name))
+        register_jitable(**_JIT_OPTIONS, **_INLINE)(getattr(_module, _name))
 
 _forces_kernel = magic_formula._forces_kernel
 _full_kernel = magic_formula._full_kernel

@@ -55,6 +55,7 @@ class NumpyOps:
     acos = staticmethod(np.arccos)
     sqrt = staticmethod(np.sqrt)
     exp = staticmethod(np.exp)
+    pow = staticmethod(np.power)
     log10 = staticmethod(np.log10)
     abs = staticmethod(np.abs)
     sign = staticmethod(np.sign)
@@ -98,6 +99,7 @@ class ScalarOps:
     acos = staticmethod(math.acos)
     sqrt = staticmethod(math.sqrt)
     exp = staticmethod(math.exp)
+    pow = staticmethod(math.pow)  # ValueError (-> numpy: nan) for a negative base and a fractional power
     log10 = staticmethod(math.log10)
     abs = staticmethod(abs)
     sign = staticmethod(_sign)

@@ -120,7 +120,7 @@ def _load_mf62(xp, c, gamma, omega, r_omega, dpi, radius, fx, fy):
     rho_gamma = xp.where(xp.isnan(rho_gamma), 0.0, rho_gamma)
     rho = xp.fmax(rho_free + rho_gamma, 1e-12)
     correction = (1 + c.Q_V2 * (r0 / c.LONGVL) * xp.abs(omega) - ((c.Q_FCX * fx) / fz0) ** 2
-                  - ((rho / r0) ** c.Q_FCY2 * (c.Q_FCY * (fy - camber_shift) / fz0)) ** 2) * (1 + c.PFZ1 * dpi)
+                  - (xp.pow(rho / r0, c.Q_FCY2) * (c.Q_FCY * (fy - camber_shift) / fz0)) ** 2) * (1 + c.PFZ1 * dpi)
     return correction * (q_fz1 * (rho / r0) + c.Q_FZ2 * (rho / r0) ** 2) * fz0, rho
 
 
@@ -185,7 +185,7 @@ def contact_patch(xp, c, fz, dpi):
     else:
         load = fz / (cz * r0)
         a = r0 * (c.Q_RA2 * load + c.Q_RA1 * xp.sqrt(load))
-        b = width * (c.Q_RB2 * load + c.Q_RB1 * load ** (1 / 3))
+        b = width * (c.Q_RB2 * load + c.Q_RB1 * xp.pow(load, 1 / 3))
     return a, b
 
 
