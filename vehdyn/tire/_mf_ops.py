@@ -22,6 +22,10 @@ import numpy as np
 __all__ = ["ScalarOps", "ScalarFallback", "NumpyOps", "sign_nonzero", "cos_atan"]
 
 
+RADIUS_ITERATIONS = 100
+"""At most this many fixed-point steps of the rolling radius (MFeval's limit)."""
+
+
 def _full_broadcast(value, arrays):
     """An array of the broadcast shape of ``arrays`` (a tuple) filled with ``value``."""
     return np.full(np.broadcast_shapes(*(np.shape(a) for a in arrays)), value)
@@ -71,6 +75,8 @@ class NumpyOps:
     all = staticmethod(np.all)
     full_broadcast = staticmethod(_full_broadcast)
     scalar = False
+    iterate_to_convergence = True  # iterations run until every point has converged (see _mf_numba.OPS_VECTOR)
+    radius_iterations = RADIUS_ITERATIONS
 
     @staticmethod
     def div(a, b):
@@ -105,6 +111,8 @@ class ScalarOps:
     sign = staticmethod(_sign)
     copysign = staticmethod(math.copysign)
     scalar = True
+    iterate_to_convergence = True
+    radius_iterations = RADIUS_ITERATIONS
 
     @staticmethod
     def where(condition, a, b):
