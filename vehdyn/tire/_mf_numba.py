@@ -35,6 +35,9 @@ from ._mf_ops import ScalarOps
 __all__ = ["OPS", "OPS_VECTOR", "run"]
 
 _JIT_OPTIONS = {"error_model": "numpy"}  # x/0 = inf, 0/0 = nan (MFeval's MATLAB and numpy), no exceptions
+# in the equations: fused multiply-add, and x/c as x*(1/c) with 1/c computed once outside the loop
+# (both within an ulp; neither assumes finite values, so MFeval's inf/nan cases are kept)
+_EQUATION_FASTMATH = {"contract", "arcp"}
 _INLINE = {"forceinline": True}  # LLVM alwaysinline: one flat loop body that LLVM can vectorize
 
 # ---- xp for compiled code: math functions and ScalarOps' float functions, compiled -------------
@@ -75,7 +78,7 @@ _EQUATIONS = (
 )
 for _module, _names in _EQUATIONS:
     for _name in _names:
-        register_jitable(**_JIT_OPTIONS, **_INLINE)(getattr(_module, _name))
+        register_jitable(**_JIT_OPTIONS, **_INLINE, fastmath=_EQUATION_FASTMATH)(getattr(_module, _name))
 
 _forces_kernel = magic_formula._forces_kernel
 _full_kernel = magic_formula._full_kernel

@@ -492,7 +492,8 @@ def _forces_pass(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omeg
     fz_input, kappa_input, alpha_input, gamma_input = fz, kappa, alpha, gamma
     if limits:
         vxlow = c.VXLOW
-        phit = phit * xp.cos(alpha)
+        if turn_slip or full:  # (forces alone do not use phit)
+            phit = phit * xp.cos(alpha)
         is_low = xp.abs(vx) <= vxlow
         if xp.any(is_low):
             low_speed = xp.where(is_low, 1 - 0.5 * (1 + xp.cos(math.pi * (vx / vxlow))), 1.0)
