@@ -100,9 +100,12 @@ def test_backend_switch_and_errors(monkeypatch):
     model = tire("MagicFormula61_Parameters")
     with pytest.raises(ParameterError, match="backend"):
         model.forces(np.ones(20) * 4000.0, 0.0, 0.1, backend="fortran")
-    assert mf_module._backend("auto") == "numpy"  # the faster one measured (bench_tire.py)
+    assert mf_module._backend("auto") == "auto"  # resolved per call, by size
+    assert mf_module._auto_backend(mf_module.AUTO_NUMBA_MIN_POINTS - 1) == "numpy"
+    if mf_module.numba_available():
+        assert mf_module._auto_backend(mf_module.AUTO_NUMBA_MIN_POINTS) == "numba"
     monkeypatch.setattr(mf_module, "_NUMBA_AVAILABLE", False)
-    assert mf_module._backend("auto") == "numpy"
+    assert mf_module._auto_backend(10 * mf_module.AUTO_NUMBA_MIN_POINTS) == "numpy"
     with pytest.raises(ParameterError, match="numba"):
         model.evaluate(np.ones(20) * 4000.0, 0.0, 0.1, backend="numba")
     monkeypatch.setattr(mf_module, "BACKEND", "numpy")

@@ -64,7 +64,14 @@ SMALL_BATCH = 8
 
 BACKEND = "auto"
 """Default ``backend`` of :meth:`MagicFormula.evaluate` and :meth:`MagicFormula.forces`: ``"auto"``
-(the faster one measured: numpy, see :func:`_backend`), ``"numpy"`` or ``"numba"``."""
+(numba for calls of at least ``AUTO_NUMBA_MIN_POINTS`` points when numba is installed, else numpy),
+``"numpy"`` or ``"numba"``."""
+
+AUTO_NUMBA_MIN_POINTS = 100_000
+"""With ``backend="auto"``, calls of at least this many points run compiled (when numba is
+installed). The compiled loops are 3-4x faster than numpy per point (``benchmarks/bench_tire.py``),
+but the first compiled call of a process loads them from numba's on-disk cache (~1 s) or, the very
+first time, compiles them (~25 s per loop); smaller calls therefore stay on numpy."""
 
 NUMBA_PARALLEL = False
 """Whether the numba backend splits a call into one block per core, evaluated in threads; False: one core."""
@@ -262,8 +269,9 @@ class MagicFormula(TireModel):
         backend : {None, "auto", "numpy", "numba"}
             ``"numpy"``: vectorized, chunked numpy (single points on Python floats). ``"numba"``:
             the same equations compiled by numba into one per-point loop (optional dependency;
-            compiled on first use and cached on disk). ``"auto"``: the faster one as measured
-            (currently numpy). None: the module-level ``BACKEND``.
+            compiled on first use and cached on disk). ``"auto"``: numba for calls of at least
+            ``AUTO_NUMBA_MIN_POINTS`` points when numba is installed, else numpy. None: the
+            module-level ``BACKEND``.
 
         Returns
         -------
@@ -365,6 +373,8 @@ class MagicFormula(TireModel):
         if full:  # omega: given, or estimated (a placeholder value and the flag)
             switches = (flat[-1] is not None, *switches)
             flat[-1] = np.zeros(()) if flat[-1] is None else flat[-1]
+        if backend == "auto":
+            backend = _auto_backend(n)
         if backend == "numba" and n > 0:
             from . import _mf_numba
 
@@ -392,25 +402,36 @@ def _is_number(value) -> bool:
 
 
 def _backend(backend) -> str:
-    """Resolve ``backend`` (None: the module's ``BACKEND``) to ``"numpy"`` or ``"numba"``.
+    """Check ``backend`` (None: the module's ``BACKEND``): ``"auto"``, ``"numpy"`` or ``"numba"``.
 
-    ``"auto"`` is numpy: on the development machine (AVX-512 Xeon, numpy 2 with SIMD arctan/tan,
-    numba without SVML) the compiled per-point loop is slower than the chunked numpy passes
-    (``benchmarks/bench_tire.py``), because each point's ~50 atan/sin/cos form a chain of scalar
-    libm calls while numpy evaluates each of them for 8 points at a time.
+    ``"auto"`` is resolved per call by :func:`_auto_backend` once the number of points is known.
     """
     backend = BACKEND if backend is None else backend
-    if backend == "auto":
-        return "numpy"
     if backend == "numba":
         if not numba_available():
             raise ParameterError("backend='numba' needs the optional package numba (pip install vehdyn[fast])",
                                  key="backend", value=backend)
         return backend
-    if backend == "numpy":
+    if backend in ("numpy", "auto"):
         return backend
     raise ParameterError(f"backend must be 'auto', 'numpy' or 'numba', got {backend!r}", key="backend",
                          value=backend)
+
+
+def _auto_backend(n: int) -> str:
+    """numba for n >= ``AUTO_NUMBA_MIN_POINTS`` points if it imports, else numpy.
+
+    On the development machine (2-core Xeon with AVX-512) the compiled loop, vectorized 8 points
+    wide, beats the chunked numpy passes 3-4x at 1e5 points and more (``benchmarks/bench_tire.py``);
+    below the threshold the one-time cost of loading the compiled code would dominate.
+    """
+    if n < AUTO_NUMBA_MIN_POINTS or not numba_available():
+        return "numpy"
+    try:
+        from . import _mf_numba  # noqa: F401
+    except ImportError:  # installed but broken: numpy gives the same results
+        return "numpy"
+    return "numba"
 
 
 _NUMBA_AVAILABLE = None
