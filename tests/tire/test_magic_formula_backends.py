@@ -104,6 +104,15 @@ def test_backend_switch_and_errors(monkeypatch):
     assert mf_module._auto_backend(mf_module.AUTO_NUMBA_MIN_POINTS - 1) == "numpy"
     if mf_module.numba_available():
         assert mf_module._auto_backend(mf_module.AUTO_NUMBA_MIN_POINTS) == "numba"
+        # a call of that many points takes the compiled path (its results, to the last bit)
+        monkeypatch.setattr(mf_module, "AUTO_NUMBA_MIN_POINTS", 30)
+        args = (np.linspace(1000.0, 6000.0, 40), 0.05, np.linspace(-0.2, 0.2, 40))
+        for method in ("evaluate", "forces"):
+            auto, compiled = (getattr(model, method)(*args, backend=b) for b in ("auto", "numba"))
+            np.testing.assert_array_equal(auto.fy, compiled.fy)
+            np.testing.assert_array_equal(auto.mz, compiled.mz)
+        few = (args[0][:20], 0.05, args[2][:20])
+        np.testing.assert_array_equal(model.forces(*few, backend="auto").fy, model.forces(*few, backend="numpy").fy)
     monkeypatch.setattr(mf_module, "_NUMBA_AVAILABLE", False)
     assert mf_module._auto_backend(10 * mf_module.AUTO_NUMBA_MIN_POINTS) == "numpy"
     with pytest.raises(ParameterError, match="numba"):

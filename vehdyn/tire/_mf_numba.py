@@ -1,25 +1,44 @@
 """Compiled backend of :class:`~vehdyn.tire.MagicFormula`: the same equations under numba.
 
-Imported only on first use of ``backend="numba"`` (numba is optional: ``pip install vehdyn[fast]``).
-Nothing here restates an equation. The equation functions of :mod:`~vehdyn.tire.mf_forces`,
-:mod:`~vehdyn.tire.mf_moments`, :mod:`~vehdyn.tire.mf_vertical` and the passes of
-:mod:`~vehdyn.tire.magic_formula` are registered with ``numba.extending.register_jitable`` (the
-Python functions stay as they are) and called, one point at a time, with ``xp`` = :data:`OPS`: the
-float functions of :class:`~vehdyn.tire._mf_ops.ScalarOps` compiled, with ``div`` giving IEEE
-inf/nan like numpy (``error_model="numpy"``). The loops below are compiled with ``cache=True``; the
-cache is keyed on the source of every module that contributes equations (see :func:`_source_stamp`),
-so editing an equation recompiles.
+Imported only on first use of ``backend="numba"`` (or of ``"auto"`` on a large call; numba is
+optional: ``pip install vehdyn[fast]``). Nothing here restates an equation. The equation functions
+of :mod:`~vehdyn.tire.mf_forces`, :mod:`~vehdyn.tire.mf_moments`, :mod:`~vehdyn.tire.mf_vertical`
+and the passes of :mod:`~vehdyn.tire.magic_formula` are registered with
+``numba.extending.register_jitable`` (the Python functions stay as they are) and called, one point
+at a time, with ``xp`` = :data:`OPS` or :data:`OPS_VECTOR`: the float functions of
+:class:`~vehdyn.tire._mf_ops.ScalarOps` compiled, ``div`` giving IEEE inf/nan like numpy
+(``error_model="numpy"``), and the branchless math functions of :mod:`~vehdyn.tire._fast_math`
+in place of libm's.
 
-Speed (``benchmarks/bench_tire.py``): a point costs ~50 scalar libm calls (atan, sin, cos, tan) in
-a chain, where numpy evaluates each of them for 8 points at once (AVX-512); on the development
-machine this loop is therefore slower than the numpy backend, and ``backend="auto"`` uses numpy.
+Why it is fast: every function is inlined (LLVM ``alwaysinline``), so the loop over the points of
+a block is one straight body of arithmetic, selects and loads/stores with no call and no inner
+loop of unknown length; LLVM then vectorizes it, 8 points per AVX-512 instruction (4 with AVX2).
+What makes that possible: the coefficients passed by value (no pointer to check for aliasing),
+the inputs of a block copied into one buffer and the results written to another (indices ``i``
+only), the rolling-radius iteration bounded in :data:`OPS_VECTOR` (points that need more steps,
+and MF 6.2's loaded-radius iteration, come back as NaN and are repeated one by one with
+:data:`OPS`), and ``arcp`` in the equations (x/c becomes x*(1/c), hoisted out of the loop).
+
+Speed (``benchmarks/bench_tire.py``, one core of the development machine's AVX-512 Xeon):
+``forces`` ~5 M points/s and ``evaluate`` ~2.5 M points/s, 3-4x the numpy backend; compilation
+takes ~25 s per loop the first time, then the loops load from numba's on-disk cache
+(``cache=True``, keyed on the source of every module that contributes equations, see
+:func:`_source_stamp`, so editing an equation recompiles). What limits it: ~4500 instructions per
+8 points for ``forces`` (about 50 inlined atan/sin/cos/tan/exp/log, ~70 divisions, and spills of
+the ~300 coefficients that do not fit in registers).
+
+:data:`OPS` is also what a compiled vehicle model calls ``magic_formula._forces_kernel`` with, one
+point at a time.
 """
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import math
 import os
+import sys
+import tempfile
 import types
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -202,6 +221,9 @@ class _WideVectors:
     loop bodies 512-bit vectors are ~25 % faster (measured, ``benchmarks/bench_tire.py``). The
     setting is LLVM's global ``-force-vector-width``, applied only while numba compiles (or loads
     from the cache) this dispatcher's first call, then reset to LLVM's default (0: cost model).
+    With it, LLVM prints a "remark: loop not vectorized" to the process's stderr for every loop it
+    leaves scalar (numba's helpers); those lines are dropped, anything else written meanwhile is
+    passed on.
     """
 
     def __init__(self, dispatcher):
@@ -212,14 +234,35 @@ class _WideVectors:
         if self.ready:
             return self.dispatcher(*args)
         wide = "+avx512f" in llvm_binding.get_host_cpu_features().flatten()
-        if wide:
-            llvm_binding.set_option("", "-force-vector-width=8")
-        try:
-            return self.dispatcher(*args)
-        finally:
-            if wide:
-                llvm_binding.set_option("", "-force-vector-width=0")
+        if not wide:
             self.ready = True
+            return self.dispatcher(*args)
+        with _without_llvm_remarks():
+            llvm_binding.set_option("", "-force-vector-width=8")
+            try:
+                return self.dispatcher(*args)
+            finally:
+                llvm_binding.set_option("", "-force-vector-width=0")
+                self.ready = True
+
+
+@contextlib.contextmanager
+def _without_llvm_remarks():
+    """Capture file descriptor 2 (where LLVM writes); pass on every line but LLVM's remarks."""
+    sys.stderr.flush()
+    saved = os.dup(2)
+    with tempfile.TemporaryFile() as capture:
+        os.dup2(capture.fileno(), 2)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+            capture.seek(0)
+            kept = [line for line in capture.read().decode(errors="replace").splitlines(keepends=True)
+                    if not line.startswith("remark: ")]
+            if kept:
+                sys.stderr.write("".join(kept))
 
 
 def _as_vector(value):
