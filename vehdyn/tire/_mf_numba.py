@@ -119,6 +119,17 @@ def _load_block(inputs, start, m, buffer):
 
 
 @register_jitable(forceinline=True)
+def _store_forces(results, i, r):
+    """results[:, i] = r for the six forces and moments."""
+    results[0, i] = r[0]
+    results[1, i] = r[1]
+    results[2, i] = r[2]
+    results[3, i] = r[3]
+    results[4, i] = r[4]
+    results[5, i] = r[5]
+
+
+@register_jitable(forceinline=True)
 def _store_full(results, i, r):
     """results[:, i] = r, one statement per output (a loop over a tuple compiles to a switch, which
     stops LLVM from vectorizing)."""
@@ -159,15 +170,17 @@ def _forces_loop(c, inputs, limits, alpha_star, out, first, stop):
     for start in range(first, stop, _BLOCK):
         m = min(_BLOCK, stop - start)
         _load_block(inputs, start, m, buffer)
-        for i in range(m):  # vectorized by LLVM: no calls, no inner loops, indices i only
-            r = _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], buffer[3, i], buffer[4, i],
-                               buffer[5, i], limits, alpha_star)
-            results[0, i] = r[0]
-            results[1, i] = r[1]
-            results[2, i] = r[2]
-            results[3, i] = r[3]
-            results[4, i] = r[4]
-            results[5, i] = r[5]
+        # vectorized by LLVM: no calls, no inner loops, indices i only; the default switches as
+        # constants (see _full_loop)
+        if limits and not alpha_star:
+            for i in range(m):
+                _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i],
+                                                         buffer[3, i], buffer[4, i], buffer[5, i], True, False))
+        else:
+            for i in range(m):
+                _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i],
+                                                         buffer[3, i], buffer[4, i], buffer[5, i], limits,
+                                                         alpha_star))
         out[:, start:start + m] = results[:, :m]
 
 
@@ -177,10 +190,20 @@ def _full_loop(c, inputs, omega_given, limits, alpha_star, turn_slip, out, first
     for start in range(first, stop, _BLOCK):
         m = min(_BLOCK, stop - start)
         _load_block(inputs, start, m, buffer)
-        for i in range(m):  # vectorized: iterations bounded (OPS_VECTOR), NaN radii where they did not finish
-            r = _full_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], buffer[3, i], buffer[4, i],
-                             buffer[5, i], buffer[6, i], buffer[7, i], omega_given, limits, alpha_star, turn_slip)
-            _store_full(results, i, r)
+        # vectorized: iterations bounded (OPS_VECTOR), NaN radii where they did not finish. The
+        # default switches get a loop of their own with the switches as constants, folded away; in
+        # the general loop both branches of every switch are computed for every point (if-conversion)
+        if limits and not alpha_star and not turn_slip and not omega_given:
+            for i in range(m):
+                r = _full_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], buffer[3, i],
+                                 buffer[4, i], buffer[5, i], buffer[6, i], buffer[7, i], False, True, False, False)
+                _store_full(results, i, r)
+        else:
+            for i in range(m):
+                r = _full_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], buffer[3, i],
+                                 buffer[4, i], buffer[5, i], buffer[6, i], buffer[7, i], omega_given, limits,
+                                 alpha_star, turn_slip)
+                _store_full(results, i, r)
         for i in range(m):  # those points again, one by one, iterated to convergence (OPS)
             if math.isnan(results[12, i]) or math.isnan(results[13, i]) or math.isnan(results[19, i]):
                 r = _full_kernel(OPS, c, buffer[0, i], buffer[1, i], buffer[2, i], buffer[3, i], buffer[4, i],
