@@ -118,50 +118,17 @@ def _load_block(inputs, start, m, buffer):
             buffer[k, :m] = values[start:start + m]
 
 
-@register_jitable(forceinline=True)
-def _store_forces(results, i, r):
-    """results[:, i] = r for the six forces and moments."""
-    results[0, i] = r[0]
-    results[1, i] = r[1]
-    results[2, i] = r[2]
-    results[3, i] = r[3]
-    results[4, i] = r[4]
-    results[5, i] = r[5]
+def _column_store(n):
+    """A compiled ``store(results, i, r)``: results[k, i] = r[k] for k < n, one statement each
+    (a loop over a tuple compiles to a switch, which stops LLVM from vectorizing)."""
+    body = "\n".join(f"    results[{k}, i] = r[{k}]" for k in range(n))
+    namespace = {}
+    exec(f"def store(results, i, r):\n{body}\n", namespace)  # noqa: S102 (generated from n only)
+    return register_jitable(forceinline=True)(namespace["store"])
 
 
-@register_jitable(forceinline=True)
-def _store_full(results, i, r):
-    """results[:, i] = r, one statement per output (a loop over a tuple compiles to a switch, which
-    stops LLVM from vectorizing)."""
-    results[0, i] = r[0]
-    results[1, i] = r[1]
-    results[2, i] = r[2]
-    results[3, i] = r[3]
-    results[4, i] = r[4]
-    results[5, i] = r[5]
-    results[6, i] = r[6]
-    results[7, i] = r[7]
-    results[8, i] = r[8]
-    results[9, i] = r[9]
-    results[10, i] = r[10]
-    results[11, i] = r[11]
-    results[12, i] = r[12]
-    results[13, i] = r[13]
-    results[14, i] = r[14]
-    results[15, i] = r[15]
-    results[16, i] = r[16]
-    results[17, i] = r[17]
-    results[18, i] = r[18]
-    results[19, i] = r[19]
-    results[20, i] = r[20]
-    results[21, i] = r[21]
-    results[22, i] = r[22]
-    results[23, i] = r[23]
-    results[24, i] = r[24]
-    results[25, i] = r[25]
-    results[26, i] = r[26]
-    results[27, i] = r[27]
-    results[28, i] = r[28]
+_store_forces = _column_store(6)
+_store_full = _column_store(29)
 
 
 def _forces_loop(c, inputs, limits, alpha_star, out, first, stop):
