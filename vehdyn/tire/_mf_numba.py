@@ -137,9 +137,9 @@ def _forces_loop(c, inputs, limits, alpha_star, out, first, stop):
     for start in range(first, stop, _BLOCK):
         m = min(_BLOCK, stop - start)
         _load_block(inputs, start, m, buffer)
-        # vectorized by LLVM: no calls, no inner loops, indices i only; the default switches as
-        # constants (see _full_loop)
-        if limits and not alpha_star:
+        # vectorized by LLVM: no calls, no inner loops, indices i only; the default switches (and
+        # the usual overturning-moment form) as constants (see _full_loop)
+        if limits and not alpha_star and not c.mx_draft_form:
             for i in range(m):
                 _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i],
                                                          buffer[3, i], buffer[4, i], buffer[5, i], True, False))
@@ -159,8 +159,11 @@ def _full_loop(c, inputs, omega_given, limits, alpha_star, turn_slip, out, first
         _load_block(inputs, start, m, buffer)
         # vectorized: iterations bounded (OPS_VECTOR), NaN radii where they did not finish. The
         # default switches get a loop of their own with the switches as constants, folded away; in
-        # the general loop both branches of every switch are computed for every point (if-conversion)
-        if limits and not alpha_star and not turn_slip and not omega_given:
+        # the general loop both branches of every switch are computed for every point (if-conversion).
+        # The same for the overturning moment's form: the rare draft form (c.mx_draft_form) is left
+        # to the general loop, so that the other one is known inside the first (LLVM propagates
+        # the condition tested here to the same test inside the kernel)
+        if limits and not alpha_star and not turn_slip and not omega_given and not c.mx_draft_form:
             for i in range(m):
                 r = _full_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], buffer[3, i],
                                  buffer[4, i], buffer[5, i], buffer[6, i], buffer[7, i], False, True, False, False)
