@@ -104,7 +104,7 @@ _forces_kernel = magic_formula._forces_kernel
 _full_kernel = magic_formula._full_kernel
 
 
-_BLOCK = 512  # points per block: a block's inputs are copied into one buffer (one pointer for LLVM)
+_BLOCK = 128  # points per block: a block's inputs are copied into one buffer (one pointer for LLVM)
 
 
 @register_jitable
@@ -116,6 +116,17 @@ def _load_block(inputs, start, m, buffer):
             buffer[k, :m] = values[0]
         else:
             buffer[k, :m] = values[start:start + m]
+
+
+@register_jitable
+def _zero_inclination(values, m):
+    """Whether values[:m] are all +0.0: then the loops pass the literal 0.0, and (with the limits
+    CAMMIN <= 0 <= CAMMAX tested by the caller, the same comparisons as the clip in the kernel)
+    LLVM drops every camber term, among them the second, camber-free Fy0 that Mz needs."""
+    for k in range(m):
+        if values[k] != 0.0 or math.copysign(1.0, values[k]) < 0.0:
+            return False
+    return True
 
 
 def _column_store(n):
@@ -140,9 +151,16 @@ def _forces_loop(c, inputs, limits, alpha_star, out, first, stop):
         # vectorized by LLVM: no calls, no inner loops, indices i only; the default switches (and
         # the usual overturning-moment form) as constants (see _full_loop)
         if limits and not alpha_star and not c.mx_draft_form:
-            for i in range(m):
-                _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i],
-                                                         buffer[3, i], buffer[4, i], buffer[5, i], True, False))
+            if not (0.0 < c.CAMMIN) and not (0.0 > c.CAMMAX) and _zero_inclination(buffer[3], m):
+                for i in range(m):  # no camber: the camber-free lateral force of Mz is Fy0 itself
+                    _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i],
+                                                             buffer[2, i], 0.0, buffer[4, i], buffer[5, i], True,
+                                                             False))
+            else:
+                for i in range(m):
+                    _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i],
+                                                             buffer[2, i], buffer[3, i], buffer[4, i], buffer[5, i],
+                                                             True, False))
         else:
             for i in range(m):
                 _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i],
@@ -164,10 +182,17 @@ def _full_loop(c, inputs, omega_given, limits, alpha_star, turn_slip, out, first
         # to the general loop, so that the other one is known inside the first (LLVM propagates
         # the condition tested here to the same test inside the kernel)
         if limits and not alpha_star and not turn_slip and not omega_given and not c.mx_draft_form:
-            for i in range(m):
-                r = _full_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], buffer[3, i],
-                                 buffer[4, i], buffer[5, i], buffer[6, i], buffer[7, i], False, True, False, False)
-                _store_full(results, i, r)
+            if not (0.0 < c.CAMMIN) and not (0.0 > c.CAMMAX) and _zero_inclination(buffer[3], m):
+                for i in range(m):  # no camber (see _forces_loop)
+                    r = _full_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], 0.0, buffer[4, i],
+                                     buffer[5, i], buffer[6, i], buffer[7, i], False, True, False, False)
+                    _store_full(results, i, r)
+            else:
+                for i in range(m):
+                    r = _full_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], buffer[3, i],
+                                     buffer[4, i], buffer[5, i], buffer[6, i], buffer[7, i], False, True, False,
+                                     False)
+                    _store_full(results, i, r)
         else:
             for i in range(m):
                 r = _full_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], buffer[3, i],
