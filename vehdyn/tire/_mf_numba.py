@@ -19,13 +19,19 @@ only), the rolling-radius iteration bounded in :data:`OPS_VECTOR` (points that n
 and MF 6.2's loaded-radius iteration, come back as NaN and are repeated one by one with
 :data:`OPS`), and ``arcp`` in the equations (x/c becomes x*(1/c), hoisted out of the loop).
 
-Speed (``benchmarks/bench_tire.py``, one core of the development machine's AVX-512 Xeon):
-``forces`` ~5 M points/s and ``evaluate`` ~2.5 M points/s, 3-4x the numpy backend; compilation
-takes ~25 s per loop the first time, then the loops load from numba's on-disk cache
-(``cache=True``, keyed on the source of every module that contributes equations, see
-:func:`_source_stamp`, so editing an equation recompiles). What limits it: ~4500 instructions per
-8 points for ``forces`` (about 50 inlined atan/sin/cos/tan/exp/log, ~70 divisions, and spills of
-the ~300 coefficients that do not fit in registers).
+Each loop has a copy of the kernel for the default switches (and the usual overturning-moment
+form), one more for blocks without camber, and a general one: a switch that is not a constant
+inside the vectorized loop has both of its branches computed for every point.
+
+Speed (``benchmarks/bench_tire.py``, MF 6.1, one core of the development machine's 2.0 GHz
+AVX-512 Xeon): ``forces`` ~6 M points/s and ``evaluate`` ~3.0-3.4 M points/s, 2.5-3.5x the numpy
+backend. The first use compiles both loops in ~1 minute; afterwards they load from numba's
+on-disk cache in ~0.6 s (``cache=True``, keyed on the source of every module that contributes
+equations, see :func:`_source_stamp`, so editing an equation recompiles). What limits it: the
+default ``forces`` loop without camber is ~3,200 AVX-512 instructions per 8 points (~40
+inlined atan/sin/cos/tan/exp/log, 41 divisions at 16 cycles each, ~830 stack loads and stores
+where the ~300 coefficients and intermediates do not fit in 32 registers), at ~1.25 instructions
+per cycle: ~320 cycles per point.
 
 :data:`OPS` is also what a compiled vehicle model calls ``magic_formula._forces_kernel`` with, one
 point at a time.
@@ -39,6 +45,7 @@ import math
 import os
 import sys
 import tempfile
+import threading
 import types
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -244,6 +251,8 @@ class _WideVectors:
     passed on.
     """
 
+    _lock = threading.Lock()  # one first call at a time (threads of NUMBA_PARALLEL; stderr is shared)
+
     def __init__(self, dispatcher):
         self.dispatcher = dispatcher
         self.ready = False
@@ -251,17 +260,20 @@ class _WideVectors:
     def __call__(self, *args):
         if self.ready:
             return self.dispatcher(*args)
-        wide = "+avx512f" in llvm_binding.get_host_cpu_features().flatten()
-        if not wide:
-            self.ready = True
-            return self.dispatcher(*args)
-        with _without_llvm_remarks():
-            llvm_binding.set_option("", "-force-vector-width=8")
-            try:
+        with self._lock:
+            if self.ready:
                 return self.dispatcher(*args)
-            finally:
-                llvm_binding.set_option("", "-force-vector-width=0")
+            wide = "+avx512f" in llvm_binding.get_host_cpu_features().flatten()
+            if not wide:
                 self.ready = True
+                return self.dispatcher(*args)
+            with _without_llvm_remarks():
+                llvm_binding.set_option("", "-force-vector-width=8")
+                try:
+                    return self.dispatcher(*args)
+                finally:
+                    llvm_binding.set_option("", "-force-vector-width=0")
+                    self.ready = True
 
 
 @contextlib.contextmanager
