@@ -8,9 +8,13 @@ a math domain ValueError, or :class:`ScalarFallback` from ``div``); the caller t
 point with numpy, whose IEEE rules give the inf/nan that MFeval's MATLAB code relies on.
 
 The float functions of :class:`ScalarOps` are also what the optional compiled backend
-(:mod:`vehdyn.tire._mf_numba`) runs: numba compiles them, with ``div = div_ieee``, and the
-equation modules themselves, into one per-point loop. Everything an equation calls through
-``xp`` must therefore work on Python floats, numpy arrays and under ``numba.njit``.
+(:mod:`vehdyn.tire._mf_numba`) runs: numba compiles them, with ``div = div_ieee`` and the
+branchless math functions of :mod:`vehdyn.tire._fast_math` in place of :mod:`math`'s, and the
+equation modules themselves, into one per-point loop that LLVM vectorizes. Everything an equation
+calls through ``xp`` must therefore work on Python floats, numpy arrays and under ``numba.njit``;
+``xp.iterate_to_convergence`` and ``xp.radius_iterations`` tell the iterative equations whether
+they may loop until convergence (numpy, floats) or must take a fixed number of steps and mark
+unfinished points with NaN (a vectorized compiled loop).
 """
 
 from __future__ import annotations
