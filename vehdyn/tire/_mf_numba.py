@@ -156,18 +156,18 @@ def _forces_loop(c, inputs, limits, alpha_star, out, first, stop):
         m = min(_BLOCK, stop - start)
         _load_block(inputs, start, m, buffer)
         # vectorized by LLVM: no calls, no inner loops, indices i only; the default switches (and
-        # the usual overturning-moment form) as constants (see _full_loop)
-        if limits and not alpha_star and not c.mx_draft_form:
+        # the usual overturning-moment form) as constants, one pressure (see _full_loop)
+        if limits and not alpha_star and not c.mx_draft_form and inputs[5].shape[0] == 1:
+            pressure = inputs[5][0]  # one value: the pressure terms are computed once, outside the loop
             if not (0.0 < c.CAMMIN) and not (0.0 > c.CAMMAX) and _zero_inclination(buffer[3], m):
                 for i in range(m):  # no camber: the camber-free lateral force of Mz is Fy0 itself
                     _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i],
-                                                             buffer[2, i], 0.0, buffer[4, i], buffer[5, i], True,
-                                                             False))
+                                                             buffer[2, i], 0.0, buffer[4, i], pressure, True, False))
             else:
                 for i in range(m):
                     _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i],
-                                                             buffer[2, i], buffer[3, i], buffer[4, i], buffer[5, i],
-                                                             True, False))
+                                                             buffer[2, i], buffer[3, i], buffer[4, i], pressure, True,
+                                                             False))
         else:
             for i in range(m):
                 _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i],
@@ -188,17 +188,18 @@ def _full_loop(c, inputs, omega_given, limits, alpha_star, turn_slip, out, first
         # The same for the overturning moment's form: the rare draft form (c.mx_draft_form) is left
         # to the general loop, so that the other one is known inside the first (LLVM propagates
         # the condition tested here to the same test inside the kernel)
-        if limits and not alpha_star and not turn_slip and not omega_given and not c.mx_draft_form:
+        if (limits and not alpha_star and not turn_slip and not omega_given and not c.mx_draft_form
+                and inputs[6].shape[0] == 1):
+            pressure = inputs[6][0]  # one value (see _forces_loop)
             if not (0.0 < c.CAMMIN) and not (0.0 > c.CAMMAX) and _zero_inclination(buffer[3], m):
                 for i in range(m):  # no camber (see _forces_loop)
                     r = _full_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], 0.0, buffer[4, i],
-                                     buffer[5, i], buffer[6, i], buffer[7, i], False, True, False, False)
+                                     buffer[5, i], pressure, buffer[7, i], False, True, False, False)
                     _store_full(results, i, r)
             else:
                 for i in range(m):
                     r = _full_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i], buffer[3, i],
-                                     buffer[4, i], buffer[5, i], buffer[6, i], buffer[7, i], False, True, False,
-                                     False)
+                                     buffer[4, i], buffer[5, i], pressure, buffer[7, i], False, True, False, False)
                     _store_full(results, i, r)
         else:
             for i in range(m):
