@@ -66,7 +66,9 @@ def grid(name):
     rng = np.random.default_rng(7)
     if name in ("sin", "cos", "tan"):
         near_quarter_turns = np.arange(-2000, 2001) * (np.pi / 2)
-        return np.concatenate([np.linspace(-10, 10, 200_001), rng.uniform(-1e6, 1e6, 100_000),
+        # halfway between quarter turns, where x*2/pi rounds to either neighbour, up to |x| ~ 2^40
+        halfway = (np.floor(np.logspace(0, 11.5, 20_000)) + 0.5) * (np.pi / 2)
+        return np.concatenate([halfway, -halfway, np.nextafter(halfway, 0), np.nextafter(halfway, np.inf),np.linspace(-10, 10, 200_001), rng.uniform(-1e6, 1e6, 100_000),
                                np.logspace(-300, 12, 20_000), -np.logspace(-300, 12, 20_000),
                                near_quarter_turns, np.nextafter(near_quarter_turns, np.inf)])
     if name == "atan":

@@ -12,7 +12,7 @@ exp 1; log 2; tan, acos, log10 3 (the tests allow 2, 2, 4, 4, 2, 3). pow: 2 ulp 
 relative (exp of a rounded product, as pow implementations without extra precision). IEEE special
 values (+-0, +-inf, nan) give what numpy gives. sin, cos and tan reduce the argument modulo pi/2
 with a three-part pi/2 (~159 bits), accurate for |x| < 2^40 (~1e12); beyond, sin and cos stay in
-[-1, 1] but are not accurate (libm uses a full Payne-Hanek reduction; no Magic Formula argument
+[-1, 1] (tan finite) but are not accurate (libm uses a full Payne-Hanek reduction; no Magic Formula argument
 comes near this range).
 
 Method: range reduction as in Cody & Waite, *Software Manual for the Elementary Functions* (1980),
@@ -59,7 +59,7 @@ _LOG = (0.666666666666667, 0.3999999999989874, 0.2857142862629399, 0.22222211086
 _PIO2_1, _PIO2_2, _PIO2_3 = 1.5707963267948966, 6.123233995736766e-17, -1.4973849048591698e-33
 _LN2_1, _LN2_2 = 0.6931471805599453, 2.3190468138462996e-17
 _PIO4_LO = 0.5 * _PIO2_2
-_PIO4_BOUND = 0.7853981633974483 * (1.0 + 2.0**-30)
+_PIO4_BOUND = 0.787  # |r| beyond pi/4 (a rounded k), within the polynomials' range (z <= 0.62)
 _TWO_OVER_PI = 0.6366197723675814
 _LOG2E = 1.4426950408889634
 _LOG10_2_1, _LOG10_2_2 = 0.30102999566398120, -2.8037281277851704e-18
@@ -129,24 +129,20 @@ def _power_of_two(k):
 
 @register_jitable(forceinline=True)
 def _quarter_turns(x):
-    """x = k*pi/2 + r: (r, k mod 4 as a float in {0, 1, 2, 3}), |r| <= pi/4 (1 + 2^-30).
+    """x = k*pi/2 + r: (r, k mod 4 as a float in {0, 1, 2, 3}), |r| <= 0.787 (pi/4 = 0.785...).
 
-    r is accurate for |x| < 2^40; a second step and a final bound keep r in range for any x.
+    r is accurate for |x| < 2^40; for |x| > 2^51, where k is no longer the nearest integer, r is
+    bounded instead (sin and cos stay in [-1, 1]).
     """
     y = x * _TWO_OVER_PI
     k = (y + _ROUND) - _ROUND if abs(y) < 2.0**51 else y
     r = fma(-k, _PIO2_1, x)
     r = fma(-k, _PIO2_2, r)
     r = fma(-k, _PIO2_3, r)
-    k2 = (r * _TWO_OVER_PI + _ROUND) - _ROUND  # 0 unless x is huge
-    r = fma(-k2, _PIO2_1, r)
-    r = fma(-k2, _PIO2_2, r)
-    r = _PIO4_BOUND if r > _PIO4_BOUND else r  # |x| > 2^51 only: keep r, and the results, bounded
+    r = _PIO4_BOUND if r > _PIO4_BOUND else r
     r = -_PIO4_BOUND if r < -_PIO4_BOUND else r
     quarter = 0.25 * k
-    q = 4.0 * (quarter - np.floor(quarter)) + k2
-    q = q - 4.0 * np.floor(0.25 * q)
-    return r, q
+    return r, 4.0 * (quarter - np.floor(quarter))
 
 
 @register_jitable(forceinline=True)
