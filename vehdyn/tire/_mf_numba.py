@@ -20,17 +20,18 @@ and MF 6.2's loaded-radius iteration, come back as NaN and are repeated one by o
 :data:`OPS`), and ``arcp`` in the equations (x/c becomes x*(1/c), hoisted out of the loop).
 
 Each loop has a copy of the kernel for the default switches (and the usual overturning-moment
-form), one more for blocks without camber, and a general one: a switch that is not a constant
-inside the vectorized loop has both of its branches computed for every point.
+form, and one inflation pressure, whose terms are then computed once outside the loop), one more
+for blocks without camber, and a general one: a switch that is not a constant inside the
+vectorized loop has both of its branches computed for every point.
 
 Speed (``benchmarks/bench_tire.py``, MF 6.1, one core of the development machine's 2.0 GHz
-AVX-512 Xeon): ``forces`` ~6 M points/s and ``evaluate`` ~3.0-3.4 M points/s, 2.5-3.5x the numpy
-backend. The first use compiles both loops in ~1 minute; afterwards they load from numba's
-on-disk cache in ~0.6 s (``cache=True``, keyed on the source of every module that contributes
+AVX-512 Xeon): ``forces`` 5-6 M points/s and ``evaluate`` ~4 M points/s, 3.5-4.5x and ~3x the
+numpy backend. The first use compiles both loops in ~1 minute; afterwards they load from numba's
+on-disk cache in ~1 s (``cache=True``, keyed on the source of every module that contributes
 equations, see :func:`_source_stamp`, so editing an equation recompiles). What limits it: the
-default ``forces`` loop without camber is ~3,200 AVX-512 instructions per 8 points (~40
-inlined atan/sin/cos/tan/exp/log, 41 divisions at 16 cycles each, ~830 stack loads and stores
-where the ~300 coefficients and intermediates do not fit in 32 registers), at ~1.25 instructions
+default ``forces`` loop without camber is ~3,000 AVX-512 instructions per 8 points (~40
+inlined atan/sin/cos/tan/exp/log, 39 divisions at 16 cycles each, ~790 stack loads and stores
+where the ~300 coefficients and intermediates do not fit in 32 registers), at ~1.2 instructions
 per cycle: ~320 cycles per point.
 
 :data:`OPS` is also what a compiled vehicle model calls ``magic_formula._forces_kernel`` with, one

@@ -17,7 +17,7 @@ the TNO MF-Tyre manuals; they live in :mod:`~vehdyn.tire.mf_forces`,
 Two backends run the same equation functions: numpy (vectorized, in chunks of ``CHUNK_SIZE``
 points; single points on Python floats) and, optionally, numba (``backend="numba"``, and
 ``"auto"`` for large calls; numba is imported and the loops compiled on first use into vectorized
-machine code, 2.5-3.5x faster, see :mod:`vehdyn.tire._mf_numba`). Both are tested
+machine code, 3-4.5x faster, see :mod:`vehdyn.tire._mf_numba`). Both are tested
 against every MFeval reference row and against each other (1e-12).
 
 Where MFeval's results are not finite vehdyn returns something else, on purpose:
@@ -70,8 +70,8 @@ BACKEND = "auto"
 
 AUTO_NUMBA_MIN_POINTS = 100_000
 """With ``backend="auto"``, calls of at least this many points run compiled (when numba is
-installed). The compiled loops are 2.5-3.5x faster than numpy per point (``benchmarks/bench_tire.py``),
-but the first compiled call of a process loads them from numba's on-disk cache (~0.6 s) or, the very
+installed). The compiled loops are 3-4.5x faster than numpy per point (``benchmarks/bench_tire.py``),
+but the first compiled call of a process loads them from numba's on-disk cache (~1 s) or, the very
 first time, compiles them (~30 s per loop); smaller calls therefore stay on numpy."""
 
 NUMBA_PARALLEL = False
@@ -423,7 +423,7 @@ def _auto_backend(n: int) -> str:
     """numba for n >= ``AUTO_NUMBA_MIN_POINTS`` points if it imports, else numpy.
 
     On the development machine (2-core Xeon with AVX-512) the compiled loop, vectorized 8 points
-    wide, beats the chunked numpy passes 2.5-3.5x at 1e5 points and more (``benchmarks/bench_tire.py``);
+    wide, beats the chunked numpy passes 3-4.5x at 1e5 points and more (``benchmarks/bench_tire.py``);
     below the threshold the one-time cost of loading the compiled code would dominate.
     """
     if n < AUTO_NUMBA_MIN_POINTS or not numba_available():
