@@ -41,6 +41,7 @@ point at a time.
 from __future__ import annotations
 
 import contextlib
+import functools
 import hashlib
 import math
 import os
@@ -302,6 +303,14 @@ def _as_vector(value):
     vector = np.ascontiguousarray(np.reshape(value, -1), dtype=np.float64).view()
     vector.flags.writeable = False
     return vector
+
+
+@functools.lru_cache(maxsize=64)
+def _record(c):
+    """The coefficients as a numpy record with the same field names (the equations read ``c.PCX1``
+    from either): numba passes a record by reference, for compiled callers of the kernels that call
+    from Python often (the loops here take the named tuple by value: no pointer for LLVM to check)."""
+    return np.array([tuple(c)], dtype=[(name, np.float64) for name in c._fields])[0]
 
 
 _PARALLEL_MIN_POINTS = 20_000  # below, one thread
