@@ -8,9 +8,13 @@ a math domain ValueError, or :class:`ScalarFallback` from ``div``); the caller t
 point with numpy, whose IEEE rules give the inf/nan that MFeval's MATLAB code relies on.
 
 The float functions of :class:`ScalarOps` are also what the optional compiled backend
-(:mod:`vehdyn.tire._mf_numba`) runs: numba compiles them, with ``div = div_ieee``, and the
-equation modules themselves, into one per-point loop. Everything an equation calls through
-``xp`` must therefore work on Python floats, numpy arrays and under ``numba.njit``.
+(:mod:`vehdyn.tire._mf_numba`) runs: numba compiles them, with ``div = div_ieee`` and the
+branchless math functions of :mod:`vehdyn.tire._fast_math` in place of :mod:`math`'s, and the
+equation modules themselves, into one per-point loop that LLVM vectorizes. Everything an equation
+calls through ``xp`` must therefore work on Python floats, numpy arrays and under ``numba.njit``;
+``xp.iterate_to_convergence`` and ``xp.radius_iterations`` tell the iterative equations whether
+they may loop until convergence (numpy, floats) or must take a fixed number of steps and mark
+unfinished points with NaN (a vectorized compiled loop).
 """
 
 from __future__ import annotations
@@ -20,6 +24,10 @@ import math
 import numpy as np
 
 __all__ = ["ScalarOps", "ScalarFallback", "NumpyOps", "sign_nonzero", "cos_atan"]
+
+
+RADIUS_ITERATIONS = 100
+"""At most this many fixed-point steps of the rolling radius (MFeval's limit)."""
 
 
 def _full_broadcast(value, arrays):
@@ -55,6 +63,7 @@ class NumpyOps:
     acos = staticmethod(np.arccos)
     sqrt = staticmethod(np.sqrt)
     exp = staticmethod(np.exp)
+    pow = staticmethod(np.power)
     log10 = staticmethod(np.log10)
     abs = staticmethod(np.abs)
     sign = staticmethod(np.sign)
@@ -70,6 +79,8 @@ class NumpyOps:
     all = staticmethod(np.all)
     full_broadcast = staticmethod(_full_broadcast)
     scalar = False
+    iterate_to_convergence = True  # iterations run until every point has converged (see _mf_numba.OPS_VECTOR)
+    radius_iterations = RADIUS_ITERATIONS
 
     @staticmethod
     def div(a, b):
@@ -98,11 +109,14 @@ class ScalarOps:
     acos = staticmethod(math.acos)
     sqrt = staticmethod(math.sqrt)
     exp = staticmethod(math.exp)
+    pow = staticmethod(math.pow)  # ValueError (-> numpy: nan) for a negative base and a fractional power
     log10 = staticmethod(math.log10)
     abs = staticmethod(abs)
     sign = staticmethod(_sign)
     copysign = staticmethod(math.copysign)
     scalar = True
+    iterate_to_convergence = True
+    radius_iterations = RADIUS_ITERATIONS
 
     @staticmethod
     def where(condition, a, b):

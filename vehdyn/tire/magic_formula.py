@@ -15,8 +15,9 @@ the TNO MF-Tyre manuals; they live in :mod:`~vehdyn.tire.mf_forces`,
 (limits, low-speed rules), vectorization and the result record.
 
 Two backends run the same equation functions: numpy (vectorized, in chunks of ``CHUNK_SIZE``
-points; single points on Python floats) and, optionally, numba (``backend="numba"``; numba is
-imported and the loop compiled on first use, see :mod:`vehdyn.tire._mf_numba`). Both are tested
+points; single points on Python floats) and, optionally, numba (``backend="numba"``, and
+``"auto"`` for large calls; numba is imported and the loops compiled on first use into vectorized
+machine code, 3-4.5x faster, see :mod:`vehdyn.tire._mf_numba`). Both are tested
 against every MFeval reference row and against each other (1e-12).
 
 Where MFeval's results are not finite vehdyn returns something else, on purpose:
@@ -64,7 +65,14 @@ SMALL_BATCH = 8
 
 BACKEND = "auto"
 """Default ``backend`` of :meth:`MagicFormula.evaluate` and :meth:`MagicFormula.forces`: ``"auto"``
-(the faster one measured: numpy, see :func:`_backend`), ``"numpy"`` or ``"numba"``."""
+(numba for calls of at least ``AUTO_NUMBA_MIN_POINTS`` points when numba is installed, else numpy),
+``"numpy"`` or ``"numba"``."""
+
+AUTO_NUMBA_MIN_POINTS = 100_000
+"""With ``backend="auto"``, calls of at least this many points run compiled (when numba is
+installed). The compiled loops are 3-4.5x faster than numpy per point (``benchmarks/bench_tire.py``),
+but the first compiled call of a process loads them from numba's on-disk cache (~1 s) or, the very
+first time, compiles them (~30 s per loop); smaller calls therefore stay on numpy."""
 
 NUMBA_PARALLEL = False
 """Whether the numba backend splits a call into one block per core, evaluated in threads; False: one core."""
@@ -261,9 +269,10 @@ class MagicFormula(TireModel):
             useMode units digit 2: include turn slip and spin (book eqs. 4.75–4.106).
         backend : {None, "auto", "numpy", "numba"}
             ``"numpy"``: vectorized, chunked numpy (single points on Python floats). ``"numba"``:
-            the same equations compiled by numba into one per-point loop (optional dependency;
-            compiled on first use and cached on disk). ``"auto"``: the faster one as measured
-            (currently numpy). None: the module-level ``BACKEND``.
+            the same equations compiled by numba into one per-point loop that LLVM vectorizes
+            (optional dependency; compiled on first use and cached on disk). ``"auto"``: numba for calls of at least
+            ``AUTO_NUMBA_MIN_POINTS`` points when numba is installed, else numpy. None: the
+            module-level ``BACKEND``.
 
         Returns
         -------
@@ -365,6 +374,8 @@ class MagicFormula(TireModel):
         if full:  # omega: given, or estimated (a placeholder value and the flag)
             switches = (flat[-1] is not None, *switches)
             flat[-1] = np.zeros(()) if flat[-1] is None else flat[-1]
+        if backend == "auto":
+            backend = _auto_backend(n)
         if backend == "numba" and n > 0:
             from . import _mf_numba
 
@@ -392,25 +403,36 @@ def _is_number(value) -> bool:
 
 
 def _backend(backend) -> str:
-    """Resolve ``backend`` (None: the module's ``BACKEND``) to ``"numpy"`` or ``"numba"``.
+    """Check ``backend`` (None: the module's ``BACKEND``): ``"auto"``, ``"numpy"`` or ``"numba"``.
 
-    ``"auto"`` is numpy: on the development machine (AVX-512 Xeon, numpy 2 with SIMD arctan/tan,
-    numba without SVML) the compiled per-point loop is slower than the chunked numpy passes
-    (``benchmarks/bench_tire.py``), because each point's ~50 atan/sin/cos form a chain of scalar
-    libm calls while numpy evaluates each of them for 8 points at a time.
+    ``"auto"`` is resolved per call by :func:`_auto_backend` once the number of points is known.
     """
     backend = BACKEND if backend is None else backend
-    if backend == "auto":
-        return "numpy"
     if backend == "numba":
         if not numba_available():
             raise ParameterError("backend='numba' needs the optional package numba (pip install vehdyn[fast])",
                                  key="backend", value=backend)
         return backend
-    if backend == "numpy":
+    if backend in ("numpy", "auto"):
         return backend
     raise ParameterError(f"backend must be 'auto', 'numpy' or 'numba', got {backend!r}", key="backend",
                          value=backend)
+
+
+def _auto_backend(n: int) -> str:
+    """numba for n >= ``AUTO_NUMBA_MIN_POINTS`` points if it imports, else numpy.
+
+    On the development machine (2-core Xeon with AVX-512) the compiled loop, vectorized 8 points
+    wide, beats the chunked numpy passes 3-4.5x at 1e5 points and more (``benchmarks/bench_tire.py``);
+    below the threshold the one-time cost of loading the compiled code would dominate.
+    """
+    if n < AUTO_NUMBA_MIN_POINTS or not numba_available():
+        return "numpy"
+    try:
+        from . import _mf_numba  # noqa: F401
+    except ImportError:  # installed but broken: numpy gives the same results
+        return "numpy"
+    return "numba"
 
 
 _NUMBA_AVAILABLE = None
@@ -492,7 +514,8 @@ def _forces_pass(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omeg
     fz_input, kappa_input, alpha_input, gamma_input = fz, kappa, alpha, gamma
     if limits:
         vxlow = c.VXLOW
-        phit = phit * xp.cos(alpha)
+        if turn_slip or full:  # (forces alone do not use phit)
+            phit = phit * xp.cos(alpha)
         is_low = xp.abs(vx) <= vxlow
         if xp.any(is_low):
             low_speed = xp.where(is_low, 1 - 0.5 * (1 + xp.cos(math.pi * (vx / vxlow))), 1.0)

@@ -67,7 +67,7 @@ def rolling_resistance_moment(xp, c, s, fx):
     else:
         my = -c.UNLOADED_RADIUS * fz0 * c.LMY * (
             speed_terms + (c.QSY5 + c.QSY6 * (fz / fz0)) * s.gamma**2
-        ) * ((fz / fz0) ** c.QSY7 * (s.pressure / c.NOMPRES) ** c.QSY8)
+        ) * (xp.pow(fz / fz0, c.QSY7) * xp.pow(s.pressure / c.NOMPRES, c.QSY8))
     my = my * s.reverse
     high = xp.div(c.VXLOW, xp.abs(vx)) - 1
     low = -1 - c.VXLOW - high

@@ -24,7 +24,6 @@ __all__ = [
 
 _EPS = sys.float_info.epsilon
 _RADIUS_TOLERANCE = 1e-9  # [m], MFeval's convergence test on Re
-_MAX_ITERATIONS = 100
 
 
 def _free_radius(c, omega):
@@ -63,7 +62,8 @@ def rolling_radius(xp, c, fz, kappa, vx, dpi, omega, omega_given):
     r_omega = xp.full_broadcast(_free_radius(c, 0.0), points)
     speed = kappa * vx + vx
     active = xp.abs(re_old - re) > _RADIUS_TOLERANCE
-    for _ in range(_MAX_ITERATIONS):
+    # at most MFeval's 100 steps; a compiled vectorized loop (xp.iterate_to_convergence False) takes fewer
+    for _ in range(xp.radius_iterations):
         if not xp.any(active):
             break
         omega_new = speed / re
@@ -77,6 +77,8 @@ def rolling_radius(xp, c, fz, kappa, vx, dpi, omega, omega_given):
             r_omega = xp.where(active, r_omega_new, r_omega)
             re = xp.where(active, re_new, re)
         active = xp.abs(re_old - re) > _RADIUS_TOLERANCE
+    if not xp.iterate_to_convergence:  # NaN: not converged yet, the caller finishes the point
+        re = xp.where(active, math.nan, re)
     return re, r_omega, omega
 
 
@@ -120,7 +122,7 @@ def _load_mf62(xp, c, gamma, omega, r_omega, dpi, radius, fx, fy):
     rho_gamma = xp.where(xp.isnan(rho_gamma), 0.0, rho_gamma)
     rho = xp.fmax(rho_free + rho_gamma, 1e-12)
     correction = (1 + c.Q_V2 * (r0 / c.LONGVL) * xp.abs(omega) - ((c.Q_FCX * fx) / fz0) ** 2
-                  - ((rho / r0) ** c.Q_FCY2 * (c.Q_FCY * (fy - camber_shift) / fz0)) ** 2) * (1 + c.PFZ1 * dpi)
+                  - (xp.pow(rho / r0, c.Q_FCY2) * (c.Q_FCY * (fy - camber_shift) / fz0)) ** 2) * (1 + c.PFZ1 * dpi)
     return correction * (q_fz1 * (rho / r0) + c.Q_FZ2 * (rho / r0) ** 2) * fz0, rho
 
 
@@ -132,6 +134,8 @@ def loaded_radius_mf62(xp, c, fz, fz_clamped, gamma, fx, fy, dpi, omega, r_omega
     Where the equation has no root (MFeval returns Rl = NaN, rho = 1e-12 m, Cz = 1e16 N/m), the
     three outputs are NaN here. The stiffness is fz_clamped/rho (MFeval: the FZMAX-clamped load).
     """
+    if not xp.iterate_to_convergence:  # a compiled vectorized loop: the caller iterates the point (NaN)
+        return math.nan, math.nan, math.nan
     points = (fz, gamma, fx, fy, dpi, omega, r_omega)
     r0, not_converged = xp.full_broadcast(c.UNLOADED_RADIUS, points), xp.full_broadcast(True, points)
     tolerance = c.FNOMIN * 1e-6
@@ -185,7 +189,7 @@ def contact_patch(xp, c, fz, dpi):
     else:
         load = fz / (cz * r0)
         a = r0 * (c.Q_RA2 * load + c.Q_RA1 * xp.sqrt(load))
-        b = width * (c.Q_RB2 * load + c.Q_RB1 * load ** (1 / 3))
+        b = width * (c.Q_RB2 * load + c.Q_RB1 * xp.pow(load, 1 / 3))
     return a, b
 
 
