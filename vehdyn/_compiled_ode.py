@@ -47,7 +47,7 @@ import numpy as np
 from .errors import ParameterError, SimulationError
 
 __all__ = ["METHODS", "CompiledModel", "integrator", "input_table", "solve", "outputs", "numba_available",
-           "source_stamp"]
+           "source_stamp", "compiled_copy"]
 
 METHODS = ("RK45", "DOP853")
 
@@ -425,14 +425,22 @@ def _output_loop(t, x, u, args, y):
 
 
 @functools.lru_cache(maxsize=None)
-def _compiled_copy(python, name, **functions):
-    """A copy of ``python`` named ``name`` whose globals bind ``functions``, compiled and cached on disk."""
-    numba = _setup()
+def compiled_copy(python, name, *, nogil=False, **functions):
+    """``python`` compiled by numba under the name ``name``, cached on disk; its globals bind ``functions``.
+
+    numba's on-disk cache is keyed on a function's qualified name and its file's timestamp only,
+    not on the functions it calls: callers put a :func:`source_stamp` of every contributing module
+    into ``name`` so that editing any of them recompiles. Compiled with ``error_model="numpy"``
+    (IEEE inf/nan, no exceptions) and, with ``nogil``, releasing the GIL. One compilation per
+    (function, name, bindings) in a process.
+    """
+    import numba
+
     namespace = dict(python.__globals__)
     namespace.update(functions)
-    function = types.FunctionType(python.__code__, namespace, name, python.__defaults__)
+    function = types.FunctionType(python.__code__, namespace, name, python.__defaults__, python.__closure__)
     function.__qualname__ = name
-    return numba.njit(cache=True, error_model="numpy")(function)
+    return numba.njit(cache=True, nogil=nogil, error_model="numpy")(function)
 
 
 @functools.lru_cache(maxsize=None)
@@ -444,7 +452,8 @@ def _stamp():
 
 def outputs(model: CompiledModel, n_outputs: int, t, x, u):
     """Outputs (n_outputs, n_t) of a compiled model at states x (n, n_t) and inputs u (m, n_t)."""
-    loop = _compiled_copy(_output_loop, f"_output_loop_{model.key}_{_stamp()}", _output=model.output)
+    _setup()
+    loop = compiled_copy(_output_loop, f"_output_loop_{model.key}_{_stamp()}", _output=model.output)
     y = np.empty((t.size, n_outputs))
     loop(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(x.T), np.ascontiguousarray(u.T), model.args, y)
     return y.T
@@ -456,7 +465,8 @@ def integrator(rhs, key: str):
     ``key`` names the rhs and the source it is compiled from (it becomes part of the cached
     function's name, so that a changed source never loads a stale cache).
     """
-    return _compiled_copy(_integrate, f"_integrate_{key}_{_stamp()}", _rhs=rhs)
+    _setup()
+    return compiled_copy(_integrate, f"_integrate_{key}_{_stamp()}", _rhs=rhs)
 
 
 def solve(rhs, key, args, t, y0, inputs_table, method="RK45", rtol=1e-6, atol=1e-9, first_step=None,

@@ -23,7 +23,7 @@ import numpy as np
 from numba.extending import register_jitable
 
 from .. import conventions
-from .._compiled_ode import CompiledModel, source_stamp
+from .._compiled_ode import CompiledModel, compiled_copy, source_stamp
 from ..errors import ParameterError
 from ..tire import _mf_numba, linear, magic_formula
 from ..tire.linear import LinearTire
@@ -102,17 +102,9 @@ def _output(t, x, u, args, y):
 @functools.lru_cache(maxsize=None)
 def compiled_functions():
     """(rhs, output, cache key): compiled on first call, cached on disk per source digest."""
-    from ..tire import mf_forces, mf_moments, mf_vertical
-
-    from ..tire import _mf_ops
-
-    key = "single_track_" + source_stamp(equations, conventions, magic_formula, mf_forces, mf_moments, mf_vertical,
-                                         _mf_ops, _mf_numba, linear, sys.modules[__name__])
-    compiled = []
-    for python, name in ((_rhs, key + "_rhs"), (_output, key + "_output")):
-        function = types.FunctionType(python.__code__, python.__globals__, name, python.__defaults__)
-        function.__qualname__ = name
-        compiled.append(numba.njit(cache=True, **_JIT)(function))
+    key = "single_track_" + source_stamp(equations, conventions, linear, *_mf_numba.SOURCE_MODULES,
+                                         sys.modules[__name__])
+    compiled = [compiled_copy(python, f"{key}_{suffix}") for python, suffix in ((_rhs, "rhs"), (_output, "output"))]
     return compiled[0], compiled[1], key
 
 

@@ -28,7 +28,7 @@ Speed (``benchmarks/bench_tire.py``, MF 6.1, one core of the development machine
 AVX-512 Xeon): ``forces`` 5-6 M points/s and ``evaluate`` ~4 M points/s, 3.5-4.5x and ~3x the
 numpy backend. The first use compiles both loops in ~1 minute; afterwards they load from numba's
 on-disk cache in ~1 s (``cache=True``, keyed on the source of every module that contributes
-equations, see :func:`_source_stamp`, so editing an equation recompiles). What limits it: the
+equations, see :data:`SOURCE_MODULES`, so editing an equation recompiles). What limits it: the
 default ``forces`` loop without camber is ~3,000 AVX-512 instructions per 8 points (~40
 inlined atan/sin/cos/tan/exp/log, 39 divisions at 16 cycles each, ~790 stack loads and stores
 where the ~300 coefficients and intermediates do not fit in 32 registers), at ~1.2 instructions
@@ -42,7 +42,6 @@ from __future__ import annotations
 
 import contextlib
 import functools
-import hashlib
 import math
 import os
 import sys
@@ -50,13 +49,13 @@ import tempfile
 import threading
 import types
 from concurrent.futures import ThreadPoolExecutor
-from pathlib import Path
 
 import llvmlite.binding as llvm_binding
 import numba
 import numpy as np
 from numba.extending import register_jitable
 
+from .._compiled_ode import compiled_copy, source_stamp
 from . import _fast_math, _mf_ops, magic_formula, mf_forces, mf_moments, mf_vertical
 from ._mf_ops import ScalarOps
 
@@ -219,26 +218,18 @@ def _full_loop(c, inputs, omega_given, limits, alpha_star, turn_slip, out, first
         out[:, start:start + m] = results[:, :m]
 
 
-def _source_stamp() -> str:
-    """A digest of every module whose source the compiled loops contain."""
-    digest = hashlib.sha256()
-    for module in (*_EQUATION_MODULES, __import__(__name__, fromlist=["_"])):
-        digest.update(Path(module.__file__).read_bytes())
-    return digest.hexdigest()[:16]
+SOURCE_MODULES = (*_EQUATION_MODULES, sys.modules[__name__])
+"""Every module whose source compiled code calling the Magic Formula contains (for cache names)."""
 
 
 _COMPILED = {}
 
 
 def _compiled(loop):
-    """The loop compiled (cached on disk, per equation-source digest), releasing the GIL."""
+    """The loop compiled (cached on disk, per digest of :data:`SOURCE_MODULES`), releasing the GIL."""
     if loop.__name__ not in _COMPILED:
-        # a copy of the loop under a name that carries the source digest: numba's on-disk cache is
-        # keyed on the qualified name and this file's timestamp only, not on the functions it calls
-        name = f"{loop.__name__}_{_source_stamp()}"
-        function = types.FunctionType(loop.__code__, loop.__globals__, name, loop.__defaults__, loop.__closure__)
-        function.__qualname__ = name
-        _COMPILED[loop.__name__] = _WideVectors(numba.njit(cache=True, nogil=True, **_JIT_OPTIONS)(function))
+        name = f"{loop.__name__}_{source_stamp(*SOURCE_MODULES)}"
+        _COMPILED[loop.__name__] = _WideVectors(compiled_copy(loop, name, nogil=True))
     return _COMPILED[loop.__name__]
 
 
