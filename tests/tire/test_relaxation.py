@@ -42,6 +42,8 @@ def test_unknown_version_names_fittyp():
         relaxation_lengths(3.0, 5000.0)
     with pytest.raises(ParameterError, match="PKY1"):
         relaxation_lengths({**tir, "PKY1": [1.0]}, 5000.0)
+    with pytest.raises(ParameterError, match="PKY1"):
+        relaxation_lengths({**tir, "PKY1": "one"}, 5000.0)  # neither a number nor a quoted string
 
 
 def test_grouped_mapping_path_and_model_agree():

@@ -36,14 +36,14 @@ from ..signals import Signal
 __all__ = ["TireRelaxation", "relaxation_lengths"]
 
 def _tir_value(key, value):
-    """A mapping's value as the ``.tir`` reader gives it: a number, or a string without quotes."""
+    """A mapping's value as the ``.tir`` reader gives it: strings are parsed as in a file."""
+    from .tir import _parse_value
+
     if isinstance(value, str):
-        text = value.strip().strip("'\"")
         try:
-            number = float(text)
-        except ValueError:
-            return text
-        return int(number) if number.is_integer() and "." not in text and "e" not in text.lower() else number
+            return _parse_value(value, None, None)
+        except TirFileError as error:
+            raise ParameterError(f".tir parameter {key}: {error}", key=key, value=value) from None
     if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
         raise ParameterError(f".tir parameter {key} must be a number or a string, got {value!r}", key=key, value=value)
     return value
