@@ -61,12 +61,18 @@ _STATUS = {-1: "step size underflow (the step fell below 10 ulp of t: the proble
            -2: "non-finite state or derivative at every step size down to the underflow limit", -3: "too many steps"}
 
 
-@functools.lru_cache(maxsize=None)
-def numba_available() -> bool:
-    """Whether numba (the optional dependency of the compiled backend) can be imported."""
-    import importlib.util
+_NUMBA_AVAILABLE = None
 
-    return importlib.util.find_spec("numba") is not None
+
+def numba_available() -> bool:
+    """Whether numba (the optional dependency of every compiled backend: this integrator, the Magic
+    Formula's loops) is installed; looked up once, imported only on first use."""
+    global _NUMBA_AVAILABLE
+    if _NUMBA_AVAILABLE is None:
+        import importlib.util
+
+        _NUMBA_AVAILABLE = importlib.util.find_spec("numba") is not None
+    return _NUMBA_AVAILABLE
 
 
 def source_stamp(*modules) -> str:

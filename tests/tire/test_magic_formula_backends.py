@@ -15,6 +15,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from vehdyn import _compiled_ode
 from vehdyn.errors import ParameterError
 from vehdyn.tire import magic_formula as mf_module
 
@@ -113,7 +114,7 @@ def test_backend_switch_and_errors(monkeypatch):
             np.testing.assert_array_equal(auto.mz, compiled.mz)
         few = (args[0][:20], 0.05, args[2][:20])
         np.testing.assert_array_equal(model.forces(*few, backend="auto").fy, model.forces(*few, backend="numpy").fy)
-    monkeypatch.setattr(mf_module, "_NUMBA_AVAILABLE", False)
+    monkeypatch.setattr(_compiled_ode, "_NUMBA_AVAILABLE", False)
     assert mf_module._auto_backend(10 * mf_module.AUTO_NUMBA_MIN_POINTS) == "numpy"
     with pytest.raises(ParameterError, match="numba"):
         model.evaluate(np.ones(20) * 4000.0, 0.0, 0.1, backend="numba")

@@ -46,6 +46,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from .._compiled_ode import numba_available
 from ..errors import ParameterError, TirFileError
 from ..params import data_path
 from ._mf_ops import NumpyOps, ScalarOps, sign_nonzero
@@ -433,19 +434,6 @@ def _auto_backend(n: int) -> str:
     except ImportError:  # installed but broken: numpy gives the same results
         return "numpy"
     return "numba"
-
-
-_NUMBA_AVAILABLE = None
-
-
-def numba_available() -> bool:
-    """Whether the compiled backend can be used (numba is installed; it is imported on first use)."""
-    global _NUMBA_AVAILABLE
-    if _NUMBA_AVAILABLE is None:
-        import importlib.util
-
-        _NUMBA_AVAILABLE = importlib.util.find_spec("numba") is not None
-    return _NUMBA_AVAILABLE
 
 
 def load_tire(path) -> MagicFormula:
