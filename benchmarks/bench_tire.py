@@ -80,7 +80,7 @@ def magic_formula_rates(data, sizes, cold: bool = False) -> None:
     """MF 6.1 ``evaluate`` (all outputs, combined slip) and ``forces`` on each backend.
 
     numpy: vectorized, chunked (one core). numba: the same equation functions compiled into one
-    per-point loop that LLVM vectorizes (8 points per AVX-512 instruction), serial (one core) and,
+    per-point loop that LLVM vectorizes (32 points per iteration with AVX-512), serial (one core) and,
     as a second figure, in one thread per core. The loop column is a plain per-point Python loop of
     the same equations (the float path of a scalar call); "vs numpy" is the rate over numpy's at the
     same size. The error column is the largest difference from the numpy backend relative to the

@@ -12,7 +12,8 @@ in place of libm's.
 
 Why it is fast: every function is inlined (LLVM ``alwaysinline``), so the loop over the points of
 a block is one straight body of arithmetic, selects and loads/stores with no call and no inner
-loop of unknown length; LLVM then vectorizes it, 8 points per AVX-512 instruction (4 with AVX2).
+loop of unknown length; LLVM then vectorizes it, 8 points per AVX-512 instruction (4 with AVX2),
+32 points per iteration on AVX-512 (see :class:`_WideVectors`).
 What makes that possible: the coefficients passed by value (no pointer to check for aliasing),
 the inputs of a block copied into one buffer and the results written to another (indices ``i``
 only), the rolling-radius iteration bounded in :data:`OPS_VECTOR` (points that need more steps,
@@ -24,15 +25,16 @@ form, and one inflation pressure, whose terms are then computed once outside the
 for blocks without camber, and a general one: a switch that is not a constant inside the
 vectorized loop has both of its branches computed for every point.
 
-Speed (``benchmarks/bench_tire.py``, MF 6.1, one core of the development machine's 2.0 GHz
-AVX-512 Xeon): ``forces`` 5-6 M points/s and ``evaluate`` ~4 M points/s, 3.5-4.5x and ~3x the
-numpy backend. The first use compiles both loops in ~1 minute; afterwards they load from numba's
-on-disk cache in ~1 s (``cache=True``, keyed on the source of every module that contributes
-equations, see :data:`SOURCE_MODULES`, so editing an equation recompiles). What limits it: the
-default ``forces`` loop without camber is ~3,000 AVX-512 instructions per 8 points (~40
-inlined atan/sin/cos/tan/exp/log, 39 divisions at 16 cycles each, ~790 stack loads and stores
-where the ~300 coefficients and intermediates do not fit in 32 registers), at ~1.2 instructions
-per cycle: ~320 cycles per point.
+Speed (``benchmarks/bench_tire.py``, MF 6.1, one core of the development machine's ~2.1 GHz
+AVX-512 Xeon): ``forces`` 5.4-7.3 M points/s and ``evaluate`` 3.2-4 M points/s, 4-4.7x and
+3.2-3.5x the numpy backend. The first use compiles both loops in ~1 minute; afterwards they load
+from numba's on-disk cache in ~1 s (``cache=True``, keyed on the source of every module that
+contributes equations, see :data:`SOURCE_MODULES`, so editing an equation recompiles). What
+limits it (``benchmarks/bench_tire_anatomy.py``): a point of ``forces`` calls 49 math functions
+(22 atan, 8 cos, 7 sqrt, 6 sin, 4 tan, an exp and a power), ~120 of its ~160 ns; the same loop
+with each function replaced by one multiply-add runs at ~23 M points/s (~43 ns). Adding every
+function at its best isolated throughput (1.3-3.9 ns per call and point) to that estimates the
+best this formulation can do at this precision on this core: ~8 M points/s.
 
 :data:`OPS` is also what a compiled vehicle model calls ``magic_formula._forces_kernel`` with, one
 point at a time.
@@ -233,13 +235,24 @@ def _compiled(loop):
     return _COMPILED[loop.__name__]
 
 
-class _WideVectors:
-    """A dispatcher whose compilation vectorizes 8 doubles at a time on AVX-512 machines.
+_AVX512_VECTOR_WIDTH = 32  # doubles per vectorized iteration on AVX-512: 4 zmm registers per operation
 
-    LLVM's default for AVX-512 CPUs is 256-bit vectors (4 doubles); for these long, arithmetic-only
-    loop bodies 512-bit vectors are ~25 % faster (measured, ``benchmarks/bench_tire.py``). The
-    setting is LLVM's global ``-force-vector-width``, applied only while numba compiles (or loads
-    from the cache) this dispatcher's first call, then reset to LLVM's default (0: cost model).
+
+class _WideVectors:
+    """A dispatcher whose compilation vectorizes 32 points per loop iteration on AVX-512 machines.
+
+    LLVM's default for AVX-512 CPUs is 256-bit vectors (4 doubles) and one vector per iteration.
+    These loop bodies are long chains of dependent arithmetic (~40 inlined transcendental
+    functions per point), too long for the processor's out-of-order window to overlap one
+    iteration with the next: the loop is bound by latency, not by execution ports (``llvm-mca``:
+    ~2,600 cycles per iteration of 8 points against ~880 for the ports alone). A vector width of
+    32 doubles makes every operation four independent 512-bit instructions side by side, which
+    the processor runs in parallel: measured 12-17 % faster than one 512-bit vector per
+    iteration (``forces`` and ``evaluate``), which was itself faster than LLVM's default. Results
+    are the same bit for bit (each point's arithmetic is unchanged). The setting is LLVM's global
+    ``-force-vector-width``, applied only while numba compiles (or loads from the cache) this
+    dispatcher's first call, then reset to LLVM's default (0: cost model). On CPUs without
+    AVX-512 LLVM's default is kept (wider settings measured within noise of it with AVX2).
     With it, LLVM prints a "remark: loop not vectorized" to the process's stderr for every loop it
     leaves scalar (numba's helpers); those lines are dropped, anything else written meanwhile is
     passed on.
@@ -262,7 +275,7 @@ class _WideVectors:
                 self.ready = True
                 return self.dispatcher(*args)
             with _without_llvm_remarks():
-                llvm_binding.set_option("", "-force-vector-width=8")
+                llvm_binding.set_option("", f"-force-vector-width={_AVX512_VECTOR_WIDTH}")
                 try:
                     return self.dispatcher(*args)
                 finally:
