@@ -13,7 +13,8 @@ number and not a guess:
    ``bench_tire.py``) as shipped, and compiled again with each of these functions replaced by one
    fused multiply-add (wrong values, everything else the same): the cost of the rest;
 4. the bound: rest + sum(count x best-case cost per call), i.e. the rate if every function ran at
-   its isolated throughput.
+   its isolated throughput, and as ratios to the shipped loop (the machine's speed drifts by up
+   to ~30 % between runs; ratios within one run much less).
 
 Needs numba. Compiles two loops (~1 minute). Run: ``python benchmarks/bench_tire_anatomy.py``.
 """
@@ -176,6 +177,9 @@ def main() -> None:
           f"({calls} calls, {(shipped_ns - rest_ns) / calls:.2f} ns each; isolated: {functions_ns:.1f} ns/pt)")
     print(f"bound, functions at isolated throughput: {bound_ns:6.1f} ns/pt = {1e3 / bound_ns:5.2f} M points/s "
           f"(goal 10 M/s = 100 ns/pt)")
+    # ratios within this run: the machine's speed drifts between runs, their ratios much less
+    print(f"headroom of this formulation: bound/shipped = {shipped_ns / bound_ns:.2f}x; "
+          f"the goal needs {shipped_ns / 100.0:.2f}x")
 
 
 if __name__ == "__main__":

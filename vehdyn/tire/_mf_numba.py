@@ -26,15 +26,15 @@ for blocks without camber, and a general one: a switch that is not a constant in
 vectorized loop has both of its branches computed for every point.
 
 Speed (``benchmarks/bench_tire.py``, MF 6.1, one core of the development machine's ~2.1 GHz
-AVX-512 Xeon): ``forces`` 5.4-7.3 M points/s and ``evaluate`` 3.2-4 M points/s, 4-4.7x and
+AVX-512 Xeon): ``forces`` 5.4-7.9 M points/s and ``evaluate`` 3.2-4 M points/s, 4-4.7x and
 3.2-3.5x the numpy backend. The first use compiles both loops in ~1 minute; afterwards they load
 from numba's on-disk cache in ~1 s (``cache=True``, keyed on the source of every module that
 contributes equations, see :data:`SOURCE_MODULES`, so editing an equation recompiles). What
 limits it (``benchmarks/bench_tire_anatomy.py``): a point of ``forces`` calls 49 math functions
-(22 atan, 8 cos, 7 sqrt, 6 sin, 4 tan, an exp and a power), ~120 of its ~160 ns; the same loop
-with each function replaced by one multiply-add runs at ~23 M points/s (~43 ns). Adding every
-function at its best isolated throughput (1.3-3.9 ns per call and point) to that estimates the
-best this formulation can do at this precision on this core: ~8 M points/s.
+(22 atan, 8 cos, 7 sqrt, 6 sin, 4 tan, an exp and a power), 80-120 of its 125-160 ns; the same
+loop with each function replaced by one multiply-add runs at ~22 M points/s (~45 ns). Adding
+every function at its best isolated throughput (1.3-3.9 ns per call and point) to that estimates
+the best this formulation can do at this precision on this core: 7.6-8.8 M points/s.
 
 :data:`OPS` is also what a compiled vehicle model calls ``magic_formula._forces_kernel`` with, one
 point at a time.
