@@ -28,18 +28,13 @@ import types
 
 import numpy as np
 
+from bench_tire import inputs  # the same combined-slip points as bench_tire.py
 from vehdyn import data_path
 from vehdyn.tire import magic_formula
 from vehdyn.tire._mf_ops import ScalarOps
 
 N_POINTS = 100_000
 FUNCTIONS = ("atan", "sin", "cos", "tan", "exp", "pow", "sqrt", "acos", "log10")
-
-
-def inputs(n, rng):
-    """bench_tire.py's combined-slip inputs: loads 0-8 kN, |kappa| <= 0.3, |alpha| <= 0.25 rad, |vx| <= 40 m/s."""
-    return (rng.uniform(0.0, 8000.0, n), rng.uniform(-0.3, 0.3, n), rng.uniform(-0.25, 0.25, n),
-            np.zeros(n), rng.uniform(-40.0, 40.0, n))
 
 
 def function_counts(tire):
