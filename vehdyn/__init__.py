@@ -11,7 +11,8 @@ Parameters
     :func:`load_vehicle`, :func:`shipped_vehicles`, :class:`Vehicle` (and its groups in
     :mod:`vehdyn.params`), :func:`data_path`
 Errors
-    :class:`VehdynError`, :class:`ParameterError`, :class:`SimulationError`, :class:`TirFileError`
+    :class:`VehdynError`, :class:`ParameterError`, :class:`SimulationError`, :class:`TirFileError`,
+    :class:`VehdynWarning`
 Conventions and units
     :mod:`vehdyn.conventions` (SAE J670 / ISO 8855 / ISO-W signs), :mod:`vehdyn.units`
 Subpackages (imported on first use)
@@ -26,7 +27,7 @@ from __future__ import annotations
 
 import importlib
 
-from .errors import ParameterError, SimulationError, TirFileError, VehdynError
+from .errors import ParameterError, SimulationError, TirFileError, VehdynError, VehdynWarning
 from .linear import LinearModel, connect_in_series
 from .model import Model
 from .params import Vehicle, data_path, load_vehicle, shipped_vehicles
@@ -55,6 +56,7 @@ __all__ = [
     "ParameterError",
     "SimulationError",
     "TirFileError",
+    "VehdynWarning",
 ]
 
 _SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "analysis", "plotting", "conventions", "units", "params",

@@ -6,7 +6,7 @@ a bad input is reported where it enters and never surfaces later as a NaN inside
 
 from __future__ import annotations
 
-__all__ = ["VehdynError", "ParameterError", "SimulationError", "TirFileError"]
+__all__ = ["VehdynError", "ParameterError", "SimulationError", "TirFileError", "VehdynWarning"]
 
 
 class VehdynError(Exception):
@@ -70,3 +70,12 @@ class TirFileError(VehdynError, ValueError):
         super().__init__(where + message)
         self.path = path
         self.line = line
+
+
+class VehdynWarning(UserWarning):
+    """Something vehdyn did on the user's behalf that may change a result.
+
+    Raised as a warning, not an error: e.g. a ``.tir`` file missing whole sections whose
+    coefficients take MFeval's defaults, or a solver choice that will be slow. Turn it into an
+    error with ``warnings.simplefilter("error", vehdyn.VehdynWarning)``.
+    """
