@@ -51,7 +51,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from ._atomic import atomic_write, atomic_write_text
+from ._atomic import _keep_permissions, atomic_write, atomic_write_text
 from .errors import ParameterError, VehdynError
 
 __all__ = ["Study", "StudyOutcome", "discover_studies", "run_study", "write_report", "build_report"]
@@ -273,9 +273,14 @@ def build_report(paths, out_dir: str | Path, *, quick: bool = False,
         If the finished report cannot replace ``out_dir`` (the message says where it was kept).
     """
     out = _report_folder(out_dir)
-    stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=out.parent))
     try:
-        _copy_folder_mode(out, stage)
+        stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=out.parent))
+    except OSError as exc:
+        raise ParameterError(f"out_dir {str(out_dir)!r}: cannot create the folder that builds the new report "
+                             f"beside it in {str(out.parent)!r} ({exc.strerror or exc})", key="out_dir",
+                             value=str(out_dir)) from None
+    try:
+        _keep_permissions(out, stage, default=0o777)  # mkdtemp makes 0700
         outcomes = []
         for i, path in enumerate(paths):
             if progress is not None:
@@ -294,13 +299,53 @@ def build_report(paths, out_dir: str | Path, *, quick: bool = False,
     return out / "index.html", outcomes
 
 
-def _is_report_folder(folder: Path) -> bool:
-    """True if ``folder/index.html`` is a vehdyn report page."""
+def _folder_kind(folder: Path) -> str:
+    """What ``folder`` is: ``"missing"``, ``"file"``, ``"empty"``, ``"report"`` (a vehdyn report) or ``"foreign"``.
+
+    Where the system allows, the folder is opened once and looked at through that handle, so that
+    a concurrent run swapping another report in cannot mix two folders into one answer.
+    """
+    if os.open in os.supports_dir_fd and os.listdir in os.supports_fd and hasattr(os, "O_DIRECTORY"):
+        for _ in range(100):
+            try:
+                fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+            except FileNotFoundError:
+                return "missing"
+            except NotADirectoryError:
+                return "file"
+            try:
+                kind = _open_folder_kind(fd)
+                # a folder retired (and being deleted) since it was opened says nothing about ``folder``
+                here, there = os.fstat(fd), os.stat(folder)
+                if (here.st_dev, here.st_ino) == (there.st_dev, there.st_ino):
+                    return kind
+            except FileNotFoundError:
+                continue
+            finally:
+                os.close(fd)
+    folder = Path(folder)  # Windows: by path
+    if not folder.exists():
+        return "missing"
+    if not folder.is_dir():
+        return "file"
     try:
-        with open(Path(folder) / "index.html", "rb") as fh:
-            return _TITLE.encode() in fh.read(4096)
+        if not any(folder.iterdir()):
+            return "empty"
+        with open(folder / "index.html", "rb") as fh:
+            return "report" if _TITLE.encode() in fh.read(4096) else "foreign"
+    except FileNotFoundError:
+        return "missing" if not folder.exists() else "foreign"
+
+
+def _open_folder_kind(fd: int) -> str:
+    if not os.listdir(fd):
+        return "empty"
+    try:
+        page = os.open("index.html", os.O_RDONLY, dir_fd=fd)
     except OSError:
-        return False
+        return "foreign"
+    with os.fdopen(page, "rb") as fh:
+        return "report" if _TITLE.encode() in fh.read(4096) else "foreign"
 
 
 def _report_folder(out_dir) -> Path:
@@ -309,7 +354,7 @@ def _report_folder(out_dir) -> Path:
     if out.parent == out:
         raise ParameterError(f"out_dir {str(out_dir)!r} is a file-system root", key="out_dir", value=str(out_dir))
     make_folder(out_dir, create=False)
-    if out.is_dir() and any(out.iterdir()) and not _is_report_folder(out):
+    if _folder_kind(out) == "foreign":
         raise ParameterError(f"out_dir {str(out_dir)!r} holds files that are not a vehdyn report; a report run "
                              "replaces its folder as a whole, so give a new or empty folder or an earlier "
                              "report's folder", key="out_dir", value=str(out_dir))
@@ -352,18 +397,6 @@ def make_folder(folder, *, create: bool = True, shown=None) -> Path:
     return path
 
 
-def _copy_folder_mode(old: Path, new: Path) -> None:
-    """Give the new report folder the old one's permissions, or the umask default (mkdtemp: 0700)."""
-    try:
-        mode = os.stat(old).st_mode & 0o777
-    except OSError:
-        umask = os.umask(0)
-        os.umask(umask)
-        mode = 0o777 & ~umask
-    with contextlib.suppress(OSError):
-        os.chmod(new, mode)
-
-
 def _publish(stage: Path, out: Path) -> None:
     """Move the complete folder ``stage`` to ``out``, retiring whatever ``out`` holds.
 
@@ -379,6 +412,11 @@ def _publish(stage: Path, out: Path) -> None:
             except OSError as exc:
                 if not (isinstance(exc, FileExistsError) or exc.errno in (errno.EEXIST, errno.ENOTEMPTY)):
                     raise
+            kind = _folder_kind(out)
+            if kind == "missing":  # another publisher retired it meanwhile
+                continue
+            if kind in ("file", "foreign"):  # something else moved in since the run began
+                raise OSError(errno.EEXIST, "it now holds files that are not a vehdyn report", str(out))
             aside = out.with_name(f".{out.name}.old-{uuid.uuid4().hex[:12]}")
             try:
                 os.rename(out, aside)
