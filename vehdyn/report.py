@@ -29,7 +29,8 @@ figure, table and ``index.html`` goes to a temporary file moved over its destina
 and a report run builds the whole new report in a hidden sibling folder (``.NAME.partial-*``) that
 replaces the report folder only after every study has finished and ``index.html`` is written. An
 interrupted run (Ctrl-C, a crash, a full disk) leaves the previous complete report as it was;
-concurrent runs into one folder each publish a complete report, the last one wins.
+concurrent runs into one folder each publish a complete report, the last one wins. The hidden
+folder of a run killed outright (``kill -9``, power loss) is removed by a later run.
 """
 
 from __future__ import annotations
@@ -39,8 +40,10 @@ import errno
 import html
 import importlib.util
 import os
+import re
 import shutil
 import signal
+import socket
 import sys
 import tempfile
 import threading
@@ -273,8 +276,9 @@ def build_report(paths, out_dir: str | Path, *, quick: bool = False,
         If the finished report cannot replace ``out_dir`` (the message says where it was kept).
     """
     out = _report_folder(out_dir)
+    _remove_abandoned(out)
     try:
-        stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=out.parent))
+        stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-{_run_tag()}-", dir=out.parent))
     except OSError as exc:
         raise ParameterError(f"out_dir {str(out_dir)!r}: cannot create the folder that builds the new report "
                              f"beside it in {str(out.parent)!r} ({exc.strerror or exc})", key="out_dir",
@@ -417,7 +421,7 @@ def _publish(stage: Path, out: Path) -> None:
                 continue
             if kind in ("file", "foreign"):  # something else moved in since the run began
                 raise OSError(errno.EEXIST, "it now holds files that are not a vehdyn report", str(out))
-            aside = out.with_name(f".{out.name}.old-{uuid.uuid4().hex[:12]}")
+            aside = out.with_name(f".{out.name}.old-{_run_tag()}-{uuid.uuid4().hex[:12]}")
             try:
                 os.rename(out, aside)
             except FileNotFoundError:  # another publisher retired it first
@@ -432,6 +436,54 @@ def _publish(stage: Path, out: Path) -> None:
     finally:
         for folder in retired:
             shutil.rmtree(folder, ignore_errors=True)
+
+
+def _run_tag() -> str:
+    """``HOST-PID`` of this run, in the names of its temporary folders."""
+    host = re.sub(r"[^A-Za-z0-9_]", "_", socket.gethostname())[:40] or "host"
+    return f"{host}-{os.getpid()}"
+
+
+_ABANDONED_AFTER = 3600.0  # [s] without a file written
+
+
+def _remove_abandoned(out: Path) -> None:
+    """Remove temporary folders beside ``out`` left by killed runs (POSIX; this host; idle an hour).
+
+    A run that ends by an exception or Ctrl-C removes its own; one killed outright cannot. A folder
+    is abandoned when the process named in it no longer exists on this host and nothing in it has
+    been written for :data:`_ABANDONED_AFTER` seconds (the second test guards against a process of
+    the same host name in another PID namespace).
+    """
+    if os.name != "posix":  # os.kill(pid, 0) is not a probe on Windows
+        return
+    host, _, _ = _run_tag().rpartition("-")
+    pattern = re.compile(rf"\.{re.escape(out.name)}\.(?:partial|old)-{re.escape(host)}-(\d+)-")
+    now = time.time()
+    try:
+        entries = list(out.parent.iterdir())
+    except OSError:
+        return
+    for entry in entries:
+        match = pattern.match(entry.name)
+        if not match or _process_exists(int(match.group(1))):
+            continue
+        try:
+            newest = max([entry.stat().st_mtime, *(p.stat().st_mtime for p in entry.rglob("*"))])
+        except OSError:
+            continue
+        if now - newest > _ABANDONED_AFTER:
+            shutil.rmtree(entry, ignore_errors=True)
+
+
+def _process_exists(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # PermissionError: it exists, owned by someone else
+        return True
+    return True
 
 
 @contextlib.contextmanager

@@ -248,6 +248,34 @@ def test_publish_failure_restores_old_and_keeps_new(tmp_path, monkeypatch):
     assert b"written by two" in (kept / "index.html").read_bytes()
 
 
+@pytest.mark.skipif(os.name != "posix", reason="abandoned folders are found by PID on POSIX only")
+def test_folders_of_killed_runs_are_removed_later(tmp_path):
+    import subprocess
+    import sys
+
+    from vehdyn.report import _run_tag
+
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True,
+                          text=True, check=True).stdout.strip()
+    host = _run_tag().rpartition("-")[0]
+    old = os.path.getmtime(tmp_path) - 2 * 3600
+    folders = {"dead_idle": (f".report.partial-{host}-{dead}-abc", old),
+               "dead_old_swap": (f".report.old-{host}-{dead}-def", old),
+               "dead_recent": (f".report.partial-{host}-{dead}-ghi", None),
+               "alive_idle": (f".report.partial-{host}-{os.getpid()}-jkl", old),
+               "other_host": (f".report.partial-{host}x-{dead}-mno", old),
+               "other_report": (f".notes.partial-{host}-{dead}-pqr", old)}
+    for name, mtime in folders.values():
+        (tmp_path / name / "alpha").mkdir(parents=True)
+        (tmp_path / name / "alpha" / "line.png").write_bytes(b"png")
+        if mtime is not None:
+            for p in (tmp_path / name / "alpha" / "line.png", tmp_path / name / "alpha", tmp_path / name):
+                os.utime(p, (mtime, mtime))
+    build_report(discover_studies(_studies(tmp_path / "v1", "one")), tmp_path / "report")
+    kept = {key for key, (name, _) in folders.items() if (tmp_path / name).exists()}
+    assert kept == {"dead_recent", "alive_idle", "other_host", "other_report"}
+
+
 def test_concurrent_reports_last_writer_wins_no_torn_page(tmp_path):
     """Writers publish into one folder while a reader reads; every read is one writer's whole page."""
     import matplotlib
