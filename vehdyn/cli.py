@@ -14,7 +14,8 @@
 Exit status: 0 on success; 1 if a study failed (its traceback is in the report and on stderr); 2 for
 a usage error - an unknown study, a missing or unreadable input file, an output folder that is a
 file or cannot be created - reported as one line ``vehdyn COMMAND: what is wrong`` without a
-traceback; 130 if interrupted (Ctrl-C), in which case the previous report is left as it was.
+traceback; 130 if interrupted (Ctrl-C): the report folder then holds the previous complete report
+(or the new one, had it finished), never a mix.
 Every file is written atomically (a temporary file moved over the destination when complete).
 """
 
@@ -23,7 +24,6 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from pathlib import Path
 
 __all__ = ["main"]
 
