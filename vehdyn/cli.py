@@ -1,13 +1,22 @@
 """The ``vehdyn`` command.
 
 ``vehdyn report [--out DIR] [--quick] [--only NAME ...]``
-    Run every study in ``studies/`` and write ``DIR/index.html`` with its figures and tables.
+    Run every study in ``studies/`` and write ``DIR/index.html`` with its figures and tables. The
+    new report replaces ``DIR`` as a whole once every study has finished
+    (:func:`vehdyn.report.build_report`); until then ``DIR`` keeps the previous report.
 ``vehdyn study NAME [--out DIR] [--quick]``
-    Run one study.
+    Run one study into a report of its own (the same way).
 ``vehdyn tire FILE.tir [--out DIR]``
     Print a tire file's version and key values and write its standard figures.
 ``vehdyn vehicles``
     List the shipped vehicles with their key numbers.
+
+Exit status: 0 on success; 1 if a study failed (its traceback is in the report and on stderr); 2 for
+a usage error - an unknown study, a missing or unreadable input file, an output folder that is a
+file or cannot be created - reported as one line ``vehdyn COMMAND: what is wrong`` without a
+traceback; 130 if interrupted (Ctrl-C): the report folder then holds the previous complete report
+(or the new one, had it finished), never a mix.
+Every file is written atomically (a temporary file moved over the destination when complete).
 """
 
 from __future__ import annotations
@@ -15,9 +24,22 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from pathlib import Path
 
 __all__ = ["main"]
+
+
+class _UsageError(Exception):
+    """A user error the command reports as one line, with exit status 2."""
+
+
+def _os_reason(exc: OSError) -> str:
+    """``"Permission denied (/some/path)"`` from an OSError."""
+    reason = exc.strerror or str(exc)
+    return f"{reason} ({exc.filename})" if exc.filename else reason
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
 
 
 def _progress(i: int, n: int, name: str, width: int = 24) -> str:
@@ -32,31 +54,27 @@ def _quick(args) -> bool:
 
 
 def cmd_report(args) -> int:
-    from .report import discover_studies, run_study, write_report
+    from .report import build_report, discover_studies
 
     paths = discover_studies(args.studies)
     if args.only:
         wanted = set(args.only)
         unknown = wanted - {p.stem for p in paths}
         if unknown:
-            print(f"vehdyn report: no study named {sorted(unknown)}; studies are {[p.stem for p in paths]}",
-                  file=sys.stderr)
-            return 2
+            raise _UsageError(f"no study named {sorted(unknown)}; studies are {[p.stem for p in paths]}")
         paths = [p for p in paths if p.stem in wanted]
     if not paths:
-        print("vehdyn report: no studies found", file=sys.stderr)
-        return 2
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+        raise _UsageError(f"no studies found{f' in {args.studies}' if args.studies else ''}")
     quick = _quick(args)
-    outcomes = []
     start = time.perf_counter()
-    for i, path in enumerate(paths):
-        sys.stderr.write(_progress(i, len(paths), path.stem))
+
+    def progress(i, n, name):
+        args.progress_line_open = True
+        sys.stderr.write(_progress(i, n, name))
         sys.stderr.flush()
-        outcomes.append(run_study(path, out, quick=quick))
+
+    index, outcomes = build_report(paths, args.out, quick=quick, progress=progress)
     sys.stderr.write(_progress(len(paths), len(paths), "done") + "\n")
-    index = write_report(outcomes, out, quick=quick)
     failed = [o for o in outcomes if o.error]
     print(f"\nvehdyn report: {len(outcomes)} studies in {time.perf_counter() - start:.1f} s -> {index}")
     for o in outcomes:
@@ -67,16 +85,12 @@ def cmd_report(args) -> int:
 
 
 def cmd_study(args) -> int:
-    from .report import discover_studies, run_study, write_report
+    from .report import build_report, discover_studies
 
     paths = {p.stem: p for p in discover_studies(args.studies)}
     if args.name not in paths:
-        print(f"vehdyn study: no study named {args.name!r}; studies are {sorted(paths)}", file=sys.stderr)
-        return 2
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    outcome = run_study(paths[args.name], out, quick=_quick(args))
-    index = write_report([outcome], out, quick=_quick(args))
+        raise _UsageError(f"no study named {args.name!r}; studies are {sorted(paths)}")
+    index, (outcome,) = build_report([paths[args.name]], args.out, quick=_quick(args))
     if outcome.error:
         print(outcome.error, file=sys.stderr)
         return 1
@@ -99,17 +113,16 @@ def cmd_tire(args) -> int:
         print(f"vehdyn tire: {exc}", file=sys.stderr)
         return 2
     print(describe_tire(tire))
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    from .report import make_folder
+
+    out = make_folder(args.out)
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .plotting import save_figure
 
     for name, fig in plot_tire_characteristics(tire).items():
-        path = out / f"{name}.png"
-        fig.savefig(path, dpi=110, bbox_inches="tight")
-        plt.close(fig)
+        path = save_figure(fig, out / f"{name}.png")
         print(f"wrote {path}")
     return 0
 
@@ -161,7 +174,30 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "command", None):
         parser.print_help()
         return 0
-    return int(args.func(args) or 0)
+    from .errors import ParameterError, VehdynError
+
+    def fail(message: str, status: int = 2) -> int:
+        if getattr(args, "progress_line_open", False):
+            sys.stderr.write("\n")
+        print(f"vehdyn {args.command}: {_one_line(message)}", file=sys.stderr)
+        return status
+
+    try:
+        return int(args.func(args) or 0)
+    except _UsageError as exc:
+        return fail(str(exc))
+    except ParameterError as exc:
+        if exc.key == "out_dir":  # the library names its parameter; the user typed --out
+            return fail(str(exc).replace("out_dir", "--out", 1))
+        return fail(str(exc))
+    except VehdynError as exc:
+        return fail(str(exc))
+    except OSError as exc:
+        return fail(_os_reason(exc))
+    except KeyboardInterrupt:
+        return fail("interrupted" + ("; the report folder holds the previous complete report (or, if the "
+                                     "run had finished, the new one), never a mix"
+                                     if args.command in ("report", "study") else ""), 130)
 
 
 if __name__ == "__main__":  # pragma: no cover

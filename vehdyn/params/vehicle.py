@@ -9,6 +9,7 @@ corner"), per-axle ones likewise. Distances along x are measured from the total 
 from __future__ import annotations
 
 import dataclasses
+import os
 from pathlib import Path
 
 import numpy as np
@@ -190,7 +191,7 @@ class Vehicle(ParameterSet):
     """A complete vehicle parameter set.
 
     Load shipped vehicles with :func:`load_vehicle` (``"sedan"``, ``"compact"``, ``"van"``) and make
-    variants with :meth:`replace` or ``dataclasses.replace``.
+    variants with :meth:`replace` (``sedan.replace(mass__mass=1500.0)`` reaches into a group).
     """
 
     name: str = text("short name")
@@ -240,28 +241,6 @@ class Vehicle(ParameterSet):
         return self.suspension.rear_spring_rate * self.geometry.rear_track**2 / 2 + \
             self.suspension.rear_antiroll_stiffness
 
-    def replace(self, **changes) -> "Vehicle":
-        """A validated copy; nested groups can be changed with ``group__field=value`` keywords.
-
-        Examples
-        --------
-        >>> sedan = load_vehicle("sedan")
-        >>> heavy = sedan.replace(mass__mass=1500.0)
-        """
-        nested: dict[str, dict] = {}
-        flat = {}
-        for key, value in changes.items():
-            if "__" in key:
-                group, field = key.split("__", 1)
-                nested.setdefault(group, {})[field] = value
-            else:
-                flat[key] = value
-        for group, fields in nested.items():
-            if not hasattr(self, group) or not isinstance(getattr(self, group), ParameterSet):
-                raise ParameterError(f"Vehicle has no parameter group {group!r}", key=group, value=fields)
-            flat[group] = dataclasses.replace(getattr(self, group), **fields)
-        return dataclasses.replace(self, **flat)
-
     def tir_path(self) -> Path:
         """Path of the vehicle's ``.tir`` file (a shipped name or a path)."""
         p = Path(self.tires.tir_file)
@@ -294,14 +273,21 @@ def load_vehicle(name_or_path: str | Path) -> Vehicle:
     Raises
     ------
     ParameterError
-        If the name is unknown, the file is not valid TOML, or a parameter is missing, unknown, of the
-        wrong type, non-finite or out of range (the message names the key and the value).
+        If the name is unknown, the argument is neither a name nor a path, the file is missing, a
+        folder, unreadable, not UTF-8 text or not valid TOML (a UTF-8 byte-order mark is accepted),
+        or a parameter is missing, unknown, of the wrong type, non-finite or out of range (the
+        message names the key and the value).
     """
+    if not isinstance(name_or_path, (str, os.PathLike)):
+        raise ParameterError(f"vehicle must be a shipped vehicle's name or a path to a .toml file, got "
+                             f"{type(name_or_path).__name__} {name_or_path!r}", key="vehicle", value=name_or_path)
     p = Path(name_or_path)
     if p.suffix == ".toml" or p.is_file():
         return load_toml(Vehicle, p)
     candidate = data_path("vehicles", f"{name_or_path}.toml")
     if not candidate.is_file():
+        if p.is_dir():
+            return load_toml(Vehicle, p)  # reports the folder
         raise ParameterError(f"unknown vehicle {str(name_or_path)!r}; shipped vehicles are {shipped_vehicles()}, "
                              "or give a path to a .toml file", key="vehicle", value=str(name_or_path))
     return load_toml(Vehicle, candidate)
