@@ -126,7 +126,9 @@ def axle_forces(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection,
     if k.tire_lag:
         tan_alpha = sliding_slip(xp, lateral_deflection / lateral_length, vy / regularized_speed(xp, vx),
                                  peak_tan_slip_angle)
-        tan_alpha = tan_alpha + blend * vy / k.low_speed_damping_speed
+        # low-speed damping on the deflection rate (zero in the steady state, V_sy at standstill)
+        rate = deflection_rate(xp, vy, vx, lateral_deflection, lateral_length, peak_tan_slip_angle)
+        tan_alpha = tan_alpha + blend * rate / k.low_speed_damping_speed
     else:
         tan_alpha = vy / regularized_speed(xp, vx)
     alpha = xp.atan(tan_alpha)
@@ -135,7 +137,8 @@ def axle_forces(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection,
         if k.tire_lag:
             slip = sliding_slip(xp, longitudinal_deflection / longitudinal_length, -vsx / regularized_speed(xp, vx),
                                 peak_slip_ratio)
-            slip = slip - blend * vsx / k.low_speed_damping_speed
+            rate = deflection_rate(xp, -vsx, vx, longitudinal_deflection, longitudinal_length, peak_slip_ratio)
+            slip = slip + blend * rate / k.low_speed_damping_speed
             kappa = slip * direction
         else:
             kappa = -vsx / (direction * regularized_speed(xp, vx))
