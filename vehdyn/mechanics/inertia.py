@@ -108,8 +108,10 @@ def check_realizable(matrix, *, definite: bool = False, key: str | None = None) 
     principal = np.linalg.eigvalsh(np.moveaxis(stacked, -1, 0))  # (n, 3), ascending
     if definite:
         bad = principal[:, 0] <= slack
-        kind = ("positive definite", "a rigid body needs moments about every axis (a point mass or slender rod "
-                                     "alone has none about some axis)")
+        kind = ("positive definite", "the products of inertia are too large for the moments"
+                if np.any(principal[:, 0] < -slack) else
+                "a rigid body needs moments about every axis (a point mass or slender rod alone has none about "
+                "some axis)")
     else:
         bad = principal[:, 0] < -slack
         kind = ("positive semi-definite", "the products of inertia are too large for the moments")

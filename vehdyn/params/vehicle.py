@@ -56,17 +56,19 @@ class MassProperties(ParameterSet):
             raise ParameterError(
                 f"sprung_mass + front_unsprung_mass + rear_unsprung_mass = {parts} kg exceeds mass = {self.mass} kg",
                 key="sprung_mass", value=self.sprung_mass)
-        for a, b, c in (("roll_inertia", "pitch_inertia", "yaw_inertia"),):
-            ixx, iyy, izz = getattr(self, a), getattr(self, b), getattr(self, c)
-            # triangle inequalities of a physical inertia tensor (principal-axis approximation)
-            if ixx + iyy < izz * (1 - 1e-9) or iyy + izz < ixx * (1 - 1e-9) or izz + ixx < iyy * (1 - 1e-9):
-                raise ParameterError(f"roll_inertia, pitch_inertia and yaw_inertia = ({ixx}, {iyy}, {izz}) kg*m^2 "
-                                     "violate the triangle inequality of a rigid body", key="yaw_inertia",
-                                     value=izz)
-        if self.roll_yaw_product**2 >= self.roll_inertia * self.yaw_inertia:
-            raise ParameterError(f"roll_yaw_product = {self.roll_yaw_product} kg*m^2 makes the inertia tensor "
-                                 "indefinite (needs I_xz^2 < I_xx I_zz)", key="roll_yaw_product",
-                                 value=self.roll_yaw_product)
+        # One realizability check for every inertia tensor in the package (mechanics.inertia):
+        # positive definite, principal moments obeying the triangle inequality.
+        from ..mechanics.inertia import check_realizable  # mechanics imports params.base: import here
+
+        try:
+            check_realizable(self.inertia_matrix, definite=True)
+        except ParameterError as err:
+            field = {"ixx": "roll_inertia", "iyy": "pitch_inertia", "izz": "yaw_inertia"}.get(err.key,
+                                                                                            "roll_yaw_product")
+            value = getattr(self, field)
+            what = ("makes the inertia tensor indefinite (needs I_xz^2 < I_xx I_zz)" if field == "roll_yaw_product"
+                    else "is not a rigid body's moment of inertia")
+            raise ParameterError(f"{field} = {value} kg*m^2 {what}: the {err}", key=field, value=value) from None
 
     @property
     def unsprung_mass(self) -> float:
