@@ -244,8 +244,11 @@ class _Context:
         probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
         if probe is not None and "front_slip_angle" in probe:
             slips = [np.max(np.abs(probe["front_slip_angle"])), np.max(np.abs(probe["rear_slip_angle"]))]
-        elif self.utilization is not None:
-            slips = est.slip_for_utilization(vehicle, self.utilization)
+        elif self.drive.braking is not None:
+            p = self.scene.manoeuvre_parameters
+            rho = est.combined_utilization(vehicle, self.drive.initial_turn or 0.0,
+                                           float(p.get("deceleration", 0.0)), float(p.get("brake_front_share", 0.65)))
+            return est.combined_slip_error(rho)
         else:
             return float("nan")
         return est.THRESHOLDS["saturation_gain"] * est.tire_deficit(vehicle, slips, self.scene.tire)
@@ -284,8 +287,8 @@ class _Context:
             diff = self._difference("LinearBicycle", "LateralYawRoll")
             return (diff, "roll (probes)") if diff else (float("nan"), "roll unestimated")
         if p == "pitch":
-            k = est.THRESHOLDS["dynamic_index_gain"] * est.dynamic_index_coupling(d.vehicle)
-            return k, f"pitch coupling |1-DI| ~{k:.1e}"
+            k = est.THRESHOLDS["dynamic_index_gain"] * est.dynamic_index_coupling(d.vehicle) ** 2
+            return k, f"pitch coupling (1-DI)^2 ~{k:.1e}"
         if p in ("heave", "wheel_hop", "road_input") and d.road is None:
             return 0.0, ""
         return float("nan"), f"{p} unestimated"
