@@ -8,6 +8,8 @@
     Print a tire file's version and key values and write its standard figures.
 ``vehdyn vehicles``
     List the shipped vehicles with their key numbers.
+``vehdyn scene FILE.toml [--verify]``
+    Plan a scene (the fidelity ladder), run the chosen model and print the headline numbers.
 """
 
 from __future__ import annotations
@@ -127,6 +129,22 @@ def cmd_vehicles(args) -> int:
     return 0
 
 
+def cmd_scene(args) -> int:
+    from .errors import VehdynError
+    from .scene import Scene, run
+
+    try:
+        scene = Scene.from_toml(args.file)
+        outcome = run(scene, verify=args.verify)
+    except VehdynError as exc:
+        print(f"vehdyn scene: {exc}", file=sys.stderr)
+        return 2
+    print(outcome.plan)
+    print()
+    print(outcome.headline())
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="vehdyn",
@@ -152,6 +170,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_tire)
     p = sub.add_parser("vehicles", help="list the shipped vehicles")
     p.set_defaults(func=cmd_vehicles)
+    p = sub.add_parser("scene", help="plan a scene (.toml), run the chosen model, print the headline numbers")
+    p.add_argument("file", help="path of a scene .toml file")
+    p.add_argument("--verify", action="store_true", help="also run the reference rung and measure the error")
+    p.set_defaults(func=cmd_scene)
     return parser
 
 
