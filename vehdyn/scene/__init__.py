@@ -5,7 +5,8 @@ tolerance). :func:`plan` assesses every rung of the one registry (:mod:`vehdyn.s
 picks the cheapest whose estimated error is within the tolerance, with a reason per rung;
 :func:`run` runs it (``verify=True`` also runs the reference rung and measures the error);
 :func:`ladder` runs every admissible rung and returns the speed-against-error table;
-:func:`plot_ladder` draws it. Estimates and their provenance: :mod:`vehdyn.scene.estimates`.
+:func:`plot_ladder` draws it; :func:`standard_scenes` are the scenes the thresholds are measured on
+(``benchmarks/bench_ladder.py``). Estimates and their provenance: :mod:`vehdyn.scene.estimates`.
 
 Example::
 
@@ -20,7 +21,8 @@ from .definition import ROAD_EVENTS, STANDARD_MANOEUVRES, Scene
 from .estimates import COST_PER_SIMULATED_SECOND, THRESHOLDS, relative_error
 from .planner import Plan, RungAssessment, SceneResult, ladder, plan, plot_ladder, run
 from .rungs import RUNGS, Rung, Setup, SteadyStateAlgebra, register_rung, rungs
+from .standard import standard_scenes
 
 __all__ = ["Scene", "STANDARD_MANOEUVRES", "ROAD_EVENTS", "Plan", "RungAssessment", "SceneResult", "plan", "run",
            "ladder", "plot_ladder", "Rung", "Setup", "RUNGS", "register_rung", "rungs", "SteadyStateAlgebra",
-           "THRESHOLDS", "COST_PER_SIMULATED_SECOND", "relative_error"]
+           "THRESHOLDS", "COST_PER_SIMULATED_SECOND", "relative_error", "standard_scenes"]

@@ -485,8 +485,11 @@ def plot_ladder(frame, *, ax=None, title: str | None = None, error_floor: float 
     if tol is not None:
         ax.axhline(tol, color="k", ls="--", lw=0.8, label=f"tolerance {tol:g}")
         ax.legend(fontsize=8)
+    from matplotlib.ticker import NullFormatter
+
     ax.set_xscale("log")
     ax.set_yscale("log")
+    ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("wall time [s]")
     ax.set_ylabel("error against the reference [-]")
     if title:
