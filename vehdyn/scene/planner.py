@@ -39,7 +39,8 @@ class RungAssessment:
 
     @property
     def estimated_error(self) -> float:
-        return max(self.errors.values()) if self.errors else float("nan")
+        """The largest estimate over the outputs (NaN when one is unestimated: never picked)."""
+        return float(np.max(list(self.errors.values()))) if self.errors else float("nan")
 
 
 @dataclass
@@ -214,7 +215,9 @@ def plan(scene) -> Plan:
         r.errors, notes = ctx.errors(r)
         ignored = f"; ignores {', '.join(r.setup.ignores)}" if r.setup.ignores else ""
         if r is top:
-            r.reason = f"reference (highest fidelity that answers){ignored}"
+            lacks = sorted(set(needs) - top.rung.phenomena(top.setup))
+            caveat = f"; lacks {', '.join(lacks)}: errors are relative to it" if lacks else ""
+            r.reason = f"reference (highest fidelity that answers){caveat}{ignored}"
         else:
             within = "within" if r.estimated_error <= scene.tolerance else "beyond"
             r.reason = f"{within} tolerance: {notes or 'same phenomena as the reference'}{ignored}"
@@ -266,7 +269,9 @@ class _Context:
                 e += dg
                 note += f" and load sensitivity ~{dg:.1e}"
             return e, note
-        if p in ("longitudinal", "aero", "load_transfer", "wheel_spin"):
+        if p == "wheel_spin":  # free-rolling wheels: the spin follows the speed
+            return (float("nan"), "wheel spin under torque unestimated") if d.longitudinal else (0.0, "")
+        if p in ("longitudinal", "aero", "load_transfer"):
             if d.longitudinal:
                 return float("nan"), f"{p} needed"
             probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
@@ -300,7 +305,7 @@ class _Context:
         total = {o: floor for o in self.outputs}
         notes = []
         differ = sorted(r.rung.phenomena(r.setup) ^ self.top.rung.phenomena(self.top.setup))
-        grouped = {"longitudinal", "aero", "load_transfer", "wheel_spin"}
+        grouped = {"longitudinal", "aero", "load_transfer"}
         done_group = False
         for p in differ:
             if p in grouped:
@@ -312,6 +317,10 @@ class _Context:
                 notes.append(note)
             for o in self.outputs:
                 total[o] += value.get(o, float("nan")) if isinstance(value, dict) else value
+        if self.drive.track is not None:
+            factor = est.THRESHOLDS["closed_loop_factor"]
+            total = {o: factor * v for o, v in total.items()}
+            notes.append(f"closed loop x{factor:g}")
         if r.rung.name == "SteadyState":
             diff = self._difference("SteadyState", "LinearBicycle")
             notes.append("no transient (probes)")
@@ -341,6 +350,8 @@ class SceneResult:
     reference : str
         The reference rung's name.
     plan : Plan
+    signals : dict
+        Scene output name -> the model's output name that answers it.
     """
 
     model: Any
@@ -351,12 +362,13 @@ class SceneResult:
     verified_error: dict | None
     reference: str
     plan: Plan
+    signals: dict = field(default_factory=dict)
 
     def headline(self) -> str:
         """Peak |value| of each output with its estimated (and verified) error."""
         lines = [f"{self.rung} ({type(self.model).__name__}): {self.result.wall_time:.3g} s of integration"]
         for name, x in self.outputs.items():
-            unit = self.result.unit(self.plan.chosen.outputs[name]) if hasattr(self.result, "unit") else ""
+            unit = self.result.unit(self.signals[name]) if name in self.signals else ""
             line = (f"  {name:<28} peak {float(np.max(np.abs(x))):.5g} {unit}  estimated error "
                     f"{self.estimated_error[name]:.2e}")
             if self.verified_error is not None:
@@ -391,17 +403,13 @@ def run(scene, model: str = "auto", verify: bool = False) -> SceneResult:
     p = plan(scene)
     row = p.chosen if model == "auto" else p.row(model)
     result = _run_row(p, row)
-    if row is p.chosen:
-        p.chosen.outputs = row.outputs
     outputs = _signals(result, row.outputs)
     verified = None
     if verify:
         reference = _signals(_run_row(p, p.top), p.top.outputs)
         verified = est.relative_errors(outputs, reference)
-    out = SceneResult(row.setup.model, result, row.rung.name, outputs, dict(row.errors), verified, p.top.rung.name, p)
-    if row is not p.chosen:  # headline() reads the unit through the chosen row's outputs
-        p.chosen = row
-    return out
+    return SceneResult(row.setup.model, result, row.rung.name, outputs, dict(row.errors), verified, p.top.rung.name,
+                       p, dict(row.outputs))
 
 
 def ladder(scene, *, repeat: int = 1):

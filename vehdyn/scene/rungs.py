@@ -218,6 +218,7 @@ def _linear_setup(model, drive) -> Setup:
         loop = _with_driver(_Positioned(model, drive.scene.speed), drive, speed_control=False)
         x0 = np.zeros(loop.n_states)
         x0[loop.index("x")] = float(drive.track.path_x[0])
+        x0[loop.index("longitudinal_velocity")] = drive.scene.speed
         return Setup(loop, lambda: simulate(loop, drive.time, None, x0=x0, method="RK45", rtol=1e-8, atol=1e-10),
                      _constant_speed_ignores(drive, ignored))
     return Setup(model, lambda: simulate(model, drive.time, inputs, method="exact"),
@@ -243,13 +244,15 @@ def _positioned_class():
     class Positioned(Model):
         """A constant-speed lateral model with the earth-fixed position and heading added.
 
-        dX/dt = u cos(psi) - v sin(psi), dY/dt = u sin(psi) + v cos(psi), dpsi/dt = r (SAE).
+        dX/dt = u cos(psi) - v sin(psi), dY/dt = u sin(psi) + v cos(psi), dpsi/dt = r (SAE), and
+        the constant forward speed u as a state (du/dt = 0) for a driver that reads it.
         """
 
         def __init__(self, model, speed):
             self.model, self.speed = model, float(speed)
             extra = (Signal("x", "m", "earth X"), Signal("y", "m", "earth Y (SAE)"),
-                     Signal("yaw_angle", "rad", "heading psi"))
+                     Signal("yaw_angle", "rad", "heading psi"),
+                     Signal("longitudinal_velocity", "m/s", "forward speed u (constant)"))
             self.declare(states=tuple(model.states) + extra, inputs=model.inputs,
                          outputs=tuple(model.output_signals) + extra)
             self.phenomena = model.phenomena
@@ -261,7 +264,7 @@ def _positioned_class():
             v, r = inner[self._iv], inner[self._ir]
             c, s = np.cos(psi), np.sin(psi)
             return np.concatenate([np.asarray(self.model.rhs(t, inner, u), dtype=float),
-                                   np.stack([self.speed * c - v * s, self.speed * s + v * c, r])])
+                                   np.stack([self.speed * c - v * s, self.speed * s + v * c, r, 0.0 * r])])
 
         def output(self, t, x, u):
             n = self.model.n_states
