@@ -55,7 +55,7 @@ def test_from_dict_unknown_field():
 
 
 def test_from_toml_errors(tmp_path):
-    with pytest.raises(ParameterError, match="not found"):
+    with pytest.raises(ParameterError, match="missing.toml"):
         Scene.from_toml(tmp_path / "missing.toml")
     bad = tmp_path / "bad.toml"
     bad.write_text("speed = = 3\n")

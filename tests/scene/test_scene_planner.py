@@ -179,3 +179,26 @@ def test_plot_ladder():
     plt.close(ax.figure)
     with pytest.raises(ParameterError, match="repeat"):
         vehdyn.ladder(Scene(manoeuvre="step_steer", duration=1.0), repeat=0)
+
+
+def test_braking_needs_the_longitudinal_rungs():
+    scene = Scene(manoeuvre="straight_braking", speed=25.0, duration=2.0,
+                  outputs=("longitudinal_acceleration", "longitudinal_velocity"))
+    p = vehdyn.plan(scene)
+    rows = {r.rung.name: r for r in p.rows}
+    assert "longitudinal" in p.needs
+    assert not any(rows[n].admissible for n in LINEAR)
+    assert rows["LinearBicycle"].reason == "constant speed: no braking"
+    out = vehdyn.run(scene, verify=True)
+    assert type(out.model).__name__ == "SingleTrack"
+    # 6 m/s^2 from 0.5 s, within the friction: the speed falls by 6 m/s^2 * 1.5 s less the drag's share
+    drop = out.outputs["longitudinal_velocity"][0] - out.outputs["longitudinal_velocity"][-1]
+    assert drop == pytest.approx(6.0 * 1.5, rel=0.05)
+    assert max(out.verified_error.values()) <= scene.tolerance
+
+
+def test_double_lane_change_with_the_driver_plans_a_nonlinear_rung():
+    scene = Scene(manoeuvre="iso3888_1", speed=16.7, duration=8.0, outputs=("yaw_rate",))
+    p = vehdyn.plan(scene)
+    assert p.chosen.rung.name == "SingleTrack"
+    assert all("closed loop" in r.reason for r in p.rows if r.admissible and r is not p.top)

@@ -53,7 +53,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
@@ -304,15 +303,9 @@ class Scene:
     @classmethod
     def from_toml(cls, path: str | Path) -> "Scene":
         """Read a scene from a TOML file (fields as in :class:`Scene`; see the module docstring)."""
-        path = Path(path)
-        try:
-            with open(path, "rb") as fh:
-                data = tomllib.load(fh)
-        except FileNotFoundError:
-            raise ParameterError(f"scene file {str(path)!r} not found", key="path", value=str(path)) from None
-        except tomllib.TOMLDecodeError as exc:
-            raise ParameterError(f"{path}: not valid TOML ({exc})", key="path", value=str(path)) from None
-        return cls.from_dict(data)
+        from ..params.base import load_toml
+
+        return load_toml(cls, path)
 
     def to_dict(self) -> dict[str, Any]:
         """The fields as plain data (the inverse of :meth:`from_dict`); None fields are left out."""

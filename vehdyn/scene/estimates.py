@@ -10,19 +10,28 @@ error (the steady-state algebra's missing transient). The estimates are of two k
   |LinearBicycle - LinearBicycle+lag|, roll (for the yaw and lateral outputs) is
   |LinearBicycle - LateralYawRoll|, the transient is |SteadyState - LinearBicycle|.
 * **model-based with a measured gain**: the tire saturation a linear rung misses is
-  ``SATURATION_GAIN * d``, with d = |1 - F_MF(alpha) / (C alpha)| the relative deficit of the
-  vehicle's own tire law against the linear tire at the probe's peak slip angle and the static
-  load of each axle; the speed change a constant-speed rung misses is max |du| / u, with
-  du/dt = v r - F_yf sin(delta) / m integrated along the probe (Pacejka 2012, eq. 1.43, the
-  longitudinal equation with the drive holding the drag); the pitch coupling the two independent
-  quarter cars miss grows with |1 - DI|, DI = I_y / (m a b) the dynamic index (Gillespie 1992,
-  ch. 5: the front and rear ends decouple at DI = 1); the roll a mean-track ride model misses at a
-  corner grows with the road's left-right asymmetry max|z_l - z_r| / max(|z_l| + |z_r|) (for a
-  left-right symmetric vehicle the heave and pitch at the sprung CG do not see it at all).
+  ``saturation_gain * d``, with d = |1 - F_law(alpha) / (C alpha)| the relative deficit of the
+  vehicle's own tire law (antisymmetric part, at half the static axle load) against the linear
+  tire at the linear probe's peak slip angle of each axle; the speed change a constant-speed rung
+  misses is max |du| / u, du/dt = v r - F_yf sin(delta) / m along the probe (the drive holds the
+  drag; Pacejka 2012, eq. 1.43), plus the change of the steady-state yaw gain from the load
+  transfer h F_drag / L of that drive force, with the law's cornering stiffness at the shifted
+  loads (near neutral steer at 100 km/h, several percent; Gillespie 1992, eq. 2-18, 6-15); a
+  SingleTrack with linear tires misses the difference between the linear tire's and the law's
+  load sensitivity in that same shift; braking in a turn: a fit of the measured error against the
+  largest axle friction utilization (quasi-static load transfer, friction ellipse); the pitch
+  coupling the two independent quarter cars miss grows as (1 - DI)^2, DI = I_y / (m a b) the
+  dynamic index (Gillespie 1992, ch. 5: the front and rear ends decouple at DI = 1); the roll a
+  mean-track ride model misses at a corner grows with the road's left-right asymmetry
+  max |z_l - z_r| / max(|z_l| + |z_r|), while the heave and pitch at the sprung CG of a left-right
+  symmetric vehicle do not see it at all (zero).
 
-Every gain below is measured by ``benchmarks/bench_ladder.py`` (its "calibration" table: the
-measured error of the rung divided by the model-based quantity, over the 12 standard scenes on the
-sedan), and the thresholds are read off its error matrix.
+A phenomenon without an estimate gives NaN: such a rung is never picked. In closed loop (the
+ISO 3888-1 driver) every estimate is multiplied by ``closed_loop_factor``.
+
+Every gain below is measured by ``benchmarks/bench_ladder.py sedan compact van`` (its table 3a:
+estimated / measured error of every non-reference rung on the 13 standard scenes of the three
+shipped vehicles), and the thresholds are read off its error matrix.
 """
 
 from __future__ import annotations
