@@ -190,12 +190,11 @@ class Scene:
                 raise _bad("manoeuvre", m, f"unknown manoeuvre; the standard ones are {sorted(STANDARD_MANOEUVRES)}")
             allowed = STANDARD_MANOEUVRES[m]
             for key, value in params.items():
+                where = f"manoeuvre_parameters.{key}"
                 if key not in allowed:
-                    raise _bad(f"manoeuvre_parameters.{key}", value, f"not a parameter of {m!r}; it takes {list(allowed)}")
-                if not (key == "shape" or isinstance(value, (int, float)) and not isinstance(value, bool)):
-                    raise _bad(f"manoeuvre_parameters.{key}", value, "must be a number")
-                if not math.isfinite(float(value)):
-                    raise _bad(f"manoeuvre_parameters.{key}", value, "must be finite")
+                    raise _bad(where, value, f"not a parameter of {m!r}; it takes {list(allowed)}")
+                if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                    raise _bad(where, value, "must be a finite number")
             if "amplitude" in params and "lateral_acceleration" in params:
                 raise _bad("manoeuvre_parameters", dict(params), "give amplitude or lateral_acceleration, not both")
         elif m is None or callable(m):
@@ -235,7 +234,8 @@ class Scene:
                 if key in ("event", "track"):
                     continue
                 if key not in ROAD_EVENTS[event]:
-                    raise _bad(f"road.{key}", value, f"not a parameter of {event!r}; it takes {list(ROAD_EVENTS[event])}")
+                    raise _bad(f"road.{key}", value,
+                               f"not a parameter of {event!r}; it takes {list(ROAD_EVENTS[event])}")
                 if key != "shape" and (isinstance(value, bool) or not isinstance(value, (int, float))
                                        or not math.isfinite(value)):
                     raise _bad(f"road.{key}", value, "must be a finite number")
