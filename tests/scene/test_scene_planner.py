@@ -202,3 +202,14 @@ def test_double_lane_change_with_the_driver_plans_a_nonlinear_rung():
     p = vehdyn.plan(scene)
     assert p.chosen.rung.name == "SingleTrack"
     assert all("closed loop" in r.reason for r in p.rows if r.admissible and r is not p.top)
+
+
+def test_a_rung_whose_builder_is_missing_is_not_admissible():
+    ghost = Rung("Ghost", "vehdyn.handling.bicycle:LinearBicycle", "handling", 99, "vehdyn.handling.bicycle:no_such")
+    register_rung(ghost)
+    try:
+        p = vehdyn.plan(Scene(manoeuvre="step_steer", duration=1.0, outputs=("yaw_rate",)))
+        row = {r.rung.name: r for r in p.rows}["Ghost"]
+        assert not row.admissible and "no ladder builder" in row.reason
+    finally:
+        vehdyn.scene.RUNGS.remove(ghost)

@@ -71,8 +71,8 @@ class Plan:
 
     @property
     def choice(self):
-        """The chosen model class."""
-        return type(self.chosen.setup.model)
+        """The chosen model class (the vehicle model, also when a driver closes the loop around it)."""
+        return self.chosen.rung.model_class()
 
     def to_frame(self):
         """pandas DataFrame, a row per rung: model, rung, admissible, estimated_cost_s, estimated_error, reason."""

@@ -105,7 +105,10 @@ class Rung:
         build = self.build
         if isinstance(build, str):
             module, _, attr = build.partition(":")
-            build = getattr(importlib.import_module(module), attr)
+            try:
+                build = getattr(importlib.import_module(module), attr)
+            except (ImportError, AttributeError):
+                raise _NotAdmissible(f"no ladder builder {self.build!r} yet") from None
         return build(drive, **self.options)
 
 
