@@ -58,7 +58,8 @@ def test_output_no_rung_has_lists_who_has_what():
         vehdyn.plan(scene)
     message = str(info.value)
     assert info.value.key == "outputs"
-    assert "LinearBicycle: " in message and "yaw_rate" in message and "FullCar: no road input" in message
+    assert "LinearBicycle (has no output warp_factor) has lateral_acceleration" in message
+    assert "FullCar (no road input)" in message
 
 
 def test_estimates_within_a_factor_3_of_the_verified_errors():
@@ -213,3 +214,34 @@ def test_a_rung_whose_builder_is_missing_is_not_admissible():
         assert not row.admissible and "no ladder builder" in row.reason
     finally:
         vehdyn.scene.RUNGS.remove(ghost)
+
+
+def test_wheel_torque_input_has_no_rung_on_this_ladder():
+    scene = Scene(manoeuvre={"front_steer_angle": 0.0, "rear_drive_torque": 100.0}, outputs=("yaw_rate",))
+    with pytest.raises(ParameterError, match="SingleTrack \\(has no input 'rear_drive_torque'\\)"):
+        vehdyn.plan(scene)
+
+
+def test_a_top_rung_with_every_phenomenon_leaves_the_ride_pick_alone():
+    """What wiring FullVehicle does: a top rung on the ride ladder that also has the handling
+    phenomena. With no steer those are not excited, so the estimates stay those of the ride rungs."""
+    from vehdyn.model import PHENOMENA
+    from vehdyn.scene.rungs import build_full_car
+
+    def build(drive):
+        setup = build_full_car(drive)
+        setup.phenomena = PHENOMENA
+        return setup
+
+    top = Rung("EverythingCar", "vehdyn.ride.full_car:FullCar", "ride", 100, build)
+    register_rung(top)
+    try:
+        scene = Scene(road="C", speed=20.0, duration=1.0, outputs=("sprung_acceleration",))
+        p = vehdyn.plan(scene)
+        assert p.top.rung.name == "EverythingCar"
+        assert p.chosen.rung.name == "BouncePitch"
+        # with a steer the handling phenomena it lacks are unestimated: the top is the safe pick
+        steered = vehdyn.plan(scene.replace(manoeuvre="step_steer"))
+        assert steered.chosen.rung.name == "EverythingCar"
+    finally:
+        vehdyn.scene.RUNGS.remove(top)

@@ -20,9 +20,9 @@ Example::
 from .definition import ROAD_EVENTS, STANDARD_MANOEUVRES, Scene
 from .estimates import COST_PER_SIMULATED_SECOND, THRESHOLDS, relative_error
 from .planner import Plan, RungAssessment, SceneResult, ladder, plan, plot_ladder, run
-from .rungs import RUNGS, Rung, Setup, SteadyStateAlgebra, register_rung, rungs
+from .rungs import RUNGS, NotAdmissible, Rung, Setup, SteadyStateAlgebra, register_rung, rungs
 from .standard import standard_scenes
 
 __all__ = ["Scene", "STANDARD_MANOEUVRES", "ROAD_EVENTS", "Plan", "RungAssessment", "SceneResult", "plan", "run",
-           "ladder", "plot_ladder", "Rung", "Setup", "RUNGS", "register_rung", "rungs", "SteadyStateAlgebra",
-           "THRESHOLDS", "COST_PER_SIMULATED_SECOND", "relative_error", "standard_scenes"]
+           "ladder", "plot_ladder", "Rung", "Setup", "NotAdmissible", "RUNGS", "register_rung", "rungs",
+           "SteadyStateAlgebra", "THRESHOLDS", "COST_PER_SIMULATED_SECOND", "relative_error", "standard_scenes"]

@@ -50,6 +50,10 @@ THRESHOLDS = {
     # label: the pick rests on the estimated errors). bench: the tire-law deficit is below 1 % up
     # to about 0.3 mu g on the three shipped vehicles (0.1 g scenes: 0.4-0.9 %)
     "saturation_fraction": 0.3,
+    # speed change max|du|/u along the constant-speed probe above which the plan lists longitudinal
+    # among the needs (a label: the estimate itself enters every constant-speed rung's error).
+    # bench: 0.044 in the limit step steer, below 0.001 in the 0.1 g scenes
+    "speed_change_fraction": 0.01,
     # a_y / (mu g) above which the linear rungs are outside their domain (inadmissible): a linear
     # tire makes forces near or beyond the friction limit there (bench: limit step steer at
     # 0.87 mu g, linear rungs 10-14 % off; circle to the limit, linear a_y = mu g, inadmissible)

@@ -20,7 +20,7 @@ from ..errors import ParameterError, SimulationError
 from ..units import GRAVITY
 from . import estimates as est
 from .drive import drive_of
-from .rungs import Rung, Setup, _NotAdmissible, rungs
+from .rungs import Rung, Setup, NotAdmissible, rungs
 
 __all__ = ["Plan", "RungAssessment", "SceneResult", "plan", "run", "ladder", "plot_ladder"]
 
@@ -132,7 +132,7 @@ def _signals(result, outputs: dict) -> dict:
 def _assess(rung: Rung, drive, scene) -> RungAssessment:
     try:
         setup = rung.setup(drive)
-    except _NotAdmissible as exc:
+    except NotAdmissible as exc:
         return RungAssessment(rung, False, str(exc))
     except SimulationError as exc:  # e.g. no steady turn at the requested lateral acceleration
         return RungAssessment(rung, False, f"cannot start the scene: {exc}")
@@ -166,7 +166,8 @@ def plan(scene) -> Plan:
     rows = [_assess(r, drive, scene) for r in rungs()]
     admissible = [r for r in rows if r.admissible]
     if not admissible:
-        who = "; ".join(f"{r.rung.name}: {', '.join(r.setup.output_names) if r.setup else r.reason}" for r in rows)
+        who = "; ".join(f"{r.rung.name} ({r.reason})" + (f" has {', '.join(r.setup.output_names)}" if r.setup else "")
+                        for r in rows)
         raise ParameterError(f"no rung can answer outputs {list(scene.outputs)} in this scene. Who has what: {who}",
                              key="outputs", value=list(scene.outputs))
     needs: dict = {}
@@ -193,6 +194,12 @@ def plan(scene) -> Plan:
         needs["tire_saturation"] = f"a_y ~ {utilization:.2f} mu g > {est.THRESHOLDS['saturation_fraction']:g} mu g"
     if drive.longitudinal:
         needs["longitudinal"] = "braking or longitudinal force input"
+    elif "LinearBicycle" in probes:
+        du = est.speed_change(probes["LinearBicycle"], vehicle, scene.speed)
+        if du > est.THRESHOLDS["speed_change_fraction"]:
+            needs["longitudinal"] = f"speed change ~{du:.2f} u > {est.THRESHOLDS['speed_change_fraction']:g} u"
+    if any("torque" in name for name in drive.inputs):
+        needs["wheel_spin"] = "wheel torque input"
     if drive.road is not None:
         needs["road_input"] = "road profile"
     if "roll_angle" in scene.outputs or "roll_rate" in scene.outputs:
@@ -247,6 +254,8 @@ class _Context:
         probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
         if probe is not None and "front_slip_angle" in probe:
             slips = [np.max(np.abs(probe["front_slip_angle"])), np.max(np.abs(probe["rear_slip_angle"]))]
+        elif self.drive.steer is None and self.drive.track is None and self.drive.braking is None:
+            return 0.0  # straight running at constant speed: the tires carry no side force
         elif self.drive.braking is not None:
             p = self.scene.manoeuvre_parameters
             rho = est.combined_utilization(vehicle, self.drive.initial_turn or 0.0,
@@ -261,13 +270,13 @@ class _Context:
         d = self.drive
         if p == "tire_saturation":
             e = self._saturation()
-            note = f"tire saturation ~{e:.1e}"
+            note = f"tire saturation ~{e:.1e}" if e != 0 else ""
             if "load_transfer" in rung.rung.phenomena(rung.setup) and not d.longitudinal:
                 # a linear tire with load transfer: its load sensitivity differs from the law's
                 dg = abs(est.drag_load_transfer_gain_change(d.vehicle, self.scene.speed, law="linear")
                          - est.drag_load_transfer_gain_change(d.vehicle, self.scene.speed, self.scene.tire))
                 e += dg
-                note += f" and load sensitivity ~{dg:.1e}"
+                note = " and ".join(filter(None, [note, f"load sensitivity ~{dg:.1e}"]))
             return e, note
         if p == "wheel_spin":  # free-rolling wheels: the spin follows the speed
             return (float("nan"), "wheel spin under torque unestimated") if d.longitudinal else (0.0, "")
@@ -280,6 +289,10 @@ class _Context:
             du = est.speed_change(probe, d.vehicle, self.scene.speed)
             dg = est.drag_load_transfer_gain_change(d.vehicle, self.scene.speed, self.scene.tire)
             return du + dg, f"speed change ~{du:.1e} and drag load transfer ~{dg:.1e}"
+        if p in ("heave", "wheel_hop", "road_input") and d.road is None:
+            return 0.0, ""  # a flat road: nothing excites the vertical modes
+        if p in ("lateral", "yaw", "tire_lag") and d.steer is None and d.track is None:
+            return 0.0, ""  # no steer: nothing excites the lateral modes
         if p == "tire_lag":
             diff = self._difference("LinearBicycle", "LinearBicycle+lag")
             return (diff, "tire lag (probes)") if diff else (float("nan"), "tire lag unestimated")
@@ -294,8 +307,6 @@ class _Context:
         if p == "pitch":
             k = est.THRESHOLDS["dynamic_index_gain"] * est.dynamic_index_coupling(d.vehicle) ** 2
             return k, f"pitch coupling (1-DI)^2 ~{k:.1e}"
-        if p in ("heave", "wheel_hop", "road_input") and d.road is None:
-            return 0.0, ""
         return float("nan"), f"{p} unestimated"
 
     def errors(self, r: RungAssessment) -> tuple[dict, str]:

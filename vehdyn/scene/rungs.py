@@ -6,9 +6,21 @@ top admissible rung is the reference) and a builder ``build(drive) -> Setup`` th
 for a scene and runs it on the scene's inputs. The planner knows nothing model-specific: adding a
 model to the ladder is one :func:`register_rung` call (or one entry below) beside its builder.
 
-A rung whose module cannot be imported is skipped (``available`` is False): the entry for
-``vehdyn.full_vehicle.FullVehicle`` waits here for that module, whose ``ladder_setup(drive)``
-function (same contract as the builders below) it calls.
+A rung whose module cannot be imported is skipped (``available`` is False): the entries for
+``vehdyn.full_vehicle.FullVehicle`` wait here for that module, whose ``ladder_setup(drive)``
+function they call.
+
+The builder contract: ``build(drive, **options) -> Setup``. ``drive`` is a
+:class:`~vehdyn.scene.drive.Drive`: ``vehicle``, ``scene`` (speed, duration, tire, ...), ``time``
+(the common grid every result must be on), ``inputs`` (input name -> callable of t, e.g.
+``front_steer_angle``), ``braking`` ((front force(t), rear force(t), start) [N], negative
+braking) or None, ``initial_turn`` (a steady lateral acceleration to start in) or None,
+``track`` and ``driver`` (ISO 3888-1) or None, ``road`` ((distance, left, right) elevations [m],
+front axle at distance V t) or None. The Setup holds the model instance (its ``output_names``
+answer the scene's outputs, also as ``name + "_left"``), ``run()`` returning a SimulationResult on
+``drive.time``, what the rung ignores, and its ``phenomena`` if they differ from the model's.
+A builder raises :class:`NotAdmissible` (message: the reason) when the rung cannot represent the
+scene.
 """
 
 from __future__ import annotations
@@ -22,7 +34,11 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["Rung", "Setup", "RUNGS", "register_rung", "rungs", "SteadyStateAlgebra"]
+__all__ = ["Rung", "Setup", "NotAdmissible", "RUNGS", "register_rung", "rungs", "SteadyStateAlgebra"]
+
+
+class NotAdmissible(Exception):
+    """A builder's way of saying the rung cannot represent the scene (the message is the reason)."""
 
 
 @dataclass
@@ -108,7 +124,7 @@ class Rung:
             try:
                 build = getattr(importlib.import_module(module), attr)
             except (ImportError, AttributeError):
-                raise _NotAdmissible(f"no ladder builder {self.build!r} yet") from None
+                raise NotAdmissible(f"no ladder builder {self.build!r} yet") from None
         return build(drive, **self.options)
 
 
@@ -189,15 +205,13 @@ def build_steady_state(drive) -> Setup:
     model = SteadyStateAlgebra(drive.vehicle, drive.scene.speed)
     inputs, ignored = _steer_only(drive, ("front_steer_angle",))
     if drive.braking is not None or drive.track is not None or drive.initial_turn is not None:
-        raise _NotAdmissible("quasi-steady algebra needs an open-loop steer at constant speed")
+        raise NotAdmissible("quasi-steady algebra needs an open-loop steer at constant speed")
     steer = inputs.get("front_steer_angle")
     if steer is None:
-        raise _NotAdmissible("no steer input")
+        raise NotAdmissible("no steer input")
     return Setup(model, lambda: model.evaluate(drive.time, steer), _constant_speed_ignores(drive, ignored))
 
 
-class _NotAdmissible(Exception):
-    """A builder's way of saying the rung cannot represent the scene (the message is the reason)."""
 
 
 def _with_driver(model, drive, speed_control):
@@ -215,7 +229,7 @@ def _linear_setup(model, drive) -> Setup:
     from ..simulate import simulate
 
     if drive.braking is not None or drive.initial_turn is not None:
-        raise _NotAdmissible("constant speed: no braking")
+        raise NotAdmissible("constant speed: no braking")
     inputs, ignored = _steer_only(drive)
     if drive.track is not None:
         loop = _with_driver(_Positioned(model, drive.scene.speed), drive, speed_control=False)
@@ -296,7 +310,7 @@ def build_single_track(drive, tires="vehicle") -> Setup:
     accepted = tuple(model.input_names)
     unknown = [k for k in drive.inputs if k not in accepted]
     if unknown:
-        raise _NotAdmissible(f"has no input {unknown[0]!r}")
+        raise NotAdmissible(f"has no input {unknown[0]!r}")
     drag = float(model.parameters.drag_factor) * scene.speed**2
     x0 = model.straight_running(scene.speed)
     inputs = dict(drive.inputs)
@@ -329,7 +343,7 @@ def _ride_inputs(model, drive, average: bool):
     from ..ride.wheelbase import road_inputs
 
     if drive.road is None:
-        raise _NotAdmissible("no road input")
+        raise NotAdmissible("no road input")
     distance, left, right = drive.road
     if average:
         return road_inputs(model, drive.time, drive.scene.speed, distance, 0.5 * (left + right))
@@ -371,7 +385,7 @@ def build_quarter_car(drive) -> Setup:
     pair = LinearModel(A, B, np.vstack([C] + extra_c), np.vstack([D] + extra_d), states=states, inputs=inputs,
                        outputs=outputs, name=f"front and rear QuarterCar of {v.name}", phenomena=qf.phenomena)
     if drive.road is None:
-        raise _NotAdmissible("no road input")
+        raise NotAdmissible("no road input")
     distance, left, right = drive.road
     from ..ride.road import RoadProfile
 
