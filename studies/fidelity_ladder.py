@@ -19,7 +19,7 @@ from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 from vehdyn.scene import standard_scenes
 
-QUICK_SCENES = ("gentle_step_steer", "limit_step_steer", "lane_change_60", "rough_road_54", "pothole")
+QUICK_SCENES = ("gentle_step_steer", "limit_step_steer", "rough_road_54", "pothole")
 
 
 def run(study: Study) -> None:
@@ -30,7 +30,7 @@ def run(study: Study) -> None:
     for vehicle in vehicles:
         scenes = standard_scenes(vehicle)
         if study.quick:
-            scenes = {k: v.replace(duration=min(v.duration, 2.0)) for k, v in scenes.items() if k in QUICK_SCENES}
+            scenes = {k: v.replace(duration=min(v.duration, 1.5)) for k, v in scenes.items() if k in QUICK_SCENES}
         for name, scene in scenes.items():
             frame = vehdyn.ladder(scene, repeat=2 if study.quick else 3)  # the first run loads compiled code
             planned = frame[frame["planned"]].iloc[0]
