@@ -245,3 +245,13 @@ def test_a_top_rung_with_every_phenomenon_leaves_the_ride_pick_alone():
         assert steered.chosen.rung.name == "EverythingCar"
     finally:
         vehdyn.scene.RUNGS.remove(top)
+
+
+def test_an_input_a_rung_lacks_makes_it_inadmissible_not_blind():
+    """A crosswind drives the single track; the linear rungs have no such input and say so."""
+    gust = vehdyn.handling.crosswind_gust(vehdyn.load_vehicle("sedan"), 25.0, 10.0)
+    scene = Scene(manoeuvre=gust, speed=25.0, duration=2.5, outputs=("yaw_rate",))
+    p = vehdyn.plan(scene)
+    rows = {r.rung.name: r for r in p.rows}
+    assert rows["LinearBicycle"].reason == "has no input 'external_lateral_force'"
+    assert p.chosen.rung.name.startswith("SingleTrack")

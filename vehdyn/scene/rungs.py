@@ -160,7 +160,7 @@ class SteadyStateAlgebra:
     """Quasi-steady handling: the linear bicycle's steady-state gains times the steer at each instant.
 
     y(t) = G(u) delta(t) for the yaw rate, lateral acceleration, sideslip and path curvature
-    (:func:`vehdyn.handling.steady_state_gains`; Gillespie 1992, eq. 6-15 and 6-17). Exact for a
+    (:func:`vehdyn.handling.steady_state_gains`; Gillespie 1992, ch. 6). Exact for a
     steer that changes slowly against the yaw mode; no states.
     """
 
@@ -190,26 +190,25 @@ class SteadyStateAlgebra:
 
 
 def _steer_only(drive, accepted=("front_steer_angle", "rear_steer_angle")):
-    """The scene's inputs for a constant-speed model; ParameterError-free: returns (inputs, ignored)."""
-    inputs = {k: v for k, v in drive.inputs.items() if k in accepted}
-    ignored = tuple(k for k in drive.inputs if k not in accepted)
-    return inputs, ignored
+    """The scene's inputs for a constant-speed model (NotAdmissible for an input it does not have)."""
+    unknown = [k for k in drive.inputs if k not in accepted]
+    if unknown:
+        raise NotAdmissible(f"has no input {unknown[0]!r}")
+    return dict(drive.inputs)
 
 
-def _constant_speed_ignores(drive, ignored):
-    extra = ("road",) if drive.road is not None else ()
-    return tuple(ignored) + extra
+def _constant_speed_ignores(drive):
+    return ("road",) if drive.road is not None else ()
 
 
 def build_steady_state(drive) -> Setup:
-    model = SteadyStateAlgebra(drive.vehicle, drive.scene.speed)
-    inputs, ignored = _steer_only(drive, ("front_steer_angle",))
     if drive.braking is not None or drive.track is not None or drive.initial_turn is not None:
         raise NotAdmissible("quasi-steady algebra needs an open-loop steer at constant speed")
-    steer = inputs.get("front_steer_angle")
+    steer = _steer_only(drive, ("front_steer_angle",)).get("front_steer_angle")
     if steer is None:
         raise NotAdmissible("no steer input")
-    return Setup(model, lambda: model.evaluate(drive.time, steer), _constant_speed_ignores(drive, ignored))
+    model = SteadyStateAlgebra(drive.vehicle, drive.scene.speed)
+    return Setup(model, lambda: model.evaluate(drive.time, steer), _constant_speed_ignores(drive))
 
 
 
@@ -230,16 +229,15 @@ def _linear_setup(model, drive) -> Setup:
 
     if drive.braking is not None or drive.initial_turn is not None:
         raise NotAdmissible("constant speed: no braking")
-    inputs, ignored = _steer_only(drive)
+    inputs = _steer_only(drive)
     if drive.track is not None:
         loop = _with_driver(_Positioned(model, drive.scene.speed), drive, speed_control=False)
         x0 = np.zeros(loop.n_states)
         x0[loop.index("x")] = float(drive.track.path_x[0])
         x0[loop.index("longitudinal_velocity")] = drive.scene.speed
         return Setup(loop, lambda: simulate(loop, drive.time, None, x0=x0, method="RK45", rtol=1e-8, atol=1e-10),
-                     _constant_speed_ignores(drive, ignored))
-    return Setup(model, lambda: simulate(model, drive.time, inputs, method="exact"),
-                 _constant_speed_ignores(drive, ignored))
+                     _constant_speed_ignores(drive))
+    return Setup(model, lambda: simulate(model, drive.time, inputs, method="exact"), _constant_speed_ignores(drive))
 
 
 def build_linear_bicycle(drive, tire_lag=False) -> Setup:
