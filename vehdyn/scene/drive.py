@@ -58,6 +58,12 @@ class Drive:
         return self.inputs.get("front_steer_angle")
 
     @property
+    def handling_input(self) -> bool:
+        """True when something acts in the ground plane (steer, wind, braking, a driver, a turn)."""
+        return bool(self.inputs) or self.track is not None or self.braking is not None \
+            or self.initial_turn is not None
+
+    @property
     def longitudinal(self) -> bool:
         """True when the scene commands longitudinal forces (braking or a user's force input)."""
         return self.braking is not None or any("longitudinal_force" in k or "torque" in k for k in self.inputs)

@@ -258,7 +258,7 @@ class _Context:
         probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
         if probe is not None and "front_slip_angle" in probe:
             slips = [np.max(np.abs(probe["front_slip_angle"])), np.max(np.abs(probe["rear_slip_angle"]))]
-        elif self.drive.steer is None and self.drive.track is None and self.drive.braking is None:
+        elif not self.drive.handling_input:
             return 0.0  # straight running at constant speed: the tires carry no side force
         elif self.drive.braking is not None:
             p = self.scene.manoeuvre_parameters
@@ -295,7 +295,7 @@ class _Context:
             return du + dg, f"speed change ~{du:.1e} and drag load transfer ~{dg:.1e}"
         if p in ("heave", "wheel_hop", "road_input") and d.road is None:
             return 0.0, ""  # a flat road: nothing excites the vertical modes
-        if p in ("lateral", "yaw", "tire_lag") and d.steer is None and d.track is None:
+        if p in ("lateral", "yaw", "tire_lag") and not d.handling_input:
             return 0.0, ""  # no steer: nothing excites the lateral modes
         if p == "tire_lag":
             diff = self._difference("LinearBicycle", "LinearBicycle+lag")
