@@ -84,6 +84,7 @@ def test_toml_round_trip_of_signals_and_vehicle(tmp_path):
                   duration=4.0, outputs=("yaw_rate",))
     scene.to_toml(tmp_path / "s.toml")
     back = Scene.from_toml(tmp_path / "s.toml")
+    assert back == scene and back != scene.replace(speed=21.0)
     assert back.vehicle == vehicle
     t = np.linspace(0, 4, 401)
     np.testing.assert_array_equal(back.manoeuvre["front_steer_angle"](t), steer(t))
@@ -94,12 +95,14 @@ def test_toml_round_trip_of_signals_and_vehicle(tmp_path):
     Scene(road=road, outputs=("sprung_acceleration",)).to_toml(tmp_path / "r.toml")
     back = Scene.from_toml(tmp_path / "r.toml")
     np.testing.assert_array_equal(back.road.elevation, road.elevation)
+    assert back == Scene(road=road, outputs=("sprung_acceleration",))
 
 
 def test_callable_that_is_not_piecewise_cannot_be_written():
     scene = Scene(manoeuvre=lambda t: 0.01 * np.ones_like(t), outputs=("yaw_rate",))
     with pytest.raises(ParameterError, match="cannot be written to TOML"):
         scene.to_toml()
+    assert scene == scene and scene != scene.replace(manoeuvre=lambda t: 0.0 * t)
 
 
 def test_step_signal_given_directly_equals_named_manoeuvre():

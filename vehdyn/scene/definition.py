@@ -99,7 +99,7 @@ def _number(name, value, *, positive=True, upper=None) -> float:
     return x
 
 
-@dataclass(frozen=True, kw_only=True)
+@dataclass(frozen=True, kw_only=True, eq=False)
 class Scene:
     """What is asked: vehicle, manoeuvre and/or road, speed, duration, outputs and accuracy.
 
@@ -242,6 +242,18 @@ class Scene:
             object.__setattr__(self, "road", dict(r))
             return
         raise _bad("road", r, "must be None, an ISO 8608 class letter, a RoadProfile or an event table")
+
+    def __eq__(self, other):
+        """Equal plain data (:meth:`to_dict`: profiles and piecewise signals by value); other
+        callables by identity."""
+        if not isinstance(other, Scene):
+            return NotImplemented
+        try:
+            return self.to_dict() == other.to_dict()
+        except ParameterError:  # a callable that is not a PiecewiseSignal
+            return all(getattr(self, f.name) is getattr(other, f.name) for f in dataclasses.fields(self))
+
+    __hash__ = None  # mappings inside: not hashable
 
     # ------------------------------------------------------------------ derived
     @property
