@@ -251,7 +251,7 @@ class Scene:
         try:
             return self.to_dict() == other.to_dict()
         except ParameterError:  # a callable that is not a PiecewiseSignal
-            return all(getattr(self, f.name) is getattr(other, f.name) for f in dataclasses.fields(self))
+            return all(_same(getattr(self, f.name), getattr(other, f.name)) for f in dataclasses.fields(self))
 
     __hash__ = None  # mappings inside: not hashable
 
@@ -360,6 +360,20 @@ class Scene:
 
             atomic_write_text(Path(path), text)
         return text
+
+
+def _same(a, b) -> bool:
+    """Field equality with callables compared by identity."""
+    if a is b:
+        return True
+    if callable(a) or callable(b):
+        return False
+    if isinstance(a, Mapping) and isinstance(b, Mapping):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    try:
+        return bool(a == b)
+    except ValueError:  # arrays
+        return False
 
 
 def _signal_to_data(name, signal):
