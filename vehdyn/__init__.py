@@ -13,6 +13,8 @@ Parameters
 Errors
     :class:`VehdynError`, :class:`ParameterError`, :class:`SimulationError`, :class:`TirFileError`,
     :class:`VehdynWarning`
+Scenes and the fidelity ladder (imported on first use)
+    :class:`Scene`, :func:`plan`, :func:`run`, :func:`ladder`, :func:`plot_ladder` (:mod:`vehdyn.scene`)
 Conventions and units
     :mod:`vehdyn.conventions` (SAE J670 / ISO 8855 / ISO-W signs), :mod:`vehdyn.units`
 Subpackages (imported on first use)
@@ -57,15 +59,23 @@ __all__ = [
     "SimulationError",
     "TirFileError",
     "VehdynWarning",
+    "Scene",
+    "plan",
+    "run",
+    "ladder",
+    "plot_ladder",
 ]
 
 _SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "analysis", "plotting", "conventions", "units", "params",
-                "cli"}
+                "cli", "scene"}
+_SCENE_NAMES = {"Scene", "plan", "run", "ladder", "plot_ladder"}
 
 
 def __getattr__(name: str):
     if name in _SUBPACKAGES:
         return importlib.import_module(f".{name}", __name__)
+    if name in _SCENE_NAMES:
+        return getattr(importlib.import_module(".scene", __name__), name)
     if name == "Modes":
         from .analysis.modal import Modes
 

@@ -10,6 +10,8 @@
     Print a tire file's version and key values and write its standard figures.
 ``vehdyn vehicles``
     List the shipped vehicles with their key numbers.
+``vehdyn scene FILE.toml [--verify]``
+    Plan a scene (the fidelity ladder), run the chosen model and print the headline numbers.
 
 Exit status: 0 on success; 1 if a study failed (its traceback is in the report and on stderr); 2 for
 a usage error - an unknown study, a missing or unreadable input file, an output folder that is a
@@ -140,6 +142,17 @@ def cmd_vehicles(args) -> int:
     return 0
 
 
+def cmd_scene(args) -> int:
+    from .scene import Scene, run
+
+    # A bad scene file or field raises a VehdynError: main() reports it as one line, exit status 2.
+    outcome = run(Scene.from_toml(args.file), verify=args.verify)
+    print(outcome.plan)
+    print()
+    print(outcome.headline())
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="vehdyn",
@@ -165,6 +178,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_tire)
     p = sub.add_parser("vehicles", help="list the shipped vehicles")
     p.set_defaults(func=cmd_vehicles)
+    p = sub.add_parser("scene", help="plan a scene (.toml), run the chosen model, print the headline numbers")
+    p.add_argument("file", help="path of a scene .toml file")
+    p.add_argument("--verify", action="store_true", help="also run the reference rung and measure the error")
+    p.set_defaults(func=cmd_scene)
     return parser
 
 
