@@ -11,7 +11,15 @@ Methods
     iterations.
 any ``scipy.integrate.solve_ivp`` method
     ``"RK45"``, ``"RK23"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"`` with ``rtol``, ``atol``
-    and ``max_step``; sampled inputs are interpolated with the same hold.
+    and ``max_step``; sampled inputs are interpolated with the same hold. The explicit ones
+    (``"RK23"``, ``"RK45"``, ``"DOP853"``) are judged for stiffness: the step their stability allows,
+    :func:`stability_interval` / max |Re lambda| of the state Jacobian, gives the number of steps
+    the run needs whatever the tolerance; above ``STIFF_STEPS_WARN`` (1e5) a
+    :class:`~vehdyn.VehdynWarning` says so, above ``STIFF_STEPS_REFUSE`` (1e7) a ParameterError
+    names ``method`` and the implicit methods to use instead (``check_stability=False`` runs it
+    anyway). A LinearModel is judged before the run (its eigenvalues cost microseconds); any other
+    model once the solver has made 20,000 rhs calls, and again at every doubling, so that short
+    runs never pay for a Jacobian.
 ``"rk4"``
     Classical fixed-step Runge-Kutta on the time grid (optionally ``substeps`` per interval),
     vectorized across a trailing batch axis. Before it starts it checks the step against the
@@ -42,7 +50,8 @@ from .errors import ParameterError, SimulationError, VehdynWarning
 from .model import Model, float_array, signal_vector
 from .results import SimulationResult
 
-__all__ = ["simulate", "SOLVE_IVP_METHODS", "rk4_stability_limit", "stability_interval", "exact_discretization"]
+__all__ = ["simulate", "SOLVE_IVP_METHODS", "rk4_stability_limit", "stability_interval", "exact_discretization",
+           "STIFF_STEPS_WARN", "STIFF_STEPS_REFUSE"]
 
 SOLVE_IVP_METHODS = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
 _HOLDS = ("zoh", "foh")
@@ -133,7 +142,13 @@ def _sample_callable(fun: Callable, t: np.ndarray, m: int | None, what: str) -> 
         vectorized = False
     if not vectorized:
         # one value (or one batch of values) per instant, stacked along the time axis
-        v = np.stack([np.asarray(fun(tk)) for tk in t], axis=0 if m is None else -1 if m == 1 else 1)
+        samples = [np.asarray(fun(tk)) for tk in t]
+        if len({sample.shape for sample in samples}) > 1:
+            raise ParameterError(f"{what}: u(t) returned values of different shapes "
+                                 f"{sorted({sample.shape for sample in samples})}", key=what, value=None)
+        v = np.stack(samples)
+        if m is not None and v.ndim > 1:
+            v = np.moveaxis(v, 0, 1)
     v = float_array(v, what)
     if m is not None:
         if v.ndim == 1 and m == 1:
@@ -546,11 +561,17 @@ def simulate(
     time : array_like
         Strictly increasing output times [s]; the simulation starts at ``time[0]``.
     inputs : None, mapping, array_like or callable
-        ``None`` (all inputs zero); ``{name: array or scalar or callable}`` (omitted inputs are
-        zero); an array of shape (n_inputs, n_times) or (n_inputs, n_times, n_batch); or a callable
-        ``u(t)`` returning the input vector.
+        ``None`` (all inputs zero); ``{name: value}`` with each value a number, an array of shape
+        (n_times,) or (n_times, n_batch) -- time first; a (n_times,) signal next to batched ones is
+        shared by every member -- or a callable ``u(t)`` returning one value (or n_batch values)
+        per instant (omitted inputs are zero); an array of shape (n_inputs, n_times) or
+        (n_inputs, n_times, n_batch); or a callable ``u(t)`` returning the input vector (n_inputs,)
+        per instant, or (n_inputs, n_times) when called with the whole grid. Every value must be a
+        finite number: other shapes, strings and non-finite samples (callables included) raise
+        ParameterError naming the input, the instant and, in a batch, the member.
     x0 : None, mapping or array_like
         Initial state (zeros by default); shape (n_states,) or (n_states, n_batch) for a batch.
+        Batch sizes of ``x0`` and ``inputs`` must agree; a batch of 1 on either side is shared.
     method : str
         ``"auto"``, ``"exact"``, ``"rk4"`` or a ``solve_ivp`` method name.
     rtol, atol : float
@@ -559,12 +580,14 @@ def simulate(
         How sampled inputs vary between samples: linearly (default, as ``scipy.signal.lsim`` and
         ``control.forced_response``) or held constant.
     max_step, first_step : float, optional
-        Passed to ``solve_ivp``.
+        Passed to ``solve_ivp`` and the compiled backend [s]; both positive (``max_step`` may be
+        ``inf``), ``first_step`` at most the span of ``time``.
     substeps : int
         rk4 steps per interval of the time grid.
     check_stability : bool
-        rk4 only: refuse a step outside RK4's stability region for the fastest eigenvalue of the
-        linearization at the initial point.
+        rk4: refuse a step outside RK4's stability region for the fastest eigenvalue of the
+        linearization at the initial point. ``"RK23"``, ``"RK45"``, ``"DOP853"`` on numpy: warn
+        about, or refuse, a stiff problem (module docstring). False skips both checks.
     backend : {"auto", "numpy", "compiled"}
         See the module docstring; ``"compiled"`` raises ParameterError where it cannot run (numba
         missing, a model without a compiled rhs, a batch, another method), naming why.
@@ -576,10 +599,17 @@ def simulate(
     Raises
     ------
     ParameterError
-        On malformed time, inputs, x0 or options.
+        On malformed time, inputs, x0 or options (non-numeric, non-finite, wrong shape, mismatched
+        batch sizes), naming the argument; on an explicit method for a problem so stiff that it
+        would need more than ``STIFF_STEPS_REFUSE`` steps.
     SimulationError
         When the solver fails (its message is included) or a state becomes non-finite (the state
         and the time are named).
+
+    Warns
+    -----
+    VehdynWarning
+        When an explicit method's stability alone needs more than ``STIFF_STEPS_WARN`` steps.
     """
     from .linear import LinearModel
 
