@@ -408,7 +408,9 @@ def _dc_gain_with_integrators(A, B, C, D, tol):
     # the integrating part sum_j C1 N^j B1 / s^(j+1): the highest power with a nonzero coefficient wins
     sign = np.zeros(D.shape)
     term = B1
-    scale = np.sqrt(np.finfo(float).eps) * max(np.linalg.norm(C1, 1), 1e-300) * max(np.linalg.norm(B1, 1), 1e-300)
+    # "nonzero" against the size of the terms B1 is the difference of (not of B1 itself)
+    size_b = np.linalg.norm(Bz[:k], 1) + np.linalg.norm(X, 1) * np.linalg.norm(Bz[k:], 1)
+    scale = np.sqrt(np.finfo(float).eps) * np.linalg.norm(C1, 1) * size_b
     for _ in range(k):
         coefficient = C1 @ term
         scale *= max(1.0, np.linalg.norm(N, 1))
