@@ -40,6 +40,7 @@ model has a compiled rhs and there is no batch, and says so in ``result.method_r
 from __future__ import annotations
 
 import functools
+import math
 import time as _time
 import warnings
 from typing import Any, Callable, Mapping
@@ -340,8 +341,13 @@ def stability_interval(method: str) -> float:
     tableaus). Classical RK4: 2.785; Dormand-Prince 5(4) (``"RK45"``): 3.307 (Hairer & Wanner,
     *Solving ODEs II*, sec. IV.2).
     """
-    if method not in _EXPLICIT:
+    if not isinstance(method, str) or method not in _EXPLICIT:
         raise ParameterError(f"method must be one of {_EXPLICIT}, got {method!r}", key="method", value=method)
+    return _real_stability_interval(method)
+
+
+@functools.lru_cache(maxsize=None)
+def _real_stability_interval(method: str) -> float:
     return _stability_limit([-1.0], method)
 
 
@@ -707,11 +713,15 @@ def simulate(
 
 def _positive_option(value, name: str, *, allow_inf: bool = False) -> float:
     """A positive number option (``rtol``, ``max_step``, ...) as a float, or a ParameterError naming it."""
-    v = float_array(value, name)
-    if v.ndim != 0 or not (v > 0) or not (np.isfinite(v) or (allow_inf and v == np.inf)):
+    if type(value) is float or type(value) is int:  # the usual case, without numpy's overhead
+        v = float(value)
+    else:
+        arr = float_array(value, name)
+        v = float(arr) if arr.ndim == 0 and not isinstance(value, (bool, np.bool_)) else math.nan
+    if not (v > 0) or not (math.isfinite(v) or (allow_inf and v == math.inf)):
         raise ParameterError(f"{name} must be a positive{'' if allow_inf else ', finite'} number, got {value!r}",
                              key=name, value=value)
-    return float(v)
+    return v
 
 
 def _common_batch(x0: np.ndarray, u: np.ndarray):
