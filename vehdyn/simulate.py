@@ -358,25 +358,29 @@ STIFF_STEPS_WARN = 1e5
 STIFF_STEPS_REFUSE = 1e7
 
 
+def _stiffness_estimate(method: str, lam, t_from: float, t_to: float, where: str) -> tuple[float, str]:
+    """Steps the explicit ``method`` needs for stability alone from ``t_from`` to ``t_to``, given the
+    eigenvalues ``lam`` of the state Jacobian (decay rates |Re lambda| against the method's real-axis
+    stability interval), and the sentence that says so."""
+    fast = float(np.max(-np.asarray(lam).real, initial=0.0))
+    if fast <= 0.0:
+        return 0.0, ""
+    h_max = stability_interval(method) / fast
+    steps = (t_to - t_from) / h_max
+    return steps, (f"method {method!r} is explicit and the problem is stiff: the fastest decay rate of the state "
+                   f"Jacobian {where} is {fast:.3g} 1/s, so {method} is stable only for steps <= {h_max:.3g} s, "
+                   f"about {steps:.2g} steps for the {t_to - t_from:g} s to go; use {_IMPLICIT_HINT}")
+
+
 def _check_stiffness(method: str, lam, t_from: float, t_to: float, where: str, *, warn: bool = True,
                      stacklevel: int = 3) -> float:
     """Warn (VehdynWarning) or refuse (ParameterError) an explicit ``method`` whose stability alone
-    needs more than STIFF_STEPS_WARN or STIFF_STEPS_REFUSE steps from ``t_from`` to ``t_to``, the
-    step bound coming from the eigenvalues ``lam`` of the state Jacobian (decay rates |Re lambda|
-    against the method's real-axis stability interval). Returns that step count."""
-    fast = float(np.max(-np.asarray(lam).real, initial=0.0))
-    if fast <= 0.0:
-        return 0.0
-    h_max = stability_interval(method) / fast
-    steps = (t_to - t_from) / h_max
-    if steps <= STIFF_STEPS_WARN:
-        return steps
-    message = (f"method {method!r} is explicit and the problem is stiff: the fastest decay rate of the state "
-               f"Jacobian {where} is {fast:.3g} 1/s, so {method} is stable only for steps <= {h_max:.3g} s, about "
-               f"{steps:.2g} steps for the {t_to - t_from:g} s to go; use {_IMPLICIT_HINT}")
+    needs more than STIFF_STEPS_WARN or STIFF_STEPS_REFUSE steps (see _stiffness_estimate).
+    Returns that step count."""
+    steps, message = _stiffness_estimate(method, lam, t_from, t_to, where)
     if steps > STIFF_STEPS_REFUSE:
         raise ParameterError(message + ", or check_stability=False to run it anyway", key="method", value=method)
-    if warn:
+    if warn and steps > STIFF_STEPS_WARN:
         warnings.warn(message, VehdynWarning, stacklevel=stacklevel)
     return steps
 
@@ -663,9 +667,12 @@ def simulate(
     if compiled is not None:
         from . import _compiled_ode
 
-        x, stats = _compiled_ode.solve(compiled.rhs, compiled.key, compiled.args, t, x0v,
-                                       _compiled_ode.input_table(model, inputs, t, u, hold), method, rtol, atol,
-                                       first_step, max_step)
+        try:
+            x, stats = _compiled_ode.solve(compiled.rhs, compiled.key, compiled.args, t, x0v,
+                                           _compiled_ode.input_table(model, inputs, t, u, hold), method, rtol, atol,
+                                           first_step, max_step)
+        except SimulationError as exc:
+            raise _stiffness_hint(exc, model, method, t, x0v, u) from None
         counters.update(stats)
     elif method == "exact":
         x, n_expm = _simulate_exact(model, t, u, x0v, hold)
@@ -740,6 +747,22 @@ def _common_batch(x0: np.ndarray, u: np.ndarray):
             raise ParameterError(f"x0 has a batch of {nx} initial states but inputs a batch of {nu}: give one "
                                  "batch size (or 1 to share)", key="x0", value=(nx, nu))
     return x0, u
+
+
+def _stiffness_hint(exc: SimulationError, model, method, t, x0, u) -> SimulationError:
+    """The compiled backend's failure, with the stiffness estimate at the initial point when that
+    explains it (the compiled loop is not judged before it runs: its Jacobian would cost more than
+    a short run; its step limit bounds a stiff run to seconds)."""
+    if "too many steps" not in str(exc) and "underflow" not in str(exc):
+        return exc
+    try:
+        lam = _state_jacobian_eigenvalues(model, t[0], x0, u[:, 0])
+        steps, message = _stiffness_estimate(method, lam, float(t[0]), float(t[-1]), f"at t = {t[0]:g} s")
+    except Exception:  # pragma: no cover - the hint is best effort
+        return exc
+    if steps > STIFF_STEPS_WARN:
+        return SimulationError(f"{exc} -- {message}", time=exc.time, signal=exc.signal)
+    return exc
 
 
 def _compiled_backend(model, method, backend, x0, u):

@@ -369,3 +369,33 @@ def test_any_finite_input_runs_and_gives_the_closed_form(data, batch, form, meth
     expected = first_order_foh(t, u, x0)
     # RK45 steps straddle the kinks of the sampled input: its error is not the tolerance asked
     np.testing.assert_allclose(r["level"], expected, atol=1e-12 if method == "exact" else 1e-5)
+
+
+@pytest.mark.slow
+def test_compiled_backend_failing_on_a_stiff_problem_says_why():
+    """The compiled loop is not judged before it runs (a Jacobian would cost more than a short
+    run); its step limit stops a stiff run, and the error then carries the stiffness estimate."""
+    numba = pytest.importorskip("numba")
+    from vehdyn import _compiled_ode
+
+    @numba.njit
+    def decay_rhs(t, y, u, args, dydt):
+        dydt[0] = args[0] * y[0]
+
+    class Decay(Model):
+        states = ("level",)
+
+        def __init__(self, rate):
+            self.rate = rate
+
+        def compiled_rhs(self):
+            return _compiled_ode.CompiledModel(decay_rhs, None, "reliability_decay", (self.rate,))
+
+        def rhs(self, t, x, u):
+            return self.rate * x
+
+    t = np.linspace(0.0, 1.0, 11)
+    r = simulate(Decay(-1.0), t, x0=[1.0], method="RK45", backend="compiled", rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(r["level"], np.exp(-t), rtol=1e-7)
+    with pytest.raises(SimulationError, match=r"too many steps -- .*1\.2e\+07 steps.*'LSODA'"):
+        simulate(Decay(-1e6), np.linspace(0.0, 40.0, 11), x0=[1.0], method="RK45", backend="compiled")
