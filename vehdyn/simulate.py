@@ -87,7 +87,7 @@ def _sample_inputs(model: Model, inputs: Any, t: np.ndarray) -> np.ndarray:
     if inputs is None:
         return np.zeros((m, n_t))
     if callable(inputs):
-        u = _sample_callable(inputs, t, m, "inputs")
+        u = _sample_callable(inputs, t, m, "inputs", "inputs")
     elif isinstance(inputs, Mapping):
         unknown = [k for k in inputs if k not in names]
         if unknown:
@@ -97,12 +97,13 @@ def _sample_inputs(model: Model, inputs: Any, t: np.ndarray) -> np.ndarray:
         for name in names:
             v = inputs.get(name, 0.0)
             what = f"inputs[{name!r}]"
-            v = _sample_callable(v, t, None, what) if callable(v) else float_array(v, f"inputs.{name}")
+            key = f"inputs.{name}"
+            v = _sample_callable(v, t, None, what, key) if callable(v) else float_array(v, key)
             if v.ndim == 0:
                 v = np.full(n_t, float(v))
             if v.ndim > 2 or v.shape[0] != n_t or (v.ndim == 2 and v.shape[1] == 0):
                 raise ParameterError(f"{what} must have shape (n_times,) = ({n_t},) or (n_times, n_batch) = "
-                                     f"({n_t}, n_batch), got {v.shape}", key=f"inputs.{name}", value=v.shape)
+                                     f"({n_t}, n_batch), got {v.shape}", key=key, value=v.shape)
             rows.append(v)
         batches = {r.shape[1] for r in rows if r.ndim == 2} - {1}
         if len(batches) > 1:
@@ -129,7 +130,7 @@ def _sample_inputs(model: Model, inputs: Any, t: np.ndarray) -> np.ndarray:
     return u
 
 
-def _sample_callable(fun: Callable, t: np.ndarray, m: int | None, what: str) -> np.ndarray:
+def _sample_callable(fun: Callable, t: np.ndarray, m: int | None, what: str, key: str) -> np.ndarray:
     """Samples of a callable input on the grid: (m, n_t[, n_batch]) for the whole input vector
     (``m`` given), (n_t[, n_batch]) for one named input; vectorized calls first, else sample by sample."""
     n_t = t.size
@@ -146,17 +147,20 @@ def _sample_callable(fun: Callable, t: np.ndarray, m: int | None, what: str) -> 
         samples = [np.asarray(fun(tk)) for tk in t]
         if len({sample.shape for sample in samples}) > 1:
             raise ParameterError(f"{what}: u(t) returned values of different shapes "
-                                 f"{sorted({sample.shape for sample in samples})}", key=what, value=None)
+                                 f"{sorted({sample.shape for sample in samples})}", key=key, value=None)
         v = np.stack(samples)
         if m is not None and v.ndim > 1:
             v = np.moveaxis(v, 0, 1)
-    v = float_array(v, what)
+    try:
+        v = float_array(v, key)
+    except ParameterError as exc:
+        raise ParameterError(f"{what}: u(t) must return numbers, got {v.dtype} values", key=key, value=exc.value) from None
     if m is not None:
         if v.ndim == 1 and m == 1:
             v = v[None, :]
         if v.ndim not in (2, 3) or v.shape[:2] != (m, n_t):
             raise ParameterError(f"{what}: u(t) must return {m} values per instant (one per input), got samples of "
-                                 f"shape {v.shape}", key=what, value=v.shape)
+                                 f"shape {v.shape}", key=key, value=v.shape)
     return v
 
 

@@ -109,9 +109,9 @@ def test_callable_per_instant_and_vectorized_agree_with_the_closed_form():
 def test_callable_of_the_wrong_size_or_text_raises():
     with pytest.raises(ParameterError, match="must return 2 values"):
         simulate(bicycle(), T, inputs=lambda t: [0.01, 0.0, 0.0])
-    with pytest.raises(ParameterError, match="must be numeric") as info:
+    with pytest.raises(ParameterError, match=r"inputs\['flow'\]: u\(t\) must return numbers") as info:
         simulate(lag(), T, inputs={"flow": lambda t: "1.0"})
-    assert info.value.key == "inputs['flow']"
+    assert info.value.key == "inputs.flow"
 
 
 # --------------------------------------------------------------------------- non-numeric arguments and options
