@@ -37,7 +37,7 @@ def test_speed_below_the_minimum_or_not_a_number_is_refused(cls, vehicle, speed)
 @given(st.floats(min_value=np.log10(LINEAR_MIN_SPEED), max_value=np.log10(60.0)))
 def test_path_curvature_gain_is_the_closed_form_from_the_minimum_speed_up(log_speed):
     """-C A^-1 B + D of path_curvature against 1 / (L + K u^2) (Gillespie eq. 6-11): the steady
-    curvature per steer angle, down to LINEAR_MIN_SPEED (relative rounding ~ eps C L max(a, b) / (m u^2))."""
+    curvature per steer angle, down to LINEAR_MIN_SPEED (relative rounding ~ eps (C_f + C_r) b / (m u^2))."""
     u = 10.0**log_speed
     car = LinearBicycle(CAR, u)
     closed = steady_state_gains(CAR, u).path_curvature
@@ -65,6 +65,11 @@ def test_documented_loss_below_the_minimum_speed_is_real():
         errors[u] = abs(gain[model.index("path_curvature", "outputs"), 0] / closed - 1)
         assert gain[model.index("yaw_rate", "outputs"), 0] / u == pytest.approx(closed, rel=1e-12)
     assert errors[1e-2] < 1e-8 and errors[1e-6] > 1e-3
+    # the documented size, eps (C_f + C_r) b / (m u^2), within a factor of 10
+    for u, error in errors.items():
+        estimate = np.finfo(float).eps * (CAR.front_cornering_stiffness + CAR.rear_cornering_stiffness) * CAR.b / (
+            CAR.mass * u**2)
+        assert error < 10 * estimate and (error > estimate / 10 or u == 1e-2)
 
 
 # --------------------------------------------------------------------------- dc_gain with integrators

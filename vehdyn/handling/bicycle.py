@@ -23,12 +23,13 @@ Outputs are linear in the states and inputs: ``lateral_acceleration`` a_y = dv/d
 in the vehicle frame), ``sideslip_angle`` beta = v/u, ``path_curvature`` a_y/u^2 = r/u + (d beta/dt)/u
 (of the CG path), the slip angles and the axle lateral forces.
 
-Minimum speed. The linear models take u >= :data:`LINEAR_MIN_SPEED` (0.01 m/s). The slip angles
-are small differences of O(delta) terms, (v + a r)/u - delta, so a_y carries a rounding error of
-about eps (C_f + C_r) max(a, b) delta / m, and path_curvature = a_y/u^2 carries that error divided
-by u^2: relative to delta/L about eps (C_f + C_r) max(a, b) L / (m u^2). This is the conditioning of
-the output (d(curvature)/dv = -(C_f + C_r)/(m u^3)), not of a formula: r/u + (d beta/dt)/u, computed
-from the same states, cancels the same way. For a passenger car the error is 4e-10 of the
+Minimum speed. The linear models take u >= :data:`LINEAR_MIN_SPEED` (0.01 m/s). At low speed the
+slip angles are small differences of O(delta) terms, (v + a r)/u - delta with v -> u b delta / L, so
+a_y = (F_yf + F_yr)/m carries a rounding error of about eps (C_f + C_r) (b/L) delta / m, and
+path_curvature = a_y/u^2 that error divided by u^2: relative to the steady curvature delta/L, about
+eps (C_f + C_r) b / (m u^2). This is the conditioning of the output (d(curvature)/dv =
+-(C_f + C_r)/(m u^3)), not of a formula: r/u + (d beta/dt)/u, computed from the same states,
+cancels the same way. For a passenger car the error is 4e-10 of the
 steady-state curvature at 0.01 m/s, 4e-6 at 1e-4 m/s, 3 % at 1e-6 m/s; below walking pace the
 linear slip-angle tire is no model of a tire anyway (use :class:`~vehdyn.handling.SingleTrack`,
 which runs through standstill).
