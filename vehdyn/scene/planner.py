@@ -174,12 +174,10 @@ def plan(scene) -> Plan:
     vehicle = drive.vehicle
     mu_g = vehicle.tires.friction_coefficient * GRAVITY
     # probes: the linear handling rungs, run now (milliseconds), also give the lateral acceleration
-    probes, probe_time = {}, {}
+    probes = {}
     for r in admissible:
         if r.rung.linear and r.rung.ladder == "handling":
-            start = _time.perf_counter()
             probes[r.rung.name] = r.setup.run()
-            probe_time[r.rung.name] = _time.perf_counter() - start
     utilization = None
     linear_probe = next((probes[n] for n in ("LinearBicycle", "LinearBicycle+lag", "LateralYawRoll") if n in probes),
                         None)
@@ -218,11 +216,8 @@ def plan(scene) -> Plan:
     top = max(admissible, key=lambda r: r.rung.fidelity)
     ctx = _Context(scene, drive, probes, utilization, {r.rung.name: r for r in admissible}, top)
     for r in admissible:
-        # the measured table; a probe's own time only where it is far above (a setup the table does not
-        # cover, e.g. a linear model in the driver's loop), so that timing noise cannot move the pick
-        table = est.estimated_cost(r.rung.name, scene.duration)
-        measured = probe_time.get(r.rung.name, 0.0)
-        r.estimated_cost_s = measured if measured > 10 * table else table
+        # the measured tables, never this call's timing: the pick must not depend on the machine's load
+        r.estimated_cost_s = est.estimated_cost(r.rung.name, scene.duration, closed_loop=drive.track is not None)
         r.errors, notes = ctx.errors(r)
         ignored = f"; ignores {', '.join(r.setup.ignores)}" if r.setup.ignores else ""
         if r is top:
