@@ -182,7 +182,8 @@ class RigidWheel(ParameterSet):
     rebound: float = parameter("-", "exit over entry angle (rebound)", default=0.0, ge=0, le=1)
 
     def check(self) -> None:
-        self.soil.modulus(self.width)
+        # k = k_c / b + k_phi (checked > 0), and the factor k r^n of sigma, computed once
+        object.__setattr__(self, "_stress_factor", self.soil.modulus(self.width) * self.radius**self.soil.n)
 
     # ------------------------------------------------------------------ stress integrals
     def _integrals(self, theta1, slip, tan_alpha=None, nodes=QUADRATURE_NODES, full=True):
@@ -207,7 +208,7 @@ class RigidWheel(ParameterSet):
         depth = cos_t[:, :nodes] - cos1  # local sinkage / r of the front nodes
         np.maximum(depth, 0.0, out=depth)
         sigma_front = depth ** soil.n
-        sigma_front *= soil.modulus(b) * r**soil.n
+        sigma_front *= self._stress_factor
         sigma = np.concatenate([sigma_front, sigma_front[:, ::-1]], axis=1)
         s = slip[:, None]
         driven = s >= 0.0
