@@ -11,11 +11,13 @@ Slip mapping (ISO-W slip ratio ``kappa = (omega r - V) / V`` to the terramechani
 
 ``F_x`` is the drawbar pull (thrust minus motion resistance: the net horizontal soil force on the
 wheel), signed with the rolling direction like the road laws; ``F_y`` the side force of the
-flexible wheel (ISO-W: negative for a positive slip angle). ``M_x = M_y = M_z = 0``: the soil torque
-differs from ``F_x r`` by the motion resistance's moment, which a vehicle model that closes the
-wheel-spin balance with ``F_x r`` does not see (the motion resistance still acts on the vehicle
-through ``F_x``). :meth:`SoftSoilTire.evaluate` gives sinkage, motion resistance, torque, mode and
-the stuck status.
+flexible wheel (ISO-W: negative for a positive slip angle). The rolling-resistance moment
+``M_y = r F_x - T`` (T the soil's torque on the wheel, so that ``-T = -r F_x + M_y``; <= 0 rolling
+forwards, like the Magic Formula's) carries the part of the soil torque that ``F_x r`` does not:
+a vehicle model that closes the wheel-spin balance with ``F_x r`` alone sees a free-rolling wheel
+settle at zero drawbar pull and misses that moment (the motion resistance of a driven wheel still
+acts on the vehicle through ``F_x``). ``M_x = M_z = 0``. :meth:`SoftSoilTire.evaluate` gives sinkage,
+motion resistance, torque, mode and the stuck status.
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ import math
 
 import numpy as np
 
-from .._common import all_scalars, broadcast_inputs, planar_forces, rolling_direction
+from .._common import all_scalars, broadcast_inputs, rolling_direction
 from ..base import TireForces, TireModel
 from .flexible import FlexibleWheel, SoftSoilTireGeometry
 from .soil import Soil
@@ -89,10 +91,14 @@ class SoftSoilTire(TireModel):
         docstring. Camber has no effect."""
         scalar = all_scalars(fz, kappa, alpha, gamma, vx)
         result = self.evaluate(fz, kappa, alpha, vx)
-        fx = result.drawbar_pull * rolling_direction(np.asarray(vx, dtype=float))
+        direction = rolling_direction(np.asarray(vx, dtype=float))
+        fx = result.drawbar_pull * direction
         fy = result.lateral_force
+        my = (self.tire_geometry.radius * result.drawbar_pull - result.torque) * direction
         load = result.load
         if scalar:
-            return planar_forces(float(fx), float(fy), float(load), 0.0)
+            return TireForces(float(fx), float(fy), float(load), 0.0, float(my), 0.0)
         fx = np.broadcast_to(fx, load.shape).astype(float)
-        return planar_forces(fx, np.asarray(fy, dtype=float), load, np.zeros_like(fx))
+        zero = np.zeros_like(fx)
+        return TireForces(fx, np.asarray(fy, dtype=float), load, zero, np.broadcast_to(my, load.shape).astype(float),
+                          zero.copy())
