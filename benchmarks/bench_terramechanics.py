@@ -40,7 +40,7 @@ def textbook_point(wheel: RigidWheel, load: float, slip: float):
     tan_phi = math.tan(soil.friction_angle)
 
     def parts(theta1):
-        tm = min(wheel.c1 + wheel.c2 * abs(slip), 1.0) * theta1
+        tm = min(max(wheel.c1 + wheel.c2 * slip, 0.0), 1.0) * theta1
         t2 = -wheel.rebound * theta1
 
         def sigma(t):

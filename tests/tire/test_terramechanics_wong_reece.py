@@ -19,7 +19,7 @@ def reference_stresses(wheel, theta1, slip):
     soil, r = wheel.soil, wheel.radius
     b = wheel.width
     k = soil.k_c / b + soil.k_phi
-    tm = min(wheel.c1 + wheel.c2 * abs(slip), 1.0) * theta1
+    tm = min(max(wheel.c1 + wheel.c2 * slip, 0.0), 1.0) * theta1
     t2 = -wheel.rebound * theta1
 
     def sigma(t):

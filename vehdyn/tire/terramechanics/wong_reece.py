@@ -2,8 +2,9 @@
 
 The wheel of radius r and width b touches the soil between the entry angle theta_1 (ahead of the
 vertical, sinkage ``z = r (1 - cos theta_1)``) and the exit angle ``theta_2 = -rebound theta_1``
-(behind it; 0 without rebound). The normal stress peaks at ``theta_m = (c1 + c2 |s|) theta_1``
-(Wong and Reece 1967; c1 ~ 0.43, c2 ~ 0.32 for sand) and follows Bekker's law ahead of it and a
+(behind it; 0 without rebound). The normal stress peaks at ``theta_m = (c1 + c2 s) theta_1``
+(Wong and Reece 1967; c1 ~ 0.43, c2 ~ 0.32 for sand, measured on driven wheels; for braked wheels,
+s < 0, the same line is extrapolated, clipped to 0 <= theta_m <= theta_1) and follows Bekker's law ahead of it and a
 mirrored copy behind it, with ``k = k_c / b + k_phi``::
 
     sigma(theta) = k r^n (cos theta - cos theta_1)^n                      theta_m <= theta <= theta_1
@@ -16,7 +17,9 @@ with the shear displacement of the soil element that entered at theta_1::
     j(theta) = r [(theta_1 - theta) - (1 - s) (sin theta_1 - sin theta)]       driven, s = 1 - V / (r omega) in [0, 1]
     j(theta) = r [(1 + s) (theta_1 - theta) - (sin theta_1 - sin theta)]       braked, s = r omega / V - 1 in [-1, 0)
 
-(s = 1: spinning in place; s = -1: locked). The wheel's forces are the stress integrals::
+(s = 1: spinning in place; s = -1: locked). The braked form follows the soil element by the
+wheel's rotation scaled to its travel: it is continuous with the driven form at s = 0 and gives
+the locked wheel's sliding distance ``-r (sin theta_1 - sin theta)`` at s = -1. The wheel's forces are the stress integrals::
 
     W  = r b int (sigma cos theta + tau sin theta) d theta       vertical load (solved for theta_1)
     H  = r b int tau cos theta d theta                            thrust
@@ -159,7 +162,7 @@ class RigidWheel(ParameterSet):
         b [m].
     soil : Soil
     c1, c2 : float
-        Coefficients of the maximum-stress angle ``theta_m = (c1 + c2 |s|) theta_1`` [-]
+        Coefficients of the maximum-stress angle ``theta_m = (c1 + c2 s) theta_1`` [-]
         (Wong and Reece 1967 for sand: 0.43, 0.32). ``c1 = c2 = 0`` puts the maximum at the bottom
         as Bekker's closed forms assume.
     rebound : float
@@ -197,7 +200,7 @@ class RigidWheel(ParameterSet):
         x, w = _gauss(nodes)
         t1 = theta1[:, None]
         t2 = -self.rebound * t1
-        tm = np.minimum(self.c1 + self.c2 * np.abs(slip), 1.0)[:, None] * t1
+        tm = np.clip(self.c1 + self.c2 * slip, 0.0, 1.0)[:, None] * t1
         half_front = 0.5 * (t1 - tm)
         half_rear = 0.5 * (tm - t2)
         theta = np.concatenate([tm + half_front * (x + 1.0), t2 + half_rear * (x + 1.0)], axis=1)
