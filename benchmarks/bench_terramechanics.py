@@ -6,8 +6,9 @@ over s in [-1, 1]:
 * ``vectorized``: ``RigidWheel.solve(load, slips)``: fixed Gauss-Legendre nodes on the contact arc,
   the vertical equilibrium solved for all slips at once (batched Illinois). Goal: <= 5 ms.
 * ``loop, same numerics``: the same call once per slip (a Python loop over slips).
-* ``loop, quad + brentq``: the textbook implementation, per slip: ``scipy.integrate.quad`` of the
-  stress integrals inside ``scipy.optimize.brentq`` for the entry angle. It is the error reference
+* ``loop, quad + brentq``: the textbook implementation, per slip
+  (:mod:`vehdyn.tire.terramechanics.reference`): ``scipy.integrate.quad`` of the stress integrals
+  inside ``scipy.optimize.brentq`` for the entry angle. It is the error reference
   (adaptive quadrature to 1e-10, root to 1e-13): the error columns are the largest differences of
   the vectorized sinkage and drawbar pull from it, relative to the sinkage and to the load.
 
@@ -18,58 +19,15 @@ from __future__ import annotations
 
 from _timing import best_time  # first: pins BLAS to one thread before numpy loads
 import argparse
-import math
 import time
-import warnings
 
 import numpy as np
 
 from vehdyn.tire.terramechanics import RigidWheel, load_soil
+from vehdyn.tire.terramechanics.reference import adaptive_solve
 
 SOILS = ("dry_sand", "sandy_loam", "clayey_soil")
 LOAD = 1500.0
-
-
-def textbook_point(wheel: RigidWheel, load: float, slip: float):
-    """(sinkage, drawbar pull) of one slip: quad for the integrals, brentq for theta_1."""
-    from scipy.integrate import quad
-    from scipy.optimize import brentq
-
-    soil, r, b = wheel.soil, wheel.radius, wheel.width
-    k = soil.k_c / b + soil.k_phi
-    tan_phi = math.tan(soil.friction_angle)
-
-    def parts(theta1):
-        tm = min(max(wheel.c1 + wheel.c2 * slip, 0.0), 1.0) * theta1
-        t2 = -wheel.rebound * theta1
-
-        def sigma(t):
-            e = t if t >= tm else theta1 - (t - t2) / (tm - t2) * (theta1 - tm)
-            return k * (r * max(math.cos(e) - math.cos(theta1), 0.0)) ** soil.n
-
-        def tau(t):
-            if slip >= 0:
-                j = r * ((theta1 - t) - (1 - slip) * (math.sin(theta1) - math.sin(t)))
-            else:
-                j = r * ((1 + slip) * (theta1 - t) - (math.sin(theta1) - math.sin(t)))
-            return math.copysign((soil.cohesion + sigma(t) * tan_phi) * (1 - math.exp(-abs(j) / soil.shear_modulus)), j)
-
-        def integral(f):
-            pieces = [(t2, tm), (tm, theta1)] if tm > t2 else [(tm, theta1)]
-            return sum(quad(f, a, c, epsabs=0, epsrel=1e-10, limit=200)[0] for a, c in pieces)
-
-        return sigma, tau, integral
-
-    def vertical(theta1):
-        sigma, tau, integral = parts(theta1)
-        return r * b * integral(lambda t: sigma(t) * math.cos(t) + tau(t) * math.sin(t)) - load
-
-    with warnings.catch_warnings():  # quad's round-off notice near 1e-10 on the kinked integrands
-        warnings.simplefilter("ignore")
-        theta1 = brentq(vertical, 1e-9, 0.5 * math.pi, xtol=1e-13)
-        sigma, tau, integral = parts(theta1)
-        pull = r * b * integral(lambda t: tau(t) * math.cos(t) - sigma(t) * math.sin(t))
-    return r * (1 - math.cos(theta1)), pull
 
 
 def main(quick: bool = False) -> None:
@@ -84,7 +42,7 @@ def main(quick: bool = False) -> None:
         loop, _ = best_time(lambda: [wheel.solve(LOAD, float(s)) for s in slips], repeats=3)
         sub = slips[::10] if quick else slips
         start = time.perf_counter()
-        reference = np.array([textbook_point(wheel, LOAD, float(s)) for s in sub])
+        reference = np.array([adaptive_solve(wheel, LOAD, float(s)) for s in sub])
         textbook = (time.perf_counter() - start) * slips.size / sub.size
         pick = np.searchsorted(slips, sub)
         err_z = np.max(np.abs(result.sinkage[pick] - reference[:, 0]) / reference[:, 0])

@@ -5,50 +5,18 @@ import math
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
 
 from vehdyn import ParameterError
 from vehdyn.tire.terramechanics import (RigidWheel, compaction_resistance, load_soil, parabolic_wheel_sinkage,
                                         rigid_wheel_sinkage, shipped_soils)
+from vehdyn.tire.terramechanics.reference import adaptive_integrals, stress_functions
 
 RADIUS, WIDTH = 0.3, 0.2
 
 
-def reference_stresses(wheel, theta1, slip):
-    """sigma(theta), tau(theta) and the integral over the arc of the module's equations, pointwise."""
-    soil, r = wheel.soil, wheel.radius
-    b = wheel.width
-    k = soil.k_c / b + soil.k_phi
-    tm = min(max(wheel.c1 + wheel.c2 * slip, 0.0), 1.0) * theta1
-    t2 = -wheel.rebound * theta1
-
-    def sigma(t):
-        e = t if t >= tm else theta1 - (t - t2) / (tm - t2) * (theta1 - tm)
-        return k * (r * max(math.cos(e) - math.cos(theta1), 0.0)) ** soil.n
-
-    def tau(t):
-        if slip >= 0:
-            j = r * ((theta1 - t) - (1 - slip) * (math.sin(theta1) - math.sin(t)))
-        else:
-            j = r * ((1 + slip) * (theta1 - t) - (math.sin(theta1) - math.sin(t)))
-        strength = soil.cohesion + sigma(t) * math.tan(soil.friction_angle)
-        return math.copysign(strength * (1 - math.exp(-abs(j) / soil.shear_modulus)), j)
-
-    def integral(f, epsrel=1e-12):
-        pieces = [(t2, tm), (tm, theta1)] if tm > t2 else [(tm, theta1)]
-        return sum(quad(f, a, c, epsabs=0, epsrel=epsrel, limit=200)[0] for a, c in pieces)
-
-    return sigma, tau, integral
-
-
 def reference_integrals(wheel, theta1, slip):
-    """W, H, R, T of the module's equations by scipy.integrate.quad."""
-    r, b = wheel.radius, wheel.width
-    sigma, tau, integral = reference_stresses(wheel, theta1, slip)
-    return np.array([r * b * integral(lambda t: sigma(t) * math.cos(t) + tau(t) * math.sin(t)),
-                     r * b * integral(lambda t: tau(t) * math.cos(t)),
-                     r * b * integral(lambda t: sigma(t) * math.sin(t)),
-                     r * r * b * integral(tau)])
+    """W, H, R, T point by point with scipy.integrate.quad (vehdyn.tire.terramechanics.reference)."""
+    return np.array(adaptive_integrals(wheel, theta1, slip))
 
 
 @pytest.mark.parametrize("name", ["dry_sand", "clayey_soil", "heavy_clay", "snow"])
@@ -114,7 +82,7 @@ def test_drawbar_pull_rises_toward_the_coulomb_limit(name):
         w = float(stiff.supported_load(z, 1.0))
         top = stiff.solve(w, 1.0)
         t1 = float(top.entry_angle)
-        _, tau, integral = reference_stresses(stiff, t1, 1.0)
+        _, tau, integral = stress_functions(stiff, t1, 1.0)
         v_tau = RADIUS * WIDTH * integral(lambda t: tau(t) * math.sin(t), epsrel=1e-7)
         area = WIDTH * RADIUS * math.sin(t1)
         tan_phi = math.tan(soil.friction_angle)
