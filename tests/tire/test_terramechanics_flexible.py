@@ -103,3 +103,20 @@ def test_single_track_launches_on_sand_below_the_traction_limit():
         0.5 * rear_load * 1.2, np.linspace(0, 1, 101)).drawbar_pull.max()
     assert np.max(ax[5:]) < 2 * peak / vehicle.mass.mass
     assert np.max(ax[5:]) > 0.0  # it does accelerate on firm sandy loam
+
+
+def test_elastic_side_force_against_quadrature():
+    soil = load_soil("lete_sand")
+    wheel = FlexibleWheel(geometry=GEOMETRY, soil=soil)
+    load, slip, alpha = 8000.0, -0.3, -0.15  # braked: V / (r omega) = 1 / (1 + s)
+    r = wheel.solve(load, slip, alpha)
+    assert r.mode == "elastic"
+    p = GEOMETRY.stiffness_pressure
+    length, z = load / (GEOMETRY.width * p), float(r.sinkage)
+    travel = 1 / (1 + slip)
+    shear = GEOMETRY.width * quad(lambda x: (soil.cohesion + p * math.tan(soil.friction_angle))
+                                  * (1 - math.exp(-x * travel * math.tan(-alpha) / soil.side_shear_modulus)),
+                                  0, length)[0]
+    n_phi = math.tan(math.pi / 4 + soil.friction_angle / 2) ** 2
+    wall = length * (0.5 * soil.density * 9.81 * z * z * n_phi + 2 * soil.cohesion * z * math.sqrt(n_phi))
+    assert r.lateral_force == pytest.approx(shear + math.sin(-alpha) * wall, rel=1e-9)  # alpha < 0: F_y > 0

@@ -156,3 +156,26 @@ def test_bad_wheel_parameters():
         RigidWheel(radius=0.3, width=WIDTH, soil="dry_sand")
     assert info.value.key == "soil"
     assert set(shipped_soils()) >= {"dry_sand"}
+
+
+def test_side_force_against_adaptive_quadrature():
+    # side shear r b int (c + sigma tan phi)(1 - exp(-j_y/K_y)) + |sin a| r int F_wall(h) cos(theta)
+    soil = load_soil("sandy_loam")
+    wheel = RigidWheel(radius=RADIUS, width=WIDTH, soil=soil)
+    slip, alpha = 0.3, 0.2
+    result = wheel.solve(1200.0, slip, alpha)
+    t1 = float(result.entry_angle)
+    sigma, _, integral = stress_functions(wheel, t1, slip)
+    tan_phi, k_y = math.tan(soil.friction_angle), soil.side_shear_modulus
+    travel = 1 - slip
+    shear = RADIUS * WIDTH * integral(lambda t: (soil.cohesion + sigma(t) * tan_phi)
+                                      * (1 - math.exp(-RADIUS * (t1 - t) * travel * math.tan(alpha) / k_y)))
+    n_phi = math.tan(math.pi / 4 + soil.friction_angle / 2) ** 2
+    gamma = soil.density * 9.81
+
+    def wall(t):  # Rankine passive pressure integrated over the local depth h
+        h = RADIUS * max(math.cos(t) - math.cos(t1), 0.0)
+        return (0.5 * gamma * h * h * n_phi + 2 * soil.cohesion * h * math.sqrt(n_phi)) * math.cos(t)
+
+    bulldozing = math.sin(alpha) * RADIUS * integral(wall)
+    assert float(result.lateral_force) == pytest.approx(-(shear + bulldozing), rel=1e-4)

@@ -7,12 +7,17 @@ Soils
 Bekker's closed forms
     :func:`bekker_pressure`, :func:`plate_sinkage`, :func:`rigid_wheel_sinkage`,
     :func:`parabolic_wheel_sinkage`, :func:`compaction_resistance`, :func:`bulldozing_resistance`
-Rigid wheel (Wong-Reece stress distribution, side force after Ishigami et al.)
-    :class:`RigidWheel` (``solve(load, slip, slip_angle=None)``), :class:`WheelSoilResult`
+Rigid wheel (Wong-Reece stress distribution)
+    :class:`RigidWheel` (``solve(load, slip, slip_angle=None)``), :class:`WheelSoilResult`;
+    ``reference`` (the same equations point by point with adaptive quadrature, slow)
+Side force (side shear and sidewall bulldozing, after Ishigami et al. 2007)
+    module ``lateral`` (used by the rigid wheel and the flexible tire)
 Flexible tire
     :class:`FlexibleWheel`, :func:`critical_ground_pressure`
 Tire law for vehicle models
     :class:`SoftSoilTire`, :class:`SoftSoilTireGeometry`
+Curves (CLI ``vehdyn tire --soil NAME``, the off-road study)
+    module ``curves``: ``soil_curves``, ``describe_soil``, ``plot_soil_curves``
 
 Slip ``s`` in [-1, 1]: ``1 - V / (r omega)`` driven, ``r omega / V - 1`` braked (skid).
 """

@@ -42,7 +42,7 @@ from ...units import GRAVITY
 from .soil import Soil
 
 __all__ = ["bekker_pressure", "plate_sinkage", "rigid_wheel_sinkage", "parabolic_wheel_sinkage",
-           "compaction_resistance", "bulldozing_resistance", "checked_array"]
+           "compaction_resistance", "bulldozing_resistance", "rankine_wall_force", "checked_array"]
 
 
 
@@ -135,14 +135,17 @@ def compaction_resistance(soil: Soil, load, diameter, width):
     return _out(b * soil.modulus(b) * z0 ** (soil.n + 1.0) / (soil.n + 1.0))
 
 
-def bulldozing_resistance(soil: Soil, sinkage, width):
-    """Bulldozing resistance [N] of a vertical wall of width ``b`` [m] at the depth ``z`` [m].
-
-    Rankine passive earth pressure (module docstring): ``b (gamma z^2 N_phi / 2 + 2 c z sqrt(N_phi))``
-    with ``gamma = density * g``.
-    """
-    z = checked_array("sinkage", sinkage, ge=0.0)
-    b = checked_array("width", width, gt=0.0)
+def rankine_wall_force(soil: Soil, depth):
+    """Rankine passive force per unit width [N/m] on a vertical wall to the depth z [m] (no checks):
+    ``gamma z^2 N_phi / 2 + 2 c z sqrt(N_phi)``, ``N_phi = tan^2(45 deg + phi/2)``, ``gamma = density g``."""
     n_phi = math.tan(math.pi / 4 + soil.friction_angle / 2) ** 2
     gamma = soil.density * GRAVITY
-    return _out(b * (0.5 * gamma * z * z * n_phi + 2.0 * soil.cohesion * z * math.sqrt(n_phi)))
+    return depth * (0.5 * gamma * n_phi * depth + 2.0 * soil.cohesion * math.sqrt(n_phi))
+
+
+def bulldozing_resistance(soil: Soil, sinkage, width):
+    """Bulldozing resistance [N] of a vertical wall of width ``b`` [m] at the depth ``z`` [m]:
+    ``b`` times :func:`rankine_wall_force` (module docstring)."""
+    z = checked_array("sinkage", sinkage, ge=0.0)
+    b = checked_array("width", width, gt=0.0)
+    return _out(b * rankine_wall_force(soil, z))

@@ -18,10 +18,8 @@ so that (Wong 2008, sec. 2.7, and sec. 2.4 for the thrust of a uniform contact):
     H   = sgn(s) (A c + W tan phi) [1 - K / (|s| l) (1 - exp(-|s| l / K))]   thrust
     DP  = H - R_c,    T = H r
 
-(the torque arm is taken as the unloaded radius r). The side force in the elastic mode uses the
-same uniform contact with the lateral shear displacement ``j_y = x f(s) |tan alpha|``
-(f = V / (r omega), see :mod:`~vehdyn.tire.terramechanics.wong_reece`) and the sidewall bulldozing
-of the rut of depth z over the length l (Rankine passive pressure, times ``|sin alpha|``).
+(the torque arm is taken as the unloaded radius r). The side force in the elastic mode is that of
+the same uniform contact (:func:`~vehdyn.tire.terramechanics.lateral.flat_side_force`).
 
 References
 ----------
@@ -37,11 +35,12 @@ import math
 import numpy as np
 
 from ...params.base import ParameterSet, parameter
-from .bekker import bulldozing_resistance, checked_array, rigid_wheel_sinkage
+from .bekker import checked_array, rigid_wheel_sinkage
+from .lateral import flat_side_force, mobilized_fraction
 from .soil import Soil
 from .wong_reece import QUADRATURE_NODES, RigidWheel, WheelSoilResult, check_slip, efficiency, travel_ratio
 
-__all__ = ["SoftSoilTireGeometry", "FlexibleWheel", "critical_ground_pressure", "mobilized_fraction"]
+__all__ = ["SoftSoilTireGeometry", "FlexibleWheel", "critical_ground_pressure"]
 
 
 def critical_ground_pressure(soil: Soil, load, diameter, width):
@@ -49,15 +48,6 @@ def critical_ground_pressure(soil: Soil, load, diameter, width):
     z0 = np.asarray(rigid_wheel_sinkage(soil, load, diameter, width))
     out = soil.modulus(width) * z0**soil.n
     return float(out) if np.ndim(out) == 0 else out
-
-
-def mobilized_fraction(length_over_k):
-    """``1 - (1 - exp(-x)) / x`` [-]: the mean of ``1 - exp(-j/K)`` over a uniform contact with
-    ``j`` growing linearly to ``x K`` (Janosi-Hanamoto integrated; x/2 near 0)."""
-    x = np.asarray(length_over_k, dtype=float)
-    small = x < 1e-6
-    safe = np.where(small, 1.0, x)
-    return np.where(small, 0.5 * x, 1.0 + np.expm1(-safe) / safe)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -165,13 +155,7 @@ class FlexibleWheel(ParameterSet):
         torque = thrust * g.radius
         lateral = np.zeros_like(load)
         if slip_angle is not None:
-            tan_alpha = np.tan(slip_angle)
-            travel = np.minimum(travel_ratio(slip), 1e12)
-            side = limit * mobilized_fraction(length * travel * np.abs(tan_alpha) / soil.side_shear_modulus)
-            sin_alpha = np.abs(np.sin(slip_angle))
-            side = side + sin_alpha * np.where(length > 0, bulldozing_resistance(soil, z, np.maximum(length, 1e-300)),
-                                               0.0)
-            lateral = -np.sign(tan_alpha) * side
+            lateral = flat_side_force(soil, b, load, length, z, travel_ratio(slip), slip_angle)
         zero = np.zeros_like(load)
         return WheelSoilResult(load=load, slip=slip, sinkage=z, entry_angle=zero, exit_angle=zero,
                                max_stress_angle=zero, drawbar_pull=drawbar, thrust=thrust, motion_resistance=resistance,

@@ -30,15 +30,8 @@ the locked wheel's sliding distance ``-r (sin theta_1 - sin theta)`` at s = -1. 
 Tractive efficiency ``eta = DP V / (T omega)`` with ``V / (r omega) = 1 - s`` (driven) or
 ``1 / (1 + s)`` (braked), reported where DP > 0 and T > 0 (else 0).
 
-Side force at the slip angle alpha (Ishigami, Miwa, Nagatani and Yoshida 2007): the soil element
-under the wheel is displaced sideways by ``j_y = r (theta_1 - theta) f(s) |tan alpha|`` where
-``f(s) = V / (r omega)`` (above), giving the side shear ``r b int (c + sigma tan phi)
-(1 - exp(-j_y / K_y)) d theta``; the sidewall bulldozes the soil beside it, taken here as the Rankine
-passive earth pressure at the local depth ``h = r (cos theta - cos theta_1)`` over the side area,
-``|sin alpha| r int (gamma h^2 N_phi / 2 + 2 c h sqrt(N_phi)) cos theta d theta`` (Ishigami et al.
-use Hegedus' bulldozing formula; the Rankine wall is the simpler, stated substitute). The
-longitudinal and lateral shears are computed independently, as in Ishigami et al. The side force is
-``F_y = -sgn(alpha) (side shear + bulldozing)`` (ISO-W).
+Side force at the slip angle alpha: side shear plus sidewall bulldozing on the same arc, see
+:mod:`~vehdyn.tire.terramechanics.lateral` (after Ishigami et al. 2007).
 
 Numerics: Gauss-Legendre quadrature (fixed nodes) on each of [theta_2, theta_m] and
 [theta_m, theta_1] (sigma has a kink at theta_m), vectorized over every (load, slip) pair; the
@@ -53,8 +46,6 @@ J. Y. Wong and A. R. Reece, "Prediction of rigid wheel performance based on the 
 soil-wheel stresses, part I: performance of driven rigid wheels", J. Terramechanics 4(1), 81-98,
 1967; "part II: performance of towed rigid wheels", J. Terramechanics 4(2), 7-25, 1967.
 J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 2.7.
-G. Ishigami, A. Miwa, K. Nagatani and K. Yoshida, "Terramechanics-based model for steering
-maneuver of planetary exploration rovers on loose soil", J. Field Robotics 24(3), 233-250, 2007.
 """
 
 from __future__ import annotations
@@ -65,8 +56,8 @@ import math
 import numpy as np
 
 from ...params.base import ParameterSet, parameter
-from ...units import GRAVITY
 from .bekker import checked_array
+from .lateral import arc_side_force
 from .soil import Soil
 
 __all__ = ["RigidWheel", "WheelSoilResult", "travel_ratio", "check_slip"]
@@ -235,15 +226,7 @@ class RigidWheel(ParameterSet):
         torque = r * rb * tw.sum(axis=1)
         side = None
         if tan_alpha is not None:
-            travel = np.minimum(travel_ratio(s), 1e12)
-            jy = r * (t1 - theta) * travel * np.abs(tan_alpha)[:, None]
-            shear = rb * np.sum(weight * strength * -np.expm1(-jy / soil.side_shear_modulus), axis=1)
-            n_phi = math.tan(math.pi / 4 + soil.friction_angle / 2) ** 2
-            h = np.maximum(cos_t - cos1, 0.0) * r  # true depth of the sidewall point
-            wall = 0.5 * soil.density * GRAVITY * h * h * n_phi + 2.0 * soil.cohesion * h * math.sqrt(n_phi)
-            sin_alpha = np.abs(tan_alpha) / np.sqrt(1.0 + tan_alpha**2)
-            bulldozing = sin_alpha * r * np.sum(weight * wall * cos_t, axis=1)
-            side = shear + bulldozing
+            side = arc_side_force(soil, r, b, theta, weight, strength, cos_t, t1, travel_ratio(s), tan_alpha)
         return load, thrust, resistance, torque, side, t2[:, 0], tm[:, 0]
 
     def _angle(self, q):
@@ -306,7 +289,7 @@ class RigidWheel(ParameterSet):
         sinkage = self.radius * (1.0 - np.cos(theta1))
         sinkage[stuck] = self.radius
         drawbar = thrust - resistance
-        lateral = np.zeros_like(drawbar) if side is None else -np.sign(tan_alpha) * side
+        lateral = np.zeros_like(drawbar) if side is None else side
         shaped = {k: v.reshape(shape) for k, v in dict(
             load=w, slip=s, sinkage=sinkage, entry_angle=theta1, exit_angle=t2, max_stress_angle=tm,
             drawbar_pull=drawbar, thrust=thrust, motion_resistance=resistance, torque=torque,
