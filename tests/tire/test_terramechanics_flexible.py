@@ -120,3 +120,19 @@ def test_elastic_side_force_against_quadrature():
     n_phi = math.tan(math.pi / 4 + soil.friction_angle / 2) ** 2
     wall = length * (0.5 * soil.density * 9.81 * z * z * n_phi + 2 * soil.cohesion * z * math.sqrt(n_phi))
     assert r.lateral_force == pytest.approx(shear + math.sin(-alpha) * wall, rel=1e-9)  # alpha < 0: F_y > 0
+
+
+@pytest.mark.parametrize("soil_name", ["dry_sand", "snow", "heavy_clay"])
+def test_soft_soil_tire_is_finite_on_its_whole_domain(soil_name):
+    # lift-off, locked and backwards-spinning wheels, spinning in place, large slip angles, reverse
+    tire = SoftSoilTire(GEOMETRY, load_soil(soil_name))
+    fz, kappa, alpha, vx = np.meshgrid([0.0, 500.0, 4000.0, 20000.0], [-3.0, -1.0, -0.2, 0.0, 0.3, 50.0],
+                                       [-1.6, -0.3, 0.0, 0.3, 1.6], [-5.0, 0.0, 5.0], indexing="ij")
+    f = tire.forces(fz, kappa, alpha, 0.0, vx)
+    for name in ("fx", "fy", "my"):
+        assert np.all(np.isfinite(getattr(f, name))), name
+    lifted = fz == 0.0
+    assert np.all(f.fx[lifted] == 0.0) and np.all(f.fy[lifted] == 0.0)
+    state = tire.evaluate(fz, kappa, alpha, vx)
+    assert set(np.unique(state.status)) <= {"ok", "stuck"} and np.all(np.isfinite(state.sinkage))
+    assert np.all(state.sinkage <= GEOMETRY.radius)

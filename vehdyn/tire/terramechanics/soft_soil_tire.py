@@ -26,6 +26,7 @@ import math
 
 import numpy as np
 
+from ...errors import ParameterError
 from .._common import all_scalars, broadcast_inputs, rolling_direction
 from ..base import TireForces, TireModel
 from .flexible import FlexibleWheel, SoftSoilTireGeometry
@@ -65,8 +66,6 @@ class SoftSoilTire(TireModel):
     name = "soft_soil"
 
     def __init__(self, tire_geometry: SoftSoilTireGeometry, soil: Soil, **wheel_options):
-        from ...errors import ParameterError
-
         if not isinstance(tire_geometry, SoftSoilTireGeometry):
             raise ParameterError(f"tire_geometry must be a SoftSoilTireGeometry, got {type(tire_geometry).__name__}",
                                  key="tire_geometry", value=tire_geometry)

@@ -18,6 +18,8 @@ import dataclasses
 import math
 from pathlib import Path
 
+import numpy as np
+
 from ...errors import ParameterError
 from ...params.base import ParameterSet, parameter, read_toml, text
 
@@ -86,8 +88,6 @@ class Soil(ParameterSet):
 
     def modulus(self, width):
         """``k_c / b + k_phi`` [N/m^(n+2)] for the width ``b`` [m] (scalar or array), checked > 0."""
-        import numpy as np
-
         b = np.asarray(width, dtype=float)
         if not np.all(np.isfinite(b) & (b > 0)):
             bad = b[~(np.isfinite(b) & (b > 0))].flat[0] if b.ndim else b

@@ -55,6 +55,7 @@ import math
 
 import numpy as np
 
+from ...errors import ParameterError
 from ...params.base import ParameterSet, parameter
 from .bekker import checked_array
 from .lateral import arc_side_force
@@ -73,8 +74,6 @@ def check_slip(slip):
     bad = np.abs(s) > 1.0
     if np.any(bad):
         value = float(s[bad].flat[0]) if s.ndim else float(s)
-        from ...errors import ParameterError
-
         raise ParameterError(f"slip must be in [-1, 1] (driven s = 1 - V/(r omega), braked s = r omega/V - 1), "
                              f"got {value!r}", key="slip", value=value)
     return s
@@ -271,8 +270,6 @@ class RigidWheel(ParameterSet):
         if slip_angle is not None:
             a = checked_array("slip_angle", slip_angle)
             if np.any(np.abs(a) >= 0.5 * math.pi):
-                from ...errors import ParameterError
-
                 bad = float(a[np.abs(a) >= 0.5 * math.pi].flat[0]) if a.ndim else float(a)
                 raise ParameterError(f"slip_angle must be in (-pi/2, pi/2) [rad], got {bad!r}", key="slip_angle",
                                      value=bad)
