@@ -11,9 +11,9 @@ pressure p_i plus the carcass-stiffness pressure p_c (Bekker 1969; Wong 2008, se
 In the elastic mode the flat section carries the load at the uniform pressure ``p = p_i + p_c``,
 so that (Wong 2008, sec. 2.7, and sec. 2.4 for the thrust of a uniform contact)::
 
-    z   = (p / k)^(1/n)                                 sinkage
+    z   = (p / k)^(1/n)                                 sinkage (stuck if >= r; then z = r)
     l   = W / (b p),   A = b l                          flat contact length and area
-    R_c = b k z^(n+1) / (n+1) = b p z / (n+1)           compaction resistance
+    R_c = b k z^(n+1) / (n+1)  (= b p z / (n+1))        compaction resistance
     j   = s x                                           shear displacement at x behind the leading edge
     H   = sgn(s) (A c + W tan phi) [1 - K / (|s| l) (1 - exp(-|s| l / K))]   thrust
     DP  = H - R_c,    T = H r
@@ -146,11 +146,13 @@ class FlexibleWheel(ParameterSet):
         p = g.stiffness_pressure
         b = g.width
         k = soil.modulus(b)
-        z = np.full(load.shape, (p / k) ** (1.0 / soil.n))
+        plate = (p / k) ** (1.0 / soil.n)
+        stuck = np.full(load.shape, plate >= g.radius)  # the flat section would lie above the axle
+        z = np.full(load.shape, min(plate, g.radius))  # forces of a stuck tire at z = r, as the rigid wheel's
         length = load / (b * p)
         limit = b * length * soil.cohesion + load * math.tan(soil.friction_angle)  # A c + W tan(phi)
         thrust = np.sign(slip) * limit * mobilized_fraction(np.abs(slip) * length / soil.shear_modulus)
-        resistance = b * p * z / (soil.n + 1.0)
+        resistance = b * k * z ** (soil.n + 1.0) / (soil.n + 1.0)
         drawbar = thrust - resistance
         torque = thrust * g.radius
         lateral = np.zeros_like(load)
@@ -160,4 +162,4 @@ class FlexibleWheel(ParameterSet):
         return WheelSoilResult(load=load, slip=slip, sinkage=z, entry_angle=zero, exit_angle=zero,
                                max_stress_angle=zero, drawbar_pull=drawbar, thrust=thrust, motion_resistance=resistance,
                                torque=torque, tractive_efficiency=efficiency(drawbar, torque, g.radius, slip),
-                               lateral_force=lateral, stuck=z >= g.radius, mode=np.full(load.shape, "elastic"))
+                               lateral_force=lateral, stuck=stuck, mode=np.full(load.shape, "elastic"))
