@@ -33,12 +33,16 @@ Tractive efficiency ``eta = DP V / (T omega)`` with ``V / (r omega) = 1 - s`` (d
 Side force at the slip angle alpha: side shear plus sidewall bulldozing on the same arc, see
 :mod:`~vehdyn.tire.terramechanics.lateral` (after Ishigami et al. 2007).
 
-Numerics: Gauss-Legendre quadrature (fixed nodes) on each of [theta_2, theta_m] and
-[theta_m, theta_1] (sigma has a kink at theta_m), vectorized over every (load, slip) pair; the
-vertical equilibrium is solved for all pairs at once by the Illinois (modified regula falsi)
-method in the variable ``q = (z / r)^(n + 1/2)``, in which the supported load is nearly linear. A
-load that the wheel cannot carry before ``z = r`` (theta_1 = 90 degrees) leaves the wheel stuck:
-the result says so (``stuck``, ``status``) and holds the forces at ``z = r``.
+Numerics: Gauss-Legendre quadrature (fixed nodes, 16 per sub-interval) on each of
+[theta_2, theta_m] and [theta_m, theta_1] (sigma has a kink at theta_m; the rear nodes map onto the
+front nodes, so sigma is evaluated once), vectorized over every (load, slip) pair. Against adaptive
+quadrature of the same equations (:mod:`~vehdyn.tire.terramechanics.reference`) the integrals agree
+to 1e-6 for n >= 1 and 2e-4 at n = 0.11 (sigma ~ (theta_1 - theta)^n at the entry). The vertical
+equilibrium is solved for all pairs at once by the Illinois (modified regula falsi) method in the
+variable ``q = (z / r)^(n + 1/2)``, in which the supported load is nearly linear (about ten
+iterations to a relative load error of 1e-10). A load that the wheel cannot carry before ``z = r``
+(theta_1 = 90 degrees) leaves the wheel stuck: the result says so (``stuck``, ``status``) and holds
+the forces at ``z = r``.
 
 References
 ----------
