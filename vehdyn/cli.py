@@ -107,7 +107,7 @@ def cmd_tire_soil(args) -> int:
     from .tire.terramechanics.curves import describe_soil, plot_soil_curves, soil_curves
 
     soil = load_soil(args.soil)
-    print(describe_soil(args.soil))
+    print(describe_soil(soil))
     from .report import make_folder
 
     out = make_folder(args.out)

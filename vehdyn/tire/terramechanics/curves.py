@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from .soil import Soil, load_soil, soil_source
+from .soil import Soil, load_soil, shipped_soils, soil_source
 from .wong_reece import RigidWheel, WheelSoilResult
 
 __all__ = ["soil_curves", "describe_soil", "plot_soil_curves"]
@@ -29,13 +29,10 @@ def soil_curves(soil: Soil | str, radius: float = DEFAULT_WHEEL[0], width: float
 def describe_soil(soil: Soil | str, radius: float = DEFAULT_WHEEL[0], width: float = DEFAULT_WHEEL[1],
                   load: float = DEFAULT_WHEEL[2]) -> str:
     """A text page: the soil's parameters (SI) and its curves at a few slips for the given wheel."""
-    name = soil if isinstance(soil, str) else soil.name
     soil = load_soil(soil) if isinstance(soil, str) else soil
     lines = [f"soil {soil.name}"]
-    try:
-        lines.append(f"  source: {soil_source(name)}")
-    except Exception:  # a user's soil: no shipped source
-        pass
+    if soil.name in shipped_soils() and load_soil(soil.name) == soil:
+        lines.append(f"  source: {soil_source(soil.name)}")
     lines += [f"  n = {soil.n:g} [-], k_c = {soil.k_c:g} [N/m^(n+1)], k_phi = {soil.k_phi:g} [N/m^(n+2)]",
               f"  c = {soil.cohesion:g} [Pa], phi = {math.degrees(soil.friction_angle):.4g} [deg], "
               f"K = {soil.shear_modulus:g} [m], density = {soil.density:g} [kg/m^3]",
