@@ -164,6 +164,7 @@ class RigidWheel(ParameterSet):
 
     Examples
     --------
+    >>> import numpy as np
     >>> from vehdyn.tire.terramechanics import RigidWheel, load_soil
     >>> wheel = RigidWheel(radius=0.3, width=0.2, soil=load_soil("dry_sand"))
     >>> r = wheel.solve(1500.0, np.linspace(0, 0.8, 100))
