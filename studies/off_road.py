@@ -107,19 +107,20 @@ def run(study: Study) -> None:
     fig, axes = new_figure(2, 2, width=10.0, height_per_row=2.6)
     rows = []
     rear_static = vehicle.mass.mass * G * vehicle.geometry.a / vehicle.wheelbase
-    for label, (front, rear) in surfaces.items():
+    for number, (label, (front, rear)) in enumerate(surfaces.items()):
+        color = f"C{number}"
         model = SingleTrack(vehicle, front, rear, wheel_spin=True, tire_lag=False)
         result = vehdyn.simulate(model, t, {"rear_drive_torque": torque}, x0=model.straight_running(1.0), method="LSODA",
                                  rtol=1e-5, atol=1e-7)
         ax_ = result["longitudinal_acceleration"]
         slip_ratio = result["rear_slip_ratio"]
-        axes[0, 0].plot(t, ax_, label=label)
-        axes[0, 1].plot(t, result["longitudinal_velocity"], label=label)
-        axes[1, 0].plot(t, slip_ratio / (1 + np.abs(slip_ratio)), label=label)
+        axes[0, 0].plot(t, ax_, color=color, label=label)
+        axes[0, 1].plot(t, result["longitudinal_velocity"], color=color, label=label)
+        axes[1, 0].plot(t, slip_ratio / (1 + np.abs(slip_ratio)), color=color, label=label)
         row = {"surface": label, "peak_a_x": float(np.max(ax_)), "final_speed": float(result["longitudinal_velocity"][-1])}
         if isinstance(rear, SoftSoilTire):
             state = rear.evaluate(0.5 * rear_static, slip_ratio)
-            axes[1, 1].plot(t, state.sinkage * 1e3, label=label)
+            axes[1, 1].plot(t, state.sinkage * 1e3, color=color, label=label)
             peak = rear.evaluate(0.5 * rear_static, np.linspace(0.0, 20.0, 201)).drawbar_pull.max()
             row.update(rear_sinkage_mm=float(state.sinkage[-1]) * 1e3, traction_limit_a_x=2 * peak / vehicle.mass.mass)
         rows.append(row)
