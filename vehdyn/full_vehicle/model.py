@@ -14,8 +14,10 @@ Modelling choices (where the full vehicle differs from the models below it)
 * The unsprung masses move with the body in its x-y plane, as points at the wheel centres, and
   vertically on their own (:mod:`~vehdyn.full_vehicle.body`): they roll and pitch with the body,
   where :class:`~vehdyn.handling.LateralYawRoll` keeps them in a non-rolling frame.
-* Tire slip is taken at the contact point (ground level below the wheel centre, rigid with the
-  body), so that a roll about a roll axis on the ground makes no slip.
+* The wheel carriers roll with the body (as between parallel wishbones: camber follows roll) but do
+  not pitch: the lateral slip velocity is the contact point's (ground level below the wheel centre,
+  rigid with the body in the y-z plane, so that a roll about a roll axis on the ground makes no
+  slip), the longitudinal one the wheel centre's against the tread speed omega R_e.
 * Suspension forces act along the body z axis, tire loads along the vertical; angles are small
   in the force projections of the unsprung masses (their vertical equation uses the tire load
   itself, not its body-z component).
@@ -157,7 +159,10 @@ class FullVehicle(Model):
     -----
     The state zero (with any speed set) is the static equilibrium at rest: spring preloads and tire
     deflections carry the static loads. The sprung CG sits where the total CG and the unsprung
-    masses (at the axles) put it, so that the static loads split exactly by the total CG.
+    masses (at the axles) put it, so that the static loads split exactly by the total CG, and the
+    unsprung masses (points at the "wheel centres") at the height h_u = (m h - m_s h_s) / m_u that
+    makes the total CG height the file's ``mass.cg_height`` (0.28 m for the shipped sedan; the
+    rolling radius is used for the tread speed only).
     Equations and modelling choices: module docstrings of :mod:`vehdyn.full_vehicle`.
     """
 
@@ -242,10 +247,13 @@ class FullVehicle(Model):
             raise ParameterError(f"mass.sprung_mass = {m.sprung_mass} kg with unsprung masses {m.unsprung_mass} kg "
                                  f"does not add up to mass.mass = {m.mass} kg (the full vehicle has no other mass)",
                                  key="mass.sprung_mass", value=m.sprung_mass)
-        if t.rolling_radius >= m.sprung_cg_height:
-            raise ParameterError(f"mass.sprung_cg_height = {m.sprung_cg_height} m must exceed the wheel centre "
-                                 f"height tires.rolling_radius = {t.rolling_radius} m", key="mass.sprung_cg_height",
-                                 value=m.sprung_cg_height)
+        # the unsprung masses sit at the height that makes the total CG height the file's
+        unsprung_height = (m.mass * m.cg_height - sprung * m.sprung_cg_height) / m.unsprung_mass
+        if not 0.0 < unsprung_height < m.sprung_cg_height:
+            raise ParameterError(f"mass.cg_height = {m.cg_height} m puts the unsprung masses at {unsprung_height:.4g} m "
+                                 f"(from m h = m_s h_s + m_u h_u), outside (0, mass.sprung_cg_height = "
+                                 f"{m.sprung_cg_height} m)", key="mass.cg_height", value=m.cg_height)
+        self.unsprung_cg_height = unsprung_height
         a, b = g.a, g.b
         x_s = (m.rear_unsprung_mass * b - m.front_unsprung_mass * a) / sprung  # sprung CG ahead of the total CG
         a_s, b_s = a - x_s, b + x_s
@@ -281,7 +289,7 @@ class FullVehicle(Model):
         v = self.vehicle
         m, g, s, t, a = v.mass, v.geometry, v.suspension, v.tires, v.aero
         h_s, radius = m.sprung_cg_height, t.rolling_radius
-        wheel_z = h_s - radius
+        wheel_z = h_s - self.unsprung_cg_height
         inertia = np.asarray(self.sprung_inertia, dtype=float)
         points = [(x, y, wheel_z) for x, y in zip(self.corner_x, self.corner_y)]
         projection = added_mass_projection(self.sprung_mass, inertia, self.unsprung_masses, points)
@@ -415,7 +423,9 @@ class FullVehicle(Model):
             Path radius of the sprung CG [m] (positive turning right); overrides
             ``lateral_acceleration`` (a_y = V^2 / R).
         longitudinal_acceleration : float
-            Ignored unless zero (steady states only); kept for symmetry with :meth:`braking`.
+            Quasi-steady straight braking (< 0) or driving (> 0) [m/s^2] of the total CG: attitude,
+            heights, slips and deflections steady, the velocities decreasing in proportion, the
+            torques split by the vehicle's ``driveline`` fractions (brake torques when braking).
         tol : float
             Largest derivative allowed, relative to g for accelerations and to the speed for
             velocities (every derivative except of x, y and yaw angle).
@@ -424,7 +434,8 @@ class FullVehicle(Model):
         -------
         x0, u0 : ndarray
             The state (x = y = yaw = 0) and inputs: ``front_steer_angle`` and the drive torques that
-            hold the speed (split by the vehicle's ``driveline.front_drive_fraction``).
+            hold the speed (split by the vehicle's ``driveline.front_drive_fraction``), or the brake
+            torques of a braking operating point.
 
         Raises
         ------
@@ -435,7 +446,7 @@ class FullVehicle(Model):
         from . import operating_points
 
         return operating_points.trim(self, speed, lateral_acceleration=lateral_acceleration, radius=radius,
-                                     tol=tol)
+                                     longitudinal_acceleration=longitudinal_acceleration, tol=tol)
 
     def __repr__(self) -> str:
         return (f"<FullVehicle of {self.vehicle.name!r}: tires {type(self.front_tire).__name__}/"

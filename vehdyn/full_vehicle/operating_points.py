@@ -44,7 +44,7 @@ def _residual_scales(model, speed):
     return np.array(scales)
 
 
-def trim(model, speed, *, lateral_acceleration=0.0, radius=None, tol=1e-9):
+def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_acceleration=0.0, tol=1e-9):
     """``(x0, u0)`` of steady running at ``speed`` (see :meth:`FullVehicle.trim`)."""
     from scipy.optimize import root
 
@@ -65,14 +65,29 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, tol=1e-9):
         raise ParameterError(f"lateral_acceleration = {lateral_acceleration} m/s^2 is not below the friction limit "
                              f"mu g = {mu_g:.4g} m/s^2: no steady turn", key="lateral_acceleration",
                              value=lateral_acceleration)
+    a_x = longitudinal_acceleration
+    if isinstance(a_x, bool) or not isinstance(a_x, (int, float)) or not np.isfinite(a_x) or abs(a_x) >= mu_g:
+        raise ParameterError(f"longitudinal_acceleration must be a finite number below mu g = {mu_g:.4g} m/s^2 in "
+                             f"size [m/s^2], got {a_x!r}", key="longitudinal_acceleration", value=a_x)
+    a_x = float(a_x)
+    if a_x != 0.0 and lateral_acceleration != 0.0:
+        raise ParameterError("trim takes a longitudinal or a lateral acceleration, not both", key="longitudinal_acceleration",
+                             value=a_x)
     heading_rate = float(lateral_acceleration) / speed
     cornering = heading_rate != 0.0
     v = model.vehicle
     names = model.state_names
     free = [j for j, n in enumerate(names) if n not in _FIXED]
     equations = free
-    front_fraction = v.driveline.front_drive_fraction
-    drive = [model.index(f"drive_torque{sfx}", "inputs") for sfx in CORNERS]
+    braking = a_x < 0.0
+    front_fraction = v.driveline.front_brake_fraction if braking else v.driveline.front_drive_fraction
+    kind = "brake_torque" if braking else "drive_torque"
+    drive = [model.index(f"{kind}{sfx}", "inputs") for sfx in CORNERS]
+    # quasi-steady states that scale with the speed: their rates follow the deceleration
+    scaling = [j for j in equations if names[j] in ("lateral_velocity", "vertical_velocity")
+               or names[j].startswith("wheel_speed")]
+    ax_output = model.index("longitudinal_acceleration", "outputs")
+    lon = model.index("longitudinal_velocity")
     steer = model.index("front_steer_angle", "inputs")
     yaw = model.index("yaw_angle")
     scales = _residual_scales(model, speed)[equations]
@@ -83,7 +98,7 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, tol=1e-9):
     for sfx in CORNERS:
         x0[model.index(f"wheel_speed{sfx}")] = speed / re
     drag = 0.5 * v.aero.air_density * v.aero.drag_coefficient * v.aero.frontal_area * speed**2
-    torque0 = drag * re
+    torque0 = abs(drag + v.mass.mass * a_x) * re
     L = v.wheelbase
     delta0 = 0.0
     if cornering:
@@ -113,6 +128,10 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, tol=1e-9):
     def residual(z):
         x, u = unpack(z)
         d = model.rhs(0.0, x, u)
+        if a_x != 0.0:
+            d = d.copy()
+            d[scaling] -= x[scaling] * d[lon] / x[lon]
+            d[lon] = model.output(0.0, x, u)[ax_output] - a_x
         out = list(d[equations] / scales)
         u_, v_ = x[model.index("longitudinal_velocity")], x[model.index("lateral_velocity")]
         out.append((np.hypot(u_, v_) - speed) / max(speed, 1.0))
