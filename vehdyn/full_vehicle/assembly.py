@@ -142,11 +142,10 @@ def evaluate(xp, laws, k, s, i):
     for c in range(4):
         x_c, y_c = k.corner_x[c], k.corner_y[c]
         load = corner.normal_load(xp, k, c, wheel[c], wheel_rate[c], road[c], road_rate[c])
-        # velocity of the tire in body axes, then in wheel axes: longitudinally the wheel centre's
-        # (the wheel carrier translates, it does not pitch), laterally the contact point's (the
-        # carrier rolls with the body, as between parallel wishbones)
+        # contact-point velocity in body axes (the wheel carrier keeps the body's orientation), then
+        # in wheel axes
         h = k.contact_z
-        vcx, vcy = u + q * k.wheel_z - r * y_c, v + r * x_c - p * h
+        vcx, vcy = u + q * h - r * y_c, v + r * x_c - p * h
         cd, sd = xp.cos(steer[c]), xp.sin(steer[c])
         vx, vy = vcx * cd + vcy * sd, -vcx * sd + vcy * cd
         fx, fy, alpha, kappa = st.axle_forces(

@@ -14,10 +14,12 @@ Modelling choices (where the full vehicle differs from the models below it)
 * The unsprung masses move with the body in its x-y plane, as points at the wheel centres, and
   vertically on their own (:mod:`~vehdyn.full_vehicle.body`): they roll and pitch with the body,
   where :class:`~vehdyn.handling.LateralYawRoll` keeps them in a non-rolling frame.
-* The wheel carriers roll with the body (as between parallel wishbones: camber follows roll) but do
-  not pitch: the lateral slip velocity is the contact point's (ground level below the wheel centre,
-  rigid with the body in the y-z plane, so that a roll about a roll axis on the ground makes no
-  slip), the longitudinal one the wheel centre's against the tread speed omega R_e.
+* Each wheel carrier slides along the body z axis and keeps the body's orientation (camber follows
+  roll, as between parallel wishbones). Tire slip is taken at the contact point (ground level below
+  the wheel centre, rigid with the body but for the travel), so that a roll about a roll axis on
+  the ground makes no slip; ``wheel_speed`` is the spin relative to the carrier (the tread speed
+  omega R_e), and the spin inertia's share of the body's pitch acceleration, I_w dq/dt, is
+  neglected (I_w / (m_s h_s^2) ~ 0.5 %).
 * Suspension forces act along the body z axis, tire loads along the vertical; angles are small
   in the force projections of the unsprung masses (their vertical equation uses the tire load
   itself, not its body-z component).
@@ -418,7 +420,8 @@ class FullVehicle(Model):
         speed : float
             Speed of the sprung CG in the body's x-y plane [m/s], > 0.
         lateral_acceleration : float
-            Steady lateral acceleration [m/s^2] (SAE: positive turning right); or give ``radius``.
+            Steady lateral acceleration [m/s^2] of the total CG in the intermediate axes (the output
+            ``lateral_acceleration``; SAE: positive turning right); or give ``radius``.
         radius : float, optional
             Path radius of the sprung CG [m] (positive turning right); overrides
             ``lateral_acceleration`` (a_y = V^2 / R).

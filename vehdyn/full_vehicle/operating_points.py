@@ -10,6 +10,9 @@ steer angle. The body rates of a steady turn are the body components of the head
 
 Solved by :func:`scipy.optimize.root` (Powell's hybrid method) on residuals scaled to be O(1),
 from a start built from the closed forms (static equilibrium, free rolling, bicycle steer).
+With ``lateral_acceleration`` the condition is on the output ``lateral_acceleration`` (the total
+CG's, in the intermediate axes, as handling tests report it); with ``radius`` on the heading rate
+V / R of the sprung CG's path.
 """
 
 from __future__ import annotations
@@ -87,6 +90,7 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
     scaling = [j for j in equations if names[j] in ("lateral_velocity", "vertical_velocity")
                or names[j].startswith("wheel_speed")]
     ax_output = model.index("longitudinal_acceleration", "outputs")
+    ay_output = model.index("lateral_acceleration", "outputs")
     lon = model.index("longitudinal_velocity")
     steer = model.index("front_steer_angle", "inputs")
     yaw = model.index("yaw_angle")
@@ -135,8 +139,12 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
         out = list(d[equations] / scales)
         u_, v_ = x[model.index("longitudinal_velocity")], x[model.index("lateral_velocity")]
         out.append((np.hypot(u_, v_) - speed) / max(speed, 1.0))
-        # heading rate from the Euler-angle rates (the yaw angle's derivative)
-        out.append((d[yaw] - heading_rate) / max(speed, 1.0) if cornering else z[-1])
+        if not cornering:
+            out.append(z[-1])  # no steer
+        elif radius is not None:  # the heading turns at V / R
+            out.append((d[yaw] - heading_rate) / max(speed, 1.0))
+        else:  # the lateral acceleration of the total CG (intermediate axes) is the requested one
+            out.append((model.output(0.0, x, u)[ay_output] - lateral_acceleration) / model.gravity)
         return np.array(out)
 
     solution = root(residual, z0, method="hybr", options={"xtol": 1e-14, "maxfev": 20000})
