@@ -177,3 +177,63 @@ def test_magic_formula_step_steer_is_finite_and_sensible(sedan):
     loads = {s: result[f"normal_load{s}"][-1] for s in CORNERS}
     assert loads["_front_left"] > loads["_front_right"] and loads["_rear_left"] > loads["_rear_right"]
     assert np.all(np.array([result[f"normal_load{s}"] for s in CORNERS]) >= 0)
+
+
+def test_road_profile_adds_to_the_road_inputs(sedan, linear_tires):
+    """A RoadProfile is sampled under each contact point: a 5 cm plateau under the front axle equals
+    the same displacement given as inputs."""
+    from vehdyn.ride.road import RoadProfile
+
+    front_x = sedan.geometry.sprung_cg_to_front_axle
+    distance = np.linspace(-10.0, 10.0, 2001)
+    profile = RoadProfile(distance, np.where(distance > 0.5 * front_x, 0.05, 0.0))
+    with_road = FullVehicle(sedan, *linear_tires(sedan), road=profile)
+    flat = FullVehicle(sedan, *linear_tires(sedan))
+    x = flat.state_vector(longitudinal_velocity=10.0,
+                          **{f"wheel_speed{s}": 10.0 / sedan.tires.rolling_radius for s in CORNERS})
+    u = flat.input_vector(road_displacement_front_left=0.05, road_displacement_front_right=0.05)
+    np.testing.assert_allclose(with_road.rhs(0.0, x, with_road.input_vector()), flat.rhs(0.0, x, u), rtol=1e-12,
+                               atol=1e-12)
+
+    def ramp(X, Y):  # a 1 % upward slope along X: road velocity = 0.01 * dX/dt under every wheel
+        return 0.01 * X, 0.01 + 0.0 * X, 0.0 * X
+
+    sloped = FullVehicle(sedan, *linear_tires(sedan), road=ramp)
+    y = dict(zip(sloped.output_names, sloped.output(0.0, x, sloped.input_vector())))
+    y0 = dict(zip(flat.output_names, flat.output(0.0, x, flat.input_vector(
+        **{f"road_displacement{s}": 0.01 * X for s, X in zip(CORNERS, with_road.corner_x)},
+        **{f"road_velocity{s}": 0.1 for s in CORNERS}))))
+    for s in CORNERS:
+        assert y[f"normal_load{s}"] == pytest.approx(y0[f"normal_load{s}"], rel=1e-12)
+
+
+def test_lateral_wind_pushes_the_vehicle_downwind(sedan, linear_tires):
+    vehicle = sedan.replace(aero__lateral_drag_coefficient=1.0)
+    model = FullVehicle(vehicle, *linear_tires(vehicle))
+    x = model.state_vector(longitudinal_velocity=20.0)
+    j = model.index("lateral_velocity")
+    a = model.rhs(0.0, x, model.input_vector(wind_velocity_lateral=10.0))[j]
+    # side force 0.5 rho c_y A |V_a| (v_w - v), V_a = (20, -10), over the total mass in body y
+    a_expected = 0.5 * vehicle.aero.air_density * vehicle.aero.frontal_area * np.hypot(20.0, 10.0) * 10.0
+    assert a > 0
+    assert a == pytest.approx(a_expected / vehicle.mass.mass, rel=0.01)  # the unsprung masses ride along in y
+    assert model.rhs(0.0, x, model.input_vector())[j] == 0.0
+
+
+def test_camber_follows_roll_and_travel(sedan, linear_tires):
+    gain = -0.5  # [rad/m]: bump travel tilts the wheel top inwards
+    vehicle = sedan.replace(suspension__front_camber_gain=gain, suspension__rear_camber_gain=gain)
+    model = FullVehicle(vehicle, *linear_tires(vehicle))
+    x = model.state_vector(roll_angle=0.02)
+    y = dict(zip(model.output_names, model.output(0.0, x, model.input_vector())))
+    for s, side in zip(CORNERS, (-1.0, 1.0, -1.0, 1.0)):
+        travel = y[f"suspension_travel{s}"]
+        # rotation about x: the roll itself, plus the outward camber change of the bump travel -travel
+        assert y[f"camber_angle{s}"] == pytest.approx(0.02 + side * gain * (-travel), rel=1e-12)
+    # roll 0.02 right side down: the right wheel in bump leans in, the left in rebound leans out, so
+    # both lean less than the body (the purpose of camber gain), by the same amount
+    assert 0.0 < y["camber_angle_front_right"] < 0.02
+    assert y["camber_angle_front_left"] == pytest.approx(y["camber_angle_front_right"], rel=1e-9)
+    upright = FullVehicle(sedan, *linear_tires(sedan))
+    y = dict(zip(upright.output_names, upright.output(0.0, x, upright.input_vector())))
+    assert all(y[f"camber_angle{s}"] == 0.0 for s in CORNERS)
