@@ -32,7 +32,8 @@ import dataclasses
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, SimulationError
+from ..handling.single_track import _stack
 from ..model import Model
 from ..params import Vehicle
 from ..signals import Signal
@@ -167,6 +168,12 @@ class FullVehicle(Model):
     rolling radius is used for the tread speed only).
     Equations and modelling choices: module docstrings of :mod:`vehdyn.full_vehicle`.
     """
+
+    #: Where the equations hold: the body's force projections are those of small roll and pitch angles
+    #: (every angle enters through exact rotations, the suspension and tire forces through their
+    #: body-axis components). Past these bounds the vehicle is rolling or pitching over; :meth:`rhs`
+    #: raises :class:`~vehdyn.SimulationError` naming the state and the time. [rad]
+    domain = {"roll_angle": (-np.pi / 4, np.pi / 4), "pitch_angle": (-np.pi / 4, np.pi / 4)}
 
     def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, tire_lag: bool = True, road=None,
                  longitudinal_relaxation_length=None, low_speed_damping_speed: float = 2.0,
@@ -390,10 +397,28 @@ class FullVehicle(Model):
         return states, assembly.evaluate(assembly.NUMPY, self, self._k, states, inputs)
 
     def rhs(self, t, x, u):
-        """State derivatives (equations in the module docstrings)."""
+        """State derivatives (equations in the module docstrings).
+
+        Raises
+        ------
+        SimulationError
+            When the roll or pitch angle leaves :attr:`domain` (the vehicle rolls or pitches over).
+        """
+        self._check_domain(t, x)
         states, e = self._evaluate(x, u)
         rates = assembly.derivatives(states, e)
         return _stack([rates[j] for j in self._state_order])
+
+    def _check_domain(self, t, x):
+        for name, (low, high) in self.domain.items():
+            value = np.asarray(x[self._state_index[assembly.STATES.index(name)]])
+            outside = ~((value >= low) & (value <= high))
+            if np.any(outside):
+                bad = float(value.flat[int(np.argmax(outside))])
+                raise SimulationError(
+                    f"{name} = {bad:.4g} rad at t = {float(t):.6g} s leaves the full vehicle's domain "
+                    f"[{low:.4g}, {high:.4g}] rad: the vehicle is {'rolling' if name == 'roll_angle' else 'pitching'} "
+                    "over", time=float(t), signal=name)
 
     def output(self, t, x, u):
         """Outputs (see :attr:`outputs`)."""
@@ -451,14 +476,23 @@ class FullVehicle(Model):
         return operating_points.trim(self, speed, lateral_acceleration=lateral_acceleration, radius=radius,
                                      longitudinal_acceleration=longitudinal_acceleration, tol=tol)
 
+    @staticmethod
+    def wheel_lift(result) -> dict[str, list[tuple[float, float]]]:
+        """The intervals [s] during which each wheel carried no load in a simulation ``result``.
+
+        Returns ``{"front_left": [(t_start, t_end), ...], ...}`` from the ``normal_load_*`` outputs
+        (a wheel is off the ground where its load is exactly 0, the model's lift-off); empty lists
+        for wheels that never lifted.
+        """
+        time = np.asarray(result.time)
+        out = {}
+        for sfx in CORNERS:
+            lifted = np.asarray(result[f"normal_load{sfx}"]) <= 0.0
+            edges = np.flatnonzero(np.diff(np.concatenate([[False], lifted, [False]]).astype(int)))
+            out[sfx[1:]] = [(float(time[a]), float(time[b - 1])) for a, b in zip(edges[::2], edges[1::2])]
+        return out
+
     def __repr__(self) -> str:
         return (f"<FullVehicle of {self.vehicle.name!r}: tires {type(self.front_tire).__name__}/"
                 f"{type(self.rear_tire).__name__}, tire_lag={self.tire_lag}, {self.n_states} states>")
 
-
-def _stack(rows) -> np.ndarray:
-    """Rows of scalars or arrays as one array with the batch axis last."""
-    if all(np.ndim(row) == 0 for row in rows):
-        return np.array(rows, dtype=float)
-    shape = np.broadcast_shapes(*(np.shape(row) for row in rows))
-    return np.stack([np.broadcast_to(row, shape) for row in rows])
