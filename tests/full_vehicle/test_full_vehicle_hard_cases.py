@@ -88,3 +88,58 @@ def test_braking_to_standstill_and_starting_in_reverse():
     # decelerating at about 0.5 g while braking at speed
     k = np.searchsorted(t, 1.5)
     assert result["longitudinal_acceleration"][k] == pytest.approx(-4.9, rel=0.1)
+
+
+def test_split_mu_braking_yaws_towards_the_high_friction_side():
+    """mu 0.9 under the left wheels, 0.2 under the right (SAE: Y > 0 is right of the start heading):
+    equal brake torques stop the left wheels harder, the vehicle yaws left (negative yaw rate, SAE)."""
+    vehicle = vehdyn.load_vehicle("sedan")
+    mu = vehicle.tires.friction_coefficient
+
+    def friction(X, Y):
+        return np.where(Y > 0.0, 0.2, 0.9) / mu
+
+    model = FullVehicle(vehicle, friction=friction)
+    x0, u0 = model.trim(20.0)
+    brake = {f"brake_torque{s}": (900.0 if "front" in s else 450.0) for s in CORNERS}
+    t = np.linspace(0.0, 1.0, 101)
+    result = vehdyn.simulate(model, t, brake, x0=x0, method="RK45", rtol=1e-6, atol=1e-8)
+    assert np.all(np.isfinite(result.states))
+    assert result["yaw_rate"][-1] < -0.05  # turning left
+    # the low-friction wheels lock up first and their braking forces are the smaller
+    assert result["slip_ratio_front_right"][20] < result["slip_ratio_front_left"][20] < 0
+    assert abs(result["longitudinal_force_front_right"][20]) < 0.35 * abs(result["longitudinal_force_front_left"][20])
+
+
+def test_pothole_at_30_m_s_under_one_wheel():
+    """A 10 cm deep, 0.5 m long pothole (cosine edges of 5 cm) under the right wheels at 30 m/s: the
+    right front wheel leaves the road and lands, the run stays finite, loads never negative."""
+    vehicle = vehdyn.load_vehicle("sedan")
+    start, length, edge, depth = 10.0, 0.5, 0.05, 0.1
+
+    def window(X):
+        a = np.clip((X - start) / edge, 0.0, 1.0)
+        b = np.clip((start + length - X) / edge, 0.0, 1.0)
+        da = np.where((X > start) & (X < start + edge), 1.0 / edge, 0.0)
+        db = np.where((X > start + length - edge) & (X < start + length), -1.0 / edge, 0.0)
+        sa, sb = 0.5 - 0.5 * np.cos(np.pi * a), 0.5 - 0.5 * np.cos(np.pi * b)
+        return sa * sb, (0.5 * np.pi * np.sin(np.pi * a) * da * sb + sa * 0.5 * np.pi * np.sin(np.pi * b) * db)
+
+    def road(X, Y):
+        w, dw = window(np.asarray(X, dtype=float))
+        right = np.where(np.asarray(Y) > 0.0, 1.0, 0.0)
+        return -depth * w * right, -depth * dw * right, 0.0 * w
+
+    model = FullVehicle(vehicle, road=road)
+    x0, u0 = model.trim(30.0)
+    t = np.linspace(0.0, 0.8, 801)
+    # max_step below the 17 ms the hole lasts: an adaptive solver cruising on the smooth road would
+    # otherwise step across it
+    result = vehdyn.simulate(model, t, dict(zip(model.input_names, u0)), x0=x0, method="RK45", rtol=1e-6,
+                             atol=1e-8, max_step=2e-3)
+    assert np.all(np.isfinite(result.states))
+    loads = np.array([result[f"normal_load{s}"] for s in CORNERS])
+    assert np.all(loads >= 0.0)
+    assert model.wheel_lift(result)["front_right"]  # the wheel flies over (part of) the hole
+    assert not model.wheel_lift(result)["front_left"]
+    assert np.max(loads[1]) > 1.5 * loads[1, 0]  # and lands hard (1.7 times its static load)

@@ -13,8 +13,8 @@ functions are reused here unchanged. Besides arithmetic the equations call ``xp.
     3-tuples in, (velocity rate, angular acceleration) out (numpy:
     :func:`vehdyn.mechanics.newton_euler.accelerations`);
 ``xp.axle_tire_forces(tires, corner, fz, kappa, alpha, vx)``
-    the ISO-W (fx, fy) of one corner's tire; ``tires`` is ``(laws, camber)`` with ``camber`` the
-    four inclination angles of this evaluation (numpy: ``laws.corner_law_forces``).
+    the ISO-W (fx, fy) of one corner's tire; ``tires`` is ``(laws, camber, friction)`` with the four
+    inclination angles and road friction ratios of this evaluation (numpy: ``laws.corner_law_forces``).
 
 Signals travel in the fixed orders :data:`STATES` and :data:`INPUTS`; a model's vectors hold a
 subset (without tire lag, no deflection states), mapped through an index (-1: absent, 0.0).
@@ -103,8 +103,8 @@ class NUMPY(st.NUMPY):
 
     @staticmethod
     def axle_tire_forces(tires, corner, fz, kappa, alpha, vx):
-        laws, camber = tires
-        return laws.corner_law_forces(corner, fz, kappa, alpha, camber[corner], vx)
+        laws, camber, friction = tires
+        return laws.corner_law_forces(corner, fz, kappa, alpha, camber[corner], vx, friction[corner])
 
 
 def gather(values, index):
@@ -112,9 +112,10 @@ def gather(values, index):
     return [values[i] if i >= 0 else 0.0 * values[0] for i in index]
 
 
-def evaluate(xp, laws, k, s, i):
+def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
     """An :class:`Evaluation` at states ``s`` and inputs ``i`` (sequences in the orders of :data:`STATES`,
-    :data:`INPUTS`); ``laws`` the tire laws (see ``xp.axle_tire_forces``)."""
+    :data:`INPUTS`); ``laws`` the tire laws (see ``xp.axle_tire_forces``), ``friction`` the road's
+    friction under each corner relative to the tire law's own (1: the law as it is)."""
     u, v, w, p, q, r, roll, pitch, yaw, _x, _y, z = s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], \
         s[10], s[11]
     omega, wheel, wheel_rate, lateral_deflection, longitudinal_deflection = s[12:16], s[16:20], s[20:24], \
@@ -133,7 +134,7 @@ def evaluate(xp, laws, k, s, i):
     spring = corner.suspension_forces(k, travel, travel_rate)
     steer = steering.corner_steer_angles(xp, k, i[0], i[1], roll)
     camber = [corner.camber(k, c, roll, travel[c]) for c in range(4)]
-    tires = (laws, camber)
+    tires = (laws, camber, friction)
 
     fx_body, fy_body, moment_x, moment_y, moment_z = 0.0 * u, 0.0 * u, 0.0 * u, 0.0 * u, 0.0 * u
     fz_body = 0.0 * u
@@ -150,8 +151,8 @@ def evaluate(xp, laws, k, s, i):
         vx, vy = vcx * cd + vcy * sd, -vcx * sd + vcy * cd
         fx, fy, alpha, kappa = st.axle_forces(
             xp, tires, c, k, load, vx, vy, omega[c], lateral_deflection[c], longitudinal_deflection[c],
-            k.lateral_relaxation_length[c], k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c],
-            k.peak_tan_slip_angle[c], 0.0 * u)
+            k.lateral_relaxation_length[c], k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction[c],
+            k.peak_tan_slip_angle[c] * friction[c], 0.0 * u)
         tx, ty = fx * cd - fy * sd, fx * sd + fy * cd
         # force the contact passes to the body (x, y) and the linkage's vertical force on the body
         link_x, link_y = tx - load * R20, ty - load * R21
@@ -176,10 +177,10 @@ def evaluate(xp, laws, k, s, i):
         wheel_acc.append(driveline.wheel_acceleration(xp, k, omega[c], drive[c], brake[c], fx))
         if k.tire_lag:
             lat_rate.append(st.deflection_rate(xp, vy, vx, lateral_deflection[c], k.lateral_relaxation_length[c],
-                                               k.peak_tan_slip_angle[c]))
+                                               k.peak_tan_slip_angle[c] * friction[c]))
             lon_rate.append(st.deflection_rate(xp, -(vx - omega[c] * k.rolling_radius), vx,
                                                longitudinal_deflection[c], k.longitudinal_relaxation_length[c],
-                                               k.peak_slip_ratio[c]))
+                                               k.peak_slip_ratio[c] * friction[c]))
         else:
             lat_rate.append(0.0 * u)
             lon_rate.append(0.0 * u)

@@ -133,6 +133,11 @@ class FullVehicle(Model):
         same for both tracks) or a callable ``road(X, Y) -> (elevation, slope_X, slope_Y)`` of
         arrays [m, -, -]. Its elevation and rate are added to the ``road_displacement_*``,
         ``road_velocity_*`` inputs. Default: flat.
+    friction : callable, optional
+        ``friction(X, Y) -> ratio`` [-]: the road's friction at earth positions (arrays) relative to
+        the tire law's own (1 everywhere by default; e.g. 0.2 / 0.9 on the right half of a split-mu
+        road for a law with mu = 0.9), applied to each tire by similarity (see
+        :meth:`corner_law_forces`).
     longitudinal_relaxation_length : float or (float, float), optional
         As :class:`~vehdyn.handling.SingleTrack` (default from the Magic Formula, else the lateral).
     low_speed_damping_speed, brake_regularization_speed : float
@@ -172,11 +177,13 @@ class FullVehicle(Model):
     #: Where the equations hold: the body's force projections are those of small roll and pitch angles
     #: (every angle enters through exact rotations, the suspension and tire forces through their
     #: body-axis components). Past these bounds the vehicle is rolling or pitching over; :meth:`rhs`
-    #: raises :class:`~vehdyn.SimulationError` naming the state and the time. [rad]
+    #: raises :class:`~vehdyn.SimulationError` naming the state and the time. [rad] (An adaptive
+    #: solver's trial stage can also land there when its step is far too long for a sudden input,
+    #: e.g. a pothole on an otherwise smooth road: give ``max_step`` below the shortest road feature.)
     domain = {"roll_angle": (-np.pi / 4, np.pi / 4), "pitch_angle": (-np.pi / 4, np.pi / 4)}
 
     def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, tire_lag: bool = True, road=None,
-                 longitudinal_relaxation_length=None, low_speed_damping_speed: float = 2.0,
+                 friction=None, longitudinal_relaxation_length=None, low_speed_damping_speed: float = 2.0,
                  brake_regularization_speed: float = 1.0, gravity: float = GRAVITY):
         if not isinstance(vehicle, Vehicle):
             raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
@@ -191,6 +198,10 @@ class FullVehicle(Model):
         self.low_speed_damping_speed = float(low_speed_damping_speed)
         self.brake_regularization_speed = float(brake_regularization_speed)
         self.road = self._check_road(road)
+        if friction is not None and not callable(friction):
+            raise ParameterError(f"friction must be None or a callable friction(X, Y) -> ratio, got "
+                                 f"{type(friction).__name__}", key="friction", value=friction)
+        self.friction = friction
         self._geometry(vehicle)
         from ..handling.single_track import SingleTrack
         from ..tire import tire_for_vehicle
@@ -348,8 +359,12 @@ class FullVehicle(Model):
         self._state_order = [assembly.STATES.index(n) for n in self.state_names]
 
     # ------------------------------------------------------------------ tire laws
-    def corner_law_forces(self, corner, fz, kappa, alpha, gamma, vx):
+    def corner_law_forces(self, corner, fz, kappa, alpha, gamma, vx, friction=1.0):
         """ISO-W (fx, fy) [N] of ``corner``'s tire (0 FL, 1 FR, 2 RL, 3 RR) from ISO-W slips.
+
+        ``friction`` is the road's friction relative to the law's own, applied by similarity
+        (Pacejka 2012, sec. 4.3.2): F(kappa, tan alpha) -> mu F(kappa / mu, tan(alpha) / mu), which
+        keeps the slip stiffnesses and scales the peak forces and the slips at which they occur.
 
         A left tire is the mirror image of the law's tire when the law makes a lateral force at zero
         slip (ply-steer, conicity; see :meth:`vehdyn.handling.SingleTrack.axle_law_forces`): it is
@@ -359,27 +374,23 @@ class FullVehicle(Model):
         axle = corner // 2
         tire = self.front_tire if axle == 0 else self.rear_tire
         mirror = self._mirrored[axle] and corner % 2 == 0
+        scaled = not (np.ndim(friction) == 0 and friction == 1.0)
+        if scaled:
+            kappa, alpha = kappa / friction, np.arctan(np.tan(alpha) / friction)
         args = (fz, kappa, -alpha if mirror else alpha, -gamma if mirror else gamma, vx)
         if all(np.ndim(a) == 0 for a in args):
             args = tuple(float(a) for a in args)
         f = tire.forces(*args)
-        return f.fx, (-f.fy if mirror else f.fy)
+        fx, fy = f.fx, (-f.fy if mirror else f.fy)
+        return (friction * fx, friction * fy) if scaled else (fx, fy)
 
     # ------------------------------------------------------------------ the contract
     def _inputs_with_road(self, x, u):
         if self.road is None:
             return u
         u = np.array(u, dtype=float, copy=True)
-        s = assembly.gather(x, self._state_index)
-        R = assembly.NUMPY.rotation_body_to_earth(s[6], s[7], s[8])
-        for c in range(4):
-            # ground point below the wheel: earth X, Y of the body point (x_c, y_c, h_s) and its velocity
-            xc, yc, zc = self.corner_x[c], self.corner_y[c], self._k.contact_z
-            X = s[9] + R[0][0] * xc + R[0][1] * yc + R[0][2] * zc
-            Y = s[10] + R[1][0] * xc + R[1][1] * yc + R[1][2] * zc
-            vx, vy, vz = s[0] + s[4] * zc - s[5] * yc, s[1] + s[5] * xc - s[3] * zc, s[2] + s[3] * yc - s[4] * xc
-            VX = R[0][0] * vx + R[0][1] * vy + R[0][2] * vz
-            VY = R[1][0] * vx + R[1][1] * vy + R[1][2] * vz
+        # ground points below the wheels: earth X, Y of the body points (x_c, y_c, h_s), their velocity
+        for c, (X, Y, VX, VY) in enumerate(self._ground_points(assembly.gather(x, self._state_index))):
             if callable(self.road):
                 elevation, slope_x, slope_y = self.road(X, Y)
             else:
@@ -389,12 +400,31 @@ class FullVehicle(Model):
             u[14 + c] = u[14 + c] + slope_x * VX + slope_y * VY
         return u
 
+    def _ground_points(self, states):
+        """Earth (X, Y) of the four contact points and their earth velocities (VX, VY)."""
+        s = states
+        R = assembly.NUMPY.rotation_body_to_earth(s[6], s[7], s[8])
+        out = []
+        for c in range(4):
+            xc, yc, zc = self.corner_x[c], self.corner_y[c], self._k.contact_z
+            X = s[9] + R[0][0] * xc + R[0][1] * yc + R[0][2] * zc
+            Y = s[10] + R[1][0] * xc + R[1][1] * yc + R[1][2] * zc
+            vx, vy, vz = s[0] + s[4] * zc - s[5] * yc, s[1] + s[5] * xc - s[3] * zc, s[2] + s[3] * yc - s[4] * xc
+            out.append((X, Y, R[0][0] * vx + R[0][1] * vy + R[0][2] * vz, R[1][0] * vx + R[1][1] * vy + R[1][2] * vz))
+        return out
+
     def _evaluate(self, x, u):
         x = np.asarray(x, dtype=float)
         u = self._inputs_with_road(x, np.asarray(u, dtype=float))
         states = assembly.gather(x, self._state_index)
         inputs = list(u)
-        return states, assembly.evaluate(assembly.NUMPY, self, self._k, states, inputs)
+        friction = (1.0, 1.0, 1.0, 1.0)
+        if self.friction is not None:
+            friction = [np.asarray(self.friction(X, Y), dtype=float) for X, Y, _, _ in self._ground_points(states)]
+            if not all(np.all(f > 0) for f in friction):
+                raise ParameterError("friction(X, Y) must be > 0 under every wheel", key="friction",
+                                     value=[float(np.min(f)) for f in friction])
+        return states, assembly.evaluate(assembly.NUMPY, self, self._k, states, inputs, friction)
 
     def rhs(self, t, x, u):
         """State derivatives (equations in the module docstrings).
