@@ -28,7 +28,6 @@ Modelling choices (where the full vehicle differs from the models below it)
 
 from __future__ import annotations
 
-import dataclasses
 
 import numpy as np
 
@@ -72,17 +71,6 @@ _INPUT_SIGNALS = {
     "road_velocity": ("m/s", "rate of change of the road elevation under the wheel"),
     "wind_velocity_lateral": ("m/s", "wind velocity over ground along the vehicle's y axis (SAE, to the right)"),
 }
-
-
-def _require(vehicle, path):
-    """``vehicle``'s parameter at dotted ``path``; ParameterError naming it when missing (None)."""
-    value = vehicle
-    for part in path.split("."):
-        value = getattr(value, part, None)
-    if value is None:
-        raise ParameterError(f"the full vehicle needs {path} and the vehicle {getattr(vehicle, 'name', '?')!r} does "
-                             "not give it", key=path, value=None)
-    return value
 
 
 def check_combined_slip(tire, load, name):
@@ -250,12 +238,7 @@ class FullVehicle(Model):
                              f"slope_X, slope_Y), got {type(road).__name__}", key="road", value=road)
 
     def _geometry(self, vehicle):
-        """Corner positions, static loads, sprung inertia; ParameterError naming what is missing."""
-        for path in ("mass.sprung_mass", "mass.sprung_roll_inertia", "mass.sprung_pitch_inertia",
-                     "mass.sprung_cg_height", "geometry.front_track", "geometry.rear_track",
-                     "suspension.front_spring_rate", "suspension.rear_spring_rate", "tires.vertical_stiffness",
-                     "tires.rolling_radius", "tires.wheel_spin_inertia"):
-            _require(vehicle, path)
+        """Corner positions, static loads, sprung inertia; ParameterError naming what does not fit."""
         m, g, s, t = vehicle.mass, vehicle.geometry, vehicle.suspension, vehicle.tires
         unsprung = (0.5 * m.front_unsprung_mass,) * 2 + (0.5 * m.rear_unsprung_mass,) * 2
         if min(unsprung) <= 0:
@@ -270,7 +253,8 @@ class FullVehicle(Model):
         # the unsprung masses sit at the height that makes the total CG height the file's
         unsprung_height = (m.mass * m.cg_height - sprung * m.sprung_cg_height) / m.unsprung_mass
         if not 0.0 < unsprung_height < m.sprung_cg_height:
-            raise ParameterError(f"mass.cg_height = {m.cg_height} m puts the unsprung masses at {unsprung_height:.4g} m "
+            raise ParameterError(f"mass.cg_height = {m.cg_height} m puts the unsprung masses at "
+                                 f"{unsprung_height:.4g} m "
                                  f"(from m h = m_s h_s + m_u h_u), outside (0, mass.sprung_cg_height = "
                                  f"{m.sprung_cg_height} m)", key="mass.cg_height", value=m.cg_height)
         self.unsprung_cg_height = unsprung_height

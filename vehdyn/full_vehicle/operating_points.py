@@ -74,8 +74,8 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
                              f"size [m/s^2], got {a_x!r}", key="longitudinal_acceleration", value=a_x)
     a_x = float(a_x)
     if a_x != 0.0 and lateral_acceleration != 0.0:
-        raise ParameterError("trim takes a longitudinal or a lateral acceleration, not both", key="longitudinal_acceleration",
-                             value=a_x)
+        raise ParameterError("trim takes a longitudinal or a lateral acceleration, not both",
+                             key="longitudinal_acceleration", value=a_x)
     heading_rate = float(lateral_acceleration) / speed
     cornering = heading_rate != 0.0
     v = model.vehicle
