@@ -8,6 +8,7 @@ transfer leaves an axle's cornering stiffness unchanged), no tire lag, operating
 import numpy as np
 import pytest
 
+from vehdyn import ParameterError
 from vehdyn.full_vehicle import CORNERS, FullVehicle
 from vehdyn.handling import LateralYawRoll, LinearBicycle
 from vehdyn.ride import FullCar
@@ -204,3 +205,29 @@ def test_straight_braking_load_transfer_and_pitch(sedan, linear_tires, anti_dive
     rear = delta["_rear_left"] / s.rear_spring_rate + delta["_rear_left"] / kt
     expected = (rear - front) / L
     assert y["pitch_angle"] == pytest.approx(expected, rel=0.01)
+
+
+def test_magic_formula_handling_diagram_reaches_a_lower_limit_than_the_single_track(sedan):
+    """Magic Formula tires at 20 m/s: at small a_y the full vehicle steers as the nonlinear single
+    track (wheel spin, the same tires, no load transfer between sides); towards the limit the
+    lateral load transfer lowers each axle's peak force (the law's force grows less than in
+    proportion to the load), so the full vehicle needs more steer and its steady states end at a
+    lower lateral acceleration."""
+    from vehdyn.handling import SingleTrack
+    from vehdyn.handling.nonlinear_steady_state import limit_lateral_acceleration, steady_state_cornering
+
+    single = SingleTrack(sedan, wheel_spin=True)
+    full = FullVehicle(sedan)
+    previous, last, steer = None, 0.0, {}
+    for ay in np.arange(0.5, 9.5, 0.5):
+        try:
+            previous = full.trim(20.0, lateral_acceleration=float(ay), guess=previous)
+        except ParameterError:
+            break
+        last, steer[float(ay)] = float(ay), float(previous[1][0])
+    limit = limit_lateral_acceleration(single, speed=20.0)
+    assert 0.6 * limit < last < 0.9 * limit
+    low = steady_state_cornering(single, lateral_acceleration=1.0, speed=20.0).steer_angle
+    assert steer[1.0] == pytest.approx(low, rel=0.03)
+    high = steady_state_cornering(single, lateral_acceleration=last, speed=20.0).steer_angle
+    assert steer[last] > 1.3 * high

@@ -451,7 +451,7 @@ class FullVehicle(Model):
         return {f"normal_load{sfx}": float(y[self.index(f'normal_load{sfx}', 'outputs')]) for sfx in CORNERS}
 
     def trim(self, speed: float, *, lateral_acceleration: float = 0.0, radius: float | None = None,
-             longitudinal_acceleration: float = 0.0, tol: float = 1e-9):
+             longitudinal_acceleration: float = 0.0, tol: float = 1e-9, guess=None):
         """Steady straight running or steady cornering: ``(x0, u0)``.
 
         Parameters
@@ -471,6 +471,9 @@ class FullVehicle(Model):
         tol : float
             Largest derivative allowed, relative to g for accelerations and to the speed for
             velocities (every derivative except of x, y and yaw angle).
+        guess : (x, u), optional
+            A nearby operating point to start from (continuation towards the limit), instead of the
+            closed-form start.
 
         Returns
         -------
@@ -488,7 +491,7 @@ class FullVehicle(Model):
         from . import operating_points
 
         return operating_points.trim(self, speed, lateral_acceleration=lateral_acceleration, radius=radius,
-                                     longitudinal_acceleration=longitudinal_acceleration, tol=tol)
+                                     longitudinal_acceleration=longitudinal_acceleration, tol=tol, guess=guess)
 
     @staticmethod
     def wheel_lift(result) -> dict[str, list[tuple[float, float]]]:

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, SimulationError
 from .corner import CORNERS
 
 __all__ = ["trim"]
@@ -47,7 +47,8 @@ def _residual_scales(model, speed):
     return np.array(scales)
 
 
-def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_acceleration=0.0, tol=1e-9):
+def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_acceleration=0.0, tol=1e-9,
+         guess=None):
     """``(x0, u0)`` of steady running at ``speed`` (see :meth:`FullVehicle.trim`)."""
     from scipy.optimize import root
 
@@ -118,6 +119,13 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
         x0[model.index("roll_angle")] = -model.sprung_mass * v.mass.sprung_cg_height * lateral_acceleration \
             / roll_stiffness
     z0 = np.concatenate([x0[free], [torque0 / 1000.0, delta0]])
+    if guess is not None:  # continuation from a nearby operating point (x, u)
+        gx, gu = (np.asarray(g, dtype=float) for g in guess)
+        if gx.shape != (model.n_states,) or gu.shape != (model.n_inputs,):
+            raise ParameterError(f"guess must be (x, u) of shapes ({model.n_states},), ({model.n_inputs},)",
+                                 key="guess", value=(gx.shape, gu.shape))
+        total = sum(gu[j] for j in drive)
+        z0 = np.concatenate([gx[free], [total / 1000.0, gu[steer]]])
 
     def unpack(z):
         x = x0.copy()
@@ -131,7 +139,10 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
 
     def residual(z):
         x, u = unpack(z)
-        d = model.rhs(0.0, x, u)
+        try:
+            d = model.rhs(0.0, x, u)
+        except SimulationError:  # the iterate left the model's domain (rolled over): push it back
+            return np.full(z.size, 1e6)
         if a_x != 0.0:
             d = d.copy()
             d[scaling] -= x[scaling] * d[lon] / x[lon]
