@@ -231,3 +231,14 @@ def test_magic_formula_handling_diagram_reaches_a_lower_limit_than_the_single_tr
     assert steer[1.0] == pytest.approx(low, rel=0.03)
     high = steady_state_cornering(single, lateral_acceleration=last, speed=20.0).steer_angle
     assert steer[last] > 1.3 * high
+
+
+@pytest.mark.parametrize("speed", [5.0, 40.0])
+def test_straight_running_is_stable_with_magic_formula_tires_and_lag(sedan, speed):
+    """Every mode of straight running decays (the two drift modes of position/heading are zero),
+    and none is faster than about 100 1/s: an explicit solver needs no tiny steps."""
+    model = FullVehicle(sedan)
+    eigenvalues = _eigenvalues(model, speed)
+    assert np.all(eigenvalues.real < 1e-8)
+    assert np.sum(np.abs(eigenvalues) < 1e-8) <= 3  # x, y, yaw angle
+    assert np.min(eigenvalues.real) > -150.0
