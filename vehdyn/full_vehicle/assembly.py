@@ -124,22 +124,22 @@ def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
     R = xp.rotation_body_to_earth(roll, pitch, yaw)
     R20, R21, R22 = R[2][0], R[2][1], R[2][2]
 
-    # suspension
-    travel, travel_rate = [], []
+    zero = 0.0 * u
+    # suspension (lists built by comprehension and filled by index: typed lists for compiled code)
+    travel, travel_rate = [zero for _c in range(4)], [zero for _c in range(4)]
     for c in range(4):
-        st_c, sr_c = corner.suspension_travel(R, z, u, v, w, p, q, r, k.corner_x[c], k.corner_y[c], k.spring_z,
-                                              wheel[c], wheel_rate[c])
-        travel.append(st_c)
-        travel_rate.append(sr_c)
+        travel[c], travel_rate[c] = corner.suspension_travel(R, z, u, v, w, p, q, r, k.corner_x[c], k.corner_y[c],
+                                                             k.spring_z, wheel[c], wheel_rate[c])
     spring = corner.suspension_forces(k, travel, travel_rate)
     steer = steering.corner_steer_angles(xp, k, i[0], i[1], roll)
     camber = [corner.camber(k, c, roll, travel[c]) for c in range(4)]
     tires = (laws, camber, friction)
 
-    fx_body, fy_body, moment_x, moment_y, moment_z = 0.0 * u, 0.0 * u, 0.0 * u, 0.0 * u, 0.0 * u
-    fz_body = 0.0 * u
-    contact_x, contact_y, contact_z = 0.0 * u, 0.0 * u, 0.0 * u  # non-gravity forces on the whole vehicle
-    loads, alphas, kappas, fxs, fys, wheel_acc, unsprung_acc, lat_rate, lon_rate = [], [], [], [], [], [], [], [], []
+    fx_body, fy_body, fz_body, moment_x, moment_y, moment_z = zero, zero, zero, zero, zero, zero
+    contact_x, contact_y, contact_z = zero, zero, zero  # non-gravity forces on the whole vehicle
+    loads, alphas, kappas = [zero for _c in range(4)], [zero for _c in range(4)], [zero for _c in range(4)]
+    fxs, fys, wheel_acc = [zero for _c in range(4)], [zero for _c in range(4)], [zero for _c in range(4)]
+    unsprung_acc, lat_rate, lon_rate = [zero for _c in range(4)], [zero for _c in range(4)], [zero for _c in range(4)]
     for c in range(4):
         x_c, y_c = k.corner_x[c], k.corner_y[c]
         load = corner.normal_load(xp, k, c, wheel[c], wheel_rate[c], road[c], road_rate[c])
@@ -173,22 +173,14 @@ def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
         moment_x, moment_y, moment_z = moment_x + mx1 + mx2, moment_y + my1 + my2, moment_z + mz1 + mz2
         contact_x, contact_y, contact_z = contact_x + tx - load * R20, contact_y + ty - load * R21, \
             contact_z - load * R22
-        unsprung_acc.append((load - spring[c] + jack) / m_u - k.gravity)
-        wheel_acc.append(driveline.wheel_acceleration(xp, k, omega[c], drive[c], brake[c], fx))
+        unsprung_acc[c] = (load - spring[c] + jack) / m_u - k.gravity
+        wheel_acc[c] = driveline.wheel_acceleration(xp, k, omega[c], drive[c], brake[c], fx)
         if k.tire_lag:
-            lat_rate.append(st.deflection_rate(xp, vy, vx, lateral_deflection[c], k.lateral_relaxation_length[c],
-                                               k.peak_tan_slip_angle[c] * friction[c]))
-            lon_rate.append(st.deflection_rate(xp, -(vx - omega[c] * k.rolling_radius), vx,
-                                               longitudinal_deflection[c], k.longitudinal_relaxation_length[c],
-                                               k.peak_slip_ratio[c] * friction[c]))
-        else:
-            lat_rate.append(0.0 * u)
-            lon_rate.append(0.0 * u)
-        loads.append(load)
-        alphas.append(alpha)
-        kappas.append(kappa)
-        fxs.append(fx)
-        fys.append(fy)
+            lat_rate[c] = st.deflection_rate(xp, vy, vx, lateral_deflection[c], k.lateral_relaxation_length[c],
+                                             k.peak_tan_slip_angle[c] * friction[c])
+            lon_rate[c] = st.deflection_rate(xp, -(vx - omega[c] * k.rolling_radius), vx, longitudinal_deflection[c],
+                                             k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction[c])
+        loads[c], alphas[c], kappas[c], fxs[c], fys[c] = load, alpha, kappa, fx, fy
 
     drag, side, front_lift, rear_lift = aero.aero_forces(xp, k, u, v, wind)
     weight = k.sprung_mass * k.gravity
