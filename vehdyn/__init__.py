@@ -19,7 +19,7 @@ Conventions and units
     :mod:`vehdyn.conventions` (SAE J670 / ISO 8855 / ISO-W signs), :mod:`vehdyn.units`
 Subpackages (imported on first use)
     :mod:`vehdyn.mechanics` (rigid body), :mod:`vehdyn.tire`, :mod:`vehdyn.handling`,
-    :mod:`vehdyn.ride`, :mod:`vehdyn.analysis`, :mod:`vehdyn.plotting`
+    :mod:`vehdyn.ride`, :mod:`vehdyn.full_vehicle`, :mod:`vehdyn.analysis`, :mod:`vehdyn.plotting`
 
 Importing vehdyn imports numpy only; scipy, pandas, matplotlib and python-control are imported
 when a function needs them.
@@ -66,8 +66,8 @@ __all__ = [
     "plot_ladder",
 ]
 
-_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "analysis", "plotting", "conventions", "units", "params",
-                "cli", "scene"}
+_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "full_vehicle", "analysis", "plotting", "conventions",
+                "units", "params", "cli", "scene"}
 _SCENE_NAMES = {"Scene", "plan", "run", "ladder", "plot_ladder"}
 
 

@@ -25,6 +25,7 @@ __all__ = [
     "Tires",
     "Steering",
     "Aerodynamics",
+    "Driveline",
     "Vehicle",
     "load_vehicle",
     "shipped_vehicles",
@@ -47,6 +48,9 @@ class MassProperties(ParameterSet):
     sprung_roll_inertia: float = parameter("kg*m^2", "I_xx of the sprung mass about its own CG", gt=0)
     sprung_pitch_inertia: float = parameter("kg*m^2", "I_yy of the sprung mass about its own CG", gt=0)
     sprung_roll_yaw_product: float = parameter("kg*m^2", "I_xz of the sprung mass about its own CG", default=0.0)
+    sprung_yaw_inertia: float | None = parameter(
+        "kg*m^2", "I_zz of the sprung mass about its own CG; None: what yaw_inertia leaves after the unsprung "
+        "masses (points at the wheel centres) and the sprung mass's offset from the total CG", default=None, gt=0)
     cg_height: float = parameter("m", "height of the total CG above the ground", gt=0)
     sprung_cg_height: float = parameter("m", "height of the sprung-mass CG above the ground", gt=0)
 
@@ -141,6 +145,18 @@ class Suspension(ParameterSet):
                                         default=0.0)
     rear_roll_steer: float = parameter("rad/rad", "rear road-wheel steer per unit body roll (SAE signs)",
                                        default=0.0)
+    front_camber_gain: float | None = parameter(
+        "rad/m", "front camber change (top of the wheel outward +) per unit of bump travel; None: the wheels "
+        "stay upright to the road (no camber from roll or travel)", default=None)
+    rear_camber_gain: float | None = parameter(
+        "rad/m", "rear camber change (top of the wheel outward +) per unit of bump travel; None: upright wheels",
+        default=None)
+    front_anti_dive: float = parameter(
+        "-", "front anti-dive fraction tan(beta_f) L / h: share of the pitch moment of the front longitudinal "
+        "tire forces taken by the linkage instead of the springs (0: none)", default=0.0)
+    rear_anti_squat: float = parameter(
+        "-", "rear anti-squat (and anti-lift) fraction tan(beta_r) L / h of the rear longitudinal tire forces "
+        "(0: none)", default=0.0)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -169,6 +185,9 @@ class Steering(ParameterSet):
 
     ratio: float = parameter("-", "overall steering ratio: hand-wheel angle / road-wheel angle", gt=0)
     max_road_wheel_angle: float = parameter("rad", "largest road-wheel steer angle", gt=0, le=np.pi / 2)
+    ackermann_fraction: float = parameter(
+        "-", "share of Ackermann geometry in the left/right split of the front steer angle (0: parallel steer, "
+        "1: both front wheels square to the turn centre)", default=0.0, ge=0, le=1)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -181,11 +200,27 @@ class Aerodynamics(ParameterSet):
                                    default=1.206)
     front_lift_coefficient: float = parameter("-", "front-axle lift coefficient", default=0.0)
     rear_lift_coefficient: float = parameter("-", "rear-axle lift coefficient", default=0.0)
+    lateral_drag_coefficient: float = parameter(
+        "-", "cross-flow drag coefficient on the frontal area: side force -0.5 rho c_y A |V_a| V_ay of the "
+        "air-relative velocity V_a (0: no side force from wind)", ge=0, default=0.0)
 
     def drag_force(self, speed):
         """Drag force 0.5 rho c_x A V|V| [N] at air speed ``speed`` [m/s] (sign follows the speed)."""
         speed = np.asarray(speed, dtype=float)
         return 0.5 * self.air_density * self.drag_coefficient * self.frontal_area * speed * np.abs(speed)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Driveline(ParameterSet):
+    """How drive and brake torque split between the axles (used by operating points and manoeuvres).
+
+    Optional in vehicle files: a file without a ``[driveline]`` table gets these defaults.
+    """
+
+    front_drive_fraction: float = parameter("-", "share of the drive torque on the front axle (0: rear-wheel drive)",
+                                            default=0.0, ge=0, le=1)
+    front_brake_fraction: float = parameter("-", "share of the brake torque on the front axle", default=0.65,
+                                            ge=0, le=1)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -205,6 +240,7 @@ class Vehicle(ParameterSet):
     tires: Tires
     steering: Steering
     aero: Aerodynamics
+    driveline: Driveline = dataclasses.field(default_factory=Driveline)
 
     def check(self):
         g = self.geometry
