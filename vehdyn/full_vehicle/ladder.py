@@ -42,7 +42,9 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["ladder_setup", "SOLVER_OPTIONS"]
+from ..errors import ParameterError
+
+__all__ = ["ladder_setup", "scene_inputs", "road_inputs", "SOLVER_OPTIONS"]
 
 #: Options of :func:`vehdyn.simulate` for the full vehicle on the ladder (``max_step`` is the scene's
 #: time step). rtol 1e-6 keeps the reference's integration error far below the tolerances of the
@@ -57,12 +59,16 @@ def _not_admissible(reason):
     return NotAdmissible(reason)
 
 
-def _road_inputs(drive, vehicle) -> dict:
-    """``road_displacement_*`` / ``road_velocity_*`` of the four corners on ``drive.time`` (arrays)."""
+def road_inputs(drive) -> dict:
+    """``road_displacement_*`` / ``road_velocity_*`` [m, m/s] of the four corners on ``drive.time``.
+
+    Front wheels at distance V t on their track's profile, rear wheels a wheelbase behind (V the
+    scene's speed), sampled by :meth:`vehdyn.ride.RoadProfile.road_inputs` as for the ride rungs.
+    """
     from ..ride.road import RoadProfile
 
     distance, left, right = drive.road
-    wheelbase = vehicle.geometry.wheelbase
+    wheelbase = drive.vehicle.geometry.wheelbase
     out = {}
     for elevation, side in ((left, "left"), (right, "right")):
         profile = RoadProfile(distance, elevation)
@@ -80,6 +86,40 @@ def _step(start, before, after):
         return np.asarray(v(tt), dtype=float) if callable(v) else np.full(np.shape(tt), float(v))
 
     return lambda t: np.where(np.asarray(t, dtype=float) >= start, value(after, t), value(before, t))
+
+
+def scene_inputs(drive, model, trim_inputs, road=None) -> dict:
+    """The full vehicle's inputs for a scene: the trim's, the scene's programmes on top.
+
+    Parameters
+    ----------
+    drive : vehdyn.scene.drive.Drive
+    model : FullVehicle
+    trim_inputs : array_like
+        The input vector of the starting trim (drive torques that hold the speed, the steer of a
+        steady turn).
+    road : dict, optional
+        The corners' road inputs (:func:`road_inputs`).
+
+    Returns
+    -------
+    dict
+        Input name -> number, array on ``drive.time`` or callable of t, for :func:`vehdyn.simulate`.
+    """
+    from .corner import CORNERS
+
+    inputs = {n: float(v) for n, v in zip(model.input_names, trim_inputs) if v != 0.0}
+    inputs.update(drive.inputs)
+    inputs.update(road or {})
+    if drive.braking is not None:
+        front, rear, begin = drive.braking
+        radius = model.vehicle.tires.rolling_radius
+        for name in [n for n in inputs if n.startswith("drive_torque")]:
+            inputs[name] = _step(begin, inputs[name], 0.0)
+        for sfx in CORNERS:
+            force = front if sfx.startswith("_front") else rear
+            inputs[f"brake_torque{sfx}"] = lambda t, f=force: -0.5 * radius * np.asarray(f(t), dtype=float)
+    return inputs
 
 
 def ladder_setup(drive, ladder: str = "handling"):
@@ -108,11 +148,10 @@ def ladder_setup(drive, ladder: str = "handling"):
     from ..scene.rungs import Setup
     from ..simulate import simulate
     from ..tire import load_tire
-    from .corner import CORNERS
     from .model import FullVehicle
 
     if ladder not in ("handling", "ride"):
-        raise ValueError(f"ladder must be 'handling' or 'ride', got {ladder!r}")
+        raise ParameterError(f"ladder must be 'handling' or 'ride', got {ladder!r}", key="ladder", value=ladder)
     if ladder == "ride" and drive.handling_input:
         raise _not_admissible("steer or braking: the handling rung FullVehicle answers")
     if ladder == "ride" and drive.road is None:
@@ -125,28 +164,16 @@ def ladder_setup(drive, ladder: str = "handling"):
     unknown = [k for k in drive.inputs if k not in model.input_names]
     if unknown:
         raise _not_admissible(f"has no input {unknown[0]!r}")
-    road = _road_inputs(drive, vehicle) if drive.road is not None else {}
+    road = road_inputs(drive) if drive.road is not None else {}
     options = dict(SOLVER_OPTIONS, max_step=float(scene.effective_time_step))
-    radius = vehicle.tires.rolling_radius
     trimmed = {}
 
     def start():
         """(x0, inputs): the trim (once) and the scene's programmes on top of it."""
         if not trimmed:
             x0, u0 = model.trim(scene.speed, lateral_acceleration=drive.initial_turn or 0.0)
-            held = {n: float(v) for n, v in zip(model.input_names, u0) if v != 0.0}
-            trimmed.update(x0=x0, held=held)
-        inputs = dict(trimmed["held"])
-        inputs.update(drive.inputs)
-        inputs.update(road)
-        if drive.braking is not None:
-            front, rear, begin = drive.braking
-            for name in [n for n in inputs if n.startswith("drive_torque")]:
-                inputs[name] = _step(begin, inputs[name], 0.0)
-            for sfx in CORNERS:
-                force = front if sfx.startswith("_front") else rear
-                inputs[f"brake_torque{sfx}"] = lambda t, f=force: -0.5 * radius * np.asarray(f(t), dtype=float)
-        return trimmed["x0"], inputs
+            trimmed.update(x0=x0, u0=u0)
+        return trimmed["x0"], scene_inputs(drive, model, trimmed["u0"], road)
 
     if drive.track is not None:
         from ..scene.rungs import _with_driver
