@@ -91,6 +91,13 @@ def test_braking_becomes_brake_torques_on_each_wheel(scenes):
     ax = result["longitudinal_acceleration"][drive.time > 0.8]
     assert np.all(np.abs(ax / -6.0 - 1.0) < 0.06)
     assert abs(result["longitudinal_acceleration"][0]) < 1e-3  # the trim holds the speed before braking
+    # the body above the wheels: a rigid body's vertical acceleration is affine in the point's (x, y)
+    # (alpha x r and omega x (omega x r) at the CG's height), so the corners interpolate to the CG
+    a, b = model.sprung_cg_to_front_axle, model.sprung_cg_to_rear_axle
+    front = 0.5 * (result["sprung_acceleration_front_left"] + result["sprung_acceleration_front_right"])
+    rear = 0.5 * (result["sprung_acceleration_rear_left"] + result["sprung_acceleration_rear_right"])
+    np.testing.assert_allclose((b * front + a * rear) / (a + b), result["sprung_acceleration"], atol=1e-12)
+    assert np.max(np.abs(front - rear)) > 0.1  # the body pitches as the brakes come on
 
 
 def test_an_input_the_full_vehicle_lacks_makes_it_inadmissible(scenes):
@@ -118,3 +125,23 @@ def test_gentle_handling_scene_cheap_rungs_against_the_full_vehicle(scenes):
     assert planned["rung"] != "FullVehicle" and planned["error"] <= scene.tolerance
     ratio = (within["estimated_error"] / within["error"]).to_numpy()
     assert np.all((ratio > 1 / 3) & (ratio < 3)), within[["rung", "estimated_error", "error"]]
+
+
+def test_a_wheel_lift_rules_out_the_linear_ride_rungs(scenes):
+    """In the pothole the linear full car's front-left tire goes into tension (static load plus its
+    dynamic load < 0): the full vehicle lifts that wheel instead, which the linear rungs miss, so
+    their estimated error exceeds the tolerance and the full vehicle answers. On the smooth road
+    no tire pulls and a linear ride rung is picked."""
+    from vehdyn.scene import estimates as est
+
+    p = vehdyn.plan(scenes["pothole"])
+    full_car = p.probes["FullCar"]
+    static = 0.5 * p.drive.vehicle.static_axle_loads(9.81)[0]
+    tension = -np.min(static + full_car["dynamic_tire_load_front_left"]) / static
+    assert tension > 0 and est.tire_lift(full_car, p.drive.vehicle) >= tension - 1e-3
+    rows = {r.rung.name: r for r in p.rows if r.admissible}
+    assert "wheel lift" in rows["FullCar"].reason and rows["FullCar"].estimated_error > p.scene.tolerance
+    assert p.chosen.rung.name == "FullVehicle(ride)"
+    smooth = vehdyn.plan(scenes["smooth_road_54"])
+    assert smooth.chosen.rung.ladder == "ride" and smooth.chosen.rung.linear
+    assert est.tire_lift(smooth.probes["FullCar"], smooth.drive.vehicle) == 0.0

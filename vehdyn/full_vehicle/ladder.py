@@ -44,13 +44,80 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["ladder_setup", "scene_inputs", "road_inputs", "SOLVER_OPTIONS"]
+__all__ = ["ladder_setup", "scene_inputs", "road_inputs", "corner_body_accelerations", "SOLVER_OPTIONS"]
 
 #: Options of :func:`vehdyn.simulate` for the full vehicle on the ladder (``max_step`` is the scene's
 #: time step). rtol 1e-6 keeps the reference's integration error far below the tolerances of the
 #: scenes (0.02 by default): against rtol 1e-9 the outputs of the standard handling scenes differ
 #: by less than 1e-5 relative.
 SOLVER_OPTIONS = {"method": "RK45", "rtol": 1e-6, "atol": 1e-8, "backend": "auto"}
+
+
+def corner_body_accelerations(model, result) -> dict:
+    """Vertical acceleration [m/s^2] (up +, gravity excluded) of the body above each wheel.
+
+    The body point at the corner's (x, y) and the sprung CG's height, a = a_CG + alpha x r +
+    omega x (omega x r) in body axes (rigid body), projected on the earth vertical: the
+    ``sprung_acceleration_*`` outputs of :class:`vehdyn.ride.FullCar` for the full vehicle
+    (the corner values of the pothole scene). Exactly affine in the corner's (x, y), so that they
+    interpolate to ``sprung_acceleration`` at the CG.
+
+    Parameters
+    ----------
+    model : FullVehicle
+    result : SimulationResult
+        A simulation of ``model`` (states and inputs on its time grid).
+
+    Returns
+    -------
+    dict
+        ``{"sprung_acceleration_front_left": array, ...}`` on ``result.time``.
+    """
+    from . import assembly
+    from .corner import CORNERS
+
+    states, e = model._evaluate(np.asarray(result.states, dtype=float), np.asarray(result.inputs, dtype=float))
+    p, q, r = states[3], states[4], states[5]
+    ap, aq, ar = e.angular_acceleration
+    R = assembly.NUMPY.rotation_body_to_earth(states[6], states[7], states[8])
+    out = {}
+    for sfx, x, y in zip(CORNERS, model.corner_x, model.corner_y):
+        omega_r = p * x + q * y  # omega . r with r = (x, y, 0)
+        point = (e.cg_acceleration[0] - ar * y + p * omega_r - x * (p * p + q * q + r * r),
+                 e.cg_acceleration[1] + ar * x + q * omega_r - y * (p * p + q * q + r * r),
+                 e.cg_acceleration[2] + ap * y - aq * x + r * omega_r)
+        out[f"sprung_acceleration{sfx}"] = -(R[2][0] * point[0] + R[2][1] * point[1] + R[2][2] * point[2])
+    return out
+
+
+def _with_corner_accelerations(model, result):
+    """``result`` with the :func:`corner_body_accelerations` appended to its outputs."""
+    import dataclasses
+
+    from ..signals import Signal
+
+    extra = corner_body_accelerations(model, result)
+    signals = tuple(Signal(n, "m/s^2", "vertical acceleration of the body above the wheel (up)") for n in extra)
+    return dataclasses.replace(result, outputs=np.vstack([result.outputs, np.array(list(extra.values()))]),
+                               output_signals=tuple(result.output_signals) + signals)
+
+
+def _setup_class():
+    from dataclasses import dataclass
+
+    from ..scene.rungs import Setup
+
+    @dataclass
+    class FullVehicleSetup(Setup):
+        """A Setup whose results carry the corner body accelerations besides the model's outputs."""
+
+        extra_outputs: tuple = ()
+
+        @property
+        def output_names(self):
+            return tuple(self.model.output_names) + tuple(self.extra_outputs)
+
+    return FullVehicleSetup
 
 
 def _not_admissible(reason):
@@ -137,7 +204,8 @@ def ladder_setup(drive, ladder: str = "handling"):
     -------
     Setup
         ``model`` the :class:`FullVehicle` (or the driver loop around it), ``run()`` its
-        :class:`~vehdyn.SimulationResult` on ``drive.time``.
+        :class:`~vehdyn.SimulationResult` on ``drive.time`` (without a driver, with the
+        :func:`corner_body_accelerations` added to the outputs).
 
     Raises
     ------
@@ -148,6 +216,7 @@ def ladder_setup(drive, ladder: str = "handling"):
     from ..scene.rungs import Setup
     from ..simulate import simulate
     from ..tire import load_tire
+    from .corner import CORNERS
     from .model import FullVehicle
 
     if ladder not in ("handling", "ride"):
@@ -191,6 +260,6 @@ def ladder_setup(drive, ladder: str = "handling"):
 
     def run():
         x0, inputs = start()
-        return simulate(model, drive.time, inputs, x0=x0, **options)
+        return _with_corner_accelerations(model, simulate(model, drive.time, inputs, x0=x0, **options))
 
-    return Setup(model, run)
+    return _setup_class()(model, run, extra_outputs=tuple(f"sprung_acceleration{sfx}" for sfx in CORNERS))

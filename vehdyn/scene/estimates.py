@@ -79,6 +79,11 @@ THRESHOLDS = {
     # (LinearBicycle), 4.9 (LinearBicycle+lag), 1.1 (SingleTrack linear tires); 5 keeps every
     # estimate conservative there. Not part of the 12 standard scenes (open-loop lane changes).
     "closed_loop_factor": 5.0,
+    # a linear ride rung against the full vehicle when the linear probe's tires go into tension
+    # (a wheel lifts off in the full vehicle): error / largest tension over the static wheel load
+    # (estimates.tire_lift). bench_ladder, sedan pothole with FullVehicle as the reference: tension
+    # 0.32, FullCar error 0.39 at the CG and 0.33 at the front-left corner
+    "tire_lift_gain": 1.0,
     # floor of every estimate: integration error of the references (rtol 1e-8, exact linear)
     "numerical_error": 1e-6,
 }
@@ -262,6 +267,23 @@ def dynamic_index_coupling(vehicle) -> float:
     m, g = vehicle.mass, vehicle.geometry
     a, b = g.sprung_cg_to_front_axle, g.sprung_cg_to_rear_axle
     return abs(1.0 - m.sprung_pitch_inertia / (m.sprung_mass * a * b))
+
+
+def tire_lift(probe, vehicle) -> float:
+    """Largest tension of a linear ride model's tires, relative to the static wheel load [-].
+
+    max over the wheels and time of max(0, -(F_static + dF_z)) / F_static, with dF_z the probe's
+    ``dynamic_tire_load*`` outputs and F_static half the static axle load of the wheel's axle. A
+    linear tire pulls the wheel down where a real one lifts off (zero load): positive values mean
+    the linear ride rungs miss a wheel lift that the full vehicle makes.
+    """
+    loads = vehicle.static_axle_loads(GRAVITY)
+    worst = 0.0
+    for name in probe.output_names:
+        if name.startswith("dynamic_tire_load"):
+            static = 0.5 * (loads[0] if "front" in name else loads[1])
+            worst = max(worst, float(np.max(-(static + np.asarray(probe[name], dtype=float)))) / static)
+    return worst
 
 
 def road_asymmetry(road) -> float:

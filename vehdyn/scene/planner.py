@@ -173,10 +173,11 @@ def plan(scene) -> Plan:
     needs: dict = {}
     vehicle = drive.vehicle
     mu_g = vehicle.tires.friction_coefficient * GRAVITY
-    # probes: the linear handling rungs, run now (milliseconds), also give the lateral acceleration
+    # probes: the linear handling rungs, run now (milliseconds), also give the lateral acceleration;
+    # on a road the linear ride rungs too (milliseconds), whose tire loads show a wheel lifting
     probes = {}
     for r in admissible:
-        if r.rung.linear and r.rung.ladder == "handling":
+        if r.rung.linear and (r.rung.ladder == "handling" or drive.road is not None):
             probes[r.rung.name] = r.setup.run()
     utilization = None
     linear_probe = next((probes[n] for n in ("LinearBicycle", "LinearBicycle+lag", "LateralYawRoll") if n in probes),
@@ -214,7 +215,8 @@ def plan(scene) -> Plan:
                                  f"(a_y ~ {utilization:.2f} mu g) on this branch's ladder", key="outputs",
                                  value=list(scene.outputs))
     top = max(admissible, key=lambda r: r.rung.fidelity)
-    ctx = _Context(scene, drive, probes, utilization, {r.rung.name: r for r in admissible}, top)
+    ctx = _Context(scene, drive, probes, utilization, {r.rung.name: r for r in admissible}, top,
+                   {r.rung.name: r for r in rows if r.rung.name in probes})
     for r in admissible:
         # the measured tables, never this call's timing: the pick must not depend on the machine's load
         r.estimated_cost_s = est.estimated_cost(r.rung.name, scene.duration, closed_loop=drive.track is not None)
@@ -235,18 +237,29 @@ def plan(scene) -> Plan:
 class _Context:
     """Per-scene estimates (see :mod:`vehdyn.scene.estimates`)."""
 
-    def __init__(self, scene, drive, probes, utilization, admissible, top):
+    def __init__(self, scene, drive, probes, utilization, admissible, top, probe_rows=None):
         self.scene, self.drive, self.probes = scene, drive, probes
         self.utilization, self.admissible, self.top = utilization, admissible, top
+        # the probes' rows, also of linear rungs ruled out beyond the linear domain (their
+        # differences still estimate what roll and tire lag change)
+        self.probe_rows = {**(probe_rows or {}), **admissible}
         self.outputs = scene.outputs
 
     def _difference(self, a: str, b: str) -> dict | None:
         """Per-output relative difference of probe a against probe b (None if either is missing)."""
         if a not in self.probes or b not in self.probes:
             return None
-        ra, rb = self.admissible[a], self.admissible[b]
+        ra, rb = self.probe_rows[a], self.probe_rows[b]
         sa, sb = _signals(self.probes[a], ra.outputs), _signals(self.probes[b], rb.outputs)
         return est.relative_errors(sa, sb)
+
+    def _lift(self) -> float:
+        """Tire tension of the most complete linear ride probe (:func:`estimates.tire_lift`)."""
+        ride = [r for n, r in self.probe_rows.items() if r.rung.ladder == "ride" and n in self.probes]
+        if not ride:
+            return float("nan")
+        best = max(ride, key=lambda r: r.rung.fidelity)
+        return est.tire_lift(self.probes[best.rung.name], self.drive.vehicle)
 
     def _saturation(self) -> float:
         vehicle = self.drive.vehicle
@@ -331,6 +344,12 @@ class _Context:
             factor = est.THRESHOLDS["closed_loop_factor"]
             total = {o: factor * v for o, v in total.items()}
             notes.append(f"closed loop x{factor:g}")
+        if r.rung.linear and not self.top.rung.linear and self.drive.road is not None:
+            lift = self._lift()
+            if lift != 0:
+                value = est.THRESHOLDS["tire_lift_gain"] * lift
+                total = {o: v + value for o, v in total.items()}
+                notes.append(f"wheel lift (linear tire in tension) ~{value:.1e}")
         if r.rung.name == "SteadyState":
             diff = self._difference("SteadyState", "LinearBicycle")
             notes.append("no transient (probes)")
