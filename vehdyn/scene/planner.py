@@ -253,6 +253,17 @@ class _Context:
         sa, sb = _signals(self.probes[a], ra.outputs), _signals(self.probes[b], rb.outputs)
         return est.relative_errors(sa, sb)
 
+    def _lateral_load_transfer(self) -> float:
+        """Side-force deficit of the lateral load transfer (:func:`estimates.lateral_load_transfer_deficit`)
+        at the linear probe's peak lateral acceleration and slip angles, times its gain."""
+        probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
+        if probe is None or "front_slip_angle" not in probe:
+            return float("nan")
+        slips = [np.max(np.abs(probe["front_slip_angle"])), np.max(np.abs(probe["rear_slip_angle"]))]
+        a_y = float(np.max(np.abs(probe["lateral_acceleration"])))
+        return est.THRESHOLDS["load_transfer_gain"] * est.lateral_load_transfer_deficit(
+            self.drive.vehicle, a_y, slips, self.scene.tire)
+
     def _lift(self) -> float:
         """Tire tension of the most complete linear ride probe (:func:`estimates.tire_lift`)."""
         ride = [r for n, r in self.probe_rows.items() if r.rung.ladder == "ride" and n in self.probes]
@@ -315,7 +326,12 @@ class _Context:
                 note = f"roll, road asymmetry ~{k:.1e}" if any(per_output.values()) else "roll (blind at the CG)"
                 return per_output, note
             diff = self._difference("LinearBicycle", "LateralYawRoll")
-            return (diff, "roll (probes)") if diff else (float("nan"), "roll unestimated")
+            if not diff:
+                return float("nan"), "roll unestimated"
+            transfer = self._lateral_load_transfer() if "roll" in self.top.rung.phenomena(self.top.setup) else 0.0
+            if transfer:
+                return {o: v + transfer for o, v in diff.items()}, f"roll (probes), lateral load transfer ~{transfer:.1e}"
+            return diff, "roll (probes)"
         if p == "pitch":
             k = est.THRESHOLDS["dynamic_index_gain"] * est.dynamic_index_coupling(d.vehicle) ** 2
             return k, f"pitch coupling (1-DI)^2 ~{k:.1e}"
@@ -346,10 +362,10 @@ class _Context:
             notes.append(f"closed loop x{factor:g}")
         if r.rung.linear and not self.top.rung.linear and self.drive.road is not None:
             lift = self._lift()
-            if lift != 0:
-                value = est.THRESHOLDS["tire_lift_gain"] * lift
-                total = {o: v + value for o, v in total.items()}
-                notes.append(f"wheel lift (linear tire in tension) ~{value:.1e}")
+            value = est.THRESHOLDS["tire_lift_floor"] + est.THRESHOLDS["tire_lift_gain"] * lift
+            total = {o: v + value for o, v in total.items()}
+            notes.append(f"wheel lift (linear tire in tension) ~{value:.1e}" if lift else
+                         f"linear against nonlinear contact ~{value:.1e}")
         if r.rung.name == "SteadyState":
             diff = self._difference("SteadyState", "LinearBicycle")
             notes.append("no transient (probes)")
