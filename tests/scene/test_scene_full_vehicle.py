@@ -145,3 +145,18 @@ def test_a_wheel_lift_rules_out_the_linear_ride_rungs(scenes):
     smooth = vehdyn.plan(scenes["smooth_road_54"])
     assert smooth.chosen.rung.ladder == "ride" and smooth.chosen.rung.linear
     assert est.tire_lift(smooth.probes["FullCar"], smooth.drive.vehicle) == 0.0
+
+
+def test_iso3888_driver_steers_the_full_vehicle_like_the_single_track():
+    """ISO 3888-1 with the preview driver, into the first lane change (3 s at 60 km/h): the full
+    vehicle in the loop follows the track as the single track does (same driver), its path within
+    10 % of the single track's lateral offset and its speed held by the trim's drive torques."""
+    scene = vehdyn.Scene(manoeuvre="iso3888_1", speed=16.7, duration=3.0, outputs=("yaw_rate",))
+    p = vehdyn.plan(scene)
+    assert p.top.rung.name == "FullVehicle"
+    full = p.row("FullVehicle").setup.run()
+    single = p.row("SingleTrack").setup.run()
+    offset = np.max(np.abs(single["y"]))
+    assert offset > 0.2  # the driver has started the lane change (0.35 m by 3 s)
+    assert np.max(np.abs(full["y"] - single["y"])) < 0.1 * offset
+    assert np.all(np.abs(full["longitudinal_velocity"] / 16.7 - 1.0) < 0.01)

@@ -128,6 +128,7 @@ CLOSED_LOOP_COST_PER_SIMULATED_SECOND = {
     "LateralYawRoll": 0.058,
     "SingleTrack(linear tires)": 0.17,
     "SingleTrack": 0.21,
+    "FullVehicle": 3.5,  # numpy right-hand side (sedan, 17 m/s, 8 s); TO RE-MEASURE with the compiled one
 }
 _UNKNOWN_COST = 0.1  # [s/s] a rung not in the table (e.g. a newly registered one) until it is measured
 
