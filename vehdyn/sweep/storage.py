@@ -58,7 +58,7 @@ class ChunkStore:
         first = int(frame["variant"].iloc[0])
         target = self.path / f"part-{first:09d}.parquet"
         with atomic_write(target, "wb") as handle:
-            frame.to_parquet(handle.name, index=False)
+            frame.to_parquet(handle, index=False)
         return target
 
     def read(self):
