@@ -82,7 +82,7 @@ def __getattr__(name: str):
     if name in _SCENE_NAMES:
         return getattr(importlib.import_module(".scene", __name__), name)
     if name == "sensitivity":
-        from .sweep.sensitivity import sensitivity
+        from .sweep import sensitivity
 
         return sensitivity
     if name == "Modes":

@@ -17,17 +17,11 @@ Pointing a study at a cluster changes only the executor::
 
 from .api import sweep, variants
 from .metrics import Run, metric_names, register_metric
+from .sensitivity import plot_sensitivity, sensitivity  # binds the function over the submodule's name
 from .targets import vectorized
 
-__all__ = ["sweep", "variants", "vectorized", "register_metric", "metric_names", "Run", "sensitivity"]
-
-
-def __getattr__(name):
-    if name == "sensitivity":
-        from .sensitivity import sensitivity
-
-        return sensitivity
-    raise AttributeError(f"module 'vehdyn.sweep' has no attribute {name!r}")
+__all__ = ["sweep", "variants", "vectorized", "register_metric", "metric_names", "Run", "sensitivity",
+           "plot_sensitivity"]
 
 
 class _CallableModule(__import__("types").ModuleType):

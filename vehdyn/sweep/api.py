@@ -13,7 +13,7 @@ from ..errors import ParameterError
 from .engines import ChunkTask, run_chunks
 from .targets import as_target
 
-__all__ = ["sweep", "variants"]
+__all__ = ["sweep", "variants", "run_table"]
 
 _SAMPLING = ("lhs", "sobol", "random")
 
@@ -188,12 +188,22 @@ def sweep(target, *, grid=None, samples=None, n=None, sampling: str = "lhs", met
     >>> table.shape
     (8, 5)
     """
+    table = variants(grid, samples, n=n, sampling=sampling, seed=seed)
+    return run_table(target, table, metrics=metrics, executor=executor, chunk_size=chunk_size, out=out,
+                     resume=resume, progress=progress, model=model)
+
+
+def run_table(target, table, *, metrics=None, executor=None, chunk_size=None, out=None, resume=False,
+              progress=True, model="auto"):
+    """Run the variants of a parameter ``table`` (one row per variant, a column per parameter);
+    the engine of :func:`sweep` (which builds the table from a grid and samples) and of
+    :func:`~vehdyn.sweep.sensitivity.sensitivity` (SALib's designs). Arguments as :func:`sweep`."""
     import pandas as pd
 
     if resume and out is None:
         raise ParameterError("resume=True needs out=, the folder to resume", key="resume", value=resume)
     t = as_target(target, model)
-    table = variants(grid, samples, n=n, sampling=sampling, seed=seed)
+    table = table.reset_index(drop=True)
     names = list(table.columns)
     units = dict(t.check_names(names))
     if metrics is None:
