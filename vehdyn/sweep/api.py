@@ -260,3 +260,44 @@ def _frame(records, names, metric_names):
         frame[c] = frame[c].astype(float)
     frame["error"] = frame["error"].astype(object).where(frame["error"].notna(), None)
     return frame[["variant", *names, *metric_cols, "error"]]
+
+
+def _numbers(text: str, what: str, spec: str) -> list[float]:
+    try:
+        return [float(v) for v in text.split(":" if ":" in text else ",")]
+    except ValueError:
+        raise ParameterError(f"{what} {spec!r}: values must be numbers", key=what, value=spec) from None
+
+
+def grid_from_text(spec: str) -> tuple[str, list]:
+    """``"speed=10:40:7"`` (start:stop:count, linearly spaced) or ``"speed=10,20,40"`` -> (name, values)."""
+    name, sep, text = spec.partition("=")
+    if not sep or not name.strip() or not text.strip():
+        raise ParameterError(f"grid {spec!r}: write NAME=START:STOP:COUNT or NAME=V1,V2,...", key="grid", value=spec)
+    if ":" in text:
+        parts = _numbers(text, "grid", spec)
+        if len(parts) != 3 or parts[2] < 1 or parts[2] != int(parts[2]):
+            raise ParameterError(f"grid {spec!r}: START:STOP:COUNT with an integer COUNT >= 1", key="grid",
+                                 value=spec)
+        return name.strip(), np.linspace(parts[0], parts[1], int(parts[2])).tolist()
+    return name.strip(), _numbers(text, "grid", spec)
+
+
+def distribution_from_text(spec: str):
+    """``"vehicle.mass.mass=norm:1500:50"`` -> (name, scipy.stats.norm(1500, 50)): a scipy.stats
+    distribution name and its positional parameters (shape parameters, loc, scale)."""
+    import scipy.stats
+
+    name, sep, text = spec.partition("=")
+    law, _, args = text.partition(":")
+    dist = getattr(scipy.stats, law.strip(), None)
+    if not sep or not name.strip() or not hasattr(dist, "freeze"):
+        raise ParameterError(f"distribution {spec!r}: write NAME=LAW:ARG:... with a scipy.stats law "
+                             "(norm:LOC:SCALE, uniform:LOW:WIDTH, truncnorm:A:B:LOC:SCALE)", key="samples", value=spec)
+    values = _numbers(args, "samples", spec) if args else []
+    try:
+        frozen = dist(*values)
+        frozen.ppf(0.5)
+    except (TypeError, ValueError) as exc:
+        raise ParameterError(f"distribution {spec!r}: {exc}", key="samples", value=spec) from None
+    return name.strip(), frozen
