@@ -228,38 +228,27 @@ def run_table(target, table, *, metrics=None, executor=None, chunk_size=None, ou
     size = _chunk_size(chunk_size, len(todo))
     rows = list(table.itertuples(index=False, name=None))
     chunks = [(todo[k:k + size].tolist(), [rows[i] for i in todo[k:k + size]]) for k in range(0, len(todo), size)]
-    records: list[dict] = []
+    frames = []
     bar = _Progress(len(todo), progress)
 
-    def finished(chunk_records):
+    def finished(frame):
         if store is not None:
-            store.write(_frame(chunk_records, names, metric_names))
-        records.extend(chunk_records)
-        bar.advance(len(chunk_records))
+            store.write(frame)
+        else:
+            frames.append(frame)
+        bar.advance(len(frame))
 
     run_chunks(ChunkTask(t, names, metric_names), chunks, executor, finished)
     if store is not None:
         frame = store.read()
     else:
-        frame = _frame(records, names, metric_names) if records else pd.DataFrame(columns=["variant", *names])
+        frame = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=["variant", *names])
         frame = frame.sort_values("variant", kind="stable").reset_index(drop=True)
+    if "error" in frame.columns:  # chunks of a function may differ in their metrics: error last
+        frame = frame[[c for c in frame.columns if c != "error"] + ["error"]]
     frame = frame.set_index("variant")
     frame.attrs["units"] = {k: v for k, v in units.items() if k in frame.columns}
     return frame
-
-
-def _frame(records, names, metric_names):
-    import pandas as pd
-
-    frame = pd.DataFrame.from_records(records)
-    metric_cols = list(metric_names) if metric_names is not None else \
-        [c for c in frame.columns if c not in ("variant", "error", *names)]
-    for c in metric_cols:
-        if c not in frame.columns:
-            frame[c] = np.nan
-        frame[c] = frame[c].astype(float)
-    frame["error"] = frame["error"].astype(object).where(frame["error"].notna(), None)
-    return frame[["variant", *names, *metric_cols, "error"]]
 
 
 def _numbers(text: str, what: str, spec: str) -> list[float]:

@@ -33,8 +33,21 @@ def _message(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {exc}"
 
 
+def chunk_frame(columns: dict, names, metric_names):
+    """A chunk's DataFrame: ``variant``, the parameters, the metrics (float), ``error`` (None or text)."""
+    import pandas as pd
+
+    frame = pd.DataFrame(columns)
+    metric_cols = list(metric_names) if metric_names is not None else \
+        [c for c in frame.columns if c not in ("variant", "error", *names)]
+    for c in metric_cols:
+        frame[c] = frame[c].astype(float) if c in frame.columns else np.nan
+    frame["error"] = frame["error"].astype(object).where(frame["error"].notna(), None)
+    return frame[["variant", *names, *metric_cols, "error"]]
+
+
 class ChunkTask:
-    """Run one chunk of variants: ``task(ids, rows) -> list of records``.
+    """Run one chunk of variants: ``task(ids, rows) -> DataFrame`` (:func:`chunk_frame`).
 
     Parameters
     ----------
@@ -58,7 +71,9 @@ class ChunkTask:
             record["error"] = _message(exc)
         return record
 
-    def __call__(self, ids: Sequence[int], rows: Sequence[tuple]) -> list[dict]:
+    def __call__(self, ids: Sequence[int], rows: Sequence[tuple]):
+        import pandas as pd
+
         if getattr(self.target, "vectorized", False) and len(rows) > 1:
             columns = {n: np.asarray([r[j] for r in rows]) for j, n in enumerate(self.names)}
             try:
@@ -66,9 +81,10 @@ class ChunkTask:
             except Exception:  # find the bad variants one by one
                 pass
             else:
-                return [{"variant": int(i), **dict(zip(self.names, r)), **v, "error": None}
-                        for i, r, v in zip(ids, rows, values)]
-        return [self._one(i, r) for i, r in zip(ids, rows)]
+                data = {"variant": np.asarray(ids, dtype=np.int64), **columns, **values, "error": [None] * len(rows)}
+                return chunk_frame(data, self.names, self.metrics)
+        records = pd.DataFrame.from_records([self._one(i, r) for i, r in zip(ids, rows)])
+        return chunk_frame({c: records[c] for c in records.columns}, self.names, self.metrics)
 
 
 def is_dask_client(executor) -> bool:
@@ -86,8 +102,8 @@ def _dask_client(address: str):
 
 
 def run_chunks(task: ChunkTask, chunks: list[tuple[list[int], list[tuple]]], executor: Any,
-               on_done: Callable[[list[dict]], None]) -> None:
-    """Run ``task`` on every chunk with ``executor`` and call ``on_done(records)`` as each finishes.
+               on_done: Callable[[Any], None]) -> None:
+    """Run ``task`` on every chunk with ``executor`` and call ``on_done(frame)`` as each finishes.
 
     Finished chunks are handed over in completion order (the caller writes them); an engine failure
     (a worker lost) raises after the chunks finished before it were handed over.

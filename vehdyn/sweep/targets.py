@@ -181,7 +181,7 @@ class FunctionTarget:
         return {n: self.units.get(n, "") for n in names}
 
     @staticmethod
-    def _scalars(out, metric_names, count=None) -> list[dict[str, float]]:
+    def _select(out, metric_names) -> list[str]:
         if not isinstance(out, Mapping):
             raise ParameterError(f"the sweep function must return a mapping of metrics, got {type(out).__name__}",
                                  key="target", value=type(out).__name__)
@@ -190,17 +190,17 @@ class FunctionTarget:
         if missing:
             raise ParameterError(f"the sweep function returned no metric {missing[0]!r}; it returned {sorted(out)}",
                                  key="metrics", value=missing[0])
-        if count is None:
-            return [{k: float(out[k]) for k in keys}]
-        arrays = {k: np.broadcast_to(np.asarray(out[k], dtype=float), (count,)) for k in keys}
-        return [{k: float(a[i]) for k, a in arrays.items()} for i in range(count)]
+        return keys
 
     def run(self, params: Mapping[str, Any], metric_names) -> dict[str, float]:
         out = self.function(**{k: _python(v) for k, v in params.items()})
-        return self._scalars(out, metric_names)[0]
+        return {k: float(out[k]) for k in self._select(out, metric_names)}
 
-    def run_batch(self, columns: Mapping[str, np.ndarray], count: int, metric_names) -> list[dict[str, float]]:
-        return self._scalars(self.function(**columns), metric_names, count)
+    def run_batch(self, columns: Mapping[str, np.ndarray], count: int, metric_names) -> dict[str, np.ndarray]:
+        """Metric name -> array of ``count`` values from one call with array parameters."""
+        out = self.function(**columns)
+        return {k: np.array(np.broadcast_to(np.asarray(out[k], dtype=float), (count,)))
+                for k in self._select(out, metric_names)}
 
 
 def as_target(target, model: str = "auto"):
