@@ -12,9 +12,9 @@ run on this machine:
    - a loop of single ``simulate`` calls (compiled backend, RK45 rtol 1e-8: the reference),
      timed on a subset and scaled;
    - in-process batched numpy: one ``simulate`` of a batch model (``SingleTrack.variants`` with
-     array parameters, ``"rk4"`` on the 10-ms grid) - the trailing batch axis of DESIGN §3. Under
-     this machine's load it costs seconds per variant-batch step set (the numpy right-hand side
-     with the Magic Formula is milliseconds per call), so it is timed on one batch of 100;
+     array parameters, ``"rk4"`` on the 10-ms grid) - the trailing batch axis of DESIGN §3. Its
+     numpy right-hand side with the Magic Formula costs milliseconds per call even for small
+     batches, so it is timed on one batch of 100;
    - ``vehdyn.sweep`` with ``executor="processes"`` (2 workers) and on a Dask ``LocalCluster``
      (2 workers, 1 thread each), per-variant compiled runs, 125 variants per task, on a subset.
 
