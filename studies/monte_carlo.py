@@ -100,12 +100,12 @@ def run(study: Study) -> None:
     oversteer = int((table["understeer_gradient_deg_per_g"] <= 0).sum())
     finite = table.replace([np.inf, -np.inf], np.nan)
     summary = pd.DataFrame({name: {"unit": unit, "nominal": nominal[name], "mean": finite[name].mean(),
-                                   "std": finite[name].std(), "p05": table[name].quantile(0.05),
-                                   "p95": table[name].quantile(0.95)} for name, unit in METRICS.items()}).T
+                                   "std": finite[name].std(), "p05": finite[name].quantile(0.05),
+                                   "p95": finite[name].quantile(0.95)} for name, unit in METRICS.items()}).T
     summary.index.name = "number"
     study.table(summary.reset_index(), "distribution_summary",
                 caption=f"Monte Carlo summary ({len(table)} variants, {failed} failed, {oversteer} oversteering: "
-                        "their characteristic speed is infinite, left out of its mean and std)")
+                        "their characteristic speed is infinite, left out of its statistics)")
 
     # Sobol' indices need finite numbers: the characteristic speed sqrt(L/K) is infinite for the
     # oversteering variants, and its indices are those of K (a monotone function of it)
