@@ -61,7 +61,7 @@ DEFAULT_BOUNDS = {
 the sign of the measured slope; the rest are free."""
 
 _COLUMNS = ("fz", "kappa", "alpha", "gamma", "vx", "pressure", "fx", "fy", "mx", "my", "mz")
-_OUTPUT_OF = {"X": "fx", "Y": "fy"}
+_OUTPUT_OF = {"X": "fx", "Y": "fy", "Z": "mz"}
 
 
 # ------------------------------------------------------------------------------------------ data
@@ -467,7 +467,7 @@ def _select(stage, rows):
     if kind == "pure_lateral":
         return np.abs(rows["kappa"]) < PURE_SLIP_RATIO
     if kind == "combined":
-        return (np.abs(rows["alpha"]) >= PURE_SLIP_ANGLE) & (np.abs(rows["kappa"]) >= PURE_SLIP_RATIO)
+        return np.abs(rows["kappa"]) >= PURE_SLIP_RATIO
     return np.ones(n, dtype=bool)
 
 
@@ -497,45 +497,59 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
         messages.append(text)
         return StageResult(stage, skipped=text), c
     select = _select(stage, full)
+    if stage == "combined" and not np.any(select & (np.abs(full["alpha"]) >= PURE_SLIP_ANGLE)):
+        select[:] = False  # slip-ratio sweeps at zero slip angle alone do not determine the weighting
     rows = {k: v[select] for k, v in full.items()}
     weights = None if row_weights is None else row_weights[select]
     steps = owned(stage, version)
-    if stage == "combined":  # only the coefficients of the outputs measured
-        steps = tuple((s, tuple(n for n in names if _OUTPUT_OF.get(n[2]) in outputs)) for s, names in steps)
-    n_coefficients = sum(len([n for n in names if n not in fixed]) for _, names in steps if _)
+    if stage == "combined":
+        # forces first (Gxa, Gyk, SVyk), then the moment's Fx arm (SSZ) with the forces held
+        groups = [(group, tuple((s, tuple(n for n in names if _OUTPUT_OF[n[2]] in group)) for s, names in steps))
+                  for group in (tuple(o for o in ("fx", "fy") if o in outputs), tuple(o for o in ("mz",)
+                                                                                         if o in outputs))
+                  if group]
+    else:
+        groups = [(outputs, steps)]
+    n_coefficients = sum(len([n for n in names if n not in fixed]) for _, st in groups for _, names in st)
     if rows["fz"].size == 0:
         text = f"stage {stage} skipped: no {spec.selection.replace('_', ' ')} points in the data"
         messages.append(text)
         return StageResult(stage, skipped=text), c
-    n_points = rows["fz"].size * len(outputs)
-    if n_points < n_coefficients and rows["fz"].size:
-        raise ParameterError(f"stage {stage}: {rows['fz'].size} points ({n_points} values) for {n_coefficients} "
+    n_values = rows["fz"].size * len(outputs)
+    if n_values < n_coefficients:
+        raise ParameterError(f"stage {stage}: {rows['fz'].size} points ({n_values} values) for {n_coefficients} "
                              f"coefficients; the fit needs at least as many values as coefficients", key="data",
-                             value=n_points)
-    active, not_identifiable, done, last = [], {}, [], None
-    for step, names in steps:
-        if step != "nominal":
-            column = STEP_VARIATION[step]
-            span = {"fz": 0.2 * c.FNOMIN, "gamma": 2 * ZERO_CAMBER, "pressure": 0.1 * c.NOMPRES}[column]
-            if not _levels_vary(rows[column], span):
-                for name in names:
-                    not_identifiable[name] = f"no {column} sweep in the {stage} data"
+                             value=n_values)
+    fitted, not_identifiable, done, lasts = [], {}, [], []
+    for group, group_steps in groups:
+        active, last = [], None
+        for step, names in group_steps:
+            if step != "nominal":
+                column = STEP_VARIATION[step]
+                span = {"fz": 0.2 * c.FNOMIN, "gamma": 2 * ZERO_CAMBER, "pressure": 0.1 * c.NOMPRES}[column]
+                if not _levels_vary(rows[column], span):
+                    for name in names:
+                        not_identifiable[name] = f"no {column} sweep in the {stage} data"
+                    continue
+            active += [n for n in names if n not in fixed]
+            keep = _step_rows(step, rows, c)
+            sub = {k: v[keep] for k, v in rows.items()}
+            w = None if weights is None else np.tile(weights[keep], len(group))
+            if physical and step == "nominal":
+                start = {k: v for k, v in _physical_start(stage, sub, c).items() if k not in fixed and np.isfinite(v)}
+                c = c._replace(**start)
+            if not active:
                 continue
-        active += [n for n in names if n not in fixed]
-        keep = _step_rows(step, rows, c)
-        sub = {k: v[keep] for k, v in rows.items()}
-        w = None if weights is None else np.tile(weights[keep], len(outputs))
-        if physical and step == "nominal":
-            start = {k: v for k, v in _physical_start(stage, sub, c).items() if k not in fixed and np.isfinite(v)}
-            c = c._replace(**start)
-        if not active:
-            continue
-        problem = _Problem(c, stage, sub, outputs, tuple(active), w)
-        x0 = np.array([getattr(c, n) for n in active], dtype=float)
-        lower, upper = _bounds(active, x0, user_bounds)
-        last = (_solve(problem, x0, lower, upper, max_nfev), problem, lower, upper)
-        c = problem.coefficients(last[0].x)
-        done.append(step)
+            problem = _Problem(c, stage, sub, group, tuple(active), w)
+            x0 = np.array([getattr(c, n) for n in active], dtype=float)
+            lower, upper = _bounds(active, x0, user_bounds)
+            last = (_solve(problem, x0, lower, upper, max_nfev), problem, lower, upper)
+            c = problem.coefficients(last[0].x)
+            if step not in done:
+                done.append(step)
+        fitted += active
+        if last is not None:
+            lasts.append(last)
     if not_identifiable:
         by_reason = {}
         for name, reason in not_identifiable.items():
@@ -544,11 +558,11 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
             text = f"stage {stage}: {', '.join(names)} not identifiable ({reason}); kept at their start values"
             messages.append(text)
             warnings.warn(text, VehdynWarning, stacklevel=4)
-    return _stage_result(stage, c, rows, outputs, active, last, not_identifiable, done, weights), c
+    return _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done), c
 
 
-def _stage_result(stage, c, rows, outputs, active, last, not_identifiable, done, weights):
-    problem = _Problem(c, stage, rows, outputs, tuple(active), None)
+def _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done):
+    problem = _Problem(c, stage, rows, outputs, tuple(fitted), None)
     model = problem.model(c)
     rms, nrms, r2 = {}, {}, {}
     for out, m, t in zip(outputs, model, problem.targets):
@@ -557,31 +571,30 @@ def _stage_result(stage, c, rows, outputs, active, last, not_identifiable, done,
         nrms[out] = rms[out] / max(float(np.max(np.abs(t))), 1e-12)
         total = float(np.sum((t - t.mean()) ** 2))
         r2[out] = 1.0 - float(np.sum(err**2)) / total if total > 0 else float("nan")
-    at_bounds, condition, weak = (), float("nan"), ()
-    if last is not None:
-        result, prob, lower, upper = last
+    at_bounds, condition, weak = [], float("nan"), []
+    for result, prob, lower, upper in lasts:
         x = result.x
         tol = 1e-6 * np.maximum(np.abs(x), 1.0)
-        at_bounds = tuple(n for n, xi, lo, hi, t in zip(prob.names, x, lower, upper, tol)
-                          if abs(xi - lo) <= t or abs(xi - hi) <= t)
+        at_bounds += [n for n, xi, lo, hi, t in zip(prob.names, x, lower, upper, tol)
+                      if abs(xi - lo) <= t or abs(xi - hi) <= t]
         jac = np.asarray(result.jac)
         norms = np.linalg.norm(jac, axis=0)
         zero = norms == 0
         scaled = jac[:, ~zero] / norms[~zero]
         sv = np.linalg.svd(scaled, compute_uv=False) if scaled.size else np.array([1.0])
-        condition = float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
-        if zero.any():
-            condition = float("inf")
-        if condition > CONDITION_LIMIT:
-            weak = _weak_coefficients(prob.names, scaled, zero)
-            text = (f"stage {stage}: Jacobian condition {condition:.3g}: coefficients not identifiable from these "
-                    f"data (weakest: {', '.join(weak)}); consider fixing them")
-            warnings.warn(text, VehdynWarning, stacklevel=5)
-    coefficients = {n: float(getattr(c, n)) for n in active}
+        cond = float("inf") if zero.any() or not sv[-1] > 0 else float(sv[0] / sv[-1])
+        condition = cond if np.isnan(condition) else max(condition, cond)
+        if cond > CONDITION_LIMIT:
+            weak += _weak_coefficients(prob.names, scaled, zero)
+    if weak:
+        text = (f"stage {stage}: Jacobian condition {condition:.3g}: coefficients not identifiable from these "
+                f"data (weakest: {', '.join(weak)}); consider fixing them")
+        warnings.warn(text, VehdynWarning, stacklevel=5)
+    coefficients = {n: float(getattr(c, n)) for n in fitted}
     return StageResult(stage, coefficients=coefficients, steps=tuple(done), outputs=outputs,
-                       n_points=int(rows["fz"].size), rms=rms, nrms=nrms, r2=r2, at_bounds=at_bounds,
+                       n_points=int(rows["fz"].size), rms=rms, nrms=nrms, r2=r2, at_bounds=tuple(at_bounds),
                        condition=condition, not_identifiable=dict(not_identifiable), weakest=tuple(weak),
-                       nfev=0 if last is None else int(last[0].nfev))
+                       nfev=sum(int(last[0].nfev) for last in lasts))
 
 
 def _weak_coefficients(names, scaled, zero):
@@ -593,4 +606,4 @@ def _weak_coefficients(names, scaled, zero):
     _, _, vt = np.linalg.svd(scaled, full_matrices=False)
     v = np.abs(vt[-1])
     order = np.argsort(v)[::-1]
-    return tuple(unused + [kept[i] for i in order[:3] if v[i] > 0.2])
+    return list(unused + [kept[i] for i in order[:3] if v[i] > 0.2])

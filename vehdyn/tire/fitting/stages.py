@@ -33,8 +33,10 @@ class Stage:
     needs : tuple of str
         Columns the stage cannot do without.
     selection : str
-        ``"pure_longitudinal"`` (alpha = 0), ``"pure_lateral"`` (kappa = 0), ``"combined"`` (both
-        non-zero) or ``"all"``.
+        ``"pure_longitudinal"`` (alpha = 0), ``"pure_lateral"`` (kappa = 0), ``"combined"``
+        (kappa non-zero: the slip-ratio sweeps at every slip angle, where the weighting functions and
+        the kappa-induced side force act; the data must hold some points with both slips non-zero)
+        or ``"all"``.
     steps : tuple of (str, tuple of str)
         ``(step, coefficients)``; step is ``"nominal"``, ``"load"``, ``"camber"`` or ``"pressure"``.
     """
@@ -66,17 +68,17 @@ STAGES = {
         )),
     "aligning": Stage(
         "aligning", ("mz",), ("fz", "alpha", "mz"), "pure_lateral", (
-            ("nominal", ("QBZ1", "QBZ10", "QCZ1", "QDZ1", "QDZ6", "QEZ1", "QEZ4", "QHZ1")),
-            ("load", ("QBZ2", "QBZ3", "QDZ2", "QDZ7", "QEZ2", "QEZ3", "QHZ2")),
+            ("nominal", ("QBZ1", "QBZ9", "QCZ1", "QDZ1", "QDZ6", "QEZ1", "QEZ4", "QHZ1")),
+            ("load", ("QBZ2", "QBZ3", "QBZ10", "QDZ2", "QDZ7", "QEZ2", "QEZ3", "QHZ2")),
             ("camber", ("QBZ4", "QBZ5", "QDZ3", "QDZ4", "QDZ8", "QDZ9", "QDZ10", "QDZ11", "QEZ5", "QHZ3", "QHZ4")),
             ("pressure", ("PPZ1", "PPZ2")),
         )),
     "combined": Stage(
-        "combined", ("fx", "fy"), ("fz", "kappa", "alpha"), "combined", (
+        "combined", ("fx", "fy", "mz"), ("fz", "kappa", "alpha"), "combined", (
             ("nominal", ("RBX1", "RBX2", "RCX1", "REX1", "RHX1", "RBY1", "RBY2", "RBY3", "RCY1", "REY1", "RHY1",
-                         "RVY1", "RVY4", "RVY5", "RVY6")),
-            ("load", ("REX2", "REY2", "RHY2", "RVY2")),
-            ("camber", ("RBX3", "RBY4", "RVY3")),
+                         "RVY1", "RVY4", "RVY5", "RVY6", "SSZ1", "SSZ2")),
+            ("load", ("REX2", "REY2", "RHY2", "RVY2", "SSZ4")),
+            ("camber", ("RBX3", "RBY4", "RVY3", "SSZ3")),
         )),
     "overturning": Stage(
         "overturning", ("mx",), ("fz", "mx"), "all", (
@@ -99,7 +101,7 @@ STAGE_NAMES = tuple(STAGES)
 
 _NOT_IN = {
     "5.2": {"PEY5", "PKY5", "PKY6", "PKY7", "PPX1", "PPX2", "PPX3", "PPX4", "PPY1", "PPY2", "PPY3", "PPY4", "PPY5",
-            "PPZ1", "PPZ2", "PPMX1", "QSY5", "QSY6", "QSY7", "QSY8", "QBZ10"},
+            "PPZ1", "PPZ2", "PPMX1", "QSY5", "QSY6", "QSY7", "QSY8"},
     "6.1": {"PHY3"},
     "6.2": {"PHY3"},
 }
@@ -108,8 +110,8 @@ _NOT_IN = {
 def owned(stage: str, version: str):
     """The steps of ``stage`` for Magic Formula ``version``: tuple of ``(step, coefficients)``.
 
-    MF 5.2 has no pressure dependence (its pressure step is dropped), no PEY5, PKY5-PKY7, QSY5-QSY8
-    or QBZ10, and uses PHY3 for the camber shift; MF 6.x do not use PHY3.
+    MF 5.2 has no pressure dependence (its pressure step is dropped), no PEY5, PKY5-PKY7 or
+    QSY5-QSY8, and uses PHY3 for the camber shift; MF 6.x do not use PHY3.
     """
     drop = _NOT_IN[version]
     steps = []
