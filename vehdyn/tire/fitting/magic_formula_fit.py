@@ -55,7 +55,9 @@ coefficients are not identifiable from the data."""
 DEFAULT_BOUNDS = {
     "PCX1": (0.5, 3.0), "PDX1": (0.05, 5.0), "PEX1": (-np.inf, 1.0),
     "PCY1": (0.5, 3.0), "PDY1": (0.05, 5.0), "PEY1": (-np.inf, 1.0), "PKY2": (0.05, 50.0), "PKY4": (0.5, 5.0),
-    "QCZ1": (0.5, 3.0), "RCX1": (0.2, 3.0), "RCY1": (0.2, 3.0),
+    "PEY4": (-100.0, 100.0), "PEY5": (-100.0, 100.0), "PKY5": (-100.0, 100.0),
+    "QCZ1": (0.5, 3.0), "RCX1": (0.2, 3.0), "RCY1": (0.2, 3.0), "REX1": (-np.inf, 1.0), "REY1": (-np.inf, 1.0),
+    "RVY5": (-3.0, 3.0),
 }
 """Default (lower, upper) bounds of the coefficients that have physical limits; PKX1 and PKY1 keep
 the sign of the measured slope; the rest are free."""
@@ -475,12 +477,21 @@ def _step_rows(step, rows, c):
     """The points of one step: nominal load, zero camber and nominal pressure as far as the data vary."""
     keep = np.ones(rows["fz"].size, dtype=bool)
     if step == "nominal" and _levels_vary(rows["fz"], 0.2 * c.FNOMIN):
-        keep &= np.abs(rows["fz"] - c.FNOMIN) < 0.15 * c.FNOMIN
+        levels = _load_levels(rows["fz"])
+        nearest = levels[np.argmin(np.abs(levels - c.FNOMIN))]  # the load level nearest FNOMIN
+        keep &= np.abs(rows["fz"] - nearest) < 0.1 * nearest
     if step in ("nominal", "load") and _levels_vary(rows["gamma"], 2 * ZERO_CAMBER):
         keep &= np.abs(rows["gamma"]) < ZERO_CAMBER
     if step in ("nominal", "load", "camber") and _levels_vary(rows["pressure"], 0.1 * c.NOMPRES):
         keep &= np.abs(rows["pressure"] - c.NOMPRES) < 0.05 * c.NOMPRES
     return keep
+
+
+def _sweeps(step, rows, c):
+    """Whether ``rows`` sweep the quantity the load, camber or pressure step needs."""
+    column = STEP_VARIATION[step]
+    span = {"fz": 0.2 * c.FNOMIN, "gamma": 2 * ZERO_CAMBER, "pressure": 0.1 * c.NOMPRES}[column]
+    return _levels_vary(rows[column], span)
 
 
 def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physical, max_nfev, messages):
@@ -510,11 +521,12 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
                   if group]
     else:
         groups = [(outputs, steps)]
-    n_coefficients = sum(len([n for n in names if n not in fixed]) for _, st in groups for _, names in st)
     if rows["fz"].size == 0:
         text = f"stage {stage} skipped: no {spec.selection.replace('_', ' ')} points in the data"
         messages.append(text)
         return StageResult(stage, skipped=text), c
+    n_coefficients = sum(len([n for n in names if n not in fixed]) for _, st in groups for step, names in st
+                         if step == "nominal" or _sweeps(step, rows, c))
     n_values = rows["fz"].size * len(outputs)
     if n_values < n_coefficients:
         raise ParameterError(f"stage {stage}: {rows['fz'].size} points ({n_values} values) for {n_coefficients} "
@@ -524,13 +536,10 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
     for group, group_steps in groups:
         active, last = [], None
         for step, names in group_steps:
-            if step != "nominal":
-                column = STEP_VARIATION[step]
-                span = {"fz": 0.2 * c.FNOMIN, "gamma": 2 * ZERO_CAMBER, "pressure": 0.1 * c.NOMPRES}[column]
-                if not _levels_vary(rows[column], span):
-                    for name in names:
-                        not_identifiable[name] = f"no {column} sweep in the {stage} data"
-                    continue
+            if step != "nominal" and not _sweeps(step, rows, c):
+                for name in names:
+                    not_identifiable[name] = f"no {STEP_VARIATION[step]} sweep in the {stage} data"
+                continue
             active += [n for n in names if n not in fixed]
             keep = _step_rows(step, rows, c)
             sub = {k: v[keep] for k, v in rows.items()}
