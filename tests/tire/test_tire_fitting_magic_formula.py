@@ -153,8 +153,12 @@ def test_nan_rows_dropped_with_count():
 def test_identifiability_warnings():
     frame = _pure(sample_tire(shipped_tire("MagicFormula61_Parameters"), loads=[4000.0], slip_angles=ANGLES,
                               cambers=[0.0]))
-    with pytest.warns(VehdynWarning, match=r"PDY2, PEY2, PKY2, PKY4, PHY2, PVY2 not identifiable \(no fz sweep"):
+    with pytest.warns(VehdynWarning) as record:
         fit = fit_magic_formula(frame, stages=("pure_lateral",))
+    texts = [str(w.message) for w in record]
+    assert "stage pure_lateral: PDY2, PEY2, PKY2, PKY4, PHY2, PVY2 not identifiable (no fz sweep" in texts[0]
+    assert any("PDY3, PEY4" in t and "no gamma sweep" in t for t in texts)
+    assert all(w.filename == __file__ for w in record)  # reported where fit_magic_formula was called
     assert fit.stages["pure_lateral"].not_identifiable["PDY3"] == "no gamma sweep in the pure_lateral data"
 
 

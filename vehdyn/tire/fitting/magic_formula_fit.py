@@ -6,8 +6,9 @@ fields of the model's coefficient record (``MFCoefficients._replace``), so that 
 written twice. The inputs are post-processed once per step (limits, dfz, dpi: the ``MFState`` of
 :mod:`vehdyn.tire.magic_formula`); a pure-slip residual then costs one call of
 :func:`~vehdyn.tire.mf_forces.longitudinal_pure` or :func:`~vehdyn.tire.mf_forces.lateral_pure`.
-The Jacobian is a forward difference evaluated for all coefficients in one vectorized call (the
-coefficients become columns ``(k, 1)`` that broadcast against the points).
+What the varied coefficients cannot change (the pure-slip forces in the combined and moment
+stages, the combined forces in the moment stages) is computed once per step. The Jacobian is a
+forward difference, one model call per coefficient.
 
 Stages and the coefficients they own: :mod:`vehdyn.tire.fitting.stages`. Each step is a bounded
 :func:`scipy.optimize.least_squares` (trust-region reflective) on residuals normalized by the
@@ -33,7 +34,8 @@ import numpy as np
 
 from ...errors import ParameterError, VehdynWarning
 from .._mf_ops import NumpyOps
-from ..mf_forces import lateral_pure, longitudinal_pure
+from ..mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure
+from ..mf_moments import aligning_moment, overturning_moment, rolling_resistance_moment
 from .result import StageResult, TireFit
 from .stages import STAGE_NAMES, STAGES, STEP_VARIATION, owned
 
@@ -213,64 +215,92 @@ def _load_levels(fz, tolerance=0.05):
 
 # --------------------------------------------------------------------------------- evaluation
 class _Problem:
-    """One least-squares step: points, outputs, the coefficients varied and the model call."""
+    """One least-squares step: points, outputs, the coefficients varied and the model call.
+
+    The inputs are post-processed once (``MFState``); so are the quantities that the varied
+    coefficients cannot change: the pure-slip forces in the combined and moment stages, and the
+    combined forces in the moment stages (unless combined-slip coefficients ``R*`` vary).
+    """
 
     def __init__(self, base, stage, rows, outputs, names, weights):
         from ..magic_formula import _forces_pass
 
         self.base, self.stage, self.names = base, stage, names
-        self.inputs = tuple(rows[k] for k in ("fz", "kappa", "alpha", "gamma", "vx", "pressure"))
         self.targets = [rows[o] for o in outputs]
         self.outputs = outputs
-        self.scales = [max(float(np.max(np.abs(t))), 1e-9) for t in self.targets]
+        self.scales = [max(float(np.max(np.abs(t))), 1e-9) if t.size else 1.0 for t in self.targets]
         self.weights = weights
-        fz, kappa, alpha, gamma, vx, pressure = self.inputs
+        fz, kappa, alpha, gamma, vx, pressure = (rows[k] for k in ("fz", "kappa", "alpha", "gamma", "vx", "pressure"))
         with np.errstate(all="ignore"):
-            self.state = _forces_pass(NumpyOps, base, fz, kappa, alpha, gamma, 0.0, vx, pressure, 0.0, False, True,
-                                      False, False, False)[1][0]
-        self.forces_pass = _forces_pass
+            forces, extras = _forces_pass(NumpyOps, base, fz, kappa, alpha, gamma, 0.0, vx, pressure, 0.0, False, True,
+                                          False, False, False)
+            self.state, self.pure, self.kxk = extras[0], extras[1], extras[4]
+            if stage not in ("pure_longitudinal", "pure_lateral"):
+                self.fx0 = longitudinal_pure(NumpyOps, base, self.state)[0]
+                self.combined = (forces[0], *lateral_combined(NumpyOps, base, self.state, self.pure))
+        self.varies_combined = any(n.startswith("R") for n in names)
+        self._cache = (None, None)
         self.nfev = 0
 
     def coefficients(self, x):
         return self.base._replace(**dict(zip(self.names, x)))
 
     def model(self, c):
-        """Model outputs for coefficient record ``c`` (fields may be (k, 1) columns): list of arrays."""
+        """Model outputs for coefficient record ``c``: list of arrays, one per output."""
+        xp, s = NumpyOps, self.state
         with np.errstate(all="ignore"):
             if self.stage == "pure_longitudinal":
-                return [longitudinal_pure(NumpyOps, c, self.state)[0]]
+                return [longitudinal_pure(xp, c, s)[0]]
             if self.stage == "pure_lateral":
-                return [lateral_pure(NumpyOps, c, self.state, self.state.gamma_star, False).fy0]
-            fz, kappa, alpha, gamma, vx, pressure = self.inputs
-            forces = self.forces_pass(NumpyOps, c, fz, kappa, alpha, gamma, 0.0, vx, pressure, 0.0, False, True,
-                                      False, False, False)[0]
-        by_name = dict(zip(("fx", "fy", "fz", "mx", "my", "mz"), forces))
-        return [by_name[o] for o in self.outputs]
+                return [lateral_pure(xp, c, s, s.gamma_star, False).fy0]
+            if self.varies_combined:
+                fx = longitudinal_combined(xp, c, s, self.fx0)
+                fy, gyk, svyk = lateral_combined(xp, c, s, self.pure)
+            else:
+                fx, fy, gyk, svyk = self.combined
+            values = []
+            for out in self.outputs:
+                if out == "fx":
+                    values.append(fx)
+                elif out == "fy":
+                    values.append(fy)
+                elif out == "mz":
+                    values.append(aligning_moment(xp, c, s, self.pure, fy, fx, self.kxk, gyk, svyk).mz)
+                elif out == "mx":
+                    values.append(overturning_moment(xp, c, s, fy))
+                else:
+                    values.append(rolling_resistance_moment(xp, c, s, fx))
+        return values
 
     def residuals(self, values):
-        parts = [(m - t) / s for m, t, s in zip(values, self.targets, self.scales)]
-        r = np.concatenate([np.broadcast_to(p, np.broadcast_shapes(p.shape, t.shape)) for p, t in
-                            zip(parts, self.targets)], axis=-1)
+        r = np.concatenate([(m - t) / scale for m, t, scale in zip(values, self.targets, self.scales)])
         if self.weights is not None:
             r = r * self.weights
-        return r
+        return np.where(np.isfinite(r), r, 1e3)
 
     def fun(self, x):
         self.nfev += 1
         r = self.residuals(self.model(self.coefficients(x)))
-        return np.where(np.isfinite(r), r, 1e3)
+        self._cache = (x.copy(), r)
+        return r
 
     def jac(self, x, lower, upper):
-        """Forward differences for every coefficient in one vectorized model call."""
+        """Forward differences, one model call per coefficient on the step's points.
+
+        (Evaluating all coefficients in one call on (k, n) arrays was 1.4x slower at 7,000 points:
+        the arrays leave the cache; ``benchmarks/bench_tire_fit.py``.)
+        """
+        cached_x, f0 = self._cache
+        if cached_x is None or not np.array_equal(cached_x, x):
+            f0 = self.fun(x)
         h = 1e-7 * np.maximum(np.abs(x), 1.0)
         h = np.where(x + h > upper, -h, h)
-        k = x.size
-        columns = np.repeat(x[None, :], k + 1, axis=0)
-        columns[1:] += np.diag(h)
-        c = self.base._replace(**{n: columns[:, j:j + 1] for j, n in enumerate(self.names)})
-        r = self.residuals(self.model(c))
-        r = np.where(np.isfinite(r), r, 1e3)
-        return ((r[1:] - r[0]) / h[:, None]).T
+        jac = np.empty((f0.size, x.size))
+        for j in range(x.size):
+            shifted = x.copy()
+            shifted[j] += h[j]
+            jac[:, j] = (self.residuals(self.model(self.coefficients(shifted))) - f0) / h[j]
+        return jac
 
 
 def _solve(problem, x0, lower, upper, max_nfev):
@@ -566,7 +596,7 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
         for reason, names in by_reason.items():
             text = f"stage {stage}: {', '.join(names)} not identifiable ({reason}); kept at their start values"
             messages.append(text)
-            warnings.warn(text, VehdynWarning, stacklevel=4)
+            warnings.warn(text, VehdynWarning, stacklevel=3)
     return _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done), c
 
 
@@ -598,7 +628,7 @@ def _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done
     if weak:
         text = (f"stage {stage}: Jacobian condition {condition:.3g}: coefficients not identifiable from these "
                 f"data (weakest: {', '.join(weak)}); consider fixing them")
-        warnings.warn(text, VehdynWarning, stacklevel=5)
+        warnings.warn(text, VehdynWarning, stacklevel=4)
     coefficients = {n: float(getattr(c, n)) for n in fitted}
     return StageResult(stage, coefficients=coefficients, steps=tuple(done), outputs=outputs,
                        n_points=int(rows["fz"].size), rms=rms, nrms=nrms, r2=r2, at_bounds=tuple(at_bounds),
