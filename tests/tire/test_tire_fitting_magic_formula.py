@@ -190,3 +190,33 @@ def test_bad_input():
         fit_magic_formula(frame.drop(columns=["fz"]))
     with pytest.raises(ParameterError, match="data must be a DataFrame"):
         fit_magic_formula([1, 2, 3])
+
+
+@pytest.mark.parametrize("stage, outputs", [("pure_longitudinal", ("fx",)), ("pure_lateral", ("fy",)),
+                                            ("combined", ("fx", "fy", "mz")), ("overturning", ("mx",)),
+                                            ("rolling_resistance", ("my",))])
+def test_fit_model_path_equals_magic_formula_forces(stage, outputs):
+    """The fit's cheap evaluation (state computed once, stage functions only) gives exactly what
+    MagicFormula.forces gives, for the shipped coefficients and for changed ones."""
+    from vehdyn.tire.fitting.magic_formula_fit import _Problem
+
+    tire = shipped_tire("MagicFormula61_Parameters")
+    frame = sample_tire(tire, slip_angles=ANGLES, slip_ratios=RATIOS)
+    if stage == "pure_longitudinal":
+        frame = frame[frame["sweep"] == "longitudinal"]
+    elif stage == "pure_lateral":
+        frame = frame[frame["sweep"] == "lateral"]
+    rows = {k: frame[k].to_numpy() for k in ("fz", "kappa", "alpha", "gamma", "vx", "fx", "fy", "mz", "mx", "my")}
+    rows["pressure"] = np.full(len(frame), tire._c.INFLPRES)
+    changed = {"pure_longitudinal": {"PDX1": 1.3}, "pure_lateral": {"PKY1": -20.0},
+               "combined": {"RBY1": 12.0, "SSZ1": 0.01}, "overturning": {"QSX3": 0.5},
+               "rolling_resistance": {"QSY1": 0.02}}[stage]
+    problem = _Problem(tire._c, stage, rows, outputs, tuple(changed), None)
+    for values in ({}, changed):
+        c = tire._c._replace(**values)
+        reference = MagicFormula.__new__(MagicFormula)
+        reference.__dict__.update(tire.__dict__, _c=c)
+        expected = reference.forces(rows["fz"], rows["kappa"], rows["alpha"], rows["gamma"], rows["vx"],
+                                    backend="numpy")
+        for out, got in zip(outputs, problem.model(c)):
+            np.testing.assert_array_equal(got, getattr(expected, out), err_msg=f"{out} {values}")

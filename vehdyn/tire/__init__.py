@@ -36,7 +36,7 @@ from .relaxation import TireRelaxation, relaxation_lengths
 from .slip import WheelSlip, regularized_speed, slip_velocities, theoretical_slip, wheel_slip
 from .tir import TirParameters, read_tir, write_tir
 from .tire_data import read_tire_data
-from .fitting import TireFit, fit_magic_formula
+from .fitting import TireFit, fit_brush, fit_linear, fit_magic_formula
 
 __all__ = [
     "TireForces",
@@ -67,5 +67,7 @@ __all__ = [
     "characteristic_values",
     "read_tire_data",
     "fit_magic_formula",
+    "fit_brush",
+    "fit_linear",
     "TireFit",
 ]

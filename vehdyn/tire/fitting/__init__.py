@@ -7,6 +7,7 @@ simple laws. scipy, pandas and matplotlib are imported on use.
 
 from .magic_formula_fit import DEFAULT_BOUNDS, fit_magic_formula
 from .result import StageResult, TireFit
+from .simple_fits import fit_brush, fit_linear
 from .stages import STAGE_NAMES, STAGES, owned
 
-__all__ = ["fit_magic_formula", "TireFit", "StageResult", "STAGES", "STAGE_NAMES", "owned", "DEFAULT_BOUNDS"]
+__all__ = ["fit_magic_formula", "fit_brush", "fit_linear", "TireFit", "StageResult", "STAGES", "STAGE_NAMES", "owned", "DEFAULT_BOUNDS"]
