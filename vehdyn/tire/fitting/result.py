@@ -172,8 +172,8 @@ class TireFit:
                     on = select.copy()
                     on[select] = loads == level
                     on &= np.abs(data["gamma"]) < np.radians(0.5)
-                    if stage.name == "combined":
-                        on &= np.isclose(np.abs(data["alpha"]), np.abs(data["alpha"][on]).max() if on.any() else 0)
+                    if stage.name == "combined" and on.any():  # the sweep at the largest slip angle
+                        on &= np.isclose(data["alpha"], data["alpha"][on].max())
                     if not on.any():
                         continue
                     order = np.argsort(data[key][on])
@@ -183,7 +183,10 @@ class TireFit:
                     ax.plot(x, fitted[out][on][order], "-", color=color, lw=1.2)
                 ax.set_xlabel(label)
                 ax.set_ylabel(f"{out} [{_OUTPUT_UNITS[out]}]")
-                ax.set_title(f"{stage.name}: {out}, nrms {100 * stage.nrms[out]:.2f} %")
+                title = f"{stage.name}: {out}, nrms {100 * stage.nrms[out]:.2f} %"
+                if stage.name == "combined":
+                    title += f" (largest slip angle)"
+                ax.set_title(title)
                 ax.grid(True, alpha=0.3)
                 ax.legend(fontsize=7)
             fig.tight_layout()
