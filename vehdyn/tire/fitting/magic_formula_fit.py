@@ -479,7 +479,7 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
     for stage in stages:
         began = time.perf_counter()
         result, c = _fit_stage(stage, version, c, full, row_weights, set(fixed), bounds, start is None, max_nfev,
-                               messages)
+                               messages, results)
         result.seconds = time.perf_counter() - began
         results[stage] = result
     fitted = {name: getattr(c, name) for r in results.values() for name in r.coefficients}
@@ -524,7 +524,7 @@ def _sweeps(step, rows, c):
     return _levels_vary(rows[column], span)
 
 
-def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physical, max_nfev, messages):
+def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physical, max_nfev, messages, done_stages):
     spec = STAGES[stage]
     missing = [k for k in spec.needs if k not in full or (k in ("kappa", "alpha") and not np.any(full[k]))]
     outputs = tuple(o for o in spec.outputs if o in full)
@@ -544,36 +544,46 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
     weights = None if row_weights is None else row_weights[select]
     steps = owned(stage, version)
     if stage == "combined":
-        # forces first (Gxa, Gyk, SVyk), then the moment's Fx arm (SSZ) with the forces held
-        groups = [(group, tuple((s, tuple(n for n in names if _OUTPUT_OF[n[2]] in group)) for s, names in steps))
-                  for group in (tuple(o for o in ("fx", "fy") if o in outputs), tuple(o for o in ("mz",)
-                                                                                         if o in outputs))
-                  if group]
+        # forces first (Gxa, Gyk, SVyk) on the slip-ratio sweeps; then the aligning moment with the
+        # forces held: SSZ (the Fx arm) and, refined on every point, the trail and residual torque
+        # coefficients of the aligning stage, because combined slip evaluates the trail at the
+        # equivalent slip angle sqrt(alpha^2 + (Kxk/Kya)^2 kappa^2), far beyond the slip-angle sweeps
+        forces = tuple(o for o in ("fx", "fy") if o in outputs)
+        groups = [(forces, tuple((s, tuple(n for n in names if _OUTPUT_OF[n[2]] in forces)) for s, names in steps),
+                   None)] if forces else []
+        if "mz" in outputs:
+            aligned = done_stages.get("aligning")
+            refined = dict(owned("aligning", version)) if aligned is not None and not aligned.skipped else {}
+            mz_steps = tuple((s, tuple(n for n in refined.get(s, ()) if n in aligned.coefficients)
+                              + tuple(n for n in names if n.startswith("SSZ"))) for s, names in steps)
+            groups.append((("mz",), mz_steps, {k: v for k, v in full.items()} if refined else None))
     else:
-        groups = [(outputs, steps)]
+        groups = [(outputs, steps, None)]
     if rows["fz"].size == 0:
         text = f"stage {stage} skipped: no {spec.selection.replace('_', ' ')} points in the data"
         messages.append(text)
         return StageResult(stage, skipped=text), c
-    n_coefficients = sum(len([n for n in names if n not in fixed]) for _, st in groups for step, names in st
+    n_coefficients = sum(len([n for n in names if n not in fixed]) for _, st, _ in groups for step, names in st
                          if step == "nominal" or _sweeps(step, rows, c))
     n_values = rows["fz"].size * len(outputs)
     if n_values < n_coefficients:
         raise ParameterError(f"stage {stage}: {rows['fz'].size} points ({n_values} values) for {n_coefficients} "
                              f"coefficients; the fit needs at least as many values as coefficients", key="data",
                              value=n_values)
-    fitted, not_identifiable, done, lasts = [], {}, [], []
-    for group, group_steps in groups:
+    fitted, not_identifiable, done, lasts, used = [], {}, [], [], set()
+    for group, group_steps, group_rows in groups:
         active, last = [], None
+        group_rows = rows if group_rows is None else group_rows
+        group_weights = weights if group_rows is rows else row_weights
         for step, names in group_steps:
-            if step != "nominal" and not _sweeps(step, rows, c):
+            if step != "nominal" and not _sweeps(step, group_rows, c):
                 for name in names:
                     not_identifiable[name] = f"no {STEP_VARIATION[step]} sweep in the {stage} data"
                 continue
             active += [n for n in names if n not in fixed]
-            keep = _step_rows(step, rows, c)
-            sub = {k: v[keep] for k, v in rows.items()}
-            w = None if weights is None else np.tile(weights[keep], len(group))
+            keep = _step_rows(step, group_rows, c)
+            sub = {k: v[keep] for k, v in group_rows.items()}
+            w = None if group_weights is None else np.tile(group_weights[keep], len(group))
             if physical and step == "nominal":
                 start = {k: v for k, v in _physical_start(stage, sub, c).items() if k not in fixed and np.isfinite(v)}
                 c = c._replace(**start)
@@ -582,11 +592,25 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
             problem = _Problem(c, stage, sub, group, tuple(active), w)
             x0 = np.array([getattr(c, n) for n in active], dtype=float)
             lower, upper = _bounds(active, x0, user_bounds)
+            # coefficients without effect on these points (e.g. RBX3: camber only at zero slip angle),
+            # judged away from the start, where a product with a zero coefficient hides an effect
+            probe = np.clip(x0 + 0.1 * np.maximum(np.abs(x0), 0.1), lower, upper)
+            unused = np.linalg.norm(problem.jac(probe, lower, upper), axis=0) == 0
+            used.update(n for n, u in zip(active, unused) if not u)
+            if unused.all():
+                continue
+            if unused.any():  # held in this step (a later step's points may move them)
+                names_used = tuple(n for n, u in zip(active, unused) if not u)
+                problem = _Problem(c, stage, sub, group, names_used, w)
+                x0, lower, upper = x0[~unused], lower[~unused], upper[~unused]
             last = (_solve(problem, x0, lower, upper, max_nfev), problem, lower, upper)
             c = problem.coefficients(last[0].x)
             if step not in done:
                 done.append(step)
-        fitted += active
+        for name in active:
+            if name not in used:
+                not_identifiable[name] = f"no effect on the {stage} data"
+        fitted += [n for n in active if n in used]
         if last is not None:
             lasts.append(last)
     if not_identifiable:
