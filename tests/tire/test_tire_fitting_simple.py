@@ -73,3 +73,6 @@ def test_simple_fits_bad_input():
     data["alpha"] = np.array([0.0, 0.5, 0.6])
     with pytest.raises(ParameterError, match="1 points with"):
         fit_linear(data)
+    data["alpha"] = np.array([0.0, 0.0, 0.6])
+    with pytest.raises(ParameterError, match="0 of them at a non-zero slip angle"):
+        fit_linear(data)

@@ -85,9 +85,11 @@ def fit_linear(data, *, nominal_load=None, max_slip_angle=math.radians(2.0), max
     if camber:
         design.append(columns["gamma"] * scale)
     matrix = np.column_stack([d[lateral] for d in design])
-    if lateral.sum() < matrix.shape[1] + 1:
+    slopes = np.unique(columns["alpha"][lateral & (columns["alpha"] != 0)]).size
+    if lateral.sum() < matrix.shape[1] + 1 or slopes == 0:
         raise ParameterError(f"fit_linear: {int(lateral.sum())} points with |alpha| <= {max_slip_angle:.4g} rad and "
-                             f"|kappa| < {PURE_SLIP_RATIO}; needs at least {matrix.shape[1] + 1}", key="data",
+                             f"|kappa| < {PURE_SLIP_RATIO}, {slopes} of them at a non-zero slip angle; needs at least "
+                             f"{matrix.shape[1] + 1} and one (raise max_slip_angle for a coarse sweep)", key="data",
                              value=int(lateral.sum()))
     solution, *_ = np.linalg.lstsq(matrix, columns["fy"][lateral], rcond=None)
     values = {"cornering_stiffness": float(solution[0]), "camber_stiffness": float(solution[1]) if camber else 0.0}
