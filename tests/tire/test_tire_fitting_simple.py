@@ -59,6 +59,8 @@ def test_linear_closed_form_recovers_parameters():
                         ("pneumatic_trail", 0.03)):
         assert values[name] == pytest.approx(value, rel=1e-10), name
     assert fit.tire.nominal_load == 4000.0
+    with pytest.raises(ParameterError, match="only a Magic Formula fit writes a .tir file"):
+        fit.to_tir("linear.tir")
 
 
 def test_simple_fits_bad_input():

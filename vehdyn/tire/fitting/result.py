@@ -132,10 +132,25 @@ class TireFit:
         return "\n".join(lines)
 
     def to_tir(self, path):
-        """Write the fitted tire to a ``.tir`` file (:func:`vehdyn.tire.write_tir`; reads back exactly)."""
+        """Write the fitted Magic Formula to a ``.tir`` file that reads back to the same coefficients.
+
+        Written by :func:`vehdyn.tire.write_tir` and moved into place atomically (an interrupted
+        write leaves the previous file). Returns the path.
+        """
+        import tempfile
+        from pathlib import Path
+
+        from ..._atomic import atomic_write_bytes
+        from ...errors import ParameterError
         from ..tir import write_tir
 
-        return write_tir(self.tire.params, path)
+        if not hasattr(self.tire, "params"):
+            raise ParameterError(f"only a Magic Formula fit writes a .tir file; this fit's tire is "
+                                 f"{type(self.tire).__name__}", key="tire", value=type(self.tire).__name__)
+        path = Path(path)
+        with tempfile.TemporaryDirectory(dir=path.parent) as folder:
+            text = write_tir(self.tire.params, Path(folder) / path.name).read_bytes()
+        return atomic_write_bytes(path, text)
 
     def plot(self):
         """Data against fit per stage: the textbook figures (force or moment against slip, per load).
