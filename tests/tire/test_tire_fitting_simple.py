@@ -78,3 +78,24 @@ def test_simple_fits_bad_input():
     data["alpha"] = np.array([0.0, 0.0, 0.6])
     with pytest.raises(ParameterError, match="0 of them at a non-zero slip angle"):
         fit_linear(data)
+
+
+def test_fit_plots_data_against_fit():
+    """One figure per stage; the fitted curve of each output lies on its data (exact laws)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    truth = BrushTire(contact_half_length=0.08, tread_stiffness=5e6, mu=1.0)
+    fit = fit_brush(sample_tire(truth, loads=LOADS, cambers=[0.0], combined_angles=[], vx=10.0))
+    figures = fit.plot()
+    assert list(figures) == ["brush"]
+    axes = figures["brush"].axes
+    assert [ax.get_ylabel() for ax in axes] == ["fy [N]", "fx [N]", "mz [N*m]"]
+    for ax in axes:
+        lines = ax.get_lines()
+        assert len(lines) == 2 * len(LOADS)
+        for data, model in zip(lines[::2], lines[1::2]):
+            np.testing.assert_allclose(model.get_ydata(), data.get_ydata(), atol=1e-6 * np.max(np.abs(data.get_ydata())))
+    plt.close("all")

@@ -162,7 +162,8 @@ class TireFit:
         """
         import matplotlib.pyplot as plt
 
-        from .magic_formula_fit import _select
+        from .magic_formula_fit import PURE_SLIP_ANGLE, PURE_SLIP_RATIO, _select
+        from .stages import STAGES
 
         data = self.data
         model = self.tire.forces(data["fz"], data["kappa"], data["alpha"], data["gamma"], data["vx"])
@@ -175,14 +176,21 @@ class TireFit:
         for stage in self.stages.values():
             if stage.skipped:
                 continue
-            select = _select(stage.name, data)
-            key, label, factor = x_of.get(stage.name, ("alpha", "slip angle [deg]", 180 / np.pi))
             fig, axes = plt.subplots(1, len(stage.outputs), figsize=(5.5 * len(stage.outputs), 4.2), squeeze=False)
-            loads = np.round(data["fz"][select], -2)
-            levels = np.unique(loads)
-            if levels.size > 6:
-                levels = levels[np.linspace(0, levels.size - 1, 6).astype(int)]
             for ax, out in zip(axes[0], stage.outputs):
+                if stage.name in STAGES:
+                    select = _select(stage.name, data)
+                    key, label, factor = x_of.get(stage.name, ("alpha", "slip angle [deg]", 180 / np.pi))
+                elif out == "fx":  # brush, linear: each output on its pure-slip sweeps
+                    select = np.abs(data["alpha"]) < PURE_SLIP_ANGLE
+                    key, label, factor = x_of["pure_longitudinal"]
+                else:
+                    select = np.abs(data["kappa"]) < PURE_SLIP_RATIO
+                    key, label, factor = x_of["pure_lateral"]
+                loads = np.round(data["fz"][select], -2)
+                levels = np.unique(loads)
+                if levels.size > 6:
+                    levels = levels[np.linspace(0, levels.size - 1, 6).astype(int)]
                 for i, level in enumerate(levels):
                     on = select.copy()
                     on[select] = loads == level
@@ -200,7 +208,7 @@ class TireFit:
                 ax.set_ylabel(f"{out} [{_OUTPUT_UNITS[out]}]")
                 title = f"{stage.name}: {out}, nrms {100 * stage.nrms[out]:.2f} %"
                 if stage.name == "combined":
-                    title += f" (largest slip angle)"
+                    title += " (largest slip angle)"
                 ax.set_title(title)
                 ax.grid(True, alpha=0.3)
                 ax.legend(fontsize=7)
