@@ -220,3 +220,25 @@ def test_fit_model_path_equals_magic_formula_forces(stage, outputs):
                                     backend="numpy")
         for out, got in zip(outputs, problem.model(c)):
             np.testing.assert_array_equal(got, getattr(expected, out), err_msg=f"{out} {values}")
+
+
+def test_pressure_dependence_recovered():
+    """Sweeps at 0.8 and 1.2 times the nominal pressure: the pressure step runs and recovers Fx, Fy
+    (MagicFormula.evaluate with pressure as the reference)."""
+    truth_tire = shipped_tire("MagicFormula61_Parameters")
+    p0 = truth_tire._c.NOMPRES
+    frame = _pure(sample_tire(truth_tire, slip_angles=ANGLES, slip_ratios=RATIOS, cambers=[0.0],
+                              pressures=[0.8 * p0, 1.2 * p0]))
+    fit = _fit(frame, stages=PURE)
+    assert fit.stages["pure_lateral"].steps == ("nominal", "load", "pressure")
+    assert "PPY1" in fit.stages["pure_lateral"].coefficients and "PPX1" in fit.stages["pure_longitudinal"].coefficients
+    held = _pure(sample_tire(truth_tire, loads=[truth_tire.nominal_load], slip_angles=ANGLES[:-1] + np.radians(0.75),
+                             slip_ratios=RATIOS[:-1] + 0.015, cambers=[0.0], pressures=[0.9 * p0, 1.1 * p0]))
+    held = held[held["pressure"] != truth_tire._c.INFLPRES]
+    sweep = held["sweep"].to_numpy()
+    model = fit.tire.evaluate(held["fz"].to_numpy(), held["kappa"].to_numpy(), held["alpha"].to_numpy(), 0.0,
+                              held["vx"].to_numpy(), pressure=held["pressure"].to_numpy())
+    for out, on in (("fx", sweep == "longitudinal"), ("fy", sweep == "lateral")):
+        truth = held.attrs["truth"][out][held.index][on]
+        error = np.sqrt(np.mean((getattr(model, out)[on] - truth) ** 2)) / np.max(np.abs(truth))
+        assert error < 0.01, (out, error)

@@ -15,7 +15,7 @@ __all__ = ["sample_tire"]
 
 def sample_tire(tire, *, loads=None, slip_angles=np.radians(np.linspace(-15.0, 15.0, 31)),
                 slip_ratios=np.linspace(-0.3, 0.3, 31), cambers=np.radians([0.0, -4.0, 4.0]),
-                combined_angles=np.radians([-6.0, -3.0, 3.0, 6.0]), vx=None, noise=0.0, seed=None):
+                combined_angles=np.radians([-6.0, -3.0, 3.0, 6.0]), pressures=None, vx=None, noise=0.0, seed=None):
     """Sample ``tire`` on a test-like grid: pure slip-angle and slip-ratio sweeps and combined slip.
 
     Parameters
@@ -32,6 +32,10 @@ def sample_tire(tire, *, loads=None, slip_angles=np.radians(np.linspace(-15.0, 1
         Inclination angles [rad] of every sweep (default 0, -4, 4 degrees).
     combined_angles : array_like
         Slip angles [rad] of the combined sweeps (slip-ratio sweeps at these angles, zero camber).
+    pressures : array_like, optional
+        Inflation pressures [Pa] of the pure-slip sweeps at zero camber (besides the nominal one);
+        needs a tire with ``evaluate(..., pressure=...)`` (:class:`vehdyn.tire.MagicFormula`). Default:
+        the nominal pressure only, and no ``pressure`` column.
     vx : float, optional
         Speed [m/s]; default the tire's LONGVL (or 16.7 m/s).
     noise : float
@@ -66,10 +70,25 @@ def sample_tire(tire, *, loads=None, slip_angles=np.radians(np.linspace(-15.0, 1
             k = np.asarray(slip_ratios, dtype=float)
             k = k[np.abs(k) > 0]
             parts.append(("combined", np.full(k.size, fz), k, np.full(k.size, alpha), np.zeros(k.size)))
+    nominal_pressure = float(getattr(getattr(tire, "_c", None), "INFLPRES", 0.0))
+    parts = [(*p, np.full(p[1].size, nominal_pressure)) for p in parts]
+    for pressure in () if pressures is None else np.atleast_1d(pressures):
+        for fz in loads:
+            a = np.asarray(slip_angles, dtype=float)
+            k = np.asarray(slip_ratios, dtype=float)
+            parts.append(("lateral", np.full(a.size, fz), np.zeros(a.size), a, np.zeros(a.size),
+                          np.full(a.size, pressure)))
+            parts.append(("longitudinal", np.full(k.size, fz), k, np.zeros(k.size), np.zeros(k.size),
+                          np.full(k.size, pressure)))
     sweep = np.concatenate([np.full(p[1].size, p[0], dtype=object) for p in parts])
-    fz, kappa, alpha, gamma = (np.concatenate([p[i] for p in parts]) for i in range(1, 5))
-    out = tire.forces(fz, kappa, alpha, gamma, vx)
+    fz, kappa, alpha, gamma, pressure = (np.concatenate([p[i] for p in parts]) for i in range(1, 6))
+    if pressures is None:
+        out = tire.forces(fz, kappa, alpha, gamma, vx)
+    else:
+        out = tire.evaluate(fz, kappa, alpha, gamma, vx, pressure=pressure)
     frame = pd.DataFrame({"fz": fz, "kappa": kappa, "alpha": alpha, "gamma": gamma, "vx": np.full(fz.size, vx)})
+    if pressures is not None:
+        frame["pressure"] = pressure
     truth = {name: np.asarray(getattr(out, name), dtype=float) for name in ("fx", "fy", "mz", "mx", "my")}
     rng = np.random.default_rng(seed)
     for name, values in truth.items():
