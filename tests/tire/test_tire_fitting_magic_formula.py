@@ -242,3 +242,23 @@ def test_pressure_dependence_recovered():
         truth = held.attrs["truth"][out][held.index][on]
         error = np.sqrt(np.mean((getattr(model, out)[on] - truth) ** 2)) / np.max(np.abs(truth))
         assert error < 0.01, (out, error)
+
+
+def test_condition_warning_names_degenerate_coefficients():
+    """Camber at 0 and +-4 deg only: gamma and gamma*|gamma| are proportional, so the residual-torque
+    pairs QDZ8/QDZ10 and QDZ9/QDZ11 cannot be told apart; with +-2 deg added they can."""
+    truth_tire = shipped_tire("MagicFormula61_Parameters")
+    results = {}
+    for cambers in ((0.0, -4.0, 4.0), (0.0, -4.0, -2.0, 2.0, 4.0)):
+        frame = sample_tire(truth_tire, slip_angles=ANGLES, slip_ratios=[], cambers=np.radians(cambers),
+                            combined_angles=[])
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", VehdynWarning)
+            fit = fit_magic_formula(frame, stages=("pure_lateral", "aligning"))
+        results[len(cambers)] = ([str(w.message) for w in caught if "condition" in str(w.message)],
+                                 fit.stages["aligning"])
+    texts, stage = results[3]
+    assert len(texts) == 1 and stage.condition > 1e8
+    assert set(stage.weakest) & {"QDZ8", "QDZ10", "QDZ9", "QDZ11"}
+    texts, stage = results[5]
+    assert texts == [] and stage.condition < 1e4 and stage.nrms["mz"] < 1e-6
