@@ -262,3 +262,17 @@ def test_condition_warning_names_degenerate_coefficients():
     assert set(stage.weakest) & {"QDZ8", "QDZ10", "QDZ9", "QDZ11"}
     texts, stage = results[5]
     assert texts == [] and stage.condition < 1e4 and stage.nrms["mz"] < 1e-6
+
+
+def test_zero_weights_remove_corrupted_rows():
+    """Rows with weight 0 do not count: corrupted side forces on them leave the fit exact."""
+    truth_tire = shipped_tire("MagicFormula61_Parameters")
+    frame = _pure(sample_tire(truth_tire, slip_angles=ANGLES, slip_ratios=RATIOS, cambers=[0.0]))
+    truth = {o: v[frame.index] for o, v in frame.attrs["truth"].items()}
+    frame = frame.reset_index(drop=True)
+    bad = (frame["sweep"] == "lateral").to_numpy() & (np.arange(len(frame)) % 5 == 0)
+    frame.loc[bad, "fy"] += 2000.0
+    weights = np.where(bad, 0.0, 1.0)
+    errors = {w is None: _relative_rms(_fit(frame, stages=("pure_lateral",), weights=w).tire, frame, truth, ("fy",))
+              for w in (None, weights)}
+    assert errors[False]["fy"] < 0.001 < 0.01 < errors[True]["fy"], errors

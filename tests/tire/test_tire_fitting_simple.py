@@ -97,5 +97,6 @@ def test_fit_plots_data_against_fit():
         lines = ax.get_lines()
         assert len(lines) == 2 * len(LOADS)
         for data, model in zip(lines[::2], lines[1::2]):
-            np.testing.assert_allclose(model.get_ydata(), data.get_ydata(), atol=1e-6 * np.max(np.abs(data.get_ydata())))
+            y = data.get_ydata()
+            np.testing.assert_allclose(model.get_ydata(), y, atol=1e-6 * np.max(np.abs(y)))
     plt.close("all")

@@ -9,5 +9,7 @@ from .magic_formula_fit import DEFAULT_BOUNDS, fit_magic_formula
 from .result import StageResult, TireFit
 from .simple_fits import fit_brush, fit_linear
 from .stages import STAGE_NAMES, STAGES, owned
+from .synthetic import sample_tire
 
-__all__ = ["fit_magic_formula", "fit_brush", "fit_linear", "TireFit", "StageResult", "STAGES", "STAGE_NAMES", "owned", "DEFAULT_BOUNDS"]
+__all__ = ["fit_magic_formula", "fit_brush", "fit_linear", "sample_tire", "TireFit", "StageResult", "STAGES",
+           "STAGE_NAMES", "owned", "DEFAULT_BOUNDS"]

@@ -428,7 +428,7 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
         When coefficients are not identifiable from the data (no load, camber or pressure sweep,
         or an ill-conditioned Jacobian).
     """
-    from ..magic_formula import MagicFormula, _coefficients
+    from ..magic_formula import MagicFormula
 
     if version not in ("5.2", "6.1", "6.2"):
         raise ParameterError(f"version must be '5.2', '6.1' or '6.2', got {version!r}", key="version", value=version)
