@@ -39,11 +39,11 @@ def test_consortium_layout_from_known_values(tmp_path):
         "ET": np.arange(5.0), "V": speed_mph, "N": np.full(5, 300.0), "SA": -np.degrees(ISO["alpha"]),
         "IA": np.degrees(ISO["gamma"]), "RL": np.full(5, 9.0), "RE": np.full(5, 9.5), "P": pressure_psi,
         "FX": ISO["fx"] / LBF, "FY": -ISO["fy"] / LBF, "FZ": -ISO["fz"] / LBF, "MX": ISO["mx"] / FT_LB,
-        "MZ": -ISO["mz"] / FT_LB, "SL": ISO["kappa"], "SR": np.zeros(5),
+        "MZ": -ISO["mz"] / FT_LB, "TSTC": np.full(5, 40.0), "SR": np.zeros(5), "SL": ISO["kappa"],
     }
     units = {"ET": "s", "V": "mph", "N": "rpm", "SA": "deg", "IA": "deg", "RL": "in", "RE": "in", "P": "psi",
-             "FX": "lb", "FY": "lb", "FZ": "lb", "MX": "ft-lb", "MZ": "ft-lb", "SL": "none", "SR": "none"}
-    units["SL"] = units["SR"] = "-"
+             "FX": "lb", "FY": "lb", "FZ": "lb", "MX": "ft-lb", "MZ": "ft-lb", "TSTC": "deg F", "SR": "none",
+             "SL": "none"}
     lines = ["Run 8: flat-track test, cornering, English units", "\t".join(channels),
              "\t".join(units[k] for k in channels)]
     for i in range(5):

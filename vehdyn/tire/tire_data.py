@@ -26,7 +26,8 @@ Two layouts are read:
 * **Test-consortium run files** of flat-track machines: an optional free-text first line, a row of
   channel names (``ET V N SA IA RL RE P FX FY FZ MX MZ ... SL``), a row of units (``lbf``,
   ``psi``, ``deg``, ``mph``, ``ft-lb``, or their metric counterparts ``N``, ``kPa``, ``kph``,
-  ``N-m``) and the data, whitespace separated. These channels are in SAE tire axes (``FZ`` is
+  ``N-m``; ``none`` for a ratio) and the data, tab separated (units such as ``deg C`` may hold a
+  space) or, without tabs, whitespace separated. These channels are in SAE tire axes (``FZ`` is
   negative: the road pushes up on a z-down axis), so they are always converted from SAE,
   whatever ``convention`` says. The slip ratio is ``SL`` (``SR`` if ``SL`` is absent).
 
@@ -59,7 +60,7 @@ UNIT_FACTORS = {
     "moment": {"nm": 1.0, "n-m": 1.0, "n*m": 1.0, "n.m": 1.0, "knm": 1e3, "ft-lb": 1.3558179483314004,
                "lb-ft": 1.3558179483314004, "ft-lbf": 1.3558179483314004, "lbf-ft": 1.3558179483314004,
                "lbf*ft": 1.3558179483314004, "in-lb": 0.1129848290276167, "lb-in": 0.1129848290276167},
-    "ratio": {"-": 1.0, "": 1.0, "1": 1.0, "%": 0.01},
+    "ratio": {"-": 1.0, "": 1.0, "1": 1.0, "none": 1.0, "%": 0.01},
     "angle": {"rad": 1.0, "deg": math.pi / 180.0, "degree": math.pi / 180.0, "degrees": math.pi / 180.0},
     "speed": {"m/s": 1.0, "kph": 1 / 3.6, "km/h": 1 / 3.6, "kmh": 1 / 3.6, "mph": 0.44704},
     "pressure": {"pa": 1.0, "kpa": 1e3, "bar": 1e5, "psi": 6894.757293168361, "mpa": 1e6},
@@ -219,15 +220,18 @@ def read_tire_data(path, *, convention: str = "ISO-W", units=None):
 
 
 def _read_consortium(lines, head, path):
-    names = lines[head].split()
-    unit_row = lines[head + 1].split() if head + 1 < len(lines) else []
+    # tab-separated files may have units with spaces ("deg C"); otherwise any whitespace separates
+    split = (lambda line: [f.strip() for f in line.strip("\r\n").split("\t")]) if "\t" in lines[head] \
+        else str.split
+    names = split(lines[head])
+    unit_row = split(lines[head + 1]) if head + 1 < len(lines) else []
     if len(unit_row) != len(names):
         raise TireDataError(f"the unit row has {len(unit_row)} fields, the channel row {len(names)}", path=path,
                             line=head + 2)
     wanted = dict(_CONSORTIUM)
     if "SL" not in names and "SR" in names:
         wanted["SR"] = "kappa"
-    rows = [(i + 1, line.split()) for i, line in enumerate(lines) if i >= head + 2 and line.strip()]
+    rows = [(i + 1, split(line)) for i, line in enumerate(lines) if i >= head + 2 and line.strip()]
     data = _numbers(rows, names, path)
     columns = {}
     for j, channel in enumerate(names):
