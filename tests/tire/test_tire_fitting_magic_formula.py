@@ -276,3 +276,16 @@ def test_zero_weights_remove_corrupted_rows():
     errors = {w is None: _relative_rms(_fit(frame, stages=("pure_lateral",), weights=w).tire, frame, truth, ("fy",))
               for w in (None, weights)}
     assert errors[False]["fy"] < 0.001 < 0.01 < errors[True]["fy"], errors
+
+
+def test_start_by_name_path_and_bad_file(tmp_path):
+    from vehdyn.errors import TirFileError
+
+    frame = _pure(sample_tire(shipped_tire("MagicFormula52_Parameters"), loads=[4000.0, 8000.0], slip_angles=ANGLES,
+                              slip_ratios=[], cambers=[0.0]))
+    by_name = _fit(frame, start="mf_185_80R14", stages=("pure_lateral",))
+    assert by_name.tire.nominal_load == shipped_tire("mf_185_80R14").nominal_load
+    bad = tmp_path / "bad.tir"
+    bad.write_text("[MODEL]\nFITTYP = 99\n")
+    with pytest.raises(TirFileError, match="no supported Magic Formula version"):
+        _fit(frame, start=bad, stages=("pure_lateral",))

@@ -111,7 +111,7 @@ def _levels_vary(values, span):
 def _template(version, start, columns, messages):
     """The parameter set the fit starts from: ``start`` or MFeval's defaults in a shipped layout,
     with FNOMIN, LONGVL, NOMPRES and the ranges taken from the data."""
-    from ..magic_formula import MagicFormula
+    from ..magic_formula import MagicFormula, load_tire
     from ..tir import MFEVAL_DEFAULTS, TirParameters, read_tir
     from ...params import data_path
 
@@ -120,11 +120,9 @@ def _template(version, start, columns, messages):
         if isinstance(start, MagicFormula):
             params = start.params
         elif isinstance(start, TirParameters):
-            params = start
+            params = MagicFormula(start).params  # a file without a Magic Formula version raises here
         else:
-            params = read_tir(start)
-        if params.version is None:
-            MagicFormula(params)  # raises the reader's TirFileError
+            params = load_tire(start).params  # a path, or the name of a shipped tire
         sections = {s: dict(kv) for s, kv in params.sections.items()}
         overrides = {}
     else:
@@ -394,7 +392,8 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
     version : {"6.1", "6.2", "5.2"}
         Magic Formula version of the result (ignored when ``start`` is given: its version).
     start : MagicFormula, TirParameters, str or pathlib.Path, optional
-        Start coefficients and every parameter the fit does not touch (dimensions, stiffness).
+        Start coefficients and every parameter the fit does not touch (dimensions, stiffness): a
+        model, parameters, a ``.tir`` path or the name of a shipped tire (:func:`~vehdyn.tire.load_tire`).
         None: MFeval's defaults, with the pure-slip peak, slope at zero and shape factor and
         the trail at zero slip read from the data, and FNOMIN, LONGVL, NOMPRES set from it.
     stages : sequence of str
