@@ -131,16 +131,20 @@ def cmd_tire(args) -> int:
 
 def cmd_tire_fit(args) -> int:
     # Bad data or a bad start file raise a VehdynError: main() reports it as one line, exit status 2.
+    import warnings
     from pathlib import Path
 
     import matplotlib
 
     matplotlib.use("Agg")
+    from .errors import VehdynWarning
     from .plotting import save_figure
     from .tire import fit_magic_formula, read_tire_data
 
     data = read_tire_data(args.data, convention=args.convention)
-    fit = fit_magic_formula(data, version=args.version, start=args.start)
+    with warnings.catch_warnings():  # the fit's warnings are also its messages, printed with the table
+        warnings.simplefilter("ignore", VehdynWarning)
+        fit = fit_magic_formula(data, version=args.version, start=args.start)
     print(fit)
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -27,10 +27,13 @@ def test_tire_fit_writes_tir_and_figures(data_file, tmp_path, capsys):
     path, tire, frame = data_file
     out = tmp_path / "out" / "fitted.tir"
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", VehdynWarning)
+        warnings.simplefilter("error", VehdynWarning)  # the command reports them in its table instead
         assert main(["tire-fit", str(path), "--out", str(out)]) == 0
-    text = capsys.readouterr().out
+    captured = capsys.readouterr()
+    text = captured.out
     assert "pure_lateral" in text and f"wrote {out}" in text
+    assert "PPY1, PPY2, PPY3, PPY4, PPY5 not identifiable (no pressure sweep" in text
+    assert "VehdynWarning" not in captured.err
     fitted = load_tire(out)
     lateral = frame[frame["sweep"] == "lateral"]
     args = (lateral["fz"].to_numpy(), 0.0, lateral["alpha"].to_numpy())

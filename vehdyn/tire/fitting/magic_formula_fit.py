@@ -620,10 +620,10 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
             text = f"stage {stage}: {', '.join(names)} not identifiable ({reason}); kept at their start values"
             messages.append(text)
             warnings.warn(text, VehdynWarning, stacklevel=3)
-    return _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done), c
+    return _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done, messages), c
 
 
-def _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done):
+def _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done, messages):
     problem = _Problem(c, stage, rows, outputs, tuple(fitted), None)
     model = problem.model(c)
     rms, nrms, r2 = {}, {}, {}
@@ -651,6 +651,7 @@ def _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done
     if weak:
         text = (f"stage {stage}: Jacobian condition {condition:.3g}: coefficients not identifiable from these "
                 f"data (weakest: {', '.join(weak)}); consider fixing them")
+        messages.append(text)
         warnings.warn(text, VehdynWarning, stacklevel=4)
     coefficients = {n: float(getattr(c, n)) for n in fitted}
     return StageResult(stage, coefficients=coefficients, steps=tuple(done), outputs=outputs,
