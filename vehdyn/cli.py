@@ -85,7 +85,7 @@ def cmd_study(args) -> int:
 
 
 def cmd_tire(args) -> int:
-    from .errors import VehdynError
+    from .errors import VehdynError, VehdynWarning
 
     try:
         from .tire import load_tire
@@ -93,11 +93,17 @@ def cmd_tire(args) -> int:
     except ImportError as exc:  # pragma: no cover - until the tire layer is complete
         print(f"vehdyn tire: the tire layer is not available in this version ({exc})", file=sys.stderr)
         return 2
+    import warnings
+
     try:
-        tire = load_tire(args.file)
-    except (VehdynError, OSError) as exc:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", VehdynWarning)
+            tire = load_tire(args.file)
+    except (VehdynError, OSError) as exc:  # unreadable file, malformed line, non-finite coefficient, ...
         print(f"vehdyn tire: {exc}", file=sys.stderr)
         return 2
+    for warning in caught:  # e.g. missing sections: said, and the tire is still described
+        print(f"vehdyn tire: warning: {warning.message}", file=sys.stderr)
     print(describe_tire(tire))
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

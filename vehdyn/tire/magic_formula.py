@@ -225,9 +225,13 @@ class MagicFormula(TireModel):
         self._c = _coefficients(params)
 
     @classmethod
-    def from_tir(cls, path) -> MagicFormula:
-        """Read a ``.tir`` file and build the model (see :func:`vehdyn.tire.read_tir`)."""
-        return cls(read_tir(path))
+    def from_tir(cls, path, *, strict: bool = False) -> MagicFormula:
+        """Read a ``.tir`` file and build the model (see :func:`vehdyn.tire.read_tir`).
+
+        A file that lacks whole sections of its version (e.g. truncated) gives a
+        :class:`~vehdyn.VehdynWarning` naming them; ``strict=True`` raises :class:`~vehdyn.TirFileError`.
+        """
+        return cls(read_tir(path, strict=strict))
 
     def __repr__(self) -> str:
         where = f", {self.params.path!r}" if self.params.path else ""
@@ -442,7 +446,7 @@ def _auto_backend(n: int) -> str:
     return "numba"
 
 
-def load_tire(path) -> MagicFormula:
+def load_tire(path, *, strict: bool = False) -> MagicFormula:
     """Load a Magic Formula tire from a ``.tir`` file, or a shipped one by name.
 
     Parameters
@@ -450,13 +454,15 @@ def load_tire(path) -> MagicFormula:
     path : str or pathlib.Path
         A file path, or the stem of a file in vehdyn's ``data/tires`` (``"MagicFormula61_Parameters"``,
         ``"MagicFormula62_Parameters"``, ``"MagicFormula52_Parameters"``, ``"mf_185_80R14"``).
+    strict : bool
+        Raise instead of warning when the file lacks whole sections (see :meth:`MagicFormula.from_tir`).
     """
     candidate = Path(path)
     if not candidate.exists() and candidate.suffix == "" and len(candidate.parts) == 1:
         shipped = data_path("tires", candidate.name + ".tir")
         if shipped.exists():
             candidate = shipped
-    return MagicFormula.from_tir(candidate)
+    return MagicFormula.from_tir(candidate, strict=strict)
 
 
 # ----------------------------------------------------------------------------------------------
