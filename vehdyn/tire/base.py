@@ -22,9 +22,9 @@ points, as numpy does; and inside a simulation a NaN state must be reported by
 tire error raised from within the right-hand side would hide. NaN forces make that state NaN at
 the same step. Users who want an error can test ``np.isnan(out.fx)``.
 
-The check is one vectorized pass per input array and call (a dot product: NaN or inf make it
-non-finite; only then the exact ``np.isfinite`` mask), one sum for a scalar call, never a test
-per point inside the laws or the compiled loops. Legitimate edge values are unchanged:
+The check is one vectorized ``np.isfinite`` pass per input array and call (the mask is built
+only when a point is bad), one sum for a scalar call, never a test per point inside the laws or
+the compiled loops. Legitimate edge values are unchanged:
 ``fz <= 0`` is a wheel off the ground (zero forces), ``vx = 0`` is standstill, and large finite
 inputs are evaluated (the Magic Formula clamps them to the file's ranges with ``limits=True``).
 """
