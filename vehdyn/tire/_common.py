@@ -17,6 +17,8 @@ from .base import TireForces, TireModel
 _isfinite = math.isfinite
 _finite = np.isfinite
 _count_nonzero = np.count_nonzero
+_concatenate = np.concatenate
+_broadcast = np.broadcast
 
 #: Names of the inputs of every law's ``forces``, in argument order.
 TIRE_INPUTS = ("fz", "kappa", "alpha", "gamma", "vx")
@@ -71,39 +73,50 @@ def load_input(fz) -> np.ndarray:
     return np.where(np.isfinite(fz), np.maximum(fz, 0.0), np.nan)[()]
 
 
-def _all_finite(array: np.ndarray) -> bool:
-    """Whether every element of ``array`` is finite.
+#: Up to this many values in all, the inputs are tested in one call (on a concatenated copy).
+_JOINT_CHECK_SIZE = 16384
 
-    ``count_nonzero(isfinite(a))``: exact, no overflow, and half the cost of ``isfinite(a).all()``
-    on small arrays (whose cost is the call overhead); one float test for a single value.
+
+def _all_finite(arrays) -> bool:
+    """Whether every element of every array is finite.
+
+    Up to :data:`_JOINT_CHECK_SIZE` values in all, one ``isfinite`` call on their concatenation
+    (on small arrays a call costs its overhead, so one call instead of one per input); beyond,
+    one call per array (one pass over memory each). ``count_nonzero`` is exact (no overflow) and
+    half the cost of ``.all()`` on small arrays.
     """
-    if array.size == 1:
-        return _isfinite(array.item())
-    return _count_nonzero(_finite(array)) == array.size
+    if sum([a.size for a in arrays]) <= _JOINT_CHECK_SIZE:
+        joint = _concatenate(arrays, axis=None)
+        return _count_nonzero(_finite(joint)) == joint.size
+    for a in arrays:
+        if _count_nonzero(_finite(a)) != a.size:
+            return False
+    return True
 
 
 def nonfinite_points(arrays, shape):
     """Boolean mask of the points (of the broadcast ``shape``) where any input is not finite.
 
     None when every input is finite, which is what the check costs on the usual path: one
-    vectorized test per input array (:func:`_all_finite`), no mask.
+    vectorized test (:func:`_all_finite`), no mask.
     """
-    suspects = [a for a in arrays if a is not None and not _all_finite(a)]
-    if not suspects:
+    arrays = [a for a in arrays if a is not None]
+    if _all_finite(arrays):
         return None
     bad = np.zeros(shape, dtype=bool)
-    for a in suspects:
-        bad |= ~np.isfinite(a)
+    for a in arrays:
+        bad |= ~_finite(a)
     return bad
 
 
 def broadcast_shape(arrays, names):
     """The broadcast shape of ``arrays`` (None entries skipped); ParameterError naming the shapes."""
-    present = {n: a.shape for n, a in zip(names, arrays) if a is not None}
+    present = [a for a in arrays if a is not None]
     try:
-        return np.broadcast_shapes(*present.values())
+        return _broadcast(*present).shape  # C-level, a quarter of np.broadcast_shapes' cost
     except ValueError:
-        raise ParameterError(f"input shapes do not broadcast: {present}", key="shape", value=present) from None
+        shapes = {n: a.shape for n, a in zip(names, arrays) if a is not None}
+        raise ParameterError(f"input shapes do not broadcast: {shapes}", key="shape", value=shapes) from None
 
 
 def neutralize(arrays, bad, neutral):
@@ -132,14 +145,13 @@ def broadcast_inputs(fz, kappa, alpha, gamma, vx):
         Where an input is not finite (the points whose outputs must be NaN), None if nowhere.
     """
     arrays = [float_input(n, v) for n, v in zip(TIRE_INPUTS, (fz, kappa, alpha, gamma, vx))]
-    try:
-        fz, kappa, alpha, gamma, vx = np.broadcast_arrays(*arrays)
-    except ValueError:
-        broadcast_shape(arrays, TIRE_INPUTS)  # raises, naming the shapes
-        raise
-    bad = nonfinite_points(arrays, fz.shape)
+    shape = broadcast_shape(arrays, TIRE_INPUTS)
+    bad = nonfinite_points(arrays, shape)
     if bad is not None:
-        fz, kappa, alpha, gamma, vx = neutralize((fz, kappa, alpha, gamma, vx), bad, (0.0, 0.0, 0.0, 0.0, 1.0))
+        fz, kappa, alpha, gamma, vx = neutralize(arrays, bad, (0.0, 0.0, 0.0, 0.0, 1.0))
+    else:  # (cheaper than np.broadcast_arrays: most inputs have the shape already, the rest are one value)
+        fz, kappa, alpha, gamma, vx = (a if a.shape == shape else np.full(shape, a.item()) if a.size == 1
+                                       else np.broadcast_to(a, shape) for a in arrays)
     return (np.maximum(fz, 0.0), kappa, alpha, gamma, vx), bad
 
 

@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import repeat
 from pathlib import Path
 from collections import namedtuple
 
@@ -337,9 +338,9 @@ class MagicFormula(TireModel):
         if not explicit_numba and 0 < math.prod(shape) <= SMALL_BATCH:
             # a few wheels: float arithmetic beats numpy's call overhead
             points = np.broadcast_arrays(*(arrays[k] for k in ("fz", "kappa", "alpha", "gamma", "vx")))
-            bad = np.zeros(shape, dtype=bool) if arrays["bad"] is None else arrays["bad"]
+            skips = repeat(False) if arrays["bad"] is None else arrays["bad"].reshape(-1).tolist()
             values = [NAN_FORCES if skip else self._forces_at_point(*map(float, p), limits, alpha_star)
-                      for skip, *p in zip(bad.reshape(-1).tolist(), *(np.ravel(a) for a in points))]
+                      for skip, *p in zip(skips, *(np.ravel(a) for a in points))]
             return TireForces(*(np.array(v, dtype=float).reshape(shape) for v in zip(*values)))
         return TireForces(*self._run(arrays, (limits, alpha_star), full=False, backend=backend))
 
