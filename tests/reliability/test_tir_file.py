@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 import vehdyn
 from vehdyn import TirFileError, VehdynWarning
 from vehdyn.cli import main
-from vehdyn.tire import MagicFormula, load_tire, read_tir, write_tir
+from vehdyn.tire import MagicFormula, TirParameters, load_tire, read_tir, write_tir
 from vehdyn.tire import tir as tir_module
 from vehdyn.tire.tir import REQUIRED_SECTIONS, STANDARD_SECTIONS, parse_tir
 
@@ -141,12 +141,10 @@ def test_cli_exits_non_zero_on_a_non_finite_coefficient(tmp_path, capsys):
     ({"PDX1": "-1.1632"}, "PDX1", "PDX1 = -1.1632 must be > 0"),
     ({"PDY1": "-1.0085"}, "PDY1", "PDY1 = -1.0085 must be > 0"),
     ({"PDY1": "0"}, "PDY1", "must be > 0"),
-    ({"PCX1": "-1.5"}, "PCX1", "must be > 0"),
-    ({"PCY1": "0"}, "PCY1", "must be > 0"),
-    ({"QCZ1": "-1"}, "QCZ1", "must be > 0"),
+    ({"QCZ1": "-1.1676"}, "QCZ1", "must be > 0"),
     ({"LFZO": "0"}, "LFZO", "must be > 0"),
     ({"LMUY": "-1"}, "LMUY", "must be >= 0"),
-    ({"LCX": "-0.5"}, "LCX", "must be >= 0"),
+    ({"LMUX": "-0.5"}, "LMUX", "must be >= 0"),
 ])
 def test_range_and_sign_rules(changes, blamed, message):
     name = "MagicFormula61_Parameters"
@@ -157,6 +155,32 @@ def test_range_and_sign_rules(changes, blamed, message):
         parse_tir(text, path="x.tir")
     line = next(n for n, k in number_lines(name) if k == blamed)
     assert info.value.key == blamed and info.value.line == line
+
+
+def test_sign_rules_only_where_the_equations_need_them():
+    """PCX1, PCY1 of the opposite sign give the same forces and moments (B = K/(C D) flips with C):
+    not refused; QCZ1 of the opposite sign changes M_z (through E_t): refused."""
+    text = text_of("MagicFormula61_Parameters")
+    flipped = text
+    for key in ("PCX1", "PCY1"):
+        flipped = re.sub(rf"^({key}\s*=\s*)([0-9.]+)", r"\1-\2", flipped, count=1, flags=re.M)
+    tire, mirror = MagicFormula(parse_tir(text)), MagicFormula(parse_tir(flipped))
+    assert mirror.params["PCY1"] == -tire.params["PCY1"]
+    alpha = np.linspace(-0.3, 0.3, 13)
+    a, b = tire.forces(4000.0, 0.0, alpha), mirror.forces(4000.0, 0.0, alpha)
+    # equal but for the epsilon in B = K/(C D + eps) (about 1e-9 relative)
+    np.testing.assert_allclose(b.fy, a.fy, rtol=1e-8)
+    np.testing.assert_allclose(b.mz, a.mz, rtol=1e-8)
+    kappa = np.linspace(-0.3, 0.3, 13)
+    np.testing.assert_allclose(mirror.forces(4000.0, kappa, 0.0).fx, tire.forces(4000.0, kappa, 0.0).fx, rtol=1e-8)
+    # with C_t flipped the trail's curvature E_t (QEZ4 = 0.378 in this file) mirrors: another M_z
+    sections = {k: dict(v) for k, v in tire.params.sections.items()}
+    sections["ALIGNING_COEFFICIENTS"]["QCZ1"] *= -1
+    with pytest.raises(TirFileError, match="QCZ1"):
+        TirParameters(sections)
+    ct_flipped = MagicFormula.__new__(MagicFormula)
+    ct_flipped.__dict__.update(tire.__dict__, _c=tire._c._replace(QCZ1=-tire._c.QCZ1))
+    assert np.max(np.abs(ct_flipped.forces(4000.0, 0.0, alpha).mz - a.mz)) > 1.0
 
 
 def test_legitimate_ranges_pass():

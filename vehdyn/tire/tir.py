@@ -31,16 +31,21 @@ part with their defaults:
   slip (a tire that steers or drives itself);
 * ``CAMMIN <= 0 <= CAMMAX`` (both 0 allowed: a file fitted without camber) and
   ``0 <= PRESMIN <= PRESMAX`` (equal: fitted at one pressure), for the same reason;
-* ``PDX1 > 0``, ``PDY1 > 0`` (the friction coefficients mu_x, mu_y at FNOMIN), ``PCX1 > 0``,
-  ``PCY1 > 0`` (shape factors C_x, C_y) and ``QCZ1 > 0`` (C_t of the trail): Pacejka (2012)
-  eqs. 4.E11-4.E13, 4.E21-4.E23 and 4.E41 mark these > 0. A negative mu or C leaves the pure-slip
-  force of the same sign only because B = K/(C D) flips with it, while the combined-slip shifts,
-  the friction outputs and the aligning moment come out with the wrong sign (most likely a sign
-  error in the file);
-* ``LFZO > 0`` (Fz0' = LFZO*FNOMIN divides every load term), ``LMUX``, ``LMUY``, ``LCX``,
-  ``LCY >= 0`` (scaling factors of the quantities above; 0 switches a force off).
+* ``PDX1 > 0`` and ``PDY1 > 0``: the friction coefficients mu_x, mu_y at FNOMIN (Pacejka 2012,
+  eqs. 4.E13 and 4.E23, marked > 0), and ``LMUX >= 0``, ``LMUY >= 0``, their scaling factors
+  (0 switches the force off). The pure-slip force comes out the same with a negative D = mu Fz
+  only because B = K/(C D) flips with it; the friction outputs ``mux``/``muy`` and the
+  combined-slip side force shift S_Vyk = mu_y Fz (R_VY1 + ...) do not, so a negative value is a
+  sign error that shows only under combined slip;
+* ``QCZ1 > 0``: the shape factor C_t of the pneumatic trail (eq. 4.E41, marked > 0). The trail
+  itself is even in C_t (a cosine), but the curvature E_t contains atan(B_t C_t alpha_t)
+  (eq. 4.E44), so with QEZ4/QEZ5 a negative C_t mirrors the trail's asymmetry: a different M_z;
+* ``LFZO > 0``: Fz0' = LFZO*FNOMIN divides every load term.
 
-Every rule holds for the shipped files and the MFeval reference files. The positivity of FNOMIN,
+Every rule holds for the shipped files and the MFeval reference files. Sign rules that the
+equations do not need are not enforced: the shape factors PCX1 and PCY1 (the book asks C > 0)
+give the same forces and moments with the opposite sign, since B = K/(C D) flips too and every
+other use is of the product B C. The positivity of FNOMIN,
 UNLOADED_RADIUS, LONGVL, NOMPRES, VXLOW and VERTICAL_STIFFNESS is checked by
 :class:`~vehdyn.tire.MagicFormula` (a :class:`~vehdyn.ParameterError`). A file of a known version
 that lacks whole sections (:attr:`TirParameters.missing_sections`, e.g. a truncated file) is read
@@ -374,8 +379,7 @@ def _check_finite(flat, written, lines, path) -> None:
 
 
 # (key, bound, comparison) per sign rule; the reasons are in the module docstring
-_SIGN_RULES = tuple((key, ">") for key in ("PDX1", "PDY1", "PCX1", "PCY1", "QCZ1", "LFZO")) + tuple(
-    (key, ">=") for key in ("LMUX", "LMUY", "LCX", "LCY"))
+_SIGN_RULES = (("PDX1", ">"), ("PDY1", ">"), ("QCZ1", ">"), ("LFZO", ">"), ("LMUX", ">="), ("LMUY", ">="))
 
 
 def _check_rules(flat, written, lines, path) -> None:
