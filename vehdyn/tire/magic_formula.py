@@ -335,12 +335,15 @@ class MagicFormula(TireModel):
         if scalar:  # compiled on request: floats all the same
             return TireForces(*(float(v) for v in self._run(arrays, (limits, alpha_star), full=False,
                                                             backend=backend)))
-        if not explicit_numba and 0 < math.prod(shape) <= SMALL_BATCH:
+        n = math.prod(shape)
+        if not explicit_numba and 0 < n <= SMALL_BATCH:
             # a few wheels: float arithmetic beats numpy's call overhead
-            points = np.broadcast_arrays(*(arrays[k] for k in ("fz", "kappa", "alpha", "gamma", "vx")))
+            points = [a.reshape(-1).tolist() if a.shape == shape else [a.item()] * n if a.size == 1
+                      else np.broadcast_to(a, shape).reshape(-1).tolist()
+                      for a in (arrays[k] for k in ("fz", "kappa", "alpha", "gamma", "vx"))]
             skips = repeat(False) if arrays["bad"] is None else arrays["bad"].reshape(-1).tolist()
-            values = [NAN_FORCES if skip else self._forces_at_point(*map(float, p), limits, alpha_star)
-                      for skip, *p in zip(skips, *(np.ravel(a) for a in points))]
+            values = [NAN_FORCES if skip else self._forces_at_point(*p, limits, alpha_star)
+                      for skip, p in zip(skips, zip(*points))]
             return TireForces(*(np.array(v, dtype=float).reshape(shape) for v in zip(*values)))
         return TireForces(*self._run(arrays, (limits, alpha_star), full=False, backend=backend))
 
