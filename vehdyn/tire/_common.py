@@ -33,8 +33,12 @@ def all_scalars(*values) -> bool:
 
 
 def finite_scalars(*values) -> bool:
-    """Whether every float of ``values`` is finite (one sum on the usual path, exact on overflow)."""
-    return _isfinite(sum(values)) or all(map(_isfinite, values))
+    """Whether every float of ``values`` is finite.
+
+    Hot paths test ``math.isfinite(a + b + ...)`` inline first (one sum: NaN and inf survive it)
+    and call this only when that fails, for the exact answer (the sum may overflow).
+    """
+    return all(map(_isfinite, values))
 
 
 def float_input(name: str, value) -> np.ndarray:
@@ -226,7 +230,7 @@ class VectorizedTire(TireModel):
     def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
         """Steady-state forces and moments (ISO-W); see :meth:`TireModel.forces`."""
         if all_scalars(fz, kappa, alpha, gamma, vx):
-            if not finite_scalars(fz, kappa, alpha, gamma, vx):
+            if not (_isfinite(fz + kappa + alpha + gamma + vx) or finite_scalars(fz, kappa, alpha, gamma, vx)):
                 return NAN_FORCES
             return self._forces_scalar(float(fz), float(kappa), float(alpha), float(gamma), float(vx))
         return evaluate_chunked(self._kernel, fz, kappa, alpha, gamma, vx)

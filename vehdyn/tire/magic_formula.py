@@ -326,7 +326,7 @@ class MagicFormula(TireModel):
         backend = _backend(backend)
         scalar = all(_is_number(v) for v in (fz, kappa, alpha, gamma, vx))
         if scalar and not explicit_numba:
-            if not finite_scalars(fz, kappa, alpha, gamma, vx):
+            if not (math.isfinite(fz + kappa + alpha + gamma + vx) or finite_scalars(fz, kappa, alpha, gamma, vx)):
                 return NAN_FORCES
             return TireForces(*self._forces_at_point(float(fz), float(kappa), float(alpha), float(gamma), float(vx),
                                                      limits, alpha_star))
