@@ -297,8 +297,11 @@ class MagicFormula(TireModel):
                  phit, omega)
         explicit_numba = backend == "numba" or (backend is None and BACKEND == "numba")
         backend = _backend(backend)
-        if (not explicit_numba and all(v is None or _is_number(v) for v in point)
-                and finite_scalars(*(v for v in point if v is not None))):
+        one_point = not explicit_numba and all(v is None or _is_number(v) for v in point)
+        if one_point:  # a non-finite input goes to the array path, which returns NaN there
+            given = point if omega is not None else point[:7]
+            one_point = math.isfinite(sum(given)) or finite_scalars(*given)
+        if one_point:
             # one operating point: float arithmetic (no numpy call overhead); numpy if a float op fails
             fz, kappa, alpha, gamma, vx, pressure, phit, omega = (None if v is None else float(v) for v in point)
             try:
