@@ -290,7 +290,14 @@ class MagicFormula(TireModel):
         -------
         MagicFormulaOutputs
             Arrays of the broadcast shape of the inputs (0-d arrays for a single point, which is
-            evaluated on Python floats, without numpy's per-call overhead).
+            evaluated on Python floats, without numpy's per-call overhead). NaN in every output at
+            the points where an input is NaN or infinite (see :mod:`vehdyn.tire.base`).
+
+        Raises
+        ------
+        ParameterError
+            If an input is a bool or not numeric, the shapes do not broadcast, or the backend is
+            unknown or unavailable.
         """
         c = self._c
         point = (fz, kappa, alpha, gamma, c.LONGVL if vx is None else vx, c.INFLPRES if pressure is None else pressure,
@@ -321,7 +328,8 @@ class MagicFormula(TireModel):
         Same conventions and switches as :meth:`evaluate` (vx defaults to LONGVL, the pressure is
         INFLPRES). A call with scalar inputs returns floats; unless ``backend="numba"`` is asked
         for, scalar inputs and up to ``SMALL_BATCH`` points (a vehicle's wheels) are evaluated
-        point by point on Python floats, which beats both array backends' call overhead.
+        point by point on Python floats, which beats both array backends' call overhead. Points
+        with a NaN or infinite input are NaN in every field, bools raise ParameterError.
         """
         c = self._c
         vx = c.LONGVL if vx is None else vx
