@@ -13,6 +13,7 @@ from .vehicle import (
     load_vehicle,
     shipped_vehicles,
 )
+from .trailer import Trailer, load_trailer, shipped_trailers
 
 __all__ = [
     "ParameterSet",
@@ -30,4 +31,7 @@ __all__ = [
     "load_vehicle",
     "shipped_vehicles",
     "data_path",
+    "Trailer",
+    "load_trailer",
+    "shipped_trailers",
 ]
