@@ -43,9 +43,9 @@ hitch behind the rear axle, the tongue load moves load to the rear axle: less un
 
 The snaking mode (the trailer's yaw oscillation) loses damping at the critical speed; a lighter
 tongue load (CG moved back towards the axle) and a larger trailer yaw inertia lower it (Bundorf
-1967; Sharp & Fernández 2002, sec. 5). A trailer CG behind its axle (f < 0) is accepted: such a
-trailer is unstable at every speed, and :meth:`LinearCarTrailer.critical_speed` says so (it
-returns the lowest speed of the scan, see there).
+1967; Sharp & Fernández 2002, sec. 5). A trailer CG behind its axle (f < 0, a negative tongue
+load that lifts the hitch) is accepted: it is the unstable case to study, with a critical speed
+well below that of the same trailer loaded nose-heavy (see :meth:`LinearCarTrailer.critical_speed`).
 """
 
 from __future__ import annotations
@@ -342,11 +342,12 @@ class LinearCarTrailer(LinearModel):
 
         Notes
         -----
-        A trailer whose CG lies behind its axle (``trailer_cg_to_axle < 0``, a negative tongue
-        load) is unstable already at walking pace: its instability is mostly a real
-        (divergent) eigenvalue, not a snaking one, so check :meth:`max_real_part` as well. The
-        car's own oversteer divergence (real eigenvalue) is not a snaking instability either and
-        is not reported here.
+        Warning: a trailer whose CG lies behind its axle (``trailer_cg_to_axle < 0``, a negative
+        tongue load) is accepted, and it is the dangerous case: its critical speed lies far below
+        that of the same trailer loaded nose-heavy (the critical speed falls steadily as the CG
+        moves back). Only the oscillatory (snaking) instability is reported here: a divergent
+        real eigenvalue (the combination's oversteer, when its understeer gradient is negative)
+        is not; :meth:`max_real_part` shows every instability.
         """
         from scipy.optimize import brentq
 

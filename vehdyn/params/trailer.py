@@ -7,7 +7,7 @@ Lengths run backwards along the trailer's centre line: the trailer's centre of g
 axle group is lumped into one axle at its centre with the group's cornering stiffness.
 
 A CG behind the axle (``cg_to_axle < 0``, a negative tongue load) is accepted: it is the classic
-unstable case (the trailer is statically divergent behind a towing vehicle at any speed) that one
+unstable case (the trailer snakes at a much lower speed than when loaded nose-heavy) that one
 wants to be able to study. Negative lengths elsewhere, zero masses or inertias, and an axle ahead
 of the hitch are rejected with a :class:`~vehdyn.ParameterError` naming the field.
 """
@@ -45,7 +45,7 @@ class Trailer(ParameterSet):
     yaw_inertia: float = parameter("kg*m^2", "yaw moment of inertia I_t about the trailer CG", gt=0)
     hitch_to_cg: float = parameter("m", "e: distance from the hitch back to the trailer CG", ge=0)
     cg_to_axle: float = parameter("m", "f: distance from the trailer CG back to its axle (negative: CG behind "
-                                       "the axle, the unstable case)")
+                                       "the axle, a low critical speed)")
     hitch_behind_rear_axle: float = parameter(
         "m", "distance from the towing vehicle's rear axle back to the hitch (negative: ahead of it, as a fifth "
              "wheel often is)")
