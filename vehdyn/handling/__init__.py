@@ -142,5 +142,7 @@ __all__ += [
 
 # Articulated vehicles (issue 14)
 from .car_trailer import CarTrailerParameters, LinearCarTrailer, SnakingMode, car_trailer_parameters  # noqa: E402
+from .articulated_single_track import ArticulatedSingleTrack, ArticulationEvent  # noqa: E402
 
-__all__ += ["CarTrailerParameters", "LinearCarTrailer", "SnakingMode", "car_trailer_parameters"]
+__all__ += ["CarTrailerParameters", "LinearCarTrailer", "SnakingMode", "car_trailer_parameters",
+            "ArticulatedSingleTrack", "ArticulationEvent"]
