@@ -44,11 +44,15 @@ level here), roll, and aerodynamic forces on the trailer.
 
 Longitudinal input is force mode only (axle forces ``front_longitudinal_force``,
 ``rear_longitudinal_force``, ``trailer_longitudinal_force`` in wheel axes), clipped at mu F_z,
-with the friction ellipse taking lateral force away (SingleTrack's force mode). A locked axle is
-a braking demand at or beyond mu F_z: the axle then slides at -mu F_z along its wheel plane and
-carries no lateral force, which is what makes a tractor jackknife (locked drive axle) or a
-trailer swing out (locked trailer axle). Keep the demands' sign right for the direction of
-travel: a braking demand that outlives the motion pushes the vehicle backwards.
+with the friction ellipse taking lateral force away (SingleTrack's force mode). A braking demand
+beyond the friction limit (demand < -mu F_z) locks the axle: it then slides, and its force is
+the Coulomb friction force against its sliding velocity V = (V_x, V_y) in wheel axes,
+-mu F_z V / sqrt(|V|^2 + v_s^2) with v_s = :data:`LOCKED_SLIDING_SPEED` (Wong, *Theory of Ground
+Vehicles*, 4th ed., 2008, sec. 1.4: a locked tire cannot resist sideways sliding better than its
+sliding friction). The locked axle's braking force therefore also acts sideways as the axle
+slides out, vanishes at standstill (no backward push) and leaves the axle no cornering grip: what
+makes a tractor jackknife (locked drive axle) or a trailer swing out (locked trailer axle). Wheel
+spin states (SingleTrack's ``wheel_spin=True``) are not offered here.
 """
 
 from __future__ import annotations
@@ -66,7 +70,7 @@ from ..units import GRAVITY
 from . import single_track_equations as eq
 from .single_track import SingleTrack, _stack
 
-__all__ = ["ArticulatedSingleTrack", "ArticulationEvent"]
+__all__ = ["ArticulatedSingleTrack", "ArticulationEvent", "LOCKED_SLIDING_SPEED"]
 
 
 class ArticulationEvent(NamedTuple):
@@ -90,6 +94,20 @@ _STATE_NAMES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y
 _INPUT_NAMES = ("front_steer_angle", "front_longitudinal_force", "rear_longitudinal_force",
                 "trailer_longitudinal_force", "external_lateral_force", "external_yaw_moment",
                 "trailer_external_lateral_force", "trailer_external_yaw_moment")
+
+
+LOCKED_SLIDING_SPEED = 0.1
+"""[m/s]: the Coulomb force of a locked axle, -mu F_z V / sqrt(|V|^2 + v_s^2), is regularized within it."""
+
+
+def _lock(forces, demand, limit, vx, vy):
+    """(fx, fy, alpha, kappa) of an axle, with the locked-axle sliding force where the braking demand exceeds
+    the friction limit: -mu F_z V / |V| (wheel axes, regularized within :data:`LOCKED_SLIDING_SPEED`)."""
+    locked = demand < -limit
+    if not np.any(locked):
+        return forces
+    scale = limit / np.sqrt(vx * vx + vy * vy + LOCKED_SLIDING_SPEED**2)
+    return (np.where(locked, -scale * vx, forces[0]), np.where(locked, -scale * vy, forces[1])) + tuple(forces[2:])
 
 
 class ArticulatedSingleTrack(Model):
@@ -287,6 +305,9 @@ class ArticulatedSingleTrack(Model):
                               k.rear_peak_slip_ratio, k.rear_peak_tan_slip_angle, fr)
         trail = eq.axle_forces(xp, self, 2, kt, fz_t, vxt, vyt, zero, rho_t, zero, rate_t, zero, sigma_t, 1.0,
                                peak_kappa_t, peak_tan_t, ft)
+        front = _lock(front, ff, k.friction_coefficient * fz_f, vxf, vyf)
+        rear = _lock(rear, fr, k.friction_coefficient * fz_r, vxr, vyr)
+        trail = _lock(trail, ft, tr.friction_coefficient * fz_t, vxt, vyt)
         # forces on the towing vehicle (its axes) and on the trailer (along t, n)
         X1 = front[0] * cd - front[1] * sd + rear[0] - p.drag_factor * lon * np.abs(lon)
         Y1 = front[0] * sd + front[1] * cd + rear[1] + ext_f
@@ -309,9 +330,13 @@ class ArticulatedSingleTrack(Model):
                Y1 + F3y - m1 * lon * r - m2 * qy,
                M1 - h * F3y + h * m2 * qy,
                -e * Yt - f * trail[1] + ext_tm + e * m2 * (st * qx + ct * qy)]
-        M = np.stack([np.stack([np.broadcast_to(c, np.shape(lon)) for c in row], axis=-1) for row in rows], axis=-2)
-        R = np.stack([np.broadcast_to(c, np.shape(lon)) for c in rhs], axis=-1)
-        z = np.linalg.solve(M, R[..., None])[..., 0]
+        if np.ndim(lon) == 0:  # one vehicle: plain 4 x 4
+            z = np.linalg.solve(np.array(rows, dtype=float), np.array(rhs, dtype=float))
+        else:  # batch: (n, 4, 4) systems
+            shape = np.shape(lon)
+            M = np.stack([np.stack([np.broadcast_to(c, shape) for c in row], axis=-1) for row in rows], axis=-2)
+            R = np.stack([np.broadcast_to(c, shape) for c in rhs], axis=-1)
+            z = np.linalg.solve(M, R[..., None])[..., 0]
         du, dv, dr, drt = (z[..., j] for j in range(4))
         atx = du + P0[3] * drt + qx
         aty = dv - h * dr + P1[3] * drt + qy
