@@ -26,8 +26,9 @@ def linear_tires(vehicle, trailer):
             LinearTire(cornering_stiffness=trailer.cornering_stiffness / 2))
 
 
-@pytest.mark.parametrize("vehicle, trailer", [(COMPACT, CARAVAN), (TRACTOR, SEMITRAILER)],
-                         ids=["compact_caravan", "tractor_semitrailer"])
+@pytest.mark.parametrize("vehicle, trailer", [(COMPACT, CARAVAN), (TRACTOR, SEMITRAILER),
+                                              (TRACTOR, SEMITRAILER.replace(hitch_behind_rear_axle=-0.4))],
+                         ids=["compact_caravan", "tractor_semitrailer", "fifth_wheel_ahead_of_the_axle"])
 def test_linearization_equals_linear_car_trailer(vehicle, trailer):
     # constant speed without longitudinal force: no drag (LinearCarTrailer's assumption)
     vehicle = vehicle.replace(aero__drag_coefficient=0.0)

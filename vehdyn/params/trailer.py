@@ -15,13 +15,12 @@ of the hitch are rejected with a :class:`~vehdyn.ParameterError` naming the fiel
 from __future__ import annotations
 
 import dataclasses
-import os
 from pathlib import Path
 
 from ..errors import ParameterError
 from ..units import GRAVITY
-from .base import ParameterSet, load_toml, parameter, text
-from .vehicle import data_path
+from .base import ParameterSet, parameter, text
+from .vehicle import load_shipped_or_file, shipped_names
 
 __all__ = ["Trailer", "load_trailer", "shipped_trailers"]
 
@@ -76,7 +75,7 @@ class Trailer(ParameterSet):
 
 def shipped_trailers() -> list[str]:
     """Names of the trailers shipped in ``data/trailers``."""
-    return sorted(p.stem for p in data_path("trailers").glob("*.toml"))
+    return shipped_names("trailers")
 
 
 def load_trailer(name_or_path: str | Path) -> Trailer:
@@ -88,16 +87,4 @@ def load_trailer(name_or_path: str | Path) -> Trailer:
         As :func:`~vehdyn.load_vehicle`: unknown name, missing or unreadable file, invalid TOML, or a
         parameter missing, unknown, of the wrong type or out of range (the message names the key).
     """
-    if not isinstance(name_or_path, (str, os.PathLike)):
-        raise ParameterError(f"trailer must be a shipped trailer's name or a path to a .toml file, got "
-                             f"{type(name_or_path).__name__} {name_or_path!r}", key="trailer", value=name_or_path)
-    p = Path(name_or_path)
-    if p.suffix == ".toml" or p.is_file():
-        return load_toml(Trailer, p)
-    candidate = data_path("trailers", f"{name_or_path}.toml")
-    if not candidate.is_file():
-        if p.is_dir():
-            return load_toml(Trailer, p)  # reports the folder
-        raise ParameterError(f"unknown trailer {str(name_or_path)!r}; shipped trailers are {shipped_trailers()}, "
-                             "or give a path to a .toml file", key="trailer", value=str(name_or_path))
-    return load_toml(Trailer, candidate)
+    return load_shipped_or_file(Trailer, name_or_path, "trailer")
