@@ -257,8 +257,8 @@ class LinearCarTrailer(LinearModel):
     ...     front_cornering_stiffness=110e3, rear_cornering_stiffness=120e3, hitch_distance=2.6,
     ...     trailer_mass=1200, trailer_yaw_inertia=2500, trailer_hitch_to_cg=3.2,
     ...     trailer_cg_to_axle=0.3, trailer_cornering_stiffness=80e3, speed=20.0)
-    >>> round(combo.critical_speed(), 2) > 20
-    True
+    >>> round(combo.critical_speed(), 2)  # [m/s], snaking above it
+    35.59
     """
 
     phenomena = frozenset({"lateral", "yaw"})
