@@ -166,3 +166,18 @@ def test_bad_input_names_the_parameter():
     with pytest.raises(ParameterError) as err:
         ArticulatedSingleTrack(COMPACT, CARAVAN, trailer_tire="fiala")
     assert err.value.key == "trailer_tire"
+
+
+@pytest.mark.parametrize("name", ["external_lateral_force", "trailer_external_lateral_force"])
+def test_external_side_force_accelerates_the_combination_by_newton(name):
+    # tires relaxed and straight running: the only lateral force is the external one, so the
+    # lateral momentum of both bodies changes at its rate, m a_1y + m_t a_ty = F (theta = 0)
+    model = ArticulatedSingleTrack(COMPACT, CARAVAN)
+    y = model.output(0.0, model.straight_running(20.0), model.input_vector({name: 1000.0}))
+    out = dict(zip(model.output_names, y))
+    momentum_rate = COMPACT.mass.mass * out["lateral_acceleration"] + CARAVAN.mass * out["trailer_lateral_acceleration"]
+    assert momentum_rate == pytest.approx(1000.0, rel=1e-12)
+    # and the hitch carries what the trailer needs: m_t a_ty = F_t - H_y
+    applied = 1000.0 if name.startswith("trailer") else 0.0
+    assert out["hitch_lateral_force"] == pytest.approx(applied - CARAVAN.mass * out["trailer_lateral_acceleration"],
+                                                       rel=1e-12, abs=1e-9)
