@@ -52,7 +52,9 @@ Vehicles*, 4th ed., 2008, sec. 1.4: a locked tire cannot resist sideways sliding
 sliding friction). The locked axle's braking force therefore also acts sideways as the axle
 slides out, vanishes at standstill (no backward push) and leaves the axle no cornering grip: what
 makes a tractor jackknife (locked drive axle) or a trailer swing out (locked trailer axle). Wheel
-spin states (SingleTrack's ``wheel_spin=True``) are not offered here.
+spin states (SingleTrack's ``wheel_spin=True``) are not offered here. The locked axle's tire
+deflection keeps following its kinematic law while the axle slides; when the lock is released
+that deflection's force acts at once (a short transient, not a sliding-to-rolling model).
 """
 
 from __future__ import annotations
