@@ -302,7 +302,12 @@ def data_path(*parts: str) -> Path:
 
 def shipped_vehicles() -> list[str]:
     """Names of the vehicles shipped in ``data/vehicles``."""
-    return sorted(p.stem for p in data_path("vehicles").glob("*.toml"))
+    return shipped_names("vehicles")
+
+
+def shipped_names(folder: str) -> list[str]:
+    """Stems of the TOML files shipped in ``data/FOLDER``."""
+    return sorted(p.stem for p in data_path(folder).glob("*.toml"))
 
 
 def load_vehicle(name_or_path: str | Path) -> Vehicle:
@@ -316,16 +321,25 @@ def load_vehicle(name_or_path: str | Path) -> Vehicle:
         or a parameter is missing, unknown, of the wrong type, non-finite or out of range (the
         message names the key and the value).
     """
+    return load_shipped_or_file(Vehicle, name_or_path, "vehicle")
+
+
+def load_shipped_or_file(cls, name_or_path, kind: str):
+    """A ``cls`` parameter set from a shipped file ``data/{kind}s/NAME.toml`` or a user's TOML file.
+
+    ``kind`` (``"vehicle"``, ``"trailer"``) names the argument in the errors.
+    """
     if not isinstance(name_or_path, (str, os.PathLike)):
-        raise ParameterError(f"vehicle must be a shipped vehicle's name or a path to a .toml file, got "
-                             f"{type(name_or_path).__name__} {name_or_path!r}", key="vehicle", value=name_or_path)
+        raise ParameterError(f"{kind} must be a shipped {kind}'s name or a path to a .toml file, got "
+                             f"{type(name_or_path).__name__} {name_or_path!r}", key=kind, value=name_or_path)
     p = Path(name_or_path)
     if p.suffix == ".toml" or p.is_file():
-        return load_toml(Vehicle, p)
-    candidate = data_path("vehicles", f"{name_or_path}.toml")
+        return load_toml(cls, p)
+    candidate = data_path(f"{kind}s", f"{name_or_path}.toml")
     if not candidate.is_file():
         if p.is_dir():
-            return load_toml(Vehicle, p)  # reports the folder
-        raise ParameterError(f"unknown vehicle {str(name_or_path)!r}; shipped vehicles are {shipped_vehicles()}, "
-                             "or give a path to a .toml file", key="vehicle", value=str(name_or_path))
-    return load_toml(Vehicle, candidate)
+            return load_toml(cls, p)  # reports the folder
+        shipped = shipped_names(f"{kind}s")
+        raise ParameterError(f"unknown {kind} {str(name_or_path)!r}; shipped {kind}s are {shipped}, "
+                             "or give a path to a .toml file", key=kind, value=str(name_or_path))
+    return load_toml(cls, candidate)
