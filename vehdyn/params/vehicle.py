@@ -234,6 +234,8 @@ class Vehicle(ParameterSet):
     name: str = text("short name")
     description: str = text("what vehicle this is", default="")
     source: str = text("where the numbers come from", default="")
+    category: str = text("kind of vehicle: studies that compare cars take the passenger cars only",
+                         default="passenger_car", choices=("passenger_car", "truck_tractor"))
     mass: MassProperties
     geometry: Geometry
     suspension: Suspension
@@ -300,9 +302,23 @@ def data_path(*parts: str) -> Path:
     raise ParameterError("vehdyn's shipped data folder is missing from this installation", key="data", value=str(here))
 
 
-def shipped_vehicles() -> list[str]:
-    """Names of the vehicles shipped in ``data/vehicles``."""
-    return shipped_names("vehicles")
+def shipped_vehicles(category: str | None = None) -> list[str]:
+    """Names of the vehicles shipped in ``data/vehicles``.
+
+    Parameters
+    ----------
+    category : {"passenger_car", "truck_tractor"}, optional
+        Only the vehicles of this ``category`` (the vehicle file's field; default of a file:
+        ``"passenger_car"``). None: every shipped vehicle.
+    """
+    names = shipped_names("vehicles")
+    if category is None:
+        return names
+    choices = dataclasses.fields(Vehicle)
+    allowed = next(f for f in choices if f.name == "category").metadata["choices"]
+    if category not in allowed:
+        raise ParameterError(f"category = {category!r} is not one of {list(allowed)}", key="category", value=category)
+    return [name for name in names if load_vehicle(name).category == category]
 
 
 def shipped_names(folder: str) -> list[str]:
