@@ -60,14 +60,17 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
         raise
 
 
-def _keep_permissions(path: Path, tmp_name: str) -> None:
-    """Give the new file the old one's mode, or the umask's default for a new file (mkstemp: 0600)."""
+def _keep_permissions(path: Path, tmp_name: str, default: int = 0o666) -> None:
+    """Give the new file the old one's mode, or the umask's default for a new file (mkstemp: 0600).
+
+    ``default=0o777`` does the same for a folder made by :func:`tempfile.mkdtemp` (0700).
+    """
     try:
         mode = os.stat(path).st_mode & 0o777
     except OSError:
         umask = os.umask(0)
         os.umask(umask)
-        mode = 0o666 & ~umask
+        mode = default & ~umask
     with contextlib.suppress(OSError):
         os.chmod(tmp_name, mode)
 

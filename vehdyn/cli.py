@@ -1,13 +1,27 @@
 """The ``vehdyn`` command.
 
 ``vehdyn report [--out DIR] [--quick] [--only NAME ...]``
-    Run every study in ``studies/`` and write ``DIR/index.html`` with its figures and tables.
+    Run every study in ``studies/`` and write ``DIR/index.html`` with its figures and tables. The
+    new report replaces ``DIR`` as a whole once every study has finished
+    (:func:`vehdyn.report.build_report`); until then ``DIR`` keeps the previous report.
 ``vehdyn study NAME [--out DIR] [--quick]``
-    Run one study.
+    Run one study into a report of its own (the same way).
 ``vehdyn tire FILE.tir [--out DIR]``
     Print a tire file's version and key values and write its standard figures.
+``vehdyn tire --soil NAME [--out DIR]``
+    Print a soil's parameters and a rigid wheel's sinkage and drawbar pull against slip on it (a
+    shipped soil name or ``soils.toml:NAME``) and write the curves' figure.
 ``vehdyn vehicles``
     List the shipped vehicles with their key numbers.
+``vehdyn scene FILE.toml [--verify]``
+    Plan a scene (the fidelity ladder), run the chosen model and print the headline numbers.
+
+Exit status: 0 on success; 1 if a study failed (its traceback is in the report and on stderr); 2 for
+a usage error - an unknown study, a missing or unreadable input file, an output folder that is a
+file or cannot be created - reported as one line ``vehdyn COMMAND: what is wrong`` without a
+traceback; 130 if interrupted (Ctrl-C): the report folder then holds the previous complete report
+(or the new one, had it finished), never a mix.
+Every file is written atomically (a temporary file moved over the destination when complete).
 """
 
 from __future__ import annotations
@@ -15,9 +29,22 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from pathlib import Path
 
 __all__ = ["main"]
+
+
+class _UsageError(Exception):
+    """A user error the command reports as one line, with exit status 2."""
+
+
+def _os_reason(exc: OSError) -> str:
+    """``"Permission denied (/some/path)"`` from an OSError."""
+    reason = exc.strerror or str(exc)
+    return f"{reason} ({exc.filename})" if exc.filename else reason
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
 
 
 def _progress(i: int, n: int, name: str, width: int = 24) -> str:
@@ -32,31 +59,27 @@ def _quick(args) -> bool:
 
 
 def cmd_report(args) -> int:
-    from .report import discover_studies, run_study, write_report
+    from .report import build_report, discover_studies
 
     paths = discover_studies(args.studies)
     if args.only:
         wanted = set(args.only)
         unknown = wanted - {p.stem for p in paths}
         if unknown:
-            print(f"vehdyn report: no study named {sorted(unknown)}; studies are {[p.stem for p in paths]}",
-                  file=sys.stderr)
-            return 2
+            raise _UsageError(f"no study named {sorted(unknown)}; studies are {[p.stem for p in paths]}")
         paths = [p for p in paths if p.stem in wanted]
     if not paths:
-        print("vehdyn report: no studies found", file=sys.stderr)
-        return 2
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+        raise _UsageError(f"no studies found{f' in {args.studies}' if args.studies else ''}")
     quick = _quick(args)
-    outcomes = []
     start = time.perf_counter()
-    for i, path in enumerate(paths):
-        sys.stderr.write(_progress(i, len(paths), path.stem))
+
+    def progress(i, n, name):
+        args.progress_line_open = True
+        sys.stderr.write(_progress(i, n, name))
         sys.stderr.flush()
-        outcomes.append(run_study(path, out, quick=quick))
+
+    index, outcomes = build_report(paths, args.out, quick=quick, progress=progress)
     sys.stderr.write(_progress(len(paths), len(paths), "done") + "\n")
-    index = write_report(outcomes, out, quick=quick)
     failed = [o for o in outcomes if o.error]
     print(f"\nvehdyn report: {len(outcomes)} studies in {time.perf_counter() - start:.1f} s -> {index}")
     for o in outcomes:
@@ -67,16 +90,12 @@ def cmd_report(args) -> int:
 
 
 def cmd_study(args) -> int:
-    from .report import discover_studies, run_study, write_report
+    from .report import build_report, discover_studies
 
     paths = {p.stem: p for p in discover_studies(args.studies)}
     if args.name not in paths:
-        print(f"vehdyn study: no study named {args.name!r}; studies are {sorted(paths)}", file=sys.stderr)
-        return 2
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    outcome = run_study(paths[args.name], out, quick=_quick(args))
-    index = write_report([outcome], out, quick=_quick(args))
+        raise _UsageError(f"no study named {args.name!r}; studies are {sorted(paths)}")
+    index, (outcome,) = build_report([paths[args.name]], args.out, quick=_quick(args))
     if outcome.error:
         print(outcome.error, file=sys.stderr)
         return 1
@@ -84,8 +103,34 @@ def cmd_study(args) -> int:
     return 0
 
 
+def cmd_tire_soil(args) -> int:
+    """``vehdyn tire --soil NAME``: a soil's parameters and curves (vehdyn.tire.terramechanics)."""
+    from .tire.terramechanics import load_soil
+    from .tire.terramechanics.curves import describe_soil, plot_soil_curves, soil_curves
+
+    soil = load_soil(args.soil)
+    print(describe_soil(soil))
+    from .report import make_folder
+
+    out = make_folder(args.out)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .plotting import save_figure
+
+    print(f"wrote {save_figure(plot_soil_curves({soil.name: soil_curves(soil)}), out / f'soil_{soil.name}.png')}")
+    return 0
+
+
 def cmd_tire(args) -> int:
     from .errors import VehdynError, VehdynWarning
+
+    if args.soil is not None:
+        if args.file is not None:
+            raise _UsageError("give a .tir file or --soil NAME, not both")
+        return cmd_tire_soil(args)
+    if args.file is None:
+        raise _UsageError("give a .tir file or --soil NAME")
 
     try:
         from .tire import load_tire
@@ -105,17 +150,16 @@ def cmd_tire(args) -> int:
     for warning in caught:  # e.g. missing sections: said, and the tire is still described
         print(f"vehdyn tire: warning: {warning.message}", file=sys.stderr)
     print(describe_tire(tire))
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    from .report import make_folder
+
+    out = make_folder(args.out)
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .plotting import save_figure
 
     for name, fig in plot_tire_characteristics(tire).items():
-        path = out / f"{name}.png"
-        fig.savefig(path, dpi=110, bbox_inches="tight")
-        plt.close(fig)
+        path = save_figure(fig, out / f"{name}.png")
         print(f"wrote {path}")
     return 0
 
@@ -130,6 +174,17 @@ def cmd_vehicles(args) -> int:
         print(f"{name:<10} {v.mass.mass:10.1f} {v.wheelbase:7.3f} {v.geometry.a:7.3f} {v.geometry.b:7.3f} "
               f"{v.mass.yaw_inertia:12.1f} {v.tires.front_cornering_stiffness / 1e3:12.2f} "
               f"{v.tires.rear_cornering_stiffness / 1e3:12.2f}  {v.description}")
+    return 0
+
+
+def cmd_scene(args) -> int:
+    from .scene import Scene, run
+
+    # A bad scene file or field raises a VehdynError: main() reports it as one line, exit status 2.
+    outcome = run(Scene.from_toml(args.file), verify=args.verify)
+    print(outcome.plan)
+    print()
+    print(outcome.headline())
     return 0
 
 
@@ -152,12 +207,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--quick", action="store_true", help="small grids")
     p.add_argument("--studies", default=None, help=argparse.SUPPRESS)
     p.set_defaults(func=cmd_study)
-    p = sub.add_parser("tire", help="describe a .tir file and plot its characteristics")
-    p.add_argument("file", help="path of a .tir file")
+    p = sub.add_parser("tire", help="describe a .tir file (or a soil) and plot its characteristics")
+    p.add_argument("file", nargs="?", help="path of a .tir file")
+    p.add_argument("--soil", metavar="NAME", help="a soil (shipped name or soils.toml:NAME): its terramechanics curves")
     p.add_argument("--out", default="tire_plots", help="output folder (default: ./tire_plots)")
     p.set_defaults(func=cmd_tire)
     p = sub.add_parser("vehicles", help="list the shipped vehicles")
     p.set_defaults(func=cmd_vehicles)
+    p = sub.add_parser("scene", help="plan a scene (.toml), run the chosen model, print the headline numbers")
+    p.add_argument("file", help="path of a scene .toml file")
+    p.add_argument("--verify", action="store_true", help="also run the reference rung and measure the error")
+    p.set_defaults(func=cmd_scene)
     return parser
 
 
@@ -167,7 +227,30 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "command", None):
         parser.print_help()
         return 0
-    return int(args.func(args) or 0)
+    from .errors import ParameterError, VehdynError
+
+    def fail(message: str, status: int = 2) -> int:
+        if getattr(args, "progress_line_open", False):
+            sys.stderr.write("\n")
+        print(f"vehdyn {args.command}: {_one_line(message)}", file=sys.stderr)
+        return status
+
+    try:
+        return int(args.func(args) or 0)
+    except _UsageError as exc:
+        return fail(str(exc))
+    except ParameterError as exc:
+        if exc.key == "out_dir":  # the library names its parameter; the user typed --out
+            return fail(str(exc).replace("out_dir", "--out", 1))
+        return fail(str(exc))
+    except VehdynError as exc:
+        return fail(str(exc))
+    except OSError as exc:
+        return fail(_os_reason(exc))
+    except KeyboardInterrupt:
+        return fail("interrupted" + ("; the report folder holds the previous complete report (or, if the "
+                                     "run had finished, the new one), never a mix"
+                                     if args.command in ("report", "study") else ""), 130)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -281,8 +281,35 @@ class LinearModel(Model):
         return bool(np.all(self.poles().real < 0))
 
     def dc_gain(self) -> np.ndarray:
-        """Steady-state gain -C A^-1 B + D, shape (n_outputs, n_inputs)."""
-        return self.D - self.C @ np.linalg.solve(self.A, self.B)
+        """Steady-state gain H(0) = D - C A^-1 B, shape (n_outputs, n_inputs).
+
+        With integrators -- eigenvalues of A at 0, such as a yaw angle or a position among the
+        states -- an output that an input drives through them has no steady state: its entry is
+        ``inf`` with the sign of lim H(s) for s -> 0+ (the sign in which the output grows under a
+        positive step), as MATLAB's ``dcgain`` does. Entries the integrators do not reach keep their
+        finite gain. (``control.StateSpace.dcgain`` returns ``inf`` for every entry of such a
+        system, ``nan`` where 0 is also a transmission zero.) Eigenvalues with
+        |lambda| <= sqrt(eps) ||A||_1 count as integrators.
+
+        Notes
+        -----
+        The integrating modes are split off by an ordered real Schur form A = Z T Z^T and a Sylvester
+        equation that block-diagonalizes T = [[N, T12], [0, T22]] (Golub & Van Loan, *Matrix
+        Computations*, 4th ed., sec. 7.6.3); then H(s) = sum_j C1 N^j B1 / s^(j+1) + C2 (sI - T22)^-1 B2
+        + D with N nilpotent, and an entry is infinite when one of its C1 N^j B1 is not zero.
+        """
+        A, B, C, D = self.A, self.B, self.C, self.D
+        n = A.shape[0]
+        if n == 0:
+            return D.copy()
+        lam = np.linalg.eigvals(A)
+        tol = np.sqrt(np.finfo(float).eps) * np.linalg.norm(A, 1)
+        if np.min(np.abs(lam)) > tol:
+            try:
+                return D - C @ np.linalg.solve(A, B)
+            except np.linalg.LinAlgError:  # pragma: no cover - singular to rounding but not by the test above
+                tol = float(np.min(np.abs(lam)))
+        return _dc_gain_with_integrators(A, B, C, D, tol)
 
     def frequency_response(self, omega, outputs=None, inputs=None):
         """Complex frequency response C (j omega I - A)^-1 B + D.
@@ -365,6 +392,34 @@ class LinearModel(Model):
             f"<LinearModel {self.name!r}: states {list(self.state_names)}, inputs {list(self.input_names)}, "
             f"outputs {list(self.output_names)}>"
         )
+
+
+def _dc_gain_with_integrators(A, B, C, D, tol):
+    """H(0) of a state space whose A has eigenvalues within ``tol`` of 0 (see LinearModel.dc_gain)."""
+    from scipy.linalg import schur, solve_sylvester
+
+    T, Z, k = schur(A, output="real", sort=lambda re, im: np.hypot(re, im) <= tol)
+    N, T12, T22 = T[:k, :k], T[:k, k:], T[k:, k:]
+    Bz, Cz = Z.T @ B, C @ Z
+    X = solve_sylvester(N, -T22, -T12) if k < A.shape[0] else np.zeros((k, 0))
+    B1 = Bz[:k] - X @ Bz[k:]
+    C1, C2, B2 = Cz[:, :k], Cz[:, :k] @ X + Cz[:, k:], Bz[k:]
+    gain = D - C2 @ np.linalg.solve(T22, B2) if k < A.shape[0] else D.astype(float)
+    # the integrating part sum_j C1 N^j B1 / s^(j+1): the highest power with a nonzero coefficient wins
+    sign = np.zeros(D.shape)
+    term = B1
+    # "nonzero" against the size of the terms B1 is the difference of (not of B1 itself)
+    size_b = np.linalg.norm(Bz[:k], 1) + np.linalg.norm(X, 1) * np.linalg.norm(Bz[k:], 1)
+    scale = np.sqrt(np.finfo(float).eps) * np.linalg.norm(C1, 1) * size_b
+    for _ in range(k):
+        coefficient = C1 @ term
+        scale *= max(1.0, np.linalg.norm(N, 1))
+        nonzero = np.abs(coefficient) > scale
+        sign[nonzero] = np.sign(coefficient[nonzero])
+        term = N @ term
+    out = np.array(gain, dtype=float)
+    out[sign != 0] = np.copysign(np.inf, sign[sign != 0])
+    return out
 
 
 def connect_in_series(upstream: LinearModel, downstream: LinearModel, connections=None, *, name=None) -> LinearModel:

@@ -36,7 +36,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from .linear import LinearModel
     from .results import SimulationResult
 
-__all__ = ["Model", "PHENOMENA", "signal_vector"]
+__all__ = ["Model", "PHENOMENA", "signal_vector", "float_array"]
 
 #: The vocabulary of :attr:`Model.phenomena` (see DESIGN section 6, the fidelity ladder).
 PHENOMENA = frozenset(
@@ -58,6 +58,31 @@ PHENOMENA = frozenset(
 )
 
 _SIGNAL_KINDS = ("states", "inputs", "outputs")
+
+
+def float_array(value: Any, key: str) -> np.ndarray:
+    """``value`` as a float ndarray, or a ParameterError naming ``key`` when it is not numeric.
+
+    Numbers, booleans and arrays of them convert; strings (even numeric ones such as ``"1.5"``, the
+    sign of a text column read by mistake), complex numbers, dates, ragged sequences and objects
+    without a float value are refused. Finiteness is left to the caller, which knows what to name.
+    """
+    try:
+        arr = np.asarray(value)
+    except (TypeError, ValueError):  # a ragged sequence
+        raise ParameterError(f"{key} must be numeric, got {value!r}", key=key, value=value) from None
+    kind = arr.dtype.kind
+    if kind in "biuf":
+        return arr.astype(float, copy=False)
+    if kind == "O":
+        try:
+            out = arr.astype(float)
+        except (TypeError, ValueError):
+            pass
+        else:
+            if not any(isinstance(v, (str, bytes, complex)) for v in arr.flat):
+                return out
+    raise ParameterError(f"{key} must be numeric, got {arr.dtype} {value!r}", key=key, value=value)
 
 
 def signal_vector(values: Any, signals: Sequence[Signal], kind: str, *, default: float = 0.0) -> np.ndarray:
@@ -95,11 +120,15 @@ def signal_vector(values: Any, signals: Sequence[Signal], kind: str, *, default:
                 key=kind,
                 value=unknown[0],
             )
-        entries = [np.asarray(values.get(name, default), dtype=float) for name in names]
-        shape = np.broadcast_shapes(*(e.shape for e in entries)) if entries else ()
+        entries = [float_array(values.get(name, default), f"{kind}.{name}") for name in names]
+        try:
+            shape = np.broadcast_shapes(*(e.shape for e in entries)) if entries else ()
+        except ValueError:
+            raise ParameterError(f"{kind}: the values' shapes {[e.shape for e in entries]} (over {list(names)}) "
+                                 "do not broadcast to one batch", key=kind, value=[e.shape for e in entries]) from None
         out = np.stack([np.broadcast_to(e, shape) for e in entries]) if entries else np.zeros((0,))
     else:
-        out = np.array(values, dtype=float)
+        out = np.array(float_array(values, kind))
         if out.ndim == 0 and n == 1:
             out = out.reshape(1)
         if out.ndim == 0 or out.shape[0] != n:

@@ -5,14 +5,17 @@ matplotlib is imported inside each function, so importing vehdyn does not import
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
+from ._atomic import atomic_write
+
 if TYPE_CHECKING:  # pragma: no cover
     from .results import FrequencyResponse, SimulationResult
 
-__all__ = ["plot_time_histories", "bode_plot", "axis_label", "new_figure"]
+__all__ = ["plot_time_histories", "bode_plot", "axis_label", "new_figure", "save_figure"]
 
 
 def axis_label(name: str, unit: str | None) -> str:
@@ -27,6 +30,41 @@ def new_figure(nrows: int = 1, ncols: int = 1, *, width: float = 6.4, height_per
 
     fig, axes = plt.subplots(nrows, ncols, figsize=(width, max(2.6, height_per_row * nrows)), squeeze=False, **kwargs)
     return fig, axes
+
+
+def save_figure(fig, path, *, dpi: float = 110, close: bool = True) -> Path:
+    """Save ``fig`` to ``path`` atomically (format from the suffix) and close it.
+
+    The image is written to a temporary file beside ``path`` and moved over it when complete, so an
+    interrupted or failed save (disk full, an exception, Ctrl-C) leaves the previous file, or none,
+    never a truncated image.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    path : str or os.PathLike
+        Destination; its folder must exist. The suffix (``.png``, ``.svg``, ``.pdf``) sets the format.
+    dpi : float
+        Resolution [dots per inch] of raster formats.
+    close : bool
+        Close the figure afterwards (frees its memory in long runs).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    path = Path(path)
+    fmt = path.suffix.lstrip(".").lower() or "png"
+    try:
+        with atomic_write(path, "wb") as handle:
+            fig.savefig(handle, format=fmt, dpi=dpi, bbox_inches="tight")
+    finally:
+        if close:
+            import matplotlib.pyplot as plt
+
+            plt.close(fig)
+    return path
 
 
 def plot_time_histories(result: "SimulationResult", names: Sequence[str], *, fig=None, batch=None):

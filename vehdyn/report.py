@@ -23,21 +23,41 @@ a :class:`Study` that collects figures, tables and text::
 ``vehdyn report`` runs every study (``study.quick`` is true with ``--quick`` or ``VEHDYN_QUICK=1``,
 for CI: small grids) and writes ``index.html`` with the figures (PNG) and tables; ``vehdyn study
 NAME`` runs one.
+
+Files are written so that a reader never sees a half-written one (:func:`build_report`): every
+figure, table and ``index.html`` goes to a temporary file moved over its destination when complete,
+and a report run builds the whole new report in a hidden sibling folder (``.NAME.partial-*``) that
+replaces the report folder only after every study has finished and ``index.html`` is written. An
+interrupted run (Ctrl-C, a crash, a full disk) leaves the previous complete report as it was;
+concurrent runs into one folder each publish a complete report, the last one wins. The hidden
+folder of a run killed outright (``kill -9``, power loss) is removed by a later run.
 """
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import html
 import importlib.util
 import os
+import re
+import shutil
+import signal
+import socket
 import sys
+import tempfile
+import threading
 import time
 import traceback
+import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-__all__ = ["Study", "StudyOutcome", "discover_studies", "run_study", "write_report"]
+from ._atomic import _keep_permissions, atomic_write, atomic_write_text
+from .errors import ParameterError, VehdynError
+
+__all__ = ["Study", "StudyOutcome", "discover_studies", "run_study", "write_report", "build_report"]
 
 
 def _quick_from_env() -> bool:
@@ -68,21 +88,20 @@ class Study:
         self.out_dir.mkdir(parents=True, exist_ok=True)
 
     def figure(self, fig, name: str, caption: str = "") -> Path:
-        """Save a matplotlib figure as ``NAME.png`` and close it."""
-        import matplotlib.pyplot as plt
+        """Save a matplotlib figure as ``NAME.png`` (atomically) and close it."""
+        from .plotting import save_figure
 
-        path = self.out_dir / f"{name}.png"
-        fig.savefig(path, dpi=110, bbox_inches="tight")
-        plt.close(fig)
+        path = save_figure(fig, self.out_dir / f"{name}.png", dpi=110)
         self.items.append(("figure", path.name, caption))
         return path
 
     def table(self, frame, name: str, caption: str = "", floatfmt: str = "{:.6g}") -> Path:
-        """Save a pandas DataFrame as ``NAME.csv``, show it in the report and print it."""
+        """Save a pandas DataFrame as ``NAME.csv`` (atomically), show it in the report and print it."""
         import pandas as pd
 
         path = self.out_dir / f"{name}.csv"
-        frame.to_csv(path)
+        with atomic_write(path, "w", newline="") as handle:
+            frame.to_csv(handle)
         units = frame.attrs.get("units") if isinstance(frame, pd.DataFrame) else None
         with pd.option_context("display.width", 160, "display.max_columns", 30):
             print(f"\n== {self.name}: {caption or name}\n{frame.to_string()}")
@@ -178,12 +197,19 @@ pre.error{background:#fee;padding:1em;overflow:auto}.toc li{margin:.2em 0}
 """
 
 
+_TITLE = "<title>vehdyn report</title>"
+
+
 def write_report(outcomes: list[StudyOutcome], out_dir: str | Path, *, quick: bool) -> Path:
-    """Write ``out_dir/index.html`` from study outcomes."""
+    """Write ``out_dir/index.html`` from study outcomes (atomically: the old page or the new, whole).
+
+    This writes the page only; :func:`build_report` runs studies and publishes a whole report folder.
+    """
     import vehdyn
 
     out_dir = Path(out_dir)
-    parts = [f"<!doctype html><html><head><meta charset='utf-8'><title>vehdyn report</title>"
+    parts = [f"<!doctype html><html><head><meta charset='utf-8'>{_TITLE}"
+             f"<meta name='generator' content='vehdyn {vehdyn.__version__}'>"
              f"<style>{_CSS}</style></head><body>",
              f"<h1>vehdyn {vehdyn.__version__} report</h1>",
              f"<p>{len(outcomes)} studies{' (quick mode: small grids)' if quick else ''}; generated "
@@ -208,6 +234,273 @@ def write_report(outcomes: list[StudyOutcome], out_dir: str | Path, *, quick: bo
             parts.append(f"<pre class='error'>{html.escape(o.error)}</pre>")
         parts.append(f"<p class='units'>study script: studies/{o.name}.py, {o.seconds:.2f} s</p>")
     parts.append("</body></html>")
-    index = out_dir / "index.html"
-    index.write_text("\n".join(parts), encoding="utf-8")
-    return index
+    return atomic_write_text(out_dir / "index.html", "\n".join(parts) + "\n")
+
+
+def build_report(paths, out_dir: str | Path, *, quick: bool = False,
+                 progress: Callable[[int, int, str], None] | None = None) -> tuple[Path, list[StudyOutcome]]:
+    """Run studies and publish their report as the folder ``out_dir``, all or nothing.
+
+    The studies run into a hidden sibling folder ``.NAME.partial-*`` (same file system); when every
+    study has finished and ``index.html`` is written there, that folder replaces ``out_dir`` by
+    renames. Until then ``out_dir`` keeps the previous complete report, readable while the run goes
+    on; an interrupted run (an exception, Ctrl-C, a full disk) removes its partial folder and leaves
+    the previous report untouched. A study that raises an ordinary exception does not interrupt
+    the run: its section shows the traceback (as :func:`run_study` records it). Concurrent runs
+    into one folder each publish a complete report; the last to finish wins. Files from an earlier
+    run that this run does not produce (a removed figure, a study not selected) do not survive.
+
+    Parameters
+    ----------
+    paths : sequence of path-like
+        Study scripts (see :func:`discover_studies`).
+    out_dir : str or os.PathLike
+        Report folder. It may be missing, empty, or an earlier vehdyn report; a folder holding
+        anything else is refused, because the run replaces the folder as a whole.
+    quick : bool
+        Small grids.
+    progress : callable, optional
+        ``progress(i, n, name)`` before study ``i`` of ``n`` starts.
+
+    Returns
+    -------
+    index : pathlib.Path
+        ``out_dir/index.html`` (``out_dir`` resolved to an absolute path, symbolic links followed).
+    outcomes : list of StudyOutcome
+
+    Raises
+    ------
+    ParameterError
+        If ``out_dir`` is a file, cannot be created, or is a folder that is not a vehdyn report.
+    VehdynError
+        If the finished report cannot replace ``out_dir`` (the message says where it was kept).
+    """
+    out = _report_folder(out_dir)
+    _remove_abandoned(out)
+    try:
+        stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-{_run_tag()}-", dir=out.parent))
+    except OSError as exc:
+        raise ParameterError(f"out_dir {str(out_dir)!r}: cannot create the folder that builds the new report "
+                             f"beside it in {str(out.parent)!r} ({exc.strerror or exc})", key="out_dir",
+                             value=str(out_dir)) from None
+    try:
+        _keep_permissions(out, stage, default=0o777)  # mkdtemp makes 0700
+        outcomes = []
+        for i, path in enumerate(paths):
+            if progress is not None:
+                progress(i, len(paths), Path(path).stem)
+            outcomes.append(run_study(path, stage, quick=quick))
+        write_report(outcomes, stage, quick=quick)
+    except BaseException:
+        shutil.rmtree(stage, ignore_errors=True)
+        raise
+    try:
+        with _interrupt_deferred():
+            _publish(stage, out)
+    except OSError as exc:
+        raise VehdynError(f"the new report is complete in {stage} but could not replace {out}: "
+                          f"{exc.strerror or exc}") from exc
+    return out / "index.html", outcomes
+
+
+def _folder_kind(folder: Path) -> str:
+    """What ``folder`` is: ``"missing"``, ``"file"``, ``"empty"``, ``"report"`` (a vehdyn report) or ``"foreign"``.
+
+    Where the system allows, the folder is opened once and looked at through that handle, so that
+    a concurrent run swapping another report in cannot mix two folders into one answer.
+    """
+    if os.open in os.supports_dir_fd and os.listdir in os.supports_fd and hasattr(os, "O_DIRECTORY"):
+        for _ in range(100):
+            try:
+                fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+            except FileNotFoundError:
+                return "missing"
+            except NotADirectoryError:
+                return "file"
+            try:
+                kind = _open_folder_kind(fd)
+                # a folder retired (and being deleted) since it was opened says nothing about ``folder``
+                here, there = os.fstat(fd), os.stat(folder)
+                if (here.st_dev, here.st_ino) == (there.st_dev, there.st_ino):
+                    return kind
+            except FileNotFoundError:
+                continue
+            finally:
+                os.close(fd)
+    folder = Path(folder)  # Windows: by path
+    if not folder.exists():
+        return "missing"
+    if not folder.is_dir():
+        return "file"
+    try:
+        if not any(folder.iterdir()):
+            return "empty"
+        with open(folder / "index.html", "rb") as fh:
+            return "report" if _TITLE.encode() in fh.read(4096) else "foreign"
+    except FileNotFoundError:
+        return "missing" if not folder.exists() else "foreign"
+
+
+def _open_folder_kind(fd: int) -> str:
+    if not os.listdir(fd):
+        return "empty"
+    try:
+        page = os.open("index.html", os.O_RDONLY, dir_fd=fd)
+    except OSError:
+        return "foreign"
+    with os.fdopen(page, "rb") as fh:
+        return "report" if _TITLE.encode() in fh.read(4096) else "foreign"
+
+
+def _report_folder(out_dir) -> Path:
+    """The absolute report folder, checked: missing, empty or a report; its parent created."""
+    out = Path(out_dir).resolve()
+    if out.parent == out:
+        raise ParameterError(f"out_dir {str(out_dir)!r} is a file-system root", key="out_dir", value=str(out_dir))
+    make_folder(out_dir, create=False)
+    if _folder_kind(out) == "foreign":
+        raise ParameterError(f"out_dir {str(out_dir)!r} holds files that are not a vehdyn report; a report run "
+                             "replaces its folder as a whole, so give a new or empty folder or an earlier "
+                             "report's folder", key="out_dir", value=str(out_dir))
+    make_folder(out.parent, shown=out_dir)
+    return out
+
+
+def make_folder(folder, *, create: bool = True, shown=None) -> Path:
+    """Create an output folder and its parents, or say in one line why it cannot be.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+    create : bool
+        False: only check that neither ``folder`` nor a parent is a file.
+    shown : str or os.PathLike, optional
+        The path the user gave, for messages (default ``folder``).
+
+    Raises
+    ------
+    ParameterError
+        ``key="out_dir"``: ``folder`` or one of its parents is a file, or the system refuses
+        (permissions, a read-only file system); the message names the path and the reason.
+    """
+    path = Path(folder)
+    shown = str(folder if shown is None else shown)
+    for part in (path, *path.parents):
+        if part.exists() and not part.is_dir():
+            which = "" if part == path else f" (its parent {str(part)!r} is a file)"
+            raise ParameterError(f"out_dir {shown!r} is not a folder{which or ' but a file'}",
+                                 key="out_dir", value=shown)
+    if create:
+        try:
+            path.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            reason = exc.strerror or str(exc)
+            raise ParameterError(f"out_dir {shown!r} cannot be created: {reason}"
+                                 f"{f' ({exc.filename})' if exc.filename else ''}", key="out_dir",
+                                 value=shown) from None
+    return path
+
+
+def _publish(stage: Path, out: Path) -> None:
+    """Move the complete folder ``stage`` to ``out``, retiring whatever ``out`` holds.
+
+    Two renames; a concurrent publisher may slip in between, so retire and retry until ``stage``
+    lands. Should the move fail, the retired folder goes back if ``out`` is still free.
+    """
+    retired: list[Path] = []
+    try:
+        for _ in range(1000):
+            try:
+                os.rename(stage, out)
+                return
+            except OSError as exc:
+                if not (isinstance(exc, FileExistsError) or exc.errno in (errno.EEXIST, errno.ENOTEMPTY)):
+                    raise
+            kind = _folder_kind(out)
+            if kind == "missing":  # another publisher retired it meanwhile
+                continue
+            if kind in ("file", "foreign"):  # something else moved in since the run began
+                raise OSError(errno.EEXIST, "it now holds files that are not a vehdyn report", str(out))
+            aside = out.with_name(f".{out.name}.old-{_run_tag()}-{uuid.uuid4().hex[:12]}")
+            try:
+                os.rename(out, aside)
+            except FileNotFoundError:  # another publisher retired it first
+                continue
+            retired.append(aside)
+        raise OSError(errno.EBUSY, "the folder kept being replaced by other report runs", str(out))
+    except BaseException:
+        if retired and not out.exists():
+            with contextlib.suppress(OSError):
+                os.rename(retired.pop(), out)
+        raise
+    finally:
+        for folder in retired:
+            shutil.rmtree(folder, ignore_errors=True)
+
+
+def _run_tag() -> str:
+    """``HOST-PID`` of this run, in the names of its temporary folders."""
+    host = re.sub(r"[^A-Za-z0-9_]", "_", socket.gethostname())[:40] or "host"
+    return f"{host}-{os.getpid()}"
+
+
+_ABANDONED_AFTER = 3600.0  # [s] without a file written
+
+
+def _remove_abandoned(out: Path) -> None:
+    """Remove temporary folders beside ``out`` left by killed runs (POSIX; this host; idle an hour).
+
+    A run that ends by an exception or Ctrl-C removes its own; one killed outright cannot. A folder
+    is abandoned when the process named in it no longer exists on this host and nothing in it has
+    been written for :data:`_ABANDONED_AFTER` seconds (the second test guards against a process of
+    the same host name in another PID namespace).
+    """
+    if os.name != "posix":  # os.kill(pid, 0) is not a probe on Windows
+        return
+    host, _, _ = _run_tag().rpartition("-")
+    pattern = re.compile(rf"\.{re.escape(out.name)}\.(?:partial|old)-{re.escape(host)}-(\d+)-")
+    now = time.time()
+    try:
+        entries = list(out.parent.iterdir())
+    except OSError:
+        return
+    for entry in entries:
+        match = pattern.match(entry.name)
+        if not match or _process_exists(int(match.group(1))):
+            continue
+        try:
+            newest = max([entry.stat().st_mtime, *(p.stat().st_mtime for p in entry.rglob("*"))])
+        except OSError:
+            continue
+        if now - newest > _ABANDONED_AFTER:
+            shutil.rmtree(entry, ignore_errors=True)
+
+
+def _process_exists(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # PermissionError: it exists, owned by someone else
+        return True
+    return True
+
+
+@contextlib.contextmanager
+def _interrupt_deferred():
+    """Hold Ctrl-C (SIGINT) back until the block ends, in the main thread; elsewhere do nothing."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    received = []
+    try:
+        previous = signal.signal(signal.SIGINT, lambda signum, frame: received.append(frame))
+    except ValueError:  # not the main interpreter
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if received and callable(previous):
+            previous(signal.SIGINT, received[0])

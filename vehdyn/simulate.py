@@ -11,7 +11,15 @@ Methods
     iterations.
 any ``scipy.integrate.solve_ivp`` method
     ``"RK45"``, ``"RK23"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"`` with ``rtol``, ``atol``
-    and ``max_step``; sampled inputs are interpolated with the same hold.
+    and ``max_step``; sampled inputs are interpolated with the same hold. The explicit ones
+    (``"RK23"``, ``"RK45"``, ``"DOP853"``) are judged for stiffness: the step their stability allows,
+    :func:`stability_interval` / max |Re lambda| of the state Jacobian, gives the number of steps
+    the run needs whatever the tolerance; above ``STIFF_STEPS_WARN`` (1e5) a
+    :class:`~vehdyn.VehdynWarning` says so, above ``STIFF_STEPS_REFUSE`` (1e7) a ParameterError
+    names ``method`` and the implicit methods to use instead (``check_stability=False`` runs it
+    anyway). A LinearModel is judged before the run (its eigenvalues cost microseconds); any other
+    model once the solver has made 20,000 rhs calls, and again at every doubling, so that short
+    runs never pay for a Jacobian.
 ``"rk4"``
     Classical fixed-step Runge-Kutta on the time grid (optionally ``substeps`` per interval),
     vectorized across a trailing batch axis. Before it starts it checks the step against the
@@ -31,16 +39,20 @@ model has a compiled rhs and there is no batch, and says so in ``result.method_r
 
 from __future__ import annotations
 
+import functools
+import math
 import time as _time
+import warnings
 from typing import Any, Callable, Mapping
 
 import numpy as np
 
-from .errors import ParameterError, SimulationError
-from .model import Model, signal_vector
+from .errors import ParameterError, SimulationError, VehdynWarning
+from .model import Model, float_array, signal_vector
 from .results import SimulationResult
 
-__all__ = ["simulate", "SOLVE_IVP_METHODS", "rk4_stability_limit", "exact_discretization"]
+__all__ = ["simulate", "SOLVE_IVP_METHODS", "rk4_stability_limit", "stability_interval", "exact_discretization",
+           "STIFF_STEPS_WARN", "STIFF_STEPS_REFUSE"]
 
 SOLVE_IVP_METHODS = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
 _HOLDS = ("zoh", "foh")
@@ -48,7 +60,7 @@ _HOLDS = ("zoh", "foh")
 
 # --------------------------------------------------------------------------- input handling
 def _time_grid(time) -> np.ndarray:
-    t = np.asarray(time, dtype=float)
+    t = float_array(time, "time")
     if t.ndim != 1 or t.size < 2:
         raise ParameterError(f"time must be a 1-D array of at least two instants, got shape {t.shape}",
                              key="time", value=t.shape)
@@ -63,14 +75,20 @@ def _time_grid(time) -> np.ndarray:
 
 
 def _sample_inputs(model: Model, inputs: Any, t: np.ndarray) -> np.ndarray:
-    """Inputs on the time grid, shape (n_inputs, n_times) or (n_inputs, n_times, n_batch)."""
+    """Inputs on the time grid, shape (n_inputs, n_times) or (n_inputs, n_times, n_batch).
+
+    Only the documented forms pass (see :func:`simulate`); any other shape, a non-numeric or a
+    non-finite value raises ParameterError naming the input. A mapping's arrays are (n_times,) or
+    (n_times, n_batch): time is always their first axis, so a (n_times,) entry next to a
+    (n_times, n_batch) one is one signal for the whole batch, never a batch of its own.
+    """
     m, n_t = model.n_inputs, t.size
     names = model.input_names
     if inputs is None:
         return np.zeros((m, n_t))
     if callable(inputs):
-        return _sample_callable(inputs, t, m, "inputs")
-    if isinstance(inputs, Mapping):
+        u = _sample_callable(inputs, t, m, "inputs", "inputs")
+    elif isinstance(inputs, Mapping):
         unknown = [k for k in inputs if k not in names]
         if unknown:
             raise ParameterError(f"inputs: {type(model).__name__} has no input {unknown[0]!r}; its inputs are "
@@ -78,45 +96,71 @@ def _sample_inputs(model: Model, inputs: Any, t: np.ndarray) -> np.ndarray:
         rows = []
         for name in names:
             v = inputs.get(name, 0.0)
-            if callable(v):
-                v = _sample_callable(v, t, None, f"inputs[{name!r}]")
-            v = np.asarray(v, dtype=float)
+            what = f"inputs[{name!r}]"
+            key = f"inputs.{name}"
+            v = _sample_callable(v, t, None, what, key) if callable(v) else float_array(v, key)
             if v.ndim == 0:
                 v = np.full(n_t, float(v))
-            if v.shape[0] != n_t:
-                raise ParameterError(f"inputs[{name!r}] has {v.shape[0]} samples but time has {n_t}",
-                                     key=f"inputs.{name}", value=v.shape)
+            if v.ndim > 2 or v.shape[0] != n_t or (v.ndim == 2 and v.shape[1] == 0):
+                raise ParameterError(f"{what} must have shape (n_times,) = ({n_t},) or (n_times, n_batch) = "
+                                     f"({n_t}, n_batch), got {v.shape}", key=key, value=v.shape)
             rows.append(v)
-        shape = np.broadcast_shapes(*(r.shape for r in rows)) if rows else (n_t,)
-        u = np.stack([np.broadcast_to(r, shape) for r in rows]) if rows else np.zeros((0, n_t))
+        batches = {r.shape[1] for r in rows if r.ndim == 2} - {1}
+        if len(batches) > 1:
+            sizes = {name: r.shape[1] for name, r in zip(names, rows) if r.ndim == 2}
+            raise ParameterError(f"inputs: the batch sizes {sizes} differ (give one n_batch, or 1 to share a column)",
+                                 key="inputs", value=sizes)
+        batched = any(r.ndim == 2 for r in rows)
+        u = np.empty((m, n_t) + ((max(batches, default=1),) if batched else ()))
+        for i, r in enumerate(rows):
+            u[i] = r[:, None] if batched and r.ndim == 1 else r
     else:
-        u = np.asarray(inputs, dtype=float)
+        u = float_array(inputs, "inputs")
         if u.ndim == 1 and m == 1 and u.shape[0] == n_t:
             u = u[None, :]
-        if u.ndim < 2 or u.shape[0] != m or u.shape[1] != n_t:
-            raise ParameterError(f"inputs must have shape (n_inputs, n_times) = ({m}, {n_t}) for inputs "
-                                 f"{list(names)}, got {u.shape}", key="inputs", value=u.shape)
-    if not np.all(np.isfinite(u)):
-        idx = np.argwhere(~np.isfinite(u))[0]
-        raise ParameterError(f"input {names[idx[0]]!r} is not finite at t = {t[idx[1]]} ({u[tuple(idx)]})",
-                             key=f"inputs.{names[idx[0]]}", value=u[tuple(idx)])
+        if u.ndim not in (2, 3) or u.shape[0] != m or u.shape[1] != n_t or (u.ndim == 3 and u.shape[2] == 0):
+            raise ParameterError(f"inputs must have shape (n_inputs, n_times) = ({m}, {n_t}) or (n_inputs, n_times, "
+                                 f"n_batch) for inputs {list(names)}, got {u.shape}", key="inputs", value=u.shape)
+    finite = np.isfinite(u)
+    if not finite.all():
+        idx = tuple(np.argwhere(~finite)[0])
+        member = f", batch member {idx[2]}" if len(idx) == 3 else ""
+        raise ParameterError(f"input {names[idx[0]]!r} is not finite at t = {t[idx[1]]}{member} ({u[idx]})",
+                             key=f"inputs.{names[idx[0]]}", value=u[idx])
     return u
 
 
-def _sample_callable(fun: Callable, t: np.ndarray, m: int | None, what: str) -> np.ndarray:
+def _sample_callable(fun: Callable, t: np.ndarray, m: int | None, what: str, key: str) -> np.ndarray:
+    """Samples of a callable input on the grid: (m, n_t[, n_batch]) for the whole input vector
+    (``m`` given), (n_t[, n_batch]) for one named input; vectorized calls first, else sample by sample."""
+    n_t = t.size
     try:
-        v = np.asarray(fun(t), dtype=float)
-        vectorized = v.shape[-1:] == (t.size,) or (m is None and v.shape == t.shape)
+        v = np.asarray(fun(t))
+        if m is None:
+            vectorized = v.shape[:1] == (n_t,)
+        else:
+            vectorized = v.shape[:2] == (m, n_t) or (m == 1 and v.shape == (n_t,))
     except Exception:  # a scalar-only callable: evaluate sample by sample
         vectorized = False
     if not vectorized:
-        v = np.stack([np.asarray(fun(tk), dtype=float) for tk in t], axis=-1)
+        # one value (or one batch of values) per instant, stacked along the time axis
+        samples = [np.asarray(fun(tk)) for tk in t]
+        if len({sample.shape for sample in samples}) > 1:
+            raise ParameterError(f"{what}: u(t) returned values of different shapes "
+                                 f"{sorted({sample.shape for sample in samples})}", key=key, value=None)
+        v = np.stack(samples)
+        if m is not None and v.ndim > 1:
+            v = np.moveaxis(v, 0, 1)
+    try:
+        v = float_array(v, key)
+    except ParameterError as exc:
+        raise ParameterError(f"{what}: u(t) must return numbers, got {v.dtype} values", key=key, value=exc.value) from None
     if m is not None:
         if v.ndim == 1 and m == 1:
             v = v[None, :]
-        if v.shape[0] != m:
-            raise ParameterError(f"{what}: u(t) must return {m} values, got shape {v.shape[:-1]}",
-                                 key=what, value=v.shape)
+        if v.ndim not in (2, 3) or v.shape[:2] != (m, n_t):
+            raise ParameterError(f"{what}: u(t) must return {m} values per instant (one per input), got samples of "
+                                 f"shape {v.shape}", key=key, value=v.shape)
     return v
 
 
@@ -235,6 +279,53 @@ def _simulate_exact(model, t, u, x0, hold):
 
 
 # --------------------------------------------------------------------------- rk4
+@functools.lru_cache(maxsize=None)
+def _stability_polynomial(method: str) -> np.ndarray:
+    """Coefficients c_k of the stability function R(z) = sum_k c_k z^k of an explicit Runge-Kutta
+    method: c_0 = 1, c_k = b^T A^(k-1) 1 (Hairer & Wanner, *Solving ODEs II*, 2nd ed., sec. IV.2),
+    from scipy's tableaus for the ``solve_ivp`` methods."""
+    if method == "rk4":
+        return np.array([1.0, 1.0, 1 / 2, 1 / 6, 1 / 24])
+    from scipy import integrate
+
+    solver = getattr(integrate, method)
+    b = np.asarray(solver.B, dtype=float)
+    tableau = np.asarray(solver.A, dtype=float)[: b.size, : b.size]
+    a = np.zeros((b.size, b.size))
+    a[:, : tableau.shape[1]] = tableau
+    coefficients, v = [1.0], np.ones(b.size)
+    for _ in range(b.size):
+        coefficients.append(float(b @ v))
+        v = a @ v
+    return np.array(coefficients)
+
+
+def _stability_limit(eigenvalues, method: str) -> float:
+    """Largest step [s] for which the explicit ``method`` is stable on ``eigenvalues`` (see
+    :func:`rk4_stability_limit`)."""
+    lam = np.atleast_1d(np.asarray(eigenvalues, dtype=complex))
+    lam = lam[(lam.real < 0) & (np.abs(lam) > 0)]
+    if lam.size == 0:
+        return float("inf")
+    coefficients = _stability_polynomial(method)[::-1]
+
+    def unstable(radius):
+        return np.abs(np.polyval(coefficients, radius * lam / np.abs(lam))) > 1.0
+
+    # march out along each ray to the first unstable |z| (every region here lies inside |z| < 8),
+    # then bisect: the first crossing, not a later island of the region
+    radii = np.linspace(0.0, 8.0, 321)[1:]
+    first = np.argmax(unstable(radii[:, None]), axis=0)
+    hi = radii[first]
+    lo = np.where(first > 0, radii[first - 1], 0.0)
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        bad = unstable(mid)
+        lo = np.where(bad, lo, mid)
+        hi = np.where(bad, mid, hi)
+    return float(np.min(lo / np.abs(lam)))
+
+
 def rk4_stability_limit(eigenvalues) -> float:
     """Largest step [s] for which classical RK4 is stable on the given eigenvalues.
 
@@ -242,22 +333,60 @@ def rk4_stability_limit(eigenvalues) -> float:
     bisection; eigenvalues with non-negative real part impose no limit (they grow anyway).
     Returns ``inf`` when no eigenvalue limits the step.
     """
-    lam = np.atleast_1d(np.asarray(eigenvalues, dtype=complex))
-    lam = lam[(lam.real < 0) & (np.abs(lam) > 0)]
-    if lam.size == 0:
-        return float("inf")
+    return _stability_limit(eigenvalues, "rk4")
 
-    def growth(z):
-        return np.abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24)
 
-    lo = np.zeros(lam.size)
-    hi = np.full(lam.size, 4.0)  # |z| = 4 lies outside the region on every ray
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        stable = growth(mid * lam / np.abs(lam)) <= 1.0
-        lo = np.where(stable, mid, lo)
-        hi = np.where(stable, hi, mid)
-    return float(np.min(lo / np.abs(lam)))
+def stability_interval(method: str) -> float:
+    """Length of the stability interval of an explicit method on the negative real axis [-].
+
+    An explicit method integrating a decay at rate lambda [1/s] is stable only for steps
+    h <= interval / lambda, however smooth the solution: this is what makes a stiff problem
+    expensive for it. ``method`` is ``"rk4"``, ``"RK23"``, ``"RK45"`` or ``"DOP853"`` (scipy's
+    tableaus). Classical RK4: 2.785; Dormand-Prince 5(4) (``"RK45"``): 3.307 (Hairer & Wanner,
+    *Solving ODEs II*, sec. IV.2).
+    """
+    if not isinstance(method, str) or method not in _EXPLICIT:
+        raise ParameterError(f"method must be one of {_EXPLICIT}, got {method!r}", key="method", value=method)
+    return _real_stability_interval(method)
+
+
+@functools.lru_cache(maxsize=None)
+def _real_stability_interval(method: str) -> float:
+    return _stability_limit([-1.0], method)
+
+
+_EXPLICIT = ("rk4", "RK23", "RK45", "DOP853")
+_IMPLICIT_HINT = "an implicit method: method='LSODA', 'Radau' or 'BDF' (or 'exact' for a LinearModel, or 'auto')"
+# stability-limited step counts above which an explicit method is warned about, and refused
+STIFF_STEPS_WARN = 1e5
+STIFF_STEPS_REFUSE = 1e7
+
+
+def _stiffness_estimate(method: str, lam, t_from: float, t_to: float, where: str) -> tuple[float, str]:
+    """Steps the explicit ``method`` needs for stability alone from ``t_from`` to ``t_to``, given the
+    eigenvalues ``lam`` of the state Jacobian (decay rates |Re lambda| against the method's real-axis
+    stability interval), and the sentence that says so."""
+    fast = float(np.max(-np.asarray(lam).real, initial=0.0))
+    if fast <= 0.0:
+        return 0.0, ""
+    h_max = stability_interval(method) / fast
+    steps = (t_to - t_from) / h_max
+    return steps, (f"method {method!r} is explicit and the problem is stiff: the fastest decay rate of the state "
+                   f"Jacobian {where} is {fast:.3g} 1/s, so {method} is stable only for steps <= {h_max:.3g} s, "
+                   f"about {steps:.2g} steps for the {t_to - t_from:g} s to go; use {_IMPLICIT_HINT}")
+
+
+def _check_stiffness(method: str, lam, t_from: float, t_to: float, where: str, *, warn: bool = True,
+                     stacklevel: int = 3) -> float:
+    """Warn (VehdynWarning) or refuse (ParameterError) an explicit ``method`` whose stability alone
+    needs more than STIFF_STEPS_WARN or STIFF_STEPS_REFUSE steps (see _stiffness_estimate).
+    Returns that step count."""
+    steps, message = _stiffness_estimate(method, lam, t_from, t_to, where)
+    if steps > STIFF_STEPS_REFUSE:
+        raise ParameterError(message + ", or check_stability=False to run it anyway", key="method", value=method)
+    if warn and steps > STIFF_STEPS_WARN:
+        warnings.warn(message, VehdynWarning, stacklevel=stacklevel)
+    return steps
 
 
 def _state_jacobian_eigenvalues(model, t0, x0, u0) -> np.ndarray:
@@ -330,7 +459,12 @@ def _simulate_rk4(model, t, u, x0, hold, substeps, check_stability):
 
 
 # --------------------------------------------------------------------------- solve_ivp
-def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_step):
+# rhs calls after which an explicit solve_ivp run looks at its stiffness (then at every doubling):
+# small runs never pay for the Jacobian, long ones pay well under 1 % of what they have spent
+_STIFFNESS_WATCH_CALLS = 20_000
+
+
+def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_step, watch_stiffness=False):
     from scipy.integrate import solve_ivp
 
     n = model.n_states
@@ -339,8 +473,24 @@ def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_ste
     x0b = np.broadcast_to(x0.reshape((n,) + x0.shape[1:] + (1,) * (len(batch) - (x0.ndim - 1))), shape)
     u_at = _interpolator(t, u, hold)
 
-    def fun(tt, y):
+    def rhs(tt, y):
         return np.asarray(model.rhs(tt, y.reshape(shape), u_at(tt)), dtype=float).reshape(-1)
+
+    fun = rhs
+    if watch_stiffness and method in _EXPLICIT and n > 0:
+        calls, next_check = 0, _STIFFNESS_WATCH_CALLS
+        warned = False
+
+        def fun(tt, y):
+            nonlocal calls, next_check, warned
+            calls += 1
+            if calls == next_check:
+                next_check *= 2
+                lam = _state_jacobian_eigenvalues(model, tt, y.reshape(shape), np.asarray(u_at(tt)))
+                steps = _check_stiffness(method, lam, tt, t[-1], f"at t = {tt:.6g} s (after {calls} rhs calls)",
+                                         warn=not warned, stacklevel=2)
+                warned = warned or steps > STIFF_STEPS_WARN
+            return rhs(tt, y)
 
     opts = {"rtol": rtol, "atol": atol}
     if (method in ("Radau", "BDF", "LSODA") and not batch and type(model).jacobian is not Model.jacobian
@@ -354,11 +504,24 @@ def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_ste
         opts["max_step"] = max_step
     if first_step is not None:
         opts["first_step"] = first_step
-    with np.errstate(over="ignore", invalid="ignore"):
-        sol = solve_ivp(fun, (t[0], t[-1]), x0b.reshape(-1).astype(float), method=method, t_eval=t, **opts)
+    try:
+        with np.errstate(over="ignore", invalid="ignore"):
+            sol = solve_ivp(fun, (t[0], t[-1]), x0b.reshape(-1).astype(float), method=method, t_eval=t, **opts)
+    except (ArithmeticError, ValueError) as exc:
+        # numerical failures raised inside the solver (a LU of a non-finite Jacobian, an overflow),
+        # not the user's own errors: those propagate as they are
+        if isinstance(exc, ParameterError) or not (isinstance(exc, (ArithmeticError, np.linalg.LinAlgError))
+                                                   or "infs or NaNs" in str(exc)):
+            raise
+        raise SimulationError(f"{method} failed: {exc}", time=None) from exc
     if sol.status < 0:
-        t_end = float(sol.t[-1]) if sol.t.size else float(t[0])
-        raise SimulationError(f"{method} failed at t = {t_end:.6g} s: {sol.message}", time=t_end)
+        reached = np.asarray(sol.t)
+        if reached.size:
+            t_end = float(reached[-1])
+            raise SimulationError(f"{method} failed after t = {t_end:.6g} s (the last output instant it reached): "
+                                  f"{sol.message}", time=t_end)
+        raise SimulationError(f"{method} failed in its first step from t = {t[0]:.6g} s: {sol.message}",
+                              time=float(t[0]))
     y = sol.y.reshape(shape + (t.size,))
     y = np.moveaxis(y, -1, 1)
     return y, sol
@@ -412,11 +575,17 @@ def simulate(
     time : array_like
         Strictly increasing output times [s]; the simulation starts at ``time[0]``.
     inputs : None, mapping, array_like or callable
-        ``None`` (all inputs zero); ``{name: array or scalar or callable}`` (omitted inputs are
-        zero); an array of shape (n_inputs, n_times) or (n_inputs, n_times, n_batch); or a callable
-        ``u(t)`` returning the input vector.
+        ``None`` (all inputs zero); ``{name: value}`` with each value a number, an array of shape
+        (n_times,) or (n_times, n_batch) -- time first; a (n_times,) signal next to batched ones is
+        shared by every member -- or a callable ``u(t)`` returning one value (or n_batch values)
+        per instant (omitted inputs are zero); an array of shape (n_inputs, n_times) or
+        (n_inputs, n_times, n_batch); or a callable ``u(t)`` returning the input vector (n_inputs,)
+        per instant, or (n_inputs, n_times) when called with the whole grid. Every value must be a
+        finite number: other shapes, strings and non-finite samples (callables included) raise
+        ParameterError naming the input, the instant and, in a batch, the member.
     x0 : None, mapping or array_like
         Initial state (zeros by default); shape (n_states,) or (n_states, n_batch) for a batch.
+        Batch sizes of ``x0`` and ``inputs`` must agree; a batch of 1 on either side is shared.
     method : str
         ``"auto"``, ``"exact"``, ``"rk4"`` or a ``solve_ivp`` method name.
     rtol, atol : float
@@ -425,12 +594,14 @@ def simulate(
         How sampled inputs vary between samples: linearly (default, as ``scipy.signal.lsim`` and
         ``control.forced_response``) or held constant.
     max_step, first_step : float, optional
-        Passed to ``solve_ivp``.
+        Passed to ``solve_ivp`` and the compiled backend [s]; both positive (``max_step`` may be
+        ``inf``), ``first_step`` at most the span of ``time``.
     substeps : int
         rk4 steps per interval of the time grid.
     check_stability : bool
-        rk4 only: refuse a step outside RK4's stability region for the fastest eigenvalue of the
-        linearization at the initial point.
+        rk4: refuse a step outside RK4's stability region for the fastest eigenvalue of the
+        linearization at the initial point. ``"RK23"``, ``"RK45"``, ``"DOP853"`` on numpy: warn
+        about, or refuse, a stiff problem (module docstring). False skips both checks.
     backend : {"auto", "numpy", "compiled"}
         See the module docstring; ``"compiled"`` raises ParameterError where it cannot run (numba
         missing, a model without a compiled rhs, a batch, another method), naming why.
@@ -442,25 +613,40 @@ def simulate(
     Raises
     ------
     ParameterError
-        On malformed time, inputs, x0 or options.
+        On malformed time, inputs, x0 or options (non-numeric, non-finite, wrong shape, mismatched
+        batch sizes), naming the argument; on an explicit method for a problem so stiff that it
+        would need more than ``STIFF_STEPS_REFUSE`` steps.
     SimulationError
         When the solver fails (its message is included) or a state becomes non-finite (the state
         and the time are named).
+
+    Warns
+    -----
+    VehdynWarning
+        When an explicit method's stability alone needs more than ``STIFF_STEPS_WARN`` steps.
     """
     from .linear import LinearModel
 
     if not isinstance(model, Model):
         raise ParameterError(f"model must be a vehdyn Model, got {type(model).__name__}", key="model", value=model)
     t = _time_grid(time)
-    if hold not in _HOLDS:
+    if not isinstance(hold, str) or hold not in _HOLDS:
         raise ParameterError(f"hold must be one of {_HOLDS}, got {hold!r}", key="hold", value=hold)
-    for name, val in (("rtol", rtol), ("atol", atol)):
-        if not (np.isfinite(val) and val > 0):
-            raise ParameterError(f"{name} must be a positive number, got {val!r}", key=name, value=val)
-    if not (isinstance(substeps, (int, np.integer)) and substeps >= 1):
+    rtol = _positive_option(rtol, "rtol")
+    atol = _positive_option(atol, "atol")
+    if max_step is not None:
+        max_step = _positive_option(max_step, "max_step", allow_inf=True)
+    if first_step is not None:
+        first_step = _positive_option(first_step, "first_step")
+        if first_step > t[-1] - t[0]:
+            raise ParameterError(f"first_step {first_step:g} s exceeds the time span {t[-1] - t[0]:g} s",
+                                 key="first_step", value=first_step)
+    if isinstance(substeps, bool) or not (isinstance(substeps, (int, np.integer)) and substeps >= 1):
         raise ParameterError(f"substeps must be a positive integer, got {substeps!r}", key="substeps", value=substeps)
+    if not isinstance(method, str):
+        raise ParameterError(f"method must be a string, got {method!r}", key="method", value=method)
     u = _sample_inputs(model, inputs, t)
-    x0v = signal_vector(x0, model.states, "x0")
+    x0v, u = _common_batch(signal_vector(x0, model.states, "x0"), u)
     reason = ""
     if method == "auto":
         method, reason = _choose_method(model, t, u, x0v, rtol)
@@ -471,6 +657,10 @@ def simulate(
         raise ParameterError(
             f"method 'exact' needs a LinearModel; {type(model).__name__} is not linear "
             "(use model.linearize() first, or a solve_ivp method)", key="method", value=method)
+    if check_stability and not reason and method in _EXPLICIT[1:] and isinstance(model, LinearModel) and model.n_states:
+        # a linear model's eigenvalues cost microseconds: judge the explicit method before it starts
+        # (other models are judged by the solver loop once a run turns out long, see _simulate_ivp)
+        _check_stiffness(method, np.linalg.eigvals(model.A), float(t[0]), float(t[-1]), "A")
 
     compiled, why = _compiled_backend(model, method, backend, x0v, u)
     if compiled is not None:
@@ -481,9 +671,12 @@ def simulate(
     if compiled is not None:
         from . import _compiled_ode
 
-        x, stats = _compiled_ode.solve(compiled.rhs, compiled.key, compiled.args, t, x0v,
-                                       _compiled_ode.input_table(model, inputs, t, u, hold), method, rtol, atol,
-                                       first_step, max_step)
+        try:
+            x, stats = _compiled_ode.solve(compiled.rhs, compiled.key, compiled.args, t, x0v,
+                                           _compiled_ode.input_table(model, inputs, t, u, hold), method, rtol, atol,
+                                           first_step, max_step)
+        except SimulationError as exc:
+            raise _stiffness_hint(exc, model, method, t, x0v, u) from None
         counters.update(stats)
     elif method == "exact":
         x, n_expm = _simulate_exact(model, t, u, x0v, hold)
@@ -492,7 +685,8 @@ def simulate(
         x, nfev = _simulate_rk4(model, t, u, x0v, hold, int(substeps), check_stability)
         counters.update(nfev=nfev, n_steps=(t.size - 1) * int(substeps), message="fixed-step RK4")
     else:
-        x, sol = _simulate_ivp(model, t, u, x0v, hold, method, rtol, atol, max_step, first_step)
+        x, sol = _simulate_ivp(model, t, u, x0v, hold, method, rtol, atol, max_step, first_step,
+                               watch_stiffness=check_stability)
         counters.update(nfev=int(sol.nfev), njev=int(sol.njev), nlu=int(sol.nlu), message=str(sol.message),
                         n_steps=int(sol.nfev))
     wall = _time.perf_counter() - start
@@ -526,6 +720,53 @@ def simulate(
         options={"rtol": rtol, "atol": atol, "hold": hold, "substeps": substeps},
         **counters,
     )
+
+
+def _positive_option(value, name: str, *, allow_inf: bool = False) -> float:
+    """A positive number option (``rtol``, ``max_step``, ...) as a float, or a ParameterError naming it."""
+    if type(value) is float or type(value) is int:  # the usual case, without numpy's overhead
+        v = float(value)
+    else:
+        arr = float_array(value, name)
+        v = float(arr) if arr.ndim == 0 and not isinstance(value, (bool, np.bool_)) else math.nan
+    if not (v > 0) or not (math.isfinite(v) or (allow_inf and v == math.inf)):
+        raise ParameterError(f"{name} must be a positive{'' if allow_inf else ', finite'} number, got {value!r}",
+                             key=name, value=value)
+    return v
+
+
+def _common_batch(x0: np.ndarray, u: np.ndarray):
+    """x0 (n,) or (n, n_batch) and inputs (m, n_t) or (m, n_t, n_batch) with one batch size: a batch of
+    1 on either side is shared by the other's members; any other mismatch raises ParameterError."""
+    if x0.ndim > 2 or (x0.ndim == 2 and x0.shape[1] == 0):
+        raise ParameterError(f"x0 must have shape (n_states,) or (n_states, n_batch), got {x0.shape}", key="x0",
+                             value=x0.shape)
+    if x0.ndim == 2 and u.ndim == 3 and x0.shape[1] != u.shape[2]:
+        nx, nu = x0.shape[1], u.shape[2]
+        if nx == 1:
+            x0 = np.broadcast_to(x0, (x0.shape[0], nu))
+        elif nu == 1:
+            u = np.broadcast_to(u, u.shape[:2] + (nx,))
+        else:
+            raise ParameterError(f"x0 has a batch of {nx} initial states but inputs a batch of {nu}: give one "
+                                 "batch size (or 1 to share)", key="x0", value=(nx, nu))
+    return x0, u
+
+
+def _stiffness_hint(exc: SimulationError, model, method, t, x0, u) -> SimulationError:
+    """The compiled backend's failure, with the stiffness estimate at the initial point when that
+    explains it (the compiled loop is not judged before it runs: its Jacobian would cost more than
+    a short run; its step limit bounds a stiff run to seconds)."""
+    if "too many steps" not in str(exc) and "underflow" not in str(exc):
+        return exc
+    try:
+        lam = _state_jacobian_eigenvalues(model, t[0], x0, u[:, 0])
+        steps, message = _stiffness_estimate(method, lam, float(t[0]), float(t[-1]), f"at t = {t[0]:g} s")
+    except Exception:  # pragma: no cover - the hint is best effort
+        return exc
+    if steps > STIFF_STEPS_WARN:
+        return SimulationError(f"{exc} -- {message}", time=exc.time, signal=exc.signal)
+    return exc
 
 
 def _compiled_backend(model, method, backend, x0, u):

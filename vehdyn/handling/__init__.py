@@ -139,3 +139,10 @@ __all__ += [
     "lane_change_outcome",
     "spin_out_time",
 ]
+
+# Articulated vehicles (issue 14)
+from .car_trailer import CarTrailerParameters, LinearCarTrailer, SnakingMode, car_trailer_parameters  # noqa: E402
+from .articulated_single_track import ArticulatedSingleTrack, ArticulationEvent  # noqa: E402
+
+__all__ += ["CarTrailerParameters", "LinearCarTrailer", "SnakingMode", "car_trailer_parameters",
+            "ArticulatedSingleTrack", "ArticulationEvent"]

@@ -39,7 +39,7 @@ for _function in (conventions.planar_tire_slips_sae_to_iso_w, conventions.planar
     register_jitable(**_JIT)(_function)
 for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_speed_blend", "sliding_slip",
               "limit_deflection_rate", "axle_forces", "normal_loads", "evaluate", "derivatives", "outputs", "net_wheel_torque",
-              "deflection_rate"):
+              "deflection_rate", "deflection_rates"):
     register_jitable(**_JIT)(getattr(equations, _name))
 
 TireLaw = namedtuple("TireLaw", ("kind", "mirrored", "coefficients", "linear"))

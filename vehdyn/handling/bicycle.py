@@ -20,8 +20,19 @@ sec. 2.3 (eq. 2.31, per tire too). The sign of the slip angle differs from Gille
 the angle of the wheel relative to the velocity); the forces are the same.
 
 Outputs are linear in the states and inputs: ``lateral_acceleration`` a_y = dv/dt + u r (of the CG,
-in the vehicle frame), ``sideslip_angle`` beta = v/u, ``path_curvature`` a_y/u^2 (of the CG path),
-the slip angles and the axle lateral forces.
+in the vehicle frame), ``sideslip_angle`` beta = v/u, ``path_curvature`` a_y/u^2 = r/u + (d beta/dt)/u
+(of the CG path), the slip angles and the axle lateral forces.
+
+Minimum speed. The linear models take u >= :data:`LINEAR_MIN_SPEED` (0.01 m/s). At low speed the
+slip angles are small differences of O(delta) terms, (v + a r)/u - delta with v -> u b delta / L, so
+a_y = (F_yf + F_yr)/m carries a rounding error of about eps (C_f + C_r) (b/L) delta / m, and
+path_curvature = a_y/u^2 that error divided by u^2: relative to the steady curvature delta/L, about
+eps (C_f + C_r) b / (m u^2). This is the conditioning of the output (d(curvature)/dv =
+-(C_f + C_r)/(m u^3)), not of a formula: r/u + (d beta/dt)/u, computed from the same states,
+cancels the same way. For a passenger car the error is 4e-10 of the
+steady-state curvature at 0.01 m/s, 4e-6 at 1e-4 m/s, 3 % at 1e-6 m/s; below walking pace the
+linear slip-angle tire is no model of a tire anyway (use :class:`~vehdyn.handling.SingleTrack`,
+which runs through standstill).
 
 Tire lag (optional). With a relaxation length sigma > 0 on an axle, the force follows the transient
 slip angle alpha', a named state, through the first-order law (Pacejka, *Tire and Vehicle
@@ -41,11 +52,16 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..linear import LinearModel
+from ..model import float_array
 from ..params import ParameterSet, Vehicle
 from ..params.base import parameter
 from ..signals import STEER_INPUTS, Signal
 
-__all__ = ["BicycleParameters", "LinearBicycle", "bicycle_parameters"]
+__all__ = ["BicycleParameters", "LinearBicycle", "bicycle_parameters", "LINEAR_MIN_SPEED"]
+
+LINEAR_MIN_SPEED = 0.01
+"""Lowest forward speed [m/s] of the linear handling models (LinearBicycle, LateralYawRoll); see the
+module docstring, "Minimum speed"."""
 
 _STATE_SIGNALS = (
     Signal("lateral_velocity", "m/s", "body-frame lateral velocity v of the CG (right, SAE)"),
@@ -132,14 +148,35 @@ def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
 
 
 def check_speed(speed, *, allow_zero: bool = False, name: str = "speed") -> np.ndarray:
-    """``speed`` [m/s] as a float array, checked finite and positive (or >= 0)."""
-    s = np.asarray(speed, dtype=float)
+    """``speed`` [m/s] as a float array, checked numeric, finite and positive (or >= 0)."""
+    s = float_array(speed, name)
     bad = ~np.isfinite(s) | ((s < 0) if allow_zero else (s <= 0))
     if np.any(bad):
         value = s[bad].flat[0] if s.ndim else float(s)
         word = "non-negative" if allow_zero else "positive"
         raise ParameterError(f"{name} must be finite and {word} [m/s], got {value!r}", key=name, value=value)
     return s
+
+
+def linear_model_speed(speed, model: str) -> float:
+    """The one forward speed [m/s] of a linear handling model: a number >= LINEAR_MIN_SPEED.
+
+    A linear model is one set of matrices at one speed; an array of speeds is refused with a
+    ParameterError that names ``speed`` and says what to use instead.
+    """
+    s = check_speed(speed)
+    if s.size != 1:
+        raise ParameterError(f"speed must be one number [m/s]: a {model} is one linear model at one speed, got an "
+                             f"array of shape {s.shape} ({speed!r}); build one model per speed (model.at_speed(u)), "
+                             "or vehdyn.handling.steady_state_gains / yaw_mode, which take speed arrays",
+                             key="speed", value=speed)
+    u = float(s.reshape(()))
+    if u < LINEAR_MIN_SPEED:
+        raise ParameterError(f"speed {u!r} m/s is below the {LINEAR_MIN_SPEED} m/s minimum of the linear handling "
+                             "models (their path curvature a_y/u^2 loses its digits as 1/u^2; see "
+                             "vehdyn.handling.bicycle); use SingleTrack at and through standstill",
+                             key="speed", value=u)
+    return u
 
 
 def speed_of(model, speed=None, *, allow_zero: bool = False) -> np.ndarray:
@@ -161,7 +198,8 @@ class LinearBicycle(LinearModel):
         Mass, yaw inertia, axle positions and axle cornering stiffnesses (see
         :func:`bicycle_parameters`).
     speed : float
-        Constant forward speed u [m/s], > 0.
+        Constant forward speed u [m/s], >= :data:`LINEAR_MIN_SPEED` (0.01 m/s, see the module
+        docstring); one number (a ParameterError names an array).
     tire_lag : bool
         Add first-order tire lag on each axle whose relaxation length is positive (states
         ``front_transient_slip_angle``, ``rear_transient_slip_angle``), with the relaxation lengths of
@@ -196,7 +234,7 @@ class LinearBicycle(LinearModel):
 
     def __init__(self, vehicle, speed: float, *, tire_lag: bool = False):
         params = bicycle_parameters(vehicle)
-        u = float(check_speed(speed))
+        u = linear_model_speed(speed, "LinearBicycle")
         if not tire_lag:
             params = dataclasses.replace(params, front_relaxation_length=0.0, rear_relaxation_length=0.0)
         self.bicycle_parameters = params

@@ -77,7 +77,7 @@ from ..params import ParameterSet, Vehicle
 from ..params.base import parameter
 from ..signals import STEER_INPUTS, Signal
 from ..units import GRAVITY
-from .bicycle import BicycleParameters, LinearBicycle, check_speed
+from .bicycle import BicycleParameters, LinearBicycle, linear_model_speed
 
 __all__ = ["LateralYawRollParameters", "LateralYawRoll", "lateral_yaw_roll_parameters", "roll_gradient"]
 
@@ -206,7 +206,8 @@ class LateralYawRoll(LinearModel):
     ----------
     vehicle : Vehicle or LateralYawRollParameters
     speed : float
-        Forward speed u [m/s], > 0.
+        Forward speed u [m/s], >= :data:`~vehdyn.handling.bicycle.LINEAR_MIN_SPEED` (0.01 m/s: below it
+        ``path_curvature`` = a_y/u^2 loses its digits, see :mod:`vehdyn.handling.bicycle`); one number.
     tire_compliance : bool
         With a Vehicle: tires' vertical compliance in series with the suspension roll stiffness.
 
@@ -236,7 +237,7 @@ class LateralYawRoll(LinearModel):
         else:
             raise ParameterError(f"expected a Vehicle or LateralYawRollParameters, got {type(vehicle).__name__}",
                                  key="vehicle", value=vehicle)
-        u = float(check_speed(speed))
+        u = linear_model_speed(speed, "LateralYawRoll")
         self.parameters = params
         self.speed = u
         A, B, C, D, self.mass_matrix = _state_space(params, u)

@@ -40,15 +40,22 @@ with V_sx = V_x - omega R_e, V_sy = V_y the slip velocities. The tire law sees a
 kappa' = s_x sign(V_x) (MFeval's signed slip ratio; the laws flip F_x with sign(V_x), so the force
 is continuous through standstill). No speed appears in a denominator: at standstill the tire is a
 spring of stiffness C / sigma. Below ``low_speed_damping_speed`` v_l a damping term fades in
-(Pacejka 2012, sec. 8.7, eq. 8.125-8.126, the "k_Vlow" damping of MF-Tyre)::
+(after Pacejka 2012, sec. 8.7, eq. 8.125-8.126, the "k_Vlow" damping of MF-Tyre)::
 
-    tan(alpha') <- tan(alpha') + w V_sy / v_l,   s_x <- s_x - w V_sx / v_l,
+    tan(alpha') <- tan(alpha') + w (d rho_y/dt) / v_l,   s_x <- s_x + w (d rho_x/dt) / v_l,
     w = (1 + cos(pi |V_x| / v_l)) / 2 for |V_x| < v_l, else 0
 
 which damps the otherwise undamped tire-spring oscillation of a parked or creeping vehicle (it is
-zero, and so changes nothing, at speeds above v_l). Without tire lag the slips are the steady-state
+zero, and so changes nothing, at speeds above v_l). The term acts on the deflection rate (the
+carcass deflection velocity; the rate above, limited at the peak slip): at standstill that is the
+slip velocity, V_sy or -V_sx, as in Pacejka's form, and in the steady state it is zero, so the
+tire lag leaves steady-state slips and forces unchanged at every speed. (On the slip velocity
+itself, as in eq. 8.126, the steady-state slip would be (1 + w |V_x| / v_l) times the kinematic
+one: up to 26 % stiffer, at |V_x| = 0.42 v_l.) Without tire lag the slips are the steady-state
 ones, tan(alpha) = V_y / D(V_x) and kappa = -V_sx / (sign(V_x) D(V_x)), with the regularized speed
-D of :func:`vehdyn.tire.regularized_speed` (exact above 0.5 m/s): valid at speed only.
+D of :func:`vehdyn.tire.regularized_speed` (exact above 0.5 m/s): valid at speed only. So the
+steady states with and without tire lag coincide for |V_x| >= 0.5 m/s; below, the model with lag
+holds the exact kinematic slips V_y / |V_x|, -V_sx / |V_x| and the one without holds D's.
 
 Longitudinal input, two modes:
 

@@ -53,10 +53,12 @@ Evaluation = namedtuple("Evaluation", (
     "longitudinal_acceleration", "lateral_acceleration", "yaw_acceleration", "front_longitudinal_force",
     "front_lateral_force", "front_slip_angle", "front_slip_ratio", "rear_longitudinal_force", "rear_lateral_force",
     "rear_slip_angle", "rear_slip_ratio", "front_normal_load", "rear_normal_load", "front_vx", "front_vy",
-    "rear_vx", "rear_vy"))
+    "rear_vx", "rear_vy", "front_lateral_deflection_rate", "rear_lateral_deflection_rate",
+    "front_longitudinal_deflection_rate", "rear_longitudinal_deflection_rate"))
 Evaluation.__doc__ = """Accelerations of the CG (du/dt - v r, dv/dt + u r [m/s^2], dr/dt [rad/s^2]), axle forces
 in SAE wheel axes [N], the slips acting in the laws (SAE slip angle [rad], slip ratio [-]), normal
-loads [N] and the wheel-centre velocities in wheel axes [m/s]."""
+loads [N], the wheel-centre velocities in wheel axes [m/s] and the tire deflection rates [m/s] (0 without
+tire lag)."""
 
 
 class NUMPY(NumpyOps):
@@ -118,15 +120,19 @@ def limit_deflection_rate(xp, rate, slip, peak):
 
 
 def axle_forces(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection,
-                lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle, force_demand):
-    """Axle forces (fx, fy) in SAE wheel axes [N] and the slips (alpha SAE [rad], kappa [-]) at load ``fz``."""
+                lateral_rate, longitudinal_rate, lateral_length, longitudinal_length, peak_slip_ratio,
+                peak_tan_slip_angle, force_demand):
+    """Axle forces (fx, fy) in SAE wheel axes [N] and the slips (alpha SAE [rad], kappa [-]) at load ``fz``.
+
+    With tire lag the low-speed damping acts on the deflection rates ``lateral_rate``,
+    ``longitudinal_rate`` [m/s] (:func:`deflection_rates`): zero in the steady state."""
     speed = xp.abs(vx)
     direction = xp.where(vx < 0.0, -1.0, 1.0)  # sign(vx) with sign(0) = +1
     blend = low_speed_blend(xp, speed, k.low_speed_damping_speed)
     if k.tire_lag:
         tan_alpha = sliding_slip(xp, lateral_deflection / lateral_length, vy / regularized_speed(xp, vx),
                                  peak_tan_slip_angle)
-        tan_alpha = tan_alpha + blend * vy / k.low_speed_damping_speed
+        tan_alpha = tan_alpha + blend * lateral_rate / k.low_speed_damping_speed
     else:
         tan_alpha = vy / regularized_speed(xp, vx)
     alpha = xp.atan(tan_alpha)
@@ -135,7 +141,7 @@ def axle_forces(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection,
         if k.tire_lag:
             slip = sliding_slip(xp, longitudinal_deflection / longitudinal_length, -vsx / regularized_speed(xp, vx),
                                 peak_slip_ratio)
-            slip = slip - blend * vsx / k.low_speed_damping_speed
+            slip = slip + blend * longitudinal_rate / k.low_speed_damping_speed
             kappa = slip * direction
         else:
             kappa = -vsx / (direction * regularized_speed(xp, vx))
@@ -175,16 +181,17 @@ def evaluate(xp, tires, k, states, inputs):
     front_body_lateral, rear_body_lateral = lat + k.a * yaw_rate, lat - k.b * yaw_rate
     vxf, vyf = lon * cf + front_body_lateral * sf, -lon * sf + front_body_lateral * cf
     vxr, vyr = lon * cr + rear_body_lateral * sr, -lon * sr + rear_body_lateral * cr
+    rates = deflection_rates(xp, k, vxf, vyf, vxr, vyr, states)
 
     def front(fz):
         return axle_forces(xp, tires, 0, k, fz, vxf, vyf, front_wheel_speed, front_lateral_deflection,
-                           front_longitudinal_deflection, k.front_lateral_relaxation_length,
+                           front_longitudinal_deflection, rates[0], rates[2], k.front_lateral_relaxation_length,
                            k.front_longitudinal_relaxation_length, k.front_peak_slip_ratio,
                            k.front_peak_tan_slip_angle, front_force)
 
     def rear(fz):
         return axle_forces(xp, tires, 1, k, fz, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
-                           rear_longitudinal_deflection, k.rear_lateral_relaxation_length,
+                           rear_longitudinal_deflection, rates[1], rates[3], k.rear_lateral_relaxation_length,
                            k.rear_longitudinal_relaxation_length, k.rear_peak_slip_ratio,
                            k.rear_peak_tan_slip_angle, rear_force)
 
@@ -207,39 +214,49 @@ def evaluate(xp, tires, k, states, inputs):
     drag = k.drag_factor * lon * xp.abs(lon)
     return Evaluation((fx_body - drag) / k.mass, (front_lateral + rear_lateral + external_force) / k.mass,
                       moment / k.yaw_inertia, f[0], f[1], f[2], f[3], r[0], r[1], r[2], r[3], fz_f, fz_r,
-                      vxf, vyf, vxr, vyr)
+                      vxf, vyf, vxr, vyr, rates[0], rates[1], rates[2], rates[3])
+
+
+def deflection_rates(xp, k, front_vx, front_vy, rear_vx, rear_vy, states):
+    """d/dt of the tire deflections (front lateral, rear lateral, front longitudinal, rear longitudinal)
+    [m/s] from the wheel-centre velocities; 0.0 for those the model lacks."""
+    zero = 0.0 * front_vx
+    if not k.tire_lag:
+        return zero, zero, zero, zero
+    (_u, _v, _r, _x, _y, _yaw, front_wheel_speed, rear_wheel_speed, front_lateral_deflection,
+     rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection) = states
+    front_lateral = deflection_rate(xp, front_vy, front_vx, front_lateral_deflection,
+                                    k.front_lateral_relaxation_length, k.front_peak_tan_slip_angle)
+    rear_lateral = deflection_rate(xp, rear_vy, rear_vx, rear_lateral_deflection, k.rear_lateral_relaxation_length,
+                                   k.rear_peak_tan_slip_angle)
+    front_longitudinal = rear_longitudinal = zero
+    if k.wheel_spin:
+        front_longitudinal = deflection_rate(xp, -(front_vx - front_wheel_speed * k.rolling_radius), front_vx,
+                                             front_longitudinal_deflection, k.front_longitudinal_relaxation_length,
+                                             k.front_peak_slip_ratio)
+        rear_longitudinal = deflection_rate(xp, -(rear_vx - rear_wheel_speed * k.rolling_radius), rear_vx,
+                                            rear_longitudinal_deflection, k.rear_longitudinal_relaxation_length,
+                                            k.rear_peak_slip_ratio)
+    return front_lateral, rear_lateral, front_longitudinal, rear_longitudinal
 
 
 def derivatives(xp, k, e, states, inputs):
     """d/dt of every entry of :data:`STATES` (0.0 for a state the model lacks) from an :class:`Evaluation`."""
-    (lon, lat, yaw_rate, _x, _y, yaw, front_wheel_speed, rear_wheel_speed, front_lateral_deflection,
-     rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection) = states
+    (lon, lat, yaw_rate, _x, _y, yaw, front_wheel_speed, rear_wheel_speed, _fld, _rld, _fxd, _rxd) = states
     (_fs, _rs, _ff, _rf, front_drive, rear_drive, front_brake, rear_brake, _fe, _me) = inputs
     zero = 0.0 * lon
     cpsi, spsi = xp.cos(yaw), xp.sin(yaw)
-    d_front_wheel = d_rear_wheel = d_front_lateral = d_rear_lateral = d_front_longitudinal = zero
-    d_rear_longitudinal = zero
+    d_front_wheel = d_rear_wheel = zero
     if k.wheel_spin:
         inertia = 2.0 * k.wheel_spin_inertia
         d_front_wheel = net_wheel_torque(xp, k, front_wheel_speed, front_drive, front_brake,
                                          e.front_longitudinal_force) / inertia
         d_rear_wheel = net_wheel_torque(xp, k, rear_wheel_speed, rear_drive, rear_brake,
                                         e.rear_longitudinal_force) / inertia
-    if k.tire_lag:
-        d_front_lateral = deflection_rate(xp, e.front_vy, e.front_vx, front_lateral_deflection,
-                                          k.front_lateral_relaxation_length, k.front_peak_tan_slip_angle)
-        d_rear_lateral = deflection_rate(xp, e.rear_vy, e.rear_vx, rear_lateral_deflection,
-                                         k.rear_lateral_relaxation_length, k.rear_peak_tan_slip_angle)
-        if k.wheel_spin:
-            d_front_longitudinal = deflection_rate(
-                xp, -(e.front_vx - front_wheel_speed * k.rolling_radius), e.front_vx, front_longitudinal_deflection,
-                k.front_longitudinal_relaxation_length, k.front_peak_slip_ratio)
-            d_rear_longitudinal = deflection_rate(
-                xp, -(e.rear_vx - rear_wheel_speed * k.rolling_radius), e.rear_vx, rear_longitudinal_deflection,
-                k.rear_longitudinal_relaxation_length, k.rear_peak_slip_ratio)
     return (e.longitudinal_acceleration + lat * yaw_rate, e.lateral_acceleration - lon * yaw_rate,
             e.yaw_acceleration, lon * cpsi - lat * spsi, lon * spsi + lat * cpsi, yaw_rate, d_front_wheel,
-            d_rear_wheel, d_front_lateral, d_rear_lateral, d_front_longitudinal, d_rear_longitudinal)
+            d_rear_wheel, e.front_lateral_deflection_rate, e.rear_lateral_deflection_rate,
+            e.front_longitudinal_deflection_rate, e.rear_longitudinal_deflection_rate)
 
 
 def net_wheel_torque(xp, k, wheel_speed, drive, brake, longitudinal_force):

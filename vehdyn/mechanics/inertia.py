@@ -54,9 +54,77 @@ __all__ = [
 _AXES = ("x", "y", "z")
 
 
-def _relative_tolerance(scale: float) -> float:
+def _relative_tolerance(scale):
     """Slack for equalities that hold exactly only in exact arithmetic (thin plate: Izz = Ixx + Iyy)."""
-    return 1e-12 * max(scale, np.finfo(float).tiny)
+    return 1e-12 * np.maximum(scale, np.finfo(float).tiny)
+
+
+_MOMENTS = ("ixx", "iyy", "izz")
+_PRODUCTS = "ixy, ixz, iyz"
+
+
+def check_realizable(matrix, *, definite: bool = False, key: str | None = None) -> None:
+    """Raise :class:`ParameterError` unless ``matrix`` is the inertia tensor of some mass distribution.
+
+    The one check of :class:`InertiaTensor` (hence :class:`MassProperties`) and of
+    :func:`inertia_matrix` (hence :class:`RigidBody6DOF` and :func:`newton_euler`). A symmetric
+    tensor is realizable exactly when its principal moments are non-negative and satisfy the
+    triangle inequalities (each <= the sum of the other two); then so do the moments about any
+    axes. Checked in order: the moments about the given axes (the clearest message), positive
+    (semi-)definiteness, the principal moments. Equalities (a thin plate, Izz = Ixx + Iyy) pass
+    within 1e-12 of the trace.
+
+    Parameters
+    ----------
+    matrix : ndarray, shape (3, 3) or (3, 3, n)
+        Symmetric, finite tensor (off-diagonal entries -Ixy, -Ixz, -Iyz) [kg m^2], with an optional
+        batch axis.
+    definite : bool
+        Require a positive-definite tensor (a rigid body's dynamics invert it; a point mass or a
+        slender rod, accepted as parts of a composite, is singular).
+    key : str, optional
+        The parameter the error names (default: the offending entry, ``ixx``/``iyy``/``izz`` or
+        ``"ixy, ixz, iyz"``).
+    """
+    mat = np.asarray(matrix, dtype=float)
+    stacked = mat.reshape(3, 3, -1)
+    moments = np.einsum("iik->ik", stacked)  # (3, n)
+    slack = _relative_tolerance(np.abs(moments.sum(axis=0)))
+
+    def fail(bad, message, entry, value):
+        k = int(np.argmax(bad))
+        where = f" (batch member {k})" if mat.ndim == 3 else ""
+        products = (0.0 - stacked[0, 1, k], 0.0 - stacked[0, 2, k], 0.0 - stacked[1, 2, k])
+        raise ParameterError(f"inertia tensor{where} " + message(k, products), key=key or entry,
+                             value=value(k, products))
+
+    for i, j, l in ((2, 0, 1), (0, 1, 2), (1, 2, 0)):
+        bad = moments[i] > moments[j] + moments[l] + slack
+        if np.any(bad):
+            fail(bad, lambda k, _: (f"violates the triangle inequality {_MOMENTS[j]} + {_MOMENTS[l]} >= {_MOMENTS[i]}: "
+                                    f"{moments[j, k]:g} + {moments[l, k]:g} < {moments[i, k]:g} [kg*m^2]; no mass "
+                                    "distribution has these moments"),
+                 _MOMENTS[i], lambda k, _: float(moments[i, k]))
+    principal = np.linalg.eigvalsh(np.moveaxis(stacked, -1, 0))  # (n, 3), ascending
+    if definite:
+        bad = principal[:, 0] <= slack
+        kind = ("positive definite", "the products of inertia are too large for the moments"
+                if np.any(principal[:, 0] < -slack) else
+                "a rigid body needs moments about every axis (a point mass or slender rod alone has none about "
+                "some axis)")
+    else:
+        bad = principal[:, 0] < -slack
+        kind = ("positive semi-definite", "the products of inertia are too large for the moments")
+    if np.any(bad):
+        fail(bad, lambda k, p: (f"is not {kind[0]} (principal moments {principal[k].tolist()} kg*m^2; products "
+                                f"ixy={p[0]:g}, ixz={p[1]:g}, iyz={p[2]:g}): {kind[1]}"),
+             _PRODUCTS, lambda k, p: p if key is None else float(principal[k, 0]))
+    bad = principal[:, 2] > principal[:, 0] + principal[:, 1] + slack
+    if np.any(bad):
+        fail(bad, lambda k, p: (f"has principal moments {principal[k].tolist()} kg*m^2 that violate the triangle "
+                                f"inequality (largest <= sum of the other two; products ixy={p[0]:g}, ixz={p[1]:g}, "
+                                f"iyz={p[2]:g}); no mass distribution has them"),
+             _PRODUCTS, lambda k, p: p if key is None else principal[k].tolist())
 
 
 @dataclasses.dataclass(frozen=True)
@@ -101,28 +169,7 @@ class InertiaTensor(ParameterSet):
     iyz: float = parameter("kg*m^2", "product of inertia integral y z dm (matrix entry is -iyz)", default=0.0)
 
     def check(self) -> None:
-        moments = {"ixx": self.ixx, "iyy": self.iyy, "izz": self.izz}
-        trace = self.ixx + self.iyy + self.izz
-        slack = _relative_tolerance(trace)
-        for name, other_a, other_b in (("izz", "ixx", "iyy"), ("ixx", "iyy", "izz"), ("iyy", "izz", "ixx")):
-            if moments[name] > moments[other_a] + moments[other_b] + slack:
-                raise ParameterError(
-                    f"inertia tensor violates the triangle inequality {other_a} + {other_b} >= {name}: "
-                    f"{moments[other_a]:g} + {moments[other_b]:g} < {moments[name]:g} [kg*m^2]; no mass "
-                    "distribution has these moments",
-                    key=name, value=moments[name])
-        principal = np.linalg.eigvalsh(self.matrix)
-        if principal[0] < -slack:
-            raise ParameterError(
-                f"inertia tensor is not positive semi-definite (principal moments {principal.tolist()} "
-                f"kg*m^2): the products of inertia ixy={self.ixy:g}, ixz={self.ixz:g}, iyz={self.iyz:g} are "
-                "too large for the moments", key="ixy, ixz, iyz", value=(self.ixy, self.ixz, self.iyz))
-        p_small, p_mid, p_large = principal
-        if p_large > p_small + p_mid + slack:
-            raise ParameterError(
-                f"inertia tensor's principal moments {principal.tolist()} kg*m^2 violate the triangle "
-                "inequality (largest <= sum of the other two); no mass distribution has them",
-                key="ixy, ixz, iyz", value=(self.ixy, self.ixz, self.iyz))
+        check_realizable(self.matrix)
 
     # ------------------------------------------------------------------ construction
     @classmethod
@@ -310,8 +357,9 @@ def inertia_matrix(inertia) -> np.ndarray:
     Raises
     ------
     ParameterError
-        If the shape is wrong, an entry is not finite, the matrix is not symmetric or not positive
-        definite (a rigid body needs an invertible tensor).
+        If the shape is wrong, an entry is not finite, the matrix is not symmetric, not positive
+        definite (a rigid body needs an invertible tensor) or breaks a triangle inequality (no mass
+        distribution has it): the same check as :class:`InertiaTensor`'s (:func:`check_realizable`).
     """
     if isinstance(inertia, InertiaTensor):
         mat = inertia.matrix
@@ -326,17 +374,7 @@ def inertia_matrix(inertia) -> np.ndarray:
         if np.max(np.abs(mat - np.swapaxes(mat, 0, 1))) > 1e-9 * max(scale, np.finfo(float).tiny):
             raise ParameterError("inertia matrix is not symmetric; its off-diagonal entries must be -Ixy, -Ixz, "
                                  "-Iyz on both sides", key="inertia", value=mat)
-    stacked = mat.reshape(3, 3, -1)
-    smallest = np.linalg.eigvalsh(np.moveaxis(stacked, -1, 0))[:, 0]
-    traces = np.trace(stacked)
-    bad = smallest <= 1e-12 * np.abs(traces)
-    if np.any(bad):
-        k = int(np.argmax(bad))
-        where = f" (batch member {k})" if mat.ndim == 3 else ""
-        raise ParameterError(
-            f"inertia tensor{where} is not positive definite (smallest principal moment {smallest[k]:g} kg*m^2); "
-            "a rigid body needs moments about every axis (a point mass or slender rod alone has none about some "
-            "axis)", key="inertia", value=smallest[k])
+    check_realizable(mat, definite=True, key="inertia")
     return mat
 
 

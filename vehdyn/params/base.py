@@ -9,8 +9,10 @@ adds the checks for missing and unknown keys. ``dataclasses.replace`` makes vali
 
 from __future__ import annotations
 
+import codecs
 import dataclasses
 import math
+import os
 import tomllib
 import typing
 from pathlib import Path
@@ -18,7 +20,7 @@ from typing import Any, Mapping
 
 from ..errors import ParameterError
 
-__all__ = ["ParameterSet", "parameter", "text", "load_toml", "dump_toml"]
+__all__ = ["ParameterSet", "parameter", "text", "read_toml", "load_toml", "dump_toml"]
 
 _MISSING = dataclasses.MISSING
 
@@ -120,11 +122,7 @@ class ParameterSet:
                                  f"{_type_name(data)} {data!r}", key=where or None, value=data)
         hints = typing.get_type_hints(cls)
         fields = {f.name: f for f in dataclasses.fields(cls)}
-        unknown = [k for k in data if k not in fields]
-        if unknown:
-            key = f"{path}{unknown[0]}"
-            raise ParameterError(f"unknown parameter {key!r} (value {data[unknown[0]]!r}); {cls.__name__} takes "
-                                 f"{sorted(fields)}", key=key, value=data[unknown[0]])
+        cls._reject_unknown(data, path)
         kwargs = {}
         for name, f in fields.items():
             key = f"{path}{name}"
@@ -142,10 +140,7 @@ class ParameterSet:
         try:
             return cls(**kwargs)
         except ParameterError as exc:
-            if path and exc.key and not exc.key.startswith(path):
-                full = f"{path}{exc.key}"
-                raise ParameterError(str(exc).replace(exc.key, full, 1), key=full, value=exc.value) from None
-            raise
+            raise _with_prefix(exc, path) from None
 
     def to_dict(self) -> dict[str, Any]:
         """A nested dict of plain values (the inverse of :meth:`from_dict`)."""
@@ -163,22 +158,131 @@ class ParameterSet:
         """``{field: unit}`` of this group's numeric fields."""
         return {f.name: f.metadata["unit"] for f in dataclasses.fields(cls) if "unit" in f.metadata}
 
+    @classmethod
+    def _reject_unknown(cls, data: Mapping[str, Any], path: str = "") -> None:
+        """Raise :class:`ParameterError` for the first key of ``data`` that is not a field of ``cls``."""
+        fields = {f.name for f in dataclasses.fields(cls)}
+        unknown = [k for k in data if k not in fields]
+        if unknown:
+            key = f"{path}{unknown[0]}"
+            raise ParameterError(f"unknown parameter {key!r} (value {data[unknown[0]]!r}); {cls.__name__} takes "
+                                 f"{sorted(fields)}", key=key, value=data[unknown[0]])
+
     def replace(self, **changes):
-        """A validated copy with ``changes`` (``dataclasses.replace``)."""
-        return dataclasses.replace(self, **changes)
+        """A validated copy with ``changes``; ``group__field=value`` changes a field of a nested group.
+
+        Parameters
+        ----------
+        **changes
+            New values by field name. A double underscore reaches into a nested parameter group
+            (``mass__mass=1500.0`` changes ``self.mass.mass``), to any depth.
+
+        Returns
+        -------
+        ParameterSet
+            A new, validated object of the same type; ``self`` is unchanged (frozen).
+
+        Raises
+        ------
+        ParameterError
+            If a name is not a field (or not a nested group), or a new value fails validation; the
+            message names the dotted path (``mass.mass``) and the value.
+
+        Examples
+        --------
+        >>> import vehdyn
+        >>> sedan = vehdyn.load_vehicle("sedan")
+        >>> sedan.replace(mass__mass=1500.0).mass.mass
+        1500.0
+        """
+        return self._replace(changes, path="")
+
+    def _replace(self, changes: Mapping[str, Any], path: str):
+        nested: dict[str, dict[str, Any]] = {}
+        flat: dict[str, Any] = {}
+        for key, value in changes.items():
+            group, sep, rest = key.partition("__")
+            if sep and group and rest:
+                nested.setdefault(group, {})[rest] = value
+            else:
+                flat[key] = value
+        self._reject_unknown(flat, path)
+        names = {f.name for f in dataclasses.fields(self)}
+        for group, fields in nested.items():
+            if group not in names:
+                key = f"{path}{group}"
+                given = ", ".join(f"{group}__{f}={v!r}" for f, v in fields.items())
+                raise ParameterError(f"unknown parameter group {key!r} (in {given}); {type(self).__name__} takes "
+                                     f"{sorted(names)}", key=key, value=fields)
+            member = getattr(self, group)
+            if not isinstance(member, ParameterSet):
+                key = f"{path}{group}"
+                raise ParameterError(f"{key!r} is a parameter, not a group of parameters: cannot set "
+                                     f"{', '.join(f'{group}__{f}' for f in fields)}", key=key, value=fields)
+            if group in flat:
+                raise ParameterError(f"{path}{group} is given both whole and by field ({group}__...)",
+                                     key=f"{path}{group}", value=flat[group])
+            flat[group] = member._replace(fields, path=f"{path}{group}.")
+        try:
+            return dataclasses.replace(self, **flat)
+        except ParameterError as exc:
+            raise _with_prefix(exc, path) from None
+
+
+def _with_prefix(exc: ParameterError, path: str) -> ParameterError:
+    """``exc`` with its key (and the key in its message) prefixed by a group path (``"mass."``)."""
+    if path and exc.key and not exc.key.startswith(path):
+        full = f"{path}{exc.key}"
+        return ParameterError(str(exc).replace(exc.key, full, 1), key=full, value=exc.value)
+    return exc
+
+
+_BOMS = ((codecs.BOM_UTF32_LE, "UTF-32"), (codecs.BOM_UTF32_BE, "UTF-32"),
+         (codecs.BOM_UTF16_LE, "UTF-16"), (codecs.BOM_UTF16_BE, "UTF-16"))
+
+
+def read_toml(path: str | Path) -> dict[str, Any]:
+    """The table of a TOML file, with every failure as a :class:`ParameterError` naming the file.
+
+    A UTF-8 byte-order mark (as some Windows editors write) is accepted; UTF-16/32 files, binary
+    files, folders and unreadable files are reported as such.
+    """
+    if not isinstance(path, (str, os.PathLike)):
+        raise ParameterError(f"a parameter file must be given as a path (str or os.PathLike), got "
+                             f"{_type_name(path)} {path!r}", key="path", value=path)
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise ParameterError(f"no such parameter file: {path}", key="path", value=str(path)) from None
+    except IsADirectoryError:
+        raise ParameterError(f"{path} is a folder, not a parameter file", key="path", value=str(path)) from None
+    except OSError as exc:
+        if path.is_dir():  # Windows reports a folder as PermissionError
+            raise ParameterError(f"{path} is a folder, not a parameter file", key="path", value=str(path)) from None
+        raise ParameterError(f"cannot read parameter file {path}: {exc.strerror or exc}", key="path",
+                             value=str(path)) from None
+    if raw.startswith(codecs.BOM_UTF8):
+        raw = raw[len(codecs.BOM_UTF8):]
+    for bom, encoding in _BOMS:
+        if raw.startswith(bom):
+            raise ParameterError(f"{path} is encoded in {encoding}; TOML files must be UTF-8 (save it as UTF-8)",
+                                 key="path", value=str(path))
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        raise ParameterError(f"{path}: not a UTF-8 text file (byte 0x{raw[exc.start]:02x} at line {line}); "
+                             "is it a TOML parameter file?", key="path", value=str(path)) from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ParameterError(f"{path}: not valid TOML ({exc})", key="path", value=str(path)) from None
 
 
 def load_toml(cls: type[ParameterSet], path: str | Path) -> ParameterSet:
-    """Load a parameter set of type ``cls`` from a TOML file."""
-    path = Path(path)
-    try:
-        with path.open("rb") as fh:
-            data = tomllib.load(fh)
-    except FileNotFoundError:
-        raise ParameterError(f"no such parameter file: {path}", key="path", value=str(path)) from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ParameterError(f"{path}: not valid TOML ({exc})", key="path", value=str(path)) from None
-    return cls.from_dict(data)
+    """Load a parameter set of type ``cls`` from a TOML file (see :func:`read_toml` for the file checks)."""
+    return cls.from_dict(read_toml(path))
 
 
 def _toml_value(value: Any) -> str:

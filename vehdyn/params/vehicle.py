@@ -9,6 +9,7 @@ corner"), per-axle ones likewise. Distances along x are measured from the total 
 from __future__ import annotations
 
 import dataclasses
+import os
 from pathlib import Path
 
 import numpy as np
@@ -24,6 +25,7 @@ __all__ = [
     "Tires",
     "Steering",
     "Aerodynamics",
+    "Driveline",
     "Vehicle",
     "load_vehicle",
     "shipped_vehicles",
@@ -46,6 +48,9 @@ class MassProperties(ParameterSet):
     sprung_roll_inertia: float = parameter("kg*m^2", "I_xx of the sprung mass about its own CG", gt=0)
     sprung_pitch_inertia: float = parameter("kg*m^2", "I_yy of the sprung mass about its own CG", gt=0)
     sprung_roll_yaw_product: float = parameter("kg*m^2", "I_xz of the sprung mass about its own CG", default=0.0)
+    sprung_yaw_inertia: float | None = parameter(
+        "kg*m^2", "I_zz of the sprung mass about its own CG; None: what yaw_inertia leaves after the unsprung "
+        "masses (points at the wheel centres) and the sprung mass's offset from the total CG", default=None, gt=0)
     cg_height: float = parameter("m", "height of the total CG above the ground", gt=0)
     sprung_cg_height: float = parameter("m", "height of the sprung-mass CG above the ground", gt=0)
 
@@ -55,17 +60,19 @@ class MassProperties(ParameterSet):
             raise ParameterError(
                 f"sprung_mass + front_unsprung_mass + rear_unsprung_mass = {parts} kg exceeds mass = {self.mass} kg",
                 key="sprung_mass", value=self.sprung_mass)
-        for a, b, c in (("roll_inertia", "pitch_inertia", "yaw_inertia"),):
-            ixx, iyy, izz = getattr(self, a), getattr(self, b), getattr(self, c)
-            # triangle inequalities of a physical inertia tensor (principal-axis approximation)
-            if ixx + iyy < izz * (1 - 1e-9) or iyy + izz < ixx * (1 - 1e-9) or izz + ixx < iyy * (1 - 1e-9):
-                raise ParameterError(f"roll_inertia, pitch_inertia and yaw_inertia = ({ixx}, {iyy}, {izz}) kg*m^2 "
-                                     "violate the triangle inequality of a rigid body", key="yaw_inertia",
-                                     value=izz)
-        if self.roll_yaw_product**2 >= self.roll_inertia * self.yaw_inertia:
-            raise ParameterError(f"roll_yaw_product = {self.roll_yaw_product} kg*m^2 makes the inertia tensor "
-                                 "indefinite (needs I_xz^2 < I_xx I_zz)", key="roll_yaw_product",
-                                 value=self.roll_yaw_product)
+        # One realizability check for every inertia tensor in the package (mechanics.inertia):
+        # positive definite, principal moments obeying the triangle inequality.
+        from ..mechanics.inertia import check_realizable  # mechanics imports params.base: import here
+
+        try:
+            check_realizable(self.inertia_matrix, definite=True)
+        except ParameterError as err:
+            field = {"ixx": "roll_inertia", "iyy": "pitch_inertia", "izz": "yaw_inertia"}.get(err.key,
+                                                                                            "roll_yaw_product")
+            value = getattr(self, field)
+            what = ("makes the inertia tensor indefinite (needs I_xz^2 < I_xx I_zz)" if field == "roll_yaw_product"
+                    else "is not a rigid body's moment of inertia")
+            raise ParameterError(f"{field} = {value} kg*m^2 {what}: the {err}", key=field, value=value) from None
 
     @property
     def unsprung_mass(self) -> float:
@@ -138,6 +145,18 @@ class Suspension(ParameterSet):
                                         default=0.0)
     rear_roll_steer: float = parameter("rad/rad", "rear road-wheel steer per unit body roll (SAE signs)",
                                        default=0.0)
+    front_camber_gain: float | None = parameter(
+        "rad/m", "front camber change (top of the wheel outward +) per unit of bump travel; None: the wheels "
+        "stay upright to the road (no camber from roll or travel)", default=None)
+    rear_camber_gain: float | None = parameter(
+        "rad/m", "rear camber change (top of the wheel outward +) per unit of bump travel; None: upright wheels",
+        default=None)
+    front_anti_dive: float = parameter(
+        "-", "front anti-dive fraction tan(beta_f) L / h: share of the pitch moment of the front longitudinal "
+        "tire forces taken by the linkage instead of the springs (0: none)", default=0.0)
+    rear_anti_squat: float = parameter(
+        "-", "rear anti-squat (and anti-lift) fraction tan(beta_r) L / h of the rear longitudinal tire forces "
+        "(0: none)", default=0.0)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -166,6 +185,9 @@ class Steering(ParameterSet):
 
     ratio: float = parameter("-", "overall steering ratio: hand-wheel angle / road-wheel angle", gt=0)
     max_road_wheel_angle: float = parameter("rad", "largest road-wheel steer angle", gt=0, le=np.pi / 2)
+    ackermann_fraction: float = parameter(
+        "-", "share of Ackermann geometry in the left/right split of the front steer angle (0: parallel steer, "
+        "1: both front wheels square to the turn centre)", default=0.0, ge=0, le=1)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -178,6 +200,9 @@ class Aerodynamics(ParameterSet):
                                    default=1.206)
     front_lift_coefficient: float = parameter("-", "front-axle lift coefficient", default=0.0)
     rear_lift_coefficient: float = parameter("-", "rear-axle lift coefficient", default=0.0)
+    lateral_drag_coefficient: float = parameter(
+        "-", "cross-flow drag coefficient on the frontal area: side force -0.5 rho c_y A |V_a| V_ay of the "
+        "air-relative velocity V_a (0: no side force from wind)", ge=0, default=0.0)
 
     def drag_force(self, speed):
         """Drag force 0.5 rho c_x A V|V| [N] at air speed ``speed`` [m/s] (sign follows the speed)."""
@@ -186,22 +211,38 @@ class Aerodynamics(ParameterSet):
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
+class Driveline(ParameterSet):
+    """How drive and brake torque split between the axles (used by operating points and manoeuvres).
+
+    Optional in vehicle files: a file without a ``[driveline]`` table gets these defaults.
+    """
+
+    front_drive_fraction: float = parameter("-", "share of the drive torque on the front axle (0: rear-wheel drive)",
+                                            default=0.0, ge=0, le=1)
+    front_brake_fraction: float = parameter("-", "share of the brake torque on the front axle", default=0.65,
+                                            ge=0, le=1)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
 class Vehicle(ParameterSet):
     """A complete vehicle parameter set.
 
     Load shipped vehicles with :func:`load_vehicle` (``"sedan"``, ``"compact"``, ``"van"``) and make
-    variants with :meth:`replace` or ``dataclasses.replace``.
+    variants with :meth:`replace` (``sedan.replace(mass__mass=1500.0)`` reaches into a group).
     """
 
     name: str = text("short name")
     description: str = text("what vehicle this is", default="")
     source: str = text("where the numbers come from", default="")
+    category: str = text("kind of vehicle: studies that compare cars take the passenger cars only",
+                         default="passenger_car", choices=("passenger_car", "truck_tractor"))
     mass: MassProperties
     geometry: Geometry
     suspension: Suspension
     tires: Tires
     steering: Steering
     aero: Aerodynamics
+    driveline: Driveline = dataclasses.field(default_factory=Driveline)
 
     def check(self):
         g = self.geometry
@@ -240,28 +281,6 @@ class Vehicle(ParameterSet):
         return self.suspension.rear_spring_rate * self.geometry.rear_track**2 / 2 + \
             self.suspension.rear_antiroll_stiffness
 
-    def replace(self, **changes) -> "Vehicle":
-        """A validated copy; nested groups can be changed with ``group__field=value`` keywords.
-
-        Examples
-        --------
-        >>> sedan = load_vehicle("sedan")
-        >>> heavy = sedan.replace(mass__mass=1500.0)
-        """
-        nested: dict[str, dict] = {}
-        flat = {}
-        for key, value in changes.items():
-            if "__" in key:
-                group, field = key.split("__", 1)
-                nested.setdefault(group, {})[field] = value
-            else:
-                flat[key] = value
-        for group, fields in nested.items():
-            if not hasattr(self, group) or not isinstance(getattr(self, group), ParameterSet):
-                raise ParameterError(f"Vehicle has no parameter group {group!r}", key=group, value=fields)
-            flat[group] = dataclasses.replace(getattr(self, group), **fields)
-        return dataclasses.replace(self, **flat)
-
     def tir_path(self) -> Path:
         """Path of the vehicle's ``.tir`` file (a shipped name or a path)."""
         p = Path(self.tires.tir_file)
@@ -283,9 +302,28 @@ def data_path(*parts: str) -> Path:
     raise ParameterError("vehdyn's shipped data folder is missing from this installation", key="data", value=str(here))
 
 
-def shipped_vehicles() -> list[str]:
-    """Names of the vehicles shipped in ``data/vehicles``."""
-    return sorted(p.stem for p in data_path("vehicles").glob("*.toml"))
+def shipped_vehicles(category: str | None = None) -> list[str]:
+    """Names of the vehicles shipped in ``data/vehicles``.
+
+    Parameters
+    ----------
+    category : {"passenger_car", "truck_tractor"}, optional
+        Only the vehicles of this ``category`` (the vehicle file's field; default of a file:
+        ``"passenger_car"``). None: every shipped vehicle.
+    """
+    names = shipped_names("vehicles")
+    if category is None:
+        return names
+    choices = dataclasses.fields(Vehicle)
+    allowed = next(f for f in choices if f.name == "category").metadata["choices"]
+    if category not in allowed:
+        raise ParameterError(f"category = {category!r} is not one of {list(allowed)}", key="category", value=category)
+    return [name for name in names if load_vehicle(name).category == category]
+
+
+def shipped_names(folder: str) -> list[str]:
+    """Stems of the TOML files shipped in ``data/FOLDER``."""
+    return sorted(p.stem for p in data_path(folder).glob("*.toml"))
 
 
 def load_vehicle(name_or_path: str | Path) -> Vehicle:
@@ -294,14 +332,30 @@ def load_vehicle(name_or_path: str | Path) -> Vehicle:
     Raises
     ------
     ParameterError
-        If the name is unknown, the file is not valid TOML, or a parameter is missing, unknown, of the
-        wrong type, non-finite or out of range (the message names the key and the value).
+        If the name is unknown, the argument is neither a name nor a path, the file is missing, a
+        folder, unreadable, not UTF-8 text or not valid TOML (a UTF-8 byte-order mark is accepted),
+        or a parameter is missing, unknown, of the wrong type, non-finite or out of range (the
+        message names the key and the value).
     """
+    return load_shipped_or_file(Vehicle, name_or_path, "vehicle")
+
+
+def load_shipped_or_file(cls, name_or_path, kind: str):
+    """A ``cls`` parameter set from a shipped file ``data/{kind}s/NAME.toml`` or a user's TOML file.
+
+    ``kind`` (``"vehicle"``, ``"trailer"``) names the argument in the errors.
+    """
+    if not isinstance(name_or_path, (str, os.PathLike)):
+        raise ParameterError(f"{kind} must be a shipped {kind}'s name or a path to a .toml file, got "
+                             f"{type(name_or_path).__name__} {name_or_path!r}", key=kind, value=name_or_path)
     p = Path(name_or_path)
     if p.suffix == ".toml" or p.is_file():
-        return load_toml(Vehicle, p)
-    candidate = data_path("vehicles", f"{name_or_path}.toml")
+        return load_toml(cls, p)
+    candidate = data_path(f"{kind}s", f"{name_or_path}.toml")
     if not candidate.is_file():
-        raise ParameterError(f"unknown vehicle {str(name_or_path)!r}; shipped vehicles are {shipped_vehicles()}, "
-                             "or give a path to a .toml file", key="vehicle", value=str(name_or_path))
-    return load_toml(Vehicle, candidate)
+        if p.is_dir():
+            return load_toml(cls, p)  # reports the folder
+        shipped = shipped_names(f"{kind}s")
+        raise ParameterError(f"unknown {kind} {str(name_or_path)!r}; shipped {kind}s are {shipped}, "
+                             "or give a path to a .toml file", key=kind, value=str(name_or_path))
+    return load_toml(cls, candidate)

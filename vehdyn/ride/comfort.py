@@ -75,6 +75,22 @@ __all__ = [
 _Q_BAND = 1.0 / np.sqrt(2.0)
 
 
+def _frequencies(values, name="frequency_hz") -> np.ndarray:
+    """``values`` as a float array of frequencies [Hz], else ParameterError naming the first that is
+    not a finite number >= 0 (its value, and its index in an array)."""
+    try:
+        f = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be numbers [Hz], got {values!r}", key=name, value=values) from None
+    bad = ~(np.isfinite(f) & (f >= 0))
+    if np.any(bad):
+        where = tuple(int(i) for i in np.unravel_index(int(np.argmax(bad)), f.shape)) if f.ndim else ()
+        value = float(f[where])
+        at = f" at index {where[0] if len(where) == 1 else where}" if f.ndim else ""
+        raise ParameterError(f"{name} must be finite and >= 0 [Hz]; got {value!r}{at}", key=name, value=value)
+    return f
+
+
 @dataclass(frozen=True)
 class Weighting:
     """One ISO 2631-1 frequency weighting defined by its Annex A parameters.
@@ -123,8 +139,11 @@ class Weighting:
         return stages
 
     def response(self, frequency_hz) -> np.ndarray:
-        """Complex analog weighting W(j 2 pi f) [-] at ``frequency_hz`` [Hz]."""
-        f = np.asarray(frequency_hz, dtype=float)
+        """Complex analog weighting W(j 2 pi f) [-] at ``frequency_hz`` [Hz] (finite, >= 0).
+
+        At 0 Hz it is 0: the band-limiting high-pass (f1) removes a constant acceleration.
+        """
+        f = _frequencies(frequency_hz)
         s = 2j * np.pi * f
         H = np.ones_like(s)
         for num, den, _ in self._stages():
@@ -261,7 +280,11 @@ def weighting(name: str | Weighting) -> Weighting:
 
 
 def weighting_factor(name: str | Weighting, frequency_hz) -> np.ndarray:
-    """|W(f)| [-] of the ISO 2631-1 weighting ``name`` at ``frequency_hz`` [Hz] (analog filter, Annex A)."""
+    """|W(f)| [-] of the ISO 2631-1 weighting ``name`` at ``frequency_hz`` [Hz] (analog filter, Annex A).
+
+    Frequencies must be finite and >= 0 (ParameterError naming the first other value and its
+    index); at 0 Hz the factor is 0 (the band-limiting high-pass).
+    """
     return weighting(name).factor(frequency_hz)
 
 

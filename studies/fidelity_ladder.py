@@ -1,0 +1,67 @@
+"""The fidelity ladder: cost against error of every model on the standard scenes.
+
+Every standard scene (vehdyn.scene.standard_scenes: step steer gentle and at the limit, sine with
+dwell, lane changes at 60 and 100 km/h, a circle to the limit, braking in a turn, smooth and rough
+roads at 54 and 108 km/h, a one-sided pothole, cornering on a rough road) is run on every model
+that can answer it (vehdyn.ladder), for the three shipped vehicles. The error of each model is
+max |x - x_ref| / max |x_ref| over the scene's outputs against the most complete model that
+answers (the reference), its cost the wall time of one run. The model vehdyn.plan picks without
+running the reference (the cheapest whose estimated error is within the 2 % tolerance) is marked;
+the table gives its measured error and its cost relative to the reference. The references are
+those of this version's ladder (the nonlinear single track for handling, the 7-DOF full car for
+ride): the full-vehicle model, when registered, becomes the top of both.
+"""
+
+import numpy as np
+
+import vehdyn
+from vehdyn.plotting import new_figure
+from vehdyn.report import Study
+from vehdyn.scene import standard_scenes
+
+QUICK_SCENES = ("gentle_step_steer", "limit_step_steer", "rough_road_54", "pothole")
+
+
+def run(study: Study) -> None:
+    import pandas as pd
+
+    vehicles = ["sedan"] if study.quick else vehdyn.shipped_vehicles("passenger_car")
+    rows, frames = [], {}
+    for vehicle in vehicles:
+        scenes = standard_scenes(vehicle)
+        if study.quick:
+            scenes = {k: v.replace(duration=min(v.duration, 1.5)) for k, v in scenes.items() if k in QUICK_SCENES}
+        for name, scene in scenes.items():
+            frame = vehdyn.ladder(scene, repeat=2 if study.quick else 3)  # the first run loads compiled code
+            planned = frame[frame["planned"]].iloc[0]
+            reference = frame[frame["reference"]].iloc[0]
+            rows.append({"vehicle": vehicle, "scene": name, "planned": planned["rung"],
+                         "estimated_error": planned["estimated_error"], "error": planned["error"],
+                         "reference": reference["rung"],
+                         "cost_ratio": planned["wall_time_s"] / reference["wall_time_s"]})
+            if vehicle == vehicles[0]:
+                frames[name] = frame
+    names = list(frames)
+    ncols = 3
+    nrows = int(np.ceil(len(names) / ncols))
+    fig, axes = new_figure(nrows, ncols, width=12.0, height_per_row=3.2)
+    for k, name in enumerate(names):
+        vehdyn.plot_ladder(frames[name], ax=axes.flat[k], title=f"{vehicles[0]}: {name}")
+    for ax in list(axes.flat)[len(names):]:
+        ax.set_visible(False)
+    fig.tight_layout()
+    study.figure(fig, "cost_error", caption=f"{vehicles[0]}: wall time against error of each model per scene "
+                                            "(red: the planned model; dashed: the tolerance)")
+    table = pd.DataFrame(rows).set_index(["vehicle", "scene"])
+    table.attrs["units"] = {"error": "-", "estimated_error": "-", "cost_ratio": "-"}
+    study.table(table, "planned", caption="The planned model per scene: estimated and measured error against the "
+                                          "reference, cost relative to it")
+    wrong = table[table["error"] > 0.02]
+    cheap = (table["cost_ratio"] <= 0.1).sum()
+    study.text(f"Planned model within the 2 % tolerance on {len(table) - len(wrong)} of {len(table)} scenes; "
+               f"costing at most 1/10 of the reference on {cheap} of {len(table)} (the references of this "
+               "ladder, the compiled nonlinear single track and the linear full car, cost milliseconds).")
+
+
+if __name__ == "__main__":
+    Study.main(run, __file__)

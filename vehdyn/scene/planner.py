@@ -1,0 +1,515 @@
+"""The planner: which rungs can answer a scene, what each costs and misses, and the pick.
+
+:func:`plan` builds every registered rung for the scene (cheap: no simulation), keeps those that
+have the outputs, the inputs and the domain the scene needs, runs the linear handling rungs as
+probes (about a millisecond each) to estimate the lateral acceleration and the differences between
+them, estimates each rung's cost and error (:mod:`vehdyn.scene.estimates`) and picks the cheapest
+rung whose estimated error is within the scene's tolerance. :func:`run` runs the pick (or a named
+rung), :func:`ladder` runs every admissible rung and measures its error against the top one.
+"""
+
+from __future__ import annotations
+
+import time as _time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError, SimulationError
+from ..units import GRAVITY
+from . import estimates as est
+from .drive import drive_of
+from .rungs import Rung, Setup, NotAdmissible, rungs
+
+__all__ = ["Plan", "RungAssessment", "SceneResult", "plan", "run", "ladder", "plot_ladder"]
+
+
+@dataclass
+class RungAssessment:
+    """One row of a :class:`Plan`."""
+
+    rung: Rung
+    admissible: bool
+    reason: str
+    setup: Setup | None = None
+    estimated_cost_s: float = float("nan")
+    errors: dict = field(default_factory=dict)
+    outputs: dict = field(default_factory=dict)  # scene output name -> model output name
+
+    @property
+    def estimated_error(self) -> float:
+        """The largest estimate over the outputs (NaN when one is unestimated: never picked)."""
+        return float(np.max(list(self.errors.values()))) if self.errors else float("nan")
+
+
+@dataclass
+class Plan:
+    """The assessment of every rung for a scene and the pick.
+
+    Attributes
+    ----------
+    scene : Scene
+    rows : list of RungAssessment
+        One per registered (importable) rung, in ladder order.
+    chosen, top : RungAssessment
+        The pick (cheapest within tolerance) and the reference (highest fidelity admissible).
+    needs : dict
+        Phenomena the scene needs -> why.
+    lateral_utilization : float or None
+        Peak lateral acceleration of the linear probe over mu g.
+    """
+
+    scene: Any
+    rows: list
+    chosen: RungAssessment
+    top: RungAssessment
+    needs: dict
+    lateral_utilization: float | None
+    drive: Any = None
+    probes: dict = field(default_factory=dict)
+
+    @property
+    def choice(self):
+        """The chosen model class (the vehicle model, also when a driver closes the loop around it)."""
+        return self.chosen.rung.model_class()
+
+    def to_frame(self):
+        """pandas DataFrame, a row per rung: model, rung, admissible, estimated_cost_s, estimated_error, reason."""
+        import pandas as pd
+
+        rows = [{"model": (r.rung.model.split(":")[1]), "rung": r.rung.name, "ladder": r.rung.ladder,
+                 "admissible": r.admissible, "estimated_cost_s": r.estimated_cost_s,
+                 "estimated_error": r.estimated_error if r.admissible else float("nan"),
+                 "chosen": r is self.chosen, "reason": r.reason} for r in self.rows]
+        frame = pd.DataFrame(rows)
+        frame.attrs["units"] = {"estimated_cost_s": "s", "estimated_error": "-"}
+        frame.attrs["tolerance"] = self.scene.tolerance
+        return frame
+
+    def __str__(self) -> str:
+        needs = ", ".join(f"{k} ({v})" for k, v in self.needs.items()) or "none beyond the outputs"
+        lines = [f"plan for {list(self.scene.outputs)} within {self.scene.tolerance:g} "
+                 f"({self.scene.kind} scene, {self.scene.duration:g} s at {self.scene.speed:g} m/s)",
+                 f"needs: {needs}",
+                 f"{'':2}{'rung':<26}{'ok':>3} {'cost [s]':>10} {'error':>9}  reason"]
+        for r in self.rows:
+            mark = "->" if r is self.chosen else "  "
+            cost = f"{r.estimated_cost_s:10.2e}" if r.admissible else f"{'':>10}"
+            error = f"{r.estimated_error:9.2e}" if r.admissible else f"{'':>9}"
+            lines.append(f"{mark}{r.rung.name:<26}{'yes' if r.admissible else 'no':>3} {cost} {error}  {r.reason}")
+        lines.append(f"choice: {self.chosen.rung.name} ({self.choice.__name__}); reference: {self.top.rung.name}")
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        return f"<Plan: {self.chosen.rung.name} for {list(self.scene.outputs)} (reference {self.top.rung.name})>"
+
+    def row(self, name: str) -> RungAssessment:
+        """The row of rung ``name`` (rung name or model class name; the first admissible match)."""
+        matches = [r for r in self.rows if name in (r.rung.name, r.rung.model.split(":")[1])]
+        admissible = [r for r in matches if r.admissible]
+        if admissible:
+            return admissible[0]
+        if matches:
+            raise ParameterError(f"rung {name!r} cannot answer this scene: {matches[0].reason}", key="model",
+                                 value=name)
+        raise ParameterError(f"no rung named {name!r}; the rungs are {[r.rung.name for r in self.rows]}",
+                             key="model", value=name)
+
+
+def _resolve_output(name: str, available) -> str | None:
+    """The model output that answers scene output ``name`` (itself, or the left corner of a full car)."""
+    for candidate in (name, name + "_left"):
+        if candidate in available:
+            return candidate
+    return None
+
+
+def _signals(result, outputs: dict) -> dict:
+    return {scene_name: np.asarray(result[model_name], dtype=float) for scene_name, model_name in outputs.items()}
+
+
+def _assess(rung: Rung, drive, scene) -> RungAssessment:
+    try:
+        setup = rung.setup(drive)
+    except NotAdmissible as exc:
+        return RungAssessment(rung, False, str(exc))
+    except SimulationError as exc:  # e.g. no steady turn at the requested lateral acceleration
+        return RungAssessment(rung, False, f"cannot start the scene: {exc}")
+    resolved = {o: _resolve_output(o, setup.output_names) for o in scene.outputs}
+    missing = [o for o, m in resolved.items() if m is None]
+    if missing:
+        return RungAssessment(rung, False, f"has no output {', '.join(missing)}", setup)
+    if drive.longitudinal and "longitudinal" not in rung.phenomena(setup):
+        return RungAssessment(rung, False, "constant speed: no longitudinal dynamics", setup)
+    return RungAssessment(rung, True, "", setup, outputs=resolved)
+
+
+def plan(scene) -> Plan:
+    """Assess every registered rung for ``scene`` and pick the cheapest within its tolerance.
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    Plan
+
+    Raises
+    ------
+    ParameterError
+        When no rung has the requested outputs (the message lists who has what) or the scene is
+        malformed.
+    """
+    drive = drive_of(scene)
+    rows = [_assess(r, drive, scene) for r in rungs()]
+    admissible = [r for r in rows if r.admissible]
+    if not admissible:
+        who = "; ".join(f"{r.rung.name} ({r.reason})" + (f" has {', '.join(r.setup.output_names)}" if r.setup else "")
+                        for r in rows)
+        raise ParameterError(f"no rung can answer outputs {list(scene.outputs)} in this scene. Who has what: {who}",
+                             key="outputs", value=list(scene.outputs))
+    needs: dict = {}
+    vehicle = drive.vehicle
+    mu_g = vehicle.tires.friction_coefficient * GRAVITY
+    # probes: the linear handling rungs, run now (milliseconds), also give the lateral acceleration
+    probes = {}
+    for r in admissible:
+        if r.rung.linear and r.rung.ladder == "handling":
+            probes[r.rung.name] = r.setup.run()
+    utilization = None
+    linear_probe = next((probes[n] for n in ("LinearBicycle", "LinearBicycle+lag", "LateralYawRoll") if n in probes),
+                        None)
+    if linear_probe is not None:
+        utilization = float(np.max(np.abs(linear_probe["lateral_acceleration"]))) / mu_g
+    elif drive.braking is not None or drive.initial_turn is not None:
+        p = scene.manoeuvre_parameters
+        ax = float(p.get("deceleration", 0.0))
+        ay = drive.initial_turn or 0.0
+        utilization = float(np.hypot(ax, ay)) / mu_g
+    if utilization is not None and utilization > est.THRESHOLDS["saturation_fraction"]:
+        needs["tire_saturation"] = f"a_y ~ {utilization:.2f} mu g > {est.THRESHOLDS['saturation_fraction']:g} mu g"
+    if drive.longitudinal:
+        needs["longitudinal"] = "braking or longitudinal force input"
+    elif "LinearBicycle" in probes:
+        du = est.speed_change(probes["LinearBicycle"], vehicle, scene.speed)
+        if du > est.THRESHOLDS["speed_change_fraction"]:
+            needs["longitudinal"] = f"speed change ~{du:.2f} u > {est.THRESHOLDS['speed_change_fraction']:g} u"
+    if any("torque" in name for name in drive.inputs):
+        needs["wheel_spin"] = "wheel torque input"
+    if drive.road is not None:
+        needs["road_input"] = "road profile"
+    if "roll_angle" in scene.outputs or "roll_rate" in scene.outputs:
+        needs["roll"] = "roll output"
+    if utilization is not None and utilization > est.THRESHOLDS["linear_domain_fraction"]:
+        for r in admissible:
+            if r.rung.linear and r.rung.ladder == "handling":
+                r.admissible = False
+                r.reason = (f"outside the linear domain: a_y ~ {utilization:.2f} mu g > "
+                            f"{est.THRESHOLDS['linear_domain_fraction']:g} mu g")
+        admissible = [r for r in rows if r.admissible]
+        if not admissible:
+            raise ParameterError(f"no rung can answer outputs {list(scene.outputs)} beyond the linear domain "
+                                 f"(a_y ~ {utilization:.2f} mu g) on this branch's ladder", key="outputs",
+                                 value=list(scene.outputs))
+    top = max(admissible, key=lambda r: r.rung.fidelity)
+    ctx = _Context(scene, drive, probes, utilization, {r.rung.name: r for r in admissible}, top)
+    for r in admissible:
+        # the measured tables, never this call's timing: the pick must not depend on the machine's load
+        r.estimated_cost_s = est.estimated_cost(r.rung.name, scene.duration, closed_loop=drive.track is not None)
+        r.errors, notes = ctx.errors(r)
+        ignored = f"; ignores {', '.join(r.setup.ignores)}" if r.setup.ignores else ""
+        if r is top:
+            lacks = sorted(set(needs) - top.rung.phenomena(top.setup))
+            caveat = f"; lacks {', '.join(lacks)}: errors are relative to it" if lacks else ""
+            r.reason = f"reference (highest fidelity that answers){caveat}{ignored}"
+        else:
+            within = "within" if r.estimated_error <= scene.tolerance else "beyond"
+            r.reason = f"{within} tolerance: {notes or 'same phenomena as the reference'}{ignored}"
+    fits = [r for r in admissible if r.estimated_error <= scene.tolerance] or [top]
+    chosen = min(fits, key=lambda r: (r.estimated_cost_s, -r.rung.fidelity))
+    return Plan(scene, rows, chosen, top, needs, utilization, drive, probes)
+
+
+class _Context:
+    """Per-scene estimates (see :mod:`vehdyn.scene.estimates`)."""
+
+    def __init__(self, scene, drive, probes, utilization, admissible, top):
+        self.scene, self.drive, self.probes = scene, drive, probes
+        self.utilization, self.admissible, self.top = utilization, admissible, top
+        self.outputs = scene.outputs
+
+    def _difference(self, a: str, b: str) -> dict | None:
+        """Per-output relative difference of probe a against probe b (None if either is missing)."""
+        if a not in self.probes or b not in self.probes:
+            return None
+        ra, rb = self.admissible[a], self.admissible[b]
+        sa, sb = _signals(self.probes[a], ra.outputs), _signals(self.probes[b], rb.outputs)
+        return est.relative_errors(sa, sb)
+
+    def _saturation(self) -> float:
+        vehicle = self.drive.vehicle
+        probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
+        if probe is not None and "front_slip_angle" in probe:
+            slips = [np.max(np.abs(probe["front_slip_angle"])), np.max(np.abs(probe["rear_slip_angle"]))]
+        elif not self.drive.handling_input:
+            return 0.0  # straight running at constant speed: the tires carry no side force
+        elif self.drive.braking is not None:
+            p = self.scene.manoeuvre_parameters
+            rho = est.combined_utilization(vehicle, self.drive.initial_turn or 0.0,
+                                           float(p.get("deceleration", 0.0)), float(p.get("brake_front_share", 0.65)))
+            return est.combined_slip_error(rho)
+        else:
+            return float("nan")
+        return est.THRESHOLDS["saturation_gain"] * est.tire_deficit(vehicle, slips, self.scene.tire)
+
+    def _phenomenon(self, p: str, rung: RungAssessment) -> tuple[dict | float, str]:
+        """Estimated error (per output dict, or one number) of missing or adding phenomenon p."""
+        d = self.drive
+        if p == "tire_saturation":
+            e = self._saturation()
+            note = f"tire saturation ~{e:.1e}" if e != 0 else ""
+            if "load_transfer" in rung.rung.phenomena(rung.setup) and not d.longitudinal:
+                # a linear tire with load transfer: its load sensitivity differs from the law's
+                dg = abs(est.drag_load_transfer_gain_change(d.vehicle, self.scene.speed, law="linear")
+                         - est.drag_load_transfer_gain_change(d.vehicle, self.scene.speed, self.scene.tire))
+                e += dg
+                note = " and ".join(filter(None, [note, f"load sensitivity ~{dg:.1e}"]))
+            return e, note
+        if p == "wheel_spin":  # free-rolling wheels: the spin follows the speed
+            return (float("nan"), "wheel spin under torque unestimated") if d.longitudinal else (0.0, "")
+        if p in ("longitudinal", "aero", "load_transfer"):
+            if d.longitudinal:
+                return float("nan"), f"{p} needed"
+            probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
+            if probe is None or "lateral_velocity" not in probe:
+                return 0.0, ""
+            du = est.speed_change(probe, d.vehicle, self.scene.speed)
+            dg = est.drag_load_transfer_gain_change(d.vehicle, self.scene.speed, self.scene.tire)
+            return du + dg, f"speed change ~{du:.1e} and drag load transfer ~{dg:.1e}"
+        if p in ("heave", "wheel_hop", "road_input") and d.road is None:
+            return 0.0, ""  # a flat road: nothing excites the vertical modes
+        if p in ("lateral", "yaw", "tire_lag") and not d.handling_input:
+            return 0.0, ""  # no steer: nothing excites the lateral modes
+        if p == "tire_lag":
+            diff = self._difference("LinearBicycle", "LinearBicycle+lag")
+            return (diff, "tire lag (probes)") if diff else (float("nan"), "tire lag unestimated")
+        if p == "roll":
+            if rung.rung.ladder == "ride" or self.top.rung.ladder == "ride":
+                k = est.THRESHOLDS["roll_asymmetry_gain"] * est.road_asymmetry(d.road)
+                per_output = {o: (0.0 if est.is_body_output(o) else k) for o in self.outputs}
+                note = f"roll, road asymmetry ~{k:.1e}" if any(per_output.values()) else "roll (blind at the CG)"
+                return per_output, note
+            diff = self._difference("LinearBicycle", "LateralYawRoll")
+            return (diff, "roll (probes)") if diff else (float("nan"), "roll unestimated")
+        if p == "pitch":
+            k = est.THRESHOLDS["dynamic_index_gain"] * est.dynamic_index_coupling(d.vehicle) ** 2
+            return k, f"pitch coupling (1-DI)^2 ~{k:.1e}"
+        return float("nan"), f"{p} unestimated"
+
+    def errors(self, r: RungAssessment) -> tuple[dict, str]:
+        floor = est.THRESHOLDS["numerical_error"]
+        if r is self.top:
+            return {o: 0.0 for o in self.outputs}, ""
+        total = {o: floor for o in self.outputs}
+        notes = []
+        differ = sorted(r.rung.phenomena(r.setup) ^ self.top.rung.phenomena(self.top.setup))
+        grouped = {"longitudinal", "aero", "load_transfer"}
+        done_group = False
+        for p in differ:
+            if p in grouped:
+                if done_group:
+                    continue
+                done_group = True
+            value, note = self._phenomenon(p, r)
+            if note:
+                notes.append(note)
+            for o in self.outputs:
+                total[o] += value.get(o, float("nan")) if isinstance(value, dict) else value
+        if self.drive.track is not None:
+            factor = est.THRESHOLDS["closed_loop_factor"]
+            total = {o: factor * v for o, v in total.items()}
+            notes.append(f"closed loop x{factor:g}")
+        if r.rung.name == "SteadyState":
+            diff = self._difference("SteadyState", "LinearBicycle")
+            notes.append("no transient (probes)")
+            for o in self.outputs:
+                total[o] += diff[o] if diff else float("nan")
+        return total, ", ".join(notes)
+
+
+@dataclass
+class SceneResult:
+    """The outcome of :func:`run`.
+
+    Attributes
+    ----------
+    model : object
+        The model instance run.
+    result : SimulationResult
+        Its result on the scene's time grid.
+    rung : str
+        The rung's name.
+    outputs : dict
+        Scene output name -> array on the time grid.
+    estimated_error : dict
+        Output -> estimated relative error against the reference rung.
+    verified_error : dict or None
+        Output -> measured relative error against the reference rung (``verify=True``).
+    reference : str
+        The reference rung's name.
+    plan : Plan
+    signals : dict
+        Scene output name -> the model's output name that answers it.
+    """
+
+    model: Any
+    result: Any
+    rung: str
+    outputs: dict
+    estimated_error: dict
+    verified_error: dict | None
+    reference: str
+    plan: Plan
+    signals: dict = field(default_factory=dict)
+
+    def headline(self) -> str:
+        """Peak |value| of each output with its estimated (and verified) error."""
+        lines = [f"{self.rung} ({type(self.model).__name__}): {self.result.wall_time:.3g} s of integration"]
+        for name, x in self.outputs.items():
+            unit = self.result.unit(self.signals[name]) if name in self.signals else ""
+            line = (f"  {name:<28} peak {float(np.max(np.abs(x))):.5g} {unit}  estimated error "
+                    f"{self.estimated_error[name]:.2e}")
+            if self.verified_error is not None:
+                line += f", verified {self.verified_error[name]:.2e} against {self.reference}"
+            lines.append(line)
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        return f"<SceneResult of {self.rung}: {list(self.outputs)}>"
+
+
+def _run_row(p: Plan, row: RungAssessment):
+    cached = p.probes.get(row.rung.name)
+    return cached if cached is not None else row.setup.run()
+
+
+def run(scene, model: str = "auto", verify: bool = False) -> SceneResult:
+    """Run the rung the plan picks (or the rung named ``model``) on ``scene``.
+
+    Parameters
+    ----------
+    scene : Scene
+    model : str
+        ``"auto"`` (the plan's pick) or a rung or model class name (``"LinearBicycle"``).
+    verify : bool
+        Also run the reference (top admissible) rung and report the measured errors.
+
+    Returns
+    -------
+    SceneResult
+    """
+    p = plan(scene)
+    row = p.chosen if model == "auto" else p.row(model)
+    result = _run_row(p, row)
+    outputs = _signals(result, row.outputs)
+    verified = None
+    if verify:
+        reference = _signals(_run_row(p, p.top), p.top.outputs)
+        verified = est.relative_errors(outputs, reference)
+    return SceneResult(row.setup.model, result, row.rung.name, outputs, dict(row.errors), verified, p.top.rung.name,
+                       p, dict(row.outputs))
+
+
+def ladder(scene, *, repeat: int = 1):
+    """Run every admissible rung of ``scene`` and measure its cost and error against the top rung.
+
+    Parameters
+    ----------
+    scene : Scene
+    repeat : int
+        Runs per rung; the wall time is the fastest (the first run of a compiled model includes
+        loading its compiled code).
+
+    Returns
+    -------
+    pandas.DataFrame
+        A row per admissible rung (cheapest first): ``model``, ``rung``, ``wall_time_s``,
+        ``estimated_cost_s``, ``estimated_error``, ``error`` (max over outputs), ``error_<output>``,
+        ``planned``, ``reference``. ``attrs["tolerance"]`` and ``attrs["scene"]``.
+    """
+    import pandas as pd
+
+    if int(repeat) < 1:
+        raise ParameterError(f"repeat must be >= 1, got {repeat!r}", key="repeat", value=repeat)
+    p = plan(scene)
+    results, times = {}, {}
+    for row in p.rows:
+        if not row.admissible:
+            continue
+        best = np.inf
+        for _ in range(int(repeat)):
+            start = _time.perf_counter()
+            res = row.setup.run()
+            best = min(best, _time.perf_counter() - start)
+        results[row.rung.name], times[row.rung.name] = res, best
+    reference = _signals(results[p.top.rung.name], p.top.outputs)
+    records = []
+    for row in p.rows:
+        if not row.admissible:
+            continue
+        errors = est.relative_errors(_signals(results[row.rung.name], row.outputs), reference)
+        rec = {"model": row.rung.model.split(":")[1], "rung": row.rung.name, "wall_time_s": times[row.rung.name],
+               "estimated_cost_s": row.estimated_cost_s, "estimated_error": row.estimated_error,
+               "error": max(errors.values()), "planned": row is p.chosen, "reference": row is p.top}
+        rec.update({f"error_{k}": v for k, v in errors.items()})
+        records.append(rec)
+    frame = pd.DataFrame(records).sort_values("wall_time_s", kind="stable").reset_index(drop=True)
+    frame.attrs["tolerance"] = scene.tolerance
+    frame.attrs["scene"] = scene
+    frame.attrs["units"] = {"wall_time_s": "s", "estimated_cost_s": "s"}
+    return frame
+
+
+def plot_ladder(frame, *, ax=None, title: str | None = None, error_floor: float = 1e-7):
+    """Cost against error, one point per rung, and the tolerance line.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        From :func:`ladder` (its ``attrs["tolerance"]`` draws the line).
+    ax : matplotlib Axes, optional
+    title : str, optional
+    error_floor : float
+        Errors below it (the reference's zero) are drawn at it.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.0, 4.0))
+    err = np.maximum(frame["error"].to_numpy(dtype=float), error_floor)
+    cost = frame["wall_time_s"].to_numpy(dtype=float)
+    for k, (c, e) in enumerate(zip(cost, err)):
+        planned, ref = bool(frame["planned"].iloc[k]), bool(frame["reference"].iloc[k])
+        ax.plot(c, e, "o", ms=9 if planned else 6, mfc="none" if ref and not planned else None,
+                color="C3" if planned else "C0")
+        ax.annotate(frame["rung"].iloc[k], (c, e), textcoords="offset points", xytext=(4, 4), fontsize=7)
+    tol = frame.attrs.get("tolerance")
+    if tol is not None:
+        ax.axhline(tol, color="k", ls="--", lw=0.8, label=f"tolerance {tol:g}")
+        ax.legend(fontsize=8)
+    from matplotlib.ticker import NullFormatter
+
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xlabel("wall time [s]")
+    ax.set_ylabel("error against the reference [-]")
+    if title:
+        ax.set_title(title, fontsize=9)
+    return ax
