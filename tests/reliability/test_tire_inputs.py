@@ -22,6 +22,7 @@ import vehdyn
 from vehdyn import ParameterError
 from vehdyn.tire import BrushTire, DugoffTire, FialaTire, LinearTire, MagicFormula, TireForces
 from vehdyn.tire.magic_formula import numba_available
+from vehdyn.tire.terramechanics import SoftSoilTire, SoftSoilTireGeometry, load_soil
 
 INPUTS = ("fz", "kappa", "alpha", "gamma", "vx")
 NON_FINITE = (math.nan, math.inf, -math.inf)
@@ -41,6 +42,8 @@ SIMPLE_LAWS = {
     "fiala": FialaTire(cornering_stiffness=80000.0, mu=1.0, contact_half_length=0.08),
     "dugoff": DugoffTire(cornering_stiffness=80000.0, slip_stiffness=100000.0, mu=1.0, speed_friction_reduction=0.01,
                          pneumatic_trail=0.02),
+    "soft_soil": SoftSoilTire(SoftSoilTireGeometry(radius=0.32, width=0.205, inflation_pressure=2.2e5),
+                              load_soil("dry_sand")),
 }
 
 
@@ -178,6 +181,12 @@ def test_non_numeric_and_unbroadcastable_inputs_are_refused(law):
         forces(np.ones(3), np.ones(4), 0.05, 0.0, 20.0)
 
 
+def test_soft_soil_evaluate_marks_the_bad_points():
+    result = SIMPLE_LAWS["soft_soil"].evaluate([4000.0, math.nan, 4000.0], 0.2, [0.0, 0.0, math.inf])
+    assert math.isfinite(result.sinkage[0]) and np.isnan(result.sinkage[1:]).all()
+    assert list(result.mode) == ["rigid", "invalid", "invalid"] and not result.stuck[1:].any()
+
+
 def test_brush_and_fiala_helpers_follow_the_rule():
     brush, fiala = SIMPLE_LAWS["brush"], SIMPLE_LAWS["fiala"]
     trail = brush.pneumatic_trail([4000.0, math.nan, 4000.0], 0.0, 0.02, vx=[20.0, 20.0, math.inf])
@@ -201,7 +210,7 @@ def test_lifted_wheel_standstill_and_large_finite_inputs_still_work(law):
     assert big.fy[1] == pytest.approx(forces(4000.0, 0.1, 0.05, 0.0, 20.0).fy, rel=1e-12)
 
 
-@pytest.mark.parametrize("law", list(SIMPLE_LAWS))
+@pytest.mark.parametrize("law", [law for law in SIMPLE_LAWS if law != "soft_soil"])
 def test_large_array_calls_use_the_same_rule(law):
     """More points than one evaluation block (8192): the mask spans the blocks."""
     forces = law_forces(law)
