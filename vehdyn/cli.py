@@ -123,7 +123,7 @@ def cmd_tire_soil(args) -> int:
 
 
 def cmd_tire(args) -> int:
-    from .errors import VehdynError
+    from .errors import VehdynError, VehdynWarning
 
     if args.soil is not None:
         if args.file is not None:
@@ -138,11 +138,17 @@ def cmd_tire(args) -> int:
     except ImportError as exc:  # pragma: no cover - until the tire layer is complete
         print(f"vehdyn tire: the tire layer is not available in this version ({exc})", file=sys.stderr)
         return 2
+    import warnings
+
     try:
-        tire = load_tire(args.file)
-    except (VehdynError, OSError) as exc:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", VehdynWarning)
+            tire = load_tire(args.file)
+    except (VehdynError, OSError) as exc:  # unreadable file, malformed line, non-finite coefficient, ...
         print(f"vehdyn tire: {exc}", file=sys.stderr)
         return 2
+    for warning in caught:  # e.g. missing sections: said, and the tire is still described
+        print(f"vehdyn tire: warning: {warning.message}", file=sys.stderr)
     print(describe_tire(tire))
     from .report import make_folder
 
