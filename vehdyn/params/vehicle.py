@@ -179,6 +179,17 @@ class Aerodynamics(ParameterSet):
                                    default=1.206)
     front_lift_coefficient: float = parameter("-", "front-axle lift coefficient", default=0.0)
     rear_lift_coefficient: float = parameter("-", "rear-axle lift coefficient", default=0.0)
+    # crosswind (optional; typical passenger-car values, not measurements of a given vehicle):
+    # Hucho, Aerodynamics of Road Vehicles, 4th ed., 1998, sec. 4.4 (side force and yaw moment of
+    # passenger cars grow about linearly with the aerodynamic sideslip up to about 20 deg);
+    # Wong, Theory of Ground Vehicles, 4th ed., 2008, sec. 3.2 (centre of pressure of cars in the
+    # front half of the wheelbase, ahead of the neutral steer point)
+    side_force_coefficient_slope: float = parameter(
+        "1/rad", "dC_Y/d(beta_aero) of the aerodynamic side force, referred to the frontal area (typical car 2.0)",
+        ge=0, default=2.0)
+    centre_of_pressure_from_front_axle: float = parameter(
+        "-", "distance from the front axle back to the aerodynamic centre of pressure, as a fraction of the "
+        "wheelbase (typical car 0.3; negative: ahead of the front axle)", gt=-1.0, lt=2.0, default=0.3)
 
     def drag_force(self, speed):
         """Drag force 0.5 rho c_x A V|V| [N] at air speed ``speed`` [m/s] (sign follows the speed)."""

@@ -1,0 +1,115 @@
+"""Crosswind: the aerodynamic side force and yaw moment, and the crosswind-sensitivity test.
+
+A lateral wind w (the air's velocity along the vehicle's y axis, SAE: positive blowing toward the
+right, i.e. a wind from the left) meets a vehicle driving at forward speed u. The air flows past
+the body at the resultant speed V_r and the aerodynamic sideslip angle beta_w::
+
+    V_r^2 = u^2 + w^2,        beta_w = atan(w / |u|)
+
+and makes a side force at the centre of pressure, a distance x_p ahead of the CG, hence a yaw
+moment about the CG (Hucho, *Aerodynamics of Road Vehicles*, 4th ed., 1998, sec. 4.4; Wong,
+*Theory of Ground Vehicles*, 4th ed., 2008, sec. 3.2)::
+
+    F_w = 0.5 rho V_r^2 A C_Y' beta_w,        M_w = x_p F_w
+
+with rho the air density, A the frontal (reference) area and C_Y' = dC_Y/d(beta_w) the
+side-force coefficient slope (``vehicle.aero.side_force_coefficient_slope``). The centre of
+pressure sits ``vehicle.aero.centre_of_pressure_from_front_axle`` times the wheelbase behind the
+front axle: x_p = a - f_p L. SAE signs: a wind toward +y pushes the vehicle toward +y, and with
+x_p > 0 yaws its nose toward +y, downwind. The force is linear in beta_w, as measured on cars up
+to beta_w of about 20 degrees (Hucho 1998, sec. 4.4). The wind is taken in the vehicle's axes;
+the aerodynamic sideslip from the vehicle's own lateral velocity and yaw rate is neglected (its
+force is 0.5 rho u A C_Y' v, about 1 % of the tires' C v / u at highway speed, so the vehicle's
+eigenvalues stay those of the model without wind).
+
+Linearized about w = 0 (every wind-free state):  F_w = 0.5 rho A C_Y' u w = k_w u w, the input
+column of :class:`~vehdyn.handling.LinearBicycle`'s ``wind_velocity_lateral``.
+
+Which way the vehicle turns is set by where the centre of pressure lies against the neutral steer
+point (NSP, the point where a side force makes no steady yaw rate,
+:func:`~vehdyn.handling.neutral_steer_point`), x_n = (a C_f - b C_r) / (C_f + C_r) ahead of the CG.
+The steady yaw rate under a side force F at x_p is (:func:`steady_state_crosswind_yaw_rate`)::
+
+    r = F u (C_f + C_r) (x_p - x_n) / (C_f C_r L (L + K u^2))
+
+with K the understeer gradient: a centre of pressure ahead of the NSP (the usual case, Wong 2008,
+sec. 3.2) turns the vehicle downwind.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..params import Vehicle
+
+__all__ = ["aero_side_force", "wind_side_force_factor", "centre_of_pressure_ahead_of_cg",
+           "steady_state_crosswind_yaw_rate", "CrosswindSensitivity", "crosswind_sensitivity"]
+
+
+def aero_side_force(xp, side_force_factor, speed, wind_velocity_lateral):
+    """Aerodynamic side force F_w = k_w (u^2 + w^2) atan(w / |u|) [N] (SAE y).
+
+    Parameters
+    ----------
+    xp : namespace
+        ``numpy`` or the compiled namespace of :mod:`~vehdyn.handling.single_track_equations`
+        (needs ``atan2`` and ``abs``).
+    side_force_factor : float or ndarray
+        k_w = 0.5 rho A C_Y' [kg/m] (:func:`wind_side_force_factor`).
+    speed : float or ndarray
+        Forward speed u of the vehicle [m/s].
+    wind_velocity_lateral : float or ndarray
+        w [m/s], the air's velocity along the vehicle's y axis (positive toward the right).
+    """
+    return side_force_factor * (speed * speed + wind_velocity_lateral * wind_velocity_lateral) * \
+        xp.atan2(wind_velocity_lateral, xp.abs(speed))
+
+
+def _vehicle(vehicle) -> Vehicle:
+    if not isinstance(vehicle, Vehicle):
+        raise ParameterError(f"expected a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle", value=vehicle)
+    return vehicle
+
+
+def wind_side_force_factor(vehicle: Vehicle) -> float:
+    """k_w = 0.5 rho A C_Y' [kg/m] of ``vehicle`` (its ``aero`` group)."""
+    aero = _vehicle(vehicle).aero
+    return 0.5 * aero.air_density * aero.frontal_area * aero.side_force_coefficient_slope
+
+
+def centre_of_pressure_ahead_of_cg(vehicle: Vehicle) -> float:
+    """x_p = a - f_p L [m]: the aerodynamic centre of pressure ahead of the CG (negative: behind)."""
+    v = _vehicle(vehicle)
+    return v.geometry.cg_to_front_axle - v.aero.centre_of_pressure_from_front_axle * v.geometry.wheelbase
+
+
+def steady_state_crosswind_yaw_rate(vehicle_or_bicycle, speed, side_force, centre_of_pressure):
+    """Steady yaw rate [rad/s] of the linear bicycle under a side force at a point, steer held at 0.
+
+    r = F u (C_f + C_r) (x_p - x_n) / (C_f C_r L (L + K u^2)) (module docstring; solve the bicycle's
+    two equilibrium equations with F_y = F at x_p). Positive (turning right, downwind for a wind
+    toward +y) when the force acts ahead of the neutral steer point x_n.
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+    speed : float
+        [m/s].
+    side_force : float
+        F [N] (SAE y).
+    centre_of_pressure : float
+        x_p [m] ahead of the CG.
+    """
+    from .bicycle import bicycle_parameters, check_speed
+    from .steady_state import neutral_steer_point
+
+    p = bicycle_parameters(vehicle_or_bicycle)
+    u = check_speed(speed)
+    cf, cr, L = p.front_cornering_stiffness, p.rear_cornering_stiffness, p.wheelbase
+    x_n = -neutral_steer_point(p).behind_cg
+    return side_force * u * (cf + cr) * (centre_of_pressure - x_n) / (cf * cr * L * (L + p.understeer_gradient * u**2))
