@@ -104,6 +104,13 @@ from .crosswind import (  # noqa: E402
     steady_state_crosswind_yaw_rate,
     wind_zone_signal,
 )
+from .steering_system import (  # noqa: E402
+    SteeredVehicle,
+    SteeringSystem,
+    SteeringSystemParameters,
+    steering_system_parameters,
+)
+from .on_center import WeaveTestMetrics, weave_metrics, weave_test  # noqa: E402
 from .maneuvers import (  # noqa: E402
     BrakingInTurn,
     DoubleLaneChangeTrack,
@@ -149,4 +156,11 @@ __all__ += [
     "crosswind_sensitivity",
     "steady_state_crosswind_yaw_rate",
     "wind_zone_signal",
+    "SteeredVehicle",
+    "SteeringSystem",
+    "SteeringSystemParameters",
+    "steering_system_parameters",
+    "WeaveTestMetrics",
+    "weave_metrics",
+    "weave_test",
 ]

@@ -167,6 +167,28 @@ class Steering(ParameterSet):
 
     ratio: float = parameter("-", "overall steering ratio: hand-wheel angle / road-wheel angle", gt=0)
     max_road_wheel_angle: float = parameter("rad", "largest road-wheel steer angle", gt=0, le=np.pi / 2)
+    # steering system (optional; used by vehdyn.handling.SteeringSystem). Defaults: typical
+    # passenger-car values, assumed, after Pfeffer & Harrer (eds.), Steering Handbook, Springer,
+    # 2017 (column and torsion bar, friction, boost curves of power steering) and Gillespie,
+    # Fundamentals of Vehicle Dynamics, 1992, ch. 8 (caster trail); no shipped vehicle has measured ones
+    steering_wheel_inertia: float = parameter("kg*m^2", "steering-wheel inertia about the column (typical 0.04)",
+                                              gt=0, default=0.04)
+    column_stiffness: float = parameter("N*m/rad", "torsional stiffness of the column with its torsion bar (typical "
+                                        "115, about 2 N*m/deg)", gt=0, default=115.0)
+    lower_steering_inertia: float = parameter("kg*m^2", "inertia of rack, pinion, road wheels about the kingpins and "
+                                              "assist motor, referred to the pinion (typical 0.05)", gt=0, default=0.05)
+    steering_damping: float = parameter("N*m*s/rad", "viscous damping of the rack, referred to the pinion", ge=0,
+                                        default=0.5)
+    steering_friction_torque: float = parameter("N*m", "Coulomb friction of rack and gear, referred to the pinion "
+                                                "(typical 1)", ge=0, default=1.0)
+    assist_gain: float = parameter("-", "power-assist boost: assist torque per torsion-bar torque far from centre "
+                                   "(0: manual steering)", ge=0, default=0.0)
+    assist_knee_torque: float = parameter("N*m", "torsion-bar torque around which the boost curve turns on", gt=0,
+                                          default=1.5)
+    caster_trail: float = parameter("m", "mechanical (caster) trail of the front wheels at the ground (typical "
+                                    "0.02)", default=0.02)
+    pneumatic_trail: float = parameter("m", "pneumatic trail of the front tires (None: from the tire law, -dM_z/dF_y "
+                                       "at zero slip and the static load)", default=None)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
