@@ -100,9 +100,9 @@ def run(study: Study) -> None:
         ax.plot(fraction, np.rad2deg(r), color=f"C{k}", label=name)
         nsp = handling.neutral_steer_point(vehicle).from_front_axle / L
         ax.axvline(nsp, color=f"C{k}", ls=":", lw=1)
-        ax.plot([vehicle.aero.centre_of_pressure_from_front_axle], [np.rad2deg(
-            handling.steady_state_crosswind_yaw_rate(vehicle, speed, 1000.0, a - vehicle.aero.centre_of_pressure_from_front_axle
-                                                     * L))], "o", color=f"C{k}")
+        f_p = vehicle.aero.centre_of_pressure_from_front_axle
+        r_p = handling.steady_state_crosswind_yaw_rate(vehicle, speed, 1000.0, a - f_p * L)
+        ax.plot([f_p], [np.rad2deg(r_p)], "o", color=f"C{k}")
     ax.axhline(0.0, color="k", lw=0.8)
     ax.set_xlabel("position of the side force behind the front axle / wheelbase [-]")
     ax.set_ylabel("steady yaw rate per 1 kN side force [deg/s]")

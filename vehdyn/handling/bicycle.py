@@ -24,8 +24,9 @@ in the vehicle frame), ``sideslip_angle`` beta = v/u, ``path_curvature`` a_y/u^2
 the slip angles and the axle lateral forces.
 
 Crosswind (optional, ``crosswind=True``: input ``wind_velocity_lateral`` w [m/s], the air's velocity
-along y, positive toward the right): the aerodynamic side force of :mod:`vehdyn.handling.crosswind` linearized about w = 0,
-F_w = k_w u w with k_w = 0.5 rho A C_Y', acts at the centre of pressure x_p ahead of the CG::
+along y, positive toward the right): the aerodynamic side force of :mod:`vehdyn.handling.crosswind`
+linearized about w = 0, F_w = k_w u w with k_w = 0.5 rho A C_Y', acts at the centre of pressure x_p
+ahead of the CG::
 
     m (dv/dt + u r) = F_yf + F_yr + k_w u w,    I_z dr/dt = a F_yf - b F_yr + x_p k_w u w
 

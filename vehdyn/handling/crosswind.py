@@ -72,7 +72,8 @@ def aero_side_force(xp, side_force_factor, speed, wind_velocity_lateral):
 
 def _vehicle(vehicle) -> Vehicle:
     if not isinstance(vehicle, Vehicle):
-        raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle", value=vehicle)
+        raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
+                             value=vehicle)
     return vehicle
 
 
@@ -233,15 +234,14 @@ def crosswind_sensitivity(vehicle, speed: float = 100 / 3.6, *, wind_speed: floa
     from ..simulate import simulate
     from .bicycle import check_speed
     from .driver import DriverInTheLoop, PreviewDriver
+    from .maneuvers import _finite
     from .single_track import SingleTrack
     from .steady_state import neutral_steer_point
 
     v = _vehicle(vehicle)
     u = float(check_speed(speed))
-    for name, value in (("wind_speed", wind_speed), ("duration", duration), ("wind_length", wind_length)):
-        if not np.isfinite(value) or (name != "wind_speed" and value <= 0):
-            raise ParameterError(f"{name} must be finite{' and positive' if name != 'wind_speed' else ''}, got "
-                                 f"{value!r}", key=name, value=value)
+    wind_speed, duration = _finite("wind_speed", wind_speed), _finite("duration", duration, positive=True)
+    wind_length = _finite("wind_length", wind_length, positive=True)
     L = v.geometry.wheelbase
     if wind_length < L:
         raise ParameterError(f"wind_length must be at least the wheelbase {L:.3f} m, got {wind_length!r}",

@@ -118,7 +118,7 @@ def _crossing(x, y, level=0.0) -> float:
     return float(y[i] + w * (y[i + 1] - y[i]))
 
 
-def _slope(x, y, level, band, x_is_independent=True) -> float:
+def _slope(x, y, level, band) -> float:
     """Least-squares slope dy/dx of a branch's samples with |x - level| <= band (x: the band variable)."""
     x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
     near = np.abs(x - level) <= band
@@ -210,12 +210,6 @@ class _SineDriven(Model):
         return self.model.output(t, xm, um)
 
 
-def _positive(name, value):
-    if not (np.isfinite(value) and value > 0):
-        raise ParameterError(f"{name} must be finite and positive, got {value!r}", key=name, value=value)
-    return float(value)
-
-
 def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, frequency: float = 0.2, *,
                vehicle_model=None, steering=None, cycles: int = 3, iterations: int = 3, samples_per_cycle: int = 800,
                method: str = "LSODA", rtol: float = 1e-7, **steering_overrides) -> WeaveTestMetrics:
@@ -251,18 +245,17 @@ def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, freq
     -------
     WeaveTestMetrics
     """
-    from ..params import Vehicle
     from ..simulate import simulate
     from .bicycle import LinearBicycle, check_speed
+    from .crosswind import _vehicle
+    from .maneuvers import _finite
     from .steady_state import steady_state_gains
     from .steering_system import SteeredVehicle, SteeringSystem
 
-    if not isinstance(vehicle, Vehicle):
-        raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
-                             value=vehicle)
+    _vehicle(vehicle)
     u = float(check_speed(speed))
-    target = _positive("amplitude_g", amplitude_g) * GRAVITY
-    f = _positive("frequency", frequency)
+    target = _finite("amplitude_g", amplitude_g, positive=True) * GRAVITY
+    f = _finite("frequency", frequency, positive=True)
     for name, value in (("cycles", cycles), ("iterations", iterations), ("samples_per_cycle", samples_per_cycle)):
         if int(value) != value or value < (2 if name == "cycles" else 1):
             raise ParameterError(f"{name} must be a whole number >= {2 if name == 'cycles' else 1}, got {value!r}",
