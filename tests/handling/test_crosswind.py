@@ -167,3 +167,16 @@ def test_parameter_errors_name_the_field():
         crosswind_sensitivity(SEDAN, 25.0, model=LinearBicycle(SEDAN, 25.0, crosswind=True))
     with pytest.raises(vehdyn.ParameterError, match="vehicle"):
         crosswind_sensitivity("sedan", 25.0)
+
+
+def test_wind_zone_signal_rises_over_the_wheelbase_and_holds():
+    u, w, length, L = 25.0, 12.0, 50.0, 2.5
+    wind = wind_zone_signal(u, w, length, L, start=1.0)
+    rise = L / u
+    leave = 1.0 + length / u
+    t = np.array([0.99, 1.0 + 0.5 * rise, 1.0 + rise, 0.5 * (1.0 + rise + leave), leave + 0.5 * rise,
+                  leave + rise + 0.01])
+    np.testing.assert_allclose(wind(t), [0.0, 0.5 * w, w, w, 0.5 * w, 0.0], atol=1e-12)
+    # the half-cosine rise: w (1 - cos(pi tau / rise)) / 2
+    tau = 0.3 * rise
+    assert wind(np.array([1.0 + tau]))[0] == pytest.approx(0.5 * w * (1 - np.cos(np.pi * tau / rise)), rel=1e-12)
