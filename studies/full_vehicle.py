@@ -16,7 +16,7 @@ vehicle with its CG raised step by step: the lowest speed at which both wheels o
 road and the lateral acceleration then, against the static stability factor SSF = T / 2h (the
 rigid vehicle's threshold, in g) and the quasi-static threshold of a vehicle whose body rolls on its
 suspension (Gillespie 1992, sec. 9). Split-mu braking: mu 0.9 under the left wheels, 0.2 under the
-right, equal brake torques left and right: the yaw moment of the unequal braking forces turns the
+right, each wheel braked just below locking (an ideal individual-wheel ABS): the yaw moment of the unequal braking forces turns the
 vehicle towards the high-friction side; a counter-steer from the closed form of a yaw moment
 balanced by the axle side forces holds it straight. Cornering on a rough road: a steady 0.6 g turn
 at 20 m/s with the steer of the flat-road trim held, on two parallel ISO 8608 class-D tracks. The
@@ -419,18 +419,26 @@ def split_mu(study: Study) -> None:
     t = np.linspace(0.0, duration, int(duration * 200) + 1)
     onset = 0.1
     ramp = np.clip((t - onset) / 0.1, 0.0, 1.0)
-    brakes = {f"brake_torque{s}": (900.0 if "front" in s else 450.0) * ramp for s in CORNERS}
+    # an ideal individual-wheel ABS: each wheel braked below the torque that would lock it on its own
+    # road, mu N R (static load; 80 % front, which gains load, and 30 % rear: brake proportioning)
+    static, radius = model.static_loads(), vehicle.tires.rolling_radius
+    brakes = {f"brake_torque{s}": (0.8 if "front" in s else 0.3) * (0.9 if "left" in s else 0.2)
+              * static[f"normal_load{s}"] * radius * ramp for s in CORNERS}
     plain = vehdyn.simulate(model, t, brakes, x0=x0, method="RK45", rtol=rtol, atol=rtol * 1e-2)
-    # counter-steer: the yaw moment of the braking forces M_z = (T/2) sum (F_x,right - F_x,left) (SAE, yaw
-    # right +), held by side forces with no yaw rate and no lateral acceleration: F_yf = -F_yr = -M_z / L,
-    # so delta = beta + F_yf / C_f with beta = F_yr / C_r (Gillespie 1992, sec. 6; linear axles)
-    geo = vehicle.geometry
-    k = (t > onset + 0.2) & (t < onset + 0.5)
-    moment = sum(0.5 * track * (plain[f"longitudinal_force_{axle}_right"] - plain[f"longitudinal_force_{axle}_left"])
-                 for axle, track in (("front", geo.front_track), ("rear", geo.rear_track)))
-    mz = float(np.mean(moment[k]))
-    L = vehicle.wheelbase
+    # counter-steer: the yaw moment of the braking forces F_x = -T_b / R (no wheel locks),
+    # M_z = (T/2) sum (F_x,left - F_x,right) (SAE: z down, left wheels at y = -T/2; yaw right +), held by
+    # side forces with no yaw rate and no lateral acceleration: F_yf = -F_yr = -M_z / L, so
+    # delta = F_yf / C_f - F_yr / C_r = -(M_z / L) (1 / C_f + 1 / C_r) (SAE F_y = -C alpha, alpha_f =
+    # beta - delta, alpha_r = beta; axle cornering stiffnesses C)
+    geo, L = vehicle.geometry, vehicle.wheelbase
+    tracks = {"front": geo.front_track, "rear": geo.rear_track}
+    mz = sum(0.5 * tracks[axle] * (brakes[f"brake_torque_{axle}_right"][-1] - brakes[f"brake_torque_{axle}_left"][-1])
+             / radius for axle in tracks)
     counter = -mz / L * (1.0 / vehicle.tires.rear_cornering_stiffness + 1.0 / vehicle.tires.front_cornering_stiffness)
+    k = (t > onset + 0.2) & (t < onset + 0.5)  # braking established, before the vehicle yaws far
+    moment = sum(0.5 * tracks[axle] * (plain[f"longitudinal_force_{axle}_left"] - plain[f"longitudinal_force_{axle}_right"])
+                 for axle in tracks)
+    mz_model = float(np.mean(moment[k]))
     steer = u0[model.index("front_steer_angle", "inputs")] + counter * ramp
     corrected = vehdyn.simulate(model, t, {**brakes, "front_steer_angle": steer}, x0=x0, method="RK45", rtol=rtol,
                                 atol=rtol * 1e-2)
@@ -456,8 +464,8 @@ def split_mu(study: Study) -> None:
     axes[0, 0].set_xlabel("time [s]")
     fig.tight_layout()
     study.figure(fig, "split_mu_braking",
-                 caption=f"Sedan braking from {speed:g} m/s on split mu (0.9 left, 0.2 right), equal torques left and "
-                         "right (900 N m front, 450 N m rear): yaw, path, braking forces and deceleration")
+                 caption=f"Sedan braking from {speed:g} m/s on split mu (0.9 left, 0.2 right), "
+                         "each wheel below its lock torque (ideal individual-wheel ABS): yaw, path, braking forces and deceleration")
     rows = []
     for result, label in ((plain, "no correction"), (corrected, "counter-steer")):
         rows.append({"run": label, "yaw_rate_end": np.degrees(result["yaw_rate"][-1]),
@@ -468,13 +476,17 @@ def split_mu(study: Study) -> None:
                             "mean_deceleration": "g"}
     study.table(frame, "split_mu", caption=f"Split-mu braking after {duration:g} s; counter-steer "
                                            f"{np.degrees(counter):.2f} deg from the closed form (yaw moment "
-                                           f"{mz:.0f} N m)")
+                                           f"{mz:.0f} N m from the brake torques; {mz_model:.0f} N m "
+                                           "from the model's braking forces)")
     study.text(
-        f"The low-friction (right) wheels lock and brake with a fraction of the left wheels' force; the braking "
-        f"forces' yaw moment ({mz:.0f} N m, SAE: negative yaws left) turns the vehicle towards the high-friction side "
-        f"({frame.heading_end.iloc[0]:.1f} deg after {duration:g} s). A steer of {np.degrees(counter):.2f} deg, from "
-        "the side forces that balance that moment with no yaw rate, leaves "
-        f"{frame.heading_end.iloc[1]:.2f} deg: the driver (or ESC) must counter-steer within a few tenths of a second.")
+        f"The low-friction (right) wheels brake with about 0.2/0.9 of the left wheels' force; the braking forces' yaw "
+        f"moment ({mz:.0f} N m from the brake torques, {mz_model:.0f} N m in the model between 0.3 and 0.6 s; SAE: negative yaws left) "
+        f"turns the vehicle towards the high-friction side: {frame.heading_end.iloc[0]:.1f} deg of heading and "
+        f"{frame.yaw_rate_end.iloc[0]:.0f} deg/s after {duration:g} s, and growing, because the side forces that "
+        "could hold it come from tires on mu 0.2 or already busy braking. A steer of "
+        f"{np.degrees(counter):.2f} deg (to the right), from the side forces that balance that moment with no yaw "
+        f"rate, leaves {frame.heading_end.iloc[1]:.1f} deg: the driver (or ESC) has to counter-steer by about a "
+        "degree within a few tenths of a second.")
 
 
 # ---------------------------------------------------------------------------------------- rough road
