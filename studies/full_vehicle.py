@@ -408,7 +408,7 @@ def split_mu(study: Study) -> None:
     vehicle = vehdyn.load_vehicle("sedan")
     mu = vehicle.tires.friction_coefficient
     speed = 25.0
-    duration = 1.0 if study.quick else 2.0
+    duration = 1.0  # after ~1 s the uncorrected vehicle's right wheels reach the high-friction half
     rtol = 1e-4 if study.quick else 1e-6
 
     def friction(X, Y):
@@ -497,7 +497,7 @@ def rough_road(study: Study) -> None:
 
     vehicle = vehdyn.load_vehicle("sedan")
     speed, ay = 20.0, 0.6 * G
-    duration = 1.5 if study.quick else 4.0
+    duration = 1.5 if study.quick else 3.0
     rtol = 1e-4 if study.quick else 1e-5
     model = FullVehicle(vehicle)
     x0, u0 = model.trim(speed, lateral_acceleration=ay)
@@ -520,19 +520,19 @@ def rough_road(study: Study) -> None:
                             rtol=rtol, atol=rtol * 1e-2, max_step=0.05 / speed)
     ride = vehdyn.simulate(FullCar.from_vehicle(vehicle), t, road, method="RK45", rtol=1e-6, atol=1e-9)
     settled = t > 0.5
-    # quasi-static: the tire law at the run's loads and the trim's slips, against at the trim's loads
+    # quasi-static: the tire law (ISO-W) at the run's loads and the trim's slips and camber, against at the
+    # trim's loads; SAE F_y (the sign of the ratio's terms is the model's)
+    from vehdyn.conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slips_sae_to_iso_w
+
     quasi = []
     for c, sfx in enumerate(CORNERS):
-        load = rough[f"normal_load{sfx}"][settled]
-        alpha = np.full_like(load, flat[f"slip_angle{sfx}"])
-        kappa = np.full_like(load, flat[f"slip_ratio{sfx}"])
-        fy_rough = model.corner_law_forces(c, load, kappa, alpha, 0.0 * load, np.full_like(load, speed))[1]
-        fy_flat = model.corner_law_forces(c, flat[f"normal_load{sfx}"], flat[f"slip_ratio{sfx}"],
-                                          flat[f"slip_angle{sfx}"], 0.0, speed)[1]
-        quasi.append((np.mean(fy_rough), fy_flat))
-    side_rough = sum(np.mean(rough[f"lateral_force{s}"][settled]) for s in CORNERS)
-    side_flat = sum(flat[f"lateral_force{s}"] for s in CORNERS)
-    quasi_ratio = sum(q[0] for q in quasi) / sum(q[1] for q in quasi)
+        loads = np.append(rough[f"normal_load{sfx}"][settled], flat[f"normal_load{sfx}"])
+        kappa, alpha = planar_tire_slips_sae_to_iso_w(flat[f"slip_ratio{sfx}"], flat[f"slip_angle{sfx}"])
+        ones = np.ones_like(loads)
+        fx, fy = model.corner_law_forces(c, loads, kappa * ones, alpha * ones, flat[f"camber_angle{sfx}"] * ones,
+                                         speed * ones)
+        fy = planar_tire_forces_iso_w_to_sae(fx, fy)[1]
+        quasi.append((np.mean(fy[:-1]), fy[-1]))
 
     fig, axes = new_figure(2, 2, width=12.0, height_per_row=3.0)
     for sfx, color in zip(("_front_left", "_front_right"), ("C0", "C1")):
@@ -568,25 +568,54 @@ def rough_road(study: Study) -> None:
                  caption=f"Sedan in a steady {ay / G:.1f} g turn at {speed:g} m/s, steer of the flat-road trim held, on "
                          "two parallel ISO 8608 class-D tracks (faded in over 0.3 s)")
     lat = np.asarray(rough["lateral_acceleration"])[settled]
-    rows = {"mean lateral acceleration [g]": (flat["lateral_acceleration"] / G, np.mean(lat) / G, np.nan),
-            "sum of tire side forces [N]": (side_flat, side_rough, np.nan),
-            "quasi-static side force ratio (tire law at the run's loads) [-]": (1.0, quasi_ratio, np.nan),
-            "lateral acceleration std [g]": (0.0, np.std(lat) / G, 0.0),
-            "roll angle mean [deg]": (np.degrees(flat["roll_angle"]), np.degrees(np.mean(roll[settled])), 0.0),
-            "roll angle std [deg]": (0.0, np.degrees(np.std(roll[settled])),
-                                     np.degrees(np.std(np.asarray(ride["roll_angle"])[settled]))),
-            "front-left load std / static [-]": (0.0, np.std(rough["normal_load_front_left"][settled])
-                                                 / flat["normal_load_front_left"], np.nan)}
+
+    def mean_and_error(signal):
+        """Mean after 0.5 s and its standard error from the means of 0.25-s batches."""
+        values = np.asarray(signal)[settled]
+        batches = np.array_split(values, max(2, int(values.size / (0.25 * fs))))
+        means = np.array([b.mean() for b in batches])
+        return values.mean(), means.std(ddof=1) / np.sqrt(means.size)
+
+    curvature, curvature_error = mean_and_error(rough["path_curvature"])
+
+    def slip(signals, axle):
+        return 0.5 * (np.asarray(signals[f"slip_angle_{axle}_left"]) + np.asarray(signals[f"slip_angle_{axle}_right"]))
+
+    rows = {"quasi-static side force ratio, front axle [-]": (1.0, sum(q[0] for q in quasi[:2]) / sum(q[1] for q in quasi[:2]), np.nan),
+            "quasi-static side force ratio, rear axle [-]": (1.0, sum(q[0] for q in quasi[2:]) / sum(q[1] for q in quasi[2:]), np.nan),
+            "slip angle, front axle mean [deg]": (np.degrees(slip(flat, "front")), np.degrees(np.mean(slip(rough, "front")[settled])), np.nan),
+            "slip angle, rear axle mean [deg]": (np.degrees(slip(flat, "rear")), np.degrees(np.mean(slip(rough, "rear")[settled])), np.nan),
+            "path curvature, mean [1/km]": (1e3 * flat["path_curvature"], 1e3 * curvature, np.nan),
+            "path curvature, standard error of the mean [1/km]": (0.0, 1e3 * curvature_error, np.nan),
+            "lateral acceleration, mean [g]": (flat["lateral_acceleration"] / G, np.mean(lat) / G, np.nan),
+            "lateral acceleration, std [g]": (0.0, np.std(lat) / G, 0.0),
+            "roll angle, mean [deg]": (np.degrees(flat["roll_angle"]), np.degrees(np.mean(roll[settled])), 0.0),
+            "roll angle, std [deg]": (0.0, np.degrees(np.std(roll[settled])),
+                                      np.degrees(np.std(np.asarray(ride["roll_angle"])[settled]))),
+            "front-left load, std / static [-]": (0.0, np.std(rough["normal_load_front_left"][settled])
+                                                  / flat["normal_load_front_left"], np.nan)}
     frame = pd.DataFrame(rows, index=["single track (flat)", "full vehicle (class D)", "FullCar (class D)"]).T
-    study.table(frame, "rough_road", caption="What each model sees in the turn on the rough road (after 0.5 s)")
+    study.table(frame, "rough_road", caption="What each model sees in the turn on the rough road (after 0.5 s; NaN: "
+                                             "the model has no such signal)")
+    ratio_f, ratio_r = rows["quasi-static side force ratio, front axle [-]"][1], rows[
+        "quasi-static side force ratio, rear axle [-]"][1]
     study.text(
-        f"On the rough road the tire loads fluctuate by {100 * rows['front-left load std / static [-]'][1]:.0f} % "
-        "(standard deviation of the front-left load) and the mean side force at the same steer drops by "
-        f"{100 * (1 - side_rough / side_flat):.1f} % (the tire law alone, at the run's loads and the trim's slips, "
-        f"gives {100 * (1 - quasi_ratio):.1f} %; the tire lag, whose relaxation length shortens with the load, and "
-        "the slip fluctuations add the rest): the single track, with its steady loads, overestimates the grip "
-        "of a turn on a bad road. The ride model predicts the roll excited by the road but neither the steady "
-        "cornering roll nor the roll from the fluctuating side forces acting above the roll axis.")
+        f"On the rough road the tire loads fluctuate by {100 * rows['front-left load, std / static [-]'][1]:.0f} % "
+        "(standard deviation of the front-left load). The tire force is concave in the load, so at the trim's slip "
+        f"angles the mean side force of the fluctuating loads is {100 * (1 - ratio_f):.1f} % (front) and "
+        f"{100 * (1 - ratio_r):.1f} % (rear) below the steady one: the single track, with steady loads, "
+        "overestimates the grip of a turn on a bad road. In the run the axles make up for it with larger slip angles "
+        f"(front {abs(rows['slip angle, front axle mean [deg]'][0]):.2f} -> "
+        f"{abs(rows['slip angle, front axle mean [deg]'][1]):.2f} deg, rear "
+        f"{abs(rows['slip angle, rear axle mean [deg]'][0]):.2f} -> {abs(rows['slip angle, rear axle mean [deg]'][1]):.2f}"
+        f" deg), and the path curvature at the held steer is {1e3 * curvature:.2f} +- {1e3 * curvature_error:.2f} "
+        f"1/km against {1e3 * flat['path_curvature']:.2f} 1/km on the flat road (a {duration - 0.5:g}-s record of a "
+        "random road). The ride model predicts the roll excited by the road "
+        f"({np.degrees(np.std(np.asarray(ride['roll_angle'])[settled])):.2f} deg r.m.s.) but neither the steady "
+        f"cornering roll ({np.degrees(flat['roll_angle']):.1f} deg) nor the roll of the side forces that fluctuate "
+        f"with the loads and act above the roll axis: the full vehicle rolls {np.degrees(np.std(roll[settled])):.2f} "
+        "deg r.m.s. about its mean, and its lateral acceleration fluctuates, where the ride model has no lateral "
+        "motion at all.")
 
 
 def run(study: Study) -> None:
