@@ -549,15 +549,23 @@ def rough_road(study: Study) -> None:
     axes[1, 0].plot(t, np.degrees(roll - np.mean(roll[settled])), lw=0.7, label="full vehicle (about its mean)")
     axes[1, 0].plot(t, np.degrees(ride["roll_angle"]), lw=0.7, label="FullCar ride model (same road)")
     axes[1, 0].set_ylabel("roll angle fluctuation [deg]")
-    from scipy.signal import welch
-
+    # why the mean side force drops: the law's F_y against the load at the trim's slips (concave), the
+    # steady point and the mean over the run's loads
     fs = speed / 0.05
-    for signal, label in ((roll - np.mean(roll[settled]), "full vehicle"), (ride["roll_angle"], "FullCar")):
-        f, p = welch(np.asarray(signal)[settled], fs=fs, nperseg=min(1024, int(settled.sum())))
-        axes[1, 1].semilogy(f[1:], p[1:], lw=0.8, label=label)
-    axes[1, 1].set_xlim(0, 30)
-    axes[1, 1].set_xlabel("frequency [Hz]")
-    axes[1, 1].set_ylabel("roll angle PSD [rad^2/Hz]")
+    for c, sfx in ((0, "_front_left"), (2, "_rear_left")):
+        kappa, alpha = planar_tire_slips_sae_to_iso_w(flat[f"slip_ratio{sfx}"], flat[f"slip_angle{sfx}"])
+        n = np.linspace(0.0, 1.8 * flat[f"normal_load{sfx}"], 60)
+        ones = np.ones_like(n)
+        fy = planar_tire_forces_iso_w_to_sae(*model.corner_law_forces(
+            c, n, kappa * ones, alpha * ones, flat[f"camber_angle{sfx}"] * ones, speed * ones))[1]
+        color = "C0" if c == 0 else "C1"
+        axes[1, 1].plot(n / 1e3, fy / 1e3, color=color, lw=1.0, label=f"{sfx[1:]}: law at the trim's slip")
+        axes[1, 1].plot(flat[f"normal_load{sfx}"] / 1e3, quasi[c][1] / 1e3, "o", color=color, mfc="none",
+                        label=f"{sfx[1:]}: steady load")
+        axes[1, 1].plot(np.mean(rough[f"normal_load{sfx}"][settled]) / 1e3, quasi[c][0] / 1e3, "o", color=color,
+                        label=f"{sfx[1:]}: mean over the run's loads")
+    axes[1, 1].set_xlabel("tire normal load [kN]")
+    axes[1, 1].set_ylabel("tire side force (SAE) [kN]")
     for ax in axes.flat:
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=6)
