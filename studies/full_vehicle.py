@@ -11,13 +11,13 @@ handling limit: steady turns at 20 m/s (FullVehicle.trim, continued to the last 
 against the nonlinear single track with the same tires, which has no lateral load transfer; the
 Magic Formula's peak force grows less than in proportion to the load, so the transfer lowers each
 axle's peak force. Rollover: the NHTSA fishhook (720 deg/s hand-wheel ramps to 6.5 times the steer
-of 0.3 g, 250 ms dwell; NHTSA 2013) at the protocol speeds 35, 40, 45, 50 mph, for each shipped
-vehicle with its CG raised step by step: the lowest speed at which both wheels of one side leave the
-road and the lateral acceleration then, against the static stability factor SSF = T / 2h (the
+of 0.3 g, 250 ms dwell; NHTSA 2013) at the protocol's highest speed, 50 mph, for each shipped
+vehicle with its CG raised step by step: whether and when both wheels of one side leave the road
+and the lateral acceleration then, against the static stability factor SSF = T / 2h (the
 rigid vehicle's threshold, in g) and the quasi-static threshold of a vehicle whose body rolls on its
 suspension (Gillespie 1992, sec. 9). Split-mu braking: mu 0.9 under the left wheels, 0.2 under the
-right, each wheel braked just below locking (an ideal individual-wheel ABS): the yaw moment of the unequal braking forces turns the
-vehicle towards the high-friction side; a counter-steer from the closed form of a yaw moment
+right, each wheel braked below locking (an ideal individual-wheel ABS): the yaw moment of the
+unequal braking forces turns the vehicle towards the high-friction side; a counter-steer from the closed form of a yaw moment
 balanced by the axle side forces holds it straight. Cornering on a rough road: a steady 0.6 g turn
 at 20 m/s with the steer of the flat-road trim held, on two parallel ISO 8608 class-D tracks. The
 single track (flat road) misses that the fluctuating loads lower the mean lateral force (the tire
@@ -265,8 +265,9 @@ def raised(vehicle, dh):
 
 def fishhook(model, speed, *, rtol=1e-4):
     """NHTSA fishhook (2013): 720 deg/s hand-wheel ramps to +-A, A = 6.5 x the steer of 0.3 g at the
-    speed, 250 ms dwell at +A, then 3 s at -A (here 1.5 s: the lift comes within 1 s). Drive torques of
-    the straight trim held. Returns the result, or the SimulationError when the vehicle rolls over."""
+    speed, 250 ms dwell at +A, then 3 s at -A (here 1 s: the lift comes within 0.5 s of the reversal).
+    Drive torques of the straight trim held. When the vehicle rolls over (SimulationError: the roll
+    angle leaves the model's domain), the run up to 50 ms before, with ``rolled_over`` set to that time."""
     x0, u0 = model.trim(speed)
     _, u1 = model.trim(speed, lateral_acceleration=0.3 * G)
     k = model.index("front_steer_angle", "inputs")
@@ -275,7 +276,7 @@ def fishhook(model, speed, *, rtol=1e-4):
     t1 = amplitude / rate
     t2 = t1 + 0.25
     t3 = t2 + 2 * amplitude / rate
-    t = np.linspace(0.0, t3 + 1.5, int((t3 + 1.5) * 100) + 1)
+    t = np.linspace(0.0, t3 + 1.0, int((t3 + 1.0) * 100) + 1)
     steer = np.where(t < t1, rate * t, np.where(t < t2, amplitude, np.maximum(amplitude - rate * (t - t2), -amplitude)))
     inputs = {**dict(zip(model.input_names, u0)), "front_steer_angle": steer}
     try:
@@ -315,31 +316,25 @@ def quasi_static_threshold(vehicle):
 def rollover(study: Study) -> None:
     import pandas as pd
 
-    raises = (0.0, 0.15) if study.quick else (0.0, 0.05, 0.1, 0.15, 0.2)
-    speeds = (50.0,) if study.quick else (50.0, 45.0, 40.0, 35.0)  # from the top: a run without lift ends the search
+    raises = (0.0, 0.15) if study.quick else (0.0, 0.05, 0.1, 0.15)
+    speed = 50.0 * MPH  # the protocol's highest speed
     rows, example = [], None
     for name in VEHICLES:
         for dh in raises:
             vehicle = raised(vehdyn.load_vehicle(name), dh)
             model = FullVehicle(vehicle)
             m, geo = vehicle.mass, vehicle.geometry
-            ssf = 0.25 * (geo.front_track + geo.rear_track) / m.cg_height
-            row = {"vehicle": name, "cg_height": m.cg_height, "SSF": ssf,
-                   "quasi_static_threshold": quasi_static_threshold(vehicle),
-                   "lowest_lift_speed_mph": np.nan, "ay_at_lift": np.nan, "peak_ay_no_lift": np.nan,
-                   "rolled_over": False}
-            for mph in speeds:
-                result = fishhook(model, mph * MPH)
-                lift = two_wheel_lift(result)
-                if lift is None:
-                    if np.isnan(row["ay_at_lift"]):
-                        row["peak_ay_no_lift"] = float(np.max(np.abs(result["lateral_acceleration"]))) / G
-                    break
-                row.update(lowest_lift_speed_mph=mph, ay_at_lift=abs(lift[1]) / G,
-                           rolled_over=getattr(result, "rolled_over", None) is not None)
-                if example is None or (name == "van" and example[0] != "van"):
-                    example = (name, dh, mph, result, model)
-            rows.append(row)
+            result = fishhook(model, speed, rtol=1e-3 if study.quick else 1e-4)
+            lift = two_wheel_lift(result)
+            rows.append({"vehicle": name, "cg_height": m.cg_height, "SSF": 0.25 * (geo.front_track + geo.rear_track)
+                         / m.cg_height, "quasi_static_threshold": quasi_static_threshold(vehicle),
+                         "peak_ay_before_lift": float(np.max(np.abs(
+                             result["lateral_acceleration"][result.time <= (lift[0] if lift else np.inf)]))) / G,
+                         "two_wheel_lift_time": lift[0] if lift else np.nan,
+                         "ay_at_lift": abs(lift[1]) / G if lift else np.nan,
+                         "rolled_over": getattr(result, "rolled_over", None) is not None})
+            if lift and (example is None or (name == "van" and example[0] != "van")):
+                example = (name, dh, result, model)
     frame = pd.DataFrame(rows)
 
     fig, axes = new_figure(1, 2, width=12.0, height_per_row=4.0)
@@ -354,7 +349,7 @@ def rollover(study: Study) -> None:
         lifted = sub[~sub.ay_at_lift.isna()]
         ax.plot(lifted.SSF, lifted.ay_at_lift, markers[name], color=f"C{i}", label=f"{name}: fishhook, two wheels lift")
         kept = sub[sub.ay_at_lift.isna()]
-        ax.plot(kept.SSF, kept.peak_ay_no_lift, markers[name], color=f"C{i}", mfc="none",
+        ax.plot(kept.SSF, kept.peak_ay_before_lift, markers[name], color=f"C{i}", mfc="none",
                 label=f"{name}: fishhook, no lift (peak a_y)")
     ax.set_xlabel("static stability factor SSF = T / 2h [-]")
     ax.set_ylabel("lateral acceleration [g]")
@@ -363,7 +358,7 @@ def rollover(study: Study) -> None:
     ax.grid(True, alpha=0.3)
     ax = axes[0, 1]
     if example is not None:
-        name, dh, mph, result, model = example
+        name, dh, result, model = example
         for sfx, style in zip(CORNERS, ("-", "--", "-", "--")):
             ax.plot(result.time, result[f"normal_load{sfx}"] / 1e3, style, lw=1.0, label=f"normal load {sfx[1:]}")
         ax.set_ylabel("tire normal load [kN]")
@@ -371,31 +366,39 @@ def rollover(study: Study) -> None:
         twin = ax.twinx()
         twin.plot(result.time, result["lateral_acceleration"] / G, "k", lw=0.8, label="lateral acceleration")
         twin.set_ylabel("lateral acceleration [g] (black)")
-        ax.set_title(f"{name}, CG +{100 * dh:.0f} cm, fishhook at {mph:g} mph"
+        ax.set_title(f"{name}, CG +{100 * dh:.0f} cm, fishhook at 50 mph"
                      + (" (rolls over)" if getattr(result, "rolled_over", None) else ""), fontsize=9)
         ax.legend(fontsize=6, loc="lower left")
         ax.grid(True, alpha=0.3)
     fig.tight_layout()
     study.figure(fig, "rollover_threshold",
-                 caption="NHTSA fishhook at 35-50 mph: lateral acceleration when both wheels of one side leave the road "
-                         "(filled; open: the peak without lift at 50 mph) against the static stability factor; right: "
+                 caption="NHTSA fishhook at 50 mph: lateral acceleration when both wheels of one side leave the road "
+                         "(filled; open: the peak of a run without lift) against the static stability factor; right: "
                          "the tire loads of one run")
     frame = frame.set_index(["vehicle", "cg_height"])
-    frame.attrs["units"] = {"SSF": "g", "quasi_static_threshold": "g", "lowest_lift_speed_mph": "mph",
-                            "ay_at_lift": "g", "peak_ay_no_lift": "g", "cg_height": "m"}
-    study.table(frame, "rollover", caption="Fishhook: the lowest protocol speed with two-wheel lift and the lateral "
-                                           "acceleration then, against SSF and the quasi-static threshold")
+    frame.attrs["units"] = {"SSF": "g", "quasi_static_threshold": "g", "peak_ay_before_lift": "g",
+                            "two_wheel_lift_time": "s", "ay_at_lift": "g", "cg_height": "m"}
+    study.table(frame, "rollover", caption="Fishhook at 50 mph with the CG raised: two-wheel lift (time and lateral "
+                                           "acceleration then; rolled_over: the run ended leaving the model's roll "
+                                           "domain) against SSF and the quasi-static threshold")
     lifted = frame[~frame.ay_at_lift.isna()]
-    study.text(
-        "Two wheels lift well below the rigid vehicle's threshold SSF g: the body rolls out of the turn and moves "
-        "the CG towards the outer wheels (the quasi-static line), and in the fishhook's reversal the roll "
-        "overshoots. "
-        + (f"Where the fishhook lifted two wheels, the lateral acceleration then was {lifted.ay_at_lift.min():.2f} "
-           f"to {lifted.ay_at_lift.max():.2f} g, {100 * (1 - (lifted.ay_at_lift / lifted.SSF).max()):.0f} to "
-           f"{100 * (1 - (lifted.ay_at_lift / lifted.SSF).min()):.0f} % below SSF. " if len(lifted) else "")
-        + "With the CG at its file height no vehicle lifts two wheels: the tires (mu about 0.94, falling with "
-        "load) saturate first, so the vehicles slide rather than roll; raising the CG lowers SSF towards the "
-        "tire limit and the fishhook finds the lift at ever lower speeds.")
+    nominal = frame.groupby(level="vehicle").head(1)  # the file's CG height (raise 0)
+    text = ("Two wheels lift well below the rigid vehicle's threshold SSF g: the body rolls out of the turn and "
+            "moves the CG towards the outer wheels (the quasi-static line), and in the fishhook's reversal it swings "
+            "through from the first turn's roll. ")
+    if len(lifted):
+        below = int((lifted.ay_at_lift < lifted.quasi_static_threshold).sum())
+        text += (f"Where two wheels lifted ({len(lifted)} of {len(frame)} runs, {int(lifted.rolled_over.sum())} of "
+                 f"them rolling over), the lateral acceleration then was {lifted.ay_at_lift.min():.2f} to "
+                 f"{lifted.ay_at_lift.max():.2f} g, {100 * (1 - (lifted.ay_at_lift / lifted.SSF).max()):.0f} to "
+                 f"{100 * (1 - (lifted.ay_at_lift / lifted.SSF).min()):.0f} % below SSF and in {below} of "
+                 f"{len(lifted)} runs below the quasi-static threshold. ")
+    safe = [v for v in VEHICLES if np.isnan(nominal.loc[v].ay_at_lift.iloc[0])]
+    if safe:
+        text += (f"At their file CG heights ({', '.join(safe)}) no wheel pair lifts: the tires (mu about 0.94, "
+                 "falling with load) saturate first and the vehicle slides rather than rolls; raising the CG lowers "
+                 "SSF towards the tire limit until the fishhook lifts two wheels.")
+    study.text(text)
 
 
 # ---------------------------------------------------------------------------------------- split-mu braking
