@@ -492,7 +492,7 @@ def split_mu(study: Study) -> None:
 def rough_road(study: Study) -> None:
     import pandas as pd
 
-    from vehdyn.ride import FullCar, synthesize_parallel_profiles
+    from vehdyn.ride import FullCar, road_inputs, synthesize_parallel_profiles
 
     vehicle = vehdyn.load_vehicle("sedan")
     speed, ay = 20.0, 0.6 * G
@@ -502,19 +502,16 @@ def rough_road(study: Study) -> None:
     x0, u0 = model.trim(speed, lateral_acceleration=ay)
     flat = _outputs(model, x0, u0)
     track = 0.5 * (vehicle.geometry.front_track + vehicle.geometry.rear_track)
-    L = vehicle.wheelbase
-    length = 2.0 ** np.ceil(np.log2(speed * duration + L + 10.0))
+    length = 2.0 ** np.ceil(np.log2(speed * duration + vehicle.wheelbase + 10.0))
     left, right = synthesize_parallel_profiles("D", length, 0.05, track, seed=12)
     t = np.arange(0.0, duration + 1e-9, 0.05 / speed)
     fade = np.clip(t / 0.3, 0.0, 1.0)
     fade_rate = np.where(t < 0.3, 1.0 / 0.3, 0.0)
-    road = {}
-    for side, profile in (("left", left), ("right", right)):
-        _, r = profile.road_inputs(speed, {f"_front_{side}": 0.0, f"_rear_{side}": L}, time=t)
-        for axle in ("front", "rear"):
-            z = r[f"road_displacement_{axle}_{side}"]
-            road[f"road_displacement_{axle}_{side}"] = fade * z
-            road[f"road_velocity_{axle}_{side}"] = fade * r[f"road_velocity_{axle}_{side}"] + fade_rate * z
+    road = road_inputs(FullCar.from_vehicle(vehicle), t, speed, left.distance, left.elevation, right.elevation)
+    for sfx in CORNERS:  # faded in: the trim starts on a flat road
+        z = road[f"road_displacement{sfx}"]
+        road[f"road_velocity{sfx}"] = fade * road[f"road_velocity{sfx}"] + fade_rate * z
+        road[f"road_displacement{sfx}"] = fade * z
     rough = vehdyn.simulate(model, t, {**dict(zip(model.input_names, u0)), **road}, x0=x0, method="RK45",
                             rtol=rtol, atol=rtol * 1e-2, max_step=0.05 / speed)
     ride = vehdyn.simulate(FullCar.from_vehicle(vehicle), t, road, method="RK45", rtol=1e-6, atol=1e-9)

@@ -164,24 +164,21 @@ def _class_d_road_run(model, duration, speed=40.0, **options):
     """Straight running at ``speed`` over two parallel ISO 8608 class-D tracks (isotropic coherence,
     0.1 m spacing) given as the per-corner road inputs (front wheels at X = V t, rear ones a wheelbase
     behind; faded in over the first 0.5 s), drive torques of the flat-road trim held, no steering."""
-    from vehdyn.ride import synthesize_parallel_profiles
+    from vehdyn.ride import FullCar, road_inputs, synthesize_parallel_profiles
 
     vehicle = model.vehicle
     track = 0.5 * (vehicle.geometry.front_track + vehicle.geometry.rear_track)
-    L = vehicle.wheelbase
-    length = 2.0 ** np.ceil(np.log2(speed * duration + L + 10.0))
+    length = 2.0 ** np.ceil(np.log2(speed * duration + vehicle.wheelbase + 10.0))
     left, right = synthesize_parallel_profiles("D", length, 0.1, track, seed=8608)
     t = np.arange(0.0, duration + 1e-9, 0.1 / speed)
-    fade = np.clip(t / 0.5, 0.0, 1.0)
-    fade_rate = np.where(t < 0.5, 1.0 / 0.5, 0.0)
+    fade, fade_rate = np.clip(t / 0.5, 0.0, 1.0), np.where(t < 0.5, 1.0 / 0.5, 0.0)
     x0, u0 = model.trim(speed)
     inputs = dict(zip(model.input_names, u0))
-    for side, profile in (("left", left), ("right", right)):
-        _, road = profile.road_inputs(speed, {f"_front_{side}": 0.0, f"_rear_{side}": L}, time=t)
-        for axle in ("front", "rear"):
-            z, dz = road[f"road_displacement_{axle}_{side}"], road[f"road_velocity_{axle}_{side}"]
-            inputs[f"road_displacement_{axle}_{side}"] = fade * z
-            inputs[f"road_velocity_{axle}_{side}"] = fade * dz + fade_rate * z
+    road = road_inputs(FullCar.from_vehicle(vehicle), t, speed, left.distance, left.elevation, right.elevation)
+    for sfx in CORNERS:
+        z = road[f"road_displacement{sfx}"]
+        inputs[f"road_displacement{sfx}"] = fade * z
+        inputs[f"road_velocity{sfx}"] = fade * road[f"road_velocity{sfx}"] + fade_rate * z
     static = sum(model.output(0.0, x0, u0)[model.index(f"normal_load{s}", "outputs")] for s in CORNERS)
     return t, static, vehdyn.simulate(model, t, inputs, x0=x0, method="RK45", rtol=1e-6, atol=1e-8,
                                       max_step=0.1 / speed, **options)
