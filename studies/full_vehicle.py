@@ -17,9 +17,10 @@ and the lateral acceleration then, against the static stability factor SSF = T /
 rigid vehicle's threshold, in g) and the quasi-static threshold of a vehicle whose body rolls on its
 suspension (Gillespie 1992, sec. 9). Split-mu braking: mu 0.9 under the left wheels, 0.2 under the
 right, each wheel braked below locking (an ideal individual-wheel ABS): the yaw moment of the
-unequal braking forces turns the vehicle towards the high-friction side; a counter-steer from the closed form of a yaw moment
-balanced by the axle side forces holds it straight. Cornering on a rough road: a steady 0.6 g turn
-at 20 m/s with the steer of the flat-road trim held, on two parallel ISO 8608 class-D tracks. The
+unequal braking forces turns the vehicle towards the high-friction side; a counter-steer from the
+closed form of a yaw moment balanced by the axle side forces holds it straight. Cornering on a
+rough road: a steady 0.6 g turn at 20 m/s with the steer of the flat-road trim held, on two
+parallel ISO 8608 class-D tracks. The
 single track (flat road) misses that the fluctuating loads lower the mean lateral force (the tire
 force is concave in the load); the ride model (FullCar, same road) misses that the lateral forces
 fluctuate with the loads and roll the body.
@@ -138,7 +139,8 @@ def load_transfer(study: Study) -> None:
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
     study.figure(fig, "lateral_load_transfer",
-                 caption="Sedan, roll centres raised to 8/15 cm, Magic Formula tires, 20 m/s, drag off: per-axle lateral "
+                 caption="Sedan, roll centres raised to 8/15 cm, Magic Formula tires, 20 m/s, drag off: per-axle "
+                         "lateral "
                          "load transfer from the trimmed full vehicle (points; elastic part from the suspension travel "
                          "and the axle's roll stiffness, geometric part the rest) against the closed form (lines)")
     err = {}
@@ -152,7 +154,8 @@ def load_transfer(study: Study) -> None:
     study.table(table, "load_transfer_check",
                 caption="Full vehicle against the closed form over 0.05 to 0.6 g: largest relative difference")
     study.text(
-        f"The trimmed full vehicle's load transfer follows the closed form within {100 * max(err.values()):.2g} % up to "
+        f"The trimmed full vehicle's load transfer follows the closed form within {100 * max(err.values()):.2g} % "
+        "up to "
         "0.6 g, part by part. The geometric (roll-centre) part grows with the roll-centre height and reaches the "
         "tires without rolling the body; the elastic part is split between the axles by their roll stiffness. "
         "Both grow almost linearly: the rolled CG (phi times the sprung CG height above the roll axis) and the "
@@ -201,7 +204,8 @@ def handling_limit(study: Study) -> None:
                                label=f"{name}: single track")[0]
         axes[0, 0].plot(ay / G, np.degrees(steer), "o-", ms=3, color=line.get_color(), label=f"{name}: full vehicle")
         limit = _outputs(full, *points[-1][1])
-        transfer = [0.5 * abs(limit[f"normal_load_{a}_left"] - limit[f"normal_load_{a}_right"]) for a in ("front", "rear")]
+        transfer = [0.5 * abs(limit[f"normal_load_{a}_left"] - limit[f"normal_load_{a}_right"])
+                    for a in ("front", "rear")]
         static = full.static_loads()
         rows.append({"vehicle": name, "limit_single_track": single.limit_lateral_acceleration / G,
                      "limit_full_vehicle": ay[-1] / G,
@@ -237,7 +241,8 @@ def handling_limit(study: Study) -> None:
     axes[0, 1].grid(True, alpha=0.3)
     fig.tight_layout()
     study.figure(fig, "handling_diagram",
-                 caption="Steady turns up to the last equilibrium: the full vehicle (trim) against the nonlinear single "
+                 caption="Steady turns up to the last equilibrium: the full vehicle (trim) against the nonlinear "
+                         "single "
                          "track with the same tires; right: how load transfer lowers an axle's peak side force")
     frame = pd.DataFrame(rows).set_index("vehicle")
     frame.attrs["units"] = {"limit_single_track": "g", "limit_full_vehicle": "g", "front_transfer_at_limit": "-",
@@ -292,7 +297,8 @@ def fishhook(model, speed, *, rtol=1e-4):
 def two_wheel_lift(result):
     """First time both wheels of one side carry no load, and the lateral acceleration then (or None)."""
     for side in ("left", "right"):
-        both = (np.asarray(result[f"normal_load_front_{side}"]) <= 0) & (np.asarray(result[f"normal_load_rear_{side}"]) <= 0)
+        both = ((np.asarray(result[f"normal_load_front_{side}"]) <= 0)
+                & (np.asarray(result[f"normal_load_rear_{side}"]) <= 0))
         if np.any(both):
             k = int(np.argmax(both))
             return float(result.time[k]), float(result["lateral_acceleration"][k])
@@ -435,7 +441,8 @@ def split_mu(study: Study) -> None:
              / radius for axle in tracks)
     counter = -mz / L * (1.0 / vehicle.tires.rear_cornering_stiffness + 1.0 / vehicle.tires.front_cornering_stiffness)
     k = (t > onset + 0.2) & (t < onset + 0.5)  # braking established, before the vehicle yaws far
-    moment = sum(0.5 * tracks[axle] * (plain[f"longitudinal_force_{axle}_left"] - plain[f"longitudinal_force_{axle}_right"])
+    moment = sum(0.5 * tracks[axle]
+                 * (plain[f"longitudinal_force_{axle}_left"] - plain[f"longitudinal_force_{axle}_right"])
                  for axle in tracks)
     mz_model = float(np.mean(moment[k]))
     steer = u0[model.index("front_steer_angle", "inputs")] + counter * ramp
@@ -464,7 +471,8 @@ def split_mu(study: Study) -> None:
     fig.tight_layout()
     study.figure(fig, "split_mu_braking",
                  caption=f"Sedan braking from {speed:g} m/s on split mu (0.9 left, 0.2 right), "
-                         "each wheel below its lock torque (ideal individual-wheel ABS): yaw, path, braking forces and deceleration")
+                         "each wheel below its lock torque (ideal individual-wheel ABS): yaw, path, braking forces "
+                         "and deceleration")
     rows = []
     for result, label in ((plain, "no correction"), (corrected, "counter-steer")):
         rows.append({"run": label, "yaw_rate_end": np.degrees(result["yaw_rate"][-1]),
@@ -479,7 +487,8 @@ def split_mu(study: Study) -> None:
                                            "from the model's braking forces)")
     study.text(
         f"The low-friction (right) wheels brake with about 0.2/0.9 of the left wheels' force; the braking forces' yaw "
-        f"moment ({mz:.0f} N m from the brake torques, {mz_model:.0f} N m in the model between 0.3 and 0.6 s; SAE: negative yaws left) "
+        f"moment ({mz:.0f} N m from the brake torques, {mz_model:.0f} N m in the model between 0.3 and 0.6 s; "
+        "SAE: negative yaws left) "
         f"turns the vehicle towards the high-friction side: {frame.heading_end.iloc[0]:.1f} deg of heading and "
         f"{frame.yaw_rate_end.iloc[0]:.0f} deg/s after {duration:g} s, and growing, because the side forces that "
         "could hold it come from tires on mu 0.2 or already busy braking. A steer of "
@@ -569,7 +578,8 @@ def rough_road(study: Study) -> None:
         ax.set_xlabel("time [s]")
     fig.tight_layout()
     study.figure(fig, "rough_road_cornering",
-                 caption=f"Sedan in a steady {ay / G:.1f} g turn at {speed:g} m/s, steer of the flat-road trim held, on "
+                 caption=f"Sedan in a steady {ay / G:.1f} g turn at {speed:g} m/s, steer of the flat-road trim "
+                         "held, on "
                          "two parallel ISO 8608 class-D tracks (faded in over 0.3 s)")
     lat = np.asarray(rough["lateral_acceleration"])[settled]
 
@@ -585,10 +595,14 @@ def rough_road(study: Study) -> None:
     def slip(signals, axle):
         return 0.5 * (np.asarray(signals[f"slip_angle_{axle}_left"]) + np.asarray(signals[f"slip_angle_{axle}_right"]))
 
-    rows = {"quasi-static side force ratio, front axle [-]": (1.0, sum(q[0] for q in quasi[:2]) / sum(q[1] for q in quasi[:2]), np.nan),
-            "quasi-static side force ratio, rear axle [-]": (1.0, sum(q[0] for q in quasi[2:]) / sum(q[1] for q in quasi[2:]), np.nan),
-            "slip angle, front axle mean [deg]": (np.degrees(slip(flat, "front")), np.degrees(np.mean(slip(rough, "front")[settled])), np.nan),
-            "slip angle, rear axle mean [deg]": (np.degrees(slip(flat, "rear")), np.degrees(np.mean(slip(rough, "rear")[settled])), np.nan),
+    def ratio(pairs):
+        return sum(q[0] for q in pairs) / sum(q[1] for q in pairs)
+
+    rows = {"quasi-static side force ratio, front axle [-]": (1.0, ratio(quasi[:2]), np.nan),
+            "quasi-static side force ratio, rear axle [-]": (1.0, ratio(quasi[2:]), np.nan),
+            **{f"slip angle, {axle} axle mean [deg]": (np.degrees(slip(flat, axle)),
+                                                       np.degrees(np.mean(slip(rough, axle)[settled])), np.nan)
+               for axle in ("front", "rear")},
             "path curvature, mean [1/km]": (1e3 * flat["path_curvature"], 1e3 * curvature, np.nan),
             "path curvature, standard error of the mean [1/km]": (0.0, 1e3 * curvature_error, np.nan),
             "lateral acceleration, mean [g]": (flat["lateral_acceleration"] / G, np.mean(lat) / G, np.nan),
@@ -611,7 +625,8 @@ def rough_road(study: Study) -> None:
         "overestimates the grip of a turn on a bad road. In the run the axles make up for it with larger slip angles "
         f"(front {abs(rows['slip angle, front axle mean [deg]'][0]):.2f} -> "
         f"{abs(rows['slip angle, front axle mean [deg]'][1]):.2f} deg, rear "
-        f"{abs(rows['slip angle, rear axle mean [deg]'][0]):.2f} -> {abs(rows['slip angle, rear axle mean [deg]'][1]):.2f}"
+        f"{abs(rows['slip angle, rear axle mean [deg]'][0]):.2f} -> "
+        f"{abs(rows['slip angle, rear axle mean [deg]'][1]):.2f}"
         f" deg), and the path curvature at the held steer is {1e3 * curvature:.2f} +- {1e3 * curvature_error:.2f} "
         f"1/km against {1e3 * flat['path_curvature']:.2f} 1/km on the flat road (a {duration - 0.5:g}-s record of a "
         "random road). The ride model predicts the roll excited by the road "
