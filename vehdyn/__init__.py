@@ -9,7 +9,7 @@ Simulation and results
     :class:`SimulationResult`, :class:`FrequencyResponse`, :class:`Modes`
 Parameters
     :func:`load_vehicle`, :func:`shipped_vehicles`, :class:`Vehicle` (and its groups in
-    :mod:`vehdyn.params`), :func:`data_path`
+    :mod:`vehdyn.params`), :func:`load_trailer`, :func:`shipped_trailers`, :class:`Trailer`, :func:`data_path`
 Errors
     :class:`VehdynError`, :class:`ParameterError`, :class:`SimulationError`, :class:`TirFileError`,
     :class:`VehdynWarning`
@@ -22,7 +22,7 @@ Conventions and units
     :mod:`vehdyn.conventions` (SAE J670 / ISO 8855 / ISO-W signs), :mod:`vehdyn.units`
 Subpackages (imported on first use)
     :mod:`vehdyn.mechanics` (rigid body), :mod:`vehdyn.tire`, :mod:`vehdyn.handling`,
-    :mod:`vehdyn.ride`, :mod:`vehdyn.analysis`, :mod:`vehdyn.plotting`
+    :mod:`vehdyn.ride`, :mod:`vehdyn.full_vehicle`, :mod:`vehdyn.analysis`, :mod:`vehdyn.plotting`
 
 Importing vehdyn imports numpy only; scipy, pandas, matplotlib and python-control are imported
 when a function needs them.
@@ -35,7 +35,7 @@ import importlib
 from .errors import ParameterError, SimulationError, TirFileError, VehdynError, VehdynWarning
 from .linear import LinearModel, connect_in_series
 from .model import Model
-from .params import Vehicle, data_path, load_vehicle, shipped_vehicles
+from .params import Trailer, Vehicle, data_path, load_trailer, load_vehicle, shipped_trailers, shipped_vehicles
 from .piecewise_signal import PiecewiseSignal
 from .results import FrequencyResponse, SimulationResult
 from .signals import Signal
@@ -57,6 +57,9 @@ __all__ = [
     "load_vehicle",
     "shipped_vehicles",
     "data_path",
+    "Trailer",
+    "load_trailer",
+    "shipped_trailers",
     "VehdynError",
     "ParameterError",
     "SimulationError",
@@ -71,8 +74,8 @@ __all__ = [
     "sensitivity",
 ]
 
-_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "analysis", "plotting", "conventions", "units", "params",
-                "cli", "scene", "sweep"}
+_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "full_vehicle", "analysis", "plotting", "conventions",
+                "units", "params", "cli", "scene", "sweep"}
 _SCENE_NAMES = {"Scene", "plan", "run", "ladder", "plot_ladder"}
 
 

@@ -8,6 +8,9 @@
     Run one study into a report of its own (the same way).
 ``vehdyn tire FILE.tir [--out DIR]``
     Print a tire file's version and key values and write its standard figures.
+``vehdyn tire --soil NAME [--out DIR]``
+    Print a soil's parameters and a rigid wheel's sinkage and drawbar pull against slip on it (a
+    shipped soil name or ``soils.toml:NAME``) and write the curves' figure.
 ``vehdyn vehicles``
     List the shipped vehicles with their key numbers.
 ``vehdyn scene FILE.toml [--verify]``
@@ -104,8 +107,34 @@ def cmd_study(args) -> int:
     return 0
 
 
+def cmd_tire_soil(args) -> int:
+    """``vehdyn tire --soil NAME``: a soil's parameters and curves (vehdyn.tire.terramechanics)."""
+    from .tire.terramechanics import load_soil
+    from .tire.terramechanics.curves import describe_soil, plot_soil_curves, soil_curves
+
+    soil = load_soil(args.soil)
+    print(describe_soil(soil))
+    from .report import make_folder
+
+    out = make_folder(args.out)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .plotting import save_figure
+
+    print(f"wrote {save_figure(plot_soil_curves({soil.name: soil_curves(soil)}), out / f'soil_{soil.name}.png')}")
+    return 0
+
+
 def cmd_tire(args) -> int:
-    from .errors import VehdynError
+    from .errors import VehdynError, VehdynWarning
+
+    if args.soil is not None:
+        if args.file is not None:
+            raise _UsageError("give a .tir file or --soil NAME, not both")
+        return cmd_tire_soil(args)
+    if args.file is None:
+        raise _UsageError("give a .tir file or --soil NAME")
 
     try:
         from .tire import load_tire
@@ -113,11 +142,17 @@ def cmd_tire(args) -> int:
     except ImportError as exc:  # pragma: no cover - until the tire layer is complete
         print(f"vehdyn tire: the tire layer is not available in this version ({exc})", file=sys.stderr)
         return 2
+    import warnings
+
     try:
-        tire = load_tire(args.file)
-    except (VehdynError, OSError) as exc:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", VehdynWarning)
+            tire = load_tire(args.file)
+    except (VehdynError, OSError) as exc:  # unreadable file, malformed line, non-finite coefficient, ...
         print(f"vehdyn tire: {exc}", file=sys.stderr)
         return 2
+    for warning in caught:  # e.g. missing sections: said, and the tire is still described
+        print(f"vehdyn tire: warning: {warning.message}", file=sys.stderr)
     print(describe_tire(tire))
     from .report import make_folder
 
@@ -130,6 +165,31 @@ def cmd_tire(args) -> int:
     for name, fig in plot_tire_characteristics(tire).items():
         path = save_figure(fig, out / f"{name}.png")
         print(f"wrote {path}")
+    return 0
+
+
+def cmd_tire_fit(args) -> int:
+    # Bad data or a bad start file raise a VehdynError: main() reports it as one line, exit status 2.
+    import warnings
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .errors import VehdynWarning
+    from .plotting import save_figure
+    from .tire import fit_magic_formula, read_tire_data
+
+    data = read_tire_data(args.data, convention=args.convention)
+    with warnings.catch_warnings():  # the fit's warnings are also its messages, printed with the table
+        warnings.simplefilter("ignore", VehdynWarning)
+        fit = fit_magic_formula(data, version=args.version, start=args.start)
+    print(fit)
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    print(f"wrote {fit.to_tir(out)}")
+    for stage, fig in fit.plot().items():
+        print(f"wrote {save_figure(fig, out.with_name(f'{out.stem}_{stage}.png'))}")
     return 0
 
 
@@ -202,10 +262,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--quick", action="store_true", help="small grids")
     p.add_argument("--studies", default=None, help=argparse.SUPPRESS)
     p.set_defaults(func=cmd_study)
-    p = sub.add_parser("tire", help="describe a .tir file and plot its characteristics")
-    p.add_argument("file", help="path of a .tir file")
+    p = sub.add_parser("tire", help="describe a .tir file (or a soil) and plot its characteristics")
+    p.add_argument("file", nargs="?", help="path of a .tir file")
+    p.add_argument("--soil", metavar="NAME", help="a soil (shipped name or soils.toml:NAME): its terramechanics curves")
     p.add_argument("--out", default="tire_plots", help="output folder (default: ./tire_plots)")
     p.set_defaults(func=cmd_tire)
+    p = sub.add_parser("tire-fit", help="fit a Magic Formula to measured tire data; write a .tir and figures")
+    p.add_argument("data", help="CSV or test-consortium run file (see vehdyn.tire.read_tire_data)")
+    p.add_argument("--out", default="fitted.tir", help="output .tir file (default: ./fitted.tir); figures beside it")
+    p.add_argument("--start", default=None, help="start from this .tir file (default: from the data)")
+    p.add_argument("--version", default="6.1", choices=("5.2", "6.1", "6.2"), help="Magic Formula version")
+    p.add_argument("--convention", default="ISO-W", choices=("ISO-W", "SAE"), help="axes of a CSV file")
+    p.set_defaults(func=cmd_tire_fit)
     p = sub.add_parser("vehicles", help="list the shipped vehicles")
     p.set_defaults(func=cmd_vehicles)
     p = sub.add_parser("scene", help="plan a scene (.toml), run the chosen model, print the headline numbers")

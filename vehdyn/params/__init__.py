@@ -6,6 +6,7 @@ from .vehicle import (
     Geometry,
     MassProperties,
     Steering,
+    Driveline,
     Suspension,
     Tires,
     Vehicle,
@@ -13,6 +14,7 @@ from .vehicle import (
     load_vehicle,
     shipped_vehicles,
 )
+from .trailer import Trailer, load_trailer, shipped_trailers
 
 __all__ = [
     "ParameterSet",
@@ -26,8 +28,12 @@ __all__ = [
     "Suspension",
     "Tires",
     "Steering",
+    "Driveline",
     "Aerodynamics",
     "load_vehicle",
     "shipped_vehicles",
     "data_path",
+    "Trailer",
+    "load_trailer",
+    "shipped_trailers",
 ]

@@ -16,6 +16,12 @@ Registry (a vehicle file's ``tires.model``)
 Slip and transients
     :func:`wheel_slip`, :func:`regularized_speed`, :func:`slip_velocities`, :func:`theoretical_slip`,
     :class:`TireRelaxation`, :func:`relaxation_lengths`
+Soft soil (terramechanics: Bekker, Janosi-Hanamoto, Wong-Reece; see :mod:`vehdyn.tire.terramechanics`)
+    :class:`SoftSoilTire` (a tire law on a :class:`~vehdyn.tire.terramechanics.Soil`), the subpackage
+    ``terramechanics``
+Measured data and fitting (scipy, pandas imported on use)
+    :func:`read_tire_data`, :func:`fit_magic_formula`, :func:`fit_brush`, :func:`fit_linear`,
+    :class:`TireFit`
 Plots
     :func:`plot_tire_characteristics`, :func:`characteristic_values`, :func:`describe_tire`
     (matplotlib and pandas imported on use)
@@ -32,6 +38,10 @@ from .registry import register_tire_law, tire_for_vehicle, tire_law, tire_law_na
 from .relaxation import TireRelaxation, relaxation_lengths
 from .slip import WheelSlip, regularized_speed, slip_velocities, theoretical_slip, wheel_slip
 from .tir import TirParameters, read_tir, write_tir
+from . import terramechanics
+from .terramechanics import SoftSoilTire
+from .tire_data import read_tire_data
+from .fitting import TireFit, fit_brush, fit_linear, fit_magic_formula
 
 __all__ = [
     "TireForces",
@@ -60,4 +70,11 @@ __all__ = [
     "plot_tire_characteristics",
     "describe_tire",
     "characteristic_values",
+    "terramechanics",
+    "SoftSoilTire",
+    "read_tire_data",
+    "fit_magic_formula",
+    "fit_brush",
+    "fit_linear",
+    "TireFit",
 ]

@@ -1,0 +1,244 @@
+"""The layers agree: the full vehicle reduces to the ride, lateral-yaw-roll and bicycle models.
+
+Linear tires (:meth:`LinearTire.from_vehicle`, stiffness proportional to load, so that lateral load
+transfer leaves an axle's cornering stiffness unchanged), no tire lag, operating points from
+:meth:`FullVehicle.trim`.
+"""
+
+import numpy as np
+import pytest
+
+from vehdyn import ParameterError
+from vehdyn.full_vehicle import CORNERS, FullVehicle
+from vehdyn.handling import LateralYawRoll, LinearBicycle
+from vehdyn.ride import FullCar
+from vehdyn.units import GRAVITY
+
+
+def _nearest_errors(reference, eigenvalues):
+    """Relative distance of each reference eigenvalue to the nearest of ``eigenvalues``."""
+    return np.array([np.min(np.abs(eigenvalues - r)) / abs(r) for r in reference])
+
+
+def _eigenvalues(model, speed):
+    x0, u0 = model.trim(speed)
+    return np.linalg.eigvals(model.linearize(x0, u0).A)
+
+
+def _second_order_eigenvalues(M, C, K):
+    n = M.shape[0]
+    return np.linalg.eigvals(np.block([[np.zeros((n, n)), np.eye(n)],
+                                       [-np.linalg.solve(M, K), -np.linalg.solve(M, C)]]))
+
+
+def test_trim_holds_every_derivative(sedan, linear_tires):
+    model = FullVehicle(sedan)  # Magic Formula tires, tire lag
+    for ay in (0.0, 4.0):
+        x0, u0 = model.trim(20.0, lateral_acceleration=ay)
+        d = model.rhs(0.0, x0, u0)
+        moving = [model.index(n) for n in ("x", "y", "yaw_angle")]
+        rest = np.delete(d, moving)
+        assert np.max(np.abs(rest)) < 1e-9 * GRAVITY / sedan.tires.rolling_radius
+        y = dict(zip(model.output_names, model.output(0.0, x0, u0)))
+        assert y["speed"] == pytest.approx(20.0, rel=1e-12)
+        assert y["lateral_acceleration"] == pytest.approx(ay, rel=1e-9, abs=1e-9)
+    x0, u0 = model.trim(20.0, radius=100.0)  # the sprung CG's heading turns at V / R
+    assert model.rhs(0.0, x0, u0)[model.index("yaw_angle")] == pytest.approx(0.2, rel=1e-9)
+
+
+def test_heave_pitch_and_wheel_hop_modes_are_the_full_car_s(sedan, linear_tires):
+    """Heave, pitch and the in-phase wheel hops match :class:`FullCar` once the two couplings the
+    full vehicle adds are put into the full car's matrices:
+
+    * gravity's pitch moment on the pitched body, -m_s g h_s theta (its forces reach the body at the
+      contact points, h_s below the CG): 4 % of the pitch stiffness;
+    * the pitch inertia of what moves fore and aft with the body's pitch: the unsprung masses,
+      m_u (h_s - h_u)^2, and the wheel spins that follow their contact points, 4 I_w (h_s / R_e)^2.
+
+    Without them the heave and pitch eigenvalues differ by 1.5 % and 2.1 %. The roll mode and the
+    anti-phase (roll) wheel hop couple with the lateral motion: compared with LateralYawRoll below.
+    """
+    model = FullVehicle(sedan, *linear_tires(sedan), tire_lag=False)
+    full = _eigenvalues(model, 20.0)
+    car = FullCar.from_vehicle(sedan)
+    reference = np.linalg.eigvals(car.A)
+    heave_pitch = [e for e in reference if abs(e) < 12 and e.imag > 0]
+    hops = [e for e in reference if abs(e) > 60 and e.imag > 0]
+    assert len(heave_pitch) == 2 and len(hops) == 4
+    raw = _nearest_errors(heave_pitch, full)
+    assert np.all(raw > 0.01) and np.all(raw < 0.025)  # the couplings matter at the 1-2 % level
+    hop_errors = np.sort(_nearest_errors(hops, full))
+    assert np.all(hop_errors[:3] < 1e-3)  # in-phase hops and one anti-phase hop
+    assert hop_errors[3] < 0.02  # the other anti-phase hop rolls the body (lateral coupling)
+
+    M, C, K = car.mass_matrix.copy(), car.damping_matrix.copy(), car.stiffness_matrix.copy()
+    m, h_s = model.sprung_mass, sedan.mass.sprung_cg_height
+    K[1, 1] -= m * GRAVITY * h_s
+    M[1, 1] += (sedan.mass.unsprung_mass * (h_s - model.unsprung_cg_height) ** 2
+                + 4 * sedan.tires.wheel_spin_inertia * (h_s / sedan.tires.rolling_radius) ** 2)
+    corrected = [e for e in _second_order_eigenvalues(M, C, K) if abs(e) < 12 and e.imag > 0]
+    assert np.all(_nearest_errors(corrected, full) < 1e-3)
+
+
+@pytest.mark.parametrize("speed", [10.0, 20.0, 30.0])
+def test_lateral_yaw_roll_modes_are_lateral_yaw_roll_s(reduced, linear_tires, speed):
+    """With the full vehicle's additions made negligible (``reduced``: no drag, whose load transfer
+    through the drive force shifts the axles' cornering stiffness; stiff tires vertically; light
+    unsprung masses, which ride with the body's roll here and stay in the non-rolling frame in
+    LateralYawRoll; light wheel spin) the lateral, yaw and roll eigenvalues are LateralYawRoll's to
+    0.2 %."""
+    model = FullVehicle(reduced, *linear_tires(reduced), tire_lag=False)
+    reference = np.linalg.eigvals(LateralYawRoll(reduced, speed).A)
+    assert np.all(_nearest_errors(reference, _eigenvalues(model, speed)) < 2e-3)
+
+
+def test_steady_cornering_yaw_rate_gain_is_the_bicycle_s(sedan, linear_tires):
+    """0.3 g at 20 m/s: r / delta equals the linear bicycle's u / (L + K u^2) (drag off, so that the
+    drive force shifts no load between the axles; the roll centres on the ground and no roll steer,
+    as in the file)."""
+    vehicle = sedan.replace(aero__drag_coefficient=0.0)
+    model = FullVehicle(vehicle, *linear_tires(vehicle), tire_lag=False)
+    x0, u0 = model.trim(20.0, lateral_acceleration=0.3 * GRAVITY)
+    gain = x0[model.index("yaw_rate")] / u0[model.index("front_steer_angle", "inputs")]
+    bicycle = LinearBicycle(vehicle, 20.0)
+    dc = bicycle.D - bicycle.C @ np.linalg.solve(bicycle.A, bicycle.B)  # steady-state gains of the bicycle
+    expected = dc[bicycle.index("yaw_rate", "outputs"), bicycle.index("front_steer_angle", "inputs")]
+    assert gain == pytest.approx(expected, rel=0.01)
+
+
+def test_steady_cornering_roll_gradient(reduced, linear_tires):
+    """phi / a_y = -m_s h' / (K_phi - m_s g h') (SAE: the body rolls out of the turn), K_phi the
+    suspension roll stiffness (springs and bars), h' the sprung CG above the roll axis."""
+    model = FullVehicle(reduced, *linear_tires(reduced), tire_lag=False)
+    ay = 0.3 * GRAVITY
+    x0, _ = model.trim(20.0, lateral_acceleration=ay)
+    m_s, h = model.sprung_mass, reduced.mass.sprung_cg_height
+    k_phi = reduced.front_roll_stiffness + reduced.rear_roll_stiffness
+    expected = -m_s * h * ay / (k_phi - m_s * GRAVITY * h)
+    assert x0[model.index("roll_angle")] == pytest.approx(expected, rel=0.01)
+
+
+def _lateral_load_transfer(model, vehicle, ay):
+    """Closed form of the steady lateral load transfer (N_outer - N_inner) / 2 per axle [N].
+
+    Per axle i (track T_i, suspension roll stiffness K_i, roll-centre height h_i, tire rate k_t),
+    with the body roll phi, the suspension roll phi_i and the axle's roll on its tires phi - phi_i:
+
+    * body roll moment: sum_i K_i phi_i = -sum_i (h_s - h_i) L_i + (h_s - h_u) m_u (a_y - g phi)
+      where L_i = F_i - N_i phi is the lateral force the axle passes to the body (F_i = m_i a_y its
+      tires' force, N_i its load) -- the elastic part, split by roll stiffness;
+    * tire loads: Delta N_i = (K_i phi_i + h_i L_i) / T_i -- elastic plus roll-centre part (the
+      unsprung masses' moment goes through the springs: independent suspension);
+    * tire deflection: phi - phi_i = 2 Delta N_i / (k_t T_i).
+
+    (Milliken & Milliken 1995, ch. 18, with the tire compliance and the roll-induced CG shift kept.)
+    SAE signs: a_y > 0 turning right, phi < 0; returned as positive magnitudes.
+    """
+    g, m = GRAVITY, vehicle.mass
+    L = vehicle.wheelbase
+    tracks = (vehicle.geometry.front_track, vehicle.geometry.rear_track)
+    stiff = (vehicle.front_roll_stiffness, vehicle.rear_roll_stiffness)
+    heights = (vehicle.geometry.front_roll_centre_height, vehicle.geometry.rear_roll_centre_height)
+    loads = (m.mass * g * vehicle.geometry.b / L, m.mass * g * vehicle.geometry.a / L)
+    forces = (m.mass * ay * vehicle.geometry.b / L, m.mass * ay * vehicle.geometry.a / L)
+    kt, h_s, h_u = vehicle.tires.vertical_stiffness, m.sprung_cg_height, model.unsprung_cg_height
+    # unknowns phi, phi_f, phi_r (SAE roll), Delta N as (N_left - N_right) / 2 = outer - inner for a_y > 0
+    A = np.zeros((3, 3))
+    rhs = np.zeros(3)
+    # sum K_i phi_i - [sum (h_s - h_i) N_i - (h_s - h_u) m_u g] phi = -sum (h_s - h_i) F_i + (h_s - h_u) m_u a_y
+    A[0, 1:] = stiff
+    A[0, 0] = -sum((h_s - h) * n for h, n in zip(heights, loads)) + (h_s - h_u) * m.unsprung_mass * g
+    rhs[0] = -sum((h_s - h) * f for h, f in zip(heights, forces)) + (h_s - h_u) * m.unsprung_mass * ay
+    for i in range(2):
+        # Delta N_i = -(K_i phi_i)/T_i + h_i (F_i - N_i phi)/T_i ;  phi - phi_i = -2 Delta N_i/(k_t T_i)
+        T = tracks[i]
+        # phi - phi_i + 2/(k_t T) * [-(K_i phi_i) + h_i (F_i - N_i phi)]/T = 0
+        A[1 + i, 0] = 1.0 - 2.0 * heights[i] * loads[i] / (kt * T * T)
+        A[1 + i, 1 + i] = -1.0 - 2.0 * stiff[i] / (kt * T * T)
+        rhs[1 + i] = -2.0 * heights[i] * forces[i] / (kt * T * T)
+    phi, *phis = np.linalg.solve(A, rhs)
+    return tuple((-stiff[i] * phis[i] + heights[i] * (forces[i] - loads[i] * phi)) / tracks[i] for i in range(2)), phi
+
+
+def test_steady_cornering_lateral_load_transfer_per_axle(sedan, linear_tires):
+    """0.3 g with raised roll centres (geometric, elastic and unsprung parts all present): the
+    per-axle transfer and the body roll match the closed form of :func:`_lateral_load_transfer`."""
+    vehicle = sedan.replace(geometry__front_roll_centre_height=0.08, geometry__rear_roll_centre_height=0.15,
+                            aero__drag_coefficient=0.0)
+    model = FullVehicle(vehicle, *linear_tires(vehicle), tire_lag=False)
+    ay = 0.3 * GRAVITY
+    x0, u0 = model.trim(20.0, lateral_acceleration=ay)
+    y = dict(zip(model.output_names, model.output(0.0, x0, u0)))
+    transfer = ((y["normal_load_front_left"] - y["normal_load_front_right"]) / 2,
+                (y["normal_load_rear_left"] - y["normal_load_rear_right"]) / 2)
+    expected, phi = _lateral_load_transfer(model, vehicle, ay)
+    np.testing.assert_allclose(transfer, expected, rtol=0.01)
+    assert y["roll_angle"] == pytest.approx(phi, rel=0.01)
+    # the geometric part is there: with the roll centres on the ground the front transfer differs
+    ground = sedan.replace(aero__drag_coefficient=0.0)
+    model0 = FullVehicle(ground, *linear_tires(ground), tire_lag=False)
+    x1, u1 = model0.trim(20.0, lateral_acceleration=ay)
+    y1 = dict(zip(model0.output_names, model0.output(0.0, x1, u1)))
+    expected0, _ = _lateral_load_transfer(model0, ground, ay)
+    assert (y1["normal_load_front_left"] - y1["normal_load_front_right"]) / 2 == pytest.approx(expected0[0], rel=0.01)
+    assert abs(expected0[0] - expected[0]) > 0.05 * expected[0]
+
+
+@pytest.mark.parametrize("anti_dive", [0.0, 0.5])
+def test_straight_braking_load_transfer_and_pitch(sedan, linear_tires, anti_dive):
+    """0.5 g braking (quasi-steady, drag off): the front axle gains m a_x h / L, and the body pitches
+    by the spring and tire deflections under the load changes less the anti-dive linkage force."""
+    vehicle = sedan.replace(aero__drag_coefficient=0.0, suspension__front_anti_dive=anti_dive)
+    model = FullVehicle(vehicle, *linear_tires(vehicle))
+    ax = -0.5 * GRAVITY
+    x0, u0 = model.trim(20.0, longitudinal_acceleration=ax)
+    y = dict(zip(model.output_names, model.output(0.0, x0, u0)))
+    static = model.static_loads()
+    delta = {s: y[f"normal_load{s}"] - static[f"normal_load{s}"] for s in CORNERS}
+    m, L, h = vehicle.mass.mass, vehicle.wheelbase, vehicle.mass.cg_height
+    assert delta["_front_left"] + delta["_front_right"] == pytest.approx(-m * ax * h / L, rel=0.01)
+    assert y["longitudinal_acceleration"] == pytest.approx(ax, rel=1e-9)
+    # pitch from the deflections: spring force change = load change - linkage force (anti-dive, front)
+    s, kt = vehicle.suspension, vehicle.tires.vertical_stiffness
+    jack = anti_dive * h / L * y["longitudinal_force_front_left"]  # body z force, down +; the wheel gets it up
+    front = (delta["_front_left"] + jack) / s.front_spring_rate + delta["_front_left"] / kt
+    rear = delta["_rear_left"] / s.rear_spring_rate + delta["_rear_left"] / kt
+    expected = (rear - front) / L
+    assert y["pitch_angle"] == pytest.approx(expected, rel=0.01)
+
+
+def test_magic_formula_handling_diagram_reaches_a_lower_limit_than_the_single_track(sedan):
+    """Magic Formula tires at 20 m/s: at small a_y the full vehicle steers as the nonlinear single
+    track (wheel spin, the same tires, no load transfer between sides); towards the limit the
+    lateral load transfer lowers each axle's peak force (the law's force grows less than in
+    proportion to the load), so the full vehicle needs more steer and its steady states end at a
+    lower lateral acceleration."""
+    from vehdyn.handling import SingleTrack
+    from vehdyn.handling.nonlinear_steady_state import limit_lateral_acceleration, steady_state_cornering
+
+    single = SingleTrack(sedan, wheel_spin=True)
+    full = FullVehicle(sedan)
+    previous, last, steer = None, 0.0, {}
+    for ay in np.arange(0.5, 9.5, 0.5):
+        try:
+            previous = full.trim(20.0, lateral_acceleration=float(ay), guess=previous)
+        except ParameterError:
+            break
+        last, steer[float(ay)] = float(ay), float(previous[1][0])
+    limit = limit_lateral_acceleration(single, speed=20.0)
+    assert 0.6 * limit < last < 0.9 * limit
+    low = steady_state_cornering(single, lateral_acceleration=1.0, speed=20.0).steer_angle
+    assert steer[1.0] == pytest.approx(low, rel=0.03)
+    high = steady_state_cornering(single, lateral_acceleration=last, speed=20.0).steer_angle
+    assert steer[last] > 1.3 * high
+
+
+@pytest.mark.parametrize("speed", [5.0, 40.0])
+def test_straight_running_is_stable_with_magic_formula_tires_and_lag(sedan, speed):
+    """Every mode of straight running decays (the two drift modes of position/heading are zero),
+    and none is faster than about 100 1/s: an explicit solver needs no tiny steps."""
+    model = FullVehicle(sedan)
+    eigenvalues = _eigenvalues(model, speed)
+    assert np.all(eigenvalues.real < 1e-8)
+    assert np.sum(np.abs(eigenvalues) < 1e-8) <= 3  # x, y, yaw angle
+    assert np.min(eigenvalues.real) > -150.0

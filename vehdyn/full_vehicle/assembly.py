@@ -1,0 +1,251 @@
+"""The equations of :class:`~vehdyn.full_vehicle.FullVehicle` as pure functions over an ``xp`` namespace.
+
+One source for numpy (with a trailing batch axis) and, later, numba-compiled code -- the pattern of
+:mod:`vehdyn.handling.single_track_equations`, whose tire-slip, relaxation and wheel-torque
+functions are reused here unchanged. Besides arithmetic the equations call ``xp.cos``, ``sin``,
+``tan``, ``atan``, ``atan2``, ``sqrt``, ``abs``, ``where``, ``minimum``, ``maximum`` and four hooks:
+
+``xp.rotation_body_to_earth(roll, pitch, yaw)``
+    R with R[i][j] indexable (numpy: :func:`vehdyn.mechanics.rotation_body_to_earth`);
+``xp.euler_angle_rates(roll, pitch, p, q, r)``
+    (numpy: :func:`vehdyn.mechanics.euler_angle_rates`, which refuses gimbal lock);
+``xp.rigid_body_accelerations(m, J, J_inv, velocity, rates, force, moment)``
+    3-tuples in, (velocity rate, angular acceleration) out (numpy:
+    :func:`vehdyn.mechanics.newton_euler.accelerations`);
+``xp.axle_tire_forces(tires, corner, fz, kappa, alpha, vx)``
+    the ISO-W (fx, fy) of one corner's tire; ``tires`` is ``(laws, camber, friction)`` with the four
+    inclination angles and road friction ratios of this evaluation (numpy: ``laws.corner_law_forces``).
+
+Signals travel in the fixed orders :data:`STATES` and :data:`INPUTS`; a model's vectors hold a
+subset (without tire lag, no deflection states), mapped through an index (-1: absent, 0.0).
+Everything is in SAE vehicle axes at the sprung CG; signs flip between SAE and ISO-W only inside
+the reused :func:`~vehdyn.handling.single_track_equations.axle_forces` (through
+:mod:`vehdyn.conventions`).
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+
+from ..handling import single_track_equations as st
+from ..mechanics import euler_angle_rates, rotation_body_to_earth
+from ..mechanics.newton_euler import accelerations
+from . import aero, body, corner, driveline, steering
+from .corner import CORNERS
+
+__all__ = ["STATES", "INPUTS", "BODY_STATES", "CORNER_STATES", "Constants", "Evaluation", "NUMPY", "gather",
+           "evaluate", "derivatives", "OUTPUTS", "outputs"]
+
+BODY_STATES = ("longitudinal_velocity", "lateral_velocity", "vertical_velocity", "roll_rate", "pitch_rate",
+               "yaw_rate", "roll_angle", "pitch_angle", "yaw_angle", "x", "y", "z")
+CORNER_STATES = ("wheel_speed", "unsprung_displacement", "unsprung_velocity", "lateral_deflection",
+                 "longitudinal_deflection")
+STATES = BODY_STATES + tuple(f"{name}{sfx}" for name in CORNER_STATES for sfx in CORNERS)
+"""Every state a FullVehicle can have: the 12 body states, then per kind the four corners."""
+
+INPUTS = (("front_steer_angle", "rear_steer_angle")
+          + tuple(f"{name}{sfx}" for name in ("drive_torque", "brake_torque", "road_displacement", "road_velocity")
+                  for sfx in CORNERS) + ("wind_velocity_lateral",))
+"""Every input of a FullVehicle, in order."""
+
+Constants = namedtuple("Constants", (
+    # body
+    "gravity", "mass", "sprung_mass", "inertia", "inverse_inertia", "projection", "cg_height", "wheelbase",
+    "front_track",
+    # corners (4-tuples in corner order)
+    "corner_x", "corner_y", "spring_z", "wheel_z", "contact_z", "unsprung_mass", "spring_rate", "damping",
+    "spring_preload", "antiroll_rate", "tire_stiffness", "tire_damping", "static_tire_deflection",
+    "roll_centre_height", "anti_pitch", "camber_on", "camber_gain", "roll_steer", "ackermann_fraction",
+    # wheels and tires
+    "rolling_radius", "wheel_spin_inertia", "friction_coefficient", "lateral_relaxation_length",
+    "longitudinal_relaxation_length", "peak_slip_ratio", "peak_tan_slip_angle", "low_speed_damping_speed",
+    "brake_regularization_speed", "wheel_spin", "tire_lag",
+    # aero
+    "drag_factor", "lateral_drag_factor", "front_lift_factor", "rear_lift_factor"))
+Constants.__doc__ = """The numbers the equations read (floats; 4-tuples per corner; ``inertia``, ``inverse_inertia``
+3x3 and ``projection`` 6x6 nested tuples). ``spring_z``, ``wheel_z``, ``contact_z`` are the body-z
+coordinates (from the sprung CG, down +) of the spring seats, wheel centres and contact points;
+``anti_pitch`` is e_i f h / L per corner; ``camber_on`` 1.0 or 0.0; ``wheel_spin`` is always True
+(the slip functions of the single track read it), ``tire_lag`` a bool. :meth:`FullVehicle.constants`
+builds them; a compiled version takes the same tuple."""
+
+Evaluation = namedtuple("Evaluation", (
+    "velocity_rate", "angular_acceleration", "cg_acceleration", "euler_rates", "position_rates",
+    "wheel_acceleration", "unsprung_acceleration", "lateral_deflection_rate", "longitudinal_deflection_rate",
+    "normal_load", "slip_angle", "slip_ratio", "longitudinal_force", "lateral_force", "suspension_travel",
+    "camber", "steer", "horizontal_acceleration", "sprung_acceleration"))
+Evaluation.__doc__ = """Everything one evaluation yields: body rates (3-tuples; ``cg_acceleration`` the absolute
+acceleration of the sprung CG in body axes), Euler-angle and position rates, per-corner 4-lists
+(wheel spin and unsprung accelerations, deflection rates, tire load, SAE slips and wheel-axis
+forces, travel, camber, steer), the horizontal acceleration of the total CG in the intermediate
+(yaw-only) axes (x, y; gravity excluded) and the vertical acceleration of the sprung CG (up)."""
+
+
+class NUMPY(st.NUMPY):
+    """``xp`` of the equations on numpy arrays (trailing batch axis): the single track's plus the hooks."""
+
+    tan = staticmethod(np.tan)
+
+    @staticmethod
+    def rotation_body_to_earth(roll, pitch, yaw):
+        return rotation_body_to_earth(roll, pitch, yaw)
+
+    @staticmethod
+    def euler_angle_rates(roll, pitch, p, q, r):
+        return euler_angle_rates(roll, pitch, p, q, r)
+
+    @staticmethod
+    def rigid_body_accelerations(mass, inertia, inverse, velocity, rates, force, moment):
+        vectors = [np.array(np.broadcast_arrays(*vector), dtype=float) for vector in (velocity, rates, force, moment)]
+        return accelerations(mass, np.asarray(inertia), np.asarray(inverse), *vectors)
+
+    @staticmethod
+    def axle_tire_forces(tires, corner, fz, kappa, alpha, vx):
+        laws, camber, friction = tires
+        return laws.corner_law_forces(corner, fz, kappa, alpha, camber[corner], vx, friction[corner])
+
+
+def gather(values, index):
+    """``values[i]`` for each i of ``index``, or zeros (of values[0]'s shape) where i = -1."""
+    return [values[i] if i >= 0 else 0.0 * values[0] for i in index]
+
+
+def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
+    """An :class:`Evaluation` at states ``s`` and inputs ``i`` (sequences in the orders of :data:`STATES`,
+    :data:`INPUTS`); ``laws`` the tire laws (see ``xp.axle_tire_forces``), ``friction`` the road's
+    friction under each corner relative to the tire law's own (1: the law as it is)."""
+    u, v, w, p, q, r, roll, pitch, yaw, _x, _y, z = s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], \
+        s[10], s[11]
+    omega, wheel, wheel_rate, lateral_deflection, longitudinal_deflection = s[12:16], s[16:20], s[20:24], \
+        s[24:28], s[28:32]
+    drive, brake, road, road_rate, wind = i[2:6], i[6:10], i[10:14], i[14:18], i[18]
+    R = xp.rotation_body_to_earth(roll, pitch, yaw)
+    R20, R21, R22 = R[2][0], R[2][1], R[2][2]
+
+    zero = 0.0 * u
+    # suspension (lists built by comprehension and filled by index: typed lists for compiled code)
+    travel, travel_rate = [zero for _c in range(4)], [zero for _c in range(4)]
+    for c in range(4):
+        travel[c], travel_rate[c] = corner.suspension_travel(R, z, u, v, w, p, q, r, k.corner_x[c], k.corner_y[c],
+                                                             k.spring_z, wheel[c], wheel_rate[c])
+    spring = corner.suspension_forces(k, travel, travel_rate)
+    steer = steering.corner_steer_angles(xp, k, i[0], i[1], roll)
+    camber = [corner.camber(k, c, roll, travel[c]) for c in range(4)]
+    tires = (laws, camber, friction)
+
+    fx_body, fy_body, fz_body, moment_x, moment_y, moment_z = zero, zero, zero, zero, zero, zero
+    contact_x, contact_y, contact_z = zero, zero, zero  # non-gravity forces on the whole vehicle
+    loads, alphas, kappas = [zero for _c in range(4)], [zero for _c in range(4)], [zero for _c in range(4)]
+    fxs, fys, wheel_acc = [zero for _c in range(4)], [zero for _c in range(4)], [zero for _c in range(4)]
+    unsprung_acc, lat_rate, lon_rate = [zero for _c in range(4)], [zero for _c in range(4)], [zero for _c in range(4)]
+    for c in range(4):
+        x_c, y_c = k.corner_x[c], k.corner_y[c]
+        load = corner.normal_load(xp, k, c, wheel[c], wheel_rate[c], road[c], road_rate[c])
+        # contact-point velocity in body axes (the wheel carrier keeps the body's orientation), then
+        # in wheel axes
+        h = k.contact_z
+        vcx, vcy = u + q * h - r * y_c, v + r * x_c - p * h
+        cd, sd = xp.cos(steer[c]), xp.sin(steer[c])
+        vx, vy = vcx * cd + vcy * sd, -vcx * sd + vcy * cd
+        if k.tire_lag:  # the deflection rates: state derivatives and the low-speed damping's input
+            lat_rate[c] = st.deflection_rate(xp, vy, vx, lateral_deflection[c], k.lateral_relaxation_length[c],
+                                             k.peak_tan_slip_angle[c] * friction[c])
+            lon_rate[c] = st.deflection_rate(xp, -(vx - omega[c] * k.rolling_radius), vx, longitudinal_deflection[c],
+                                             k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction[c])
+        fx, fy, alpha, kappa = st.axle_forces(
+            xp, tires, c, k, load, vx, vy, omega[c], lateral_deflection[c], longitudinal_deflection[c],
+            lat_rate[c], lon_rate[c], k.lateral_relaxation_length[c], k.longitudinal_relaxation_length[c],
+            k.peak_slip_ratio[c] * friction[c], k.peak_tan_slip_angle[c] * friction[c], 0.0 * u)
+        tx, ty = fx * cd - fy * sd, fx * sd + fy * cd
+        # force the contact passes to the body (x, y) and the linkage's vertical force on the body
+        link_x, link_y = tx - load * R20, ty - load * R21
+        jack = corner.jacking_force(k, c, link_x, link_y)
+        # the wheel's velocity-dependent x-y inertia and its gravity, at the wheel centre
+        zw = k.wheel_z
+        m_u = k.unsprung_mass[c]
+        ox, oy, oz = body.cross(p, q, r, x_c, y_c, zw)
+        cx, cy, _cz = body.cross(p, q, r, ox, oy, oz)
+        wheel_x = m_u * (k.gravity * R20 - cx - 2.0 * q * travel_rate[c])
+        wheel_y = m_u * (k.gravity * R21 - cy + 2.0 * p * travel_rate[c])
+        f_z = jack - spring[c]
+        fx_body = fx_body + link_x + wheel_x
+        fy_body = fy_body + link_y + wheel_y
+        fz_body = fz_body + f_z
+        mx1, my1, mz1 = body.cross(x_c, y_c, h, link_x, link_y, f_z)
+        mx2, my2, mz2 = body.cross(x_c, y_c, zw, wheel_x, wheel_y, 0.0 * u)
+        moment_x, moment_y, moment_z = moment_x + mx1 + mx2, moment_y + my1 + my2, moment_z + mz1 + mz2
+        contact_x, contact_y, contact_z = contact_x + tx - load * R20, contact_y + ty - load * R21, \
+            contact_z - load * R22
+        unsprung_acc[c] = (load - spring[c] + jack) / m_u - k.gravity
+        wheel_acc[c] = driveline.wheel_acceleration(xp, k, omega[c], drive[c], brake[c], fx)
+        loads[c], alphas[c], kappas[c], fxs[c], fys[c] = load, alpha, kappa, fx, fy
+
+    drag, side, front_lift, rear_lift = aero.aero_forces(xp, k, u, v, wind)
+    weight = k.sprung_mass * k.gravity
+    fx_body = fx_body + drag + weight * R20
+    fy_body = fy_body + side + weight * R21
+    fz_body = fz_body - front_lift - rear_lift + weight * R22
+    x_front, x_rear = k.corner_x[0], k.corner_x[2]
+    moment_y = moment_y + x_front * front_lift + x_rear * rear_lift
+    velocity_rate, angular, cg_acc = body.body_accelerations(
+        xp, k, (u, v, w), (p, q, r), (fx_body, fy_body, fz_body), (moment_x, moment_y, moment_z))
+
+    euler = xp.euler_angle_rates(roll, pitch, p, q, r)
+    position = (R[0][0] * u + R[0][1] * v + R[0][2] * w, R[1][0] * u + R[1][1] * v + R[1][2] * w,
+                R20 * u + R21 * v + R22 * w)
+    # horizontal acceleration of the total CG, intermediate axes: non-gravity forces / m
+    ex = R[0][0] * (contact_x + drag) + R[0][1] * (contact_y + side) + R[0][2] * (contact_z - front_lift - rear_lift)
+    ey = R[1][0] * (contact_x + drag) + R[1][1] * (contact_y + side) + R[1][2] * (contact_z - front_lift - rear_lift)
+    cpsi, spsi = xp.cos(yaw), xp.sin(yaw)
+    horizontal = ((cpsi * ex + spsi * ey) / k.mass, (-spsi * ex + cpsi * ey) / k.mass)
+    vertical = -(R20 * cg_acc[0] + R21 * cg_acc[1] + R22 * cg_acc[2])
+    return Evaluation(velocity_rate, angular, cg_acc, euler, position, wheel_acc, unsprung_acc, lat_rate, lon_rate,
+                      loads, alphas, kappas, fxs, fys, travel, camber, steer, horizontal, vertical)
+
+
+def derivatives(s, e):
+    """d/dt of every entry of :data:`STATES` from an :class:`Evaluation` (``s`` the states)."""
+    return (list(e.velocity_rate) + list(e.angular_acceleration) + list(e.euler_rates) + list(e.position_rates)
+            + list(e.wheel_acceleration) + list(s[20:24]) + list(e.unsprung_acceleration)
+            + list(e.lateral_deflection_rate) + list(e.longitudinal_deflection_rate))
+
+
+OUTPUTS = (("longitudinal_acceleration", "m/s^2", "horizontal longitudinal acceleration of the total CG in the "
+            "intermediate (yaw-only) axes, gravity excluded"),
+           ("lateral_acceleration", "m/s^2", "horizontal lateral acceleration of the total CG in the intermediate "
+            "axes (right +, SAE), gravity excluded"),
+           ("sideslip_angle", "rad", "vehicle sideslip at the sprung CG, atan2(v, |u|)"),
+           ("speed", "m/s", "speed of the sprung CG in its body x-y plane, sqrt(u^2 + v^2)"),
+           ("path_curvature", "1/m", "a_y / V^2 (V^2 floored at 0.25 m^2/s^2)"),
+           ("yaw_rate", "rad/s", "body yaw rate r"),
+           ("roll_angle", "rad", "roll angle phi (right side down +)"),
+           ("pitch_angle", "rad", "pitch angle theta (nose up +)"),
+           ("sprung_acceleration", "m/s^2", "vertical acceleration of the sprung CG (up +, gravity excluded)"),
+           ("longitudinal_velocity", "m/s", "body-frame forward velocity u of the sprung CG"),
+           ("lateral_velocity", "m/s", "body-frame lateral velocity v of the sprung CG"),
+           ("x", "m", "earth-fixed X of the sprung CG"),
+           ("y", "m", "earth-fixed Y of the sprung CG (SAE)"),
+           ("yaw_angle", "rad", "heading psi"))
+CORNER_OUTPUTS = (("normal_load", "N", "tire normal load (>= 0)"),
+                  ("slip_angle", "rad", "slip angle acting in the tire law (SAE)"),
+                  ("slip_ratio", "-", "slip ratio acting in the tire law"),
+                  ("longitudinal_force", "N", "tire longitudinal force in wheel axes"),
+                  ("lateral_force", "N", "tire lateral force in wheel axes (SAE y)"),
+                  ("suspension_travel", "m", "suspension extension z_body - z_wheel (rebound +)"),
+                  ("camber_angle", "rad", "wheel inclination, rotation about x (SAE = ISO-W)"),
+                  ("steer_angle", "rad", "road-wheel steer angle (SAE)"))
+
+
+def outputs(xp, s, e):
+    """The outputs in the order of :data:`OUTPUTS` then :data:`CORNER_OUTPUTS` (each over the corners)."""
+    u, v = s[0], s[1]
+    speed_squared = u * u + v * v
+    ax, ay = e.horizontal_acceleration
+    values = [ax, ay, xp.atan2(v, xp.abs(u)), xp.sqrt(speed_squared), ay / xp.maximum(speed_squared, 0.25), s[5],
+              s[6], s[7], e.sprung_acceleration, u, v, s[9], s[10], s[8]]
+    for group in (e.normal_load, e.slip_angle, e.slip_ratio, e.longitudinal_force, e.lateral_force,
+                  e.suspension_travel, e.camber, e.steer):
+        values.extend(group)
+    return values

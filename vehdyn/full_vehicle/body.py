@@ -1,0 +1,88 @@
+"""The sprung body: Newton-Euler about its CG (through :mod:`vehdyn.mechanics`) with the unsprung
+masses riding along in the body's x-y plane.
+
+Each unsprung mass is a point at its wheel centre W_i (body axes, from the sprung CG) that moves
+with the body in the body's x and y directions and freely along the body's z axis (its own
+vertical degree of freedom, :mod:`~vehdyn.full_vehicle.corner`). Its x-y inertia therefore loads
+the body: with alpha = (a, omega') the absolute acceleration of the sprung CG and the angular
+acceleration (body axes), the x-y part of the wheel-centre acceleration is
+
+    H a_i = H (a + omega' x W_i + omega x (omega x W_i) + 2 omega x (0, 0, s_i')),   H = diag(1, 1, 0)
+
+(s_i' the wheel's rate of travel along body z, the Coriolis term), and the body equations
+
+    m_s a + sum m_i H a_i = F,       J omega' + omega x J omega + sum W_i x (m_i H a_i) = M
+
+are linear in alpha. Split into the part proportional to alpha (an added-mass matrix M_a, constant
+in body axes) and the rest, they read (M_s + M_a) alpha = M_s alpha_0, where alpha_0 is what
+:func:`vehdyn.mechanics.newton_euler.accelerations` returns for the sprung body alone under F and M
+plus the wheels' velocity-dependent x-y forces. So the body is advanced by the mechanics layer's
+Newton-Euler equations, followed by the constant projection P = (M_s + M_a)^-1 M_s
+(:func:`added_mass_projection`). The total mass then acts in the body's x and y directions, the
+sprung mass alone in z; roll, pitch and yaw see the sprung inertia tensor J (with I_xz) plus the
+wheels' m_i (y_i^2 + z_i^2), m_i (x_i^2 + z_i^2) ... of their x-y motion.
+
+References: Landau & Lifshitz, *Mechanics*, sec. 36 (Euler's equations, used through
+:mod:`vehdyn.mechanics.newton_euler`); Kane & Levinson, *Dynamics: Theory and Applications*, 1985,
+ch. 6 (generalized forces of points constrained to a body).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["added_mass_projection", "cross", "body_accelerations"]
+
+
+def cross(a0, a1, a2, b0, b1, b2):
+    """Components of a x b (plain arithmetic: floats, arrays, compiled code)."""
+    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+
+
+def added_mass_projection(sprung_mass, inertia, masses, points) -> np.ndarray:
+    """P = (M_s + M_a)^-1 M_s (6 x 6) of the module docstring.
+
+    Parameters
+    ----------
+    sprung_mass : float
+        m_s [kg].
+    inertia : ndarray, shape (3, 3)
+        Sprung inertia matrix J about the sprung CG, body axes [kg*m^2].
+    masses : sequence of float
+        Unsprung mass of each corner [kg].
+    points : sequence of (x, y, z)
+        Wheel centres from the sprung CG, body axes [m].
+    """
+    body = np.zeros((6, 6))
+    body[:3, :3] = sprung_mass * np.eye(3)
+    body[3:, 3:] = inertia
+    added = np.zeros((6, 6))
+    for mass, (x, y, z) in zip(masses, points):
+        for j in range(6):
+            e = np.eye(6)[j]
+            acc = np.array(e[:3]) + np.array(cross(*e[3:], x, y, z))
+            force = -mass * np.array([acc[0], acc[1], 0.0])
+            added[:, j] -= np.concatenate([force, cross(x, y, z, *force)])
+    return np.linalg.solve(body + added, body)
+
+
+def body_accelerations(xp, k, velocity, rates, force, moment):
+    """Body-axis velocity rates (du, dv, dw) and angular accelerations (dp, dq, dr).
+
+    ``force`` and ``moment`` (3-tuples, body axes, about the sprung CG) include everything but the
+    wheels' x-y inertia proportional to the accelerations (see the module docstring); the sprung
+    body goes through ``xp.rigid_body_accelerations`` (the mechanics layer's Newton-Euler) and the
+    result through the projection ``k.projection``.
+    """
+    u, v, w = velocity
+    p, q, r = rates
+    velocity_rate, angular = xp.rigid_body_accelerations(k.sprung_mass, k.inertia, k.inverse_inertia, velocity,
+                                                         rates, force, moment)
+    # absolute acceleration of the sprung CG: dV/dt + omega x V
+    cx, cy, cz = cross(p, q, r, u, v, w)
+    alpha0 = (velocity_rate[0] + cx, velocity_rate[1] + cy, velocity_rate[2] + cz, angular[0], angular[1],
+              angular[2])
+    P = k.projection
+    alpha = [P[j][0] * alpha0[0] + P[j][1] * alpha0[1] + P[j][2] * alpha0[2] + P[j][3] * alpha0[3]
+             + P[j][4] * alpha0[4] + P[j][5] * alpha0[5] for j in range(6)]
+    return (alpha[0] - cx, alpha[1] - cy, alpha[2] - cz), (alpha[3], alpha[4], alpha[5]), (alpha[0], alpha[1], alpha[2])

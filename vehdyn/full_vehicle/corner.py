@@ -1,0 +1,90 @@
+"""One corner: suspension spring, damper and anti-roll bar, roll-centre and anti-pitch linkage
+forces, tire vertical compliance and camber.
+
+Corners are numbered 0 front left, 1 front right, 2 rear left, 3 rear right (:data:`CORNERS`,
+the suffixes of :class:`vehdyn.ride.FullCar`). Signs follow the ride models: vertical
+displacements up from static equilibrium; ``suspension_travel`` s = z_body - z_wheel (extension,
+rebound +); ``normal_load`` the positive tire load.
+
+Suspension (per corner, compressive force F_s on body and wheel)::
+
+    F_s = F_s0 - k_s s - c_s s' + F_arb,     F_arb = -/+ (K_arb / T^2)(s_left - s_right)  (left/right)
+
+with F_s0 the static share of the sprung weight (so that the state zero is the static
+equilibrium), k_s, c_s the wheel rate and damping and K_arb the bar's roll stiffness over track T
+(as :class:`vehdyn.ride.FullCar`).
+
+Linkage (jacking) forces: the tire's horizontal force reaches the body along the line from the
+contact point to the axle's roll centre (height h_rc on the centre line) and, for the longitudinal
+force, along the side-view line of slope tan(beta) = f h / L (f the anti-dive or anti-squat
+fraction, h the CG height, L the wheelbase). On the body (SAE z, down +)::
+
+    F_J = (h_rc / y_i) L_y + e_i f (h / L) L_x,      e_i = +1 front, -1 rear
+
+with (L_x, L_y) the force the contact point passes to the body in body x, y and y_i = +-T/2 the
+corner's lateral position; the wheel feels -F_J. A lateral force applied this way has no roll
+moment about the roll centre: the axle's lateral load transfer splits into the geometric part
+L_y h_rc / T and the elastic part through springs and bars (Milliken & Milliken, *Race Car Vehicle
+Dynamics*, 1995, ch. 17-18; Gillespie, *Fundamentals of Vehicle Dynamics*, 1992, ch. 7-8).
+
+Tire normal load from the tire's compression delta = delta_0 + z_road - z_wheel::
+
+    F_z = max(k_t delta + c_t delta', 0) where delta > 0, else 0
+
+never negative: a lifted wheel carries nothing and its tire forces vanish.
+
+Camber (rotation about the body x axis, the same in SAE and ISO-W): when the vehicle file gives
+camber gains g [rad/m], gamma_i = phi + e_side g (-s) with e_side = +1 right, -1 left (the wheel
+plane rolls with the body, and bump travel -s changes the camber, top outward +); without gains the
+wheels stay upright to the road (gamma = 0).
+"""
+
+from __future__ import annotations
+
+__all__ = ["CORNERS", "SIDES", "suspension_travel", "suspension_forces", "normal_load", "jacking_force",
+           "camber"]
+
+#: Signal-name suffixes of the corners, in order.
+CORNERS = ("_front_left", "_front_right", "_rear_left", "_rear_right")
+#: +1 right, -1 left, per corner.
+SIDES = (-1.0, 1.0, -1.0, 1.0)
+
+
+def suspension_travel(R, z, u, v, w, p, q, r, x_i, y_i, z_i, wheel, wheel_rate):
+    """Travel s = z_body - z_wheel [m] and its rate [m/s] of a corner whose spring sits at body point
+    (x_i, y_i, z_i) (from the sprung CG, body axes); ``R`` the body-to-earth rotation (R[2] its
+    third row), ``z`` the sprung CG's earth z (down) from static, ``wheel`` the wheel's vertical
+    displacement (up)."""
+    R20, R21, R22 = R[2][0], R[2][1], R[2][2]
+    body_up = -(z + R20 * x_i + R21 * y_i + R22 * z_i - z_i)
+    vx, vy, vz = u + q * z_i - r * y_i, v + r * x_i - p * z_i, w + p * y_i - q * x_i
+    body_up_rate = -(R20 * vx + R21 * vy + R22 * vz)
+    return body_up - wheel, body_up_rate - wheel_rate
+
+
+def suspension_forces(k, travel, travel_rate):
+    """Compressive suspension forces F_s [N] of the four corners (tuples in corner order)."""
+    forces = [k.spring_preload[c] - k.spring_rate[c] * travel[c] - k.damping[c] * travel_rate[c] for c in range(4)]
+    for axle in range(2):
+        left, right = 2 * axle, 2 * axle + 1
+        bar = k.antiroll_rate[axle] * (travel[left] - travel[right])
+        forces[left] = forces[left] - bar
+        forces[right] = forces[right] + bar
+    return forces
+
+
+def normal_load(xp, k, c, wheel, wheel_rate, road, road_rate):
+    """Tire normal load [N] of corner ``c`` (>= 0; 0 when the wheel is off the ground)."""
+    deflection = k.static_tire_deflection[c] + road - wheel
+    force = k.tire_stiffness[c] * deflection + k.tire_damping[c] * (road_rate - wheel_rate)
+    return xp.where(deflection > 0.0, xp.maximum(force, 0.0), 0.0)
+
+
+def jacking_force(k, c, link_x, link_y):
+    """Linkage force F_J [N] on the body (SAE z, down +) of corner ``c`` (module docstring)."""
+    return k.roll_centre_height[c] / k.corner_y[c] * link_y + k.anti_pitch[c] * link_x
+
+
+def camber(k, c, roll, travel):
+    """Inclination angle [rad] (rotation about x, SAE = ISO-W) of corner ``c``'s wheel."""
+    return k.camber_on * (roll - SIDES[c] * k.camber_gain[c] * travel)

@@ -1,0 +1,515 @@
+"""The full vehicle: a sprung body on four corners, assembled from vehdyn's layers.
+
+Layers used (nothing restated): the sprung body's Newton-Euler equations and Euler-angle
+kinematics from :mod:`vehdyn.mechanics`; the tire laws of :mod:`vehdyn.tire` (any
+:class:`~vehdyn.tire.TireModel` that takes combined slip); the slip, relaxation, low-speed and
+wheel-torque functions of :mod:`vehdyn.handling.single_track_equations`; the corner layout and
+signal names of :class:`vehdyn.ride.FullCar`. The equations are in
+:mod:`~vehdyn.full_vehicle.assembly` and the modules it calls (:mod:`~vehdyn.full_vehicle.body`,
+:mod:`~vehdyn.full_vehicle.corner`, :mod:`~vehdyn.full_vehicle.steering`,
+:mod:`~vehdyn.full_vehicle.driveline`, :mod:`~vehdyn.full_vehicle.aero`).
+
+Modelling choices (where the full vehicle differs from the models below it)
+---------------------------------------------------------------------------
+* The unsprung masses move with the body in its x-y plane, as points at the wheel centres, and
+  vertically on their own (:mod:`~vehdyn.full_vehicle.body`): they roll and pitch with the body,
+  where :class:`~vehdyn.handling.LateralYawRoll` keeps them in a non-rolling frame.
+* Each wheel carrier slides along the body z axis and keeps the body's orientation (camber follows
+  roll, as between parallel wishbones). Tire slip is taken at the contact point (ground level below
+  the wheel centre, rigid with the body but for the travel), so that a roll about a roll axis on
+  the ground makes no slip; ``wheel_speed`` is the spin relative to the carrier (the tread speed
+  omega R_e), and the spin inertia's share of the body's pitch acceleration, I_w dq/dt, is
+  neglected (I_w / (m_s h_s^2) ~ 0.5 %).
+* Suspension forces act along the body z axis, tire loads along the vertical; angles are small
+  in the force projections of the unsprung masses (their vertical equation uses the tire load
+  itself, not its body-z component).
+* The roll centres and anti-pitch lines are fixed in the body (no migration with travel).
+"""
+
+from __future__ import annotations
+
+
+import numpy as np
+
+from ..errors import ParameterError, SimulationError
+from ..handling.single_track import _stack
+from ..model import Model
+from ..params import Vehicle
+from ..signals import Signal
+from ..units import GRAVITY
+from . import assembly
+from .corner import CORNERS
+
+__all__ = ["FullVehicle"]
+
+_AXLES = ("front", "rear")
+_STATE_UNITS = {"wheel_speed": ("rad/s", "spin of the wheel (positive rolling forwards)"),
+                "unsprung_displacement": ("m", "vertical displacement of the wheel centre from static (up)"),
+                "unsprung_velocity": ("m/s", "vertical velocity of the wheel centre (up)"),
+                "lateral_deflection": ("m", "lateral deflection of the tire's contact point (SAE y, relaxation state)"),
+                "longitudinal_deflection": ("m", "longitudinal deflection of the tire (relaxation state, + driving)")}
+_BODY_SIGNALS = {
+    "longitudinal_velocity": ("m/s", "body-frame velocity u of the sprung CG (forward)"),
+    "lateral_velocity": ("m/s", "body-frame velocity v of the sprung CG (right, SAE)"),
+    "vertical_velocity": ("m/s", "body-frame velocity w of the sprung CG (down, SAE)"),
+    "roll_rate": ("rad/s", "body rate p of the sprung mass"),
+    "pitch_rate": ("rad/s", "body rate q of the sprung mass"),
+    "yaw_rate": ("rad/s", "body rate r of the sprung mass"),
+    "roll_angle": ("rad", "Euler roll angle phi (right side down +)"),
+    "pitch_angle": ("rad", "Euler pitch angle theta (nose up +)"),
+    "yaw_angle": ("rad", "Euler yaw angle psi (heading, turning right +)"),
+    "x": ("m", "earth-fixed X of the sprung CG"),
+    "y": ("m", "earth-fixed Y of the sprung CG (SAE: right of the initial heading)"),
+    "z": ("m", "earth-fixed Z of the sprung CG from its static position (down +)"),
+}
+_INPUT_SIGNALS = {
+    "front_steer_angle": ("rad", "front road-wheel steer angle (bicycle value; split by the Ackermann fraction)"),
+    "rear_steer_angle": ("rad", "rear road-wheel steer angle (SAE)"),
+    "drive_torque": ("N*m", "drive torque on the wheel"),
+    "brake_torque": ("N*m", "brake torque magnitude on the wheel (>= 0; opposes the spin)"),
+    "road_displacement": ("m", "road elevation under the wheel (up)"),
+    "road_velocity": ("m/s", "rate of change of the road elevation under the wheel"),
+    "wind_velocity_lateral": ("m/s", "wind velocity over ground along the vehicle's y axis (SAE, to the right)"),
+}
+
+
+def check_combined_slip(tire, load, name):
+    """Raise ParameterError unless ``tire`` takes combined slip: finite forces with F_x responding to
+    kappa and F_y to alpha when both act at once (or the law declares ``combined_slip = False``)."""
+    from ..tire import TireModel
+
+    if not isinstance(tire, TireModel):
+        raise ParameterError(f"{name} must be a vehdyn.tire.TireModel, got {type(tire).__name__}", key=name,
+                             value=tire)
+    reason = None
+    if getattr(tire, "combined_slip", True) is False:
+        reason = "it declares combined_slip = False"
+    else:
+        try:
+            both = tire.forces(float(load), 0.05, 0.05, 0.0, 20.0)
+            fx, fy = float(both.fx), float(both.fy)
+            if not (np.isfinite(fx) and np.isfinite(fy)):
+                reason = f"at kappa = alpha = 0.05 it returns F_x = {fx}, F_y = {fy}"
+            elif abs(fx) <= 1e-6 * load or abs(fy) <= 1e-6 * load:
+                reason = f"at kappa = alpha = 0.05 it returns F_x = {fx:.6g} N, F_y = {fy:.6g} N (one slip ignored)"
+        except Exception as exc:  # noqa: BLE001 - any failure of the law is the reason
+            reason = f"it fails at kappa = alpha = 0.05: {type(exc).__name__}: {exc}"
+    if reason is not None:
+        raise ParameterError(f"{name} ({type(tire).__name__}) cannot take combined slip, which the full vehicle "
+                             f"needs (every wheel spins and slips sideways): {reason}", key=name,
+                             value=type(tire).__name__)
+
+
+class FullVehicle(Model):
+    """Full vehicle: 6-DOF sprung body, four corners with wheel hop and wheel spin, any tire law.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Masses and inertias (sprung tensor with I_xz; ``mass.sprung_yaw_inertia`` or derived),
+        geometry (roll-centre heights), suspension (wheel rates, dampers, anti-roll bars, roll
+        steer, optional camber gains and anti-dive/anti-squat), tires (vertical stiffness and
+        damping, rolling radius, wheel inertia, relaxation lengths, law), steering (Ackermann
+        fraction), aero (drag, lift, cross-flow drag).
+    front_tire, rear_tire : TireModel, optional
+        The law of one tire of each axle (ISO-W); default the vehicle's (``vehicle.tires.model``,
+        through :func:`vehdyn.tire.tire_for_vehicle`). It must take combined slip.
+    tire_lag : bool
+        Tire deflection (relaxation) states per corner (default True; needed at low speed).
+    road : RoadProfile or callable, optional
+        A road under the wheels: a :class:`vehdyn.ride.RoadProfile` along the earth X axis (the
+        same for both tracks) or a callable ``road(X, Y) -> (elevation, slope_X, slope_Y)`` of
+        arrays [m, -, -]. Its elevation and rate are added to the ``road_displacement_*``,
+        ``road_velocity_*`` inputs. Default: flat.
+    friction : callable, optional
+        ``friction(X, Y) -> ratio`` [-]: the road's friction at earth positions (arrays) relative to
+        the tire law's own (1 everywhere by default; e.g. 0.2 / 0.9 on the right half of a split-mu
+        road for a law with mu = 0.9), applied to each tire by similarity (see
+        :meth:`corner_law_forces`).
+    longitudinal_relaxation_length : float or (float, float), optional
+        As :class:`~vehdyn.handling.SingleTrack` (default from the Magic Formula, else the lateral).
+    low_speed_damping_speed, brake_regularization_speed : float
+        v_l [m/s] and omega_b [rad/s] as in :class:`~vehdyn.handling.SingleTrack` (2 m/s, 1 rad/s).
+    gravity : float
+        [m/s^2].
+
+    Signals
+    -------
+    states
+        ``longitudinal_velocity``, ``lateral_velocity``, ``vertical_velocity``, ``roll_rate``,
+        ``pitch_rate``, ``yaw_rate``, ``roll_angle``, ``pitch_angle``, ``yaw_angle``, ``x``, ``y``, ``z``
+        (sprung CG, SAE); then for each corner suffix ``_front_left``, ``_front_right``,
+        ``_rear_left``, ``_rear_right``: ``wheel_speed_*``, ``unsprung_displacement_*``,
+        ``unsprung_velocity_*`` and, with tire lag, ``lateral_deflection_*``,
+        ``longitudinal_deflection_*`` (order: :data:`vehdyn.full_vehicle.assembly.STATES`).
+    inputs
+        ``front_steer_angle``, ``rear_steer_angle``, ``drive_torque_*``, ``brake_torque_*``,
+        ``road_displacement_*``, ``road_velocity_*``, ``wind_velocity_lateral``.
+    outputs
+        Accelerations of the CG (intermediate axes), sideslip, speed, curvature, attitude, sprung
+        vertical acceleration, position, and per corner ``normal_load_*``, ``slip_angle_*``,
+        ``slip_ratio_*``, ``longitudinal_force_*``, ``lateral_force_*``, ``suspension_travel_*``,
+        ``camber_angle_*``, ``steer_angle_*``.
+
+    Notes
+    -----
+    The state zero (with any speed set) is the static equilibrium at rest: spring preloads and tire
+    deflections carry the static loads. The sprung CG sits where the total CG and the unsprung
+    masses (at the axles) put it, so that the static loads split exactly by the total CG, and the
+    unsprung masses (points at the "wheel centres") at the height h_u = (m h - m_s h_s) / m_u that
+    makes the total CG height the file's ``mass.cg_height`` (0.28 m for the shipped sedan; the
+    rolling radius is used for the tread speed only).
+    Equations and modelling choices: module docstrings of :mod:`vehdyn.full_vehicle`.
+    """
+
+    #: Where the equations hold: the body's force projections are those of small roll and pitch angles
+    #: (every angle enters through exact rotations, the suspension and tire forces through their
+    #: body-axis components). Past these bounds the vehicle is rolling or pitching over; :meth:`rhs`
+    #: raises :class:`~vehdyn.SimulationError` naming the state and the time. [rad] (An adaptive
+    #: solver's trial stage can also land there when its step is far too long for a sudden input,
+    #: e.g. a pothole on an otherwise smooth road: give ``max_step`` below the shortest road feature.)
+    domain = {"roll_angle": (-np.pi / 4, np.pi / 4), "pitch_angle": (-np.pi / 4, np.pi / 4)}
+
+    def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, tire_lag: bool = True, road=None,
+                 friction=None, longitudinal_relaxation_length=None, low_speed_damping_speed: float = 2.0,
+                 brake_regularization_speed: float = 1.0, gravity: float = GRAVITY):
+        if not isinstance(vehicle, Vehicle):
+            raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
+                                 value=vehicle)
+        for name, value in (("low_speed_damping_speed", low_speed_damping_speed),
+                            ("brake_regularization_speed", brake_regularization_speed), ("gravity", gravity)):
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (np.isfinite(value) and value > 0):
+                raise ParameterError(f"{name} must be a finite number > 0, got {value!r}", key=name, value=value)
+        self.vehicle = vehicle
+        self.tire_lag = bool(tire_lag)
+        self.gravity = float(gravity)
+        self.low_speed_damping_speed = float(low_speed_damping_speed)
+        self.brake_regularization_speed = float(brake_regularization_speed)
+        self.road = self._check_road(road)
+        if friction is not None and not callable(friction):
+            raise ParameterError(f"friction must be None or a callable friction(X, Y) -> ratio, got "
+                                 f"{type(friction).__name__}", key="friction", value=friction)
+        self.friction = friction
+        self._geometry(vehicle)
+        from ..handling.single_track import SingleTrack
+        from ..tire import tire_for_vehicle
+
+        tires = {}
+        for axle, tire, load in zip(_AXLES, (front_tire, rear_tire), self.static_tire_loads[::2]):
+            tire = tire_for_vehicle(vehicle, axle) if tire is None else tire
+            check_combined_slip(tire, load, f"{axle}_tire")
+            tires[axle] = tire
+        self.front_tire, self.rear_tire = tires["front"], tires["rear"]
+        t = vehicle.tires
+        lateral = (t.front_relaxation_length, t.rear_relaxation_length)
+        if self.tire_lag and min(lateral) <= 0:
+            raise ParameterError("tire_lag needs positive tires.front_relaxation_length and "
+                                 f"tires.rear_relaxation_length, got {lateral}", key="tires.front_relaxation_length",
+                                 value=lateral)
+        lateral = tuple(s if s > 0 else 1.0 for s in lateral)
+        longitudinal = SingleTrack._longitudinal_lengths(vehicle, tires, longitudinal_relaxation_length, lateral,
+                                                         self.gravity)
+        self._mirrored = tuple(SingleTrack._needs_mirror(tires[axle], load)
+                               for axle, load in zip(_AXLES, self.static_tire_loads[::2]))
+        peaks = [SingleTrack._peak_slips(tires[axle], load) for axle, load in zip(_AXLES, self.static_tire_loads[::2])]
+        self._tire_constants = dict(
+            lateral_relaxation_length=(lateral[0],) * 2 + (lateral[1],) * 2,
+            longitudinal_relaxation_length=(longitudinal[0],) * 2 + (longitudinal[1],) * 2,
+            peak_slip_ratio=(peaks[0][0],) * 2 + (peaks[1][0],) * 2,
+            peak_tan_slip_angle=(peaks[0][1],) * 2 + (peaks[1][1],) * 2)
+        self._k = self.constants()
+        self._declare_signals()
+        phenomena = {"longitudinal", "lateral", "yaw", "roll", "pitch", "heave", "wheel_hop", "wheel_spin",
+                     "load_transfer", "tire_saturation", "road_input", "aero"}
+        if self.tire_lag:
+            phenomena.add("tire_lag")
+        self.phenomena = frozenset(phenomena)
+
+    # ------------------------------------------------------------------ construction
+    @staticmethod
+    def _check_road(road):
+        if road is None or callable(road):
+            return road
+        from ..ride.road import RoadProfile
+
+        if isinstance(road, RoadProfile):
+            return road
+        raise ParameterError(f"road must be None, a vehdyn.ride.RoadProfile or a callable road(X, Y) -> (elevation, "
+                             f"slope_X, slope_Y), got {type(road).__name__}", key="road", value=road)
+
+    def _geometry(self, vehicle):
+        """Corner positions, static loads, sprung inertia; ParameterError naming what does not fit."""
+        m, g, s, t = vehicle.mass, vehicle.geometry, vehicle.suspension, vehicle.tires
+        unsprung = (0.5 * m.front_unsprung_mass,) * 2 + (0.5 * m.rear_unsprung_mass,) * 2
+        if min(unsprung) <= 0:
+            key = "mass.front_unsprung_mass" if m.front_unsprung_mass <= 0 else "mass.rear_unsprung_mass"
+            raise ParameterError(f"the full vehicle needs unsprung masses > 0 (wheel hop), got {key} = 0", key=key,
+                                 value=0.0)
+        sprung = m.mass - m.unsprung_mass
+        if abs(sprung - m.sprung_mass) > 1e-3 * m.mass:
+            raise ParameterError(f"mass.sprung_mass = {m.sprung_mass} kg with unsprung masses {m.unsprung_mass} kg "
+                                 f"does not add up to mass.mass = {m.mass} kg (the full vehicle has no other mass)",
+                                 key="mass.sprung_mass", value=m.sprung_mass)
+        # the unsprung masses sit at the height that makes the total CG height the file's
+        unsprung_height = (m.mass * m.cg_height - sprung * m.sprung_cg_height) / m.unsprung_mass
+        if not 0.0 < unsprung_height < m.sprung_cg_height:
+            raise ParameterError(f"mass.cg_height = {m.cg_height} m puts the unsprung masses at "
+                                 f"{unsprung_height:.4g} m "
+                                 f"(from m h = m_s h_s + m_u h_u), outside (0, mass.sprung_cg_height = "
+                                 f"{m.sprung_cg_height} m)", key="mass.cg_height", value=m.cg_height)
+        self.unsprung_cg_height = unsprung_height
+        a, b = g.a, g.b
+        x_s = (m.rear_unsprung_mass * b - m.front_unsprung_mass * a) / sprung  # sprung CG ahead of the total CG
+        a_s, b_s = a - x_s, b + x_s
+        L = g.wheelbase
+        self.sprung_mass = sprung
+        self.sprung_cg_to_front_axle, self.sprung_cg_to_rear_axle = a_s, b_s
+        self.corner_x = (a_s, a_s, -b_s, -b_s)
+        self.corner_y = (-0.5 * g.front_track, 0.5 * g.front_track, -0.5 * g.rear_track, 0.5 * g.rear_track)
+        self.unsprung_masses = unsprung
+        weight = sprung * self.gravity
+        preload = (0.5 * weight * b_s / L,) * 2 + (0.5 * weight * a_s / L,) * 2
+        self.spring_preloads = preload
+        self.static_tire_loads = tuple(f + mu * self.gravity for f, mu in zip(preload, unsprung))
+        # sprung yaw inertia: given, or what the total leaves (wheels as points at the wheel centres)
+        jzz = m.sprung_yaw_inertia
+        if jzz is None:
+            jzz = m.yaw_inertia - sprung * x_s**2 - sum(mu * ((xc + x_s) ** 2 + yc**2) for mu, xc, yc in
+                                                       zip(unsprung, self.corner_x, self.corner_y))
+            if jzz <= 0:
+                raise ParameterError(f"mass.yaw_inertia = {m.yaw_inertia} kg*m^2 leaves no yaw inertia for the sprung "
+                                     f"mass ({jzz:.4g} kg*m^2); give mass.sprung_yaw_inertia", key="mass.yaw_inertia",
+                                     value=m.yaw_inertia)
+        from ..mechanics import InertiaTensor
+
+        tensor = InertiaTensor(ixx=m.sprung_roll_inertia, iyy=m.sprung_pitch_inertia, izz=float(jzz),
+                               ixz=m.sprung_roll_yaw_product)
+        self.sprung_inertia = tensor.matrix
+
+    def constants(self) -> assembly.Constants:
+        """The :class:`~vehdyn.full_vehicle.assembly.Constants` the equations read (floats and tuples)."""
+        from .body import added_mass_projection
+
+        v = self.vehicle
+        m, g, s, t, a = v.mass, v.geometry, v.suspension, v.tires, v.aero
+        h_s, radius = m.sprung_cg_height, t.rolling_radius
+        wheel_z = h_s - self.unsprung_cg_height
+        inertia = np.asarray(self.sprung_inertia, dtype=float)
+        points = [(x, y, wheel_z) for x, y in zip(self.corner_x, self.corner_y)]
+        projection = added_mass_projection(self.sprung_mass, inertia, self.unsprung_masses, points)
+        L = g.wheelbase
+        gains = (s.front_camber_gain, s.rear_camber_gain)
+        half = 0.5 * a.air_density * a.frontal_area
+        tup = lambda front, rear: (float(front),) * 2 + (float(rear),) * 2  # noqa: E731
+        return assembly.Constants(
+            gravity=self.gravity, mass=float(m.mass), sprung_mass=float(self.sprung_mass),
+            inertia=tuple(map(tuple, inertia)), inverse_inertia=tuple(map(tuple, np.linalg.inv(inertia))),
+            projection=tuple(map(tuple, projection)), cg_height=float(m.cg_height), wheelbase=float(L),
+            front_track=float(g.front_track), corner_x=tuple(map(float, self.corner_x)),
+            corner_y=tuple(map(float, self.corner_y)), spring_z=float(wheel_z), wheel_z=float(wheel_z),
+            contact_z=float(h_s), unsprung_mass=tuple(map(float, self.unsprung_masses)),
+            spring_rate=tup(s.front_spring_rate, s.rear_spring_rate), damping=tup(s.front_damping, s.rear_damping),
+            spring_preload=tuple(map(float, self.spring_preloads)),
+            antiroll_rate=(s.front_antiroll_stiffness / g.front_track**2, s.rear_antiroll_stiffness / g.rear_track**2),
+            tire_stiffness=tup(t.vertical_stiffness, t.vertical_stiffness),
+            tire_damping=tup(t.vertical_damping, t.vertical_damping),
+            static_tire_deflection=tuple(load / t.vertical_stiffness for load in self.static_tire_loads),
+            roll_centre_height=tup(g.front_roll_centre_height, g.rear_roll_centre_height),
+            anti_pitch=tup(s.front_anti_dive * m.cg_height / L, -s.rear_anti_squat * m.cg_height / L),
+            camber_on=0.0 if gains == (None, None) else 1.0,
+            camber_gain=tup(gains[0] or 0.0, gains[1] or 0.0),
+            roll_steer=tup(s.front_roll_steer, s.rear_roll_steer),
+            ackermann_fraction=float(v.steering.ackermann_fraction), rolling_radius=float(radius),
+            wheel_spin_inertia=float(t.wheel_spin_inertia), friction_coefficient=float(t.friction_coefficient),
+            low_speed_damping_speed=self.low_speed_damping_speed,
+            brake_regularization_speed=self.brake_regularization_speed, wheel_spin=True, tire_lag=self.tire_lag,
+            drag_factor=half * a.drag_coefficient, lateral_drag_factor=half * a.lateral_drag_coefficient,
+            front_lift_factor=half * a.front_lift_coefficient, rear_lift_factor=half * a.rear_lift_coefficient,
+            **self._tire_constants)
+
+    def _declare_signals(self):
+        states = [Signal(n, *_BODY_SIGNALS[n]) for n in assembly.BODY_STATES]
+        kinds = assembly.CORNER_STATES if self.tire_lag else assembly.CORNER_STATES[:3]
+        states += [Signal(f"{kind}{sfx}", *_STATE_UNITS[kind]) for kind in kinds for sfx in CORNERS]
+        inputs = []
+        for name in assembly.INPUTS:
+            base = next(b for b in _INPUT_SIGNALS if name.startswith(b))
+            inputs.append(Signal(name, *_INPUT_SIGNALS[base]))
+        outputs = [Signal(*o) for o in assembly.OUTPUTS]
+        outputs += [Signal(f"{name}{sfx}", unit, text) for name, unit, text in assembly.CORNER_OUTPUTS
+                    for sfx in CORNERS]
+        self.declare(states=states, inputs=inputs, outputs=outputs)
+        self._state_index = [self.state_names.index(n) if n in self.state_names else -1 for n in assembly.STATES]
+        self._state_order = [assembly.STATES.index(n) for n in self.state_names]
+
+    # ------------------------------------------------------------------ tire laws
+    def corner_law_forces(self, corner, fz, kappa, alpha, gamma, vx, friction=1.0):
+        """ISO-W (fx, fy) [N] of ``corner``'s tire (0 FL, 1 FR, 2 RL, 3 RR) from ISO-W slips.
+
+        ``friction`` is the road's friction relative to the law's own, applied by similarity
+        (Pacejka 2012, sec. 4.3.2): F(kappa, tan alpha) -> mu F(kappa / mu, tan(alpha) / mu), which
+        keeps the slip stiffnesses and scales the peak forces and the slips at which they occur.
+
+        A left tire is the mirror image of the law's tire when the law makes a lateral force at zero
+        slip (ply-steer, conicity; see :meth:`vehdyn.handling.SingleTrack.axle_law_forces`): it is
+        evaluated at (-alpha, -gamma) and its F_y negated, so that a vehicle with zero steer runs
+        straight.
+        """
+        axle = corner // 2
+        tire = self.front_tire if axle == 0 else self.rear_tire
+        mirror = self._mirrored[axle] and corner % 2 == 0
+        scaled = not (np.ndim(friction) == 0 and friction == 1.0)
+        if scaled:
+            kappa, alpha = kappa / friction, np.arctan(np.tan(alpha) / friction)
+        args = (fz, kappa, -alpha if mirror else alpha, -gamma if mirror else gamma, vx)
+        if all(np.ndim(a) == 0 for a in args):
+            args = tuple(float(a) for a in args)
+        f = tire.forces(*args)
+        fx, fy = f.fx, (-f.fy if mirror else f.fy)
+        return (friction * fx, friction * fy) if scaled else (fx, fy)
+
+    # ------------------------------------------------------------------ the contract
+    def _inputs_with_road(self, x, u):
+        if self.road is None:
+            return u
+        u = np.array(u, dtype=float, copy=True)
+        # ground points below the wheels: earth X, Y of the body points (x_c, y_c, h_s), their velocity
+        for c, (X, Y, VX, VY) in enumerate(self._ground_points(assembly.gather(x, self._state_index))):
+            if callable(self.road):
+                elevation, slope_x, slope_y = self.road(X, Y)
+            else:
+                elevation, slope_x = self.road.sample(X)
+                slope_y = 0.0
+            u[10 + c] = u[10 + c] + elevation
+            u[14 + c] = u[14 + c] + slope_x * VX + slope_y * VY
+        return u
+
+    def _ground_points(self, states):
+        """Earth (X, Y) of the four contact points and their earth velocities (VX, VY)."""
+        s = states
+        R = assembly.NUMPY.rotation_body_to_earth(s[6], s[7], s[8])
+        out = []
+        for c in range(4):
+            xc, yc, zc = self.corner_x[c], self.corner_y[c], self._k.contact_z
+            X = s[9] + R[0][0] * xc + R[0][1] * yc + R[0][2] * zc
+            Y = s[10] + R[1][0] * xc + R[1][1] * yc + R[1][2] * zc
+            vx, vy, vz = s[0] + s[4] * zc - s[5] * yc, s[1] + s[5] * xc - s[3] * zc, s[2] + s[3] * yc - s[4] * xc
+            out.append((X, Y, R[0][0] * vx + R[0][1] * vy + R[0][2] * vz, R[1][0] * vx + R[1][1] * vy + R[1][2] * vz))
+        return out
+
+    def _evaluate(self, x, u):
+        x = np.asarray(x, dtype=float)
+        u = self._inputs_with_road(x, np.asarray(u, dtype=float))
+        states = assembly.gather(x, self._state_index)
+        inputs = list(u)
+        friction = (1.0, 1.0, 1.0, 1.0)
+        if self.friction is not None:
+            friction = [np.asarray(self.friction(X, Y), dtype=float) for X, Y, _, _ in self._ground_points(states)]
+            if not all(np.all(f > 0) for f in friction):
+                raise ParameterError("friction(X, Y) must be > 0 under every wheel", key="friction",
+                                     value=[float(np.min(f)) for f in friction])
+        return states, assembly.evaluate(assembly.NUMPY, self, self._k, states, inputs, friction)
+
+    def rhs(self, t, x, u):
+        """State derivatives (equations in the module docstrings).
+
+        Raises
+        ------
+        SimulationError
+            When the roll or pitch angle leaves :attr:`domain` (the vehicle rolls or pitches over).
+        """
+        self._check_domain(t, x)
+        states, e = self._evaluate(x, u)
+        rates = assembly.derivatives(states, e)
+        return _stack([rates[j] for j in self._state_order])
+
+    def _check_domain(self, t, x):
+        for name, (low, high) in self.domain.items():
+            value = np.asarray(x[self._state_index[assembly.STATES.index(name)]])
+            outside = ~((value >= low) & (value <= high))
+            if np.any(outside):
+                bad = float(value.flat[int(np.argmax(outside))])
+                raise SimulationError(
+                    f"{name} = {bad:.4g} rad at t = {float(t):.6g} s leaves the full vehicle's domain "
+                    f"[{low:.4g}, {high:.4g}] rad: the vehicle is {'rolling' if name == 'roll_angle' else 'pitching'} "
+                    "over", time=float(t), signal=name)
+
+    def output(self, t, x, u):
+        """Outputs (see :attr:`outputs`)."""
+        states, e = self._evaluate(x, u)
+        return _stack(assembly.outputs(assembly.NUMPY, states, e))
+
+    # ------------------------------------------------------------------ operating points
+    def static_loads(self) -> dict[str, float]:
+        """Tire normal loads at rest on a flat road [N], ``{"normal_load_front_left": ..., ...}``.
+
+        Evaluated by the model's equations at its rest state (which they hold in equilibrium:
+        :meth:`rhs` is zero there).
+        """
+        x0, u0 = self.state_vector(), self.input_vector()
+        y = self.output(0.0, x0, u0)
+        return {f"normal_load{sfx}": float(y[self.index(f'normal_load{sfx}', 'outputs')]) for sfx in CORNERS}
+
+    def trim(self, speed: float, *, lateral_acceleration: float = 0.0, radius: float | None = None,
+             longitudinal_acceleration: float = 0.0, tol: float = 1e-9, guess=None):
+        """Steady straight running or steady cornering: ``(x0, u0)``.
+
+        Parameters
+        ----------
+        speed : float
+            Speed of the sprung CG in the body's x-y plane [m/s], > 0.
+        lateral_acceleration : float
+            Steady lateral acceleration [m/s^2] of the total CG in the intermediate axes (the output
+            ``lateral_acceleration``; SAE: positive turning right); or give ``radius``.
+        radius : float, optional
+            Path radius of the sprung CG [m] (positive turning right); overrides
+            ``lateral_acceleration`` (a_y = V^2 / R).
+        longitudinal_acceleration : float
+            Quasi-steady straight braking (< 0) or driving (> 0) [m/s^2] of the total CG: attitude,
+            heights, slips and deflections steady, the velocities decreasing in proportion, the
+            torques split by the vehicle's ``driveline`` fractions (brake torques when braking).
+        tol : float
+            Largest derivative allowed, relative to g for accelerations and to the speed for
+            velocities (every derivative except of x, y and yaw angle).
+        guess : (x, u), optional
+            A nearby operating point to start from (continuation towards the limit), instead of the
+            closed-form start.
+
+        Returns
+        -------
+        x0, u0 : ndarray
+            The state (x = y = yaw = 0) and inputs: ``front_steer_angle`` and the drive torques that
+            hold the speed (split by the vehicle's ``driveline.front_drive_fraction``), or the brake
+            torques of a braking operating point.
+
+        Raises
+        ------
+        ParameterError
+            For a bad speed or acceleration, or when no steady state is found within ``tol`` (e.g.
+            beyond the limit lateral acceleration).
+        """
+        from . import operating_points
+
+        return operating_points.trim(self, speed, lateral_acceleration=lateral_acceleration, radius=radius,
+                                     longitudinal_acceleration=longitudinal_acceleration, tol=tol, guess=guess)
+
+    @staticmethod
+    def wheel_lift(result) -> dict[str, list[tuple[float, float]]]:
+        """The intervals [s] during which each wheel carried no load in a simulation ``result``.
+
+        Returns ``{"front_left": [(t_start, t_end), ...], ...}`` from the ``normal_load_*`` outputs
+        (a wheel is off the ground where its load is exactly 0, the model's lift-off); empty lists
+        for wheels that never lifted.
+        """
+        time = np.asarray(result.time)
+        out = {}
+        for sfx in CORNERS:
+            lifted = np.asarray(result[f"normal_load{sfx}"]) <= 0.0
+            edges = np.flatnonzero(np.diff(np.concatenate([[False], lifted, [False]]).astype(int)))
+            out[sfx[1:]] = [(float(time[a]), float(time[b - 1])) for a, b in zip(edges[::2], edges[1::2])]
+        return out
+
+    def __repr__(self) -> str:
+        return (f"<FullVehicle of {self.vehicle.name!r}: tires {type(self.front_tire).__name__}/"
+                f"{type(self.rear_tire).__name__}, tire_lag={self.tire_lag}, {self.n_states} states>")
+

@@ -1,0 +1,151 @@
+"""Bekker's closed forms: plate pressure-sinkage, static sinkage and resistances of a rigid wheel.
+
+With ``k = k_c / b + k_phi`` (Bekker 1969; Wong 2008, sec. 2.2 and 2.5):
+
+* pressure-sinkage of a plate of width b: ``p = k z^n``;
+* static sinkage of a towed rigid wheel of diameter D and width b under the load W::
+
+      z0 = [3 W / ((3 - n) (k_c + b k_phi) sqrt(D))]^(2 / (2n + 1))
+
+* compaction resistance (the work of making a rut of depth z0 per unit length)::
+
+      R_c = b k z0^(n+1) / (n + 1)
+
+* bulldozing resistance of a vertical wall of width b pushed to the depth z, from the Rankine
+  passive earth pressure (Wong 2008, sec. 2.2), ``N_phi = tan^2(45 deg + phi/2)``::
+
+      R_b = b (gamma z^2 N_phi / 2 + 2 c z sqrt(N_phi))
+
+Limits of the closed forms: the contact arc is replaced by a parabola, which needs z0 / D small
+(a few per cent); the normal stress is the plate pressure at the local sinkage with its maximum at
+the bottom of the wheel (no slip, no shear); the factor (3 - n) / 3 is Bekker's series
+approximation of ``B(n + 1, 1/2) / 2`` (:func:`parabolic_wheel_sinkage` keeps the exact Beta
+function), exact for n = 0 and n = 1; its error in sinkage is -6 % at n = 0.5, +1.5 % at n = 1.1,
++5 % at n = 1.3 and +11 % at n = 1.6. The Rankine
+wall is a simplification of Bekker's bulldozing formula (which uses Terzaghi's bearing-capacity
+factors); it assumes a smooth vertical wall and a horizontal soil surface.
+
+References
+----------
+M. G. Bekker, *Introduction to Terrain-Vehicle Systems*, University of Michigan Press, 1969.
+J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, ch. 2.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...errors import ParameterError
+from ...units import GRAVITY
+from .soil import Soil
+
+__all__ = ["bekker_pressure", "plate_sinkage", "rigid_wheel_sinkage", "parabolic_wheel_sinkage",
+           "compaction_resistance", "bulldozing_resistance", "rankine_wall_force", "checked_array"]
+
+
+
+def checked_array(name: str, value, *, ge: float | None = None, gt: float | None = None):
+    """``value`` as a float array (0-d for scalars), checked finite and against a bound once.
+
+    Raises ParameterError naming ``name`` and the first bad value.
+    """
+    a = np.asarray(value, dtype=float)
+    ok = np.isfinite(a)
+    if ge is not None:
+        ok &= a >= ge
+    if gt is not None:
+        ok &= a > gt
+    if not np.all(ok):
+        bad = float(a[~ok].flat[0]) if a.ndim else float(a)
+        bound = f" >= {ge}" if ge is not None else (f" > {gt}" if gt is not None else "")
+        raise ParameterError(f"{name} must be finite{' and' + bound if bound else ''}, got {bad!r}", key=name,
+                             value=bad)
+    return a
+
+
+def _out(a):
+    return float(a) if np.ndim(a) == 0 else a
+
+
+def bekker_pressure(soil: Soil, sinkage, width):
+    """Bekker's plate pressure ``p = (k_c / b + k_phi) z^n`` [Pa].
+
+    Parameters
+    ----------
+    soil : Soil
+    sinkage : array_like
+        z [m], >= 0.
+    width : array_like
+        b [m]: the smaller dimension of the plate (the wheel width), > 0.
+    """
+    z = checked_array("sinkage", sinkage, ge=0.0)
+    return _out(soil.modulus(width) * z**soil.n)
+
+
+def plate_sinkage(soil: Soil, pressure, width):
+    """Sinkage [m] of a plate of width ``b`` [m] under the pressure ``p`` [Pa]: ``(p / k)^(1/n)``."""
+    p = checked_array("pressure", pressure, ge=0.0)
+    return _out((p / soil.modulus(width)) ** (1.0 / soil.n))
+
+
+def rigid_wheel_sinkage(soil: Soil, load, diameter, width):
+    """Bekker's static sinkage z0 [m] of a towed rigid wheel (module docstring; valid for z0/D small).
+
+    Parameters
+    ----------
+    soil : Soil
+    load : array_like
+        Normal load W [N], >= 0.
+    diameter : array_like
+        D [m], > 0.
+    width : array_like
+        b [m], > 0.
+    """
+    w = checked_array("load", load, ge=0.0)
+    d = checked_array("diameter", diameter, gt=0.0)
+    b = np.asarray(width, dtype=float)
+    n = soil.n
+    if n >= 3.0:
+        raise ParameterError(f"Bekker's wheel sinkage needs n < 3, got n={n!r}", key="n", value=n)
+    kb = soil.modulus(b) * b  # k_c + b k_phi
+    return _out((3.0 * w / ((3.0 - n) * kb * np.sqrt(d))) ** (2.0 / (2.0 * n + 1.0)))
+
+
+def parabolic_wheel_sinkage(soil: Soil, load, diameter, width):
+    """Static sinkage [m] of a rigid wheel with the arc taken as a parabola, integrated exactly.
+
+    ``W = b k sqrt(D) z0^(n + 1/2) B(n + 1, 1/2) / 2``; Bekker's :func:`rigid_wheel_sinkage`
+    replaces ``B(n + 1, 1/2) / 2`` by ``(3 - n) / 3``. Same limits otherwise (z0/D small).
+    """
+    w = checked_array("load", load, ge=0.0)
+    d = checked_array("diameter", diameter, gt=0.0)
+    n = soil.n
+    beta = math.exp(math.lgamma(n + 1.0) + math.lgamma(0.5) - math.lgamma(n + 1.5))
+    kb = soil.modulus(width) * np.asarray(width, dtype=float)
+    return _out((2.0 * w / (kb * np.sqrt(d) * beta)) ** (1.0 / (n + 0.5)))
+
+
+def compaction_resistance(soil: Soil, load, diameter, width):
+    """Bekker's compaction resistance [N] of a towed rigid wheel: ``b k z0^(n+1) / (n+1)`` with z0 of
+    :func:`rigid_wheel_sinkage` (same arguments; valid for z0/D small)."""
+    z0 = np.asarray(rigid_wheel_sinkage(soil, load, diameter, width))
+    b = np.asarray(width, dtype=float)
+    return _out(b * soil.modulus(b) * z0 ** (soil.n + 1.0) / (soil.n + 1.0))
+
+
+def rankine_wall_force(soil: Soil, depth):
+    """Rankine passive force per unit width [N/m] on a vertical wall to the depth z [m] (no checks):
+    ``gamma z^2 N_phi / 2 + 2 c z sqrt(N_phi)``, ``N_phi = tan^2(45 deg + phi/2)``, ``gamma = density g``."""
+    n_phi = math.tan(math.pi / 4 + soil.friction_angle / 2) ** 2
+    gamma = soil.density * GRAVITY
+    return depth * (0.5 * gamma * n_phi * depth + 2.0 * soil.cohesion * math.sqrt(n_phi))
+
+
+def bulldozing_resistance(soil: Soil, sinkage, width):
+    """Bulldozing resistance [N] of a vertical wall of width ``b`` [m] at the depth ``z`` [m]:
+    ``b`` times :func:`rankine_wall_force` (module docstring)."""
+    z = checked_array("sinkage", sinkage, ge=0.0)
+    b = checked_array("width", width, gt=0.0)
+    return _out(b * rankine_wall_force(soil, z))

@@ -1,0 +1,68 @@
+"""The Wong-Reece equations point by point with adaptive quadrature: a slow reference.
+
+The textbook implementation of :mod:`~vehdyn.tire.terramechanics.wong_reece`: the stresses as
+scalar functions of the angle written from the equations (the rear region's mapped angle computed
+explicitly), integrated by ``scipy.integrate.quad`` on each side of theta_m, and the entry angle
+found by ``scipy.optimize.brentq``, one slip at a time. The tests check the vectorized Gauss
+quadrature against it and ``benchmarks/bench_terramechanics.py`` uses it as the baseline and the
+error reference. scipy is imported on use.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+__all__ = ["stress_functions", "adaptive_integrals", "adaptive_solve"]
+
+
+def stress_functions(wheel, theta1: float, slip: float):
+    """``(sigma, tau, integral)``: the normal and shear stress [Pa] at the angle theta [rad] for the
+    entry angle ``theta1`` and slip ``slip`` of ``wheel`` (a RigidWheel), and ``integral(f,
+    epsrel=1e-12)`` over the contact arc (split at theta_m)."""
+    from scipy.integrate import quad
+
+    soil, r, b = wheel.soil, wheel.radius, wheel.width
+    k = soil.k_c / b + soil.k_phi
+    tan_phi = math.tan(soil.friction_angle)
+    tm = min(max(wheel.c1 + wheel.c2 * slip, 0.0), 1.0) * theta1
+    t2 = -wheel.rebound * theta1
+
+    def sigma(t):
+        e = t if t >= tm else theta1 - (t - t2) / (tm - t2) * (theta1 - tm)
+        return k * (r * max(math.cos(e) - math.cos(theta1), 0.0)) ** soil.n
+
+    def tau(t):
+        if slip >= 0:
+            j = r * ((theta1 - t) - (1 - slip) * (math.sin(theta1) - math.sin(t)))
+        else:
+            j = r * ((1 + slip) * (theta1 - t) - (math.sin(theta1) - math.sin(t)))
+        return math.copysign((soil.cohesion + sigma(t) * tan_phi) * (1 - math.exp(-abs(j) / soil.shear_modulus)), j)
+
+    def integral(f, epsrel=1e-12):
+        pieces = [(t2, tm), (tm, theta1)] if tm > t2 else [(tm, theta1)]
+        return sum(quad(f, a, c, epsabs=0, epsrel=epsrel, limit=200)[0] for a, c in pieces)
+
+    return sigma, tau, integral
+
+
+def adaptive_integrals(wheel, theta1: float, slip: float, epsrel: float = 1e-12):
+    """``(W, H, R, T)``: vertical load, thrust, motion resistance [N] and torque [N*m]."""
+    r, b = wheel.radius, wheel.width
+    sigma, tau, integral = stress_functions(wheel, theta1, slip)
+    return (r * b * integral(lambda t: sigma(t) * math.cos(t) + tau(t) * math.sin(t), epsrel),
+            r * b * integral(lambda t: tau(t) * math.cos(t), epsrel),
+            r * b * integral(lambda t: sigma(t) * math.sin(t), epsrel),
+            r * r * b * integral(tau, epsrel))
+
+
+def adaptive_solve(wheel, load: float, slip: float, epsrel: float = 1e-10):
+    """``(sinkage [m], drawbar pull [N])`` of one (load, slip) by brentq on the entry angle."""
+    from scipy.optimize import brentq
+
+    with warnings.catch_warnings():  # quad's round-off notice near 1e-10 on the kinked integrands
+        warnings.simplefilter("ignore")
+        theta1 = brentq(lambda t: adaptive_integrals(wheel, t, slip, epsrel)[0] - load, 1e-9, 0.5 * math.pi,
+                        xtol=1e-13)
+        _, thrust, resistance, _ = adaptive_integrals(wheel, theta1, slip, epsrel)
+    return wheel.radius * (1 - math.cos(theta1)), thrust - resistance

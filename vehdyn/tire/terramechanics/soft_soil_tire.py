@@ -1,0 +1,118 @@
+"""A tire law on soft soil for the vehicle models: :class:`SoftSoilTire`.
+
+It wraps :class:`~vehdyn.tire.terramechanics.FlexibleWheel` (rigid mode: Wong-Reece; elastic mode:
+flat-section contact) behind the :class:`~vehdyn.tire.TireModel` interface, so that
+:class:`~vehdyn.handling.SingleTrack` and the other vehicle models run on sand, loam, clay or snow.
+
+Slip mapping (ISO-W slip ratio ``kappa = (omega r - V) / V`` to the terramechanics slip s)::
+
+    s = kappa / (1 + kappa)     kappa >= 0   (driven: s = 1 - V / (r omega))
+    s = max(kappa, -1)          kappa <  0   (braked: s = r omega / V - 1)
+
+``F_x`` is the drawbar pull (thrust minus motion resistance: the net horizontal soil force on the
+wheel), signed with the rolling direction like the road laws; ``F_y`` the side force of the
+flexible wheel (ISO-W: negative for a positive slip angle). The rolling-resistance moment
+``M_y = r F_x - T`` (T the soil's torque on the wheel, so that ``-T = -r F_x + M_y``; <= 0 rolling
+forwards, like the Magic Formula's) carries the part of the soil torque that ``F_x r`` does not:
+a vehicle model that closes the wheel-spin balance with ``F_x r`` alone sees a free-rolling wheel
+settle at zero drawbar pull and misses that moment (the motion resistance of a driven wheel still
+acts on the vehicle through ``F_x``). ``M_x = M_z = 0``. :meth:`SoftSoilTire.evaluate` gives sinkage,
+motion resistance, torque, mode and the stuck status.
+
+Inputs that are not finite give NaN at those points, as for every tire law (:mod:`vehdyn.tire.base`):
+every force and moment, and in :meth:`SoftSoilTire.evaluate` every number of the result (``stuck``
+False and ``mode`` ``"invalid"`` there); bools raise :class:`~vehdyn.ParameterError`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ...errors import ParameterError
+from .._common import all_scalars, broadcast_inputs, rolling_direction
+from ..base import TireForces, TireModel
+from .flexible import FlexibleWheel, SoftSoilTireGeometry
+from .soil import Soil
+from .wong_reece import WheelSoilResult
+
+__all__ = ["SoftSoilTire", "SoftSoilTireGeometry", "slip_from_kappa"]
+
+_MAX_SLIP_ANGLE = 0.5 * math.pi - 1e-6
+
+
+def slip_from_kappa(kappa):
+    """Terramechanics slip s in [-1, 1] from the ISO-W slip ratio (module docstring)."""
+    k = np.asarray(kappa, dtype=float)
+    return np.where(k >= 0.0, k / (1.0 + np.abs(k)), np.maximum(k, -1.0))
+
+
+class SoftSoilTire(TireModel):
+    """A tire on deformable soil with the :class:`~vehdyn.tire.TireModel` interface.
+
+    Parameters
+    ----------
+    tire_geometry : SoftSoilTireGeometry
+        Radius, width, inflation and carcass pressures.
+    soil : Soil
+    **wheel_options
+        ``c1``, ``c2``, ``rebound`` of :class:`FlexibleWheel`.
+
+    Examples
+    --------
+    >>> from vehdyn.tire.terramechanics import SoftSoilTire, SoftSoilTireGeometry, load_soil
+    >>> tire = SoftSoilTire(SoftSoilTireGeometry(radius=0.32, width=0.205, inflation_pressure=2.2e5),
+    ...                     load_soil("dry_sand"))
+    >>> f = tire.forces(4000.0, 0.2, 0.0)
+    """
+
+    name = "soft_soil"
+
+    def __init__(self, tire_geometry: SoftSoilTireGeometry, soil: Soil, **wheel_options):
+        if not isinstance(tire_geometry, SoftSoilTireGeometry):
+            raise ParameterError(f"tire_geometry must be a SoftSoilTireGeometry, got {type(tire_geometry).__name__}",
+                                 key="tire_geometry", value=tire_geometry)
+        if not isinstance(soil, Soil):
+            raise ParameterError(f"soil must be a Soil, got {type(soil).__name__}", key="soil", value=soil)
+        self.wheel = FlexibleWheel(geometry=tire_geometry, soil=soil, **wheel_options)
+        self.tire_geometry = tire_geometry
+        self.soil = soil
+
+    def __repr__(self) -> str:
+        return f"SoftSoilTire({self.tire_geometry!r}, soil={self.soil.name!r})"
+
+    def evaluate(self, fz, kappa, alpha=0.0, vx=10.0) -> WheelSoilResult:
+        """The wheel's steady state (sinkage, drawbar pull, motion resistance, torque, mode, stuck)
+        at the load fz [N], ISO-W slip ratio kappa and slip angle alpha [rad]; ``vx`` [m/s] only
+        through its sign (the forces of the result are for rolling forwards)."""
+        return self._evaluate(fz, kappa, alpha, 0.0, vx)
+
+    def _evaluate(self, fz, kappa, alpha, gamma, vx) -> WheelSoilResult:
+        """:meth:`evaluate`, with ``gamma`` (no effect) taking part in the shape and the input check."""
+        (fz, kappa, alpha, _, vx), bad = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+        result = self.wheel.solve(fz, slip_from_kappa(kappa), np.clip(alpha, -_MAX_SLIP_ANGLE, _MAX_SLIP_ANGLE))
+        if bad is None:
+            return result
+        invalid = {"stuck": False, "mode": "invalid"}
+        return dataclasses.replace(result, **{
+            f.name: np.where(bad, invalid.get(f.name, np.nan), np.broadcast_to(getattr(result, f.name), bad.shape))
+            for f in dataclasses.fields(result)})
+
+    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
+        """Steady-state forces (ISO-W); see :meth:`vehdyn.tire.TireModel.forces` and the module
+        docstring. Camber has no effect."""
+        scalar = all_scalars(fz, kappa, alpha, gamma, vx)
+        result = self._evaluate(fz, kappa, alpha, gamma, vx)
+        direction = rolling_direction(np.asarray(vx, dtype=float))
+        fx = result.drawbar_pull * direction
+        fy = result.lateral_force
+        my = (self.tire_geometry.radius * result.drawbar_pull - result.torque) * direction
+        load = result.load
+        zero = load * 0.0  # NaN where an input was not finite (load is NaN there)
+        if scalar:
+            return TireForces(float(fx), float(fy), float(load), float(zero), float(my), float(zero))
+        fx = np.broadcast_to(fx, load.shape).astype(float)
+        return TireForces(fx, np.asarray(fy, dtype=float), load, zero, np.broadcast_to(my, load.shape).astype(float),
+                          zero.copy())

@@ -1,0 +1,169 @@
+"""Soil parameters of classical terramechanics and the shipped soil table.
+
+A soil is described by Bekker's pressure-sinkage law ``p = (k_c / b + k_phi) z^n`` (b the smaller
+dimension of the loading area, z the sinkage) and by the Mohr-Coulomb strength with the
+Janosi-Hanamoto shear-displacement law ``tau = (c + sigma tan(phi)) (1 - exp(-j / K))``.
+
+References
+----------
+M. G. Bekker, *Introduction to Terrain-Vehicle Systems*, University of Michigan Press, 1969.
+Z. Janosi and B. Hanamoto, "The analytical determination of drawbar pull as a function of slip for
+tracked vehicles in deformable soils", 1st Int. Conf. Terrain-Vehicle Systems, Turin, 1961.
+J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, ch. 2.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import ParameterError
+from ...params.base import ParameterSet, parameter, read_toml, text
+
+__all__ = ["Soil", "load_soil", "shipped_soils", "soil_source"]
+
+#: Factor to SI of each unit a soil table may give a parameter in (``k_c``, ``k_phi`` keep their
+#: n-dependent dimension: only the force and length prefixes are converted).
+_UNIT_FACTORS = {
+    "k_c": {"N/m^(n+1)": 1.0, "kN/m^(n+1)": 1e3},
+    "k_phi": {"N/m^(n+2)": 1.0, "kN/m^(n+2)": 1e3},
+    "cohesion": {"Pa": 1.0, "kPa": 1e3},
+    "friction_angle": {"rad": 1.0, "deg": math.pi / 180.0},
+    "shear_modulus": {"m": 1.0, "cm": 1e-2, "mm": 1e-3},
+    "lateral_shear_modulus": {"m": 1.0, "cm": 1e-2, "mm": 1e-3},
+    "density": {"kg/m^3": 1.0, "g/cm^3": 1e3},
+}
+
+_SOIL_FILE = ("soils.toml",)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Soil(ParameterSet):
+    """A deformable soil (SI units).
+
+    Parameters
+    ----------
+    n : float
+        Exponent of deformation of Bekker's pressure-sinkage law [-], > 0.
+    k_c : float
+        Cohesive modulus of deformation [N/m^(n+1)].
+    k_phi : float
+        Frictional modulus of deformation [N/m^(n+2)].
+    cohesion : float
+        Cohesion c [Pa], >= 0.
+    friction_angle : float
+        Angle of internal shearing resistance phi [rad], in [0, pi/2).
+    shear_modulus : float
+        Shear deformation modulus K of the Janosi-Hanamoto law [m], > 0.
+    lateral_shear_modulus : float, optional
+        K_y for the side shear [m]; default ``shear_modulus``.
+    density : float
+        Bulk density [kg/m^3], for the bulldozing (passive earth pressure) terms; default 1600.
+    name : str
+        A label (the shipped table's key).
+
+    Notes
+    -----
+    ``k_c / b + k_phi`` must be positive for the widths used; the functions that take a width
+    check it.
+    """
+
+    n: float = parameter("-", "exponent of deformation of the pressure-sinkage law", gt=0)
+    k_c: float = parameter("N/m^(n+1)", "cohesive modulus of deformation")
+    k_phi: float = parameter("N/m^(n+2)", "frictional modulus of deformation")
+    cohesion: float = parameter("Pa", "cohesion c", ge=0)
+    friction_angle: float = parameter("rad", "angle of internal shearing resistance phi", ge=0, lt=math.pi / 2)
+    shear_modulus: float = parameter("m", "shear deformation modulus K (Janosi-Hanamoto)", gt=0)
+    lateral_shear_modulus: float = parameter("m", "lateral shear deformation modulus K_y", default=None, gt=0)
+    density: float = parameter("kg/m^3", "bulk density (bulldozing terms)", default=1600.0, gt=0)
+    name: str = text("label of the soil", default="custom")
+
+    @property
+    def side_shear_modulus(self) -> float:
+        """K_y [m]: ``lateral_shear_modulus`` if given, else ``shear_modulus``."""
+        return self.shear_modulus if self.lateral_shear_modulus is None else self.lateral_shear_modulus
+
+    def modulus(self, width):
+        """``k_c / b + k_phi`` [N/m^(n+2)] for the width ``b`` [m] (scalar or array), checked > 0."""
+        b = np.asarray(width, dtype=float)
+        if not np.all(np.isfinite(b) & (b > 0)):
+            bad = b[~(np.isfinite(b) & (b > 0))].flat[0] if b.ndim else b
+            raise ParameterError(f"width must be finite and > 0 [m], got {float(bad)!r}", key="width", value=float(bad))
+        k = self.k_c / b + self.k_phi
+        if not np.all(k > 0):
+            raise ParameterError(f"k_c / width + k_phi must be > 0 for soil {self.name!r} (k_c={self.k_c}, "
+                                 f"k_phi={self.k_phi}, width={b})", key="k_phi", value=self.k_phi)
+        return k if b.ndim else float(k)
+
+
+def _soil_table() -> dict:
+    from ...params.vehicle import data_path
+
+    return read_toml(data_path("soils.toml"))
+
+
+def shipped_soils() -> list[str]:
+    """Names of the soils in the shipped table ``data/soils.toml``."""
+    return sorted(_soil_table())
+
+
+def soil_source(name: str) -> str:
+    """The published source of a shipped soil (its ``source`` entry in ``data/soils.toml``)."""
+    table = _soil_table()
+    if name not in table:
+        raise ParameterError(f"no shipped soil {name!r}; soils are {sorted(table)}", key="soil", value=name)
+    return table[name]["source"]
+
+
+def soil_from_table(entry: dict, name: str = "custom") -> Soil:
+    """A :class:`Soil` from one table entry with values in the units its ``units`` table names."""
+    entry = dict(entry)
+    units = entry.pop("units", {})
+    entry.pop("description", None)
+    entry.pop("source", None)
+    values = {}
+    for key, value in entry.items():
+        if key in _UNIT_FACTORS:
+            unit = units.get(key)
+            if unit is None:
+                raise ParameterError(f"soil {name!r}: {key} has no unit in its units table", key=f"{name}.units.{key}",
+                                     value=None)
+            factors = _UNIT_FACTORS[key]
+            if unit not in factors:
+                raise ParameterError(f"soil {name!r}: unit {unit!r} of {key} is not one of {list(factors)}",
+                                     key=f"{name}.units.{key}", value=unit)
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise ParameterError(f"soil {name!r}: {key} must be a number, got {value!r}", key=f"{name}.{key}",
+                                     value=value)
+            value = value * factors[unit]
+        values[key] = value
+    return Soil.from_dict({**values, "name": name}, path=f"{name}.")
+
+
+def load_soil(name_or_path: str | Path) -> Soil:
+    """A shipped soil by name (``"dry_sand"``, see :func:`shipped_soils`), or the single soil of a
+    user's TOML file laid out like ``data/soils.toml`` (``"file.toml"`` or ``"file.toml:name"``).
+
+    Values are converted from the units the table gives (``kN/m^(n+1)``, ``kPa``, ``deg``, ``cm`` ...)
+    to SI.
+    """
+    text_name = str(name_or_path)
+    path, _, key = text_name.partition(".toml:")
+    if text_name.endswith(".toml") or key:
+        path = Path(path if not key else path + ".toml")
+        table = read_toml(path)
+        if not key:
+            if len(table) != 1:
+                raise ParameterError(f"{path} holds soils {sorted(table)}: name one as '{path}:NAME'", key="soil",
+                                     value=text_name)
+            key = next(iter(table))
+        if key not in table:
+            raise ParameterError(f"{path} has no soil {key!r}; it has {sorted(table)}", key="soil", value=key)
+        return soil_from_table(table[key], key)
+    table = _soil_table()
+    if text_name not in table:
+        raise ParameterError(f"no shipped soil {text_name!r}; soils are {sorted(table)}", key="soil", value=text_name)
+    return soil_from_table(table[text_name], text_name)
