@@ -24,7 +24,8 @@ and friction given as Python callables have no compiled form: the model then ref
 backend and says so.
 
 Every per-corner quantity is a tuple and every loop is unrolled in the shared equations, so a call
-allocates nothing (but the 32-state vector of a model without tire lag).
+allocates nothing (but the 32-state vector of a model without tire lag, and the inputs on a
+road).
 """
 
 from __future__ import annotations
@@ -137,7 +138,10 @@ XP.axle_tire_forces = numba.njit(**_JIT)(_corner_tire_forces)
 
 
 def _states(x, index):
-    """The 32 states in the order of :data:`assembly.STATES` (zeros where the model lacks one)."""
+    """The 32 states in the order of :data:`assembly.STATES` (zeros where the model lacks one):
+    ``x`` itself when the model has them all in that order (with tire lag)."""
+    if index[len(index) - 1] == len(index) - 1:  # the index of a model with every state is the identity
+        return x
     s = np.zeros(len(index))
     for j in range(len(index)):
         if index[j] >= 0:
