@@ -37,8 +37,8 @@ from ..mechanics.newton_euler import accelerations
 from . import aero, body, corner, driveline, steering
 from .corner import CORNERS
 
-__all__ = ["STATES", "INPUTS", "BODY_STATES", "CORNER_STATES", "Constants", "Evaluation", "NUMPY", "gather", "ground_point",
-           "DOMAIN_STATES", "DomainError",
+__all__ = ["STATES", "INPUTS", "BODY_STATES", "CORNER_STATES", "Constants", "Evaluation", "NUMPY", "gather",
+           "ground_point", "DOMAIN_STATES", "DomainError",
            "evaluate", "derivatives", "OUTPUTS", "outputs"]
 
 BODY_STATES = ("longitudinal_velocity", "lateral_velocity", "vertical_velocity", "roll_rate", "pitch_rate",

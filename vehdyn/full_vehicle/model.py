@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError, SimulationError
+from ..errors import ParameterError
 from ..handling.single_track import _stack
 from ..model import Model
 from ..params import Vehicle
@@ -160,14 +160,20 @@ class FullVehicle(Model):
     makes the total CG height the file's ``mass.cg_height`` (0.28 m for the shipped sedan; the
     rolling radius is used for the tread speed only).
     Equations and modelling choices: module docstrings of :mod:`vehdyn.full_vehicle`.
+
+    ``vehdyn.simulate(model, ..., method="RK45" or "DOP853")`` runs the compiled rhs (numba; see
+    :meth:`compiled_rhs`), two orders of magnitude faster than the numpy rhs under ``solve_ivp``
+    (``benchmarks/bench_full_vehicle.py``); the first call compiles it (about a minute, then cached
+    on disk).
     """
 
     #: Where the equations hold: the body's force projections are those of small roll and pitch angles
     #: (every angle enters through exact rotations, the suspension and tire forces through their
     #: body-axis components). Past these bounds the vehicle is rolling or pitching over; :meth:`rhs`
-    #: raises :class:`~vehdyn.SimulationError` naming the state and the time. [rad] (An adaptive
-    #: solver's trial stage can also land there when its step is far too long for a sudden input,
-    #: e.g. a pothole on an otherwise smooth road: give ``max_step`` below the shortest road feature.)
+    #: and the compiled rhs raise :class:`~vehdyn.SimulationError` naming the state and the time.
+    #: [rad] (An adaptive solver's trial stage can also land there when its step is far too long for a
+    #: sudden input, e.g. a pothole on an otherwise smooth road: give ``max_step`` below the shortest
+    #: road feature.)
     domain = {"roll_angle": (-np.pi / 4, np.pi / 4), "pitch_angle": (-np.pi / 4, np.pi / 4)}
 
     def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, tire_lag: bool = True, road=None,
