@@ -9,7 +9,7 @@ Simulation and results
     :class:`SimulationResult`, :class:`FrequencyResponse`, :class:`Modes`
 Parameters
     :func:`load_vehicle`, :func:`shipped_vehicles`, :class:`Vehicle` (and its groups in
-    :mod:`vehdyn.params`), :func:`data_path`
+    :mod:`vehdyn.params`), :func:`load_trailer`, :func:`shipped_trailers`, :class:`Trailer`, :func:`data_path`
 Errors
     :class:`VehdynError`, :class:`ParameterError`, :class:`SimulationError`, :class:`TirFileError`,
     :class:`VehdynWarning`
@@ -32,7 +32,7 @@ import importlib
 from .errors import ParameterError, SimulationError, TirFileError, VehdynError, VehdynWarning
 from .linear import LinearModel, connect_in_series
 from .model import Model
-from .params import Vehicle, data_path, load_vehicle, shipped_vehicles
+from .params import Trailer, Vehicle, data_path, load_trailer, load_vehicle, shipped_trailers, shipped_vehicles
 from .piecewise_signal import PiecewiseSignal
 from .results import FrequencyResponse, SimulationResult
 from .signals import Signal
@@ -54,6 +54,9 @@ __all__ = [
     "load_vehicle",
     "shipped_vehicles",
     "data_path",
+    "Trailer",
+    "load_trailer",
+    "shipped_trailers",
     "VehdynError",
     "ParameterError",
     "SimulationError",

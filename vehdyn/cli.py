@@ -123,7 +123,7 @@ def cmd_tire_soil(args) -> int:
 
 
 def cmd_tire(args) -> int:
-    from .errors import VehdynError
+    from .errors import VehdynError, VehdynWarning
 
     if args.soil is not None:
         if args.file is not None:
@@ -138,11 +138,17 @@ def cmd_tire(args) -> int:
     except ImportError as exc:  # pragma: no cover - until the tire layer is complete
         print(f"vehdyn tire: the tire layer is not available in this version ({exc})", file=sys.stderr)
         return 2
+    import warnings
+
     try:
-        tire = load_tire(args.file)
-    except (VehdynError, OSError) as exc:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", VehdynWarning)
+            tire = load_tire(args.file)
+    except (VehdynError, OSError) as exc:  # unreadable file, malformed line, non-finite coefficient, ...
         print(f"vehdyn tire: {exc}", file=sys.stderr)
         return 2
+    for warning in caught:  # e.g. missing sections: said, and the tire is still described
+        print(f"vehdyn tire: warning: {warning.message}", file=sys.stderr)
     print(describe_tire(tire))
     from .report import make_folder
 
@@ -155,6 +161,31 @@ def cmd_tire(args) -> int:
     for name, fig in plot_tire_characteristics(tire).items():
         path = save_figure(fig, out / f"{name}.png")
         print(f"wrote {path}")
+    return 0
+
+
+def cmd_tire_fit(args) -> int:
+    # Bad data or a bad start file raise a VehdynError: main() reports it as one line, exit status 2.
+    import warnings
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .errors import VehdynWarning
+    from .plotting import save_figure
+    from .tire import fit_magic_formula, read_tire_data
+
+    data = read_tire_data(args.data, convention=args.convention)
+    with warnings.catch_warnings():  # the fit's warnings are also its messages, printed with the table
+        warnings.simplefilter("ignore", VehdynWarning)
+        fit = fit_magic_formula(data, version=args.version, start=args.start)
+    print(fit)
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    print(f"wrote {fit.to_tir(out)}")
+    for stage, fig in fit.plot().items():
+        print(f"wrote {save_figure(fig, out.with_name(f'{out.stem}_{stage}.png'))}")
     return 0
 
 
@@ -206,6 +237,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--soil", metavar="NAME", help="a soil (shipped name or soils.toml:NAME): its terramechanics curves")
     p.add_argument("--out", default="tire_plots", help="output folder (default: ./tire_plots)")
     p.set_defaults(func=cmd_tire)
+    p = sub.add_parser("tire-fit", help="fit a Magic Formula to measured tire data; write a .tir and figures")
+    p.add_argument("data", help="CSV or test-consortium run file (see vehdyn.tire.read_tire_data)")
+    p.add_argument("--out", default="fitted.tir", help="output .tir file (default: ./fitted.tir); figures beside it")
+    p.add_argument("--start", default=None, help="start from this .tir file (default: from the data)")
+    p.add_argument("--version", default="6.1", choices=("5.2", "6.1", "6.2"), help="Magic Formula version")
+    p.add_argument("--convention", default="ISO-W", choices=("ISO-W", "SAE"), help="axes of a CSV file")
+    p.set_defaults(func=cmd_tire_fit)
     p = sub.add_parser("vehicles", help="list the shipped vehicles")
     p.set_defaults(func=cmd_vehicles)
     p = sub.add_parser("scene", help="plan a scene (.toml), run the chosen model, print the headline numbers")

@@ -54,6 +54,7 @@ PHENOMENA = frozenset(
         "tire_lag",
         "road_input",
         "aero",
+        "steering",
     }
 )
 
