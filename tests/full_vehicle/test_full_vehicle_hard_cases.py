@@ -235,3 +235,4 @@ def test_class_d_road_at_40_m_s_numpy_short():
     result = _check_class_d_run(model, 1.0, backend="numpy")
     if result is not None:
         assert any(model.wheel_lift(result).values())
+

@@ -16,9 +16,9 @@ float forms of the mechanics layer's numpy functions:
   :mod:`vehdyn.tire._mf_numba` (the laws of :func:`vehdyn.handling._single_track_numba.tire_law`),
   or the linear law.
 
-The compiled rhs also does what :meth:`FullVehicle.rhs` does around the equations: the domain
-check (raising :class:`~vehdyn.full_vehicle.assembly.DomainError`, the numpy path's error, from
-compiled code) and the road of a :class:`~vehdyn.ride.RoadProfile` under each contact point (its
+The compiled rhs also does what :meth:`FullVehicle.rhs` does around the equations: NaN derivatives
+for a trial state outside the domain (the step is rejected; :func:`vehdyn.simulate` locates a real
+crossing and raises :class:`~vehdyn.full_vehicle.assembly.DomainError`) and the road of a :class:`~vehdyn.ride.RoadProfile` under each contact point (its
 elevation and slope samples interpolated with ``np.interp``, as :meth:`RoadProfile.sample`). Roads
 and friction given as Python callables have no compiled form: the model then refuses the compiled
 backend and says so.
@@ -165,16 +165,17 @@ def _inputs(k, road, s, u):
     return i
 
 
-def _check_domain(t, s, domain):
-    """Raise DomainError when the roll or pitch angle leaves its bounds (or is NaN), as the numpy rhs."""
+def _outside_domain(s, domain):
+    """True when the roll or pitch angle lies outside its trial bounds (or is NaN), as the numpy rhs."""
     for j in range(2):
         value = s[6 + j]
         low, high = domain[j]
         if not (low <= value <= high):
-            raise assembly.DomainError(j, value, t, low, high)
+            return True
+    return False
 
 
-for _function in (_states, _inputs, _check_domain):
+for _function in (_states, _inputs, _outside_domain):
     register_jitable(**_JIT)(_function)
 
 
@@ -182,7 +183,10 @@ def _rhs(t, x, u, args, dxdt):
     """dx/dt of a FullVehicle at (t, x, u) into ``dxdt``; ``args`` from :func:`compiled_model`."""
     k, laws, index, domain, road = args
     s = _states(x, index)
-    _check_domain(t, s, domain)
+    if _outside_domain(s, domain):  # a trial stage far outside the domain: NaN rejects the step
+        for j in range(dxdt.shape[0]):
+            dxdt[j] = np.nan
+        return
     e = assembly.evaluate(XP, laws, k, s, _inputs(k, road, s, u), _NO_FRICTION_SCALING)
     rates = assembly.derivatives(s, e)
     for j in range(len(index)):
@@ -243,7 +247,7 @@ def compiled_model(model) -> CompiledModel:
                                  f"tire is a {type(tire).__name__}: use backend='numpy'", key=f"{axle}_tire",
                                  value=type(tire).__name__) from None
     k = model._k
-    domain = tuple((float(model.domain[name][0]), float(model.domain[name][1])) for name in assembly.DOMAIN_STATES)
+    domain = tuple(tuple(float(b) for b in assembly.trial_bounds(*model.domain[name])) for name in assembly.DOMAIN_STATES)
     rhs, output, key = compiled_functions()
     # tuples, not arrays, for the constants and the index: passed by value, without reference counting
     args = (k, tuple(laws), tuple(int(i) for i in model._state_index), domain, _road(model))

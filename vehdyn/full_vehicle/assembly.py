@@ -90,6 +90,17 @@ DOMAIN_STATES = ("roll_angle", "pitch_angle")
 """The states bounded by :attr:`FullVehicle.domain <vehdyn.full_vehicle.FullVehicle.domain>`."""
 
 
+def trial_bounds(low, high):
+    """Bounds beyond which the rhs returns NaN: the domain widened by half its width on each side.
+
+    An accepted step may cross the domain's bound (then :func:`vehdyn.simulate` locates the
+    crossing and raises :class:`DomainError`); a wild trial stage of an adaptive solver far
+    beyond it (a rejected step) gets NaN and is rejected instead of stopping the run.
+    """
+    margin = 0.5 * (high - low)
+    return low - margin, high + margin
+
+
 class DomainError(SimulationError):
     """The roll or pitch angle left :attr:`FullVehicle.domain <vehdyn.full_vehicle.FullVehicle.domain>`
     (raised by the numpy and by the compiled rhs, with the same message).

@@ -411,23 +411,37 @@ class FullVehicle(Model):
     def rhs(self, t, x, u):
         """State derivatives (equations in the module docstrings).
 
-        Raises
-        ------
-        SimulationError
-            When the roll or pitch angle leaves :attr:`domain` (the vehicle rolls or pitches over).
+        :func:`vehdyn.simulate` raises :meth:`domain_error` when an accepted step leaves
+        :attr:`domain` (the vehicle rolls or pitches over); NaN for a state far beyond it
+        (:func:`~vehdyn.full_vehicle.assembly.trial_bounds`), so that an adaptive solver's wild
+        trial stage is rejected instead of stopping a good run.
         """
-        self._check_domain(t, x)
-        states, e = self._evaluate(x, u)
-        rates = assembly.derivatives(states, e)
-        return _stack([rates[j] for j in self._state_order])
+        if not np.any(self._outside_domain(x)):
+            states, e = self._evaluate(x, u)
+            rates = assembly.derivatives(states, e)
+            return _stack([rates[j] for j in self._state_order])
+        far = self._outside_domain(x, trial=True)
+        if np.all(far):
+            return np.full(np.shape(x), np.nan)
+        with np.errstate(all="ignore"):  # beyond the domain: a crossing about to be located, or discarded
+            states, e = self._evaluate(x, u)
+            rates = assembly.derivatives(states, e)
+            return np.where(far, np.nan, _stack([rates[j] for j in self._state_order]))
 
-    def _check_domain(self, t, x):
-        for j, name in enumerate(assembly.DOMAIN_STATES):
-            low, high = self.domain[name]
+    def _outside_domain(self, x, trial=False):
+        """True where (per batch member) the roll or pitch angle lies outside :attr:`domain` (with
+        ``trial``, outside :func:`~vehdyn.full_vehicle.assembly.trial_bounds`) or is NaN."""
+        outside = False
+        for name in assembly.DOMAIN_STATES:
+            low, high = assembly.trial_bounds(*self.domain[name]) if trial else self.domain[name]
             value = np.asarray(x[self._state_index[assembly.STATES.index(name)]])
-            outside = ~((value >= low) & (value <= high))
-            if np.any(outside):
-                raise assembly.DomainError(j, float(value.flat[int(np.argmax(outside))]), float(t), low, high)
+            outside = outside | ~((value >= low) & (value <= high))
+        return outside
+
+    def domain_error(self, name, value, time):
+        """:class:`~vehdyn.full_vehicle.assembly.DomainError`: the vehicle rolls or pitches over."""
+        low, high = self.domain[name]
+        return assembly.DomainError(assembly.DOMAIN_STATES.index(name), value, time, low, high)
 
     def compiled_rhs(self):
         """The rhs compiled by numba for ``simulate(..., backend="compiled")`` (see :meth:`vehdyn.Model.compiled_rhs`).
@@ -435,8 +449,7 @@ class FullVehicle(Model):
         The same equations (:mod:`~vehdyn.full_vehicle.assembly`) with the Magic Formula or linear
         tire law compiled, with or without tire lag, on a flat road or a
         :class:`~vehdyn.ride.RoadProfile` (its samples interpolated in compiled code as
-        :meth:`RoadProfile.sample` does), with the :attr:`domain` check (the numpy path's
-        :class:`~vehdyn.full_vehicle.assembly.DomainError`, naming the state and the time). Raises
+        :meth:`RoadProfile.sample` does), NaN outside the :attr:`domain` as the numpy rhs. Raises
         :class:`~vehdyn.ParameterError` naming the reason where there is no compiled form: a road
         or friction given as a Python callable, another tire law.
         """
