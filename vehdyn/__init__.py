@@ -69,7 +69,7 @@ __all__ = [
     "plot_ladder",
 ]
 
-_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "full_vehicle", "analysis", "plotting", "conventions",
+_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "full_vehicle", "chassis", "analysis", "plotting", "conventions",
                 "units", "params", "cli", "scene"}
 _SCENE_NAMES = {"Scene", "plan", "run", "ladder", "plot_ladder"}
 
