@@ -7,11 +7,12 @@ by signal NAME, with two rules:
   the user's value, still an input of the closed loop under its own name); any other controller
   input is **feedback**, read from the plant state of that name or, failing that, the plant output;
 * a controller **output** named like a plant input *replaces* that plant input (the command the
-  actuator applies). The closed loop outputs it as ``applied_<name>``.
+  actuator applies). The closed loop outputs it as ``<name>_after_<controller>`` (controller
+  in snake case: ``abs``, ``esc``, ``traction_control``).
 
 So ``ClosedLoop(SingleTrack(car, wheel_spin=True), ABS(car))`` has the plant's inputs (the brake
 torques are the driver's demand), the plant's states followed by the controller's, and the
-plant's outputs followed by ``applied_front_brake_torque``, ``applied_rear_brake_torque``. A
+plant's outputs followed by ``front_brake_torque_after_abs``, ``rear_brake_torque_after_abs``. A
 closed loop is itself a ``Model``: it simulates (with a batch axis where the plant has one),
 linearizes (central differences through :meth:`vehdyn.Model.linearize`, every name kept) and can
 be closed again by a second controller (ESC around ABS around the car).
@@ -26,6 +27,8 @@ controller's output at two different feedback values.
 """
 
 from __future__ import annotations
+
+import re
 
 import numpy as np
 
@@ -53,6 +56,11 @@ def check_gains(owner: str, *, positive=(), nonnegative=(), **values) -> dict:
             raise ParameterError(f"{owner} gain {name} must be >= 0, got {value!r}", key=name, value=value)
         out[name] = number
     return out
+
+
+def _snake(name: str) -> str:
+    """CamelCase -> snake_case, acronyms kept together (ABS -> abs, TractionControl -> traction_control)."""
+    return re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", name).lower()
 
 
 def sigmoid(z):
@@ -118,7 +126,7 @@ class ClosedLoop(Model):
         self._command = [plant.index(n, "inputs") for n in controller.output_names]
         self.declare(states=tuple(plant.states) + tuple(controller.states), inputs=tuple(plant.inputs),
                      outputs=tuple(plant.output_signals) + tuple(
-                         Signal(f"applied_{s.name}", s.unit, f"{s.name} applied by {c_name}: {s.description}")
+                         Signal(f"{s.name}_after_{_snake(c_name)}", s.unit, f"{s.name} applied by {c_name}")
                          for s in controller.output_signals))
         self.phenomena = frozenset(plant.phenomena)
         self._check_not_algebraic()
@@ -172,7 +180,7 @@ class ClosedLoop(Model):
         return np.concatenate([dp, dc])
 
     def output(self, t, x, u):
-        """Plant outputs, then the commands the controller applies (``applied_<input>``)."""
+        """Plant outputs, then the commands the controller applies (``<input>_after_<controller>``)."""
         xp, up, _, _, command = self._split(t, x, u)
         return np.concatenate([np.asarray(self.plant.output(t, xp, up), dtype=float), command])
 
