@@ -82,3 +82,9 @@ def test_nested_loops_keep_every_name():
     rates = outer.rhs(0.0, x, outer.input_vector())
     controller_rates = rates[inner.plant.n_states:]
     np.testing.assert_allclose(controller_rates, 0.0, atol=1e-9)
+
+
+@pytest.mark.parametrize("controller", [ABS, ESC])
+def test_controllers_need_a_vehicle(controller):
+    with pytest.raises(ParameterError, match="needs a vehdyn Vehicle"):
+        controller("sedan")

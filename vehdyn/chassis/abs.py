@@ -29,7 +29,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Vehicle
 from ..signals import Signal
-from .closed_loop import ChassisController, check_gains, sigmoid
+from .closed_loop import ChassisController, check_gains, check_vehicle, sigmoid
 
 __all__ = ["ABS"]
 
@@ -77,9 +77,7 @@ class ABS(ChassisController):
     def __init__(self, vehicle: Vehicle, *, apply_slip: float = 0.05, release_slip: float = 0.12,
                  slip_width: float = 0.01, apply_time_constant: float = 0.1, release_time_constant: float = 0.02,
                  cutoff_speed: float = 2.0, minimum_speed: float = 1.0, axles=_AXLES):
-        if not isinstance(vehicle, Vehicle):
-            raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
-                                 value=vehicle)
+        check_vehicle("ABS", vehicle)
         gains = check_gains("ABS", apply_slip=apply_slip, release_slip=release_slip, slip_width=slip_width,
                             apply_time_constant=apply_time_constant, release_time_constant=release_time_constant,
                             cutoff_speed=cutoff_speed, minimum_speed=minimum_speed,

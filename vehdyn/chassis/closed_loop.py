@@ -58,6 +58,15 @@ def check_gains(owner: str, *, positive=(), nonnegative=(), **values) -> dict:
     return out
 
 
+def check_vehicle(owner: str, vehicle):
+    """ParameterError unless ``vehicle`` is a :class:`~vehdyn.Vehicle`."""
+    from ..params import Vehicle
+
+    if not isinstance(vehicle, Vehicle):
+        raise ParameterError(f"{owner} needs a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
+                             value=vehicle)
+
+
 def _snake(name: str) -> str:
     """CamelCase -> snake_case, acronyms kept together (ABS -> abs, TractionControl -> traction_control)."""
     return re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", name).lower()

@@ -31,11 +31,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError
 from ..params import Vehicle
 from ..signals import Signal
 from ..units import GRAVITY
-from .closed_loop import ChassisController, check_gains, deadband, sigmoid
+from .closed_loop import ChassisController, check_gains, check_vehicle, deadband, sigmoid
 
 __all__ = ["ESC"]
 
@@ -83,9 +82,7 @@ class ESC(ChassisController):
                  sideslip_gain: float = 50.0, yaw_rate_deadband: float = 0.03, sideslip_limit: float = 0.07,
                  hydraulic_time_constant: float = 0.1, friction_coefficient: float | None = None,
                  minimum_speed: float = 5.0):
-        if not isinstance(vehicle, Vehicle):
-            raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
-                                 value=vehicle)
+        check_vehicle("ESC", vehicle)
         from ..handling import stability_factor
 
         mu = vehicle.tires.friction_coefficient if friction_coefficient is None else friction_coefficient

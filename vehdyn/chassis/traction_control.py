@@ -27,7 +27,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Vehicle
 from ..signals import Signal
-from .closed_loop import ChassisController, check_gains, sigmoid
+from .closed_loop import ChassisController, check_gains, check_vehicle, sigmoid
 
 __all__ = ["TractionControl"]
 
@@ -74,9 +74,7 @@ class TractionControl(ChassisController):
     def __init__(self, vehicle: Vehicle, *, target_slip: float = 0.08, brake_slip: float = 0.15,
                  slip_width: float = 0.02, engine_time_constant: float = 0.15, brake_time_constant: float = 0.05,
                  brake_gain: float = 1.0, maximum_reduction: float = 0.95, minimum_speed: float = 1.0, axles=None):
-        if not isinstance(vehicle, Vehicle):
-            raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
-                                 value=vehicle)
+        check_vehicle("TractionControl", vehicle)
         gains = check_gains("TractionControl", target_slip=target_slip, brake_slip=brake_slip, slip_width=slip_width,
                             engine_time_constant=engine_time_constant, brake_time_constant=brake_time_constant,
                             brake_gain=brake_gain, maximum_reduction=maximum_reduction, minimum_speed=minimum_speed,
