@@ -102,3 +102,28 @@ def test_abs_bad_gains(kwargs, key):
 def test_traction_control_bad_gains(kwargs, key):
     with pytest.raises(ParameterError, match=key):
         TractionControl(CAR, **kwargs)
+
+
+def test_traction_control_launch_on_split_mu_full_vehicle():
+    from vehdyn.full_vehicle import FullVehicle
+
+    def split(X, Y):  # ice (0.2) under the left wheels (SAE y < 0), dry (1.0) under the right
+        return np.where(np.asarray(Y) < 0, 0.2, 1.0) * np.ones_like(np.asarray(X, dtype=float))
+
+    plant = FullVehicle(CAR, friction=split)
+    x0, u0 = plant.trim(3.0)
+    tc = TractionControl(CAR, corners=True)
+    assert tc.channels == ("rear_left", "rear_right")
+    demand = {**dict(zip(plant.input_names, u0)), "drive_torque_rear_left": 750.0, "drive_torque_rear_right": 750.0}
+    t = np.linspace(0.0, 1.0, 21)
+    runs = {}
+    for name, model in (("open", plant), ("tc", ClosedLoop(plant, tc))):
+        runs[name] = vehdyn.simulate(model, t, demand, x0=model.state_vector(dict(zip(plant.state_names, x0))),
+                                     method="RK45", rtol=1e-4, atol=1e-6, max_step=0.05)
+    slip = {k: tc.drive_slip(r["wheel_speed_rear_left"], r["longitudinal_velocity"])[-1] for k, r in runs.items()}
+    assert slip["open"] > 2.0  # the wheel on ice spins up
+    assert 0.0 < slip["tc"] < tc.brake_slip + 0.05  # held near the brake threshold by braking that wheel
+    assert np.max(runs["tc"]["brake_torque_rear_left_after_traction_control"]) > 100.0
+    # the one-sided drive force yaws the open car towards the ice; traction control keeps it straight
+    assert abs(runs["tc"]["yaw_angle"][-1]) < 0.3 * abs(runs["open"]["yaw_angle"][-1])
+    assert runs["tc"]["longitudinal_velocity"][-1] > 3.5
