@@ -127,3 +127,26 @@ def test_traction_control_launch_on_split_mu_full_vehicle():
     # the one-sided drive force yaws the open car towards the ice; traction control keeps it straight
     assert abs(runs["tc"]["yaw_angle"][-1]) < 0.3 * abs(runs["open"]["yaw_angle"][-1])
     assert runs["tc"]["longitudinal_velocity"][-1] > 3.5
+
+
+def test_abs_per_wheel_on_the_full_vehicle():
+    from vehdyn.full_vehicle import FullVehicle
+
+    plant = FullVehicle(CAR, friction=lambda X, Y: 0.5 * np.ones_like(np.asarray(X, dtype=float)))
+    x0, u0 = plant.trim(20.0)
+    abs_ = ABS(CAR, corners=True)
+    torque = 1.2 * CAR.mass.mass * G * CAR.tires.rolling_radius / 2
+    demand = dict(zip(plant.input_names, u0)) | {f"brake_torque_front_{s}": 0.7 * torque for s in ("left", "right")} \
+        | {f"brake_torque_rear_{s}": 0.3 * torque for s in ("left", "right")}
+    loop = ClosedLoop(plant, abs_)
+    t = np.linspace(0.0, 0.6, 25)
+    r = vehdyn.simulate(loop, t, demand, x0=loop.state_vector(dict(zip(plant.state_names, x0))), method="RK45",
+                        rtol=1e-4, atol=1e-6, max_step=0.05)
+    late = r.time >= 0.3
+    for c in abs_.channels:
+        slip = abs_.braking_slip(r[f"wheel_speed_{c}"], r["longitudinal_velocity"])
+        assert np.all(np.isfinite(slip)) and np.all(slip[late] < abs_.release_slip + 0.05), c
+        assert np.all(slip[late] > 0.5 * abs_.apply_slip), c
+    decel = -np.mean(r["longitudinal_acceleration"][late])
+    # road friction 0.5 relative to the tire's own: below 0.5 times the tire's peak friction
+    assert 0.3 * G < decel < 0.65 * G

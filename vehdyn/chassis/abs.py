@@ -29,7 +29,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Vehicle
 from ..signals import Signal
-from .closed_loop import ChassisController, check_gains, check_vehicle, sigmoid
+from .closed_loop import ChassisController, channel_signals, check_gains, check_vehicle, sigmoid
 
 __all__ = ["ABS"]
 
@@ -56,15 +56,19 @@ class ABS(ChassisController):
     minimum_speed : float
         u_min [m/s] of the slip's denominator (default 1 m/s).
     axles : tuple of str
-        Channels, ``("front", "rear")`` by default.
+        Axles controlled, ``("front", "rear")`` by default.
+    corners : bool
+        One channel per wheel with the full vehicle's names (``brake_torque_front_left``,
+        ``wheel_speed_front_left``, ...) instead of one per axle with the single track's
+        (``front_brake_torque``, ``front_wheel_speed``).
 
     Signals
     -------
     states
-        ``<axle>_abs_brake_torque`` [N*m]: the brake torque the modulated pressure applies.
+        ``<channel>_abs_brake_torque`` [N*m]: the brake torque the modulated pressure applies.
     inputs
         demands ``<axle>_brake_torque`` [N*m]; feedback ``<axle>_wheel_speed`` [rad/s] and
-        ``longitudinal_velocity`` [m/s].
+        ``longitudinal_velocity`` [m/s] (per wheel with ``corners``).
     outputs
         ``<axle>_brake_torque`` [N*m], the modulated torque (replaces the demand at the plant).
 
@@ -76,7 +80,7 @@ class ABS(ChassisController):
 
     def __init__(self, vehicle: Vehicle, *, apply_slip: float = 0.05, release_slip: float = 0.12,
                  slip_width: float = 0.01, apply_time_constant: float = 0.1, release_time_constant: float = 0.02,
-                 cutoff_speed: float = 2.0, minimum_speed: float = 1.0, axles=_AXLES):
+                 cutoff_speed: float = 2.0, minimum_speed: float = 1.0, axles=_AXLES, corners: bool = False):
         check_vehicle("ABS", vehicle)
         gains = check_gains("ABS", apply_slip=apply_slip, release_slip=release_slip, slip_width=slip_width,
                             apply_time_constant=apply_time_constant, release_time_constant=release_time_constant,
@@ -86,29 +90,24 @@ class ABS(ChassisController):
         if gains["release_slip"] <= gains["apply_slip"]:
             raise ParameterError(f"ABS release_slip must exceed apply_slip ({apply_slip}), got {release_slip!r}",
                                  key="release_slip", value=release_slip)
-        axles = tuple(axles)
-        if not axles or any(a not in _AXLES for a in axles) or len(set(axles)) != len(axles):
-            raise ParameterError(f"ABS axles must be distinct names from {_AXLES}, got {axles!r}", key="axles",
-                                 value=axles)
         self.__dict__.update(gains)
-        self.vehicle, self.axles = vehicle, axles
+        self.vehicle, self.axles, self.corners = vehicle, axles, bool(corners)
         self.rolling_radius = float(vehicle.tires.rolling_radius)
+        self.channels, names = channel_signals("ABS", axles, self.corners, ("brake_torque", "wheel_speed"))
         self.declare(
-            states=[Signal(f"{a}_abs_brake_torque", "N*m", f"brake torque of the {a} ABS channel (pressure x gain)")
-                    for a in axles],
-            inputs=[Signal(f"{a}_brake_torque", "N*m", f"driver's brake torque demand on the {a} axle")
-                    for a in axles]
-            + [Signal(f"{a}_wheel_speed", "rad/s", f"spin of the {a} wheels") for a in axles]
+            states=[Signal(f"{c}_abs_brake_torque", "N*m", f"brake torque of the {c} ABS channel (pressure x gain)")
+                    for c in self.channels],
+            inputs=[Signal(n, "N*m", "driver's brake torque demand") for n in names["brake_torque"]]
+            + [Signal(n, "rad/s", "wheel spin") for n in names["wheel_speed"]]
             + [Signal("longitudinal_velocity", "m/s", "forward velocity u")],
-            outputs=[Signal(f"{a}_brake_torque", "N*m", f"brake torque on the {a} axle after the ABS modulator")
-                     for a in axles])
+            outputs=[Signal(n, "N*m", "brake torque after the ABS modulator") for n in names["brake_torque"]])
 
     def braking_slip(self, wheel_speed, speed):
         """lambda = (u - omega R_e) / max(u, u_min) [-] (positive braking)."""
         return (speed - wheel_speed * self.rolling_radius) / np.maximum(speed, self.minimum_speed)
 
     def rhs(self, t, x, u):
-        n = len(self.axles)
+        n = len(self.channels)
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
         torque, demand = x, np.maximum(u[:n], 0.0)
         slip = self.braking_slip(u[n:2 * n], u[2 * n])
@@ -123,4 +122,4 @@ class ABS(ChassisController):
 
     def __repr__(self) -> str:
         return (f"<ABS of {self.vehicle.name!r}: apply below slip {self.apply_slip:g}, release above "
-                f"{self.release_slip:g}, axles {self.axles}>")
+                f"{self.release_slip:g}, channels {self.channels}>")

@@ -67,6 +67,22 @@ def check_vehicle(owner: str, vehicle):
                              value=vehicle)
 
 
+def channel_signals(owner: str, axles, corners: bool, kinds):
+    """(channels, {kind: [signal name per channel]}) in the single track's or the full vehicle's naming.
+
+    One channel per axle named ``<axle>_<kind>`` (SingleTrack: ``front_brake_torque``), or with
+    ``corners`` one per wheel named ``<kind>_<axle>_<side>`` (FullVehicle: ``brake_torque_front_left``).
+    """
+    axles = tuple(axles)
+    if not axles or any(a not in ("front", "rear") for a in axles) or len(set(axles)) != len(axles):
+        raise ParameterError(f"{owner} axles must be distinct names from ('front', 'rear'), got {axles!r}",
+                             key="axles", value=axles)
+    if corners:
+        channels = tuple(f"{a}_{side}" for a in axles for side in ("left", "right"))
+        return channels, {kind: [f"{kind}_{c}" for c in channels] for kind in kinds}
+    return tuple(axles), {kind: [f"{c}_{kind}" for c in axles] for kind in kinds}
+
+
 def _snake(name: str) -> str:
     """CamelCase -> snake_case, acronyms kept together (ABS -> abs, TractionControl -> traction_control)."""
     return re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", name).lower()

@@ -32,7 +32,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Vehicle
 from ..signals import Signal
-from .closed_loop import ChassisController, check_gains, check_vehicle, sigmoid
+from .closed_loop import ChassisController, channel_signals, check_gains, check_vehicle, sigmoid
 
 __all__ = ["TractionControl"]
 
@@ -100,21 +100,11 @@ class TractionControl(ChassisController):
         if axles is None:
             share = float(vehicle.driveline.front_drive_fraction)
             axles = tuple(a for a, s in zip(_AXLES, (share, 1.0 - share)) if s > 0)
-        axles = tuple(axles)
-        if not axles or any(a not in _AXLES for a in axles) or len(set(axles)) != len(axles):
-            raise ParameterError(f"TractionControl axles must be distinct names from {_AXLES}, got {axles!r}",
-                                 key="axles", value=axles)
         self.__dict__.update(gains)
         self.vehicle, self.axles, self.corners = vehicle, axles, bool(corners)
         self.rolling_radius = float(vehicle.tires.rolling_radius)
-        if self.corners:
-            self.channels = tuple(f"{a}_{side}" for a in axles for side in ("left", "right"))
-            names = {kind: [f"{kind}_{c}" for c in self.channels] for kind in ("drive_torque", "brake_torque",
-                                                                               "wheel_speed")}
-        else:
-            self.channels = axles
-            names = {kind: [f"{c}_{kind}" for c in self.channels] for kind in ("drive_torque", "brake_torque",
-                                                                               "wheel_speed")}
+        self.channels, names = channel_signals("TractionControl", axles, self.corners,
+                                               ("drive_torque", "brake_torque", "wheel_speed"))
         self.declare(
             states=[Signal("engine_torque_reduction", "-", "share of the drive demand the engine withholds")]
             + [Signal(f"{c}_tcs_brake_torque", "N*m", f"brake torque of the traction control on {c}")
