@@ -9,8 +9,8 @@ developed deceleration (MFDD, UN ECE R13-H Annex 4: between 0.8 v0 and 0.1 v0), 
 deceleration v0 / t_stop and the friction limit's distance v0^2 / (2 mu g). The last 0.1 v0 is
 extrapolated at the MFDD (below 2 m/s the ABS hands back to the driver anyway).
 
-Steerability: on mu 0.5 the preview driver (vehdyn.handling.DriverInTheLoop) follows a 3.5 m lane
-change while the car brakes fully. With ABS the wheels keep rolling near the peak slip and keep
+Steerability: on mu 0.5 the preview driver (vehdyn.handling.DriverInTheLoop) follows a 1.5 m swerve
+(a smooth step over the friction-limited stopping distance) while the car brakes fully. With ABS the wheels keep rolling near the peak slip and keep
 side force: the car follows the path. Without ABS the front wheels lock, the front axle has no
 side force left and the car slides straight on whatever the driver does.
 """
@@ -25,6 +25,7 @@ from vehdyn.report import Study
 from vehdyn.tire import tire_for_vehicle
 
 G = vehdyn.units.GRAVITY
+OFFSET = 1.5  # [m] lateral offset of the swerve while braking
 
 
 def plant_on(car, mu):
@@ -101,17 +102,18 @@ def run(study: Study) -> None:
                             "friction_limit_distance": "m"}
     study.table(frame, "stopping", caption="Stopping distance, MFDD and mean deceleration (v0 / t_stop)")
 
-    # steerability: full braking through a lane change on mu 0.5
+    # steerability: full braking through a swerve on mu 0.5
     mu, speed = 0.5, float(vehdyn.units.kmh_to_ms(50.0 if study.quick else 80.0))
     plant = plant_on(car, mu)
     path_x = np.linspace(-10.0, 200.0, 421)
-    start, length = 8.0, 22.0
+    start, length = 2.0, speed**2 / (2 * mu * G)  # the swerve takes the whole friction-limited stopping distance
     ramp = np.clip((path_x - start) / length, 0.0, 1.0)
-    path_y = -3.5 * ramp**2 * (3 - 2 * ramp)
+    path_y = -OFFSET * ramp**2 * (3 - 2 * ramp)
     driver = PreviewDriver(path_x, path_y, preview_time=0.6, lag=0.1)
     fig, axes = new_figure(1, 1, height_per_row=3.2)
     ax = axes[0, 0]
-    ax.plot(path_x[path_x < 60], path_y[path_x < 60], "k--", label="path")
+    near = path_x < 1.3 * (start + length)
+    ax.plot(path_x[near], path_y[near], "k--", label="path")
     rows = []
     for label, model in (("ABS", ClosedLoop(plant, ABS(car))), ("locked", plant)):
         loop = DriverInTheLoop(model, driver, wheelbase=car.geometry.wheelbase)
@@ -128,11 +130,11 @@ def run(study: Study) -> None:
     ax.set_xlabel("X [m]")
     ax.set_ylabel("Y [m] (SAE, right)")
     ax.legend(fontsize=8)
-    ax.set_title(f"lane change while braking fully, mu {mu}, from {speed * 3.6:.0f} km/h")
+    ax.set_title(f"swerve while braking fully, mu {mu}, from {speed * 3.6:.0f} km/h")
     study.figure(fig, "steerability", caption="Path of the CG with ABS and with locked wheels (plan view)")
     frame = pd.DataFrame(rows)
     frame.attrs["units"] = {"final_lateral_offset": "m", "max_path_error": "m", "max_driver_steer_deg": "deg"}
-    study.table(frame, "steerability", caption="Lane change (3.5 m to the left) during full braking")
+    study.table(frame, "steerability", caption=f"Swerve ({OFFSET} m to the left) during full braking")
     abs_row, locked = rows
     study.text(f"With ABS the car follows the path until it stops (largest path error "
                f"{abs_row['max_path_error']:.2f} m, at rest {abs(abs_row['final_lateral_offset']):.2f} m to the side); "
