@@ -88,3 +88,18 @@ def test_nested_loops_keep_every_name():
 def test_controllers_need_a_vehicle(controller):
     with pytest.raises(ParameterError, match="needs a vehdyn Vehicle"):
         controller("sedan")
+
+
+def test_linearized_esc_loop_inside_its_deadband_is_the_car():
+    car = vehdyn.load_vehicle("sedan")
+    plant = SingleTrack(car)
+    loop = ClosedLoop(plant, ESC(car))
+    x0 = loop.state_vector(dict(zip(plant.state_names, plant.straight_running(20.0))))
+    lin = loop.linearize(x0)
+    alone = plant.linearize(plant.straight_running(20.0))
+    n = plant.n_states
+    assert lin.state_names == loop.state_names and lin.output_names == loop.output_names
+    np.testing.assert_allclose(lin.A[:n, :n], alone.A, rtol=1e-5, atol=1e-6)
+    # the hydraulic channels are first-order lags of -1 / tau, decoupled from the car at this point
+    np.testing.assert_allclose(np.diag(lin.A)[n:], -1.0 / 0.1, rtol=1e-6)
+    np.testing.assert_allclose(lin.A[n:, :n], 0.0, atol=1e-9)
