@@ -22,7 +22,8 @@ Conventions and units
     :mod:`vehdyn.conventions` (SAE J670 / ISO 8855 / ISO-W signs), :mod:`vehdyn.units`
 Subpackages (imported on first use)
     :mod:`vehdyn.mechanics` (rigid body), :mod:`vehdyn.tire`, :mod:`vehdyn.handling`,
-    :mod:`vehdyn.ride`, :mod:`vehdyn.full_vehicle`, :mod:`vehdyn.analysis`, :mod:`vehdyn.plotting`
+    :mod:`vehdyn.ride`, :mod:`vehdyn.full_vehicle`, :mod:`vehdyn.chassis` (ABS, traction control, ESC,
+    ``ClosedLoop``), :mod:`vehdyn.analysis`, :mod:`vehdyn.plotting`
 
 Importing vehdyn imports numpy only; scipy, pandas, matplotlib and python-control are imported
 when a function needs them.
@@ -74,8 +75,8 @@ __all__ = [
     "sensitivity",
 ]
 
-_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "full_vehicle", "analysis", "plotting", "conventions",
-                "units", "params", "cli", "scene", "sweep"}
+_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "full_vehicle", "chassis", "analysis", "plotting",
+                "conventions", "units", "params", "cli", "scene", "sweep"}
 _SCENE_NAMES = {"Scene", "plan", "run", "ladder", "plot_ladder"}
 
 

@@ -171,3 +171,8 @@ from .articulated_single_track import ArticulatedSingleTrack, ArticulationEvent 
 
 __all__ += ["CarTrailerParameters", "LinearCarTrailer", "SnakingMode", "car_trailer_parameters",
             "ArticulatedSingleTrack", "ArticulationEvent"]
+
+# FMVSS 126 compliance (issue 15)
+from .fmvss126 import FMVSS126Result, fmvss126  # noqa: E402
+
+__all__ += ["FMVSS126Result", "fmvss126"]
