@@ -14,7 +14,7 @@ import time
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
-__all__ = ["best_time"]
+__all__ = ["best_time", "compiled_rhs_call_time"]
 
 
 def best_time(fun, repeats: int = 5):
@@ -28,3 +28,27 @@ def best_time(fun, repeats: int = 5):
         out = fun()
         best = min(best, time.perf_counter() - start)
     return best, out
+
+
+def compiled_rhs_call_time(model, x, u, step: float = 1e-6, calls: int = 20000) -> float:
+    """Best time [s] of one call of ``model``'s compiled rhs inside a compiled loop (no Python between
+    calls, as in the compiled integrator), at ``x``, ``u`` with the second state varied by multiples
+    of ``step`` so that nothing is constant across calls."""
+    import numba
+    import numpy as np
+
+    compiled = model.compiled_rhs()
+    rhs = compiled.rhs
+
+    @numba.njit
+    def loop(n, x, u, args, out):
+        for i in range(n):
+            x[1] = step * (i % 1000)
+            rhs(0.0, x, u, args, out)
+
+    x = np.array(x, dtype=float)
+    u = np.asarray(u, dtype=float)
+    out = np.empty(model.n_states)
+    loop(10, x, u, compiled.args, out)
+    best, _ = best_time(lambda: loop(calls, x, u, compiled.args, out), repeats=5)
+    return best / calls

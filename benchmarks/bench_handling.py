@@ -148,25 +148,11 @@ def compiled_rows(vehdyn, base, steer, drag, reference, grid, quick):
     return first, rows
 
 
-def rhs_call_time(base, steer, drag, calls=20000):
+def rhs_call_time(base, steer, drag):
     """Best time [s] of one compiled rhs call at points along the straight run (a compiled loop)."""
-    import numba
-
-    compiled = base.compiled_rhs()
-    rhs = compiled.rhs
-
-    @numba.njit
-    def loop(n, x, u, args, out):
-        for i in range(n):
-            x[1] = 1e-6 * (i % 1000)  # vary the state a little
-            rhs(0.0, x, u, args, out)
-
     x = base.straight_running(SPEED)
     u = base.input_vector(front_steer_angle=0.02, rear_longitudinal_force=drag)
-    out = np.empty(base.n_states)
-    loop(10, x, u, compiled.args, out)
-    best, _ = _timing.best_time(lambda: loop(calls, x, u, compiled.args, out), repeats=5)
-    return best / calls
+    return _timing.compiled_rhs_call_time(base, x, u)
 
 
 def commonroad(reference, grid, rtol):

@@ -20,7 +20,7 @@ from vehdyn.ride import (BouncePitch, FullCar, bounce_pitch_centres, olley_crite
 def run(study: Study) -> None:
     import pandas as pd
 
-    names = vehdyn.shipped_vehicles()
+    names = vehdyn.shipped_vehicles("passenger_car")
     # ---------------------------------------------------------------- labelled modes of the full cars
     frames = []
     for name in names:

@@ -32,7 +32,7 @@ def drive(model, vehicle, track, speed):
 def run(study: Study) -> None:
     import pandas as pd
 
-    vehicles = ["sedan"] if study.quick else vehdyn.shipped_vehicles()
+    vehicles = ["sedan"] if study.quick else vehdyn.shipped_vehicles("passenger_car")
     speeds = [14.0, 20.0] if study.quick else list(np.arange(12.0, 30.1, 1.0))
     rows, shown = [], {}
     for name in vehicles:

@@ -25,7 +25,7 @@ QUICK_SCENES = ("gentle_step_steer", "limit_step_steer", "rough_road_54", "potho
 def run(study: Study) -> None:
     import pandas as pd
 
-    vehicles = ["sedan"] if study.quick else vehdyn.shipped_vehicles()
+    vehicles = ["sedan"] if study.quick else vehdyn.shipped_vehicles("passenger_car")
     rows, frames = [], {}
     for vehicle in vehicles:
         scenes = standard_scenes(vehicle)

@@ -23,7 +23,7 @@ G = vehdyn.units.GRAVITY
 def run(study: Study) -> None:
     import pandas as pd
 
-    vehicles = vehdyn.shipped_vehicles()
+    vehicles = vehdyn.shipped_vehicles("passenger_car")
     radius, speed = 100.0, 25.0
     step = 0.6 if study.quick else 0.25
     fig, axes = new_figure(1, 2, height_per_row=3.6, width=11.0)

@@ -28,12 +28,12 @@ def damping_for_ratio(qc: QuarterCar, zeta: float) -> float:
 
 
 def run(study: Study) -> None:
-    vehicles = ["sedan"] if study.quick else vehdyn.shipped_vehicles()
+    vehicles = ["sedan"] if study.quick else vehdyn.shipped_vehicles("passenger_car")
     # ---------------------------------------------------------------- modes: exact vs textbook estimates
     import pandas as pd
 
     rows = []
-    for name in vehdyn.shipped_vehicles():
+    for name in vehdyn.shipped_vehicles("passenger_car"):
         for axle in ("front", "rear"):
             qc = QuarterCar.from_vehicle(vehdyn.load_vehicle(name), axle)
             m, est = ride_modes(qc), qc.estimates()

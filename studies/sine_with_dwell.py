@@ -25,7 +25,7 @@ def run(study: Study) -> None:
     import pandas as pd
 
     speed = float(vehdyn.units.kmh_to_ms(80.0))
-    vehicles = ["sedan"] if study.quick else vehdyn.shipped_vehicles()
+    vehicles = ["sedan"] if study.quick else vehdyn.shipped_vehicles("passenger_car")
     multiples = [3.0, 6.5] if study.quick else [1.5, 3.0, 4.0, 5.0, 5.5, 6.0, 6.5]
     rows = []
     fig, axes = new_figure(2, 1, height_per_row=2.8)

@@ -9,17 +9,21 @@ Simulation and results
     :class:`SimulationResult`, :class:`FrequencyResponse`, :class:`Modes`
 Parameters
     :func:`load_vehicle`, :func:`shipped_vehicles`, :class:`Vehicle` (and its groups in
-    :mod:`vehdyn.params`), :func:`data_path`
+    :mod:`vehdyn.params`), :func:`load_trailer`, :func:`shipped_trailers`, :class:`Trailer`, :func:`data_path`
 Errors
     :class:`VehdynError`, :class:`ParameterError`, :class:`SimulationError`, :class:`TirFileError`,
     :class:`VehdynWarning`
 Scenes and the fidelity ladder (imported on first use)
     :class:`Scene`, :func:`plan`, :func:`run`, :func:`ladder`, :func:`plot_ladder` (:mod:`vehdyn.scene`)
+Sweeps, Monte Carlo and sensitivity (imported on first use)
+    :func:`sweep` (grids and samples of a scene or a function; in-process, processes or Dask),
+    :func:`sensitivity` (Sobol' and Morris indices through SALib) (:mod:`vehdyn.sweep`)
 Conventions and units
     :mod:`vehdyn.conventions` (SAE J670 / ISO 8855 / ISO-W signs), :mod:`vehdyn.units`
 Subpackages (imported on first use)
     :mod:`vehdyn.mechanics` (rigid body), :mod:`vehdyn.tire`, :mod:`vehdyn.handling`,
-    :mod:`vehdyn.ride`, :mod:`vehdyn.full_vehicle`, :mod:`vehdyn.analysis`, :mod:`vehdyn.plotting`
+    :mod:`vehdyn.ride`, :mod:`vehdyn.full_vehicle`, :mod:`vehdyn.chassis` (ABS, traction control, ESC,
+    ``ClosedLoop``), :mod:`vehdyn.analysis`, :mod:`vehdyn.plotting`
 
 Importing vehdyn imports numpy only; scipy, pandas, matplotlib and python-control are imported
 when a function needs them.
@@ -32,7 +36,7 @@ import importlib
 from .errors import ParameterError, SimulationError, TirFileError, VehdynError, VehdynWarning
 from .linear import LinearModel, connect_in_series
 from .model import Model
-from .params import Vehicle, data_path, load_vehicle, shipped_vehicles
+from .params import Trailer, Vehicle, data_path, load_trailer, load_vehicle, shipped_trailers, shipped_vehicles
 from .piecewise_signal import PiecewiseSignal
 from .results import FrequencyResponse, SimulationResult
 from .signals import Signal
@@ -54,6 +58,9 @@ __all__ = [
     "load_vehicle",
     "shipped_vehicles",
     "data_path",
+    "Trailer",
+    "load_trailer",
+    "shipped_trailers",
     "VehdynError",
     "ParameterError",
     "SimulationError",
@@ -64,10 +71,12 @@ __all__ = [
     "run",
     "ladder",
     "plot_ladder",
+    "sweep",
+    "sensitivity",
 ]
 
-_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "full_vehicle", "analysis", "plotting", "conventions",
-                "units", "params", "cli", "scene"}
+_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "full_vehicle", "chassis", "analysis", "plotting",
+                "conventions", "units", "params", "cli", "scene", "sweep"}
 _SCENE_NAMES = {"Scene", "plan", "run", "ladder", "plot_ladder"}
 
 
@@ -76,6 +85,10 @@ def __getattr__(name: str):
         return importlib.import_module(f".{name}", __name__)
     if name in _SCENE_NAMES:
         return getattr(importlib.import_module(".scene", __name__), name)
+    if name == "sensitivity":
+        from .sweep import sensitivity
+
+        return sensitivity
     if name == "Modes":
         from .analysis.modal import Modes
 

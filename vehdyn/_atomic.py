@@ -44,10 +44,11 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
     directory = path.parent if str(path.parent) else Path(".")
     fd, tmp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=f".tmp{path.suffix}", dir=directory)
     try:
+        os.close(fd)  # reopened by name, so that ``handle.name`` is the temporary file's path
         if "b" in mode:
-            handle = os.fdopen(fd, mode)
+            handle = open(tmp_name, mode)
         else:
-            handle = os.fdopen(fd, mode, encoding=encoding, newline=newline)
+            handle = open(tmp_name, mode, encoding=encoding, newline=newline)
         with handle:
             yield handle
             handle.flush()

@@ -505,6 +505,8 @@ def solve(rhs, key, args, t, y0, inputs_table, method="RK45", rtol=1e-6, atol=1e
         1 if method == "DOP853" else 0, rtol, atol_vec, 0.0 if first_step is None else float(first_step),
         np.inf if max_step is None else float(max_step), int(max_steps), y)
     if status != 0:
-        raise SimulationError(f"compiled {method} failed at t = {t_stop:.6g} s: {_STATUS[status]}", time=float(t_stop))
+        error = SimulationError(f"compiled {method} failed at t = {t_stop:.6g} s: {_STATUS[status]}", time=float(t_stop))
+        error.partial_states = y[:, t <= t_stop]  # the output instants the loop reached
+        raise error
     return y, {"nfev": int(nfev), "n_steps": int(accepted),
                "message": f"compiled {method}: {accepted} steps ({rejected} rejected), {nfev} rhs calls"}

@@ -15,6 +15,10 @@
     List the shipped vehicles with their key numbers.
 ``vehdyn scene FILE.toml [--verify]``
     Plan a scene (the fidelity ladder), run the chosen model and print the headline numbers.
+``vehdyn sweep FILE.toml [--grid NAME=START:STOP:COUNT ...] [--samples N --vary NAME=LAW:ARGS ...]
+[--metric NAME ...] [--out results.parquet [--resume]] [--processes | --scheduler ADDRESS]``
+    Sweep a scene's parameters (:func:`vehdyn.sweep`) with a progress bar; print a summary of the
+    metrics and write the table chunk by chunk.
 
 Exit status: 0 on success; 1 if a study failed (its traceback is in the report and on stderr); 2 for
 a usage error - an unknown study, a missing or unreadable input file, an output folder that is a
@@ -123,7 +127,7 @@ def cmd_tire_soil(args) -> int:
 
 
 def cmd_tire(args) -> int:
-    from .errors import VehdynError
+    from .errors import VehdynError, VehdynWarning
 
     if args.soil is not None:
         if args.file is not None:
@@ -138,11 +142,17 @@ def cmd_tire(args) -> int:
     except ImportError as exc:  # pragma: no cover - until the tire layer is complete
         print(f"vehdyn tire: the tire layer is not available in this version ({exc})", file=sys.stderr)
         return 2
+    import warnings
+
     try:
-        tire = load_tire(args.file)
-    except (VehdynError, OSError) as exc:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", VehdynWarning)
+            tire = load_tire(args.file)
+    except (VehdynError, OSError) as exc:  # unreadable file, malformed line, non-finite coefficient, ...
         print(f"vehdyn tire: {exc}", file=sys.stderr)
         return 2
+    for warning in caught:  # e.g. missing sections: said, and the tire is still described
+        print(f"vehdyn tire: warning: {warning.message}", file=sys.stderr)
     print(describe_tire(tire))
     from .report import make_folder
 
@@ -155,6 +165,31 @@ def cmd_tire(args) -> int:
     for name, fig in plot_tire_characteristics(tire).items():
         path = save_figure(fig, out / f"{name}.png")
         print(f"wrote {path}")
+    return 0
+
+
+def cmd_tire_fit(args) -> int:
+    # Bad data or a bad start file raise a VehdynError: main() reports it as one line, exit status 2.
+    import warnings
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .errors import VehdynWarning
+    from .plotting import save_figure
+    from .tire import fit_magic_formula, read_tire_data
+
+    data = read_tire_data(args.data, convention=args.convention)
+    with warnings.catch_warnings():  # the fit's warnings are also its messages, printed with the table
+        warnings.simplefilter("ignore", VehdynWarning)
+        fit = fit_magic_formula(data, version=args.version, start=args.start)
+    print(fit)
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    print(f"wrote {fit.to_tir(out)}")
+    for stage, fig in fit.plot().items():
+        print(f"wrote {save_figure(fig, out.with_name(f'{out.stem}_{stage}.png'))}")
     return 0
 
 
@@ -182,6 +217,32 @@ def cmd_scene(args) -> int:
     return 0
 
 
+def cmd_sweep(args) -> int:
+    from .errors import ParameterError
+    from .scene import Scene
+    from .sweep import sweep
+    from .sweep.api import distribution_from_text, grid_from_text
+
+    # bad specs, names or values raise ParameterError: main() reports it as one line, exit status 2
+    grid = dict(grid_from_text(g) for g in args.grid or ())
+    samples = dict(distribution_from_text(v) for v in args.vary or ())
+    if bool(samples) != (args.samples is not None):
+        raise ParameterError("--samples N and --vary NAME=LAW:ARGS go together", key="samples", value=args.samples)
+    executor = args.scheduler or ("processes" if args.processes else None)
+    table = sweep(Scene.from_toml(args.file), grid=grid or None, samples=samples or None, n=args.samples,
+                  sampling=args.sampling, metrics=args.metric, executor=executor, out=args.out, resume=args.resume,
+                  seed=args.seed, progress=True)
+    failed = int(table["error"].notna().sum())
+    metrics = [c for c in table.columns if c not in grid and c not in samples and c != "error"]
+    print(f"vehdyn sweep: {len(table)} variants, {failed} failed" + (f" -> {args.out}" if args.out else ""))
+    if metrics:
+        print(table[metrics].describe().T.to_string())
+    if failed:
+        print(f"first failure (variant {table.index[table['error'].notna()][0]}): "
+              f"{table['error'].dropna().iloc[0]}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="vehdyn",
@@ -206,12 +267,34 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--soil", metavar="NAME", help="a soil (shipped name or soils.toml:NAME): its terramechanics curves")
     p.add_argument("--out", default="tire_plots", help="output folder (default: ./tire_plots)")
     p.set_defaults(func=cmd_tire)
+    p = sub.add_parser("tire-fit", help="fit a Magic Formula to measured tire data; write a .tir and figures")
+    p.add_argument("data", help="CSV or test-consortium run file (see vehdyn.tire.read_tire_data)")
+    p.add_argument("--out", default="fitted.tir", help="output .tir file (default: ./fitted.tir); figures beside it")
+    p.add_argument("--start", default=None, help="start from this .tir file (default: from the data)")
+    p.add_argument("--version", default="6.1", choices=("5.2", "6.1", "6.2"), help="Magic Formula version")
+    p.add_argument("--convention", default="ISO-W", choices=("ISO-W", "SAE"), help="axes of a CSV file")
+    p.set_defaults(func=cmd_tire_fit)
     p = sub.add_parser("vehicles", help="list the shipped vehicles")
     p.set_defaults(func=cmd_vehicles)
     p = sub.add_parser("scene", help="plan a scene (.toml), run the chosen model, print the headline numbers")
     p.add_argument("file", help="path of a scene .toml file")
     p.add_argument("--verify", action="store_true", help="also run the reference rung and measure the error")
     p.set_defaults(func=cmd_scene)
+    p = sub.add_parser("sweep", help="sweep a scene's parameters (grid, Monte Carlo) and summarize the metrics")
+    p.add_argument("file", help="path of a scene .toml file")
+    p.add_argument("--grid", action="append", metavar="NAME=START:STOP:COUNT", help="full-factorial values "
+                   "(or NAME=V1,V2,...); repeatable")
+    p.add_argument("--samples", type=int, metavar="N", help="number of Monte Carlo draws of the --vary laws")
+    p.add_argument("--vary", action="append", metavar="NAME=LAW:ARGS", help="a scipy.stats law, e.g. "
+                   "vehicle.mass.mass=norm:1500:50; repeatable")
+    p.add_argument("--sampling", default="lhs", choices=("lhs", "sobol", "random"), help="default: lhs")
+    p.add_argument("--metric", action="append", metavar="NAME", help="metric name (default: peak of each output)")
+    p.add_argument("--out", default=None, help="Parquet folder written chunk by chunk")
+    p.add_argument("--resume", action="store_true", help="run only the variants not yet in --out")
+    p.add_argument("--seed", type=int, default=0, help="seed of the draws (default 0)")
+    p.add_argument("--processes", action="store_true", help="a process pool on every core")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="a Dask scheduler (tcp://host:8786)")
+    p.set_defaults(func=cmd_sweep)
     return parser
 
 

@@ -25,11 +25,12 @@ the batch axis).
 
 from __future__ import annotations
 
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy as np
 
-from .errors import ParameterError
+from .errors import ParameterError, SimulationError
 from .signals import Signal, as_signals, names_of
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -54,6 +55,7 @@ PHENOMENA = frozenset(
         "tire_lag",
         "road_input",
         "aero",
+        "steering",
     }
 )
 
@@ -161,12 +163,19 @@ class Model:
         The named signals.
     phenomena : frozenset of str
         What the model represents, drawn from :data:`PHENOMENA`.
+    domain : mapping of str to (float, float)
+        Bounds ``(low, high)`` of states, by name, outside which the model's equations do not hold
+        (e.g. a vehicle rolled over). :func:`vehdyn.simulate` checks them on accepted steps only
+        and raises :meth:`domain_error` at the first crossing; an adaptive solver's rejected trial
+        stage may lie outside (``rhs`` returns NaN there, so that the step is rejected). Empty by
+        default.
     """
 
     states: tuple[Signal, ...] = ()
     inputs: tuple[Signal, ...] = ()
     outputs: tuple[Signal, ...] = ()
     phenomena: frozenset[str] = frozenset()
+    domain: Mapping[str, tuple[float, float]] = MappingProxyType({})
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -249,6 +258,12 @@ class Model:
                 f"{type(self).__name__} declares outputs and must implement output(t, x, u)"
             )
         return np.asarray(x, dtype=float)
+
+    def domain_error(self, name: str, value: float, time: float) -> SimulationError:
+        """The error :func:`vehdyn.simulate` raises when state ``name`` leaves :attr:`domain`."""
+        low, high = self.domain[name]
+        return SimulationError(f"{name} = {value:.4g} at t = {time:.6g} s leaves {type(self).__name__}'s domain "
+                               f"[{low:.4g}, {high:.4g}]", time=float(time), signal=name)
 
     def jacobian(self, t, x, u):
         """Analytic Jacobians ``(A, B, C, D)`` at ``(t, x, u)``, or ``None`` (the default).

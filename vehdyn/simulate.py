@@ -454,9 +454,56 @@ def _simulate_rk4(model, t, u, x0, hold, substeps, check_stability):
                 f"{t[k + 1]:.6g} s (rk4, step {h:.3g} s" + (f", batch member {bad[1]}" if batch else "") + ")",
                 time=float(t[k + 1]), signal=names[bad[0]],
             )
+        violation = _domain_violation(model, t[k + 1], xk)
+        if violation is not None:
+            raise violation
         x[:, k + 1] = xk
     return x, nfev
 
+
+
+# --------------------------------------------------------------------------- the model's domain
+def _domain_bounds(model):
+    """[(state index, name, low, high)] of the model's :attr:`~vehdyn.Model.domain`."""
+    domain = getattr(model, "domain", None) or {}
+    return [(model.state_names.index(name), name, float(low), float(high)) for name, (low, high) in domain.items()]
+
+
+def _domain_violation(model, t, x):
+    """The first (over time, then over the domain's states) accepted state outside the model's domain,
+    as the model's :meth:`~vehdyn.Model.domain_error`, or None. ``x``: (n, n_t, ...) or (n, ...) at ``t``."""
+    bounds = _domain_bounds(model)
+    if not bounds:
+        return None
+    x = np.asarray(x)
+    t = np.atleast_1d(np.asarray(t, dtype=float))
+    xs = x.reshape(x.shape[0], t.size, -1)
+    first = None
+    for i, name, low, high in bounds:
+        values = xs[i]
+        outside = ~((values >= low) & (values <= high))
+        if np.any(outside):
+            k, member = np.argwhere(outside)[0]
+            if first is None or k < first[0]:
+                first = (int(k), name, float(values[k, member]))
+    if first is None:
+        return None
+    return model.domain_error(first[1], first[2], float(t[first[0]]))
+
+
+def _domain_events(model, shape):
+    """Terminal ``solve_ivp`` events, one per bound of the model's domain (evaluated on accepted steps
+    only, so that a rejected trial stage outside the domain never stops a run)."""
+    events = []
+    for i, name, low, high in _domain_bounds(model):
+        for bound, sign in ((low, 1.0), (high, -1.0)):
+            def event(tt, y, i=i, bound=bound, sign=sign):
+                return float(np.min(sign * (y.reshape(shape)[i] - bound)))
+
+            event.terminal, event.direction = True, -1.0
+            event.state = (name, bound)
+            events.append(event)
+    return events
 
 # --------------------------------------------------------------------------- solve_ivp
 # rhs calls after which an explicit solve_ivp run looks at its stiffness (then at every doubling):
@@ -504,6 +551,9 @@ def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_ste
         opts["max_step"] = max_step
     if first_step is not None:
         opts["first_step"] = first_step
+    events = _domain_events(model, shape)
+    if events:
+        opts["events"] = events
     try:
         with np.errstate(over="ignore", invalid="ignore"):
             sol = solve_ivp(fun, (t[0], t[-1]), x0b.reshape(-1).astype(float), method=method, t_eval=t, **opts)
@@ -522,6 +572,12 @@ def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_ste
                                   f"{sol.message}", time=t_end)
         raise SimulationError(f"{method} failed in its first step from t = {t[0]:.6g} s: {sol.message}",
                               time=float(t[0]))
+    if sol.status == 1:  # a terminal event: an accepted step crossed a bound of the model's domain
+        crossed = [(float(times[0]), event, values[0]) for event, times, values in
+                   zip(events, sol.t_events, sol.y_events) if len(times)]
+        t_cross, event, y_cross = min(crossed, key=lambda item: item[0])
+        name, bound = event.state
+        raise model.domain_error(name, bound, t_cross)
     y = sol.y.reshape(shape + (t.size,))
     y = np.moveaxis(y, -1, 1)
     return y, sol
@@ -662,6 +718,9 @@ def simulate(
         # (other models are judged by the solver loop once a run turns out long, see _simulate_ivp)
         _check_stiffness(method, np.linalg.eigvals(model.A), float(t[0]), float(t[-1]), "A")
 
+    violation = _domain_violation(model, t[0], x0v)
+    if violation is not None:
+        raise violation
     compiled, why = _compiled_backend(model, method, backend, x0v, u)
     if compiled is not None:
         reason = f"{reason}; {why}" if reason else why
@@ -676,7 +735,11 @@ def simulate(
                                            _compiled_ode.input_table(model, inputs, t, u, hold), method, rtol, atol,
                                            first_step, max_step)
         except SimulationError as exc:
-            raise _stiffness_hint(exc, model, method, t, x0v, u) from None
+            raise _domain_crossing(model, t, u, hold, method, rtol, atol, getattr(exc, "partial_states", None),
+                                   exc.time) or _stiffness_hint(exc, model, method, t, x0v, u) from None
+        crossing = _domain_crossing(model, t, u, hold, method, rtol, atol, x)
+        if crossing is not None:
+            raise crossing
         counters.update(stats)
     elif method == "exact":
         x, n_expm = _simulate_exact(model, t, u, x0v, hold)
@@ -751,6 +814,39 @@ def _common_batch(x0: np.ndarray, u: np.ndarray):
             raise ParameterError(f"x0 has a batch of {nx} initial states but inputs a batch of {nu}: give one "
                                  "batch size (or 1 to share)", key="x0", value=(nx, nu))
     return x0, u
+
+
+def _domain_crossing(model, t, u, hold, method, rtol, atol, states, failed_at=None) -> SimulationError | None:
+    """The first crossing of a bound of the model's domain by the compiled loop's run, as the model's
+    :meth:`~vehdyn.Model.domain_error`, or None.
+
+    The compiled loop does not watch the domain (its rhs is NaN only far beyond it, where every step
+    is rejected): ``states`` are the output instants it reached (all, or those before the failure at
+    ``failed_at``). The crossing is located by ``solve_ivp`` with terminal events over the output
+    interval where it happened (or the one where the loop failed).
+    """
+    if not _domain_bounds(model) or states is None or states.shape[1] == 0:
+        return None
+    coarse = _domain_violation(model, t[:states.shape[1]], states)  # vectorized over the instants
+    if coarse is not None:
+        k = int(np.searchsorted(t, coarse.time))
+        if k == 0:
+            return coarse
+        first, last = k - 1, k
+    elif failed_at is not None:
+        first = states.shape[1] - 1
+        last = max(int(np.searchsorted(t, failed_at, side="left")), first + 1)
+        if last >= t.size:
+            return None
+    else:
+        return None
+    try:
+        _simulate_ivp(model, t[first:last + 1], u[:, first:last + 1], states[:, first], hold, method, rtol, atol,
+                      None, None)
+    except SimulationError as located:
+        if located.signal in model.domain:
+            return located
+    return coarse
 
 
 def _stiffness_hint(exc: SimulationError, model, method, t, x0, u) -> SimulationError:

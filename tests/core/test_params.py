@@ -133,3 +133,18 @@ def test_unknown_vehicle_and_bad_files(tmp_path):
 def test_units_metadata():
     units = vehdyn.params.Suspension.units()
     assert units["front_spring_rate"] == "N/m" and units["front_antiroll_stiffness"] == "N*m/rad"
+
+
+def test_shipped_vehicles_by_category_matches_each_files_field():
+    everything = vehdyn.shipped_vehicles()
+    cars = vehdyn.shipped_vehicles("passenger_car")
+    tractors = vehdyn.shipped_vehicles("truck_tractor")
+    assert sorted(cars + tractors) == everything and not set(cars) & set(tractors)
+    assert {"sedan", "compact", "van"} <= set(cars) and "tractor" in tractors
+    assert all(vehdyn.load_vehicle(name).category == "passenger_car" for name in cars)
+
+
+def test_shipped_vehicles_unknown_category_is_named():
+    with pytest.raises(ParameterError, match="category = 'bus'") as err:
+        vehdyn.shipped_vehicles("bus")
+    assert err.value.key == "category"

@@ -143,3 +143,96 @@ def test_pothole_at_30_m_s_under_one_wheel():
     assert model.wheel_lift(result)["front_right"]  # the wheel flies over (part of) the hole
     assert not model.wheel_lift(result)["front_left"]
     assert np.max(loads[1]) > 1.5 * loads[1, 0]  # and lands hard (1.7 times its static load)
+
+
+def _compiled_unavailable(model):
+    """Why ``simulate(model, ..., backend="compiled")`` cannot run here, or None when it can."""
+    from vehdyn._compiled_ode import numba_available
+
+    if not numba_available():
+        return "numba is not installed (pip install vehdyn[fast])"
+    try:
+        compiled = model.compiled_rhs()
+    except vehdyn.ParameterError as exc:
+        return f"FullVehicle.compiled_rhs() refuses this configuration: {exc}"
+    if compiled is None:
+        return "FullVehicle has no compiled rhs yet (issue 12 item 5): the numpy rhs needs ~15 s per simulated second"
+    return None
+
+
+def _class_d_road_run(model, duration, speed=40.0, **options):
+    """Straight running at ``speed`` over two parallel ISO 8608 class-D tracks (isotropic coherence,
+    0.1 m spacing) given as the per-corner road inputs (front wheels at X = V t, rear ones a wheelbase
+    behind; faded in over the first 0.5 s), drive torques of the flat-road trim held, no steering."""
+    from vehdyn.ride import FullCar, road_inputs, synthesize_parallel_profiles
+
+    vehicle = model.vehicle
+    track = 0.5 * (vehicle.geometry.front_track + vehicle.geometry.rear_track)
+    length = 2.0 ** np.ceil(np.log2(speed * duration + vehicle.wheelbase + 10.0))
+    left, right = synthesize_parallel_profiles("D", length, 0.1, track, seed=8608)
+    t = np.arange(0.0, duration + 1e-9, 0.1 / speed)
+    fade, fade_rate = np.clip(t / 0.5, 0.0, 1.0), np.where(t < 0.5, 1.0 / 0.5, 0.0)
+    x0, u0 = model.trim(speed)
+    inputs = dict(zip(model.input_names, u0))
+    road = road_inputs(FullCar.from_vehicle(vehicle), t, speed, left.distance, left.elevation, right.elevation)
+    for sfx in CORNERS:
+        z = road[f"road_displacement{sfx}"]
+        inputs[f"road_displacement{sfx}"] = fade * z
+        inputs[f"road_velocity{sfx}"] = fade * road[f"road_velocity{sfx}"] + fade_rate * z
+    static = sum(model.output(0.0, x0, u0)[model.index(f"normal_load{s}", "outputs")] for s in CORNERS)
+    return t, static, vehdyn.simulate(model, t, inputs, x0=x0, method="RK45", rtol=1e-6, atol=1e-8,
+                                      max_step=0.1 / speed, **options)
+
+
+def _check_class_d_run(model, duration, **options):
+    """The run completes with finite states, loads >= 0 (wheel lifts reported, no force while lifted)
+    and the vertical momentum balance over the run: the mean total tire load less the flat-road trim's
+    (weight less aero lift, ~constant at constant speed) equals the change of vertical momentum per
+    unit time within 0.2 % of the weight (over 100 s that change is nil: the mean load is the trim's);
+    or it raises SimulationError naming a signal and a time."""
+    try:
+        t, static, result = _class_d_road_run(model, duration, **options)
+    except vehdyn.SimulationError as exc:
+        assert exc.signal in model.state_names + model.output_names, exc
+        assert exc.time is not None and 0.0 <= exc.time <= duration, exc
+        return None
+    assert np.all(np.isfinite(result.states))
+    loads = np.array([result[f"normal_load{s}"] for s in CORNERS])
+    assert np.all(loads >= 0.0)
+    # vertical momentum: the integral of (sum N - m g + aero lift) dt is the change of the vertical
+    # momentum (up) of the body (earth vertical velocity of its CG) and the four wheels
+    theta, phi = result["pitch_angle"], result["roll_angle"]
+    sink = (-np.sin(theta) * result["longitudinal_velocity"] + np.cos(theta) * np.sin(phi) * result["lateral_velocity"]
+            + np.cos(theta) * np.cos(phi) * result["vertical_velocity"])  # dZ/dt, down
+    momentum = -model.sprung_mass * sink + sum(m * result[f"unsprung_velocity{s}"]
+                                               for m, s in zip(model.unsprung_masses, CORNERS))
+    mean = np.trapezoid(loads.sum(axis=0), t) / t[-1]
+    assert mean - static == pytest.approx((momentum[-1] - momentum[0]) / t[-1], abs=2e-3 * static)
+    for name, intervals in model.wheel_lift(result).items():
+        for start, end in intervals:
+            during = (t >= start) & (t <= end)
+            assert np.all(result[f"lateral_force_{name}"][during] == 0.0)
+    return result
+
+
+def test_class_d_road_for_100_s_at_40_m_s_compiled():
+    """ISO 8608 class D at 40 m/s for 100 s (issue 12, item 4): the compiled backend (numpy would
+    need ~25 min); skipped while the compiled rhs of the full vehicle is unavailable."""
+    model = FullVehicle(vehdyn.load_vehicle("sedan"))
+    reason = _compiled_unavailable(model)
+    if reason is not None:
+        pytest.skip(reason)
+    result = _check_class_d_run(model, 100.0, backend="compiled")
+    if result is not None:
+        assert result["speed"][-1] == pytest.approx(40.0, rel=0.1)  # the trim's drive torques hold the speed
+        assert any(model.wheel_lift(result).values())  # class D at 144 km/h: the wheels hop off the road
+
+
+@pytest.mark.slow
+def test_class_d_road_at_40_m_s_numpy_short():
+    """The same run, 1 s on the numpy rhs (the check of the compiled run's test itself)."""
+    model = FullVehicle(vehdyn.load_vehicle("sedan"))
+    result = _check_class_d_run(model, 1.0, backend="numpy")
+    if result is not None:
+        assert any(model.wheel_lift(result).values())
+

@@ -399,3 +399,15 @@ def test_study_with_numbers_round_trips_through_report(tmp_path):
     path = study.table(frame, "gains")
     assert np.array_equal(pd.read_csv(path, index_col=0).to_numpy(), frame.to_numpy())
     assert b"\r\r\n" not in path.read_bytes()
+
+
+def test_atomic_write_handle_name_is_the_temporary_path_a_path_writer_can_use(tmp_path):
+    """Writers that want a path (savefig, to_parquet) get the temporary file by ``handle.name``."""
+    from vehdyn._atomic import atomic_write
+
+    target = tmp_path / "table.csv"
+    with atomic_write(target, "w") as handle:
+        assert isinstance(handle.name, str) and Path(handle.name).parent == tmp_path
+        assert Path(handle.name).suffix == ".csv" and not target.exists()
+        Path(handle.name).write_text("a,b\n1,2\n")  # a writer that opens the path itself
+    assert target.read_text() == "a,b\n1,2\n" and sorted(p.name for p in tmp_path.iterdir()) == ["table.csv"]

@@ -1,6 +1,7 @@
 """The equations of :class:`~vehdyn.full_vehicle.FullVehicle` as pure functions over an ``xp`` namespace.
 
-One source for numpy (with a trailing batch axis) and, later, numba-compiled code -- the pattern of
+One source for numpy (with a trailing batch axis) and numba-compiled code
+(:mod:`~vehdyn.full_vehicle._full_vehicle_numba`) -- the pattern of
 :mod:`vehdyn.handling.single_track_equations`, whose tire-slip, relaxation and wheel-torque
 functions are reused here unchanged. Besides arithmetic the equations call ``xp.cos``, ``sin``,
 ``tan``, ``atan``, ``atan2``, ``sqrt``, ``abs``, ``where``, ``minimum``, ``maximum`` and four hooks:
@@ -29,6 +30,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from ..errors import SimulationError
 from ..handling import single_track_equations as st
 from ..mechanics import euler_angle_rates, rotation_body_to_earth
 from ..mechanics.newton_euler import accelerations
@@ -36,6 +38,7 @@ from . import aero, body, corner, driveline, steering
 from .corner import CORNERS
 
 __all__ = ["STATES", "INPUTS", "BODY_STATES", "CORNER_STATES", "Constants", "Evaluation", "NUMPY", "gather",
+           "ground_point", "DOMAIN_STATES", "DomainError",
            "evaluate", "derivatives", "OUTPUTS", "outputs"]
 
 BODY_STATES = ("longitudinal_velocity", "lateral_velocity", "vertical_velocity", "roll_rate", "pitch_rate",
@@ -77,10 +80,44 @@ Evaluation = namedtuple("Evaluation", (
     "normal_load", "slip_angle", "slip_ratio", "longitudinal_force", "lateral_force", "suspension_travel",
     "camber", "steer", "horizontal_acceleration", "sprung_acceleration"))
 Evaluation.__doc__ = """Everything one evaluation yields: body rates (3-tuples; ``cg_acceleration`` the absolute
-acceleration of the sprung CG in body axes), Euler-angle and position rates, per-corner 4-lists
+acceleration of the sprung CG in body axes), Euler-angle and position rates, per-corner 4-tuples
 (wheel spin and unsprung accelerations, deflection rates, tire load, SAE slips and wheel-axis
 forces, travel, camber, steer), the horizontal acceleration of the total CG in the intermediate
 (yaw-only) axes (x, y; gravity excluded) and the vertical acceleration of the sprung CG (up)."""
+
+
+DOMAIN_STATES = ("roll_angle", "pitch_angle")
+"""The states bounded by :attr:`FullVehicle.domain <vehdyn.full_vehicle.FullVehicle.domain>`."""
+
+
+def trial_bounds(low, high):
+    """Bounds beyond which the rhs returns NaN: the domain widened by half its width on each side.
+
+    An accepted step may cross the domain's bound (then :func:`vehdyn.simulate` locates the
+    crossing and raises :class:`DomainError`); a wild trial stage of an adaptive solver far
+    beyond it (a rejected step) gets NaN and is rejected instead of stopping the run.
+    """
+    margin = 0.5 * (high - low)
+    return low - margin, high + margin
+
+
+class DomainError(SimulationError):
+    """The roll or pitch angle left :attr:`FullVehicle.domain <vehdyn.full_vehicle.FullVehicle.domain>`
+    (raised by the numpy and by the compiled rhs, with the same message).
+
+    Parameters
+    ----------
+    which : int
+        Index into :data:`DOMAIN_STATES` (0 roll angle, 1 pitch angle).
+    value, time, low, high : float
+        The angle [rad], the time [s] and the domain's bounds [rad].
+    """
+
+    def __init__(self, which, value, time, low, high):
+        name = DOMAIN_STATES[which]
+        super().__init__(f"{name} = {value:.4g} rad at t = {time:.6g} s leaves the full vehicle's domain "
+                         f"[{low:.4g}, {high:.4g}] rad: the vehicle is {('rolling', 'pitching')[which]} over",
+                         time=float(time), signal=name)
 
 
 class NUMPY(st.NUMPY):
@@ -112,104 +149,129 @@ def gather(values, index):
     return [values[i] if i >= 0 else 0.0 * values[0] for i in index]
 
 
+def ground_point(R, k, s, c):
+    """Earth (X, Y) of corner ``c``'s contact point (body point (x_c, y_c, h_s)) and its earth
+    velocity (V_X, V_Y); ``R`` the body-to-earth rotation, ``s`` the states (order of :data:`STATES`)."""
+    xc, yc, zc = k.corner_x[c], k.corner_y[c], k.contact_z
+    X = s[9] + R[0][0] * xc + R[0][1] * yc + R[0][2] * zc
+    Y = s[10] + R[1][0] * xc + R[1][1] * yc + R[1][2] * zc
+    vx, vy, vz = s[0] + s[4] * zc - s[5] * yc, s[1] + s[5] * xc - s[3] * zc, s[2] + s[3] * yc - s[4] * xc
+    return X, Y, R[0][0] * vx + R[0][1] * vy + R[0][2] * vz, R[1][0] * vx + R[1][1] * vy + R[1][2] * vz
+
+
+def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
+    """One corner's share of an evaluation (a tuple of numbers, see :func:`evaluate`)."""
+    u, v, p, q, r = s[0], s[1], s[3], s[4], s[5]
+    omega, wheel, wheel_rate = s[12 + c], s[16 + c], s[20 + c]
+    lateral_deflection, longitudinal_deflection = s[24 + c], s[28 + c]
+    friction = tires[2][c]
+    x_c, y_c = k.corner_x[c], k.corner_y[c]
+    load = corner.normal_load(xp, k, c, wheel, wheel_rate, i[10 + c], i[14 + c])
+    # contact-point velocity in body axes (the wheel carrier keeps the body's orientation), then in
+    # wheel axes
+    h = k.contact_z
+    vcx, vcy = u + q * h - r * y_c, v + r * x_c - p * h
+    cd, sd = xp.cos(steer), xp.sin(steer)
+    vx, vy = vcx * cd + vcy * sd, -vcx * sd + vcy * cd
+    lat_rate, lon_rate = 0.0 * u, 0.0 * u
+    if k.tire_lag:  # the deflection rates: state derivatives and the low-speed damping's input
+        lat_rate = st.deflection_rate(xp, vy, vx, lateral_deflection, k.lateral_relaxation_length[c],
+                                      k.peak_tan_slip_angle[c] * friction)
+        lon_rate = st.deflection_rate(xp, -(vx - omega * k.rolling_radius), vx, longitudinal_deflection,
+                                      k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction)
+    fx, fy, alpha, kappa = st.axle_forces(
+        xp, tires, c, k, load, vx, vy, omega, lateral_deflection, longitudinal_deflection, lat_rate, lon_rate,
+        k.lateral_relaxation_length[c], k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction,
+        k.peak_tan_slip_angle[c] * friction, 0.0 * u)
+    tx, ty = fx * cd - fy * sd, fx * sd + fy * cd
+    # force the contact passes to the body (x, y) and the linkage's vertical force on the body
+    link_x, link_y = tx - load * R[2][0], ty - load * R[2][1]
+    jack = corner.jacking_force(k, c, link_x, link_y)
+    # the wheel's velocity-dependent x-y inertia and its gravity, at the wheel centre
+    zw = k.wheel_z
+    m_u = k.unsprung_mass[c]
+    ox, oy, oz = body.cross(p, q, r, x_c, y_c, zw)
+    cx, cy, _cz = body.cross(p, q, r, ox, oy, oz)
+    wheel_x = m_u * (k.gravity * R[2][0] - cx - 2.0 * q * travel_rate)
+    wheel_y = m_u * (k.gravity * R[2][1] - cy + 2.0 * p * travel_rate)
+    f_z = jack - spring
+    mx1, my1, mz1 = body.cross(x_c, y_c, h, link_x, link_y, f_z)
+    mx2, my2, mz2 = body.cross(x_c, y_c, zw, wheel_x, wheel_y, 0.0 * u)
+    return (load, alpha, kappa, fx, fy, driveline.wheel_acceleration(xp, k, omega, i[2 + c], i[6 + c], fx),
+            (load - spring + jack) / m_u - k.gravity, lat_rate, lon_rate,
+            link_x + wheel_x, link_y + wheel_y, f_z, mx1 + mx2, my1 + my2, mz1 + mz2, link_x, link_y,
+            -load * R[2][2])
+
+
+def _column(corners, j):
+    """Entry ``j`` of the four corners' tuples."""
+    return corners[0][j], corners[1][j], corners[2][j], corners[3][j]
+
+
+def _total(corners, j):
+    """Sum over the corners of entry ``j``."""
+    return corners[0][j] + corners[1][j] + corners[2][j] + corners[3][j]
+
+
 def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
     """An :class:`Evaluation` at states ``s`` and inputs ``i`` (sequences in the orders of :data:`STATES`,
     :data:`INPUTS`); ``laws`` the tire laws (see ``xp.axle_tire_forces``), ``friction`` the road's
-    friction under each corner relative to the tire law's own (1: the law as it is)."""
-    u, v, w, p, q, r, roll, pitch, yaw, _x, _y, z = s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], \
-        s[10], s[11]
-    omega, wheel, wheel_rate, lateral_deflection, longitudinal_deflection = s[12:16], s[16:20], s[20:24], \
-        s[24:28], s[28:32]
-    drive, brake, road, road_rate, wind = i[2:6], i[6:10], i[10:14], i[14:18], i[18]
+    friction under each corner relative to the tire law's own (1: the law as it is).
+
+    Per-corner values are tuples built from one function per corner (:func:`_corner`): no lists,
+    so that the same source compiles to allocation-free code.
+    """
+    u, v, w, p, q, r, roll, pitch, yaw, z = s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[11]
     R = xp.rotation_body_to_earth(roll, pitch, yaw)
     R20, R21, R22 = R[2][0], R[2][1], R[2][2]
 
-    zero = 0.0 * u
-    # suspension (lists built by comprehension and filled by index: typed lists for compiled code)
-    travel, travel_rate = [zero for _c in range(4)], [zero for _c in range(4)]
-    for c in range(4):
-        travel[c], travel_rate[c] = corner.suspension_travel(R, z, u, v, w, p, q, r, k.corner_x[c], k.corner_y[c],
-                                                             k.spring_z, wheel[c], wheel_rate[c])
+    # suspension
+    t0 = corner.suspension_travel(R, z, u, v, w, p, q, r, k.corner_x[0], k.corner_y[0], k.spring_z, s[16], s[20])
+    t1 = corner.suspension_travel(R, z, u, v, w, p, q, r, k.corner_x[1], k.corner_y[1], k.spring_z, s[17], s[21])
+    t2 = corner.suspension_travel(R, z, u, v, w, p, q, r, k.corner_x[2], k.corner_y[2], k.spring_z, s[18], s[22])
+    t3 = corner.suspension_travel(R, z, u, v, w, p, q, r, k.corner_x[3], k.corner_y[3], k.spring_z, s[19], s[23])
+    travel, travel_rate = (t0[0], t1[0], t2[0], t3[0]), (t0[1], t1[1], t2[1], t3[1])
     spring = corner.suspension_forces(k, travel, travel_rate)
     steer = steering.corner_steer_angles(xp, k, i[0], i[1], roll)
-    camber = [corner.camber(k, c, roll, travel[c]) for c in range(4)]
+    camber = (corner.camber(k, 0, roll, travel[0]), corner.camber(k, 1, roll, travel[1]),
+              corner.camber(k, 2, roll, travel[2]), corner.camber(k, 3, roll, travel[3]))
     tires = (laws, camber, friction)
+    corners = (_corner(xp, tires, k, 0, s, i, R, travel_rate[0], spring[0], steer[0]),
+               _corner(xp, tires, k, 1, s, i, R, travel_rate[1], spring[1], steer[1]),
+               _corner(xp, tires, k, 2, s, i, R, travel_rate[2], spring[2], steer[2]),
+               _corner(xp, tires, k, 3, s, i, R, travel_rate[3], spring[3], steer[3]))
 
-    fx_body, fy_body, fz_body, moment_x, moment_y, moment_z = zero, zero, zero, zero, zero, zero
-    contact_x, contact_y, contact_z = zero, zero, zero  # non-gravity forces on the whole vehicle
-    loads, alphas, kappas = [zero for _c in range(4)], [zero for _c in range(4)], [zero for _c in range(4)]
-    fxs, fys, wheel_acc = [zero for _c in range(4)], [zero for _c in range(4)], [zero for _c in range(4)]
-    unsprung_acc, lat_rate, lon_rate = [zero for _c in range(4)], [zero for _c in range(4)], [zero for _c in range(4)]
-    for c in range(4):
-        x_c, y_c = k.corner_x[c], k.corner_y[c]
-        load = corner.normal_load(xp, k, c, wheel[c], wheel_rate[c], road[c], road_rate[c])
-        # contact-point velocity in body axes (the wheel carrier keeps the body's orientation), then
-        # in wheel axes
-        h = k.contact_z
-        vcx, vcy = u + q * h - r * y_c, v + r * x_c - p * h
-        cd, sd = xp.cos(steer[c]), xp.sin(steer[c])
-        vx, vy = vcx * cd + vcy * sd, -vcx * sd + vcy * cd
-        if k.tire_lag:  # the deflection rates: state derivatives and the low-speed damping's input
-            lat_rate[c] = st.deflection_rate(xp, vy, vx, lateral_deflection[c], k.lateral_relaxation_length[c],
-                                             k.peak_tan_slip_angle[c] * friction[c])
-            lon_rate[c] = st.deflection_rate(xp, -(vx - omega[c] * k.rolling_radius), vx, longitudinal_deflection[c],
-                                             k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction[c])
-        fx, fy, alpha, kappa = st.axle_forces(
-            xp, tires, c, k, load, vx, vy, omega[c], lateral_deflection[c], longitudinal_deflection[c],
-            lat_rate[c], lon_rate[c], k.lateral_relaxation_length[c], k.longitudinal_relaxation_length[c],
-            k.peak_slip_ratio[c] * friction[c], k.peak_tan_slip_angle[c] * friction[c], 0.0 * u)
-        tx, ty = fx * cd - fy * sd, fx * sd + fy * cd
-        # force the contact passes to the body (x, y) and the linkage's vertical force on the body
-        link_x, link_y = tx - load * R20, ty - load * R21
-        jack = corner.jacking_force(k, c, link_x, link_y)
-        # the wheel's velocity-dependent x-y inertia and its gravity, at the wheel centre
-        zw = k.wheel_z
-        m_u = k.unsprung_mass[c]
-        ox, oy, oz = body.cross(p, q, r, x_c, y_c, zw)
-        cx, cy, _cz = body.cross(p, q, r, ox, oy, oz)
-        wheel_x = m_u * (k.gravity * R20 - cx - 2.0 * q * travel_rate[c])
-        wheel_y = m_u * (k.gravity * R21 - cy + 2.0 * p * travel_rate[c])
-        f_z = jack - spring[c]
-        fx_body = fx_body + link_x + wheel_x
-        fy_body = fy_body + link_y + wheel_y
-        fz_body = fz_body + f_z
-        mx1, my1, mz1 = body.cross(x_c, y_c, h, link_x, link_y, f_z)
-        mx2, my2, mz2 = body.cross(x_c, y_c, zw, wheel_x, wheel_y, 0.0 * u)
-        moment_x, moment_y, moment_z = moment_x + mx1 + mx2, moment_y + my1 + my2, moment_z + mz1 + mz2
-        contact_x, contact_y, contact_z = contact_x + tx - load * R20, contact_y + ty - load * R21, \
-            contact_z - load * R22
-        unsprung_acc[c] = (load - spring[c] + jack) / m_u - k.gravity
-        wheel_acc[c] = driveline.wheel_acceleration(xp, k, omega[c], drive[c], brake[c], fx)
-        loads[c], alphas[c], kappas[c], fxs[c], fys[c] = load, alpha, kappa, fx, fy
-
-    drag, side, front_lift, rear_lift = aero.aero_forces(xp, k, u, v, wind)
+    drag, side, front_lift, rear_lift = aero.aero_forces(xp, k, u, v, i[18])
     weight = k.sprung_mass * k.gravity
-    fx_body = fx_body + drag + weight * R20
-    fy_body = fy_body + side + weight * R21
-    fz_body = fz_body - front_lift - rear_lift + weight * R22
-    x_front, x_rear = k.corner_x[0], k.corner_x[2]
-    moment_y = moment_y + x_front * front_lift + x_rear * rear_lift
+    fx_body = _total(corners, 9) + drag + weight * R20
+    fy_body = _total(corners, 10) + side + weight * R21
+    fz_body = _total(corners, 11) - front_lift - rear_lift + weight * R22
+    moment_y = _total(corners, 13) + k.corner_x[0] * front_lift + k.corner_x[2] * rear_lift
     velocity_rate, angular, cg_acc = body.body_accelerations(
-        xp, k, (u, v, w), (p, q, r), (fx_body, fy_body, fz_body), (moment_x, moment_y, moment_z))
+        xp, k, (u, v, w), (p, q, r), (fx_body, fy_body, fz_body), (_total(corners, 12), moment_y, _total(corners, 14)))
 
     euler = xp.euler_angle_rates(roll, pitch, p, q, r)
     position = (R[0][0] * u + R[0][1] * v + R[0][2] * w, R[1][0] * u + R[1][1] * v + R[1][2] * w,
                 R20 * u + R21 * v + R22 * w)
     # horizontal acceleration of the total CG, intermediate axes: non-gravity forces / m
-    ex = R[0][0] * (contact_x + drag) + R[0][1] * (contact_y + side) + R[0][2] * (contact_z - front_lift - rear_lift)
-    ey = R[1][0] * (contact_x + drag) + R[1][1] * (contact_y + side) + R[1][2] * (contact_z - front_lift - rear_lift)
+    contact_x, contact_y, contact_z = _total(corners, 15) + drag, _total(corners, 16) + side, \
+        _total(corners, 17) - front_lift - rear_lift
+    ex = R[0][0] * contact_x + R[0][1] * contact_y + R[0][2] * contact_z
+    ey = R[1][0] * contact_x + R[1][1] * contact_y + R[1][2] * contact_z
     cpsi, spsi = xp.cos(yaw), xp.sin(yaw)
     horizontal = ((cpsi * ex + spsi * ey) / k.mass, (-spsi * ex + cpsi * ey) / k.mass)
     vertical = -(R20 * cg_acc[0] + R21 * cg_acc[1] + R22 * cg_acc[2])
-    return Evaluation(velocity_rate, angular, cg_acc, euler, position, wheel_acc, unsprung_acc, lat_rate, lon_rate,
-                      loads, alphas, kappas, fxs, fys, travel, camber, steer, horizontal, vertical)
+    return Evaluation(velocity_rate, angular, cg_acc, (euler[0], euler[1], euler[2]), position, _column(corners, 5),
+                      _column(corners, 6), _column(corners, 7), _column(corners, 8), _column(corners, 0),
+                      _column(corners, 1), _column(corners, 2), _column(corners, 3), _column(corners, 4), travel,
+                      camber, steer, horizontal, vertical)
 
 
 def derivatives(s, e):
-    """d/dt of every entry of :data:`STATES` from an :class:`Evaluation` (``s`` the states)."""
-    return (list(e.velocity_rate) + list(e.angular_acceleration) + list(e.euler_rates) + list(e.position_rates)
-            + list(e.wheel_acceleration) + list(s[20:24]) + list(e.unsprung_acceleration)
-            + list(e.lateral_deflection_rate) + list(e.longitudinal_deflection_rate))
+    """d/dt of every entry of :data:`STATES` (a tuple) from an :class:`Evaluation` (``s`` the states)."""
+    return (e.velocity_rate + e.angular_acceleration + e.euler_rates + e.position_rates + e.wheel_acceleration
+            + (s[20], s[21], s[22], s[23]) + e.unsprung_acceleration + e.lateral_deflection_rate
+            + e.longitudinal_deflection_rate)
 
 
 OUTPUTS = (("longitudinal_acceleration", "m/s^2", "horizontal longitudinal acceleration of the total CG in the "
@@ -243,9 +305,7 @@ def outputs(xp, s, e):
     u, v = s[0], s[1]
     speed_squared = u * u + v * v
     ax, ay = e.horizontal_acceleration
-    values = [ax, ay, xp.atan2(v, xp.abs(u)), xp.sqrt(speed_squared), ay / xp.maximum(speed_squared, 0.25), s[5],
-              s[6], s[7], e.sprung_acceleration, u, v, s[9], s[10], s[8]]
-    for group in (e.normal_load, e.slip_angle, e.slip_ratio, e.longitudinal_force, e.lateral_force,
-                  e.suspension_travel, e.camber, e.steer):
-        values.extend(group)
-    return values
+    return ((ax, ay, xp.atan2(v, xp.abs(u)), xp.sqrt(speed_squared), ay / xp.maximum(speed_squared, 0.25), s[5],
+             s[6], s[7], e.sprung_acceleration, u, v, s[9], s[10], s[8])
+            + e.normal_load + e.slip_angle + e.slip_ratio + e.longitudinal_force + e.lateral_force
+            + e.suspension_travel + e.camber + e.steer)

@@ -66,6 +66,11 @@ def added_mass_projection(sprung_mass, inertia, masses, points) -> np.ndarray:
     return np.linalg.solve(body + added, body)
 
 
+def _dot6(row, a):
+    """sum_j row[j] a[j] over six entries (plain arithmetic)."""
+    return row[0] * a[0] + row[1] * a[1] + row[2] * a[2] + row[3] * a[3] + row[4] * a[4] + row[5] * a[5]
+
+
 def body_accelerations(xp, k, velocity, rates, force, moment):
     """Body-axis velocity rates (du, dv, dw) and angular accelerations (dp, dq, dr).
 
@@ -83,6 +88,6 @@ def body_accelerations(xp, k, velocity, rates, force, moment):
     alpha0 = (velocity_rate[0] + cx, velocity_rate[1] + cy, velocity_rate[2] + cz, angular[0], angular[1],
               angular[2])
     P = k.projection
-    alpha = [P[j][0] * alpha0[0] + P[j][1] * alpha0[1] + P[j][2] * alpha0[2] + P[j][3] * alpha0[3]
-             + P[j][4] * alpha0[4] + P[j][5] * alpha0[5] for j in range(6)]
+    alpha = (_dot6(P[0], alpha0), _dot6(P[1], alpha0), _dot6(P[2], alpha0), _dot6(P[3], alpha0), _dot6(P[4], alpha0),
+             _dot6(P[5], alpha0))
     return (alpha[0] - cx, alpha[1] - cy, alpha[2] - cz), (alpha[3], alpha[4], alpha[5]), (alpha[0], alpha[1], alpha[2])

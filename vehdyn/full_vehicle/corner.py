@@ -63,14 +63,14 @@ def suspension_travel(R, z, u, v, w, p, q, r, x_i, y_i, z_i, wheel, wheel_rate):
 
 
 def suspension_forces(k, travel, travel_rate):
-    """Compressive suspension forces F_s [N] of the four corners (tuples in corner order)."""
-    forces = [k.spring_preload[c] - k.spring_rate[c] * travel[c] - k.damping[c] * travel_rate[c] for c in range(4)]
-    for axle in range(2):
-        left, right = 2 * axle, 2 * axle + 1
-        bar = k.antiroll_rate[axle] * (travel[left] - travel[right])
-        forces[left] = forces[left] - bar
-        forces[right] = forces[right] + bar
-    return forces
+    """Compressive suspension forces F_s [N] of the four corners (a tuple in corner order)."""
+    f = (k.spring_preload[0] - k.spring_rate[0] * travel[0] - k.damping[0] * travel_rate[0],
+         k.spring_preload[1] - k.spring_rate[1] * travel[1] - k.damping[1] * travel_rate[1],
+         k.spring_preload[2] - k.spring_rate[2] * travel[2] - k.damping[2] * travel_rate[2],
+         k.spring_preload[3] - k.spring_rate[3] * travel[3] - k.damping[3] * travel_rate[3])
+    front = k.antiroll_rate[0] * (travel[0] - travel[1])
+    rear = k.antiroll_rate[1] * (travel[2] - travel[3])
+    return f[0] - front, f[1] + front, f[2] - rear, f[3] + rear
 
 
 def normal_load(xp, k, c, wheel, wheel_rate, road, road_rate):

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError, SimulationError
+from ..errors import ParameterError
 from ..handling.single_track import _stack
 from ..model import Model
 from ..params import Vehicle
@@ -160,14 +160,20 @@ class FullVehicle(Model):
     makes the total CG height the file's ``mass.cg_height`` (0.28 m for the shipped sedan; the
     rolling radius is used for the tread speed only).
     Equations and modelling choices: module docstrings of :mod:`vehdyn.full_vehicle`.
+
+    ``vehdyn.simulate(model, ..., method="RK45" or "DOP853")`` runs the compiled rhs (numba; see
+    :meth:`compiled_rhs`), two orders of magnitude faster than the numpy rhs under ``solve_ivp``
+    (``benchmarks/bench_full_vehicle.py``); the first call compiles it (about a minute, then cached
+    on disk).
     """
 
     #: Where the equations hold: the body's force projections are those of small roll and pitch angles
     #: (every angle enters through exact rotations, the suspension and tire forces through their
     #: body-axis components). Past these bounds the vehicle is rolling or pitching over; :meth:`rhs`
-    #: raises :class:`~vehdyn.SimulationError` naming the state and the time. [rad] (An adaptive
-    #: solver's trial stage can also land there when its step is far too long for a sudden input,
-    #: e.g. a pothole on an otherwise smooth road: give ``max_step`` below the shortest road feature.)
+    #: and the compiled rhs raise :class:`~vehdyn.SimulationError` naming the state and the time.
+    #: [rad] (An adaptive solver's trial stage can also land there when its step is far too long for a
+    #: sudden input, e.g. a pothole on an otherwise smooth road: give ``max_step`` below the shortest
+    #: road feature.)
     domain = {"roll_angle": (-np.pi / 4, np.pi / 4), "pitch_angle": (-np.pi / 4, np.pi / 4)}
 
     def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, tire_lag: bool = True, road=None,
@@ -386,16 +392,8 @@ class FullVehicle(Model):
 
     def _ground_points(self, states):
         """Earth (X, Y) of the four contact points and their earth velocities (VX, VY)."""
-        s = states
-        R = assembly.NUMPY.rotation_body_to_earth(s[6], s[7], s[8])
-        out = []
-        for c in range(4):
-            xc, yc, zc = self.corner_x[c], self.corner_y[c], self._k.contact_z
-            X = s[9] + R[0][0] * xc + R[0][1] * yc + R[0][2] * zc
-            Y = s[10] + R[1][0] * xc + R[1][1] * yc + R[1][2] * zc
-            vx, vy, vz = s[0] + s[4] * zc - s[5] * yc, s[1] + s[5] * xc - s[3] * zc, s[2] + s[3] * yc - s[4] * xc
-            out.append((X, Y, R[0][0] * vx + R[0][1] * vy + R[0][2] * vz, R[1][0] * vx + R[1][1] * vy + R[1][2] * vz))
-        return out
+        R = assembly.NUMPY.rotation_body_to_earth(states[6], states[7], states[8])
+        return [assembly.ground_point(R, self._k, states, c) for c in range(4)]
 
     def _evaluate(self, x, u):
         x = np.asarray(x, dtype=float)
@@ -413,26 +411,58 @@ class FullVehicle(Model):
     def rhs(self, t, x, u):
         """State derivatives (equations in the module docstrings).
 
-        Raises
-        ------
-        SimulationError
-            When the roll or pitch angle leaves :attr:`domain` (the vehicle rolls or pitches over).
+        :func:`vehdyn.simulate` raises :meth:`domain_error` when an accepted step leaves
+        :attr:`domain` (the vehicle rolls or pitches over); NaN for a state far beyond it
+        (:func:`~vehdyn.full_vehicle.assembly.trial_bounds`), so that an adaptive solver's wild
+        trial stage is rejected instead of stopping a good run.
         """
-        self._check_domain(t, x)
-        states, e = self._evaluate(x, u)
-        rates = assembly.derivatives(states, e)
-        return _stack([rates[j] for j in self._state_order])
+        if not np.any(self._outside_domain(x)):
+            states, e = self._evaluate(x, u)
+            rates = assembly.derivatives(states, e)
+            return _stack([rates[j] for j in self._state_order])
+        far = self._outside_domain(x, trial=True)
+        if np.all(far):
+            return np.full(np.shape(x), np.nan)
+        with np.errstate(all="ignore"):  # beyond the domain: a crossing about to be located, or discarded
+            states, e = self._evaluate(x, u)
+            rates = assembly.derivatives(states, e)
+            return np.where(far, np.nan, _stack([rates[j] for j in self._state_order]))
 
-    def _check_domain(self, t, x):
-        for name, (low, high) in self.domain.items():
+    def _outside_domain(self, x, trial=False):
+        """True where (per batch member) the roll or pitch angle lies outside :attr:`domain` (with
+        ``trial``, outside :func:`~vehdyn.full_vehicle.assembly.trial_bounds`) or is NaN."""
+        outside = False
+        for name in assembly.DOMAIN_STATES:
+            low, high = assembly.trial_bounds(*self.domain[name]) if trial else self.domain[name]
             value = np.asarray(x[self._state_index[assembly.STATES.index(name)]])
-            outside = ~((value >= low) & (value <= high))
-            if np.any(outside):
-                bad = float(value.flat[int(np.argmax(outside))])
-                raise SimulationError(
-                    f"{name} = {bad:.4g} rad at t = {float(t):.6g} s leaves the full vehicle's domain "
-                    f"[{low:.4g}, {high:.4g}] rad: the vehicle is {'rolling' if name == 'roll_angle' else 'pitching'} "
-                    "over", time=float(t), signal=name)
+            outside = outside | ~((value >= low) & (value <= high))
+        return outside
+
+    def domain_error(self, name, value, time):
+        """:class:`~vehdyn.full_vehicle.assembly.DomainError`: the vehicle rolls or pitches over."""
+        low, high = self.domain[name]
+        return assembly.DomainError(assembly.DOMAIN_STATES.index(name), value, time, low, high)
+
+    def compiled_rhs(self):
+        """The rhs compiled by numba for ``simulate(..., backend="compiled")`` (see :meth:`vehdyn.Model.compiled_rhs`).
+
+        The same equations (:mod:`~vehdyn.full_vehicle.assembly`) with the Magic Formula or linear
+        tire law compiled, with or without tire lag, on a flat road or a
+        :class:`~vehdyn.ride.RoadProfile` (its samples interpolated in compiled code as
+        :meth:`RoadProfile.sample` does), NaN outside the :attr:`domain` as the numpy rhs. Raises
+        :class:`~vehdyn.ParameterError` naming the reason where there is no compiled form: a road
+        or friction given as a Python callable, another tire law.
+        """
+        key = (id(self.road), id(self.friction), tuple((name, tuple(map(float, bounds)))
+                                                       for name, bounds in self.domain.items()))
+        cached = self.__dict__.get("_compiled_model")
+        if cached is not None and cached[0] == key:  # a changed road, friction or domain recompiles args
+            return cached[1]
+        from . import _full_vehicle_numba
+
+        compiled = _full_vehicle_numba.compiled_model(self)
+        self._compiled_model = (key, compiled)
+        return compiled
 
     def output(self, t, x, u):
         """Outputs (see :attr:`outputs`)."""

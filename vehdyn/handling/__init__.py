@@ -1,5 +1,6 @@
 """Handling: linear single-track (bicycle) model, steady-state and understeer analysis, transient
-(ISO 7401) metrics, four-wheel steering and the lateral-yaw-roll model.
+(ISO 7401) metrics, four-wheel steering, the lateral-yaw-roll model, crosswind sensitivity and
+on-centre handling.
 
 All vehicle models use SAE J670 axes (x forward, y right, z down): a positive front steer angle
 turns right and gives a positive yaw rate and lateral acceleration. Cornering stiffnesses are per
@@ -97,6 +98,19 @@ from .nonlinear_steady_state import (  # noqa: E402
     steady_state_cornering,
 )
 from .driver import DriverInTheLoop, PreviewDriver  # noqa: E402
+from .crosswind import (  # noqa: E402
+    CrosswindSensitivity,
+    crosswind_sensitivity,
+    steady_state_crosswind_yaw_rate,
+    wind_zone_signal,
+)
+from .steering_system import (  # noqa: E402
+    SteeredVehicle,
+    SteeringSystem,
+    SteeringSystemParameters,
+    steering_system_parameters,
+)
+from .on_center import WeaveTestMetrics, weave_metrics, weave_test  # noqa: E402
 from .maneuvers import (  # noqa: E402
     BrakingInTurn,
     DoubleLaneChangeTrack,
@@ -138,4 +152,27 @@ __all__ += [
     "double_lane_change_track",
     "lane_change_outcome",
     "spin_out_time",
+    "CrosswindSensitivity",
+    "crosswind_sensitivity",
+    "steady_state_crosswind_yaw_rate",
+    "wind_zone_signal",
+    "SteeredVehicle",
+    "SteeringSystem",
+    "SteeringSystemParameters",
+    "steering_system_parameters",
+    "WeaveTestMetrics",
+    "weave_metrics",
+    "weave_test",
 ]
+
+# Articulated vehicles (issue 14)
+from .car_trailer import CarTrailerParameters, LinearCarTrailer, SnakingMode, car_trailer_parameters  # noqa: E402
+from .articulated_single_track import ArticulatedSingleTrack, ArticulationEvent  # noqa: E402
+
+__all__ += ["CarTrailerParameters", "LinearCarTrailer", "SnakingMode", "car_trailer_parameters",
+            "ArticulatedSingleTrack", "ArticulationEvent"]
+
+# FMVSS 126 compliance (issue 15)
+from .fmvss126 import FMVSS126Result, fmvss126  # noqa: E402
+
+__all__ += ["FMVSS126Result", "fmvss126"]

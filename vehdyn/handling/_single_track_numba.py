@@ -28,6 +28,7 @@ from ..errors import ParameterError
 from ..tire import _mf_numba, linear, magic_formula
 from ..tire.linear import LinearTire
 from ..tire.magic_formula import MagicFormula
+from . import crosswind
 from . import single_track_equations as equations
 
 __all__ = ["XP", "compiled_model", "compiled_functions"]
@@ -41,6 +42,7 @@ for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_s
               "limit_deflection_rate", "axle_forces", "normal_loads", "evaluate", "derivatives", "outputs", "net_wheel_torque",
               "deflection_rate", "deflection_rates"):
     register_jitable(**_JIT)(getattr(equations, _name))
+register_jitable(**_JIT)(crosswind.aero_side_force)
 
 TireLaw = namedtuple("TireLaw", ("kind", "mirrored", "coefficients", "linear"))
 TireLaw.__doc__ = """The law of one axle's tires for compiled code: ``kind`` (0 Magic Formula, 1 linear),
@@ -102,7 +104,7 @@ def _output(t, x, u, args, y):
 @functools.lru_cache(maxsize=None)
 def compiled_functions():
     """(rhs, output, cache key): compiled on first call, cached on disk per source digest."""
-    key = "single_track_" + source_stamp(equations, conventions, linear, *_mf_numba.SOURCE_MODULES,
+    key = "single_track_" + source_stamp(equations, crosswind, conventions, linear, *_mf_numba.SOURCE_MODULES,
                                          sys.modules[__name__])
     compiled = [compiled_copy(python, f"{key}_{suffix}") for python, suffix in ((_rhs, "rhs"), (_output, "output"))]
     return compiled[0], compiled[1], key

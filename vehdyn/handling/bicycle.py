@@ -34,6 +34,16 @@ steady-state curvature at 0.01 m/s, 4e-6 at 1e-4 m/s, 3 % at 1e-6 m/s; below wal
 linear slip-angle tire is no model of a tire anyway (use :class:`~vehdyn.handling.SingleTrack`,
 which runs through standstill).
 
+Crosswind (optional, ``crosswind=True``: input ``wind_velocity_lateral`` w [m/s], the air's velocity
+along y, positive toward the right): the aerodynamic side force of :mod:`vehdyn.handling.crosswind`
+linearized about w = 0, F_w = k_w u w with k_w = 0.5 rho A C_Y', acts at the centre of pressure x_p
+ahead of the CG::
+
+    m (dv/dt + u r) = F_yf + F_yr + k_w u w,    I_z dr/dt = a F_yf - b F_yr + x_p k_w u w
+
+(an input column only: the aerodynamic sideslip of the vehicle's own motion is neglected, see
+:mod:`vehdyn.handling.crosswind`).
+
 Tire lag (optional). With a relaxation length sigma > 0 on an axle, the force follows the transient
 slip angle alpha', a named state, through the first-order law (Pacejka, *Tire and Vehicle
 Dynamics*, 3rd ed., 2012, sec. 7.1.2, eq. 7.12 linearized; Rill, *Road Vehicle Dynamics*, 2012,
@@ -74,6 +84,8 @@ _LAG_SIGNALS = {
                    "rear-axle transient slip angle alpha' of the relaxation-length law (SAE)"),
 }
 _INPUT_SIGNALS = STEER_INPUTS
+_WIND_SIGNAL = Signal("wind_velocity_lateral", "m/s",
+                      "lateral wind: the air's velocity along the vehicle's y axis (toward +y)")
 _OUTPUT_SIGNALS = (
     Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the CG, dv/dt + u r (right, SAE)"),
     Signal("sideslip_angle", "rad", "vehicle sideslip angle at the CG, beta = v / u"),
@@ -106,6 +118,10 @@ class BicycleParameters(ParameterSet):
                                                ge=0, default=0.0)
     rear_relaxation_length: float = parameter("m", "rear tire lateral relaxation length (0: no lag)",
                                               ge=0, default=0.0)
+    wind_side_force_factor: float = parameter("kg/m", "k_w = 0.5 rho A C_Y' of the crosswind side force (0: no wind)",
+                                              ge=0, default=0.0)
+    centre_of_pressure: float = parameter("m", "aerodynamic centre of pressure x_p ahead of the CG (negative: behind)",
+                                          default=0.0)
 
     @property
     def wheelbase(self) -> float:
@@ -123,7 +139,8 @@ def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
     """The :class:`BicycleParameters` of a Vehicle, a LinearBicycle or a BicycleParameters.
 
     For a Vehicle the axle cornering stiffnesses and relaxation lengths come from
-    ``vehicle.tires``, the yaw inertia from ``vehicle.mass.yaw_inertia`` (whole vehicle).
+    ``vehicle.tires``, the yaw inertia from ``vehicle.mass.yaw_inertia`` (whole vehicle), the
+    crosswind numbers from ``vehicle.aero`` (:mod:`vehdyn.handling.crosswind`).
     """
     if isinstance(vehicle_or_model, BicycleParameters):
         return vehicle_or_model
@@ -131,6 +148,8 @@ def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
     if isinstance(params, BicycleParameters):
         return params
     if isinstance(vehicle_or_model, Vehicle):
+        from .crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
+
         v = vehicle_or_model
         return BicycleParameters(
             mass=v.mass.mass,
@@ -141,6 +160,8 @@ def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
             rear_cornering_stiffness=v.tires.rear_cornering_stiffness,
             front_relaxation_length=v.tires.front_relaxation_length,
             rear_relaxation_length=v.tires.rear_relaxation_length,
+            wind_side_force_factor=wind_side_force_factor(v),
+            centre_of_pressure=centre_of_pressure_ahead_of_cg(v),
         )
     raise ParameterError(
         f"expected a Vehicle, a LinearBicycle or BicycleParameters, got {type(vehicle_or_model).__name__}",
@@ -204,6 +225,9 @@ class LinearBicycle(LinearModel):
         Add first-order tire lag on each axle whose relaxation length is positive (states
         ``front_transient_slip_angle``, ``rear_transient_slip_angle``), with the relaxation lengths of
         ``vehicle.tires``. Default False (the classical 2-DOF model).
+    crosswind : bool
+        Add the input ``wind_velocity_lateral`` [m/s] (module docstring), with the side-force factor
+        and centre of pressure of the parameters (for a Vehicle: ``vehicle.aero``). Default False.
 
     Attributes
     ----------
@@ -214,7 +238,8 @@ class LinearBicycle(LinearModel):
     Notes
     -----
     States ``lateral_velocity`` [m/s], ``yaw_rate`` [rad/s] (then the transient slip angles);
-    inputs ``front_steer_angle``, ``rear_steer_angle`` (road-wheel angles [rad]); outputs
+    inputs ``front_steer_angle``, ``rear_steer_angle`` (road-wheel angles [rad]; with
+    ``crosswind=True`` also ``wind_velocity_lateral`` [m/s], toward +y); outputs
     ``lateral_acceleration``, ``sideslip_angle``, ``yaw_rate``, ``lateral_velocity``,
     ``front_slip_angle``, ``rear_slip_angle``, ``path_curvature``, ``front_lateral_force``,
     ``rear_lateral_force``. SAE signs: a positive front steer gives a positive yaw rate and a
@@ -232,7 +257,7 @@ class LinearBicycle(LinearModel):
 
     phenomena = frozenset({"lateral", "yaw"})
 
-    def __init__(self, vehicle, speed: float, *, tire_lag: bool = False):
+    def __init__(self, vehicle, speed: float, *, tire_lag: bool = False, crosswind: bool = False):
         params = bicycle_parameters(vehicle)
         u = linear_model_speed(speed, "LinearBicycle")
         if not tire_lag:
@@ -241,13 +266,19 @@ class LinearBicycle(LinearModel):
         self.speed = u
         A, B, C, D, states = _state_space(params, u)
         phenomena = {"lateral", "yaw"} | ({"tire_lag"} if len(states) > 2 else set())
-        super().__init__(A, B, C, D, states=states, inputs=_INPUT_SIGNALS, outputs=_OUTPUT_SIGNALS,
+        inputs = _INPUT_SIGNALS
+        if crosswind:
+            inputs, phenomena = inputs + (_WIND_SIGNAL,), phenomena | {"aero"}
+        else:
+            B, D = B[:, :2], D[:, :2]
+        super().__init__(A, B, C, D, states=states, inputs=inputs, outputs=_OUTPUT_SIGNALS,
                          name=f"LinearBicycle at {u:g} m/s", phenomena=phenomena)
 
     @classmethod
     def from_parameters(cls, *, mass: float, yaw_inertia: float, a: float, b: float,
                         front_cornering_stiffness: float, rear_cornering_stiffness: float, speed: float,
-                        front_relaxation_length: float = 0.0, rear_relaxation_length: float = 0.0
+                        front_relaxation_length: float = 0.0, rear_relaxation_length: float = 0.0,
+                        wind_side_force_factor: float = 0.0, centre_of_pressure: float = 0.0
                         ) -> "LinearBicycle":
         """A bicycle model from the classical numbers of a textbook problem.
 
@@ -265,19 +296,27 @@ class LinearBicycle(LinearModel):
             Forward speed [m/s].
         front_relaxation_length, rear_relaxation_length : float, optional
             Relaxation lengths [m]; a positive value adds that axle's tire-lag state.
+        wind_side_force_factor : float, optional
+            k_w = 0.5 rho A C_Y' [kg/m]; a positive value adds the crosswind input
+            ``wind_velocity_lateral``.
+        centre_of_pressure : float, optional
+            x_p [m], the aerodynamic centre of pressure ahead of the CG.
         """
         params = BicycleParameters(mass=mass, yaw_inertia=yaw_inertia, a=a, b=b,
                                    front_cornering_stiffness=front_cornering_stiffness,
                                    rear_cornering_stiffness=rear_cornering_stiffness,
                                    front_relaxation_length=front_relaxation_length,
-                                   rear_relaxation_length=rear_relaxation_length)
+                                   rear_relaxation_length=rear_relaxation_length,
+                                   wind_side_force_factor=wind_side_force_factor,
+                                   centre_of_pressure=centre_of_pressure)
         lag = front_relaxation_length > 0 or rear_relaxation_length > 0
-        return cls(params, speed, tire_lag=lag)
+        return cls(params, speed, tire_lag=lag, crosswind=wind_side_force_factor > 0)
 
     def at_speed(self, speed: float) -> "LinearBicycle":
         """The same vehicle at another forward speed [m/s]."""
         p = self.bicycle_parameters
-        return type(self)(p, speed, tire_lag=p.front_relaxation_length > 0 or p.rear_relaxation_length > 0)
+        return type(self)(p, speed, tire_lag=p.front_relaxation_length > 0 or p.rear_relaxation_length > 0,
+                          crosswind="wind_velocity_lateral" in self.input_names)
 
     @property
     def wheelbase(self) -> float:
@@ -313,24 +352,28 @@ def _state_space(p: BicycleParameters, u: float):
         F_x[row] = 0.0
         F_x[row, 2 + k] = -stiff[row]
         F_u[row] = 0.0
-    # m (v' + u r) = Ff + Fr ;  Iz r' = a Ff - b Fr
+    # m (v' + u r) = Ff + Fr + Fw ;  Iz r' = a Ff - b Fr + x_p Fw,  Fw = k_w u w (crosswind)
     lever = np.array([[1.0 / m, 1.0 / m], [a / iz, -b / iz]])
     A = np.zeros((n, n))
-    B = np.zeros((n, 2))
+    B = np.zeros((n, 3))
     A[:2] = lever @ F_x
     A[0, 1] -= u
-    B[:2] = lever @ F_u
+    B[:2, :2] = lever @ F_u
+    wind = p.wind_side_force_factor * u
+    B[:2, 2] = [wind / m, p.centre_of_pressure * wind / iz]
     # transient slip: d(alpha')/dt = (u / sigma) (alpha - alpha')
     for k, axle in enumerate(lagged):
         row = 0 if axle == "front" else 1
         rate = u / lag[axle]
         A[2 + k] = rate * S[row]
         A[2 + k, 2 + k] -= rate
-        B[2 + k] = rate * T[row]
+        B[2 + k, :2] = rate * T[row]
     # outputs: a_y = v' + u r, beta, r, v, alpha_f, alpha_r, curvature, Ff, Fr
     ay_x = A[0].copy()
     ay_x[1] += u
     ay_u = B[0]
     C = np.vstack([ay_x, np.eye(n)[0] / u, np.eye(n)[1], np.eye(n)[0], S[0], S[1], ay_x / u**2, F_x[0], F_x[1]])
-    D = np.vstack([ay_u, np.zeros(2), np.zeros(2), np.zeros(2), T[0], T[1], ay_u / u**2, F_u[0], F_u[1]])
+    # the slips and axle forces do not see the wind directly (zero third column)
+    T3, F_u3 = np.hstack([T, np.zeros((2, 1))]), np.hstack([F_u, np.zeros((2, 1))])
+    D = np.vstack([ay_u, np.zeros(3), np.zeros(3), np.zeros(3), T3[0], T3[1], ay_u / u**2, F_u3[0], F_u3[1]])
     return A, B, C, D, states

@@ -175,6 +175,9 @@ def crosswind_gust(vehicle, speed: float, gust_speed: float, *, start: float = 1
     with A the side (reference) area and L the wheelbase. The defaults C_Y,beta = 2.0 /rad and
     C_N,beta = 0.3 /rad (referred to the frontal area) are typical of passenger cars in Hucho's
     data, not measured values of the shipped vehicles; positive C_N,beta turns the nose downwind.
+    (The same law acts inside :class:`~vehdyn.handling.SingleTrack` through its input
+    ``wind_velocity_lateral``, with the coefficients of the vehicle file; see
+    :mod:`vehdyn.handling.crosswind`.)
 
     Parameters
     ----------
@@ -204,9 +207,10 @@ def crosswind_gust(vehicle, speed: float, gust_speed: float, *, start: float = 1
         tau = (np.asarray(t, dtype=float) - start) / duration
         return np.where((tau >= 0) & (tau <= 1), 0.5 * gust_speed * (1 - np.cos(2 * np.pi * tau)), 0.0)
 
-    def pressure_angle(t):
-        w = wind(t)
-        return 0.5 * rho * (speed**2 + w**2) * area * np.arctan2(w, speed)
+    def pressure_angle(t):  # 0.5 rho V_r^2 A beta_w: the side-force law of vehdyn.handling.crosswind per C_Y'
+        from .crosswind import aero_side_force
+
+        return aero_side_force(np, 0.5 * rho * area, speed, wind(t))
 
     return {"external_lateral_force": lambda t: side_force_derivative * pressure_angle(t),
             "external_yaw_moment": lambda t: yaw_moment_derivative * length * pressure_angle(t)}

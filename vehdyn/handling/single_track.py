@@ -12,7 +12,10 @@ two tires of an axle are lumped on the centre line, each carrying half the axle 
 resolved through the steer angles; Rajamani, *Vehicle Dynamics and Control*, 2nd ed., 2012,
 sec. 2.3 and 2.5; X, Y earth-fixed in SAE orientation: Y to the right of the initial heading).
 F_x, F_y are the axle forces in wheel axes (SAE), F_drag = 0.5 rho c_x A u|u|, F_ext and M_ext
-external lateral force and yaw moment at the CG (wind, :func:`vehdyn.handling.maneuvers.crosswind_gust`).
+the external lateral force and yaw moment at the CG: the inputs ``external_lateral_force`` and
+``external_yaw_moment`` plus the crosswind's F_w = 0.5 rho A C_Y' (u^2 + w^2) atan(w / |u|) at the
+centre of pressure x_p ahead of the CG (moment x_p F_w; input ``wind_velocity_lateral`` w, the law of
+:mod:`vehdyn.handling.crosswind` with the numbers of ``vehicle.aero``).
 
 Wheel-centre velocities in the wheel axes (SAE; front: lateral velocity v + a r, rear: v - b r)::
 
@@ -94,6 +97,7 @@ from ..params import Vehicle
 from ..signals import STEER_INPUTS, Signal
 from ..units import GRAVITY
 from . import single_track_equations as equations
+from .crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
 
 __all__ = ["SingleTrack", "SingleTrackParameters"]
 
@@ -124,6 +128,10 @@ class SingleTrackParameters:
     front_lift_factor, rear_lift_factor : kg/m
         0.5 rho c_l A of each axle (lift = factor u^2).
     gravity : m/s^2
+    wind_side_force_factor : kg/m
+        k_w = 0.5 rho A C_Y' of the crosswind side force (:mod:`vehdyn.handling.crosswind`).
+    centre_of_pressure : m
+        Aerodynamic centre of pressure x_p ahead of the CG (negative: behind).
     """
 
     mass: object
@@ -142,6 +150,8 @@ class SingleTrackParameters:
     front_lift_factor: object
     rear_lift_factor: object
     gravity: float = GRAVITY
+    wind_side_force_factor: object = 0.0
+    centre_of_pressure: object = 0.0
 
     @property
     def wheelbase(self):
@@ -226,7 +236,8 @@ class SingleTrack(Model):
         ``front_steer_angle``, ``rear_steer_angle`` [rad]; ``front_longitudinal_force``,
         ``rear_longitudinal_force`` [N] or ``front_drive_torque``, ``rear_drive_torque``,
         ``front_brake_torque``, ``rear_brake_torque`` [N*m] (per axle, brake torques >= 0);
-        ``external_lateral_force`` [N], ``external_yaw_moment`` [N*m] (wind).
+        ``external_lateral_force`` [N], ``external_yaw_moment`` [N*m];
+        ``wind_velocity_lateral`` [m/s] (crosswind toward +y, acting at the centre of pressure).
     outputs
         See :attr:`outputs` (accelerations, sideslip, slips, axle forces and loads, position).
 
@@ -279,7 +290,9 @@ class SingleTrack(Model):
             front_lateral_relaxation_length=lateral[0], rear_lateral_relaxation_length=lateral[1],
             front_longitudinal_relaxation_length=longitudinal[0], rear_longitudinal_relaxation_length=longitudinal[1],
             drag_factor=half_rho_a * aero.drag_coefficient, front_lift_factor=half_rho_a * aero.front_lift_coefficient,
-            rear_lift_factor=half_rho_a * aero.rear_lift_coefficient, gravity=float(gravity)))
+            rear_lift_factor=half_rho_a * aero.rear_lift_coefficient, gravity=float(gravity),
+            wind_side_force_factor=wind_side_force_factor(vehicle),
+            centre_of_pressure=centre_of_pressure_ahead_of_cg(vehicle)))
         static = self.parameters.static_axle_loads()
         self._mirrored = {axle: self._needs_mirror(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
         self._peak_slip = {axle: self._peak_slips(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
@@ -331,7 +344,9 @@ class SingleTrack(Model):
             inputs += [Signal(f"{axle}_longitudinal_force", "N",
                               f"longitudinal force of the {axle} axle in wheel axes (+ driving)") for axle in _AXLES]
         inputs += [Signal("external_lateral_force", "N", "lateral force at the CG, e.g. wind (SAE y, right)"),
-                   Signal("external_yaw_moment", "N*m", "yaw moment about the CG, e.g. wind (SAE z)")]
+                   Signal("external_yaw_moment", "N*m", "yaw moment about the CG, e.g. wind (SAE z)"),
+                   Signal("wind_velocity_lateral", "m/s",
+                          "lateral wind: the air's velocity along the vehicle's y axis (toward +y)")]
         outputs = [
             Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the CG, dv/dt + u r (right, SAE)"),
             Signal("sideslip_angle", "rad", "vehicle sideslip at the CG, atan2(v, |u|)"),
@@ -532,11 +547,12 @@ class SingleTrack(Model):
                     u0 = {"rear_longitudinal_force": drag}
         return super().linearize(x0, u0, t)
 
-    def lateral_yaw(self, speed: float):
+    def lateral_yaw(self, speed: float, *, crosswind: bool = False):
         """The lateral-yaw linearization at straight running at ``speed`` [m/s].
 
         States ``lateral_velocity``, ``yaw_rate`` (and the lateral deflections with tire lag), inputs
-        ``front_steer_angle``, ``rear_steer_angle``, and the first nine outputs (those of
+        ``front_steer_angle``, ``rear_steer_angle`` (and ``wind_velocity_lateral`` with
+        ``crosswind=True``), and the first nine outputs (those of
         :class:`~vehdyn.handling.LinearBicycle`): with linear tires and no tire lag its matrices are
         the bicycle model's (evaluated at zero longitudinal force, the constant-speed assumption of
         the bicycle model). In straight running these states decouple from the others exactly
@@ -548,7 +564,8 @@ class SingleTrack(Model):
         keep = [self.index("lateral_velocity"), self.index("yaw_rate")]
         if self.tire_lag:
             keep += [self.index(f"{axle}_lateral_deflection") for axle in _AXLES]
-        inputs = [self.index("front_steer_angle", "inputs"), self.index("rear_steer_angle", "inputs")]
+        inputs = [self.index(name, "inputs") for name in ("front_steer_angle", "rear_steer_angle")
+                  + (("wind_velocity_lateral",) if crosswind else ())]
         outputs = list(range(9))
         return LinearModel(full.A[np.ix_(keep, keep)], full.B[np.ix_(keep, inputs)],
                            full.C[np.ix_(outputs, keep)], full.D[np.ix_(outputs, inputs)],

@@ -24,6 +24,7 @@ import numpy as np
 
 from ..conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slips_sae_to_iso_w
 from ..tire._mf_ops import NumpyOps
+from .crosswind import aero_side_force
 
 __all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate", "derivatives", "outputs"]
 
@@ -34,7 +35,7 @@ STATES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y", "ya
 
 INPUTS = ("front_steer_angle", "rear_steer_angle", "front_longitudinal_force", "rear_longitudinal_force",
           "front_drive_torque", "rear_drive_torque", "front_brake_torque", "rear_brake_torque",
-          "external_lateral_force", "external_yaw_moment")
+          "external_lateral_force", "external_yaw_moment", "wind_velocity_lateral")
 """Every input a SingleTrack can have, in the order of :func:`evaluate`."""
 
 REGULARIZATION_SPEED = 0.5  # [m/s], the default v_0 of vehdyn.tire.slip
@@ -44,7 +45,8 @@ Constants = namedtuple("Constants", (
     "front_lateral_relaxation_length", "rear_lateral_relaxation_length", "front_longitudinal_relaxation_length",
     "rear_longitudinal_relaxation_length", "drag_factor", "front_lift_factor", "rear_lift_factor", "gravity",
     "low_speed_damping_speed", "brake_regularization_speed", "front_peak_slip_ratio", "front_peak_tan_slip_angle",
-    "rear_peak_slip_ratio", "rear_peak_tan_slip_angle", "wheel_spin", "tire_lag"))
+    "rear_peak_slip_ratio", "rear_peak_tan_slip_angle", "wind_side_force_factor", "centre_of_pressure", "wheel_spin",
+    "tire_lag"))
 Constants.__doc__ = """What the equations read: the fields of :class:`SingleTrackParameters` (floats, or arrays
 across batch variants on numpy), the model's options and the peak-force slips of the two laws
 (the limits of the tire deflections); ``wheel_spin`` and ``tire_lag`` are bools."""
@@ -91,7 +93,7 @@ def named_states(x, index):
 def named_inputs(u, index):
     """The inputs of a model's vector ``u`` in the order of :data:`INPUTS` (see :func:`named_states`)."""
     return (_at(u, index[0]), _at(u, index[1]), _at(u, index[2]), _at(u, index[3]), _at(u, index[4]),
-            _at(u, index[5]), _at(u, index[6]), _at(u, index[7]), _at(u, index[8]), _at(u, index[9]))
+            _at(u, index[5]), _at(u, index[6]), _at(u, index[7]), _at(u, index[8]), _at(u, index[9]), _at(u, index[10]))
 
 
 def regularized_speed(xp, vx):
@@ -174,7 +176,8 @@ def evaluate(xp, tires, k, states, inputs):
     :data:`STATES`, :data:`INPUTS`): an :class:`Evaluation`."""
     (lon, lat, yaw_rate, _x, _y, _yaw, front_wheel_speed, rear_wheel_speed, front_lateral_deflection,
      rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection) = states
-    (front_steer, rear_steer, front_force, rear_force, _fd, _rd, _fb, _rb, external_force, external_moment) = inputs
+    (front_steer, rear_steer, front_force, rear_force, _fd, _rd, _fb, _rb, external_force, external_moment,
+     wind) = inputs
     front_lift, rear_lift = k.front_lift_factor * lon * lon, k.rear_lift_factor * lon * lon
     cf, sf = xp.cos(front_steer), xp.sin(front_steer)
     cr, sr = xp.cos(rear_steer), xp.sin(rear_steer)
@@ -210,7 +213,9 @@ def evaluate(xp, tires, k, states, inputs):
     f, r = front(fz_f), rear(fz_r)
     fx_body = f[0] * cf - f[1] * sf + r[0] * cr - r[1] * sr
     front_lateral, rear_lateral = f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr
-    moment = external_moment + k.a * front_lateral - k.b * rear_lateral
+    wind_force = aero_side_force(xp, k.wind_side_force_factor, lon, wind)  # crosswind, at the centre of pressure
+    external_force = external_force + wind_force
+    moment = external_moment + k.centre_of_pressure * wind_force + k.a * front_lateral - k.b * rear_lateral
     drag = k.drag_factor * lon * xp.abs(lon)
     return Evaluation((fx_body - drag) / k.mass, (front_lateral + rear_lateral + external_force) / k.mass,
                       moment / k.yaw_inertia, f[0], f[1], f[2], f[3], r[0], r[1], r[2], r[3], fz_f, fz_r,
@@ -243,7 +248,7 @@ def deflection_rates(xp, k, front_vx, front_vy, rear_vx, rear_vy, states):
 def derivatives(xp, k, e, states, inputs):
     """d/dt of every entry of :data:`STATES` (0.0 for a state the model lacks) from an :class:`Evaluation`."""
     (lon, lat, yaw_rate, _x, _y, yaw, front_wheel_speed, rear_wheel_speed, _fld, _rld, _fxd, _rxd) = states
-    (_fs, _rs, _ff, _rf, front_drive, rear_drive, front_brake, rear_brake, _fe, _me) = inputs
+    (_fs, _rs, _ff, _rf, front_drive, rear_drive, front_brake, rear_brake, _fe, _me, _w) = inputs
     zero = 0.0 * lon
     cpsi, spsi = xp.cos(yaw), xp.sin(yaw)
     d_front_wheel = d_rear_wheel = zero

@@ -14,6 +14,7 @@ from .vehicle import (
     load_vehicle,
     shipped_vehicles,
 )
+from .trailer import Trailer, load_trailer, shipped_trailers
 
 __all__ = [
     "ParameterSet",
@@ -32,4 +33,7 @@ __all__ = [
     "load_vehicle",
     "shipped_vehicles",
     "data_path",
+    "Trailer",
+    "load_trailer",
+    "shipped_trailers",
 ]

@@ -188,6 +188,28 @@ class Steering(ParameterSet):
     ackermann_fraction: float = parameter(
         "-", "share of Ackermann geometry in the left/right split of the front steer angle (0: parallel steer, "
         "1: both front wheels square to the turn centre)", default=0.0, ge=0, le=1)
+    # steering system (optional; used by vehdyn.handling.SteeringSystem). Defaults: typical
+    # passenger-car values, assumed, after Pfeffer & Harrer (eds.), Steering Handbook, Springer,
+    # 2017 (column and torsion bar, friction, boost curves of power steering) and Gillespie,
+    # Fundamentals of Vehicle Dynamics, 1992, ch. 8 (caster trail); no shipped vehicle has measured ones
+    steering_wheel_inertia: float = parameter("kg*m^2", "steering-wheel inertia about the column (typical 0.04)",
+                                              gt=0, default=0.04)
+    column_stiffness: float = parameter("N*m/rad", "torsional stiffness of the column with its torsion bar (typical "
+                                        "115, about 2 N*m/deg)", gt=0, default=115.0)
+    lower_steering_inertia: float = parameter("kg*m^2", "inertia of rack, pinion, road wheels about the kingpins and "
+                                              "assist motor, referred to the pinion (typical 0.05)", gt=0, default=0.05)
+    steering_damping: float = parameter("N*m*s/rad", "viscous damping of the rack, referred to the pinion", ge=0,
+                                        default=0.5)
+    steering_friction_torque: float = parameter("N*m", "Coulomb friction of rack and gear, referred to the pinion "
+                                                "(typical 1)", ge=0, default=1.0)
+    assist_gain: float = parameter("-", "power-assist boost: assist torque per torsion-bar torque far from centre "
+                                   "(0: manual steering)", ge=0, default=0.0)
+    assist_knee_torque: float = parameter("N*m", "torsion-bar torque around which the boost curve turns on", gt=0,
+                                          default=1.5)
+    caster_trail: float = parameter("m", "mechanical (caster) trail of the front wheels at the ground (typical "
+                                    "0.02)", default=0.02)
+    pneumatic_trail: float = parameter("m", "pneumatic trail of the front tires (None: from the tire law, -dM_z/dF_y "
+                                       "at zero slip and the static load)", default=None)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -203,6 +225,17 @@ class Aerodynamics(ParameterSet):
     lateral_drag_coefficient: float = parameter(
         "-", "cross-flow drag coefficient on the frontal area: side force -0.5 rho c_y A |V_a| V_ay of the "
         "air-relative velocity V_a (0: no side force from wind)", ge=0, default=0.0)
+    # crosswind (optional; typical passenger-car values, not measurements of a given vehicle):
+    # Hucho, Aerodynamics of Road Vehicles, 4th ed., 1998, sec. 4.4 (side force and yaw moment of
+    # passenger cars grow about linearly with the aerodynamic sideslip up to about 20 deg);
+    # Wong, Theory of Ground Vehicles, 4th ed., 2008, sec. 3.2 (centre of pressure of cars in the
+    # front half of the wheelbase, ahead of the neutral steer point)
+    side_force_coefficient_slope: float = parameter(
+        "1/rad", "dC_Y/d(beta_aero) of the aerodynamic side force, referred to the frontal area (typical car 2.0)",
+        ge=0, default=2.0)
+    centre_of_pressure_from_front_axle: float = parameter(
+        "-", "distance from the front axle back to the aerodynamic centre of pressure, as a fraction of the "
+        "wheelbase (typical car 0.3; negative: ahead of the front axle)", gt=-1.0, lt=2.0, default=0.3)
 
     def drag_force(self, speed):
         """Drag force 0.5 rho c_x A V|V| [N] at air speed ``speed`` [m/s] (sign follows the speed)."""
@@ -234,6 +267,8 @@ class Vehicle(ParameterSet):
     name: str = text("short name")
     description: str = text("what vehicle this is", default="")
     source: str = text("where the numbers come from", default="")
+    category: str = text("kind of vehicle: studies that compare cars take the passenger cars only",
+                         default="passenger_car", choices=("passenger_car", "truck_tractor"))
     mass: MassProperties
     geometry: Geometry
     suspension: Suspension
@@ -300,9 +335,28 @@ def data_path(*parts: str) -> Path:
     raise ParameterError("vehdyn's shipped data folder is missing from this installation", key="data", value=str(here))
 
 
-def shipped_vehicles() -> list[str]:
-    """Names of the vehicles shipped in ``data/vehicles``."""
-    return sorted(p.stem for p in data_path("vehicles").glob("*.toml"))
+def shipped_vehicles(category: str | None = None) -> list[str]:
+    """Names of the vehicles shipped in ``data/vehicles``.
+
+    Parameters
+    ----------
+    category : {"passenger_car", "truck_tractor"}, optional
+        Only the vehicles of this ``category`` (the vehicle file's field; default of a file:
+        ``"passenger_car"``). None: every shipped vehicle.
+    """
+    names = shipped_names("vehicles")
+    if category is None:
+        return names
+    choices = dataclasses.fields(Vehicle)
+    allowed = next(f for f in choices if f.name == "category").metadata["choices"]
+    if category not in allowed:
+        raise ParameterError(f"category = {category!r} is not one of {list(allowed)}", key="category", value=category)
+    return [name for name in names if load_vehicle(name).category == category]
+
+
+def shipped_names(folder: str) -> list[str]:
+    """Stems of the TOML files shipped in ``data/FOLDER``."""
+    return sorted(p.stem for p in data_path(folder).glob("*.toml"))
 
 
 def load_vehicle(name_or_path: str | Path) -> Vehicle:
@@ -316,16 +370,25 @@ def load_vehicle(name_or_path: str | Path) -> Vehicle:
         or a parameter is missing, unknown, of the wrong type, non-finite or out of range (the
         message names the key and the value).
     """
+    return load_shipped_or_file(Vehicle, name_or_path, "vehicle")
+
+
+def load_shipped_or_file(cls, name_or_path, kind: str):
+    """A ``cls`` parameter set from a shipped file ``data/{kind}s/NAME.toml`` or a user's TOML file.
+
+    ``kind`` (``"vehicle"``, ``"trailer"``) names the argument in the errors.
+    """
     if not isinstance(name_or_path, (str, os.PathLike)):
-        raise ParameterError(f"vehicle must be a shipped vehicle's name or a path to a .toml file, got "
-                             f"{type(name_or_path).__name__} {name_or_path!r}", key="vehicle", value=name_or_path)
+        raise ParameterError(f"{kind} must be a shipped {kind}'s name or a path to a .toml file, got "
+                             f"{type(name_or_path).__name__} {name_or_path!r}", key=kind, value=name_or_path)
     p = Path(name_or_path)
     if p.suffix == ".toml" or p.is_file():
-        return load_toml(Vehicle, p)
-    candidate = data_path("vehicles", f"{name_or_path}.toml")
+        return load_toml(cls, p)
+    candidate = data_path(f"{kind}s", f"{name_or_path}.toml")
     if not candidate.is_file():
         if p.is_dir():
-            return load_toml(Vehicle, p)  # reports the folder
-        raise ParameterError(f"unknown vehicle {str(name_or_path)!r}; shipped vehicles are {shipped_vehicles()}, "
-                             "or give a path to a .toml file", key="vehicle", value=str(name_or_path))
-    return load_toml(Vehicle, candidate)
+            return load_toml(cls, p)  # reports the folder
+        shipped = shipped_names(f"{kind}s")
+        raise ParameterError(f"unknown {kind} {str(name_or_path)!r}; shipped {kind}s are {shipped}, "
+                             "or give a path to a .toml file", key=kind, value=str(name_or_path))
+    return load_toml(cls, candidate)

@@ -314,7 +314,7 @@ class _Context:
             return du + dg, f"speed change ~{du:.1e} and drag load transfer ~{dg:.1e}"
         if p in ("heave", "wheel_hop", "road_input") and d.road is None:
             return 0.0, ""  # a flat road: nothing excites the vertical modes
-        if p in ("lateral", "yaw", "tire_lag") and not d.handling_input:
+        if p in ("lateral", "yaw", "tire_lag", "steering") and not d.handling_input:
             return 0.0, ""  # no steer: nothing excites the lateral modes
         if p == "tire_lag":
             diff = self._difference("LinearBicycle", "LinearBicycle+lag")

@@ -19,6 +19,9 @@ Slip and transients
 Soft soil (terramechanics: Bekker, Janosi-Hanamoto, Wong-Reece; see :mod:`vehdyn.tire.terramechanics`)
     :class:`SoftSoilTire` (a tire law on a :class:`~vehdyn.tire.terramechanics.Soil`), the subpackage
     ``terramechanics``
+Measured data and fitting (scipy, pandas imported on use)
+    :func:`read_tire_data`, :func:`fit_magic_formula`, :func:`fit_brush`, :func:`fit_linear`,
+    :class:`TireFit`
 Plots
     :func:`plot_tire_characteristics`, :func:`characteristic_values`, :func:`describe_tire`
     (matplotlib and pandas imported on use)
@@ -37,6 +40,8 @@ from .slip import WheelSlip, regularized_speed, slip_velocities, theoretical_sli
 from .tir import TirParameters, read_tir, write_tir
 from . import terramechanics
 from .terramechanics import SoftSoilTire
+from .tire_data import read_tire_data
+from .fitting import TireFit, fit_brush, fit_linear, fit_magic_formula
 
 __all__ = [
     "TireForces",
@@ -67,4 +72,9 @@ __all__ = [
     "characteristic_values",
     "terramechanics",
     "SoftSoilTire",
+    "read_tire_data",
+    "fit_magic_formula",
+    "fit_brush",
+    "fit_linear",
+    "TireFit",
 ]

@@ -53,7 +53,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params.base import ParameterSet, parameter
-from ._common import (VectorizedTire, broadcast_inputs, planar_forces, rolling_direction,
+from ._common import (VectorizedTire, broadcast_inputs, load_input, nan_at, planar_forces, rolling_direction,
                       scalar_rolling_direction)
 from .base import TireForces
 
@@ -160,7 +160,7 @@ class BrushTire(ParameterSet, VectorizedTire):
 
         In pure side slip full sliding starts at ``tan(alpha) = sigma_sl``.
         """
-        return 3.0 * self.mu * np.maximum(np.asarray(fz, dtype=float), 0.0) / self.cornering_stiffness
+        return 3.0 * self.mu * load_input(fz) / self.cornering_stiffness
 
     @classmethod
     def from_cornering_stiffness(cls, cornering_stiffness: float, contact_half_length: float, mu: float,
@@ -241,11 +241,12 @@ class BrushTire(ParameterSet, VectorizedTire):
         Defined through the resultant force, so it is also the trail of the combined-slip force;
         zero at full sliding (Pacejka 2012, sec. 3.2.1).
         """
-        fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, 0.0, vx)
+        (fz, kappa, alpha, _, vx), bad = broadcast_inputs(fz, kappa, alpha, 0.0, vx)
         direction = rolling_direction(vx)
         lam = self._adhesion_parameter(fz, kappa, np.hypot(kappa, np.tan(alpha)))
         r = self.sliding_ratio
         f = brush_force_fraction(lam, r)
         small = lam < 1e-9
         ratio = np.where(small, 1.0 / 3.0, brush_moment_fraction(lam, r) / np.where(small, 1.0, f))
-        return self.contact_half_length * ratio * direction
+        trail = self.contact_half_length * ratio * direction
+        return trail if bad is None else nan_at(bad, (trail,))[0]

@@ -37,7 +37,7 @@ import math
 import numpy as np
 
 from ..params.base import ParameterSet, parameter
-from ._common import VectorizedTire, planar_forces, rolling_direction, scalar_rolling_direction, scalar_sign
+from ._common import VectorizedTire, load_input, planar_forces, rolling_direction, scalar_rolling_direction, scalar_sign
 from .base import TireForces
 from .brush import brush_force_fraction, brush_moment_fraction
 
@@ -89,7 +89,7 @@ class FialaTire(ParameterSet, VectorizedTire):
 
     def sliding_slip_angle(self, fz):
         """Slip angle [rad] where the whole patch slides in pure side slip: ``atan(3 mu F_z / C_alpha)``."""
-        return np.arctan(3.0 * self.mu * np.maximum(np.asarray(fz, dtype=float), 0.0) / self.cornering_stiffness)
+        return np.arctan(3.0 * self.mu * load_input(fz) / self.cornering_stiffness)
 
     @classmethod
     def from_vehicle(cls, vehicle, axle: str = "front") -> "FialaTire":

@@ -31,6 +31,11 @@ Where MFeval's results are not finite vehdyn returns something else, on purpose:
 * MFeval iterates omega/Re on the whole batch and stops when any row converges; vehdyn iterates
   each point to convergence (MFeval's single-row result), so no output depends on other points.
 
+Inputs that are not finite: NaN in every output at exactly those points, on both backends, as for
+every tire law (see :mod:`vehdyn.tire.base`); the compiled loops never see them (the points are
+set to a neutral operating point before the call and overwritten after). Bools raise
+:class:`~vehdyn.ParameterError`.
+
 Domain: any finite inputs with |alpha| < pi/2. With ``limits=True`` (the default) every output
 is finite there, including vx = 0, fz = 0 and loads above FZMAX (except the MF 6.2 geometry
 noted above); with ``limits=False`` the equations are evaluated as written, outside the file's
@@ -41,6 +46,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import repeat
 from pathlib import Path
 from collections import namedtuple
 
@@ -49,6 +55,7 @@ import numpy as np
 from .._compiled_ode import numba_available
 from ..errors import ParameterError, TirFileError
 from ..params import data_path
+from ._common import NAN_FORCES, broadcast_shape, finite_scalars, float_input, nan_at, neutralize, nonfinite_points
 from ._mf_ops import NumpyOps, ScalarOps, sign_nonzero
 from .base import TireForces, TireModel
 from .mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure, turn_slip_spin
@@ -219,9 +226,13 @@ class MagicFormula(TireModel):
         self._c = _coefficients(params)
 
     @classmethod
-    def from_tir(cls, path) -> MagicFormula:
-        """Read a ``.tir`` file and build the model (see :func:`vehdyn.tire.read_tir`)."""
-        return cls(read_tir(path))
+    def from_tir(cls, path, *, strict: bool = False) -> MagicFormula:
+        """Read a ``.tir`` file and build the model (see :func:`vehdyn.tire.read_tir`).
+
+        A file that lacks whole sections of its version (e.g. truncated) gives a
+        :class:`~vehdyn.VehdynWarning` naming them; ``strict=True`` raises :class:`~vehdyn.TirFileError`.
+        """
+        return cls(read_tir(path, strict=strict))
 
     def __repr__(self) -> str:
         where = f", {self.params.path!r}" if self.params.path else ""
@@ -279,14 +290,25 @@ class MagicFormula(TireModel):
         -------
         MagicFormulaOutputs
             Arrays of the broadcast shape of the inputs (0-d arrays for a single point, which is
-            evaluated on Python floats, without numpy's per-call overhead).
+            evaluated on Python floats, without numpy's per-call overhead). NaN in every output at
+            the points where an input is NaN or infinite (see :mod:`vehdyn.tire.base`).
+
+        Raises
+        ------
+        ParameterError
+            If an input is a bool or not numeric, the shapes do not broadcast, or the backend is
+            unknown or unavailable.
         """
         c = self._c
         point = (fz, kappa, alpha, gamma, c.LONGVL if vx is None else vx, c.INFLPRES if pressure is None else pressure,
                  phit, omega)
         explicit_numba = backend == "numba" or (backend is None and BACKEND == "numba")
         backend = _backend(backend)
-        if not explicit_numba and all(v is None or _is_number(v) for v in point):
+        one_point = not explicit_numba and all(v is None or _is_number(v) for v in point)
+        if one_point:  # a non-finite input goes to the array path, which returns NaN there
+            given = point if omega is not None else point[:7]
+            one_point = math.isfinite(sum(given)) or finite_scalars(*given)
+        if one_point:
             # one operating point: float arithmetic (no numpy call overhead); numpy if a float op fails
             fz, kappa, alpha, gamma, vx, pressure, phit, omega = (None if v is None else float(v) for v in point)
             try:
@@ -306,7 +328,8 @@ class MagicFormula(TireModel):
         Same conventions and switches as :meth:`evaluate` (vx defaults to LONGVL, the pressure is
         INFLPRES). A call with scalar inputs returns floats; unless ``backend="numba"`` is asked
         for, scalar inputs and up to ``SMALL_BATCH`` points (a vehicle's wheels) are evaluated
-        point by point on Python floats, which beats both array backends' call overhead.
+        point by point on Python floats, which beats both array backends' call overhead. Points
+        with a NaN or infinite input are NaN in every field, bools raise ParameterError.
         """
         c = self._c
         vx = c.LONGVL if vx is None else vx
@@ -314,6 +337,8 @@ class MagicFormula(TireModel):
         backend = _backend(backend)
         scalar = all(_is_number(v) for v in (fz, kappa, alpha, gamma, vx))
         if scalar and not explicit_numba:
+            if not (math.isfinite(fz + kappa + alpha + gamma + vx) or finite_scalars(fz, kappa, alpha, gamma, vx)):
+                return NAN_FORCES
             return TireForces(*self._forces_at_point(float(fz), float(kappa), float(alpha), float(gamma), float(vx),
                                                      limits, alpha_star))
         arrays = self._inputs(fz, kappa, alpha, gamma, vx, c.INFLPRES, 0.0, None)
@@ -321,11 +346,15 @@ class MagicFormula(TireModel):
         if scalar:  # compiled on request: floats all the same
             return TireForces(*(float(v) for v in self._run(arrays, (limits, alpha_star), full=False,
                                                             backend=backend)))
-        if not explicit_numba and 0 < math.prod(shape) <= SMALL_BATCH:
+        n = math.prod(shape)
+        if not explicit_numba and 0 < n <= SMALL_BATCH:
             # a few wheels: float arithmetic beats numpy's call overhead
-            points = np.broadcast_arrays(*(arrays[k] for k in ("fz", "kappa", "alpha", "gamma", "vx")))
-            values = [self._forces_at_point(*map(float, p), limits, alpha_star)
-                      for p in zip(*(np.ravel(a) for a in points))]
+            points = [a.reshape(-1).tolist() if a.shape == shape else [a.item()] * n if a.size == 1
+                      else np.broadcast_to(a, shape).reshape(-1).tolist()
+                      for a in (arrays[k] for k in ("fz", "kappa", "alpha", "gamma", "vx"))]
+            skips = repeat(False) if arrays["bad"] is None else arrays["bad"].reshape(-1).tolist()
+            values = [NAN_FORCES if skip else self._forces_at_point(*p, limits, alpha_star)
+                      for skip, p in zip(skips, zip(*points))]
             return TireForces(*(np.array(v, dtype=float).reshape(shape) for v in zip(*values)))
         return TireForces(*self._run(arrays, (limits, alpha_star), full=False, backend=backend))
 
@@ -341,32 +370,27 @@ class MagicFormula(TireModel):
 
     # ------------------------------------------------------------------------------------------
     def _inputs(self, fz, kappa, alpha, gamma, vx, pressure, phit, omega):
+        """The inputs as float arrays (None: not given), their broadcast ``shape`` and the mask
+        ``bad`` of the points where one is not finite (None if nowhere)."""
         c = self._c
-        names = ("fz", "kappa", "alpha", "gamma", "vx", "pressure", "phit", "omega")
         values = [fz, kappa, alpha, gamma, c.LONGVL if vx is None else vx,
                   c.INFLPRES if pressure is None else pressure, phit, omega]
-        arrays = {}
-        for name, value in zip(names, values):
-            if value is None:
-                arrays[name] = None
-                continue
-            try:
-                arrays[name] = np.asarray(value, dtype=float)
-            except (TypeError, ValueError):
-                raise ParameterError(f"{name} must be numeric, got {value!r}", key=name, value=value) from None
-        present = [a for a in arrays.values() if a is not None]
-        try:
-            shape = np.broadcast_shapes(*(a.shape for a in present))
-        except ValueError:
-            shapes = {k: a.shape for k, a in arrays.items() if a is not None}
-            raise ParameterError(f"input shapes do not broadcast: {shapes}", key="shape", value=shapes) from None
+        converted = [None if v is None else float_input(name, v) for name, v in zip(_INPUT_NAMES, values)]
+        shape = broadcast_shape(converted, _INPUT_NAMES)
+        arrays = dict(zip(_INPUT_NAMES, converted))
         arrays["shape"] = shape
+        arrays["bad"] = nonfinite_points(converted, shape)
         return arrays
 
     def _run(self, arrays, switches, full, backend):
         """All points of ``arrays`` (from :meth:`_inputs`) through the full or the forces kernel:
         a tuple of output arrays of the broadcast shape."""
         shape = arrays.pop("shape")
+        bad = arrays.pop("bad")
+        if bad is not None:  # the equations see a neutral point there; NaN is written over it below
+            neutral = (0.0, 0.0, 0.0, 0.0, self._c.LONGVL, self._c.INFLPRES, 0.0, 0.0)
+            arrays = dict(zip(_INPUT_NAMES, neutralize([arrays[k] for k in _INPUT_NAMES], bad, neutral)))
+            return nan_at(bad, self._run({**arrays, "shape": shape, "bad": None}, switches, full, backend))
         n = math.prod(shape)
         names = _FULL_INPUTS if full else _FORCES_INPUTS
         # inputs of one value stay 0-d / length 1 (constant terms cost one op; no copies)
@@ -395,6 +419,7 @@ class MagicFormula(TireModel):
         return tuple(v.reshape(shape) for v in result)
 
 
+_INPUT_NAMES = ("fz", "kappa", "alpha", "gamma", "vx", "pressure", "phit", "omega")
 _FULL_INPUTS = ("fz", "kappa", "alpha", "gamma", "phit", "vx", "pressure", "omega")
 _FORCES_INPUTS = ("fz", "kappa", "alpha", "gamma", "vx", "pressure")
 
@@ -436,7 +461,7 @@ def _auto_backend(n: int) -> str:
     return "numba"
 
 
-def load_tire(path) -> MagicFormula:
+def load_tire(path, *, strict: bool = False) -> MagicFormula:
     """Load a Magic Formula tire from a ``.tir`` file, or a shipped one by name.
 
     Parameters
@@ -444,13 +469,15 @@ def load_tire(path) -> MagicFormula:
     path : str or pathlib.Path
         A file path, or the stem of a file in vehdyn's ``data/tires`` (``"MagicFormula61_Parameters"``,
         ``"MagicFormula62_Parameters"``, ``"MagicFormula52_Parameters"``, ``"mf_185_80R14"``).
+    strict : bool
+        Raise instead of warning when the file lacks whole sections (see :meth:`MagicFormula.from_tir`).
     """
     candidate = Path(path)
     if not candidate.exists() and candidate.suffix == "" and len(candidate.parts) == 1:
         shipped = data_path("tires", candidate.name + ".tir")
         if shipped.exists():
             candidate = shipped
-    return MagicFormula.from_tir(candidate)
+    return MagicFormula.from_tir(candidate, strict=strict)
 
 
 # ----------------------------------------------------------------------------------------------

@@ -101,6 +101,11 @@ def describe_tire(tire: TireModel, loads=None, *, vx: float = 20.0) -> str:
                     "NOMPRES", "LONGVL", "VERTICAL_STIFFNESS", "PDX1", "PDY1", "PKX1", "PKY1", "PKY2"):
             if key in params:
                 lines.append(f"  {key:<20} = {params[key]}")
+        defaulted = getattr(params, "defaulted", ())
+        missing = getattr(params, "missing_sections", ())
+        if defaulted:
+            lines.append(f"  {len(defaulted)} coefficients not in the file take MFeval's defaults"
+                         + (f"; missing sections: {', '.join(missing)}" if missing else ""))
     elif hasattr(tire, "to_dict"):
         for key, value in tire.to_dict().items():
             lines.append(f"  {key:<26} = {value:.6g}" if isinstance(value, float) else f"  {key:<26} = {value}")

@@ -70,8 +70,9 @@ def _magic_formula(tire):
             entries[key] = _tir_value(key, value)
     try:
         return MagicFormula(TirParameters(sections))
-    except TirFileError as error:
-        raise ParameterError(str(error), key="FITTYP", value=sections) from None
+    except TirFileError as error:  # an unsupported version, or a value the .tir checks refuse
+        raise ParameterError(str(error), key=getattr(error, "key", "FITTYP"),
+                             value=getattr(error, "value", sections)) from None
 
 
 def relaxation_lengths(tire, fz, gamma=0.0, pressure=None, *, limits: bool = True):

@@ -2,7 +2,8 @@
 
 A ``.tir`` file is a list of ``[SECTION]`` headers followed by ``KEY = value`` lines; ``$`` starts a
 comment (also after a value), ``!`` starts a comment line, values are numbers or ``'quoted'``
-strings, and a few legacy sections (``[SHAPE]``) hold tables whose lines have no ``=``.
+strings, and a few legacy sections (``[SHAPE]``) hold tables whose lines have no ``=``. Files are
+read as UTF-8 (a byte-order mark, UTF-8 or UTF-16, is accepted) or, failing that, Latin-1.
 
 :func:`read_tir` keeps every key verbatim, grouped by section, converts the dimensional
 parameters to SI once according to ``[UNITS]``, and fills the parameters a Magic Formula
@@ -16,18 +17,58 @@ Version detection (Magic Formula variant of the file):
 * ``FITTYP = 6`` or ``21`` -> ``"5.2"``; ``61`` -> ``"6.1"``; ``62`` -> ``"6.2"``;
 * no ``FITTYP`` but ``PROPERTY_FILE_FORMAT = 'PAC2002'`` (or ``'MF_05'``) -> ``"5.2"``;
 * anything else -> ``None`` (the file is read, but :class:`vehdyn.tire.MagicFormula` refuses it).
+
+Checks (:class:`~vehdyn.TirFileError` naming the key, its value as written and its line). Every
+coefficient is checked, not only those the model reads first, and the values the file lacks take
+part with their defaults:
+
+* every number is finite (``nan``, ``inf`` and overflowing literals such as ``1e999`` are refused;
+  a single NaN coefficient makes every force NaN, an infinite one clamps or saturates silently);
+* ``0 <= FZMIN < FZMAX``: the load range clamps Fz (FZMAX, and FZMIN in the moments); loads are
+  compressive, and an empty or inverted range clamps every load to one value;
+* ``ALPMIN < 0 < ALPMAX`` and ``KPUMIN < 0 < KPUMAX``: with limits on, slip is clipped to these
+  ranges, so a range without 0 turns straight free rolling into a slip angle or a drive/brake
+  slip (a tire that steers or drives itself);
+* ``CAMMIN <= 0 <= CAMMAX`` (both 0 allowed: a file fitted without camber) and
+  ``0 <= PRESMIN <= PRESMAX`` (equal: fitted at one pressure), for the same reason;
+* ``PDX1 > 0`` and ``PDY1 > 0``: the friction coefficients mu_x, mu_y at FNOMIN (Pacejka 2012,
+  eqs. 4.E13 and 4.E23, marked > 0), and ``LMUX >= 0``, ``LMUY >= 0``, their scaling factors
+  (0 switches the force off). The pure-slip force comes out the same with a negative D = mu Fz
+  only because B = K/(C D) flips with it; the friction outputs ``mux``/``muy`` and the
+  combined-slip side force shift S_Vyk = mu_y Fz (R_VY1 + ...) do not, so a negative value is a
+  sign error that shows only under combined slip;
+* ``QCZ1 > 0``: the shape factor C_t of the pneumatic trail (eq. 4.E41, marked > 0). The trail
+  itself is even in C_t (a cosine), but the curvature E_t contains atan(B_t C_t alpha_t)
+  (eq. 4.E44), so with QEZ4/QEZ5 a negative C_t mirrors the trail's asymmetry: a different M_z;
+* ``LFZO > 0``: Fz0' = LFZO*FNOMIN divides every load term.
+
+Every rule holds for the shipped files and the MFeval reference files. Sign rules that the
+equations do not need are not enforced: the shape factors PCX1 and PCY1 (the book asks C > 0)
+give the same forces and moments with the opposite sign, since B = K/(C D) flips too and every
+other use is of the product B C. The positivity of FNOMIN,
+UNLOADED_RADIUS, LONGVL, NOMPRES, VXLOW and VERTICAL_STIFFNESS is checked by
+:class:`~vehdyn.tire.MagicFormula` (a :class:`~vehdyn.ParameterError`). A file of a known version
+that lacks whole sections (:attr:`TirParameters.missing_sections`, e.g. a truncated file) is read
+with MFeval's defaults for them and a :class:`~vehdyn.VehdynWarning`; ``strict=True`` makes it an
+error.
 """
 
 from __future__ import annotations
 
 import math
+import numbers
+import os
+import sys
+import warnings
 from pathlib import Path
 from types import MappingProxyType
 from collections.abc import Mapping
 
-from ..errors import TirFileError
+from .._atomic import atomic_write
+from ..errors import TirFileError, VehdynWarning
 
-__all__ = ["TirParameters", "read_tir", "write_tir", "MFEVAL_DEFAULTS", "VERSION_BY_FITTYP"]
+__all__ = ["TirParameters", "read_tir", "write_tir", "check_sections", "MFEVAL_DEFAULTS", "VERSION_BY_FITTYP",
+           "STANDARD_SECTIONS", "REQUIRED_SECTIONS"]
 
 VERSION_BY_FITTYP = {6: "5.2", 21: "5.2", 61: "6.1", 62: "6.2"}
 """Magic Formula version for each supported ``FITTYP`` value."""
@@ -106,6 +147,67 @@ _USED_BY_VERSION = {
     "6.2": set(_COMMON_DEFAULTS) | set(_MF62_DEFAULTS),
 }
 
+# --- Sections ------------------------------------------------------------------------------------
+# The sections of the TNO/MSC layout and the parameters MFeval reads from each (MF 6.2 and MF 5.2
+# files together). A section counts as present when the file defines any of its keys, in whatever
+# section: MFeval, like vehdyn, reads the keys and ignores the section names.
+STANDARD_SECTIONS: Mapping[str, tuple[str, ...]] = MappingProxyType({
+    "MODEL": ("FITTYP", "TYRESIDE", "LONGVL", "VXLOW", "ROAD_INCREMENT", "ROAD_DIRECTION", "PROPERTY_FILE_FORMAT",
+              "USER_SUB_ID", "N_TIRE_STATES", "USE_MODE", "HMAX_LOCAL", "TIME_SWITCH_INTEG", "FUNCTION_NAME",
+              "SWITCH_INTEG"),
+    "DIMENSION": ("UNLOADED_RADIUS", "WIDTH", "ASPECT_RATIO", "RIM_RADIUS", "RIM_WIDTH"),
+    "OPERATING_CONDITIONS": ("INFLPRES", "NOMPRES"),
+    "INERTIA": ("MASS", "IXX", "IYY", "BELT_MASS", "BELT_IXX", "BELT_IYY", "GRAVITY"),
+    "VERTICAL": ("FNOMIN", "VERTICAL_STIFFNESS", "VERTICAL_DAMPING", "MC_CONTOUR_A", "MC_CONTOUR_B", "BREFF",
+                 "DREFF", "FREFF", "Q_RE0", "Q_V1", "Q_V2", "Q_FZ2", "Q_FCX", "Q_FCY", "Q_CAM", "PFZ1", "Q_FCY2",
+                 "Q_CAM1", "Q_CAM2", "Q_CAM3", "Q_FYS1", "Q_FYS2", "Q_FYS3", "BOTTOM_OFFST", "BOTTOM_STIFF",
+                 "Q_A1", "Q_A2"),
+    "STRUCTURAL": ("LONGITUDINAL_STIFFNESS", "LATERAL_STIFFNESS", "YAW_STIFFNESS", "FREQ_LONG", "FREQ_LAT",
+                   "FREQ_YAW", "FREQ_WINDUP", "DAMP_LONG", "DAMP_LAT", "DAMP_YAW", "DAMP_WINDUP", "DAMP_RESIDUAL",
+                   "DAMP_VLOW", "Q_BVX", "Q_BVT", "PCFX1", "PCFX2", "PCFX3", "PCFY1", "PCFY2", "PCFY3", "PCMZ1"),
+    "CONTACT_PATCH": ("Q_RA1", "Q_RA2", "Q_RB1", "Q_RB2", "ELLIPS_SHIFT", "ELLIPS_LENGTH", "ELLIPS_HEIGHT",
+                      "ELLIPS_ORDER", "ELLIPS_MAX_STEP", "ELLIPS_NWIDTH", "ELLIPS_NLENGTH", "ENV_C1", "ENV_C2"),
+    "INFLATION_PRESSURE_RANGE": ("PRESMIN", "PRESMAX"),
+    "VERTICAL_FORCE_RANGE": ("FZMIN", "FZMAX"),
+    "LONG_SLIP_RANGE": ("KPUMIN", "KPUMAX"),
+    "SLIP_ANGLE_RANGE": ("ALPMIN", "ALPMAX"),
+    "INCLINATION_ANGLE_RANGE": ("CAMMIN", "CAMMAX"),
+    "SCALING_COEFFICIENTS": ("LFZO", "LCX", "LMUX", "LEX", "LKX", "LHX", "LVX", "LCY", "LMUY", "LEY", "LKY", "LHY",
+                             "LVY", "LTR", "LRES", "LXAL", "LYKA", "LVYKA", "LS", "LKYC", "LKZC", "LVMX", "LMX",
+                             "LMY", "LMP", "LSGKP", "LSGAL"),
+    "LONGITUDINAL_COEFFICIENTS": ("PCX1", "PDX1", "PDX2", "PDX3", "PEX1", "PEX2", "PEX3", "PEX4", "PKX1", "PKX2",
+                                  "PKX3", "PHX1", "PHX2", "PVX1", "PVX2", "PPX1", "PPX2", "PPX3", "PPX4", "RBX1",
+                                  "RBX2", "RBX3", "RCX1", "REX1", "REX2", "RHX1", "PTX1", "PTX2", "PTX3"),
+    "OVERTURNING_COEFFICIENTS": ("QSX1", "QSX2", "QSX3", "QSX4", "QSX5", "QSX6", "QSX7", "QSX8", "QSX9", "QSX10",
+                                 "QSX11", "QSX12", "QSX13", "QSX14", "PPMX1"),
+    "LATERAL_COEFFICIENTS": ("PCY1", "PDY1", "PDY2", "PDY3", "PEY1", "PEY2", "PEY3", "PEY4", "PEY5", "PKY1", "PKY2",
+                             "PKY3", "PKY4", "PKY5", "PKY6", "PKY7", "PHY1", "PHY2", "PHY3", "PVY1", "PVY2", "PVY3",
+                             "PVY4", "PPY1", "PPY2", "PPY3", "PPY4", "PPY5", "RBY1", "RBY2", "RBY3", "RBY4", "RCY1",
+                             "REY1", "REY2", "RHY1", "RHY2", "RVY1", "RVY2", "RVY3", "RVY4", "RVY5", "RVY6", "PTY1",
+                             "PTY2"),
+    "ROLLING_COEFFICIENTS": ("QSY1", "QSY2", "QSY3", "QSY4", "QSY5", "QSY6", "QSY7", "QSY8"),
+    "ALIGNING_COEFFICIENTS": ("QBZ1", "QBZ2", "QBZ3", "QBZ4", "QBZ5", "QBZ9", "QBZ10", "QCZ1", "QDZ1", "QDZ2",
+                              "QDZ3", "QDZ4", "QDZ6", "QDZ7", "QDZ8", "QDZ9", "QDZ10", "QDZ11", "QEZ1", "QEZ2",
+                              "QEZ3", "QEZ4", "QEZ5", "QHZ1", "QHZ2", "QHZ3", "QHZ4", "PPZ1", "PPZ2", "SSZ1", "SSZ2",
+                              "SSZ3", "SSZ4"),
+    "TURNSLIP_COEFFICIENTS": ("PDXP1", "PDXP2", "PDXP3", "PKYP1", "PDYP1", "PDYP2", "PDYP3", "PDYP4", "PHYP1",
+                              "PHYP2", "PHYP3", "PHYP4", "PECP1", "PECP2", "QDTP1", "QCRP1", "QCRP2", "QBRP1",
+                              "QDRP1"),
+})
+"""The sections of a Magic Formula ``.tir`` file and the parameters each holds."""
+
+_SECTIONS_MF52 = ("MODEL", "DIMENSION", "VERTICAL", "VERTICAL_FORCE_RANGE", "LONG_SLIP_RANGE", "SLIP_ANGLE_RANGE",
+                  "INCLINATION_ANGLE_RANGE", "SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS",
+                  "OVERTURNING_COEFFICIENTS", "LATERAL_COEFFICIENTS", "ROLLING_COEFFICIENTS", "ALIGNING_COEFFICIENTS")
+_SECTIONS_MF6 = _SECTIONS_MF52 + ("OPERATING_CONDITIONS", "STRUCTURAL", "CONTACT_PATCH", "INFLATION_PRESSURE_RANGE",
+                                  "TURNSLIP_COEFFICIENTS")
+# The sections a file of each version must have for vehdyn not to warn. Not required: [MDI_HEADER]
+# and [UNITS] (SI assumed, as MFeval), [INERTIA] (no steady-state output uses it); for MF 5.2 /
+# PAC2002 also the MF 6 sections, which those files do not have (MFeval fills in its defaults).
+REQUIRED_SECTIONS: Mapping[str, tuple[str, ...]] = MappingProxyType(
+    {"5.2": _SECTIONS_MF52, "6.1": _SECTIONS_MF6, "6.2": _SECTIONS_MF6})
+"""Sections a file of each Magic Formula version must define (see :attr:`TirParameters.missing_sections`)."""
+
 # --- [UNITS] ------------------------------------------------------------------------------------
 _UNIT_FACTORS = {
     "LENGTH": {"meter": 1.0, "metre": 1.0, "m": 1.0, "mm": 1e-3, "millimeter": 1e-3,
@@ -180,9 +282,19 @@ class TirParameters(Mapping):
         ``"5.2"``, ``"6.1"``, ``"6.2"``, or None when the file names no supported version.
     path : str or None
         The file read, if any.
+    lines : Mapping[str, int]
+        Line of each key of :attr:`values` that the file defines (empty when built from a mapping).
+    missing_sections : tuple[str, ...]
+        Sections of :data:`REQUIRED_SECTIONS` for the file's version of which the file defines no
+        key: all their coefficients are MFeval's defaults (a truncated or incomplete file).
+
+    Raises
+    ------
+    TirFileError
+        If a number is not finite or a range or sign rule of the module docstring is broken.
     """
 
-    def __init__(self, sections, *, tables=None, path=None):
+    def __init__(self, sections, *, tables=None, path=None, lines=None):
         self.sections = MappingProxyType({s: MappingProxyType(dict(kv)) for s, kv in sections.items()})
         self.tables = MappingProxyType({s: tuple(lines) for s, lines in (tables or {}).items()})
         self.path = None if path is None else str(path)
@@ -191,20 +303,30 @@ class TirParameters(Mapping):
             if section.upper() == "UNITS":
                 units.update({k.upper(): str(v) for k, v in entries.items()})
         self.units = MappingProxyType(units)
-        flat = {}
+        flat, written, key_lines = {}, {}, {}
         for section, entries in self.sections.items():
             if section.upper() == "UNITS":
                 continue
             for key, value in entries.items():
-                flat[key.upper()] = _to_si(key.upper(), value, self.units, self.path)
+                name = key.upper()
+                written[name] = value
+                if lines and (section, key) in lines:
+                    key_lines[name] = lines[(section, key)]
+                flat[name] = _to_si(name, value, self.units, self.path)
+        self.lines = MappingProxyType(key_lines)
+        _check_finite(flat, written, key_lines, self.path)
         self.version = _detect_version(flat)
         used = _USED_BY_VERSION.get(self.version or "6.2", set(MFEVAL_DEFAULTS))
         defaulted = [k for k in MFEVAL_DEFAULTS if k in used and k not in flat]
         for key in defaulted:
             flat[key] = MFEVAL_DEFAULTS[key]
+        _check_rules(flat, written, key_lines, self.path)
         self.values = MappingProxyType(flat)
         self.defaulted = tuple(defaulted)
         self.unknown = tuple(k for k in flat if k not in MFEVAL_DEFAULTS and k not in _IGNORED_KEYS)
+        self.missing_sections = tuple(
+            section for section in REQUIRED_SECTIONS.get(self.version, ())
+            if not any(key in written for key in STANDARD_SECTIONS[section]))
 
     def __getitem__(self, key: str):
         return self.values[key]
@@ -233,6 +355,73 @@ class TirParameters(Mapping):
         where = f" from {self.path!r}" if self.path else ""
         return (f"TirParameters(version={self.version!r}, {n} keys in {len(self.sections)} sections,"
                 f" {len(self.defaulted)} defaulted{where})")
+
+
+def _is_real(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def _coefficient_error(message, key, value, path, line) -> TirFileError:
+    """A TirFileError that also carries the offending ``key`` and ``value`` as attributes."""
+    error = TirFileError(message, path=path, line=line)
+    error.key, error.value = key, value
+    return error
+
+
+def _check_finite(flat, written, lines, path) -> None:
+    """Every number of the file (after unit conversion) must be finite."""
+    for key, value in flat.items():
+        if _is_real(value) and not math.isfinite(value):
+            shown = written[key]
+            extra = "" if shown is value or not math.isfinite(shown) else f" ({value!r} in SI units)"
+            raise _coefficient_error(f"{key} = {shown!r}{extra} is not a finite number", key, shown, path,
+                                     lines.get(key))
+
+
+# (key, bound, comparison) per sign rule; the reasons are in the module docstring
+_SIGN_RULES = (("PDX1", ">"), ("PDY1", ">"), ("QCZ1", ">"), ("LFZO", ">"), ("LMUX", ">="), ("LMUY", ">="))
+
+
+def _check_rules(flat, written, lines, path) -> None:
+    """The range and sign rules of the module docstring, on the values with their defaults."""
+
+    def number(key):
+        value = flat.get(key)
+        return float(value) if _is_real(value) else None  # strings: MagicFormula reports them
+
+    def show(key, blamed):  # "KEY = value", with the line of a key other than the one the error points at
+        if key not in written:
+            return f"{key} = {flat[key]!r} (MFeval's default; the file does not set it)"
+        return f"{key} = {written[key]!r}" + (f" (line {lines[key]})" if key in lines and key != blamed else "")
+
+    def fail(blamed, template, *keys):
+        message = template.format(*(show(k, blamed) for k in keys))
+        raise _coefficient_error(message, blamed, written.get(blamed, flat.get(blamed)), path, lines.get(blamed))
+
+    for low, high, what in (("FZMIN", "FZMAX", "vertical load"), ("ALPMIN", "ALPMAX", "slip angle"),
+                            ("KPUMIN", "KPUMAX", "slip ratio"), ("CAMMIN", "CAMMAX", "inclination angle"),
+                            ("PRESMIN", "PRESMAX", "inflation pressure")):
+        a, b = number(low), number(high)
+        if a is None or b is None:
+            continue
+        if low == "FZMIN" and not b > 0:
+            fail(high, "{}: the largest load of the range must be > 0", high)
+        if low in ("FZMIN", "PRESMIN") and not a >= 0:
+            fail(low, f"{{}}: the smallest {what} of the range must be >= 0", low)
+        strict = low in ("FZMIN", "ALPMIN", "KPUMIN")
+        if (a >= b) if strict else (a > b):
+            blamed = low if low in written or high not in written else high
+            fail(blamed, f"{{}} must be {'<' if strict else '<='} {{}}: the {what} range is "
+                         f"{'empty or ' if strict else ''}inverted", low, high)
+        if low in ("ALPMIN", "KPUMIN") and not a < 0 < b:
+            fail(high if a < 0 else low, f"the {what} range must contain 0 inside (free rolling): {{}}, {{}}",
+                 low, high)
+        if low == "CAMMIN" and not a <= 0 <= b:
+            fail(high if a <= 0 else low, f"the {what} range must contain 0: {{}}, {{}}", low, high)
+    for key, relation in _SIGN_RULES:
+        value = number(key)
+        if value is not None and not (value > 0 if relation == ">" else value >= 0):
+            fail(key, f"{{}} must be {relation} 0 (see vehdyn.tire.tir: the sign rules)", key)
 
 
 def _to_si(key, value, units, path):
@@ -298,10 +487,13 @@ def _strip_comment(line: str) -> str:
 
 
 def parse_tir(text: str, path=None) -> TirParameters:
-    """Parse the text of a ``.tir`` file (see :func:`read_tir`)."""
+    """Parse the text of a ``.tir`` file (see :func:`read_tir`; a leading byte-order mark is skipped)."""
     sections: dict[str, dict] = {}
     tables: dict[str, list[str]] = {}
+    lines: dict[tuple[str, str], int] = {}
     current = None
+    if text.startswith("\ufeff"):
+        text = text[1:]
     for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.strip()
         if not line or line.startswith("$") or line.startswith("!"):
@@ -337,18 +529,21 @@ def parse_tir(text: str, path=None) -> TirParameters:
         if key in sections[current]:
             raise TirFileError(f"{key} defined twice in [{current}]", path=path, line=number)
         sections[current][key] = _parse_value(value_text, path, number)
+        lines[(current, key)] = number
     if not sections:
         raise TirFileError("no [SECTION] with parameters found", path=path)
-    return TirParameters(sections, tables=tables, path=path)
+    return TirParameters(sections, tables=tables, path=path, lines=lines)
 
 
-def read_tir(path) -> TirParameters:
+def read_tir(path, *, strict: bool = False) -> TirParameters:
     """Read a ``.tir`` tire property file.
 
     Parameters
     ----------
     path : str or pathlib.Path
-        The file.
+        The file (UTF-8 with or without a byte-order mark, UTF-16 with one, or Latin-1).
+    strict : bool
+        Raise instead of warning when the file lacks whole sections.
 
     Returns
     -------
@@ -359,14 +554,68 @@ def read_tir(path) -> TirParameters:
     Raises
     ------
     TirFileError
-        If the file cannot be read or a line is malformed (the message gives the line number).
+        If the file cannot be read, a line is malformed, or a value breaks a rule of the module
+        docstring (the message gives the key, the value and the line); with ``strict=True`` also
+        if sections are missing.
+
+    Warns
+    -----
+    VehdynWarning
+        If the file lacks whole sections of its version (:attr:`TirParameters.missing_sections`):
+        their coefficients take MFeval's defaults.
     """
     path = Path(path)
     try:
-        text = path.read_text(encoding="latin-1")
+        data = path.read_bytes()
     except OSError as exc:
         raise TirFileError(f"cannot read the file ({exc.strerror})", path=str(path)) from None
-    return parse_tir(text, path=str(path))
+    params = parse_tir(_decode(data, str(path)), path=str(path))
+    check_sections(params, strict)
+    return params
+
+
+def _decode(data: bytes, path) -> str:
+    """The text of a file: UTF-16 or UTF-8 by their byte-order mark, else UTF-8, else Latin-1."""
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        try:
+            return data.decode("utf-16")
+        except UnicodeDecodeError as exc:
+            raise TirFileError(f"not valid UTF-16 after its byte-order mark ({exc.reason})", path=path) from None
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")  # older tools write Latin-1 comments (every byte is valid)
+
+
+def check_sections(params: TirParameters, strict: bool = False) -> None:
+    """Warn (or, ``strict``, raise :class:`TirFileError`) when ``params`` lacks whole sections.
+
+    The message names the missing sections and counts the coefficients that take MFeval's
+    defaults because of them.
+    """
+    missing = params.missing_sections
+    if not missing:
+        return
+    defaulted = set(params.defaulted)
+    count = sum(key in defaulted for section in missing for key in STANDARD_SECTIONS[section])
+    names = ", ".join(f"[{section}]" for section in missing)
+    message = (f"the MF {params.version} file lacks {len(missing)} section{'s' if len(missing) > 1 else ''} "
+               f"({names}): {count} coefficients take MFeval's defaults (a truncated file?)")
+    if strict:
+        raise TirFileError(message, path=params.path)
+    where = f"{params.path}: " if params.path else ""
+    warnings.warn(where + message + "; strict=True makes this an error", VehdynWarning, stacklevel=_user_stacklevel())
+
+
+def _user_stacklevel() -> int:
+    """The ``stacklevel`` that points a warning at the first caller outside vehdyn."""
+    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    frame, level = sys._getframe(1), 1
+    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(package + os.sep):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 def _format_value(value) -> str:
@@ -388,26 +637,62 @@ def write_tir(params: TirParameters | Mapping[str, Mapping], path) -> Path:
         What to write: the file's sections as read (values in the file's units, not the SI view;
         defaults are not written), table sections included.
     path : str or pathlib.Path
-        Destination.
+        Destination. Written atomically (:mod:`vehdyn._atomic`): a temporary file beside it is
+        moved over it once complete, so an interrupted or failed write (disk full, an exception)
+        leaves the previous file, or none, never a truncated one.
 
     Returns
     -------
     pathlib.Path
         The path written.
+
+    Raises
+    ------
+    TirFileError
+        If a value breaks a rule of the module docstring (:func:`read_tir` would refuse the file).
+
+    Notes
+    -----
+    The text is Latin-1, as older tools expect, unless a string needs UTF-8.
     """
     if isinstance(params, TirParameters):
         sections, tables = params.sections, params.tables
     else:
         sections, tables = params, {}
-    lines = ["$ written by vehdyn.tire.write_tir"]
-    order = list(sections) + [t for t in tables if t not in sections]
-    for section in order:
-        lines.append(f"[{section}]")
+        TirParameters(sections)  # refuse to write what read_tir would refuse (non-finite numbers, rules)
+    path = Path(path)
+    encoding = "latin-1"
+    try:
+        for text in _texts(sections, tables):
+            text.encode("latin-1")
+    except UnicodeEncodeError:
+        encoding = "utf-8"
+    with atomic_write(path, "w", encoding=encoding) as handle:
+        for line in _tir_lines(sections, tables):
+            handle.write(line + "\n")
+    return path
+
+
+def _texts(sections, tables):
+    """Every piece of text :func:`_tir_lines` writes besides numbers."""
+    for section, entries in sections.items():
+        yield section
+        for key, value in entries.items():
+            yield key
+            if isinstance(value, str):
+                yield value
+    for section, rows in tables.items():
+        yield section
+        yield from rows
+
+
+def _tir_lines(sections, tables):
+    """The lines of the ``.tir`` text of ``sections`` and ``tables`` (generated while writing)."""
+    yield "$ written by vehdyn.tire.write_tir"
+    for section in list(sections) + [t for t in tables if t not in sections]:
+        yield f"[{section}]"
         if section in tables:
-            lines.extend(tables[section])
+            yield from tables[section]
             continue
         for key, value in sections[section].items():
-            lines.append(f"{key:<25}= {_format_value(value)}")
-    path = Path(path)
-    path.write_text("\n".join(lines) + "\n", encoding="latin-1")
-    return path
+            yield f"{key:<25}= {_format_value(value)}"

@@ -18,10 +18,15 @@ a vehicle model that closes the wheel-spin balance with ``F_x r`` alone sees a f
 settle at zero drawbar pull and misses that moment (the motion resistance of a driven wheel still
 acts on the vehicle through ``F_x``). ``M_x = M_z = 0``. :meth:`SoftSoilTire.evaluate` gives sinkage,
 motion resistance, torque, mode and the stuck status.
+
+Inputs that are not finite give NaN at those points, as for every tire law (:mod:`vehdyn.tire.base`):
+every force and moment, and in :meth:`SoftSoilTire.evaluate` every number of the result (``stuck``
+False and ``mode`` ``"invalid"`` there); bools raise :class:`~vehdyn.ParameterError`.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -82,22 +87,32 @@ class SoftSoilTire(TireModel):
         """The wheel's steady state (sinkage, drawbar pull, motion resistance, torque, mode, stuck)
         at the load fz [N], ISO-W slip ratio kappa and slip angle alpha [rad]; ``vx`` [m/s] only
         through its sign (the forces of the result are for rolling forwards)."""
-        fz, kappa, alpha, _, vx = broadcast_inputs(fz, kappa, alpha, 0.0, vx)
-        return self.wheel.solve(fz, slip_from_kappa(kappa), np.clip(alpha, -_MAX_SLIP_ANGLE, _MAX_SLIP_ANGLE))
+        return self._evaluate(fz, kappa, alpha, 0.0, vx)
+
+    def _evaluate(self, fz, kappa, alpha, gamma, vx) -> WheelSoilResult:
+        """:meth:`evaluate`, with ``gamma`` (no effect) taking part in the shape and the input check."""
+        (fz, kappa, alpha, _, vx), bad = broadcast_inputs(fz, kappa, alpha, gamma, vx)
+        result = self.wheel.solve(fz, slip_from_kappa(kappa), np.clip(alpha, -_MAX_SLIP_ANGLE, _MAX_SLIP_ANGLE))
+        if bad is None:
+            return result
+        invalid = {"stuck": False, "mode": "invalid"}
+        return dataclasses.replace(result, **{
+            f.name: np.where(bad, invalid.get(f.name, np.nan), np.broadcast_to(getattr(result, f.name), bad.shape))
+            for f in dataclasses.fields(result)})
 
     def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0) -> TireForces:
         """Steady-state forces (ISO-W); see :meth:`vehdyn.tire.TireModel.forces` and the module
         docstring. Camber has no effect."""
         scalar = all_scalars(fz, kappa, alpha, gamma, vx)
-        result = self.evaluate(fz, kappa, alpha, vx)
+        result = self._evaluate(fz, kappa, alpha, gamma, vx)
         direction = rolling_direction(np.asarray(vx, dtype=float))
         fx = result.drawbar_pull * direction
         fy = result.lateral_force
         my = (self.tire_geometry.radius * result.drawbar_pull - result.torque) * direction
         load = result.load
+        zero = load * 0.0  # NaN where an input was not finite (load is NaN there)
         if scalar:
-            return TireForces(float(fx), float(fy), float(load), 0.0, float(my), 0.0)
+            return TireForces(float(fx), float(fy), float(load), float(zero), float(my), float(zero))
         fx = np.broadcast_to(fx, load.shape).astype(float)
-        zero = np.zeros_like(fx)
         return TireForces(fx, np.asarray(fy, dtype=float), load, zero, np.broadcast_to(my, load.shape).astype(float),
                           zero.copy())

@@ -1,0 +1,227 @@
+"""Linear car–trailer model against an independent Lagrange derivation, the bicycle limit and closed forms."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import vehdyn
+from vehdyn import ParameterError
+from vehdyn.handling import CarTrailerParameters, LinearBicycle, LinearCarTrailer, car_trailer_parameters
+
+# A labelled car–caravan set: the shipped "compact" towing the shipped "caravan". The caravan's
+# numbers are typical values (data/trailers/caravan.toml says so line by line): no published
+# measured car–caravan set could be confirmed while writing these tests.
+SHIPPED = car_trailer_parameters(vehdyn.load_vehicle("compact"), vehdyn.load_trailer("caravan"))
+# the textbook-style set of the LinearCarTrailer docstring
+TEXTBOOK = CarTrailerParameters(mass=1500.0, yaw_inertia=2500.0, a=1.1, b=1.6, front_cornering_stiffness=110e3,
+                                rear_cornering_stiffness=120e3, hitch_distance=2.6, trailer_mass=1200.0,
+                                trailer_yaw_inertia=2500.0, trailer_hitch_to_cg=3.2, trailer_cg_to_axle=0.3,
+                                trailer_cornering_stiffness=80e3)
+
+
+def lagrange_state_matrix(p: CarTrailerParameters, u: float) -> np.ndarray:
+    """A of the car–trailer from Lagrange's equations in the car's body-fixed quasi-coordinates.
+
+    Derived independently of the module's Newton–Euler form (Pacejka 2012, sec. 1.3.3, method):
+    kinetic energy T = m (u^2 + v^2)/2 + I r^2/2 + m_t |V_t|^2/2 + I_t (r - theta')^2/2 with the
+    trailer CG velocity in car axes V_t = (u - e sin(theta) r_t, v - h r - e cos(theta) r_t),
+    r_t = r - theta'; equations d/dt dT/dv + r dT/du = Q_v, d/dt dT/dr - v dT/du + u dT/dv = Q_r,
+    d/dt dT/dtheta' - dT/dtheta = Q_theta, with the generalized forces from the power of the three
+    axle forces, linearized by hand:
+
+      (m + m_t) v' - m_t (h + e) r' + m_t e theta'' + (m + m_t) u r = Y_f + Y_r + Y_t
+      (I + I_t) r' - I_t theta'' - m_t (h + e)(v' - (h + e) r' + e theta'') - m_t u e theta'
+          - m_t u ((h + e) r - e theta') = a Y_f - b Y_r - (h + l_t) Y_t
+      -I_t (r' - theta'') + m_t e (v' - (h + e) r' + e theta'') + m_t u e r = l_t Y_t
+    """
+    m, iz, a, b, h = p.mass, p.yaw_inertia, p.a, p.b, p.hitch_distance
+    mt, it, e, f = p.trailer_mass, p.trailer_yaw_inertia, p.trailer_hitch_to_cg, p.trailer_cg_to_axle
+    lt = e + f
+
+    def forces(x):
+        v, r, th, dth = x
+        yf = -p.front_cornering_stiffness * (v + a * r) / u
+        yr = -p.rear_cornering_stiffness * (v - b * r) / u
+        yt = -p.trailer_cornering_stiffness * (v - h * r + u * th - lt * (r - dth)) / u
+        return yf, yr, yt
+
+    M = np.array([[m + mt, -mt * (h + e), mt * e],
+                  [-mt * (h + e), iz + it + mt * (h + e) ** 2, -it - mt * (h + e) * e],
+                  [mt * e, -it - mt * e * (h + e), it + mt * e * e]])
+
+    def rest(x):  # right-hand sides minus the velocity terms of the left
+        v, r, th, dth = x
+        yf, yr, yt = forces(x)
+        return np.array([yf + yr + yt - (m + mt) * u * r,
+                         a * yf - b * yr - (h + lt) * yt + mt * u * e * dth + mt * u * ((h + e) * r - e * dth),
+                         lt * yt - mt * u * e * r])
+
+    A = np.zeros((4, 4))
+    for j in range(4):
+        z = np.linalg.solve(M, rest(np.eye(4)[j]))
+        A[[0, 1, 3], j] = z
+    A[2, 3] = 1.0
+    return A
+
+
+def independent_critical_speed(p, lo=0.5, hi=100.0):
+    """Bisection on the largest real part of the complex eigenvalues of the Lagrange A."""
+    def growth(u):
+        lam = np.linalg.eigvals(lagrange_state_matrix(p, u))
+        lam = lam[np.abs(lam.imag) > 1e-9]
+        return lam.real.max() if lam.size else -np.inf
+
+    grid = np.linspace(lo, hi, 400)
+    g = np.array([growth(u) for u in grid])
+    k = np.flatnonzero(g >= 0)[0]
+    a, b = grid[k - 1], grid[k]
+    for _ in range(200):
+        mid = 0.5 * (a + b)
+        if growth(mid) >= 0:
+            b = mid
+        else:
+            a = mid
+        if b - a < 1e-12:
+            break
+    return 0.5 * (a + b)
+
+
+@pytest.mark.parametrize("params", [SHIPPED, TEXTBOOK], ids=["compact_caravan", "textbook"])
+def test_matrices_and_critical_speed_equal_the_lagrange_derivation(params):
+    for u in (3.0, 17.0, 42.0):
+        np.testing.assert_allclose(LinearCarTrailer(params, speed=u).A, lagrange_state_matrix(params, u),
+                                   rtol=1e-10, atol=1e-10)
+    model = LinearCarTrailer(params, speed=20.0)
+    assert model.critical_speed() == pytest.approx(independent_critical_speed(params), rel=1e-6)
+    # the snaking mode is undamped at the critical speed, damped below it, growing above
+    vc = model.critical_speed()
+    assert model.snaking_mode(vc).damping_ratio == pytest.approx(0.0, abs=1e-8)
+    assert model.snaking_mode(0.95 * vc).damping_ratio > 0 > model.snaking_mode(1.05 * vc).damping_ratio
+
+
+def test_vanishing_trailer_leaves_the_bicycle_eigenvalues():
+    car = LinearBicycle.from_parameters(mass=1500.0, yaw_inertia=2500.0, a=1.1, b=1.6,
+                                        front_cornering_stiffness=110e3, rear_cornering_stiffness=120e3, speed=25.0)
+    light = dataclasses.replace(TEXTBOOK, trailer_mass=1e-6, trailer_yaw_inertia=1e-6)
+    lam = np.linalg.eigvals(LinearCarTrailer(light, speed=25.0).A)
+    for target in np.linalg.eigvals(car.A):
+        assert np.min(np.abs(lam - target)) < 1e-6 * abs(target)
+    # the rest: a massless trailer follows its hitch kinematically, theta decays at u / l_t
+    rest = [x for x in lam if np.min(np.abs(np.linalg.eigvals(car.A) - x)) > 1e-3]
+    assert min(rest, key=lambda x: abs(x + 25.0 / 3.5)) == pytest.approx(-25.0 / 3.5, rel=1e-6)
+    # and the steady-state understeer gradient is the car's own
+    assert LinearCarTrailer(light, speed=25.0).understeer_gradient == pytest.approx(
+        car.bicycle_parameters.understeer_gradient, rel=1e-8)
+
+
+def test_critical_speed_falls_with_tongue_load_and_rises_with_less_trailer_inertia():
+    lt = TEXTBOOK.trailer_wheelbase
+    by_tongue = [LinearCarTrailer(dataclasses.replace(TEXTBOOK, trailer_cg_to_axle=f, trailer_hitch_to_cg=lt - f),
+                                  speed=20.0).critical_speed() for f in (0.1, 0.2, 0.3, 0.4)]
+    assert np.all(np.diff(by_tongue) > 0), by_tongue  # more tongue load: higher critical speed
+    by_inertia = [LinearCarTrailer(dataclasses.replace(TEXTBOOK, trailer_yaw_inertia=i), speed=20.0).critical_speed()
+                  for i in (1500.0, 2500.0, 3500.0, 4500.0)]
+    assert np.all(np.diff(by_inertia) < 0), by_inertia
+
+
+def test_no_snaking_below_the_scan_limit_returns_inf():
+    stiff = dataclasses.replace(TEXTBOOK, trailer_cg_to_axle=0.6, trailer_hitch_to_cg=2.9, trailer_yaw_inertia=1000.0)
+    model = LinearCarTrailer(stiff, speed=20.0)
+    assert model.critical_speed() == math.inf
+    assert all(model.snaking_mode(u).damping_ratio > 0 for u in (5.0, 30.0, 60.0, 99.0))
+
+
+@pytest.mark.parametrize("params", [SHIPPED, TEXTBOOK], ids=["compact_caravan", "textbook"])
+def test_steady_state_gains_follow_the_closed_forms(params):
+    u = 18.0
+    model = LinearCarTrailer(params, speed=u)
+    gain = model.dc_gain()[:, 0]
+    out = {name: gain[k] for k, name in enumerate(model.output_names)}
+    p = params
+    L, lt, mh = p.wheelbase, p.trailer_wheelbase, p.trailer_mass * p.trailer_cg_to_axle / p.trailer_wheelbase
+    # delta = L/R + K a_y  ->  1 / (a_y / delta) = L / u^2 + K
+    K = 1.0 / out["lateral_acceleration"] - L / u**2
+    K_closed = (p.mass * p.b - mh * (p.hitch_distance - p.b)) / (L * p.front_cornering_stiffness) \
+        - (p.mass * p.a + mh * (p.a + p.hitch_distance)) / (L * p.rear_cornering_stiffness)
+    assert K == pytest.approx(K_closed, rel=1e-9)
+    assert model.understeer_gradient == pytest.approx(K_closed, rel=1e-12)
+    # both bodies turn at the same rate; the trailer carries m_t a_y e / l_t, the hitch -m_t a_y f / l_t
+    ay = out["lateral_acceleration"]
+    assert out["trailer_yaw_rate"] == pytest.approx(out["yaw_rate"], rel=1e-12)
+    assert out["trailer_lateral_acceleration"] == pytest.approx(ay, rel=1e-9)
+    assert out["trailer_lateral_force"] == pytest.approx(p.trailer_mass * ay * p.trailer_hitch_to_cg / lt, rel=1e-9)
+    assert out["hitch_lateral_force"] == pytest.approx(-mh * ay, rel=1e-9)
+    theta_per_ay = (p.hitch_distance - p.b + lt) / u**2 + (p.mass * p.a + mh * (p.a + p.hitch_distance)) / (
+        L * p.rear_cornering_stiffness) - p.trailer_mass * p.trailer_hitch_to_cg / (lt * p.trailer_cornering_stiffness)
+    assert model.articulation_gain() == pytest.approx(theta_per_ay, rel=1e-9)
+
+
+def test_low_speed_offtracking_equals_the_kinematic_trailer_on_a_circle():
+    model = LinearCarTrailer(TEXTBOOK, speed=1.0)
+    p = TEXTBOOK
+    R, speed, d, lt = 12.0, 1.0, p.hitch_distance - p.b, p.trailer_wheelbase
+
+    def rhs(t, y):  # trailer heading psi_t behind a hitch d behind a rear axle on a circle
+        psi = speed * t / R
+        hx, hy = R * np.sin(psi) - d * np.cos(psi), R - R * np.cos(psi) - d * np.sin(psi)
+        vhx, vhy = speed * np.cos(psi) + d * np.sin(psi) * speed / R, speed * np.sin(psi) - d * np.cos(psi) * speed / R
+        return [(-vhx * np.sin(y[0]) + vhy * np.cos(y[0])) / lt]
+
+    sol = solve_ivp(rhs, (0, 400.0), [0.0], rtol=1e-11, atol=1e-12)
+    t, psi_t = sol.t[-1], sol.y[0, -1]
+    psi = speed * t / R
+    hx, hy = R * np.sin(psi) - d * np.cos(psi), R - R * np.cos(psi) - d * np.sin(psi)
+    ax, ay = hx - lt * np.cos(psi_t), hy - lt * np.sin(psi_t)
+    radius = np.hypot(ax, ay - R)  # circle centre (0, R), turning right (SAE y right)
+    assert model.low_speed_offtracking(R) == pytest.approx(R - radius, rel=1e-6)
+    # and the steady articulation angle of the linear model at walking pace is the small-angle one
+    assert model.articulation_gain() * speed**2 / R == pytest.approx((d + lt) / R, rel=2e-2)
+
+
+def test_model_contract_and_names():
+    model = LinearCarTrailer(vehdyn.load_vehicle("compact"), vehdyn.load_trailer("caravan"), 25.0)
+    assert model.state_names == ("lateral_velocity", "yaw_rate", "articulation_angle", "articulation_rate")
+    assert model.input_names == ("front_steer_angle",)
+    for name in ("lateral_acceleration", "trailer_lateral_acceleration", "articulation_angle", "yaw_rate"):
+        assert name in model.output_names
+    assert model.linearize().A is not None
+    np.testing.assert_array_equal(model.linearize().A, model.A)
+    assert model.at_speed(30.0).speed == 30.0
+    assert model.at_speed(30.0).critical_speed() == pytest.approx(model.critical_speed(), rel=1e-12)
+    # a positive steer turns right: positive yaw rate and articulation angle in the steady state
+    gain = model.dc_gain()[:, 0]
+    assert gain[model.index("yaw_rate", "outputs")] > 0 and gain[model.index("articulation_angle", "outputs")] > 0
+
+
+def test_trailer_cg_behind_its_axle_is_accepted_and_snakes_early():
+    lt = TEXTBOOK.trailer_wheelbase
+    behind = LinearCarTrailer(dataclasses.replace(TEXTBOOK, trailer_hitch_to_cg=lt + 0.3, trailer_cg_to_axle=-0.3),
+                              speed=5.0)
+    assert behind.car_trailer_parameters.hitch_mass < 0
+    vc = behind.critical_speed()
+    assert vc < 0.65 * LinearCarTrailer(TEXTBOOK, speed=5.0).critical_speed()
+    assert behind.max_real_part(0.99 * vc) < 0 < behind.max_real_part(1.01 * vc)
+
+
+@pytest.mark.parametrize("field, value", [
+    ("mass", 0.0), ("trailer_mass", 0.0), ("trailer_yaw_inertia", 0.0), ("a", -1.0), ("trailer_hitch_to_cg", -0.5),
+    ("hitch_distance", -1.2), ("trailer_cg_to_axle", -3.3), ("trailer_cornering_stiffness", -1.0)])
+def test_bad_parameters_name_the_field(field, value):
+    with pytest.raises(ParameterError) as err:
+        LinearCarTrailer.from_parameters(**{**dataclasses.asdict(TEXTBOOK), field: value, "speed": 20.0})
+    assert err.value.key == field and field in str(err.value)
+
+
+def test_bad_speed_and_hitch_ahead_of_the_front_axle_from_files():
+    car, caravan = vehdyn.load_vehicle("compact"), vehdyn.load_trailer("caravan")
+    with pytest.raises(ParameterError, match="speed"):
+        LinearCarTrailer(car, caravan, 0.0)
+    with pytest.raises(ParameterError) as err:
+        LinearCarTrailer(car, caravan.replace(hitch_behind_rear_axle=-3.0), 20.0)
+    assert err.value.key == "hitch_behind_rear_axle"
+    with pytest.raises(ParameterError) as err:
+        LinearCarTrailer(car, "caravan", 20.0)
+    assert err.value.key == "trailer"

@@ -1,0 +1,79 @@
+"""Every engine gives bitwise the same metrics for the same variants."""
+
+import concurrent.futures as cf
+
+import numpy as np
+import pytest
+import scipy.stats as st
+
+import vehdyn
+from vehdyn.sweep import sweep
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return vehdyn.Scene(vehicle="sedan", manoeuvre="sine_steer", speed=25.0, duration=1.5,
+                        manoeuvre_parameters={"lateral_acceleration": 3.0, "frequency": 1.0},
+                        outputs=("yaw_rate", "lateral_acceleration"))
+
+
+def _args(scene):
+    # one invalid variant (negative mass) rides along in every engine
+    return dict(grid={"vehicle.mass.mass": [1500.0, -1.0, 1650.0],
+                      "vehicle.tires.front_cornering_stiffness": [6.0e4, 9.0e4]},
+                metrics=["peak_yaw_rate", "rms_lateral_acceleration", "understeer_gradient"],
+                chunk_size=2, progress=False, model="SingleTrack")
+
+
+@pytest.fixture(scope="module")
+def reference(scene):
+    return sweep(scene, **_args(scene))
+
+
+def _same(a, b):
+    assert a.columns.equals(b.columns) and a.index.equals(b.index)
+    for c in a.columns:
+        if c == "error":
+            assert list(a[c]) == list(b[c])
+        else:  # bitwise, NaN where NaN
+            x, y = a[c].to_numpy(), b[c].to_numpy()
+            assert x.tobytes() == y.tobytes(), c
+
+
+def test_reference_is_consistent(reference):
+    assert (reference["error"].notna() == (reference["vehicle.mass.mass"] < 0)).all()
+    assert reference.loc[reference["error"].isna(), "peak_yaw_rate"].gt(0).all()
+
+
+@pytest.mark.parametrize("engine", ["processes", "threads", "executor"])
+def test_pool_engines_are_bitwise_identical(scene, reference, engine):
+    if engine == "executor":
+        with cf.ThreadPoolExecutor(max_workers=2) as pool:
+            table = sweep(scene, executor=pool, **_args(scene))
+    else:
+        table = sweep(scene, executor=engine, **_args(scene))
+    _same(table, reference)
+
+
+def test_dask_local_cluster_is_bitwise_identical(scene, reference):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                  silence_logs=40) as cluster, distributed.Client(cluster) as client:
+        table = sweep(scene, executor=client, **_args(scene))
+        # the chunks ran on the workers, not here
+        assert len(client.scheduler_info()["workers"]) == 2
+    _same(table, reference)
+
+
+def test_not_an_executor_is_refused(scene):
+    with pytest.raises(vehdyn.ParameterError, match="executor"):
+        sweep(scene, grid={"speed": [20.0]}, executor=object(), progress=False)
+
+
+def test_samples_identical_across_engines(scene):
+    args = dict(samples={"speed": st.uniform(15.0, 15.0)}, n=4, seed=7, metrics=["peak_yaw_rate"],
+                chunk_size=1, progress=False, model="SingleTrack")
+    a = sweep(scene, **args)
+    b = sweep(scene, executor="processes", **args)
+    _same(a, b)
+    assert np.all(np.diff(a["speed"].to_numpy()) != 0)

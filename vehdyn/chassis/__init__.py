@@ -1,0 +1,18 @@
+"""Chassis control: controllers that close loops around the vehicle models.
+
+:class:`ABS` (wheel-slip control by an apply/hold/release pressure modulator),
+:class:`TractionControl` (drive-torque reduction and brake intervention on a spinning axle) and
+:class:`ESC` (yaw-rate control by one-wheel braking with a sideslip guard) are :class:`~vehdyn.Model`
+objects with named states, built from a :class:`~vehdyn.Vehicle` plus keyword gains. One helper,
+:class:`ClosedLoop`, wraps a controller around a plant by signal names (it simulates, linearizes
+and nests: ESC around ABS around the car). :func:`road_friction_tire` puts a Magic Formula tire on
+a road of other friction.
+"""
+
+from .abs import ABS
+from .closed_loop import ChassisController, ClosedLoop
+from .esc import ESC
+from .friction import road_friction_tire
+from .traction_control import TractionControl
+
+__all__ = ["ABS", "TractionControl", "ESC", "ClosedLoop", "ChassisController", "road_friction_tire"]

@@ -1,0 +1,125 @@
+"""Anti-lock braking: wheel-slip control by a brake-pressure modulator with apply/hold/release.
+
+Production ABS modulates the wheel-cylinder pressure of each channel with inlet and outlet valves
+in three modes -- *apply* (pressure builds up towards the master-cylinder pressure), *hold* (both
+valves closed) and *release* (pressure drains) -- switched on thresholds of wheel slip
+(Bosch, *Automotive Handbook*, 10th ed., 2018, "Antilock braking system"; Burton et al., "Anti-lock
+braking systems", Savaresi & Tanelli, *Active Braking Control Systems Design for Vehicles*,
+Springer 2010, ch. 1 and 6; Rajamani, *Vehicle Dynamics and Control*, 2nd ed., 2012, sec. 6.4).
+Here each axle channel has one state, the wheel brake torque T (the wheel-cylinder pressure times
+the brake's torque gain, so no gain needs to be known), with a first-order hydraulic lag::
+
+    lambda = (u - omega R_e) / max(u, u_min)                      braking slip (> 0 braking)
+    w_r = s_v sigmoid((lambda - lambda_release) / w)             release weight
+    w_a = (1 - s_v) + s_v sigmoid((lambda_apply - lambda) / w)    apply weight
+    dT/dt = w_a (T_d - T) / tau_apply - w_r T / tau_release - max(T - T_d, 0) / tau_release
+
+with sigmoid(z) = (1 + tanh z) / 2, the driver's demand T_d >= 0, and s_v = sigmoid((u - v_off) /
+0.5 m/s) switching the ABS off below v_off so that the car comes to rest. Between the apply and
+release thresholds both weights vanish: the pressure is *held*. The modes are smooth functions of
+the slip (width w), so the closed loop is an ODE that adaptive solvers integrate without events;
+the last term lets the pressure follow a falling demand (the driver lifting the pedal) in every
+mode. The slip uses the true forward speed u (a production ABS estimates it from the wheel speeds).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..params import Vehicle
+from ..signals import Signal
+from .closed_loop import ChassisController, channel_signals, check_gains, check_vehicle, sigmoid
+
+__all__ = ["ABS"]
+
+_AXLES = ("front", "rear")
+
+
+class ABS(ChassisController):
+    """Anti-lock braking of a wheel-spin :class:`~vehdyn.handling.SingleTrack` (equations in the module docstring).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Gives the rolling radius R_e [m].
+    apply_slip : float
+        lambda_apply [-]: below it the pressure builds up towards the demand (default 0.05).
+    release_slip : float
+        lambda_release [-]: above it the pressure is released (default 0.12); > apply_slip.
+    slip_width : float
+        w [-] of the smooth mode switches (default 0.01).
+    apply_time_constant, release_time_constant : float
+        tau_apply, tau_release [s] of the hydraulic lag (defaults 0.1 s and 0.02 s).
+    cutoff_speed : float
+        v_off [m/s] below which the ABS lets the demand through (default 2 m/s).
+    minimum_speed : float
+        u_min [m/s] of the slip's denominator (default 1 m/s).
+    axles : tuple of str
+        Axles controlled, ``("front", "rear")`` by default.
+    corners : bool
+        One channel per wheel with the full vehicle's names (``brake_torque_front_left``,
+        ``wheel_speed_front_left``, ...) instead of one per axle with the single track's
+        (``front_brake_torque``, ``front_wheel_speed``).
+
+    Signals
+    -------
+    states
+        ``<channel>_abs_brake_torque`` [N*m]: the brake torque the modulated pressure applies.
+    inputs
+        demands ``<axle>_brake_torque`` [N*m]; feedback ``<axle>_wheel_speed`` [rad/s] and
+        ``longitudinal_velocity`` [m/s] (per wheel with ``corners``).
+    outputs
+        ``<axle>_brake_torque`` [N*m], the modulated torque (replaces the demand at the plant).
+
+    Examples
+    --------
+    >>> car = vehdyn.load_vehicle("sedan")
+    >>> loop = ClosedLoop(SingleTrack(car, wheel_spin=True), ABS(car))   # doctest: +SKIP
+    """
+
+    def __init__(self, vehicle: Vehicle, *, apply_slip: float = 0.05, release_slip: float = 0.12,
+                 slip_width: float = 0.01, apply_time_constant: float = 0.1, release_time_constant: float = 0.02,
+                 cutoff_speed: float = 2.0, minimum_speed: float = 1.0, axles=_AXLES, corners: bool = False):
+        check_vehicle("ABS", vehicle)
+        gains = check_gains("ABS", apply_slip=apply_slip, release_slip=release_slip, slip_width=slip_width,
+                            apply_time_constant=apply_time_constant, release_time_constant=release_time_constant,
+                            cutoff_speed=cutoff_speed, minimum_speed=minimum_speed,
+                            positive=("apply_slip", "release_slip", "slip_width", "apply_time_constant",
+                                      "release_time_constant", "minimum_speed"), nonnegative=("cutoff_speed",))
+        if gains["release_slip"] <= gains["apply_slip"]:
+            raise ParameterError(f"ABS release_slip must exceed apply_slip ({apply_slip}), got {release_slip!r}",
+                                 key="release_slip", value=release_slip)
+        self.__dict__.update(gains)
+        self.vehicle, self.axles, self.corners = vehicle, axles, bool(corners)
+        self.rolling_radius = float(vehicle.tires.rolling_radius)
+        self.channels, names = channel_signals("ABS", axles, self.corners, ("brake_torque", "wheel_speed"))
+        self.declare(
+            states=[Signal(f"{c}_abs_brake_torque", "N*m", f"brake torque of the {c} ABS channel (pressure x gain)")
+                    for c in self.channels],
+            inputs=[Signal(n, "N*m", "driver's brake torque demand") for n in names["brake_torque"]]
+            + [Signal(n, "rad/s", "wheel spin") for n in names["wheel_speed"]]
+            + [Signal("longitudinal_velocity", "m/s", "forward velocity u")],
+            outputs=[Signal(n, "N*m", "brake torque after the ABS modulator") for n in names["brake_torque"]])
+
+    def braking_slip(self, wheel_speed, speed):
+        """lambda = (u - omega R_e) / max(u, u_min) [-] (positive braking)."""
+        return (speed - wheel_speed * self.rolling_radius) / np.maximum(speed, self.minimum_speed)
+
+    def rhs(self, t, x, u):
+        n = len(self.channels)
+        x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
+        torque, demand = x, np.maximum(u[:n], 0.0)
+        slip = self.braking_slip(u[n:2 * n], u[2 * n])
+        active = sigmoid((u[2 * n] - self.cutoff_speed) / 0.5)
+        release = active * sigmoid((slip - self.release_slip) / self.slip_width)
+        apply = (1.0 - active) + active * sigmoid((self.apply_slip - slip) / self.slip_width)
+        return (apply * (demand - torque) / self.apply_time_constant - release * torque / self.release_time_constant
+                - (1.0 - apply) * np.maximum(torque - demand, 0.0) / self.release_time_constant)
+
+    def output(self, t, x, u):
+        return np.maximum(np.asarray(x, dtype=float), 0.0)
+
+    def __repr__(self) -> str:
+        return (f"<ABS of {self.vehicle.name!r}: apply below slip {self.apply_slip:g}, release above "
+                f"{self.release_slip:g}, channels {self.channels}>")

@@ -1,0 +1,213 @@
+"""One way to close a loop: a controller model wrapped around a plant model, all names kept.
+
+:class:`ClosedLoop` connects a controller :class:`~vehdyn.Model` to a plant :class:`~vehdyn.Model`
+by signal NAME, with two rules:
+
+* a controller **input** named like a plant input is the *demand* of that input (the driver's or
+  the user's value, still an input of the closed loop under its own name); any other controller
+  input is **feedback**, read from the plant state of that name or, failing that, the plant output;
+* a controller **output** named like a plant input *replaces* that plant input (the command the
+  actuator applies). The closed loop outputs it as ``<name>_after_<controller>`` (controller
+  in snake case: ``abs``, ``esc``, ``traction_control``).
+
+So ``ClosedLoop(SingleTrack(car, wheel_spin=True), ABS(car))`` has the plant's inputs (the brake
+torques are the driver's demand), the plant's states followed by the controller's, and the
+plant's outputs followed by ``front_brake_torque_after_abs``, ``rear_brake_torque_after_abs``. A
+closed loop is itself a ``Model``: it simulates (with a batch axis where the plant has one),
+linearizes (central differences through :meth:`vehdyn.Model.linearize`, every name kept) and can
+be closed again by a second controller (ESC around ABS around the car).
+
+The controller's outputs must not depend on its feedback inputs (only on its states and the
+demands): otherwise the loop would be algebraic. The constructor checks it by evaluating the
+controller's output at two different feedback values.
+
+:class:`ChassisController` is the base of :class:`~vehdyn.chassis.ABS`,
+:class:`~vehdyn.chassis.TractionControl` and :class:`~vehdyn.chassis.ESC`: gain checks and
+:meth:`ChassisController.close`.
+"""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..model import Model
+from ..signals import Signal
+
+__all__ = ["ClosedLoop", "ChassisController"]
+
+
+def check_gains(owner: str, *, positive=(), nonnegative=(), **values) -> dict:
+    """Floats of ``values``; ParameterError naming a non-finite one or one of the wrong sign."""
+    out = {}
+    for name, value in values.items():
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise ParameterError(f"{owner} gain {name} must be a number, got {value!r}", key=name,
+                                 value=value) from None
+        if isinstance(value, bool) or not np.isfinite(number):
+            raise ParameterError(f"{owner} gain {name} must be a finite number, got {value!r}", key=name, value=value)
+        if name in positive and number <= 0:
+            raise ParameterError(f"{owner} gain {name} must be > 0, got {value!r}", key=name, value=value)
+        if name in nonnegative and number < 0:
+            raise ParameterError(f"{owner} gain {name} must be >= 0, got {value!r}", key=name, value=value)
+        out[name] = number
+    return out
+
+
+def check_vehicle(owner: str, vehicle):
+    """ParameterError unless ``vehicle`` is a :class:`~vehdyn.Vehicle`."""
+    from ..params import Vehicle
+
+    if not isinstance(vehicle, Vehicle):
+        raise ParameterError(f"{owner} needs a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
+                             value=vehicle)
+
+
+def channel_signals(owner: str, axles, corners: bool, kinds):
+    """(channels, {kind: [signal name per channel]}) in the single track's or the full vehicle's naming.
+
+    One channel per axle named ``<axle>_<kind>`` (SingleTrack: ``front_brake_torque``), or with
+    ``corners`` one per wheel named ``<kind>_<axle>_<side>`` (FullVehicle: ``brake_torque_front_left``).
+    """
+    axles = tuple(axles)
+    if not axles or any(a not in ("front", "rear") for a in axles) or len(set(axles)) != len(axles):
+        raise ParameterError(f"{owner} axles must be distinct names from ('front', 'rear'), got {axles!r}",
+                             key="axles", value=axles)
+    if corners:
+        channels = tuple(f"{a}_{side}" for a in axles for side in ("left", "right"))
+        return channels, {kind: [f"{kind}_{c}" for c in channels] for kind in kinds}
+    return tuple(axles), {kind: [f"{c}_{kind}" for c in axles] for kind in kinds}
+
+
+def _snake(name: str) -> str:
+    """CamelCase -> snake_case, acronyms kept together (ABS -> abs, TractionControl -> traction_control)."""
+    return re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", name).lower()
+
+
+def sigmoid(z):
+    """Smooth step 0 -> 1, (1 + tanh z) / 2: the mode switches of the controllers."""
+    return 0.5 * (1.0 + np.tanh(z))
+
+
+def deadband(value, width):
+    """value - clip(value, -width, width): zero inside the band, continuous, slope 1 outside."""
+    return value - np.clip(value, -width, width)
+
+
+class ChassisController(Model):
+    """Base of the chassis controllers: a ``Model`` whose outputs command a plant's inputs."""
+
+    def close(self, plant: Model) -> "ClosedLoop":
+        """The :class:`ClosedLoop` of ``plant`` with this controller."""
+        return ClosedLoop(plant, self)
+
+
+class ClosedLoop(Model):
+    """``plant`` with ``controller`` in the loop, connected by signal names (module docstring).
+
+    Parameters
+    ----------
+    plant : Model
+        The vehicle model (e.g. :class:`~vehdyn.handling.SingleTrack`), or another ClosedLoop.
+    controller : Model
+        Inputs: demands (names of plant inputs) and feedback (names of plant states or outputs);
+        outputs: names of plant inputs that it commands.
+
+    Raises
+    ------
+    ParameterError
+        If the plant lacks signals the controller needs (the message names the missing inputs),
+        if a controller output is not a plant input, if state names clash, or if the controller's
+        outputs depend on its feedback (an algebraic loop).
+    """
+
+    def __init__(self, plant: Model, controller: Model):
+        for label, model in (("plant", plant), ("controller", controller)):
+            if not isinstance(model, Model):
+                raise ParameterError(f"ClosedLoop {label} must be a vehdyn Model, got {type(model).__name__}",
+                                     key=label, value=model)
+        p_in, p_states, p_out = plant.input_names, plant.state_names, plant.output_names
+        c_name = type(controller).__name__
+        missing = [n for n in controller.input_names if n not in p_in and n not in p_states and n not in p_out]
+        missing += [n for n in controller.output_names if n not in p_in and n not in missing]
+        if missing:
+            raise ParameterError(f"{c_name} cannot be attached to {type(plant).__name__}: missing inputs {missing} "
+                                 f"(the plant's inputs are {list(p_in)}, its states {list(p_states)})",
+                                 key="missing_inputs", value=missing)
+        clash = sorted(set(p_states) & set(controller.state_names))
+        if clash:
+            raise ParameterError(f"{c_name} states {clash} clash with the plant's", key="states", value=clash)
+        self.plant, self.controller = plant, controller
+        self._np = plant.n_states
+        c_in = controller.input_names
+        self._demand = [(k, plant.index(n, "inputs")) for k, n in enumerate(c_in) if n in p_in]
+        self._fb_state = [(k, plant.index(n)) for k, n in enumerate(c_in) if n not in p_in and n in p_states]
+        self._fb_output = [(k, plant.index(n, "outputs")) for k, n in enumerate(c_in)
+                           if n not in p_in and n not in p_states]
+        self._command = [plant.index(n, "inputs") for n in controller.output_names]
+        self.declare(states=tuple(plant.states) + tuple(controller.states), inputs=tuple(plant.inputs),
+                     outputs=tuple(plant.output_signals) + tuple(
+                         Signal(f"{s.name}_after_{_snake(c_name)}", s.unit, f"{s.name} applied by {c_name}")
+                         for s in controller.output_signals))
+        self.phenomena = frozenset(plant.phenomena)
+        self._check_not_algebraic()
+
+    def _check_not_algebraic(self):
+        c = self.controller
+        feedback = [k for k, _ in self._fb_state + self._fb_output]
+        if not feedback:
+            return
+        xc = np.zeros(c.n_states)
+        u1 = np.zeros(c.n_inputs)
+        u2 = u1.copy()
+        u2[feedback] = 1.0 + np.arange(len(feedback))
+        y1, y2 = np.asarray(c.output(0.0, xc, u1), float), np.asarray(c.output(0.0, xc, u2), float)
+        if not np.allclose(y1, y2, rtol=0.0, atol=1e-12):
+            raise ParameterError(f"{type(c).__name__} outputs depend on its feedback inputs: the loop would be "
+                                 "algebraic (outputs must depend on the controller's states and demands only)",
+                                 key="controller", value=type(c).__name__)
+
+    # ------------------------------------------------------------------ evaluation
+    def _split(self, t, x, u):
+        """(plant states, plant inputs, controller states, controller inputs, commands)."""
+        x = np.asarray(x, dtype=float)
+        u = np.asarray(u, dtype=float)
+        batch = x.shape[1:]
+        if u.shape[1:] != batch:
+            u = np.broadcast_to(u.reshape(u.shape[:1] + (1,) * len(batch)) if u.ndim == 1 else u,
+                                u.shape[:1] + batch)
+        xp, xc = x[:self._np], x[self._np:]
+        c = self.controller
+        uc = np.zeros((c.n_inputs,) + batch)
+        for k, j in self._demand:
+            uc[k] = u[j]
+        command = np.asarray(c.output(t, xc, uc), dtype=float).reshape((c.n_outputs,) + batch)
+        up = np.array(u, dtype=float, copy=True)
+        up[self._command] = command
+        for k, j in self._fb_state:
+            uc[k] = xp[j]
+        if self._fb_output:
+            yp = np.asarray(self.plant.output(t, xp, up), dtype=float)
+            for k, j in self._fb_output:
+                uc[k] = yp[j]
+        return xp, up, xc, uc, command
+
+    def rhs(self, t, x, u):
+        """Plant and controller state derivatives, stacked."""
+        xp, up, xc, uc, _ = self._split(t, x, u)
+        dp = np.asarray(self.plant.rhs(t, xp, up), dtype=float)
+        dc = np.asarray(self.controller.rhs(t, xc, uc), dtype=float).reshape((self.controller.n_states,)
+                                                                             + dp.shape[1:])
+        return np.concatenate([dp, dc])
+
+    def output(self, t, x, u):
+        """Plant outputs, then the commands the controller applies (``<input>_after_<controller>``)."""
+        xp, up, _, _, command = self._split(t, x, u)
+        return np.concatenate([np.asarray(self.plant.output(t, xp, up), dtype=float), command])
+
+    def __repr__(self) -> str:
+        return f"<ClosedLoop {type(self.controller).__name__} around {self.plant!r}>"

@@ -1,0 +1,167 @@
+"""Electronic stability control: yaw-rate control by braking one wheel, with a sideslip guard.
+
+The yaw-rate reference is the steady-state response of the linear bicycle model to the driver's
+steer angle (Rajamani, *Vehicle Dynamics and Control*, 2nd ed., 2012, sec. 8.4, eq. 8.55-8.57;
+van Zanten, "Bosch ESP systems: 5 years of experience", SAE 2000-01-1633), limited by what the
+road can give, |r| <= mu g / u::
+
+    r_ref = clip(u delta / (L (1 + A u^2)), -mu g / u, mu g / u)     (A = K / L, Abe's stability factor)
+
+A direct yaw moment acts on the yaw-rate error beyond a deadband and on the sideslip beyond a
+limit (the guard that catches a slow spin the yaw rate alone misses)::
+
+    M = s_v I_z [-k_r db(r - r_ref, e_0) + k_beta db(beta, beta_0)],   db(e, d) = e - clip(e, -d, d)
+
+(SAE: M > 0 turns right; a spin to the right has r > 0 and beta < 0, so both terms oppose it;
+s_v = sigmoid((u - v_min) / 1 m/s) keeps the ESC off at parking speeds.) One wheel makes it: an
+oversteering car (M against the yaw rate) is braked at the OUTER FRONT wheel, an understeering one
+(M with the yaw rate) at the INNER REAR wheel (van Zanten 2000). A brake force F_b on a wheel at
+y = +-t/2 gives the yaw moment +-F_b t/2 (right wheel: M > 0) and the longitudinal force -F_b.
+Each of the four wheel channels has a first-order hydraulic lag tau and is limited to the friction
+of the wheel's static load, mu F_z,static R_e.
+
+The single-track model has one wheel per axle: it represents the braking of one wheel as the
+equivalent yaw moment (input ``external_yaw_moment``) plus the longitudinal force of the axle
+(``<axle>_longitudinal_force`` in force mode, ``<axle>_brake_torque`` with wheel spin). That
+leaves out the friction-ellipse loss of side force at the braked wheel alone (its axle loses it
+instead, in wheel-spin mode) and the yaw moment of the steered front wheel's side force change.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..params import Vehicle
+from ..signals import Signal
+from ..units import GRAVITY
+from .closed_loop import ChassisController, check_gains, check_vehicle, deadband, sigmoid
+
+__all__ = ["ESC"]
+
+_WHEELS = ("front_left", "front_right", "rear_left", "rear_right")
+
+
+class ESC(ChassisController):
+    """Electronic stability control for the :class:`~vehdyn.handling.SingleTrack` (module docstring).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Mass, geometry, tracks, tires (mu, R_e) and the understeer gradient of its linear bicycle.
+    wheel_spin : bool
+        Command the plant's brake torques (``SingleTrack(..., wheel_spin=True)``) instead of its
+        axle longitudinal forces (default False, the force mode).
+    yaw_rate_gain : float
+        k_r [1/s] (default 10).
+    sideslip_gain : float
+        k_beta [1/s^2] (default 50).
+    yaw_rate_deadband : float
+        e_0 [rad/s] (default 0.03).
+    sideslip_limit : float
+        beta_0 [rad] (default 0.07, 4 degrees).
+    hydraulic_time_constant : float
+        tau [s] (default 0.1).
+    friction_coefficient : float, optional
+        mu [-] of the reference limit and the wheel torque limit; default the vehicle's.
+    minimum_speed : float
+        v_min [m/s] (default 5).
+
+    Signals
+    -------
+    states
+        ``<wheel>_esc_brake_torque`` [N*m] for front_left, front_right, rear_left, rear_right.
+    inputs
+        demands ``front_steer_angle`` (read, not changed), ``front_longitudinal_force``,
+        ``rear_longitudinal_force`` (or ``front_brake_torque``, ``rear_brake_torque``),
+        ``external_yaw_moment``; feedback ``longitudinal_velocity``, ``lateral_velocity``, ``yaw_rate``.
+    outputs
+        The longitudinal forces (or brake torques) and ``external_yaw_moment`` with the ESC's share.
+    """
+
+    def __init__(self, vehicle: Vehicle, *, wheel_spin: bool = False, yaw_rate_gain: float = 10.0,
+                 sideslip_gain: float = 50.0, yaw_rate_deadband: float = 0.03, sideslip_limit: float = 0.07,
+                 hydraulic_time_constant: float = 0.1, friction_coefficient: float | None = None,
+                 minimum_speed: float = 5.0):
+        check_vehicle("ESC", vehicle)
+        from ..handling import stability_factor
+
+        mu = vehicle.tires.friction_coefficient if friction_coefficient is None else friction_coefficient
+        gains = check_gains("ESC", yaw_rate_gain=yaw_rate_gain, sideslip_gain=sideslip_gain,
+                            yaw_rate_deadband=yaw_rate_deadband, sideslip_limit=sideslip_limit,
+                            hydraulic_time_constant=hydraulic_time_constant, friction_coefficient=mu,
+                            minimum_speed=minimum_speed,
+                            positive=("hydraulic_time_constant", "friction_coefficient"),
+                            nonnegative=("yaw_rate_gain", "sideslip_gain", "yaw_rate_deadband", "sideslip_limit",
+                                         "minimum_speed"))
+        self.__dict__.update(gains)
+        self.vehicle, self.wheel_spin = vehicle, bool(wheel_spin)
+        g, t = vehicle.geometry, vehicle.tires
+        self.wheelbase = float(g.wheelbase)
+        self.stability_factor = float(stability_factor(vehicle))
+        self.yaw_inertia = float(vehicle.mass.yaw_inertia)
+        self.rolling_radius = float(t.rolling_radius)
+        self.half_tracks = np.array([g.front_track, g.front_track, g.rear_track, g.rear_track]) / 2.0
+        front, rear = vehicle.static_axle_loads(GRAVITY)
+        self.torque_limits = self.friction_coefficient * np.array([front, front, rear, rear]) / 2.0 * self.rolling_radius
+        axle_input = "brake_torque" if self.wheel_spin else "longitudinal_force"
+        unit = "N*m" if self.wheel_spin else "N"
+        self._axle_inputs = [f"front_{axle_input}", f"rear_{axle_input}"]
+        commanded = [Signal(n, unit, f"{n.replace('_', ' ')}") for n in self._axle_inputs]
+        commanded.append(Signal("external_yaw_moment", "N*m", "yaw moment about the CG (SAE z)"))
+        self.declare(
+            states=[Signal(f"{w}_esc_brake_torque", "N*m", f"ESC brake torque on the {w.replace('_', ' ')} wheel")
+                    for w in _WHEELS],
+            inputs=[Signal("front_steer_angle", "rad", "driver's front road-wheel steer angle")] + commanded
+            + [Signal("longitudinal_velocity", "m/s", "forward velocity u"),
+               Signal("lateral_velocity", "m/s", "lateral velocity v (SAE)"),
+               Signal("yaw_rate", "rad/s", "yaw rate r (SAE)")],
+            outputs=commanded)
+
+    def reference_yaw_rate(self, steer_angle, speed):
+        """r_ref [rad/s]: the linear bicycle's steady-state yaw rate, limited by mu g / u."""
+        u = np.maximum(np.abs(speed), 1.0)
+        steady = speed * steer_angle / (self.wheelbase * (1.0 + self.stability_factor * speed**2))
+        limit = self.friction_coefficient * GRAVITY / u
+        return np.clip(steady, -limit, limit)
+
+    def yaw_moment_demand(self, steer_angle, speed, lateral_velocity, yaw_rate):
+        """M [N*m] the ESC asks for (SAE z: positive turns right)."""
+        error = yaw_rate - self.reference_yaw_rate(steer_angle, speed)
+        sideslip = np.arctan2(lateral_velocity, np.abs(speed))
+        active = sigmoid((speed - self.minimum_speed) / 1.0)
+        return active * self.yaw_inertia * (-self.yaw_rate_gain * deadband(error, self.yaw_rate_deadband)
+                                            + self.sideslip_gain * deadband(sideslip, self.sideslip_limit))
+
+    def wheel_torque_commands(self, moment, yaw_rate):
+        """Brake torque commands [N*m] of front_left, front_right, rear_left, rear_right (one wheel at a time)."""
+        # oversteer: the moment opposes the yaw rate -> front outer wheel; understeer -> rear inner
+        front = sigmoid(-np.tanh(yaw_rate / 0.02) * moment / 100.0)
+        right, left = np.maximum(moment, 0.0), np.maximum(-moment, 0.0)
+        shares = (front * left, front * right, (1.0 - front) * left, (1.0 - front) * right)
+        radius = self.rolling_radius
+        return [np.minimum(share * radius / self.half_tracks[k], self.torque_limits[k])
+                for k, share in enumerate(shares)]
+
+    def rhs(self, t, x, u):
+        x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
+        steer, speed, lateral, yaw_rate = u[0], u[4], u[5], u[6]
+        moment = self.yaw_moment_demand(steer, speed, lateral, yaw_rate)
+        commands = self.wheel_torque_commands(moment, yaw_rate)
+        return np.stack([(c - x[k]) / self.hydraulic_time_constant for k, c in enumerate(commands)])
+
+    def output(self, t, x, u):
+        x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
+        torque = np.maximum(x, 0.0)
+        fl, fr, rl, rr = torque
+        radius = self.rolling_radius
+        if self.wheel_spin:
+            front, rear = np.maximum(u[1], 0.0) + fl + fr, np.maximum(u[2], 0.0) + rl + rr
+        else:
+            front, rear = u[1] - (fl + fr) / radius, u[2] - (rl + rr) / radius
+        h = self.half_tracks
+        moment = u[3] + (h[1] * fr - h[0] * fl + h[3] * rr - h[2] * rl) / radius
+        return np.stack([front, rear, moment])
+
+    def __repr__(self) -> str:
+        return (f"<ESC of {self.vehicle.name!r}: k_r = {self.yaw_rate_gain:g} 1/s, k_beta = {self.sideslip_gain:g} "
+                f"1/s^2, {'brake torques' if self.wheel_spin else 'axle forces'}>")

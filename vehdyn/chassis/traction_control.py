@@ -1,0 +1,144 @@
+"""Traction control: drive-torque reduction and brake intervention on a spinning driven axle.
+
+A traction control system limits the drive slip of the driven wheels in two ways: it asks the
+engine for less torque (slow: throttle, ignition and injection cut) when the driven wheels spin
+together, and it brakes a wheel that spins alone (fast: the ESC hydraulics) (Bosch, *Automotive
+Handbook*, 10th ed., 2018, "Traction control system"; Rajamani, *Vehicle Dynamics and Control*,
+2nd ed., 2012, sec. 6.5). With one channel per driven axle (single track) or driven wheel (full
+vehicle, ``corners=True``)::
+
+    lambda_i = (omega_i R_e - u) / max(u, u_min)                  drive slip (> 0 spinning)
+    d(rho)/dt = (sigmoid((mean_i lambda_i - lambda_t) / w) - rho) / tau_e   engine reduction 0..1
+    d(T_b,i)/dt = (k_b T_d,i max(lambda_i - lambda_b, 0) / lambda_b - T_b,i) / tau_b
+    T_drive,i = (1 - rho_max rho) T_d,i,    T_brake,i = T_brake,demand,i + T_b,i
+
+with the demands T_d,i >= 0, sigmoid(z) = (1 + tanh z) / 2, rho_max <= 1 the largest reduction the
+engine allows and lambda_b > lambda_t the slip above which the brakes join in. The engine is one:
+its reduction follows the mean slip of the channels, so a single spinning wheel on split mu is
+braked rather than the whole drive cut.
+
+A single-track model lumps the two wheels of an axle, so it cannot represent a split-mu road; its
+brake intervention brakes the whole axle. Split mu needs the full vehicle
+(:class:`vehdyn.full_vehicle.FullVehicle` with a ``friction(X, Y)`` road). The full vehicle takes
+one drive torque per wheel, with no differential: equal demands on the two sides stand for an open
+differential with a torque-source engine, so braking the spinning wheel does not send torque to
+the other (that coupling needs a driveline model).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..params import Vehicle
+from ..signals import Signal
+from .closed_loop import ChassisController, channel_signals, check_gains, check_vehicle, sigmoid
+
+__all__ = ["TractionControl"]
+
+_AXLES = ("front", "rear")
+
+
+class TractionControl(ChassisController):
+    """Traction control of a wheel-spin :class:`~vehdyn.handling.SingleTrack` (module docstring).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Gives R_e and the driven axles (``driveline.front_drive_fraction``: > 0 front, < 1 rear).
+    target_slip : float
+        lambda_t [-] where the torque reduction is half way (default 0.08).
+    brake_slip : float
+        lambda_b [-] above which the brakes intervene (default 0.15), > target_slip.
+    slip_width : float
+        w [-] of the smooth switch (default 0.02).
+    engine_time_constant : float
+        tau_e [s] (default 0.15 s).
+    brake_time_constant : float
+        tau_b [s] of the hydraulic lag (default 0.05 s).
+    brake_gain : float
+        k_b [-]: brake torque per unit demand per unit slip excess (relative to lambda_b), default 1.
+    maximum_reduction : float
+        rho_max [-] in (0, 1] (default 0.95).
+    minimum_speed : float
+        u_min [m/s] of the slip's denominator (default 1 m/s).
+    axles : tuple of str, optional
+        Controlled axles; default the driven ones.
+    corners : bool
+        One channel per driven wheel with the full vehicle's names (``drive_torque_rear_left``,
+        ``brake_torque_rear_left``, ``wheel_speed_rear_left``, ...) instead of one per axle with the
+        single track's (``rear_drive_torque``, ``rear_brake_torque``, ``rear_wheel_speed``).
+
+    Signals
+    -------
+    states
+        ``engine_torque_reduction`` [-], ``<channel>_tcs_brake_torque`` [N*m].
+    inputs
+        demands (drive and brake torque per channel); feedback the wheel speeds and
+        ``longitudinal_velocity``.
+    outputs
+        The drive and brake torques applied per channel.
+    """
+
+    def __init__(self, vehicle: Vehicle, *, target_slip: float = 0.08, brake_slip: float = 0.15,
+                 slip_width: float = 0.02, engine_time_constant: float = 0.15, brake_time_constant: float = 0.05,
+                 brake_gain: float = 1.0, maximum_reduction: float = 0.95, minimum_speed: float = 1.0, axles=None,
+                 corners: bool = False):
+        check_vehicle("TractionControl", vehicle)
+        gains = check_gains("TractionControl", target_slip=target_slip, brake_slip=brake_slip, slip_width=slip_width,
+                            engine_time_constant=engine_time_constant, brake_time_constant=brake_time_constant,
+                            brake_gain=brake_gain, maximum_reduction=maximum_reduction, minimum_speed=minimum_speed,
+                            positive=("target_slip", "brake_slip", "slip_width", "engine_time_constant",
+                                      "brake_time_constant", "maximum_reduction", "minimum_speed"),
+                            nonnegative=("brake_gain",))
+        if gains["brake_slip"] <= gains["target_slip"]:
+            raise ParameterError(f"TractionControl brake_slip must exceed target_slip ({target_slip}), got "
+                                 f"{brake_slip!r}", key="brake_slip", value=brake_slip)
+        if gains["maximum_reduction"] > 1:
+            raise ParameterError(f"TractionControl maximum_reduction must be <= 1, got {maximum_reduction!r}",
+                                 key="maximum_reduction", value=maximum_reduction)
+        if axles is None:
+            share = float(vehicle.driveline.front_drive_fraction)
+            axles = tuple(a for a, s in zip(_AXLES, (share, 1.0 - share)) if s > 0)
+        self.__dict__.update(gains)
+        self.vehicle, self.axles, self.corners = vehicle, axles, bool(corners)
+        self.rolling_radius = float(vehicle.tires.rolling_radius)
+        self.channels, names = channel_signals("TractionControl", axles, self.corners,
+                                               ("drive_torque", "brake_torque", "wheel_speed"))
+        self.declare(
+            states=[Signal("engine_torque_reduction", "-", "share of the drive demand the engine withholds")]
+            + [Signal(f"{c}_tcs_brake_torque", "N*m", f"brake torque of the traction control on {c}")
+               for c in self.channels],
+            inputs=[Signal(n, "N*m", "drive torque demand") for n in names["drive_torque"]]
+            + [Signal(n, "N*m", "driver's brake torque demand") for n in names["brake_torque"]]
+            + [Signal(n, "rad/s", "wheel spin") for n in names["wheel_speed"]]
+            + [Signal("longitudinal_velocity", "m/s", "forward velocity u")],
+            outputs=[Signal(n, "N*m", "drive torque after the engine reduction") for n in names["drive_torque"]]
+            + [Signal(n, "N*m", "brake torque with the intervention") for n in names["brake_torque"]])
+
+    def drive_slip(self, wheel_speed, speed):
+        """lambda_s = (omega R_e - u) / max(u, u_min) [-] (positive spinning)."""
+        return (wheel_speed * self.rolling_radius - speed) / np.maximum(speed, self.minimum_speed)
+
+    def rhs(self, t, x, u):
+        n = len(self.channels)
+        x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
+        reduction, brake = x[0], x[1:]
+        demand = np.maximum(u[:n], 0.0)
+        slip = self.drive_slip(u[2 * n:3 * n], u[3 * n])
+        target = sigmoid((np.mean(slip, axis=0) - self.target_slip) / self.slip_width)
+        d_reduction = (target - reduction) / self.engine_time_constant
+        brake_target = self.brake_gain * demand * np.maximum(slip - self.brake_slip, 0.0) / self.brake_slip
+        d_brake = (brake_target - brake) / self.brake_time_constant
+        return np.concatenate([d_reduction[None], d_brake])
+
+    def output(self, t, x, u):
+        n = len(self.channels)
+        x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
+        reduction = np.clip(x[0], 0.0, 1.0)
+        drive = (1.0 - self.maximum_reduction * reduction) * np.maximum(u[:n], 0.0)
+        brake = np.maximum(u[n:2 * n], 0.0) + np.maximum(x[1:], 0.0)
+        return np.concatenate([drive, brake])
+
+    def __repr__(self) -> str:
+        return f"<TractionControl of {self.vehicle.name!r}: target slip {self.target_slip:g}, channels {self.channels}>"

@@ -1,0 +1,217 @@
+"""FMVSS 126 (electronic stability control) compliance: the full sine-with-dwell series.
+
+49 CFR 571.126, Standard No. 126, *Electronic stability control systems for light vehicles*:
+
+* S7.9 (test series): at 80 km/h, a 0.7 Hz sine with a 500 ms dwell at the second peak
+  (:func:`~vehdyn.handling.sine_with_dwell`), steered first counter-clockwise and then clockwise
+  (two series). The amplitude starts at 1.5 A, where A is the hand-wheel angle giving 0.3 g in the
+  slowly increasing steer test (S7.6; here the steady turn at 0.3 g of the nonlinear model,
+  :func:`~vehdyn.handling.steady_state_cornering`), and grows in steps of 0.5 A; the final run is
+  the greater of 6.5 A and 270 degrees of hand-wheel angle, provided 6.5 A <= 300 degrees (else
+  300 degrees) (S7.9.4).
+* S5.2.1, S5.2.2 (lateral stability): the yaw rate 1.00 s after completion of steer is at most
+  35 % of the first peak yaw rate after the steer reversal, and 1.75 s after completion of steer at
+  most 20 %.
+* S5.2.3 (responsiveness): for runs with an amplitude of 5 A or more, the lateral displacement of
+  the CG 1.07 s after the beginning of steer is at least 1.83 m (vehicles with GVWR <= 3,500 kg) or
+  1.52 m (GVWR > 3,500 kg).
+
+The metrics of one run come from :func:`~vehdyn.handling.sine_with_dwell_metrics`. A single-track
+model has no roll and no lateral load transfer: the results describe the model, not a certification.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..units import GRAVITY, kmh_to_ms
+
+__all__ = ["FMVSS126Result", "fmvss126"]
+
+RULE = "49 CFR 571.126 S5.2"
+YAW_RATIO_LIMIT_1000MS = 0.35
+YAW_RATIO_LIMIT_1750MS = 0.20
+GVWR_LIMIT = 3500.0  # kg
+_DISPLACEMENT = {True: 1.83, False: 1.52}  # GVWR <= 3500 kg, > 3500 kg [m]
+
+
+@dataclass(frozen=True)
+class FMVSS126Result:
+    """Outcome of :func:`fmvss126`.
+
+    Attributes
+    ----------
+    vehicle : str
+    controller : str
+        Name of the controller in the loop ("none" without).
+    amplitude_a : float
+        A [rad] of road-wheel angle (0.3 g steady turn at 80 km/h).
+    runs : list of dict
+        One per run: ``direction`` ("counterclockwise" / "clockwise"), ``amplitude_multiple``,
+        ``hand_wheel_amplitude_deg``, ``road_wheel_amplitude_deg``, ``peak_yaw_rate`` [rad/s],
+        ``yaw_rate_ratio_1000ms``, ``yaw_rate_ratio_1750ms``, ``lateral_displacement`` [m],
+        ``displacement_required`` (bool), ``passed`` (bool).
+    displacement_limit : float
+        [m], 1.83 or 1.52 by GVWR.
+    """
+
+    vehicle: str
+    controller: str
+    amplitude_a: float
+    displacement_limit: float
+    runs: list = field(default_factory=list)
+
+    @property
+    def passed(self) -> bool:
+        """Every run meets S5.2.1, S5.2.2 and (where required) S5.2.3."""
+        return bool(self.runs) and all(run["passed"] for run in self.runs)
+
+    def failures(self) -> list[str]:
+        """One line per failed criterion, citing the paragraph of 49 CFR 571.126."""
+        lines = []
+        for run in self.runs:
+            tag = f"{run['direction']} {run['amplitude_multiple']:.2f} A"
+            if run["yaw_rate_ratio_1000ms"] > YAW_RATIO_LIMIT_1000MS:
+                lines.append(f"{tag}: yaw-rate ratio at 1.00 s {run['yaw_rate_ratio_1000ms']:.3f} > 0.35 (S5.2.1)")
+            if run["yaw_rate_ratio_1750ms"] > YAW_RATIO_LIMIT_1750MS:
+                lines.append(f"{tag}: yaw-rate ratio at 1.75 s {run['yaw_rate_ratio_1750ms']:.3f} > 0.20 (S5.2.2)")
+            if run["displacement_required"] and run["lateral_displacement"] < self.displacement_limit:
+                lines.append(f"{tag}: lateral displacement {run['lateral_displacement']:.2f} m < "
+                             f"{self.displacement_limit} m (S5.2.3)")
+        return lines
+
+    def to_frame(self):
+        """pandas DataFrame, one row per run (units in ``attrs["units"]``)."""
+        import pandas as pd
+
+        frame = pd.DataFrame(self.runs)
+        frame.attrs["units"] = {"hand_wheel_amplitude_deg": "deg", "road_wheel_amplitude_deg": "deg",
+                                "peak_yaw_rate": "rad/s", "yaw_rate_ratio_1000ms": "-", "yaw_rate_ratio_1750ms": "-",
+                                "lateral_displacement": "m"}
+        frame.attrs["rule"] = RULE
+        return frame
+
+    def __str__(self) -> str:
+        verdict = "passes" if self.passed else "fails"
+        text = f"{self.vehicle} ({self.controller}) {verdict} {RULE} in {len(self.runs)} runs"
+        failures = self.failures()
+        return text + ("" if not failures else ":\n  " + "\n  ".join(failures))
+
+
+def series_multiples(a: float, steering_ratio: float) -> np.ndarray:
+    """Multiples of A of the S7.9.4 series for A [rad road wheel] and the steering ratio [-]."""
+    hand = np.degrees(a) * steering_ratio  # degrees of hand wheel per A
+    final = max(6.5, 270.0 / hand) if 6.5 * hand <= 300.0 else 300.0 / hand
+    multiples = list(np.arange(1.5, final + 1e-9, 0.5))
+    if final - multiples[-1] > 1e-9:
+        multiples.append(final)
+    return np.array(multiples)
+
+
+def fmvss126(vehicle, controller=None, *, speed: float | None = None, directions=("counterclockwise", "clockwise"),
+             gross_vehicle_weight_rating: float | None = None, amplitude_multiples=None, rtol: float = 1e-5, atol: float = 1e-8,
+             n_points: int = 301) -> FMVSS126Result:
+    """Run the FMVSS 126 sine-with-dwell series on the single-track model of ``vehicle``.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+    controller : Model, optional
+        A controller for the force-mode :class:`~vehdyn.handling.SingleTrack`, e.g.
+        ``vehdyn.chassis.ESC(vehicle)``, closed around it with :class:`vehdyn.chassis.ClosedLoop`
+        (numpy backend, all runs in one batch). None: the car alone (compiled backend where
+        available).
+    speed : float, optional
+        Entry speed [m/s]; default 80 km/h (S7.9.1).
+    directions : tuple of str
+        "counterclockwise" (first lobe to the left, SAE negative steer) and/or "clockwise".
+    gross_vehicle_weight_rating : float, optional
+        GVWR [kg] choosing the displacement limit; default the vehicle's mass (the vehicle files
+        carry no GVWR: a car of 3,500 kg or less is taken as such).
+    amplitude_multiples : sequence of float, optional
+        Run only these multiples of A (a subset, for quick checks); default the S7.9.4 series.
+    rtol, atol : float
+        Tolerances of the RK45 integration.
+    n_points : int
+        Samples of each run's output grid.
+
+    Returns
+    -------
+    FMVSS126Result
+        ``.passed``, ``.to_frame()`` (one row per run), ``.failures()``.
+    """
+    from ..params import Vehicle
+    from ..simulate import simulate
+    from .maneuvers import sine_with_dwell, sine_with_dwell_metrics
+    from .nonlinear_steady_state import steady_state_cornering
+    from .single_track import SingleTrack
+
+    if not isinstance(vehicle, Vehicle):
+        raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
+                             value=vehicle)
+    speed = float(kmh_to_ms(80.0)) if speed is None else speed
+    if isinstance(speed, bool) or not (np.isfinite(speed) and speed > 0):
+        raise ParameterError(f"speed must be a finite number > 0 [m/s], got {speed!r}", key="speed", value=speed)
+    signs = {"counterclockwise": -1.0, "clockwise": 1.0}  # SAE: positive steer turns right (clockwise)
+    directions = tuple(directions)
+    if not directions or any(d not in signs for d in directions):
+        raise ParameterError(f"directions must be drawn from {tuple(signs)}, got {directions!r}", key="directions",
+                             value=directions)
+    gvwr = float(vehicle.mass.mass) if gross_vehicle_weight_rating is None else gross_vehicle_weight_rating
+    if isinstance(gvwr, bool) or not (np.isfinite(gvwr) and gvwr > 0):
+        raise ParameterError(f"gross_vehicle_weight_rating must be > 0 [kg], got {gvwr!r}",
+                             key="gross_vehicle_weight_rating", value=gvwr)
+    plant = SingleTrack(vehicle)
+    a = float(steady_state_cornering(plant, lateral_acceleration=0.3 * GRAVITY, speed=speed).steer_angle)
+    ratio = float(vehicle.steering.ratio)
+    if amplitude_multiples is None:
+        multiples = series_multiples(a, ratio)
+    else:
+        multiples = np.atleast_1d(np.asarray(amplitude_multiples, dtype=float))
+        if multiples.ndim != 1 or not multiples.size or not np.all(np.isfinite(multiples) & (multiples > 0)):
+            raise ParameterError(f"amplitude_multiples must be finite numbers > 0, got {amplitude_multiples!r}",
+                                 key="amplitude_multiples", value=amplitude_multiples)
+    cases = [(d, k) for d in directions for k in multiples]
+    steers = [sine_with_dwell(signs[d] * k * a) for d, k in cases]
+    t = np.linspace(0.0, steers[0].completion_of_steer + 2.0, n_points)
+    x_car = plant.straight_running(speed)
+    options = dict(method="RK45", rtol=rtol, atol=atol, max_step=0.02)
+    if controller is None:
+        name = "none"
+        results = [simulate(plant, t, {"front_steer_angle": s}, x0=x_car, **options) for s in steers]
+    else:
+        from ..chassis import ClosedLoop
+
+        loop = ClosedLoop(plant, controller)
+        name = type(controller).__name__
+        x0 = loop.state_vector(dict(zip(plant.state_names, x_car)))
+        batch = simulate(loop, t, {"front_steer_angle": lambda time: np.stack([s(time) for s in steers], axis=-1)},
+                         x0=np.repeat(x0[:, None], len(steers), axis=1), **options)
+        results = [_Member(batch, k) for k in range(len(steers))]
+    limit = _DISPLACEMENT[gvwr <= GVWR_LIMIT]
+    runs = []
+    for (direction, k), steer, result in zip(cases, steers, results):
+        m = sine_with_dwell_metrics(result, steer)
+        required = bool(k >= 5.0 - 1e-9)
+        ok = (m.yaw_rate_ratio_1000ms <= YAW_RATIO_LIMIT_1000MS and m.yaw_rate_ratio_1750ms <= YAW_RATIO_LIMIT_1750MS
+              and (not required or m.lateral_displacement >= limit))
+        runs.append({"direction": direction, "amplitude_multiple": float(k),
+                     "hand_wheel_amplitude_deg": float(np.degrees(k * a) * ratio),
+                     "road_wheel_amplitude_deg": float(np.degrees(k * a)), "peak_yaw_rate": m.peak_yaw_rate,
+                     "yaw_rate_ratio_1000ms": m.yaw_rate_ratio_1000ms, "yaw_rate_ratio_1750ms": m.yaw_rate_ratio_1750ms,
+                     "lateral_displacement": m.lateral_displacement, "displacement_required": required,
+                     "passed": bool(ok)})
+    return FMVSS126Result(vehicle=vehicle.name, controller=name, amplitude_a=a, displacement_limit=limit, runs=runs)
+
+
+class _Member:
+    """One member of a batched SimulationResult, as sine_with_dwell_metrics reads it."""
+
+    def __init__(self, result, k):
+        self.result, self.k, self.time = result, k, result.time
+
+    def __getitem__(self, name):
+        return self.result[name][:, self.k]

@@ -1,0 +1,154 @@
+"""Sweep engines: where the chunks of variants run.
+
+All engines run the same :class:`ChunkTask` on the same chunks, so that they give bitwise the
+same metrics; they differ only in where a chunk runs:
+
+``None``
+    In this process, chunk after chunk. A :func:`~vehdyn.sweep.vectorized` function gets each
+    chunk as one batch of arrays.
+``"processes"``
+    A :class:`concurrent.futures.ProcessPoolExecutor` on every core, one chunk per task.
+``"threads"``
+    A :class:`concurrent.futures.ThreadPoolExecutor` (for targets that release the GIL).
+any :class:`concurrent.futures.Executor`
+    The caller's executor (left running).
+a ``dask.distributed.Client`` (or a scheduler address ``"tcp://host:8786"``)
+    Chunks as Dask tasks on the cluster's workers (optional extra ``vehdyn[distributed]``).
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import os
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+from ..errors import ParameterError
+
+__all__ = ["ChunkTask", "run_chunks", "is_dask_client"]
+
+
+def _message(exc: BaseException) -> str:
+    return f"{type(exc).__name__}: {exc}"
+
+
+def chunk_frame(columns: dict, names, metric_names):
+    """A chunk's DataFrame: ``variant``, the parameters, the metrics (float), ``error`` (None or text)."""
+    import pandas as pd
+
+    frame = pd.DataFrame(columns)
+    metric_cols = list(metric_names) if metric_names is not None else \
+        [c for c in frame.columns if c not in ("variant", "error", *names)]
+    for c in metric_cols:
+        frame[c] = frame[c].astype(float) if c in frame.columns else np.nan
+    frame["error"] = frame["error"].astype(object).where(frame["error"].notna(), None)
+    return frame[["variant", *names, *metric_cols, "error"]]
+
+
+class ChunkTask:
+    """Run one chunk of variants: ``task(ids, rows) -> DataFrame`` (:func:`chunk_frame`).
+
+    Parameters
+    ----------
+    target : SceneTarget or FunctionTarget
+    names : sequence of str
+        Parameter names (the order of each row's values).
+    metrics : sequence of str or None
+        Metric names (None: every key a function returns).
+    """
+
+    def __init__(self, target, names: Sequence[str], metrics):
+        self.target, self.names, self.metrics = target, list(names), metrics
+
+    def _one(self, variant: int, row) -> dict:
+        params = dict(zip(self.names, row))
+        record = {"variant": int(variant), **params}
+        try:
+            record.update(self.target.run(params, self.metrics))
+            record["error"] = None
+        except Exception as exc:  # one bad variant never loses the sweep
+            record["error"] = _message(exc)
+        return record
+
+    def __call__(self, ids: Sequence[int], rows: Sequence[tuple]):
+        import pandas as pd
+
+        if getattr(self.target, "vectorized", False) and len(rows) > 1:
+            columns = {n: np.asarray([r[j] for r in rows]) for j, n in enumerate(self.names)}
+            try:
+                values = self.target.run_batch(columns, len(rows), self.metrics)
+            except Exception:  # find the bad variants one by one
+                pass
+            else:
+                data = {"variant": np.asarray(ids, dtype=np.int64), **columns, **values, "error": [None] * len(rows)}
+                return chunk_frame(data, self.names, self.metrics)
+        records = pd.DataFrame.from_records([self._one(i, r) for i, r in zip(ids, rows)])
+        return chunk_frame({c: records[c] for c in records.columns}, self.names, self.metrics)
+
+
+def is_dask_client(executor) -> bool:
+    """True for a ``dask.distributed.Client`` (checked without importing dask)."""
+    return type(executor).__module__.startswith("distributed") and hasattr(executor, "scheduler_info")
+
+
+def _dask_client(address: str):
+    try:
+        from distributed import Client
+    except ImportError:
+        raise ParameterError(f"executor={address!r} names a Dask scheduler; install the extra: "
+                             "pip install 'vehdyn[distributed]'", key="executor", value=address) from None
+    return Client(address)
+
+
+def run_chunks(task: ChunkTask, chunks: list[tuple[list[int], list[tuple]]], executor: Any,
+               on_done: Callable[[Any], None]) -> None:
+    """Run ``task`` on every chunk with ``executor`` and call ``on_done(frame)`` as each finishes.
+
+    Finished chunks are handed over in completion order (the caller writes them); an engine failure
+    (a worker lost) raises after the chunks finished before it were handed over.
+    """
+    if not chunks:
+        return
+    if executor is None:
+        for ids, rows in chunks:
+            on_done(task(ids, rows))
+        return
+    owned = None
+    if isinstance(executor, str):
+        if executor == "processes":
+            owned = executor = cf.ProcessPoolExecutor(max_workers=min(len(chunks), os.cpu_count() or 1))
+        elif executor == "threads":
+            owned = executor = cf.ThreadPoolExecutor(max_workers=min(len(chunks), os.cpu_count() or 1))
+        elif "://" in executor:
+            owned = executor = _dask_client(executor)
+        else:
+            raise ParameterError(f"executor={executor!r}: use None, 'processes', 'threads', a scheduler address "
+                                 "('tcp://host:8786'), a concurrent.futures.Executor or a dask.distributed.Client",
+                                 key="executor", value=executor)
+    try:
+        if is_dask_client(executor):
+            from distributed import as_completed
+
+            futures = [executor.submit(task, ids, rows, pure=False) for ids, rows in chunks]
+            for future in as_completed(futures):
+                on_done(future.result())
+        elif isinstance(executor, cf.Executor):
+            futures = [executor.submit(task, ids, rows) for ids, rows in chunks]
+            try:
+                for future in cf.as_completed(futures):
+                    on_done(future.result())
+            except BaseException:
+                for f in futures:
+                    f.cancel()
+                raise
+        else:
+            raise ParameterError(f"executor must be None, 'processes', 'threads', a scheduler address, a "
+                                 f"concurrent.futures.Executor or a dask.distributed.Client, got "
+                                 f"{type(executor).__name__}", key="executor", value=type(executor).__name__)
+    finally:
+        if owned is not None:
+            if is_dask_client(owned):
+                owned.close()
+            else:
+                owned.shutdown(wait=True, cancel_futures=True)

@@ -1,0 +1,217 @@
+"""What a sweep varies and runs: a :class:`~vehdyn.Scene` or a function of named parameters.
+
+A target turns one variant's parameters into metric values. Targets are plain, picklable objects
+(a Scene and names, or a module-level function) so that every engine - in-process, a process pool,
+Dask workers - runs the same code on the same variants and gives bitwise the same numbers.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import inspect
+from typing import Any, Callable, Mapping
+
+import numpy as np
+
+from ..errors import ParameterError
+from . import metrics as _metrics
+
+__all__ = ["vectorized", "SceneTarget", "FunctionTarget", "as_target", "vehicle_parameter_names"]
+
+
+def vectorized(function: Callable) -> Callable:
+    """Mark ``function(**params) -> mapping`` as accepting arrays of parameters (one element per
+    variant, the trailing batch axis of DESIGN §3) and returning arrays of metrics.
+
+    The in-process engine then calls it once per chunk; a chunk whose batched call raises is run
+    again variant by variant, so that only the bad variants fail.
+    """
+    function.__vehdyn_vectorized__ = True
+    return function
+
+
+def _python(value):
+    """numpy scalars -> Python scalars (parameter validation accepts int and float only)."""
+    return value.item() if isinstance(value, np.generic) else value
+
+
+def _close(name: str, known, what: str) -> ParameterError:
+    close = difflib.get_close_matches(name, list(known), n=5, cutoff=0.6)
+    hint = f"; close matches: {close}" if close else f"; the {what} are {sorted(known)}"
+    return ParameterError(f"unknown parameter {name!r}{hint}", key=name, value=name)
+
+
+def vehicle_parameter_names(vehicle, prefix: str = "vehicle.") -> dict[str, str]:
+    """Dotted name -> unit of every numeric and text parameter of ``vehicle`` (nested groups)."""
+    from ..params.base import ParameterSet
+
+    out = {}
+    for f in dataclasses.fields(vehicle):
+        value = getattr(vehicle, f.name)
+        if isinstance(value, ParameterSet):
+            out.update(vehicle_parameter_names(value, f"{prefix}{f.name}."))
+        elif "unit" in f.metadata:
+            out[f"{prefix}{f.name}"] = f.metadata["unit"]
+    return out
+
+
+_SCENE_UNITS = {"speed": "m/s", "duration": "s", "tolerance": "-", "time_step": "s", "seed": "", "tire": "",
+                "manoeuvre": "", "vehicle": "", "road": ""}
+
+
+class SceneTarget:
+    """A :class:`~vehdyn.Scene` varied by dotted names, run on one rung of the ladder.
+
+    The rung is planned once, on the base scene (``model="auto"``), or named; every variant runs on
+    it, so that the metrics of all variants come from the same model.
+
+    Parameters
+    ----------
+    scene : Scene
+    model : str
+        ``"auto"`` or a rung name (``"SingleTrack"``, ``"LinearBicycle"``, ``"QuarterCar"`` ...).
+    """
+
+    def __init__(self, scene, model: str = "auto"):
+        from ..scene.planner import plan
+
+        self.scene = scene
+        self.vehicle = scene.load_vehicle()
+        p = plan(scene)
+        row = p.chosen if model == "auto" else p.row(model)
+        self.rung = row.rung.name
+        self.signals = dict(row.outputs)  # scene output -> model output
+        model_units = {s.name: s.unit for s in getattr(row.setup.model, "outputs", ())}
+        self.units = {o: model_units.get(m, "") for o, m in self.signals.items()}
+        self.parameters = dict(vehicle_parameter_names(self.vehicle))
+        for f in dataclasses.fields(scene):
+            if f.name not in ("outputs", "manoeuvre_parameters"):
+                self.parameters[f.name] = _SCENE_UNITS.get(f.name, "")
+        from ..scene.definition import ROAD_EVENTS, STANDARD_MANOEUVRES
+
+        if isinstance(scene.manoeuvre, str):
+            for k in STANDARD_MANOEUVRES[scene.manoeuvre]:
+                self.parameters[f"manoeuvre_parameters.{k}"] = ""
+        if isinstance(scene.road, Mapping):
+            for k in ROAD_EVENTS[scene.road["event"]]:
+                self.parameters[f"road.{k}"] = ""
+
+    def check_names(self, names) -> dict[str, str]:
+        """Units of ``names``; ParameterError with the close matches for an unknown one."""
+        for name in names:
+            if name not in self.parameters:
+                raise _close(name, self.parameters, "parameters")
+        return {n: self.parameters[n] for n in names}
+
+    def default_metrics(self) -> list[str]:
+        return [f"peak_{o}" for o in self.scene.outputs]
+
+    def resolve_metrics(self, names) -> dict[str, str]:
+        return {n: _metrics.metric(n, self.units).unit for n in names}
+
+    def variant(self, params: Mapping[str, Any]):
+        """The scene of one variant (ParameterError for invalid values)."""
+        vehicle_changes, fields, manoeuvre, road = {}, {}, {}, {}
+        for name, value in params.items():
+            value = _python(value)
+            head, _, rest = name.partition(".")
+            if head == "vehicle" and rest:
+                vehicle_changes[rest.replace(".", "__")] = value
+            elif head == "manoeuvre_parameters":
+                manoeuvre[rest] = value
+            elif head == "road" and rest:
+                road[rest] = value
+            else:
+                fields[name] = value
+        if vehicle_changes:
+            base = fields.pop("vehicle", None)
+            vehicle = self.vehicle if base is None else self.scene.replace(vehicle=base).load_vehicle()
+            fields["vehicle"] = vehicle.replace(**vehicle_changes)
+        elif "vehicle" not in fields:
+            fields["vehicle"] = self.vehicle
+        if manoeuvre:
+            fields["manoeuvre_parameters"] = {**self.scene.manoeuvre_parameters, **manoeuvre}
+        if road:
+            fields["road"] = {**self.scene.road, **road}
+        return self.scene.replace(**fields)
+
+    def run(self, params: Mapping[str, Any], metric_names) -> dict[str, float]:
+        from ..scene.drive import drive_of
+        from ..scene.rungs import rungs
+
+        scene = self.variant(params)
+        wanted = [_metrics.metric(n, self.units) for n in metric_names]
+        run = _metrics.Run(time=scene.time(), outputs={}, units=self.units, vehicle=scene.load_vehicle(),
+                           speed=scene.speed)
+        if any(m.needs_run for m in wanted):
+            rung = next(r for r in rungs() if r.name == self.rung)
+            result = rung.setup(drive_of(scene)).run()
+            run.outputs = {o: np.asarray(result[m], dtype=float) for o, m in self.signals.items()}
+            run.result = result
+        return {m.name: float(m.function(run)) for m in wanted}
+
+
+class FunctionTarget:
+    """A function ``f(**params) -> mapping of scalars`` (or arrays, if :func:`vectorized`)."""
+
+    def __init__(self, function: Callable):
+        self.function = function
+        self.vectorized = bool(getattr(function, "__vehdyn_vectorized__", False))
+        self.units = dict(getattr(function, "units", {}) or {})
+        try:
+            sig = inspect.signature(function)
+        except (TypeError, ValueError):
+            sig = None
+        params = [] if sig is None else list(sig.parameters.values())
+        self.any_name = sig is None or any(p.kind is p.VAR_KEYWORD for p in params)
+        self.parameters = [p.name for p in params if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
+
+    def check_names(self, names) -> dict[str, str]:
+        if not self.any_name:
+            for name in names:
+                if name not in self.parameters:
+                    raise _close(name, self.parameters, "parameters")
+        return {n: self.units.get(n, "") for n in names}
+
+    def default_metrics(self) -> list[str] | None:
+        return None  # every key the function returns
+
+    def resolve_metrics(self, names) -> dict[str, str]:
+        return {n: self.units.get(n, "") for n in names}
+
+    @staticmethod
+    def _select(out, metric_names) -> list[str]:
+        if not isinstance(out, Mapping):
+            raise ParameterError(f"the sweep function must return a mapping of metrics, got {type(out).__name__}",
+                                 key="target", value=type(out).__name__)
+        keys = list(out) if metric_names is None else list(metric_names)
+        missing = [k for k in keys if k not in out]
+        if missing:
+            raise ParameterError(f"the sweep function returned no metric {missing[0]!r}; it returned {sorted(out)}",
+                                 key="metrics", value=missing[0])
+        return keys
+
+    def run(self, params: Mapping[str, Any], metric_names) -> dict[str, float]:
+        out = self.function(**{k: _python(v) for k, v in params.items()})
+        return {k: float(out[k]) for k in self._select(out, metric_names)}
+
+    def run_batch(self, columns: Mapping[str, np.ndarray], count: int, metric_names) -> dict[str, np.ndarray]:
+        """Metric name -> array of ``count`` values from one call with array parameters."""
+        out = self.function(**columns)
+        return {k: np.array(np.broadcast_to(np.asarray(out[k], dtype=float), (count,)))
+                for k in self._select(out, metric_names)}
+
+
+def as_target(target, model: str = "auto"):
+    """A :class:`SceneTarget` or :class:`FunctionTarget` for ``target``."""
+    from ..scene.definition import Scene
+
+    if isinstance(target, (SceneTarget, FunctionTarget)):
+        return target
+    if isinstance(target, Scene):
+        return SceneTarget(target, model)
+    if callable(target):
+        return FunctionTarget(target)
+    raise ParameterError(f"sweep target must be a Scene or a function of the parameters, got "
+                         f"{type(target).__name__}", key="target", value=type(target).__name__)

@@ -1,0 +1,15 @@
+"""Measured tire data -> tire model: Magic Formula (staged), brush and linear fits.
+
+:func:`fit_magic_formula` fits MF 5.2/6.1/6.2 stage by stage (:mod:`.stages` holds which stage owns
+which coefficient) and returns a :class:`TireFit`; :func:`fit_brush` and :func:`fit_linear` fit the
+simple laws. scipy, pandas and matplotlib are imported on use.
+"""
+
+from .magic_formula_fit import DEFAULT_BOUNDS, fit_magic_formula
+from .result import StageResult, TireFit
+from .simple_fits import fit_brush, fit_linear
+from .stages import STAGE_NAMES, STAGES, owned
+from .synthetic import sample_tire
+
+__all__ = ["fit_magic_formula", "fit_brush", "fit_linear", "sample_tire", "TireFit", "StageResult", "STAGES",
+           "STAGE_NAMES", "owned", "DEFAULT_BOUNDS"]

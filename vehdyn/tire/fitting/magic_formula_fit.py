@@ -1,0 +1,672 @@
+"""Fit a Magic Formula (MF 5.2 / 6.1 / 6.2) to measured tire data: :func:`fit_magic_formula`.
+
+The fit runs on vehdyn's own Magic Formula equations (:mod:`vehdyn.tire.mf_forces`,
+:mod:`vehdyn.tire.mf_moments`, validated against MFeval): a candidate coefficient vector replaces
+fields of the model's coefficient record (``MFCoefficients._replace``), so that no formula is
+written twice. The inputs are post-processed once per step (limits, dfz, dpi: the ``MFState`` of
+:mod:`vehdyn.tire.magic_formula`); a pure-slip residual then costs one call of
+:func:`~vehdyn.tire.mf_forces.longitudinal_pure` or :func:`~vehdyn.tire.mf_forces.lateral_pure`.
+What the varied coefficients cannot change (the pure-slip forces in the combined and moment
+stages, the combined forces in the moment stages) is computed once per step. The Jacobian is a
+forward difference, one model call per coefficient.
+
+Stages and the coefficients they own: :mod:`vehdyn.tire.fitting.stages`. Each step is a bounded
+:func:`scipy.optimize.least_squares` (trust-region reflective) on residuals normalized by the
+peak of the measured output.
+
+References
+----------
+H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, sec. 4.3.2
+(the characteristic values: peak D, stiffness BCD, shape C from the asymptote y_a,
+C = 1 + (1 - (2/pi) asin(y_a/D))) and appendix 3 (the MF 6.1 equations and a parameter set).
+I. J. M. Besselink, A. J. C. Schmeitz, H. B. Pacejka, "An improved Magic Formula/Swift tyre model
+that can handle inflation pressure changes", *Vehicle System Dynamics* 48 (2010), 337-352.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import time
+import warnings
+
+import numpy as np
+
+from ...errors import ParameterError, VehdynWarning
+from .._mf_ops import NumpyOps
+from ..mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure
+from ..mf_moments import aligning_moment, overturning_moment, rolling_resistance_moment
+from .result import StageResult, TireFit
+from .stages import STAGE_NAMES, STAGES, STEP_VARIATION, owned
+
+__all__ = ["fit_magic_formula", "DEFAULT_BOUNDS", "PURE_SLIP_ANGLE", "PURE_SLIP_RATIO"]
+
+PURE_SLIP_ANGLE = math.radians(0.5)
+"""|alpha| [rad] below which a point counts as pure longitudinal slip."""
+
+PURE_SLIP_RATIO = 0.005
+"""|kappa| [-] below which a point counts as pure lateral slip."""
+
+ZERO_CAMBER = math.radians(0.5)
+"""|gamma| [rad] below which a point counts as zero camber."""
+
+CONDITION_LIMIT = 1e8
+"""Condition number of the column-normalized Jacobian above which a warning says that some
+coefficients are not identifiable from the data."""
+
+DEFAULT_BOUNDS = {
+    "PCX1": (0.5, 3.0), "PDX1": (0.05, 5.0), "PEX1": (-np.inf, 1.0),
+    "PCY1": (0.5, 3.0), "PDY1": (0.05, 5.0), "PEY1": (-np.inf, 1.0), "PKY2": (0.05, 50.0), "PKY4": (0.5, 5.0),
+    "PEY4": (-100.0, 100.0), "PEY5": (-100.0, 100.0), "PKY5": (-100.0, 100.0),
+    "QCZ1": (0.5, 3.0), "RCX1": (0.2, 3.0), "RCY1": (0.2, 3.0), "REX1": (-np.inf, 1.0), "REY1": (-np.inf, 1.0),
+    "RVY5": (-3.0, 3.0),
+}
+"""Default (lower, upper) bounds of the coefficients that have physical limits; PKX1 and PKY1 keep
+the sign of the measured slope; the rest are free."""
+
+_COLUMNS = ("fz", "kappa", "alpha", "gamma", "vx", "pressure", "fx", "fy", "mx", "my", "mz")
+_OUTPUT_OF = {"X": "fx", "Y": "fy", "Z": "mz"}
+
+
+# ------------------------------------------------------------------------------------------ data
+def _as_columns(data):
+    """DataFrame or mapping -> dict of float arrays of the canonical columns present."""
+    try:
+        keys = list(data.keys())
+    except AttributeError:
+        raise ParameterError(f"data must be a DataFrame or a mapping of columns, got {type(data).__name__}",
+                             key="data", value=type(data).__name__) from None
+    columns = {}
+    for key in keys:
+        if key in _COLUMNS:
+            try:
+                columns[key] = np.asarray(data[key], dtype=float).ravel()
+            except (TypeError, ValueError):
+                raise ParameterError(f"data column {key!r} is not numeric", key=key, value=None) from None
+    if "fz" not in columns:
+        raise ParameterError(f"data needs a column 'fz' (normal load [N]); it has {', '.join(map(str, keys))}",
+                             key="fz", value=None)
+    lengths = {len(v) for v in columns.values()}
+    if len(lengths) != 1:
+        raise ParameterError(f"data columns differ in length: { {k: len(v) for k, v in columns.items()} }",
+                             key="data", value=None)
+    return columns
+
+
+def _drop_nan(columns, messages):
+    bad = np.zeros(len(columns["fz"]), dtype=bool)
+    for values in columns.values():
+        bad |= ~np.isfinite(values)
+    if bad.any():
+        messages.append(f"dropped {int(bad.sum())} of {bad.size} rows with NaN or inf")
+        columns = {k: v[~bad] for k, v in columns.items()}
+    return columns
+
+
+def _levels_vary(values, span):
+    return values.size > 0 and float(np.ptp(values)) > span
+
+
+# ------------------------------------------------------------------------------------ template
+def _template(version, start, columns, messages):
+    """The parameter set the fit starts from: ``start`` or MFeval's defaults in a shipped layout,
+    with FNOMIN, LONGVL, NOMPRES and the ranges taken from the data."""
+    from ..magic_formula import MagicFormula, load_tire
+    from ..tir import MFEVAL_DEFAULTS, TirParameters, read_tir
+    from ...params import data_path
+
+    fz = columns["fz"]
+    if start is not None:
+        if isinstance(start, MagicFormula):
+            params = start.params
+        elif isinstance(start, TirParameters):
+            params = MagicFormula(start).params  # a file without a Magic Formula version raises here
+        else:
+            params = load_tire(start).params  # a path, or the name of a shipped tire
+        sections = {s: dict(kv) for s, kv in params.sections.items()}
+        overrides = {}
+    else:
+        layout = read_tir(data_path("tires", {"5.2": "MagicFormula52_Parameters.tir", "6.1":
+                                              "MagicFormula61_Parameters.tir", "6.2":
+                                              "MagicFormula62_Parameters.tir"}[version]))
+        sections = {}
+        for section, entries in layout.sections.items():
+            sections[section] = {}
+            for key, value in entries.items():
+                default = MFEVAL_DEFAULTS.get(key.upper())
+                keep = key.upper() in ("FITTYP", "PROPERTY_FILE_FORMAT") or section.upper() == "UNITS"
+                sections[section][key] = value if keep or default is None else default
+        params = layout
+        levels = _load_levels(fz)
+        nominal = float(levels[np.argmin(np.abs(levels - fz.mean()))])
+        overrides = {"FNOMIN": nominal}
+        if "vx" in columns:
+            overrides["LONGVL"] = float(np.median(columns["vx"]))
+        if "pressure" in columns:
+            overrides["NOMPRES"] = overrides["INFLPRES"] = float(np.median(columns["pressure"]))
+    values = TirParameters(sections, tables=params.tables).values
+    # ranges that would clamp the data
+    ranges = (("FZMIN", "FZMAX", "fz"), ("KPUMIN", "KPUMAX", "kappa"), ("ALPMIN", "ALPMAX", "alpha"),
+              ("CAMMIN", "CAMMAX", "gamma"), ("PRESMIN", "PRESMAX", "pressure"))
+    for low_key, high_key, column in ranges:
+        if column not in columns:
+            continue
+        low, high = float(columns[column].min()), float(columns[column].max())
+        if low < values[low_key] and column != "fz":
+            overrides[low_key] = low
+        if high > values[high_key]:
+            overrides[high_key] = high * 1.05 if column in ("fz", "pressure") else high
+    if start is not None and set(overrides) - {"FNOMIN", "LONGVL", "NOMPRES", "INFLPRES"}:
+        messages.append("widened the start file's ranges to cover the data: "
+                        + ", ".join(f"{k} = {v:.6g}" for k, v in overrides.items()))
+    _set_values(sections, values, overrides)
+    return TirParameters(sections, tables=params.tables, path=None)
+
+
+_SECTION_OF = (("FNOMIN", "VERTICAL"), ("LONGVL", "MODEL"), ("NOMPRES", "OPERATING_CONDITIONS"),
+               ("INFLPRES", "OPERATING_CONDITIONS"), ("FZ", "VERTICAL_FORCE_RANGE"), ("KPU", "LONG_SLIP_RANGE"),
+               ("ALP", "SLIP_ANGLE_RANGE"), ("CAM", "INCLINATION_ANGLE_RANGE"), ("PRES", "INFLATION_PRESSURE_RANGE"),
+               ("QS", "OVERTURNING_COEFFICIENTS"), ("QSY", "ROLLING_COEFFICIENTS"),
+               ("Q", "ALIGNING_COEFFICIENTS"), ("SSZ", "ALIGNING_COEFFICIENTS"),
+               ("PPZ", "ALIGNING_COEFFICIENTS"), ("PPMX", "OVERTURNING_COEFFICIENTS"))
+
+
+def _set_values(sections, si_values, updates):
+    """Write SI ``updates`` into ``sections`` (in the file's units: the ratio of the SI value to
+    the value written, where the key exists; new keys go to their usual section)."""
+    where = {key.upper(): (section, key) for section, entries in sections.items()
+             if section.upper() != "UNITS" for key in entries}
+    for key, value in updates.items():
+        value = float(value)
+        if key in where:
+            section, raw_key = where[key]
+            raw = sections[section][raw_key]
+            factor = 1.0
+            if isinstance(raw, (int, float)) and raw != 0 and si_values.get(key, 0) not in (0, None):
+                factor = float(si_values[key]) / float(raw)
+            sections[section][raw_key] = value / factor
+            continue
+        section = _default_section(key)
+        sections.setdefault(section, {})[key] = value
+
+
+def _default_section(key):
+    if re.fullmatch(r"[PR].X\d+", key):
+        return "LONGITUDINAL_COEFFICIENTS"
+    if re.fullmatch(r"[PR].Y\d+", key):
+        return "LATERAL_COEFFICIENTS"
+    best = ""
+    for prefix, section in _SECTION_OF:
+        if key.startswith(prefix) and len(prefix) > len(best):
+            best, found = prefix, section
+    return found if best else "MODEL"
+
+
+def _load_levels(fz, tolerance=0.05):
+    """The distinct load levels of ``fz`` (clusters within ``tolerance`` of the mean load)."""
+    values = np.sort(fz)
+    gap = tolerance * max(float(np.mean(np.abs(values))), 1.0)
+    breaks = np.flatnonzero(np.diff(values) > gap)
+    groups = np.split(values, breaks + 1)
+    return np.array([float(np.median(g)) for g in groups if g.size])
+
+
+# --------------------------------------------------------------------------------- evaluation
+class _Problem:
+    """One least-squares step: points, outputs, the coefficients varied and the model call.
+
+    The inputs are post-processed once (``MFState``); so are the quantities that the varied
+    coefficients cannot change: the pure-slip forces in the combined and moment stages, and the
+    combined forces in the moment stages (unless combined-slip coefficients ``R*`` vary).
+    """
+
+    def __init__(self, base, stage, rows, outputs, names, weights):
+        from ..magic_formula import _forces_pass
+
+        self.base, self.stage, self.names = base, stage, names
+        self.targets = [rows[o] for o in outputs]
+        self.outputs = outputs
+        self.scales = [max(float(np.max(np.abs(t))), 1e-9) if t.size else 1.0 for t in self.targets]
+        self.weights = weights
+        fz, kappa, alpha, gamma, vx, pressure = (rows[k] for k in ("fz", "kappa", "alpha", "gamma", "vx", "pressure"))
+        with np.errstate(all="ignore"):
+            forces, extras = _forces_pass(NumpyOps, base, fz, kappa, alpha, gamma, 0.0, vx, pressure, 0.0, False, True,
+                                          False, False, False)
+            self.state, self.pure, self.kxk = extras[0], extras[1], extras[4]
+            if stage not in ("pure_longitudinal", "pure_lateral"):
+                self.fx0 = longitudinal_pure(NumpyOps, base, self.state)[0]
+                self.combined = (forces[0], *lateral_combined(NumpyOps, base, self.state, self.pure))
+        self.varies_combined = any(n.startswith("R") for n in names)
+        self._cache = (None, None)
+        self.nfev = 0
+
+    def coefficients(self, x):
+        return self.base._replace(**dict(zip(self.names, x)))
+
+    def model(self, c):
+        """Model outputs for coefficient record ``c``: list of arrays, one per output."""
+        xp, s = NumpyOps, self.state
+        with np.errstate(all="ignore"):
+            if self.stage == "pure_longitudinal":
+                return [longitudinal_pure(xp, c, s)[0]]
+            if self.stage == "pure_lateral":
+                return [lateral_pure(xp, c, s, s.gamma_star, False).fy0]
+            if self.varies_combined:
+                fx = longitudinal_combined(xp, c, s, self.fx0)
+                fy, gyk, svyk = lateral_combined(xp, c, s, self.pure)
+            else:
+                fx, fy, gyk, svyk = self.combined
+            values = []
+            for out in self.outputs:
+                if out == "fx":
+                    values.append(fx)
+                elif out == "fy":
+                    values.append(fy)
+                elif out == "mz":
+                    values.append(aligning_moment(xp, c, s, self.pure, fy, fx, self.kxk, gyk, svyk).mz)
+                elif out == "mx":
+                    values.append(overturning_moment(xp, c, s, fy))
+                else:
+                    values.append(rolling_resistance_moment(xp, c, s, fx))
+        return values
+
+    def residuals(self, values):
+        r = np.concatenate([(m - t) / scale for m, t, scale in zip(values, self.targets, self.scales)])
+        if self.weights is not None:
+            r = r * self.weights
+        return np.where(np.isfinite(r), r, 1e3)
+
+    def fun(self, x):
+        self.nfev += 1
+        r = self.residuals(self.model(self.coefficients(x)))
+        self._cache = (x.copy(), r)
+        return r
+
+    def jac(self, x, lower, upper):
+        """Forward differences, one model call per coefficient on the step's points.
+
+        (Evaluating all coefficients in one call on (k, n) arrays was 1.4x slower at 7,000 points:
+        the arrays leave the cache; ``benchmarks/bench_tire_fit.py``.)
+        """
+        cached_x, f0 = self._cache
+        if cached_x is None or not np.array_equal(cached_x, x):
+            f0 = self.fun(x)
+        h = 1e-7 * np.maximum(np.abs(x), 1.0)
+        h = np.where(x + h > upper, -h, h)
+        jac = np.empty((f0.size, x.size))
+        for j in range(x.size):
+            shifted = x.copy()
+            shifted[j] += h[j]
+            jac[:, j] = (self.residuals(self.model(self.coefficients(shifted))) - f0) / h[j]
+        return jac
+
+
+def _solve(problem, x0, lower, upper, max_nfev):
+    from scipy.optimize import least_squares
+
+    span = upper - lower
+    inside = np.clip(x0, lower + 1e-9 * np.where(np.isfinite(span), span, 1.0),
+                     upper - 1e-9 * np.where(np.isfinite(span), span, 1.0))
+    result = least_squares(problem.fun, inside, jac=lambda x: problem.jac(x, lower, upper), bounds=(lower, upper),
+                           x_scale="jac", method="trf", max_nfev=max_nfev, ftol=1e-10, xtol=1e-10, gtol=1e-10)
+    return result
+
+
+# ------------------------------------------------------------------------------ start values
+def _slope_at_zero(x, y):
+    """Slope dy/dx at x = 0 from the points nearest zero (least squares line)."""
+    ax = np.abs(x)
+    distinct = np.unique(np.round(ax, 9))
+    limit = distinct[min(3, distinct.size - 1)] if distinct.size > 1 else ax.max()
+    near = ax <= max(limit, 1e-9)
+    if near.sum() < 2 or np.ptp(x[near]) == 0:
+        return float("nan")
+    return float(np.polyfit(x[near], y[near], 1)[0])
+
+
+def _peak_shape(x, y):
+    """Peak D (half the peak-to-peak force), stiffness at zero and shape factor C from the asymptote."""
+    peak = 0.5 * (float(y.max()) - float(y.min()))
+    slope = _slope_at_zero(x, y)
+    ax = np.abs(x)
+    outer = ax >= 0.95 * ax.max()
+    asymptote = float(np.mean(np.abs(y[outer]))) if outer.any() else peak
+    ratio = min(max(asymptote / peak, 0.0), 0.999) if peak > 0 else 0.5
+    shape = 1.0 + (1.0 - (2.0 / math.pi) * math.asin(ratio))  # Pacejka 2012, sec. 4.3.2
+    return peak, slope, shape
+
+
+def _physical_start(stage, rows, c):
+    """Initial values of the nominal-step coefficients read from the data (Pacejka 2012, 4.3.2)."""
+    fz = float(np.mean(rows["fz"]))
+    fz0 = c.Fz0_prime
+    if stage == "pure_longitudinal":
+        peak, slope, shape = _peak_shape(rows["kappa"], rows["fx"])
+        start = {"PDX1": peak / fz, "PCX1": min(max(shape, 1.05), 2.5), "PEX1": 0.0, "PEX4": 0.0, "PHX1": 0.0,
+                 "PVX1": 0.0}
+        if np.isfinite(slope) and slope != 0:
+            start["PKX1"] = slope / fz
+        return start
+    if stage == "pure_lateral":
+        peak, slope, shape = _peak_shape(rows["alpha"], rows["fy"])
+        start = {"PDY1": peak / fz, "PCY1": min(max(shape, 1.05), 2.5), "PEY1": 0.0, "PEY3": 0.0, "PHY1": 0.0,
+                 "PVY1": 0.0, "PKY2": 2.0, "PKY4": 2.0}
+        if np.isfinite(slope) and slope != 0:
+            start["PKY1"] = slope / (fz0 * math.sin(2.0 * math.atan(fz / (fz0 * 2.0))))
+        return start
+    if stage == "aligning":
+        fy_slope = _slope_at_zero(rows["alpha"], rows["fy"]) if "fy" in rows else float("nan")
+        mz_slope = _slope_at_zero(rows["alpha"], rows["mz"])
+        if np.isfinite(fy_slope) and fy_slope != 0 and np.isfinite(mz_slope):
+            trail = -mz_slope / fy_slope
+            return {"QDZ1": trail * fz0 / (c.UNLOADED_RADIUS * fz)}
+    return {}
+
+
+def _bounds(names, x0, user_bounds):
+    lower = np.full(len(names), -np.inf)
+    upper = np.full(len(names), np.inf)
+    for j, name in enumerate(names):
+        if name in user_bounds:
+            lower[j], upper[j] = user_bounds[name]
+        elif name in DEFAULT_BOUNDS:
+            lower[j], upper[j] = DEFAULT_BOUNDS[name]
+        elif name in ("PKX1", "PKY1") and x0[j] != 0:
+            lower[j], upper[j] = (0.0, np.inf) if x0[j] > 0 else (-np.inf, 0.0)
+    return lower, upper
+
+
+# ------------------------------------------------------------------------------------ the fit
+def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fixed=(), bounds=None, weights=None,
+                      max_nfev=200):
+    """Fit a Magic Formula to measured forces and moments, stage by stage.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame or mapping of str to array_like
+        Canonical columns of :func:`vehdyn.tire.read_tire_data` (ISO-W, SI, radians): ``fz``
+        [N] and the slips (``kappa`` [-], ``alpha``, ``gamma`` [rad]; missing ones are 0),
+        ``vx`` [m/s] and ``pressure`` [Pa] (missing: the file's LONGVL and NOMPRES), and the
+        measured ``fx``, ``fy`` [N], ``mz``, ``mx``, ``my`` [N*m]. Rows with NaN are dropped (the
+        count is in :attr:`TireFit.messages`).
+    version : {"6.1", "6.2", "5.2"}
+        Magic Formula version of the result (ignored when ``start`` is given: its version).
+    start : MagicFormula, TirParameters, str or pathlib.Path, optional
+        Start coefficients and every parameter the fit does not touch (dimensions, stiffness): a
+        model, parameters, a ``.tir`` path or the name of a shipped tire (:func:`~vehdyn.tire.load_tire`).
+        None: MFeval's defaults, with the pure-slip peak, slope at zero and shape factor and
+        the trail at zero slip read from the data, and FNOMIN, LONGVL, NOMPRES set from it.
+    stages : sequence of str
+        Stages to run, in order (see :data:`vehdyn.tire.fitting.STAGES`): ``"pure_longitudinal"``,
+        ``"pure_lateral"``, ``"aligning"``, ``"combined"``, ``"overturning"``,
+        ``"rolling_resistance"``. A stage whose columns the data lack is skipped with a message.
+    fixed : sequence of str
+        Coefficients held at their start values.
+    bounds : dict of str to (float, float), optional
+        Bounds of coefficients, overriding :data:`DEFAULT_BOUNDS`.
+    weights : array_like, optional
+        One non-negative weight per row of ``data`` (multiplies the residuals).
+    max_nfev : int
+        Function evaluations per step (each Jacobian counts as one).
+
+    Returns
+    -------
+    TireFit
+        The fitted :class:`~vehdyn.tire.MagicFormula` and per stage its coefficients, errors,
+        coefficients at a bound and the Jacobian's condition.
+
+    Raises
+    ------
+    ParameterError
+        Unknown version, stage or coefficient name, bad bounds or weights, data without ``fz``,
+        or a stage with fewer points than coefficients.
+
+    Warns
+    -----
+    VehdynWarning
+        When coefficients are not identifiable from the data (no load, camber or pressure sweep,
+        or an ill-conditioned Jacobian).
+    """
+    from ..magic_formula import MagicFormula
+
+    if version not in ("5.2", "6.1", "6.2"):
+        raise ParameterError(f"version must be '5.2', '6.1' or '6.2', got {version!r}", key="version", value=version)
+    stages = (stages,) if isinstance(stages, str) else tuple(stages)
+    for stage in stages:
+        if stage not in STAGES:
+            raise ParameterError(f"unknown stage {stage!r}; stages are {', '.join(STAGE_NAMES)}", key="stages",
+                                 value=stage)
+    bounds = dict(bounds or {})
+    all_owned = {n for s in STAGE_NAMES for _, names in STAGES[s].steps for n in names}
+    for name in list(fixed) + list(bounds):
+        if name not in all_owned:
+            raise ParameterError(f"{name!r} is not a coefficient any stage fits", key="fixed" if name in fixed
+                                 else "bounds", value=name)
+    for name, pair in bounds.items():
+        try:
+            low, high = (float(v) for v in pair)
+        except (TypeError, ValueError):
+            raise ParameterError(f"bounds[{name!r}] must be (lower, upper), got {pair!r}", key="bounds",
+                                 value=pair) from None
+        if not low < high:
+            raise ParameterError(f"bounds[{name!r}]: lower must be < upper, got {pair!r}", key="bounds", value=pair)
+        bounds[name] = (low, high)
+    messages = []
+    columns = _as_columns(data)
+    if weights is not None:
+        w = np.asarray(weights, dtype=float).ravel()
+        if w.shape != columns["fz"].shape or not np.all(np.isfinite(w)) or np.any(w < 0):
+            raise ParameterError(f"weights must be {columns['fz'].size} finite values >= 0", key="weights",
+                                 value=w.shape)
+        columns["_weight"] = w
+    columns = _drop_nan(columns, messages)
+    if columns["fz"].size == 0:
+        raise ParameterError("data has no finite rows", key="data", value=0)
+    params = _template(version, start, columns, messages)
+    version = params.version
+    model = MagicFormula(params)
+    c = model._c
+    n = columns["fz"].size
+    full = {"fz": columns["fz"], "kappa": columns.get("kappa", np.zeros(n)), "alpha": columns.get("alpha", np.zeros(n)),
+            "gamma": columns.get("gamma", np.zeros(n)), "vx": columns.get("vx", np.full(n, c.LONGVL)),
+            "pressure": columns.get("pressure", np.full(n, c.INFLPRES))}
+    for out in ("fx", "fy", "mx", "my", "mz"):
+        if out in columns:
+            full[out] = columns[out]
+    row_weights = columns.get("_weight")
+    results = {}
+    for stage in stages:
+        began = time.perf_counter()
+        result, c = _fit_stage(stage, version, c, full, row_weights, set(fixed), bounds, start is None, max_nfev,
+                               messages, results)
+        result.seconds = time.perf_counter() - began
+        results[stage] = result
+    fitted = {name: getattr(c, name) for r in results.values() for name in r.coefficients}
+    sections = {s: dict(kv) for s, kv in params.sections.items()}
+    _set_values(sections, params.values, fitted)
+    from ..tir import TirParameters
+
+    tire = MagicFormula(TirParameters(sections, tables=params.tables))
+    return TireFit(tire=tire, stages=results, messages=messages, data=full)
+
+
+def _select(stage, rows):
+    kind = STAGES[stage].selection
+    n = rows["fz"].size
+    if kind == "pure_longitudinal":
+        return np.abs(rows["alpha"]) < PURE_SLIP_ANGLE
+    if kind == "pure_lateral":
+        return np.abs(rows["kappa"]) < PURE_SLIP_RATIO
+    if kind == "combined":
+        return np.abs(rows["kappa"]) >= PURE_SLIP_RATIO
+    return np.ones(n, dtype=bool)
+
+
+def _step_rows(step, rows, c):
+    """The points of one step: nominal load, zero camber and nominal pressure as far as the data vary."""
+    keep = np.ones(rows["fz"].size, dtype=bool)
+    if step == "nominal" and _levels_vary(rows["fz"], 0.2 * c.FNOMIN):
+        levels = _load_levels(rows["fz"])
+        nearest = levels[np.argmin(np.abs(levels - c.FNOMIN))]  # the load level nearest FNOMIN
+        keep &= np.abs(rows["fz"] - nearest) < 0.1 * nearest
+    if step in ("nominal", "load") and _levels_vary(rows["gamma"], 2 * ZERO_CAMBER):
+        keep &= np.abs(rows["gamma"]) < ZERO_CAMBER
+    if step in ("nominal", "load", "camber") and _levels_vary(rows["pressure"], 0.1 * c.NOMPRES):
+        keep &= np.abs(rows["pressure"] - c.NOMPRES) < 0.05 * c.NOMPRES
+    return keep
+
+
+def _sweeps(step, rows, c):
+    """Whether ``rows`` sweep the quantity the load, camber or pressure step needs."""
+    column = STEP_VARIATION[step]
+    span = {"fz": 0.2 * c.FNOMIN, "gamma": 2 * ZERO_CAMBER, "pressure": 0.1 * c.NOMPRES}[column]
+    return _levels_vary(rows[column], span)
+
+
+def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physical, max_nfev, messages, done_stages):
+    spec = STAGES[stage]
+    missing = [k for k in spec.needs if k not in full or (k in ("kappa", "alpha") and not np.any(full[k]))]
+    outputs = tuple(o for o in spec.outputs if o in full)
+    if not outputs:
+        missing += [o for o in spec.outputs]
+    if missing:
+        needs = sorted(set(spec.needs) | ({spec.outputs[0]} if len(spec.outputs) == 1 else set()))
+        text = (f"stage {stage} skipped: it needs the columns {', '.join(needs)}"
+                + (f" ({' or '.join(spec.outputs)})" if len(spec.outputs) > 1 else "")
+                + f"; missing or all zero: {', '.join(missing)}")
+        messages.append(text)
+        return StageResult(stage, skipped=text), c
+    select = _select(stage, full)
+    if stage == "combined" and not np.any(select & (np.abs(full["alpha"]) >= PURE_SLIP_ANGLE)):
+        select[:] = False  # slip-ratio sweeps at zero slip angle alone do not determine the weighting
+    rows = {k: v[select] for k, v in full.items()}
+    weights = None if row_weights is None else row_weights[select]
+    steps = owned(stage, version)
+    if stage == "combined":
+        # forces first (Gxa, Gyk, SVyk) on the slip-ratio sweeps; then the aligning moment with the
+        # forces held: SSZ (the Fx arm) and, refined on every point, the trail and residual torque
+        # coefficients of the aligning stage, because combined slip evaluates the trail at the
+        # equivalent slip angle sqrt(alpha^2 + (Kxk/Kya)^2 kappa^2), far beyond the slip-angle sweeps
+        forces = tuple(o for o in ("fx", "fy") if o in outputs)
+        groups = [(forces, tuple((s, tuple(n for n in names if _OUTPUT_OF[n[2]] in forces)) for s, names in steps),
+                   None)] if forces else []
+        if "mz" in outputs:
+            aligned = done_stages.get("aligning")
+            refined = dict(owned("aligning", version)) if aligned is not None and not aligned.skipped else {}
+            mz_steps = tuple((s, tuple(n for n in refined.get(s, ()) if n in aligned.coefficients)
+                              + tuple(n for n in names if n.startswith("SSZ"))) for s, names in steps)
+            groups.append((("mz",), mz_steps, {k: v for k, v in full.items()} if refined else None))
+    else:
+        groups = [(outputs, steps, None)]
+    if rows["fz"].size == 0:
+        text = f"stage {stage} skipped: no {spec.selection.replace('_', ' ')} points in the data"
+        messages.append(text)
+        return StageResult(stage, skipped=text), c
+    n_coefficients = sum(len([n for n in names if n not in fixed]) for _, st, _ in groups for step, names in st
+                         if step == "nominal" or _sweeps(step, rows, c))
+    n_values = rows["fz"].size * len(outputs)
+    if n_values < n_coefficients:
+        raise ParameterError(f"stage {stage}: {rows['fz'].size} points ({n_values} values) for {n_coefficients} "
+                             f"coefficients; the fit needs at least as many values as coefficients", key="data",
+                             value=n_values)
+    fitted, not_identifiable, done, lasts, used = [], {}, [], [], set()
+    for group, group_steps, group_rows in groups:
+        active, last = [], None
+        group_rows = rows if group_rows is None else group_rows
+        group_weights = weights if group_rows is rows else row_weights
+        for step, names in group_steps:
+            if step != "nominal" and not _sweeps(step, group_rows, c):
+                for name in names:
+                    not_identifiable[name] = f"no {STEP_VARIATION[step]} sweep in the {stage} data"
+                continue
+            active += [n for n in names if n not in fixed]
+            keep = _step_rows(step, group_rows, c)
+            sub = {k: v[keep] for k, v in group_rows.items()}
+            w = None if group_weights is None else np.tile(group_weights[keep], len(group))
+            if physical and step == "nominal":
+                start = {k: v for k, v in _physical_start(stage, sub, c).items() if k not in fixed and np.isfinite(v)}
+                c = c._replace(**start)
+            if not active:
+                continue
+            problem = _Problem(c, stage, sub, group, tuple(active), w)
+            x0 = np.array([getattr(c, n) for n in active], dtype=float)
+            lower, upper = _bounds(active, x0, user_bounds)
+            # coefficients without effect on these points (e.g. RBX3: camber only at zero slip angle),
+            # judged away from the start, where a product with a zero coefficient hides an effect
+            probe = np.clip(x0 + 0.1 * np.maximum(np.abs(x0), 0.1), lower, upper)
+            unused = np.linalg.norm(problem.jac(probe, lower, upper), axis=0) == 0
+            used.update(n for n, u in zip(active, unused) if not u)
+            if unused.all():
+                continue
+            if unused.any():  # held in this step (a later step's points may move them)
+                names_used = tuple(n for n, u in zip(active, unused) if not u)
+                problem = _Problem(c, stage, sub, group, names_used, w)
+                x0, lower, upper = x0[~unused], lower[~unused], upper[~unused]
+            last = (_solve(problem, x0, lower, upper, max_nfev), problem, lower, upper)
+            c = problem.coefficients(last[0].x)
+            if step not in done:
+                done.append(step)
+        for name in active:
+            if name not in used:
+                not_identifiable[name] = f"no effect on the {stage} data"
+        fitted += [n for n in active if n in used]
+        if last is not None:
+            lasts.append(last)
+    if not_identifiable:
+        by_reason = {}
+        for name, reason in not_identifiable.items():
+            by_reason.setdefault(reason, []).append(name)
+        for reason, names in by_reason.items():
+            text = f"stage {stage}: {', '.join(names)} not identifiable ({reason}); kept at their start values"
+            messages.append(text)
+            warnings.warn(text, VehdynWarning, stacklevel=3)
+    return _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done, messages), c
+
+
+def _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done, messages):
+    problem = _Problem(c, stage, rows, outputs, tuple(fitted), None)
+    model = problem.model(c)
+    rms, nrms, r2 = {}, {}, {}
+    for out, m, t in zip(outputs, model, problem.targets):
+        err = m - t
+        rms[out] = float(np.sqrt(np.mean(err**2)))
+        nrms[out] = rms[out] / max(float(np.max(np.abs(t))), 1e-12)
+        total = float(np.sum((t - t.mean()) ** 2))
+        r2[out] = 1.0 - float(np.sum(err**2)) / total if total > 0 else float("nan")
+    at_bounds, condition, weak = [], float("nan"), []
+    for result, prob, lower, upper in lasts:
+        x = result.x
+        tol = 1e-6 * np.maximum(np.abs(x), 1.0)
+        at_bounds += [n for n, xi, lo, hi, t in zip(prob.names, x, lower, upper, tol)
+                      if abs(xi - lo) <= t or abs(xi - hi) <= t]
+        jac = np.asarray(result.jac)
+        norms = np.linalg.norm(jac, axis=0)
+        zero = norms == 0
+        scaled = jac[:, ~zero] / norms[~zero]
+        sv = np.linalg.svd(scaled, compute_uv=False) if scaled.size else np.array([1.0])
+        cond = float("inf") if zero.any() or not sv[-1] > 0 else float(sv[0] / sv[-1])
+        condition = cond if np.isnan(condition) else max(condition, cond)
+        if cond > CONDITION_LIMIT:
+            weak += _weak_coefficients(prob.names, scaled, zero)
+    if weak:
+        text = (f"stage {stage}: Jacobian condition {condition:.3g}: coefficients not identifiable from these "
+                f"data (weakest: {', '.join(weak)}); consider fixing them")
+        messages.append(text)
+        warnings.warn(text, VehdynWarning, stacklevel=4)
+    coefficients = {n: float(getattr(c, n)) for n in fitted}
+    return StageResult(stage, coefficients=coefficients, steps=tuple(done), outputs=outputs,
+                       n_points=int(rows["fz"].size), rms=rms, nrms=nrms, r2=r2, at_bounds=tuple(at_bounds),
+                       condition=condition, not_identifiable=dict(not_identifiable), weakest=tuple(weak),
+                       nfev=sum(int(last[0].nfev) for last in lasts))
+
+
+def _weak_coefficients(names, scaled, zero):
+    """The coefficients that dominate the Jacobian's smallest singular direction (and the unused)."""
+    unused = [n for n, z in zip(names, zero) if z]
+    kept = [n for n, z in zip(names, zero) if not z]
+    if not kept:
+        return tuple(unused)
+    _, _, vt = np.linalg.svd(scaled, full_matrices=False)
+    v = np.abs(vt[-1])
+    order = np.argsort(v)[::-1]
+    return list(unused + [kept[i] for i in order[:3] if v[i] > 0.2])
