@@ -1,7 +1,8 @@
 """FullVehicle on the fidelity ladder: registered, the top rung, the only one for combined scenes.
 
-The full vehicle runs on numpy here (about 3 s of wall time per simulated second on a handling
-scene, far more on a rough road), so the scenes that run it are short.
+The scenes that run the full vehicle are short: its compiled right-hand side (``backend="auto"``)
+takes milliseconds per simulated second, but the driver loop and a machine without numba run it
+on numpy (seconds per simulated second, tens on a rough road).
 """
 
 import numpy as np

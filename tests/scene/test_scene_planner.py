@@ -19,8 +19,7 @@ def below_full_vehicle():
     """The ladder below the full vehicle (SingleTrack and FullCar on top), where the picks of these
     tests hold at the scenes' 2 % tolerance; against the full vehicle (the top rung since issue 12)
     roll, tire relaxation and load transfer put every cheaper handling rung 3-20 % off, see
-    tests/scene/test_scene_full_vehicle.py. Also keeps these tests fast (the full vehicle runs on
-    numpy: seconds per simulated second)."""
+    tests/scene/test_scene_full_vehicle.py."""
     from vehdyn.scene import RUNGS
 
     saved = list(RUNGS)

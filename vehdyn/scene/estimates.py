@@ -118,12 +118,12 @@ COST_PER_SIMULATED_SECOND = {
     "QuarterCar": 1.9e-4,
     "BouncePitch": 1.8e-4,
     "FullCar": 3.2e-4,
-    # numpy right-hand side (RK45, rtol 1e-6, max_step the scene's time step: 0.01 s, on a road
-    # 0.002 s), sedan standard scenes, bench_ladder --repeat 1. On a road the full vehicle costs
-    # over ten times more per second (cornering on a rough road: 30 s/s, priced by the road rung's
-    # entry in estimated_cost). TO RE-MEASURE once the compiled right-hand side is merged.
-    "FullVehicle": 1.8,
-    "FullVehicle(ride)": 24.0,
+    # compiled right-hand side (RK45, rtol 1e-6, max_step the scene's time step: 0.01 s, on a
+    # road 0.002 s); bench_ladder on the three vehicles as above. On a road the handling rung costs
+    # as the ride rung (cornering on a rough road: 2e-2 s/s). The numpy right-hand side costs
+    # about 1.8 and 24 s/s.
+    "FullVehicle": 4.0e-3,
+    "FullVehicle(ride)": 1.6e-2,
 }
 #: The same in the loop of the ISO 3888-1 preview driver (``manoeuvre="iso3888_1"``): every rung,
 #: linear ones included, then runs through ``solve_ivp`` on the driver's nonlinear loop. Measured
@@ -134,7 +134,9 @@ CLOSED_LOOP_COST_PER_SIMULATED_SECOND = {
     "LateralYawRoll": 0.058,
     "SingleTrack(linear tires)": 0.17,
     "SingleTrack": 0.21,
-    "FullVehicle": 3.5,  # numpy right-hand side (sedan, 17 m/s, 8 s); TO RE-MEASURE with the compiled one
+    # the driver loop calls the full vehicle's numpy right-hand side (a compiled loop would need
+    # the driver compiled too): sedan, 17 m/s, 8 s
+    "FullVehicle": 0.48,
 }
 _UNKNOWN_COST = 0.1  # [s/s] a rung not in the table (e.g. a newly registered one) until it is measured
 
