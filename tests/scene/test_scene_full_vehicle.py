@@ -161,3 +161,24 @@ def test_iso3888_driver_steers_the_full_vehicle_like_the_single_track():
     assert offset > 0.2  # the driver has started the lane change (0.35 m by 3 s)
     assert np.max(np.abs(full["y"] - single["y"])) < 0.1 * offset
     assert np.all(np.abs(full["longitudinal_velocity"] / 16.7 - 1.0) < 0.01)
+
+
+def test_no_wrong_pick_on_the_standard_scenes_against_the_full_vehicle():
+    """bench_ladder's first goal on the sedan, with the full vehicle as the reference: the planned
+    rung's measured error is within the tolerance on every standard scene, every rung the plan
+    counts within the tolerance is so when measured, and the handling rungs' estimates are within
+    a factor 3 of their measured errors. Needs the compiled right-hand side (seconds in all)."""
+    pytest.importorskip("numba")
+    bad = []
+    for name, scene in standard_scenes("sedan").items():
+        frame = vehdyn.ladder(scene)
+        assert frame.loc[frame["reference"], "rung"].item().startswith("FullVehicle"), name
+        planned = frame[frame["planned"]].iloc[0]
+        assert planned["error"] <= scene.tolerance, (name, planned["rung"], planned["error"])
+        others = frame[~frame["reference"]]
+        trusted = others[others["estimated_error"] <= scene.tolerance]
+        assert np.all(trusted["error"] <= scene.tolerance), (name, trusted[["rung", "error"]])
+        if scene.kind == "handling":
+            ratio = (others["estimated_error"] / others["error"]).to_numpy()
+            bad += [(name, r) for r, q in zip(others["rung"], ratio) if np.isfinite(q) and not 1 / 3 <= q <= 3]
+    assert not bad, bad
