@@ -1,6 +1,7 @@
 """The fidelity ladder on the standard scenes: cost and error of every rung, the plan's pick.
 
-Run: ``python benchmarks/bench_ladder.py [vehicle ...]`` (default: sedan). For each standard scene
+Run: ``python benchmarks/bench_ladder.py [vehicle ...] [--repeat N] [--scenes a,b]`` (default: sedan,
+best of 3; ``--repeat 1`` when the full vehicle runs on numpy: minutes per road scene). For each standard scene
 (:func:`vehdyn.scene.standard.standard_scenes`: gentle and limit step steer, sine with dwell, lane
 change at 60 and 100 km/h, circle to the limit, braking in a turn, smooth and rough roads at two
 speeds, a pothole, cornering on a rough road) it runs ``vehdyn.ladder`` (every admissible rung,
@@ -29,7 +30,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 
-def main(vehicles) -> None:
+def main(vehicles, repeat: int = 3, only=None) -> None:
     import pandas as pd
 
     import vehdyn
@@ -41,7 +42,9 @@ def main(vehicles) -> None:
     matrix, goals, calibration, costs = [], [], [], []
     for name_v in vehicles:
         for name, scene in standard_scenes(name_v).items():
-            frame = vehdyn.ladder(scene, repeat=3)
+            if only and name not in only:
+                continue
+            frame = vehdyn.ladder(scene, repeat=repeat)
             planned = frame[frame["planned"]].iloc[0]
             reference = frame[frame["reference"]].iloc[0]
             goals.append({"vehicle": name_v, "scene": name, "planned": planned["rung"],
@@ -49,6 +52,7 @@ def main(vehicles) -> None:
                           "within_tolerance": bool(planned["error"] <= scene.tolerance),
                           "cost_ratio": planned["wall_time_s"] / reference["wall_time_s"],
                           "cost_goal": bool(planned["wall_time_s"] <= 0.1 * reference["wall_time_s"])})
+            print(f"{name_v} {name}: {time.perf_counter() - start:.0f} s", file=sys.stderr, flush=True)
             for _, row in frame.iterrows():
                 matrix.append({"vehicle": name_v, "scene": name, "rung": row["rung"] + (" *" if row["planned"] else ""),
                                "wall_time_s": row["wall_time_s"], "error": row["error"],
@@ -84,4 +88,11 @@ def main(vehicles) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:] or ["sedan"])
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("vehicles", nargs="*", default=["sedan"])
+    parser.add_argument("--repeat", type=int, default=3, help="runs per rung (the best is reported)")
+    parser.add_argument("--scenes", default=None, help="comma-separated standard scene names (default: all)")
+    args = parser.parse_args()
+    main(args.vehicles, args.repeat, args.scenes.split(",") if args.scenes else None)

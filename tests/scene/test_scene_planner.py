@@ -14,7 +14,21 @@ LINEAR = {"SteadyState", "LinearBicycle", "LinearBicycle+lag", "LateralYawRoll"}
 RIDE = {"QuarterCar", "BouncePitch", "FullCar"}
 
 
-def test_gentle_lane_change_picks_a_linear_rung_within_tolerance():
+@pytest.fixture
+def below_full_vehicle():
+    """The ladder below the full vehicle (SingleTrack and FullCar on top), where the picks of these
+    tests hold at the scenes' 2 % tolerance; against the full vehicle (the top rung since issue 12)
+    roll, tire relaxation and load transfer put every cheaper handling rung 3-20 % off, see
+    tests/scene/test_scene_full_vehicle.py."""
+    from vehdyn.scene import RUNGS
+
+    saved = list(RUNGS)
+    RUNGS[:] = [r for r in RUNGS if not r.model.startswith("vehdyn.full_vehicle")]
+    yield
+    RUNGS[:] = saved
+
+
+def test_gentle_lane_change_picks_a_linear_rung_within_tolerance(below_full_vehicle):
     scene = standard_scenes("sedan")["lane_change_60"]
     p = vehdyn.plan(scene)
     mu_g = vehdyn.load_vehicle("sedan").tires.friction_coefficient * 9.81
@@ -35,7 +49,7 @@ def test_limit_manoeuvres_never_pick_a_linear_rung(vehicle, name):
     assert "tire_saturation" in p.needs
 
 
-def test_road_scene_picks_a_ride_model():
+def test_road_scene_picks_a_ride_model(below_full_vehicle):
     scene = Scene(road="D", speed=15.0, duration=1.0, outputs=("sprung_acceleration",))
     p = vehdyn.plan(scene)
     assert p.chosen.rung.name in RIDE
@@ -44,7 +58,7 @@ def test_road_scene_picks_a_ride_model():
     assert out.verified_error["sprung_acceleration"] <= scene.tolerance
 
 
-def test_one_sided_pothole_needs_the_full_car_at_the_corner():
+def test_one_sided_pothole_needs_the_full_car_at_the_corner(below_full_vehicle):
     """The mean-track models cannot see roll: at the left front corner they are far off."""
     scene = standard_scenes("sedan")["pothole"]
     assert vehdyn.plan(scene).chosen.rung.name == "FullCar"
@@ -62,7 +76,7 @@ def test_output_no_rung_has_lists_who_has_what():
     assert "FullCar (no road input)" in message
 
 
-def test_estimates_within_a_factor_3_of_the_verified_errors():
+def test_estimates_within_a_factor_3_of_the_verified_errors(below_full_vehicle):
     """Every non-reference rung of every standard scene (sedan): estimated / measured in [1/3, 3]
     (or both below 1e-4, where the reference's own numerical error is the scale)."""
     bad = []
@@ -136,9 +150,10 @@ def test_ride_rungs_agree_where_physics_says_they_must():
         rows = {r.rung.name: r for r in vehdyn.plan(scene).rows}
         a, b = (rows[n].setup.run()["sprung_acceleration"] for n in pair)
         assert relative_error(a, b) < 1e-9
-    # and the quarter cars' estimate vanishes with the coupling
+    # and the quarter cars' estimate of the coupling vanishes: they are estimated as the half car
     p = vehdyn.plan(Scene(vehicle=di_one, road="C", speed=20.0, duration=1.0, outputs=("sprung_acceleration",)))
-    assert {r.rung.name: r for r in p.rows}["QuarterCar"].estimated_error < 1e-5
+    rows = {r.rung.name: r for r in p.rows}
+    assert abs(rows["QuarterCar"].estimated_error - rows["BouncePitch"].estimated_error) < 1e-5
 
 
 def test_relative_error_closed_form():
@@ -182,7 +197,7 @@ def test_plot_ladder():
         vehdyn.ladder(Scene(manoeuvre="step_steer", duration=1.0), repeat=0)
 
 
-def test_braking_needs_the_longitudinal_rungs():
+def test_braking_needs_the_longitudinal_rungs(below_full_vehicle):
     scene = Scene(manoeuvre="straight_braking", speed=25.0, duration=2.0,
                   outputs=("longitudinal_acceleration", "longitudinal_velocity"))
     p = vehdyn.plan(scene)
@@ -198,7 +213,7 @@ def test_braking_needs_the_longitudinal_rungs():
     assert max(out.verified_error.values()) <= scene.tolerance
 
 
-def test_double_lane_change_with_the_driver_plans_a_nonlinear_rung():
+def test_double_lane_change_with_the_driver_plans_a_nonlinear_rung(below_full_vehicle):
     scene = Scene(manoeuvre="iso3888_1", speed=16.7, duration=8.0, outputs=("yaw_rate",))
     p = vehdyn.plan(scene)
     assert p.chosen.rung.name == "SingleTrack"
@@ -222,7 +237,7 @@ def test_wheel_torque_input_has_no_rung_on_this_ladder():
         vehdyn.plan(scene)
 
 
-def test_a_top_rung_with_every_phenomenon_leaves_the_ride_pick_alone():
+def test_a_top_rung_with_every_phenomenon_leaves_the_ride_pick_alone(below_full_vehicle):
     """What wiring FullVehicle does: a top rung on the ride ladder that also has the handling
     phenomena. With no steer those are not excited, so the estimates stay those of the ride rungs."""
     from vehdyn.model import PHENOMENA

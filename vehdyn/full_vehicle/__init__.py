@@ -8,10 +8,12 @@ Modules: :mod:`~vehdyn.full_vehicle.body` (sprung body and the wheels' x-y inert
 :mod:`~vehdyn.full_vehicle.corner` (suspension, linkage, tire load, camber),
 :mod:`~vehdyn.full_vehicle.steering`, :mod:`~vehdyn.full_vehicle.driveline`,
 :mod:`~vehdyn.full_vehicle.aero`, :mod:`~vehdyn.full_vehicle.assembly` (the shared equations),
-:mod:`~vehdyn.full_vehicle.model` (the Model), :mod:`~vehdyn.full_vehicle.operating_points` (trim).
+:mod:`~vehdyn.full_vehicle.model` (the Model), :mod:`~vehdyn.full_vehicle.operating_points` (trim),
+:mod:`~vehdyn.full_vehicle.ladder` (its rungs on the fidelity ladder of :mod:`vehdyn.scene`).
 """
 
 from .corner import CORNERS
+from .ladder import ladder_setup
 from .model import FullVehicle
 
-__all__ = ["FullVehicle", "CORNERS"]
+__all__ = ["FullVehicle", "CORNERS", "ladder_setup"]

@@ -24,7 +24,12 @@ error (the steady-state algebra's missing transient). The estimates are of two k
   dynamic index (Gillespie 1992, ch. 5: the front and rear ends decouple at DI = 1); the roll a
   mean-track ride model misses at a corner grows with the road's left-right asymmetry
   max |z_l - z_r| / max(|z_l| + |z_r|), while the heave and pitch at the sprung CG of a left-right
-  symmetric vehicle do not see it at all (zero).
+  symmetric vehicle do not see it at all (zero); against a reference with roll and the tire law
+  (the full vehicle), a rung without roll also misses the axle side force that the lateral load
+  transfer takes through the tire's load sensitivity (a gain times that deficit at the linear
+  probe's peak a_y and slip angles); a linear ride rung against the full vehicle misses the wheel
+  lifting off where its linear tire goes into tension (a floor plus a gain times the largest
+  tension over the static wheel load of the linear ride probes, which the plan runs on a road).
 
 A phenomenon without an estimate gives NaN: such a rung is never picked. In closed loop (the
 ISO 3888-1 driver) every estimate is multiplied by ``closed_loop_factor``.
@@ -79,6 +84,23 @@ THRESHOLDS = {
     # (LinearBicycle), 4.9 (LinearBicycle+lag), 1.1 (SingleTrack linear tires); 5 keeps every
     # estimate conservative there. Not part of the 12 standard scenes (open-loop lane changes).
     "closed_loop_factor": 5.0,
+    # a rung without roll against a reference with roll and the tire law (FullVehicle): error
+    # beyond the roll probes' / axle side-force deficit of the lateral load transfer
+    # (estimates.lateral_load_transfer_deficit) at the linear probe's peak a_y and slip angles.
+    # bench_ladder sedan, SingleTrack against FullVehicle: deficit 0.31 / 0.26 / 0.11 / 0.017 and
+    # error left after the roll probes 0.14 / 0.13 / 0.07 / 0.022 in the circle to the limit, limit
+    # step steer, sine with dwell, lane change at 100 km/h
+    "load_transfer_gain": 0.5,
+    # a linear ride rung against the full vehicle (nonlinear contact): error = floor + gain * the
+    # largest tension of the linear probe's tires over the static wheel load (estimates.tire_lift;
+    # the full vehicle lifts that wheel off). bench_ladder sedan with FullVehicle(ride) as the
+    # reference: no tension on class-B roads, errors 0.0013-0.0028 (compact: 0.0072-0.0105; the
+    # floor, their geometric mean: gravity's pitch moment and the wheels' pitch inertia, which the
+    # linear ride models leave out, shift the heave and pitch modes by 1.5-2 %); class D at 54 and
+    # 108 km/h: tension 0.40 and 1.03, errors 0.038 and 0.10 (compact 0.09, 0.13); the pothole:
+    # tension 1.44, FullCar error 0.39 at the CG (compact 0.45)
+    "tire_lift_floor": 3.7e-3,
+    "tire_lift_gain": 0.15,
     # floor of every estimate: integration error of the references (rtol 1e-8, exact linear)
     "numerical_error": 1e-6,
 }
@@ -96,6 +118,12 @@ COST_PER_SIMULATED_SECOND = {
     "QuarterCar": 1.9e-4,
     "BouncePitch": 1.8e-4,
     "FullCar": 3.2e-4,
+    # compiled right-hand side (RK45, rtol 1e-6, max_step the scene's time step: 0.01 s, on a
+    # road 0.002 s); bench_ladder on the three vehicles as above. On a road the handling rung costs
+    # as the ride rung (cornering on a rough road: 2e-2 s/s). The numpy right-hand side costs
+    # about 1.8 and 24 s/s.
+    "FullVehicle": 4.0e-3,
+    "FullVehicle(ride)": 1.6e-2,
 }
 #: The same in the loop of the ISO 3888-1 preview driver (``manoeuvre="iso3888_1"``): every rung,
 #: linear ones included, then runs through ``solve_ivp`` on the driver's nonlinear loop. Measured
@@ -106,6 +134,9 @@ CLOSED_LOOP_COST_PER_SIMULATED_SECOND = {
     "LateralYawRoll": 0.058,
     "SingleTrack(linear tires)": 0.17,
     "SingleTrack": 0.21,
+    # the driver loop calls the full vehicle's numpy right-hand side (a compiled loop would need
+    # the driver compiled too): sedan, 17 m/s, 8 s
+    "FullVehicle": 0.48,
 }
 _UNKNOWN_COST = 0.1  # [s/s] a rung not in the table (e.g. a newly registered one) until it is measured
 
@@ -168,6 +199,42 @@ def tire_deficit(vehicle, slip_angles, tire_name=None) -> float:
         linear = 0.5 * getattr(vehicle.tires, f"{axle}_cornering_stiffness") * alpha
         law = float(_axle_tire_forces(tires[axle], 0.5 * load, alpha))
         worst = max(worst, abs(1.0 - law / linear))
+    return worst
+
+
+def lateral_load_transfer_deficit(vehicle, lateral_acceleration, slip_angles, tire_name=None) -> float:
+    """Relative loss of axle side force from the lateral load transfer a rung without roll misses [-].
+
+    The steady load transfer per wheel of each axle (Gillespie 1992, eq. 8-?? of the roll chapter:
+    dF_z,i = m a_y / t_i [h_1 K_i / (K_f + K_r - m g h_1) + (l_j / L) z_i], with h_1 the CG height
+    above the roll axis, K_i the suspension roll stiffnesses, z_i the roll-centre heights and l_j
+    the distance of the other axle from the CG), and the tire law's side force of the axle's two
+    tires at the shifted loads against twice the force at the static wheel load, at the linear
+    probe's peak |slip angle| of the axle: max over the axles of
+    |1 - (F(F_z + dF_z) + F(F_z - dF_z)) / (2 F(F_z))|. Load sensitivity makes this positive
+    (the axle loses force as load transfers; near the limit the full vehicle's limit lateral
+    acceleration falls by about as much).
+    """
+    m, g = vehicle.mass, vehicle.geometry
+    mass, a_y = m.mass, abs(float(lateral_acceleration))
+    kf, kr = vehicle.front_roll_stiffness, vehicle.rear_roll_stiffness
+    zf, zr = g.front_roll_centre_height, g.rear_roll_centre_height
+    h1 = m.cg_height - (zf + (zr - zf) * g.a / g.wheelbase)
+    denominator = kf + kr - mass * GRAVITY * h1
+    if denominator <= 0:
+        return 1.0
+    loads = vehicle.static_axle_loads(GRAVITY)
+    tires = _tires(vehicle, tire_name)
+    worst = 0.0
+    for axle, k, z, lever, track, load, alpha in (("front", kf, zf, g.b, g.front_track, loads[0], slip_angles[0]),
+                                                  ("rear", kr, zr, g.a, g.rear_track, loads[1], slip_angles[1])):
+        shift = mass * a_y / track * (h1 * k / denominator + lever / g.wheelbase * z)
+        static = 0.5 * load
+        alpha = max(abs(float(alpha)), 1e-4)
+        base = float(_axle_tire_forces(tires[axle], static, alpha))
+        outer = float(_axle_tire_forces(tires[axle], static + shift, alpha))
+        inner = float(_axle_tire_forces(tires[axle], static - shift, alpha)) if shift < static else 0.0
+        worst = max(worst, abs(1.0 - (outer + inner) / (2.0 * base)))
     return worst
 
 
@@ -262,6 +329,23 @@ def dynamic_index_coupling(vehicle) -> float:
     m, g = vehicle.mass, vehicle.geometry
     a, b = g.sprung_cg_to_front_axle, g.sprung_cg_to_rear_axle
     return abs(1.0 - m.sprung_pitch_inertia / (m.sprung_mass * a * b))
+
+
+def tire_lift(probe, vehicle) -> float:
+    """Largest tension of a linear ride model's tires, relative to the static wheel load [-].
+
+    max over the wheels and time of max(0, -(F_static + dF_z)) / F_static, with dF_z the probe's
+    ``dynamic_tire_load*`` outputs and F_static half the static axle load of the wheel's axle. A
+    linear tire pulls the wheel down where a real one lifts off (zero load): positive values mean
+    the linear ride rungs miss a wheel lift that the full vehicle makes.
+    """
+    loads = vehicle.static_axle_loads(GRAVITY)
+    worst = 0.0
+    for name in probe.output_names:
+        if name.startswith("dynamic_tire_load"):
+            static = 0.5 * (loads[0] if "front" in name else loads[1])
+            worst = max(worst, float(np.max(-(static + np.asarray(probe[name], dtype=float)))) / static)
+    return worst
 
 
 def road_asymmetry(road) -> float:

@@ -6,9 +6,9 @@ top admissible rung is the reference) and a builder ``build(drive) -> Setup`` th
 for a scene and runs it on the scene's inputs. The planner knows nothing model-specific: adding a
 model to the ladder is one :func:`register_rung` call (or one entry below) beside its builder.
 
-A rung whose module cannot be imported is skipped (``available`` is False): the entries for
-``vehdyn.full_vehicle.FullVehicle`` wait here for that module, whose ``ladder_setup(drive)``
-function they call.
+A rung whose module cannot be imported is skipped (``available`` is False). The entries for
+``vehdyn.full_vehicle.FullVehicle`` call that module's ``ladder_setup(drive, ladder)``
+(:mod:`vehdyn.full_vehicle.ladder`).
 
 The builder contract: ``build(drive, **options) -> Setup``. ``drive`` is a
 :class:`~vehdyn.scene.drive.Drive`: ``vehicle``, ``scene`` (speed, duration, tire, ...), ``time``
@@ -436,12 +436,13 @@ for _rung in (
          description="half car in pitch, mean track"),
     Rung("FullCar", "vehdyn.ride.full_car:FullCar", "ride", 30, build_full_car, linear=True,
          description="7-DOF full car, both tracks"),
-    # The top rung of both ladders (full-vehicle issue): skipped until vehdyn.full_vehicle exists;
-    # that module provides ladder_setup(drive) -> Setup with the contract of the builders above.
+    # The top rung of both ladders: vehdyn.full_vehicle.ladder_setup(drive, ladder) -> Setup with the
+    # contract of the builders above (the handling rung answers every scene with a ground-plane
+    # input, road or not; the ride rung the road-only scenes).
     Rung("FullVehicle", "vehdyn.full_vehicle:FullVehicle", "handling", 100, "vehdyn.full_vehicle:ladder_setup",
-         description="6-DOF body, four corners, wheel spin"),
+         options={"ladder": "handling"}, description="6-DOF body, four corners, wheel spin"),
     Rung("FullVehicle(ride)", "vehdyn.full_vehicle:FullVehicle", "ride", 100, "vehdyn.full_vehicle:ladder_setup",
-         description="6-DOF body, four corners, wheel spin"),
+         options={"ladder": "ride"}, description="6-DOF body, four corners, wheel spin"),
 ):
     register_rung(_rung)
 del _rung
