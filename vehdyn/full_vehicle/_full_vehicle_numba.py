@@ -17,9 +17,10 @@ float forms of the mechanics layer's numpy functions:
   or the linear law.
 
 The compiled rhs also does what :meth:`FullVehicle.rhs` does around the equations: NaN derivatives
-for a trial state outside the domain (the step is rejected; :func:`vehdyn.simulate` locates a real
-crossing and raises :class:`~vehdyn.full_vehicle.assembly.DomainError`) and the road of a :class:`~vehdyn.ride.RoadProfile` under each contact point (its
-elevation and slope samples interpolated with ``np.interp``, as :meth:`RoadProfile.sample`). Roads
+for a trial state far beyond the domain (the step is rejected; :func:`vehdyn.simulate` locates a
+real crossing and raises :class:`~vehdyn.full_vehicle.assembly.DomainError`) and the road of a
+:class:`~vehdyn.ride.RoadProfile` under each contact point (its elevation and slope samples
+interpolated with ``np.interp``, as :meth:`RoadProfile.sample`). Roads
 and friction given as Python callables have no compiled form: the model then refuses the compiled
 backend and says so.
 

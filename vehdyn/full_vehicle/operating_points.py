@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError, SimulationError
+from ..errors import ParameterError
 from .corner import CORNERS
 
 __all__ = ["trim"]
@@ -139,10 +139,9 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
 
     def residual(z):
         x, u = unpack(z)
-        try:
-            d = model.rhs(0.0, x, u)
-        except SimulationError:  # the iterate left the model's domain (rolled over): push it back
+        if np.any(model._outside_domain(x)):  # the iterate left the model's domain (rolled over): push it back
             return np.full(z.size, 1e6)
+        d = model.rhs(0.0, x, u)
         if a_x != 0.0:
             d = d.copy()
             d[scaling] -= x[scaling] * d[lon] / x[lon]
@@ -170,6 +169,8 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
             e = np.zeros_like(z)
             e[j] = h
             J[:, j] = (residual(z + e) - residual(z - e)) / (2 * h)
+        if not np.all(np.isfinite(J)):
+            break
         z = z - np.linalg.lstsq(J, r, rcond=None)[0]
     worst = float(np.max(np.abs(residual(z))))
     if not np.isfinite(worst) or worst > tol:
