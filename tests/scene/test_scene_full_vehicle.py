@@ -182,3 +182,18 @@ def test_no_wrong_pick_on_the_standard_scenes_against_the_full_vehicle():
             ratio = (others["estimated_error"] / others["error"]).to_numpy()
             bad += [(name, r) for r, q in zip(others["rung"], ratio) if np.isfinite(q) and not 1 / 3 <= q <= 3]
     assert not bad, bad
+
+
+def test_a_vehicle_the_full_vehicle_refuses_leaves_the_other_rungs_admissible():
+    """A vehicle whose masses do not add up (a sweep varying mass.mass alone) cannot build a
+    FullVehicle: that rung is inadmissible with the reason, the others still answer."""
+    vehicle = vehdyn.load_vehicle("sedan").replace(mass__mass=1400.0)
+    with pytest.raises(vehdyn.ParameterError):
+        vehdyn.full_vehicle.FullVehicle(vehicle)
+    scene = vehdyn.Scene(vehicle=vehicle, manoeuvre="step_steer", speed=20.0, duration=1.0, outputs=("yaw_rate",))
+    p = vehdyn.plan(scene)
+    rows = p.to_frame()
+    full = rows[rows["model"] == "FullVehicle"]
+    assert len(full) and not full["admissible"].any()
+    assert full["reason"].str.contains("cannot build the model for this vehicle: mass").any()
+    assert p.chosen.rung.name != "FullVehicle" and p.chosen.admissible

@@ -136,6 +136,8 @@ def _assess(rung: Rung, drive, scene) -> RungAssessment:
         return RungAssessment(rung, False, str(exc))
     except SimulationError as exc:  # e.g. no steady turn at the requested lateral acceleration
         return RungAssessment(rung, False, f"cannot start the scene: {exc}")
+    except ParameterError as exc:  # the vehicle lacks what this model needs (e.g. consistent masses)
+        return RungAssessment(rung, False, f"cannot build the model for this vehicle: {exc}")
     resolved = {o: _resolve_output(o, setup.output_names) for o in scene.outputs}
     missing = [o for o, m in resolved.items() if m is None]
     if missing:
