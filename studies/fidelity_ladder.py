@@ -3,13 +3,13 @@
 Every standard scene (vehdyn.scene.standard_scenes: step steer gentle and at the limit, sine with
 dwell, lane changes at 60 and 100 km/h, a circle to the limit, braking in a turn, smooth and rough
 roads at 54 and 108 km/h, a one-sided pothole, cornering on a rough road) is run on every model
-that can answer it (vehdyn.ladder), for the three shipped vehicles. The error of each model is
+that can answer it (vehdyn.ladder), for the sedan (the three shipped cars: ``python
+benchmarks/bench_ladder.py sedan compact van``, too long for the report). The error of each model is
 max |x - x_ref| / max |x_ref| over the scene's outputs against the most complete model that
 answers (the reference), its cost the wall time of one run. The model vehdyn.plan picks without
 running the reference (the cheapest whose estimated error is within the 2 % tolerance) is marked;
-the table gives its measured error and its cost relative to the reference. The references are
-those of this version's ladder (the nonlinear single track for handling, the 7-DOF full car for
-ride): the full-vehicle model, when registered, becomes the top of both.
+the table gives its measured error and its cost relative to the reference. The reference is the
+full vehicle (vehdyn.full_vehicle.FullVehicle, compiled), the top of both ladders.
 """
 
 import numpy as np
@@ -25,14 +25,14 @@ QUICK_SCENES = ("gentle_step_steer", "limit_step_steer", "rough_road_54", "potho
 def run(study: Study) -> None:
     import pandas as pd
 
-    vehicles = ["sedan"] if study.quick else vehdyn.shipped_vehicles("passenger_car")
+    vehicles = ["sedan"]  # the three cars: benchmarks/bench_ladder.py
     rows, frames = [], {}
     for vehicle in vehicles:
         scenes = standard_scenes(vehicle)
         if study.quick:
             scenes = {k: v.replace(duration=min(v.duration, 1.5)) for k, v in scenes.items() if k in QUICK_SCENES}
         for name, scene in scenes.items():
-            frame = vehdyn.ladder(scene, repeat=2 if study.quick else 3)  # the first run loads compiled code
+            frame = vehdyn.ladder(scene, repeat=2)  # the first run loads compiled code
             planned = frame[frame["planned"]].iloc[0]
             reference = frame[frame["reference"]].iloc[0]
             rows.append({"vehicle": vehicle, "scene": name, "planned": planned["rung"],
