@@ -1,6 +1,6 @@
 """The ``vehdyn`` command.
 
-``vehdyn report [--out DIR] [--quick] [--only NAME ...]``
+``vehdyn report [--out DIR] [--quick | --full] [--only NAME ...]``
     Run every study in ``studies/`` and write ``DIR/index.html`` with its figures and tables. The
     new report replaces ``DIR`` as a whole once every study has finished
     (:func:`vehdyn.report.build_report`); until then ``DIR`` keeps the previous report.
@@ -75,6 +75,10 @@ def cmd_report(args) -> int:
     if not paths:
         raise _UsageError(f"no studies found{f' in {args.studies}' if args.studies else ''}")
     quick = _quick(args)
+    if getattr(args, "full", False):
+        import os
+
+        os.environ["VEHDYN_FULL"] = "1"  # read by each Study (report.Study.full)
     start = time.perf_counter()
 
     def progress(i, n, name):
@@ -253,6 +257,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("report", help="run every study and write an HTML report")
     p.add_argument("--out", default="report", help="output folder (default: ./report)")
     p.add_argument("--quick", action="store_true", help="small grids (fast; as in CI)")
+    p.add_argument("--full", action="store_true",
+                   help="also the heavy series (complete FMVSS 126 with ESC, ...; or VEHDYN_FULL=1)")
     p.add_argument("--only", nargs="+", metavar="NAME", help="run only these studies")
     p.add_argument("--studies", default=None, help=argparse.SUPPRESS)
     p.set_defaults(func=cmd_report)

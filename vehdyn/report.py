@@ -60,8 +60,12 @@ from .errors import ParameterError, VehdynError
 __all__ = ["Study", "StudyOutcome", "discover_studies", "run_study", "write_report", "build_report"]
 
 
+def _flag_from_env(name: str) -> bool:
+    return os.environ.get(name, "").strip() not in ("", "0", "false", "False")
+
+
 def _quick_from_env() -> bool:
-    return os.environ.get("VEHDYN_QUICK", "").strip() not in ("", "0", "false", "False")
+    return _flag_from_env("VEHDYN_QUICK")
 
 
 @dataclass
@@ -76,12 +80,20 @@ class Study:
         Folder for its files.
     quick : bool
         Small grids (CI and ``--quick``).
+    full : bool
+        The heavy series that would take the default report past a few minutes (a complete
+        FMVSS 126 series with ESC on every car, ...): ``vehdyn report --full`` or ``VEHDYN_FULL=1``.
+        Without it such a study runs a representative subset and says so.
     """
 
     name: str
     out_dir: Path
     quick: bool = False
     items: list = field(default_factory=list)
+
+    @property
+    def full(self) -> bool:
+        return not self.quick and _flag_from_env("VEHDYN_FULL")
 
     def __post_init__(self):
         self.out_dir = Path(self.out_dir)

@@ -411,3 +411,19 @@ def test_atomic_write_handle_name_is_the_temporary_path_a_path_writer_can_use(tm
         assert Path(handle.name).suffix == ".csv" and not target.exists()
         Path(handle.name).write_text("a,b\n1,2\n")  # a writer that opens the path itself
     assert target.read_text() == "a,b\n1,2\n" and sorted(p.name for p in tmp_path.iterdir()) == ["table.csv"]
+
+
+def test_full_flag_reaches_studies_and_quick_wins(tmp_path, monkeypatch):
+    """`vehdyn report --full` (or VEHDYN_FULL=1) turns on the heavy series; --quick always wins."""
+    from vehdyn.report import Study
+
+    monkeypatch.delenv("VEHDYN_FULL", raising=False)
+    assert not Study("s", tmp_path / "a").full
+    monkeypatch.setenv("VEHDYN_FULL", "1")
+    assert Study("s", tmp_path / "b").full and not Study("s", tmp_path / "c", quick=True).full
+    monkeypatch.setenv("VEHDYN_FULL", "0")
+    assert not Study("s", tmp_path / "d").full
+    monkeypatch.delenv("VEHDYN_FULL")
+    from vehdyn.cli import build_parser
+
+    assert build_parser().parse_args(["report", "--full"]).full
