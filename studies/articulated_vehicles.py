@@ -37,7 +37,7 @@ def run(study: Study) -> None:
     tractor, semi = vehdyn.load_vehicle("tractor"), vehdyn.load_trailer("semitrailer")
     base = car_trailer_parameters(car, caravan)
     lt = base.trailer_wheelbase
-    n = 9 if study.quick else 41
+    n = 9 if not study.full else 41
 
     # --- critical speed against tongue load, for three yaw inertias
     fraction = np.linspace(-0.04, 0.12, n)  # tongue load / trailer weight = f / l_t
@@ -74,7 +74,7 @@ def run(study: Study) -> None:
     # --- snaking-mode damping against speed
     combos = {"compact + caravan": LinearCarTrailer(car, caravan, 20.0),
               "tractor + semitrailer": LinearCarTrailer(tractor, semi, 20.0)}
-    speeds = np.linspace(5.0, 45.0, 21 if study.quick else 81)
+    speeds = np.linspace(5.0, 45.0, 21 if not study.full else 81)
     fig, axes = new_figure(2, 1, width=7.0, height_per_row=2.8, sharex=True)
     rows = []
     for name, model in combos.items():
@@ -117,7 +117,7 @@ def run(study: Study) -> None:
 
     # --- jackknife and trailer swing of the tractor-semitrailer (nonlinear)
     model = ArticulatedSingleTrack(tractor, semi)
-    t = np.linspace(0.0, 5.0, 251 if study.quick else 1001)
+    t = np.linspace(0.0, 5.0, 251 if not study.full else 1001)
     runs = {
         "free rolling, 20 m/s": (20.0, 0.02, {}),
         "drive axle locked at 1 s": (20.0, 0.02, {"rear_longitudinal_force": np.where(t > 1.0, -1e6, 0.0)}),

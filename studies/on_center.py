@@ -37,8 +37,8 @@ def run(study: Study) -> None:
     import pandas as pd
 
     vehicle = vehdyn.load_vehicle("sedan")
-    cycles = 2 if study.quick else 4
-    metrics = {name: handling.weave_test(vehicle, cycles=cycles, iterations=2 if study.quick else 3, **kw)
+    cycles = 2 if not study.full else 4
+    metrics = {name: handling.weave_test(vehicle, cycles=cycles, iterations=2 if not study.full else 3, **kw)
                for name, kw in CASES.items()}
 
     fig, axes = new_figure(1, 3, width=13.0, height_per_row=3.6)
@@ -80,7 +80,7 @@ def run(study: Study) -> None:
     study.table(table, "weave_metrics", caption="ISO 13674-1 weave metrics (definitions in vehdyn.handling.on_center)")
 
     # --- friction sweep: what the rack friction does to the on-centre feel
-    frictions = np.array([0.0, 1.0, 2.0]) if study.quick else np.linspace(0.0, 3.0, 7)
+    frictions = np.array([0.0, 1.0, 2.0]) if not study.full else np.linspace(0.0, 3.0, 7)
     sweep = [handling.weave_test(vehicle, cycles=cycles, iterations=1, steering_friction_torque=float(tf),
                                  assist_gain=3.0) for tf in frictions]
     fig, axes = new_figure(1, 2, width=10.0, height_per_row=3.2)

@@ -63,7 +63,7 @@ def run(study: Study) -> None:
     import pandas as pd
 
     truth_tire = load_tire("MagicFormula61_Parameters")
-    n_angles, n_ratios = (21, 21) if study.quick else (31, 31)
+    n_angles, n_ratios = (21, 21) if not study.full else (31, 31)
     data = sample_tire(truth_tire, slip_angles=np.radians(np.linspace(-15, 15, n_angles)),
                        slip_ratios=np.linspace(-0.3, 0.3, n_ratios), noise=0.03, seed=2)
     with warnings.catch_warnings(record=True) as caught:
@@ -104,7 +104,7 @@ def run(study: Study) -> None:
                                             "slip-angle sweeps, brush also Fx on the slip-ratio sweeps)")
     for stage, fig in fit.plot().items():
         study.figure(fig, f"fit_{stage}", caption=f"{stage.replace('_', ' ')}: data (dots) and fit (lines) per load")
-    if not study.quick:
+    if study.full:
         every_tire(study, n_angles, n_ratios)
     fitting, held_out = rows["fitting points"], rows["held-out combined points"]
     study.text(f"The fitted Magic Formula recovers the tire's forces to {fitting['fy']:.2f} % (Fy) and "
