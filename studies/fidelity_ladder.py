@@ -15,6 +15,7 @@ full vehicle (vehdyn.full_vehicle.FullVehicle, compiled), the top of both ladder
 import numpy as np
 
 import vehdyn
+from vehdyn._compiled_ode import numba_available
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 from vehdyn.scene import standard_scenes
@@ -29,7 +30,7 @@ def run(study: Study) -> None:
     rows, frames = [], {}
     for vehicle in vehicles:
         scenes = standard_scenes(vehicle)
-        if study.quick:
+        if study.quick or not numba_available():
             scenes = {k: v.replace(duration=min(v.duration, 1.5)) for k, v in scenes.items() if k in QUICK_SCENES}
         for name, scene in scenes.items():
             frame = vehdyn.ladder(scene, repeat=2)  # the first run loads compiled code
@@ -56,6 +57,10 @@ def run(study: Study) -> None:
     table.attrs["units"] = {"error": "-", "estimated_error": "-", "cost_ratio": "-"}
     study.table(table, "planned", caption="The planned model per scene: estimated and measured error against the "
                                           "reference, cost relative to it")
+    if not numba_available():
+        study.text("numba is not installed (pip install \"vehdyn[fast]\"), so the full vehicle runs in numpy, "
+                   "hundreds of times slower: only the scenes " + ", ".join(QUICK_SCENES) + " are run here, "
+                   "shortened to 1.5 s.")
     wrong = table[table["error"] > 0.02]
     cheap = (table["cost_ratio"] <= 0.1).sum()
     study.text(f"Planned model within the 2 % tolerance on {len(table) - len(wrong)} of {len(table)} scenes; "
