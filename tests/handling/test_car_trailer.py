@@ -15,6 +15,19 @@ from vehdyn.handling import CarTrailerParameters, LinearBicycle, LinearCarTraile
 # numbers are typical values (data/trailers/caravan.toml says so line by line): no published
 # measured car–caravan set could be confirmed while writing these tests.
 SHIPPED = car_trailer_parameters(vehdyn.load_vehicle("compact"), vehdyn.load_trailer("caravan"))
+# A PUBLISHED car–trailer set: the "truck and trailer" example of B. P. Minaker's EoM, the companion code of
+# Minaker, *Fundamentals of Vehicle Dynamics and Modelling*, Wiley, 2019 (github.com/BPMinaker/EoM_samples,
+# GPL-3): the model file models/input_ex_truck_trailer.jl (commit c32ed25) gives the light truck (a = 1.289 m,
+# b = 2.885 - 1.289 m, m = 16975/9.81 kg, Iz = 3508 kg m^2, hitch d = 2.7 m behind its CG), the trailer
+# (mt = 2000 kg, It = 3000 kg m^2) and the AXLE cornering stiffnesses ("total") cf = cr = ct = 80 kN/rad; the
+# sample script truck_trailer.jl (commit 5c7d008) places the trailer CG e = 2.9 m behind the hitch and its axle
+# h = 0.1 m behind the CG (a light tongue load: it snakes at about 18 m/s inside the script's 0.4-40 m/s sweep).
+# Every parameter of the linear model is stated there; nothing is assumed. Neither the code nor anything we
+# could read states the critical speed as a number, so it is checked against independent derivations only.
+MINAKER = CarTrailerParameters(mass=16975 / 9.81, yaw_inertia=3508.0, a=1.289, b=2.885 - 1.289,
+                               front_cornering_stiffness=80e3, rear_cornering_stiffness=80e3, hitch_distance=2.7,
+                               trailer_mass=2000.0, trailer_yaw_inertia=3000.0, trailer_hitch_to_cg=2.9,
+                               trailer_cg_to_axle=0.1, trailer_cornering_stiffness=80e3)
 # the textbook-style set of the LinearCarTrailer docstring
 TEXTBOOK = CarTrailerParameters(mass=1500.0, yaw_inertia=2500.0, a=1.1, b=1.6, front_cornering_stiffness=110e3,
                                 rear_cornering_stiffness=120e3, hitch_distance=2.6, trailer_mass=1200.0,
@@ -89,7 +102,8 @@ def independent_critical_speed(p, lo=0.5, hi=100.0):
     return 0.5 * (a + b)
 
 
-@pytest.mark.parametrize("params", [SHIPPED, TEXTBOOK], ids=["compact_caravan", "textbook"])
+@pytest.mark.parametrize("params", [MINAKER, SHIPPED, TEXTBOOK], ids=["minaker_published", "compact_caravan",
+                                                                      "textbook"])
 def test_matrices_and_critical_speed_equal_the_lagrange_derivation(params):
     for u in (3.0, 17.0, 42.0):
         np.testing.assert_allclose(LinearCarTrailer(params, speed=u).A, lagrange_state_matrix(params, u),
@@ -100,6 +114,39 @@ def test_matrices_and_critical_speed_equal_the_lagrange_derivation(params):
     vc = model.critical_speed()
     assert model.snaking_mode(vc).damping_ratio == pytest.approx(0.0, abs=1e-8)
     assert model.snaking_mode(0.95 * vc).damping_ratio > 0 > model.snaking_mode(1.05 * vc).damping_ratio
+
+
+def hurwitz_critical_speed(p, lo=0.5, hi=100.0):
+    """Critical speed from the characteristic polynomial alone (no eigenvalues): the Hopf point of a quartic.
+
+    det(sI - A) = s^4 + a1 s^3 + a2 s^2 + a3 s + a4 (A from the Lagrange derivation above) has a pair of
+    roots on the imaginary axis where the third Hurwitz determinant a1 a2 a3 - a3^2 - a1^2 a4 vanishes
+    (Routh–Hurwitz; e.g. Pacejka 2012, sec. 1.3.3, uses the same criterion for the car–trailer).
+    """
+    from scipy.optimize import brentq
+
+    def hurwitz3(u):
+        _, a1, a2, a3, a4 = np.poly(lagrange_state_matrix(p, u))
+        return a1 * a2 * a3 - a3**2 - a1**2 * a4
+
+    grid = np.linspace(lo, hi, 400)
+    h = np.array([hurwitz3(u) for u in grid])
+    k = np.flatnonzero(h <= 0)[0]
+    return brentq(hurwitz3, grid[k - 1], grid[k], xtol=1e-13, rtol=1e-15)
+
+
+def test_published_set_critical_speed_equals_the_hurwitz_derivation():
+    model = LinearCarTrailer(MINAKER, speed=10.0)
+    vc = model.critical_speed()
+    assert vc == pytest.approx(hurwitz_critical_speed(MINAKER), rel=1e-6)
+    # at that speed the snaking pair sits on the imaginary axis at the Hurwitz frequency sqrt(a3 / a1)
+    _, a1, _, a3, _ = np.poly(lagrange_state_matrix(MINAKER, vc))
+    assert model.snaking_mode(vc).frequency_hz == pytest.approx(math.sqrt(a3 / a1) / (2 * math.pi), rel=1e-6)
+    # this light-tongue-load set snakes inside the 0.4-40 m/s sweep of its source; its understeer gradient
+    # from the closed form is small and positive (no divergence below the critical speed)
+    assert 0.4 < vc < 40.0
+    assert model.understeer_gradient > 0
+    assert model.max_real_part(0.99 * vc) < 0 < model.max_real_part(1.01 * vc)
 
 
 def test_vanishing_trailer_leaves_the_bicycle_eigenvalues():
