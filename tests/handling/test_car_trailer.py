@@ -9,7 +9,9 @@ from scipy.integrate import solve_ivp
 
 import vehdyn
 from vehdyn import ParameterError
-from vehdyn.handling import CarTrailerParameters, LinearBicycle, LinearCarTrailer, car_trailer_parameters
+from vehdyn.handling import (CarTrailerParameters, LinearBicycle, LinearCarTrailer, car_trailer_parameters,
+                             trailer_crosswind_amplification)
+from vehdyn.handling.crosswind import trailer_wind_side_force_factor
 
 # A labelled car–caravan set: the shipped "compact" towing the shipped "caravan". The caravan's
 # numbers are typical values (data/trailers/caravan.toml says so line by line): no published
@@ -33,6 +35,15 @@ TEXTBOOK = CarTrailerParameters(mass=1500.0, yaw_inertia=2500.0, a=1.1, b=1.6, f
                                 rear_cornering_stiffness=120e3, hitch_distance=2.6, trailer_mass=1200.0,
                                 trailer_yaw_inertia=2500.0, trailer_hitch_to_cg=3.2, trailer_cg_to_axle=0.3,
                                 trailer_cornering_stiffness=80e3)
+
+
+def lagrange_mass_matrix(p: CarTrailerParameters) -> np.ndarray:
+    """The mass matrix of the Lagrange derivation below over (v', r', theta'')."""
+    m, iz, h = p.mass, p.yaw_inertia, p.hitch_distance
+    mt, it, e = p.trailer_mass, p.trailer_yaw_inertia, p.trailer_hitch_to_cg
+    return np.array([[m + mt, -mt * (h + e), mt * e],
+                     [-mt * (h + e), iz + it + mt * (h + e) ** 2, -it - mt * (h + e) * e],
+                     [mt * e, -it - mt * e * (h + e), it + mt * e * e]])
 
 
 def lagrange_state_matrix(p: CarTrailerParameters, u: float) -> np.ndarray:
@@ -61,9 +72,7 @@ def lagrange_state_matrix(p: CarTrailerParameters, u: float) -> np.ndarray:
         yt = -p.trailer_cornering_stiffness * (v - h * r + u * th - lt * (r - dth)) / u
         return yf, yr, yt
 
-    M = np.array([[m + mt, -mt * (h + e), mt * e],
-                  [-mt * (h + e), iz + it + mt * (h + e) ** 2, -it - mt * (h + e) * e],
-                  [mt * e, -it - mt * e * (h + e), it + mt * e * e]])
+    M = lagrange_mass_matrix(p)
 
     def rest(x):  # right-hand sides minus the velocity terms of the left
         v, r, th, dth = x
@@ -272,3 +281,123 @@ def test_bad_speed_and_hitch_ahead_of_the_front_axle_from_files():
     with pytest.raises(ParameterError) as err:
         LinearCarTrailer(car, "caravan", 20.0)
     assert err.value.key == "trailer"
+
+
+# ----------------------------------------------------------------------------- crosswind on the combination
+WINDY = dataclasses.replace(SHIPPED)  # the compact's and the caravan's wind numbers (car_trailer_parameters)
+
+
+def test_shipped_combination_carries_both_bodies_wind_numbers():
+    car, caravan = vehdyn.load_vehicle("compact"), vehdyn.load_trailer("caravan")
+    assert WINDY.wind_side_force_factor == pytest.approx(
+        0.5 * car.aero.air_density * car.aero.frontal_area * car.aero.side_force_coefficient_slope, rel=1e-14)
+    assert WINDY.trailer_wind_side_force_factor == pytest.approx(
+        0.5 * car.aero.air_density * caravan.frontal_area * caravan.side_force_coefficient_slope, rel=1e-14)
+    assert WINDY.trailer_centre_of_pressure == caravan.centre_of_pressure_behind_hitch
+    assert WINDY.trailer_wind_side_force_factor > 0 and WINDY.wind_side_force_factor > 0
+
+
+def test_wind_input_column_equals_the_lagrange_generalized_forces():
+    """The wind's generalized forces from its virtual power, independently of the Newton–Euler form.
+
+    Car force F_c = k_c u w at x_p: Q = (F_c, x_p F_c, 0). Trailer force F_t = k_t u w at d_p behind the hitch,
+    whose lateral velocity is v - h r - d_p (r - theta') + u theta: Q = (F_t, -(h + d_p) F_t, d_p F_t).
+    """
+    p = WINDY
+    for u in (8.0, 22.0, 31.0):
+        windy, plain = LinearCarTrailer(p, speed=u, crosswind=True), LinearCarTrailer(p, speed=u)
+        assert windy.input_names == ("front_steer_angle", "wind_velocity_lateral")
+        np.testing.assert_array_equal(windy.A, plain.A)
+        np.testing.assert_array_equal(windy.B[:, :1], plain.B)
+        fc, ft, dp = p.wind_side_force_factor * u, p.trailer_wind_side_force_factor * u, p.trailer_centre_of_pressure
+        q = np.array([fc + ft, p.centre_of_pressure * fc - (p.hitch_distance + dp) * ft, dp * ft])
+        z = np.linalg.solve(lagrange_mass_matrix(p), q)
+        np.testing.assert_allclose(windy.B[:, 1], [z[0], z[1], 0.0, z[2]], rtol=1e-10, atol=1e-14)
+    assert "aero" in windy.phenomena and windy.at_speed(12.0).input_names == windy.input_names
+
+
+@pytest.mark.parametrize("dp", [1.5, 3.9, 4.6, 5.5])
+def test_steady_wind_response_equals_the_closed_form(dp):
+    p = dataclasses.replace(WINDY, trailer_centre_of_pressure=dp)
+    u = 22.0
+    model = LinearCarTrailer(p, speed=u, crosswind=True)
+    gain = model.dc_gain()[:, model.index("wind_velocity_lateral", "inputs")]
+    out = {name: gain[k] for k, name in enumerate(model.output_names)}
+    cf, cr, L, lt, h = p.front_cornering_stiffness, p.rear_cornering_stiffness, p.wheelbase, p.trailer_wheelbase, \
+        p.hitch_distance
+    fc, ft = p.wind_side_force_factor * u, p.trailer_wind_side_force_factor * u
+    # the trailer, in moment balance about the hitch, passes (l_t - d_p)/l_t of its wind force to the hitch
+    ay = out["lateral_acceleration"]
+    assert out["trailer_lateral_force"] == pytest.approx((p.trailer_hitch_to_cg * p.trailer_mass * ay - dp * ft) / lt,
+                                                         rel=1e-9, abs=1e-9 * ft)
+    assert out["hitch_lateral_force"] == pytest.approx(-p.hitch_mass * ay + ft * (lt - dp) / lt, rel=1e-9,
+                                                       abs=1e-9 * ft)
+    # the car: a bicycle under F_s at x_s with the combination's understeer gradient
+    fs = fc + ft * (lt - dp) / lt
+    xs = (p.centre_of_pressure * fc - h * ft * (lt - dp) / lt) / fs
+    xn = (p.a * cf - p.b * cr) / (cf + cr)
+    r = u * fs * (cf + cr) * (xs - xn) / (cf * cr * L * (L + p.understeer_gradient * u**2))
+    assert out["yaw_rate"] == pytest.approx(r, rel=1e-9)
+    assert ay == pytest.approx(u * r, rel=1e-9)
+    assert out["trailer_yaw_rate"] == pytest.approx(r, rel=1e-9)
+
+
+def test_weightless_windless_trailer_leaves_the_cars_wind_response():
+    light = dataclasses.replace(WINDY, trailer_mass=1e-6, trailer_yaw_inertia=1e-6, trailer_wind_side_force_factor=0.0)
+    amp = trailer_crosswind_amplification(light, speed=25.0)
+    assert amp.steady_yaw_rate_ratio == pytest.approx(1.0, rel=1e-6)
+    np.testing.assert_allclose(amp.combination_yaw_rate, amp.car_yaw_rate, rtol=1e-5)
+    np.testing.assert_allclose(amp.combination_lateral_offset, amp.car_lateral_offset, rtol=1e-5)
+    assert amp.peak_yaw_rate_ratio == pytest.approx(1.0, rel=1e-5)
+
+
+def test_lateral_offset_gain_is_the_integrated_path():
+    amp = trailer_crosswind_amplification(WINDY, speed=22.0, omega=[0.5, 2.0, 8.0])
+    model = LinearCarTrailer(WINDY, speed=22.0, crosswind=True)
+    fr = model.frequency_response(amp.omega, outputs=["lateral_velocity", "yaw_rate"], inputs=["wind_velocity_lateral"])
+    s = 1j * amp.omega
+    # y'' = v' + u r (small angles, straight path): Y = (V + u R / s) / s
+    np.testing.assert_allclose(amp.combination_lateral_offset,
+                               np.abs((fr.response[0, 0] + 22.0 * fr.response[1, 0] / s) / s), rtol=1e-12)
+    np.testing.assert_allclose(amp.combination_yaw_rate, np.abs(fr.response[1, 0]), rtol=1e-12)
+
+
+def test_amplification_grows_with_side_area_and_towards_the_critical_speed():
+    caravan = vehdyn.load_trailer("caravan")
+    car = vehdyn.load_vehicle("compact")
+    by_area = [trailer_crosswind_amplification(car, caravan.replace(frontal_area=a), 80 / 3.6).peak_yaw_rate_ratio
+               for a in (2.0, 4.0, 6.0, 8.0)]
+    assert np.all(np.diff(by_area) > 0), by_area
+    vc = LinearCarTrailer(car, caravan, 20.0).critical_speed()
+    omega = np.linspace(0.5, 8.0, 1500)  # fine enough to catch the snaking resonance
+    by_speed = [trailer_crosswind_amplification(car, caravan, q * vc, omega).peak_yaw_rate_ratio
+                for q in (0.5, 0.7, 0.85, 0.95)]
+    assert np.all(np.diff(by_speed) > 0), by_speed
+    # the resonance peak sits at the snaking frequency and grows like 1 / damping ratio
+    model = LinearCarTrailer(car, caravan, 0.95 * vc, crosswind=True)
+    amp = trailer_crosswind_amplification(car, caravan, 0.95 * vc, omega)
+    mode = model.snaking_mode()
+    assert amp.omega[np.argmax(amp.combination_yaw_rate)] == pytest.approx(2 * np.pi * mode.frequency_hz, rel=0.03)
+
+
+def test_crosswind_errors_name_the_parameter():
+    with pytest.raises(ParameterError) as err:
+        trailer_crosswind_amplification(WINDY, speed=20.0, omega=[1.0, -2.0])
+    assert err.value.key == "omega"
+    with pytest.raises(ParameterError) as err:
+        trailer_crosswind_amplification(WINDY, speed=0.0)
+    assert err.value.key == "speed"
+    with pytest.raises(ParameterError) as err:
+        trailer_wind_side_force_factor(vehdyn.load_trailer("caravan"), air_density=0.0)
+    assert err.value.key == "air_density"
+    with pytest.raises(ParameterError) as err:
+        trailer_wind_side_force_factor("caravan")
+    assert err.value.key == "trailer"
+    with pytest.raises(ParameterError) as err:
+        vehdyn.load_trailer("caravan").replace(frontal_area=-1.0)
+    assert err.value.key == "frontal_area"
+    with pytest.raises(ParameterError) as err:
+        LinearCarTrailer.from_parameters(**{**dataclasses.asdict(TEXTBOOK), "trailer_wind_side_force_factor": -1.0,
+                                            "speed": 20.0})
+    assert err.value.key == "trailer_wind_side_force_factor"
+
