@@ -526,8 +526,10 @@ def trailer_crosswind_amplification(vehicle, trailer: Trailer | None = None, spe
     Returns
     -------
     CrosswindAmplification
-        The amplification grows with the trailer's side force (area) and, through the lightly
-        damped snaking mode, as the speed approaches the critical speed.
+        The amplification grows as the speed approaches the critical speed (the lightly damped
+        snaking mode resonates) and, once the trailer's side force dominates, with its area; a
+        small trailer side force can first cancel the car's own wind yaw (its hitch share acts
+        behind the car's neutral steer point, turning the car the other way).
     """
     from .bicycle import BicycleParameters, LinearBicycle
 
