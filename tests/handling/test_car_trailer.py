@@ -11,25 +11,17 @@ import vehdyn
 from vehdyn import ParameterError
 from vehdyn.handling import (CarTrailerParameters, LinearBicycle, LinearCarTrailer, car_trailer_parameters,
                              trailer_crosswind_amplification)
+from vehdyn.handling.car_trailer import EOM_TRUCK_TRAILER
 from vehdyn.handling.crosswind import trailer_wind_side_force_factor
 
 # A labelled car–caravan set: the shipped "compact" towing the shipped "caravan". The caravan's
 # numbers are typical values (data/trailers/caravan.toml says so line by line): no published
 # measured car–caravan set could be confirmed while writing these tests.
 SHIPPED = car_trailer_parameters(vehdyn.load_vehicle("compact"), vehdyn.load_trailer("caravan"))
-# A PUBLISHED car–trailer set: the "truck and trailer" example of B. P. Minaker's EoM, the companion code of
-# Minaker, *Fundamentals of Vehicle Dynamics and Modelling*, Wiley, 2019 (github.com/BPMinaker/EoM_samples,
-# GPL-3): the model file models/input_ex_truck_trailer.jl (commit c32ed25) gives the light truck (a = 1.289 m,
-# b = 2.885 - 1.289 m, m = 16975/9.81 kg, Iz = 3508 kg m^2, hitch d = 2.7 m behind its CG), the trailer
-# (mt = 2000 kg, It = 3000 kg m^2) and the AXLE cornering stiffnesses ("total") cf = cr = ct = 80 kN/rad; the
-# sample script truck_trailer.jl (commit 5c7d008) places the trailer CG e = 2.9 m behind the hitch and its axle
-# h = 0.1 m behind the CG (a light tongue load: it snakes at about 18 m/s inside the script's 0.4-40 m/s sweep).
-# Every parameter of the linear model is stated there; nothing is assumed. Neither the code nor anything we
-# could read states the critical speed as a number, so it is checked against independent derivations only.
-MINAKER = CarTrailerParameters(mass=16975 / 9.81, yaw_inertia=3508.0, a=1.289, b=2.885 - 1.289,
-                               front_cornering_stiffness=80e3, rear_cornering_stiffness=80e3, hitch_distance=2.7,
-                               trailer_mass=2000.0, trailer_yaw_inertia=3000.0, trailer_hitch_to_cg=2.9,
-                               trailer_cg_to_axle=0.1, trailer_cornering_stiffness=80e3)
+# A PUBLISHED car–trailer set (every linear parameter stated by its source, nothing assumed; the source
+# and its commits are in EOM_TRUCK_TRAILER's docstring): Minaker's EoM truck-and-trailer example. The numbers
+# are checked here against the source's own lines, then the model against independent derivations.
+MINAKER = EOM_TRUCK_TRAILER
 # the textbook-style set of the LinearCarTrailer docstring
 TEXTBOOK = CarTrailerParameters(mass=1500.0, yaw_inertia=2500.0, a=1.1, b=1.6, front_cornering_stiffness=110e3,
                                 rear_cornering_stiffness=120e3, hitch_distance=2.6, trailer_mass=1200.0,
@@ -142,6 +134,17 @@ def hurwitz_critical_speed(p, lo=0.5, hi=100.0):
     h = np.array([hurwitz3(u) for u in grid])
     k = np.flatnonzero(h <= 0)[0]
     return brentq(hurwitz3, grid[k - 1], grid[k], xtol=1e-13, rtol=1e-15)
+
+
+def test_published_set_is_the_source_text():
+    # input_ex_truck_trailer(; a = 1.289, b = 2.885 - 1.289, cf = 80000, cr = 80000, m = 16975 / 9.81, Iz = 3508,
+    # d = 2.7, ..., ct = 80000, mt = 2000, It = 3000) and truck_trailer.jl: e = 2.9, h = 0.1
+    source = dict(a=1.289, b=2.885 - 1.289, front_cornering_stiffness=80000, rear_cornering_stiffness=80000,
+                  mass=16975 / 9.81, yaw_inertia=3508, hitch_distance=2.7, trailer_cornering_stiffness=80000,
+                  trailer_mass=2000, trailer_yaw_inertia=3000, trailer_hitch_to_cg=2.9, trailer_cg_to_axle=0.1)
+    for name, value in source.items():
+        assert getattr(MINAKER, name) == value, name
+    assert MINAKER.wind_side_force_factor == MINAKER.trailer_wind_side_force_factor == 0.0
 
 
 def test_published_set_critical_speed_equals_the_hurwitz_derivation():

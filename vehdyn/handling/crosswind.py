@@ -47,8 +47,8 @@ from ..errors import ParameterError
 from ..params import Vehicle
 
 __all__ = ["aero_side_force", "wind_side_force_factor", "trailer_wind_side_force_factor",
-           "centre_of_pressure_ahead_of_cg", "steady_state_crosswind_yaw_rate", "wind_zone_signal", "CrosswindSensitivity",
-           "crosswind_sensitivity"]
+           "centre_of_pressure_ahead_of_cg", "steady_state_crosswind_yaw_rate", "wind_zone_signal",
+           "CrosswindSensitivity", "crosswind_sensitivity", "optional_wind_input"]
 
 
 def aero_side_force(xp, side_force_factor, speed, wind_velocity_lateral):
@@ -75,6 +75,21 @@ def _vehicle(vehicle) -> Vehicle:
         raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
                              value=vehicle)
     return vehicle
+
+
+def optional_wind_input(crosswind: bool, B, D, inputs, phenomena):
+    """A linear model's wind input (the last column of B and D): named and kept, or dropped.
+
+    Returns ``(B, D, inputs, phenomena)`` with ``wind_velocity_lateral`` [m/s] appended to the
+    input signals and ``"aero"`` to the phenomena when ``crosswind`` is true.
+    """
+    from ..signals import Signal
+
+    if not crosswind:
+        return B[:, :-1], D[:, :-1], tuple(inputs), set(phenomena)
+    wind = Signal("wind_velocity_lateral", "m/s", "lateral wind: the air's velocity along the vehicle's y axis "
+                                                  "(toward +y)")
+    return B, D, tuple(inputs) + (wind,), set(phenomena) | {"aero"}
 
 
 def _side_force_factor(air_density: float, area: float, slope: float) -> float:
