@@ -83,8 +83,8 @@ def test_small_wind_zone_response_equals_the_linear_combination():
     m = crosswind_sensitivity(vehicle, u, wind_speed=w, wind_length=length, duration=3.0, model=model, rtol=1e-9)
     res = m.result
     linear = LinearCarTrailer(vehicle, CARAVAN, u, crosswind=True)
-    ref = vehdyn.simulate(linear, res.time, {"wind_velocity_lateral": wind_zone_signal(u, w, length, vehicle.wheelbase)},
-                          rtol=1e-10, atol=1e-12)
+    zone = wind_zone_signal(u, w, length, vehicle.wheelbase)
+    ref = vehdyn.simulate(linear, res.time, {"wind_velocity_lateral": zone}, rtol=1e-10, atol=1e-12)
     for name in ("yaw_rate", "articulation_angle", "lateral_acceleration"):
         peak = np.max(np.abs(ref[name]))
         assert np.max(np.abs(res[name] - ref[name])) < 2e-3 * peak, name  # 3e-4 measured (w^2 terms)
