@@ -166,10 +166,18 @@ __all__ += [
 ]
 
 # Articulated vehicles (issue 14)
-from .car_trailer import CarTrailerParameters, LinearCarTrailer, SnakingMode, car_trailer_parameters  # noqa: E402
+from .car_trailer import (  # noqa: E402
+    CarTrailerParameters,
+    CrosswindAmplification,
+    LinearCarTrailer,
+    SnakingMode,
+    car_trailer_parameters,
+    trailer_crosswind_amplification,
+)
 from .articulated_single_track import ArticulatedSingleTrack, ArticulationEvent  # noqa: E402
 
-__all__ += ["CarTrailerParameters", "LinearCarTrailer", "SnakingMode", "car_trailer_parameters",
+__all__ += ["CarTrailerParameters", "CrosswindAmplification", "LinearCarTrailer", "SnakingMode",
+            "car_trailer_parameters", "trailer_crosswind_amplification",
             "ArticulatedSingleTrack", "ArticulationEvent"]
 
 # FMVSS 126 compliance (issue 15)
