@@ -97,7 +97,16 @@ from .nonlinear_steady_state import (  # noqa: E402
     nonlinear_handling_diagram,
     steady_state_cornering,
 )
-from .driver import DriverInTheLoop, PreviewDriver  # noqa: E402
+from .driver import (  # noqa: E402
+    CrossoverDriver,
+    DriverInTheLoop,
+    OptimalPreviewDriver,
+    PreviewDriver,
+    driver_loop,
+    driver_loop_margins,
+    driver_loop_response,
+    preview_gains,
+)
 from .crosswind import (  # noqa: E402
     CrosswindSensitivity,
     crosswind_sensitivity,
@@ -138,6 +147,12 @@ __all__ += [
     "limit_lateral_acceleration",
     "PreviewDriver",
     "DriverInTheLoop",
+    "CrossoverDriver",
+    "OptimalPreviewDriver",
+    "driver_loop",
+    "driver_loop_margins",
+    "driver_loop_response",
+    "preview_gains",
     "step_steer",
     "ramp_steer",
     "sine_steer",

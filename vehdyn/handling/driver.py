@@ -22,6 +22,8 @@ the driven axle's longitudinal force, F = m k_u (u_target - u).
 
 from __future__ import annotations
 
+import math
+import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,7 +32,9 @@ from ..errors import ParameterError
 from ..model import Model
 from ..signals import Signal
 
-__all__ = ["PreviewDriver", "DriverInTheLoop"]
+__all__ = ["PreviewDriver", "DriverInTheLoop", "CrossoverDriver", "OptimalPreviewDriver", "pade_delay",
+           "preview_gains", "preview_offsets", "driver_loop", "driver_loop_response", "driver_loop_margins",
+           "DrivenVehicle"]
 
 
 @dataclass(frozen=True)
@@ -65,13 +69,7 @@ class PreviewDriver:
     speed_gain: float = 1.0
 
     def __post_init__(self):
-        px, py = np.asarray(self.path_x, dtype=float), np.asarray(self.path_y, dtype=float)
-        if px.ndim != 1 or px.shape != py.shape or px.size < 2:
-            raise ParameterError(f"path_x and path_y must be 1-D arrays of the same length >= 2, got {px.shape} and "
-                                 f"{py.shape}", key="path_x", value=px.shape)
-        if not (np.all(np.isfinite(px)) and np.all(np.isfinite(py))) or np.any(np.diff(px) <= 0):
-            raise ParameterError("path_x must be finite and strictly increasing (path_y finite)", key="path_x",
-                                 value=px)
+        px, py = _check_path(self.path_x, self.path_y)
         object.__setattr__(self, "path_x", px)
         object.__setattr__(self, "path_y", py)
         for name in ("preview_time", "lag", "gain", "minimum_preview_distance", "speed_gain"):
@@ -85,11 +83,7 @@ class PreviewDriver:
     def steer_command(self, x, y, yaw_angle, speed, wheelbase):
         """delta_c [rad] for the vehicle at (x, y) [m] heading yaw_angle [rad] at ``speed`` [m/s]."""
         distance = np.maximum(np.abs(speed) * self.preview_time, self.minimum_preview_distance)
-        cos_psi, sin_psi = np.cos(yaw_angle), np.sin(yaw_angle)
-        preview_x = x + distance * cos_psi
-        preview_y = y + distance * sin_psi
-        target_y = np.interp(preview_x, self.path_x, self.path_y)
-        offset = (target_y - preview_y) * cos_psi  # lateral (right) offset in vehicle axes
+        offset = preview_offsets(self.path_x, self.path_y, x, y, yaw_angle, distance)
         return self.gain * 2.0 * wheelbase * offset / distance**2
 
 
@@ -178,3 +172,525 @@ class DriverInTheLoop(Model):
         x = np.asarray(x, dtype=float)
         xv, uv = self._vehicle_inputs(x, np.asarray(u, dtype=float))
         return np.concatenate([np.asarray(self.vehicle_model.output(t, xv, uv), dtype=float), x[-1:]])
+
+
+# ====================================================================== drivers as controllers
+# The crossover-model driver (McRuer) and the optimal preview driver (MacAdam) are controller
+# Models for vehdyn.chassis.ClosedLoop: their inputs are the plant's states they read (feedback),
+# their one output ``front_steer_angle`` replaces the plant's input.
+
+def pade_delay(delay: float, order: int):
+    """State-space matrices (A, B, C, D) of the [n/n] Pade approximant of e^(-delay s).
+
+    e^(-tau s) ~ N(s) / D(s), N(s) = sum_k (-1)^k c_k (tau s)^k, D(s) = sum_k c_k (tau s)^k,
+    c_k = (2n - k)! n! / ((2n)! k! (n - k)!) (Baker & Graves-Morris, *Pade Approximants*, 1996;
+    the same approximant as ``control.pade``), realized in controllable canonical form. A zero delay
+    gives an empty realization (A 0x0, D = 1).
+    """
+    from math import factorial
+
+    n = int(order)
+    tau = float(delay)
+    if tau == 0.0 or n == 0:
+        return np.zeros((0, 0)), np.zeros((0, 1)), np.zeros((1, 0)), np.ones((1, 1))
+    c = np.array([factorial(2 * n - k) * factorial(n) / (factorial(2 * n) * factorial(k) * factorial(n - k))
+                  for k in range(n + 1)])
+    scale = c * tau ** np.arange(n + 1)
+    a = scale[:n] / scale[n]                                 # monic denominator s^n + sum a_k s^k
+    b = (-1.0) ** np.arange(n + 1) * scale / scale[n]        # numerator, b_n = (-1)^n
+    A = np.zeros((n, n))
+    A[:-1, 1:] = np.eye(n - 1)
+    A[-1] = -a
+    B = np.zeros((n, 1))
+    B[-1, 0] = 1.0
+    C = (b[:n] - b[n] * a)[None, :]
+    D = np.array([[b[n]]])
+    return A, B, C, D
+
+
+def preview_offsets(path_x, path_y, x, y, yaw_angle, distance):
+    """Lateral offset [m] of the path from the point ``distance`` [m] ahead along the heading.
+
+    In vehicle axes (SAE: positive when the path lies to the right of the preview point); the
+    path is read at the preview point's earth x. Broadcasts over ``distance`` and the batch.
+    """
+    cos_psi, sin_psi = np.cos(yaw_angle), np.sin(yaw_angle)
+    preview_x = x + distance * cos_psi
+    preview_y = y + distance * sin_psi
+    return (np.interp(preview_x, path_x, path_y) - preview_y) * cos_psi
+
+
+def _check_path(path_x, path_y):
+    px, py = np.asarray(path_x, dtype=float), np.asarray(path_y, dtype=float)
+    if px.ndim != 1 or px.shape != py.shape or px.size < 2:
+        raise ParameterError(f"path_x and path_y must be 1-D arrays of the same length >= 2, got {px.shape} and "
+                             f"{py.shape}", key="path_x", value=px.shape)
+    if not (np.all(np.isfinite(px)) and np.all(np.isfinite(py))) or np.any(np.diff(px) <= 0):
+        raise ParameterError("path_x must be finite and strictly increasing (path_y finite)", key="path_x", value=px)
+    return px, py
+
+
+_FEEDBACK_UNITS = {"x": "m", "y": "m", "yaw_angle": "rad", "longitudinal_velocity": "m/s",
+                   "lateral_velocity": "m/s", "yaw_rate": "rad/s"}
+
+
+class _PathDriver(Model):
+    """Base of the controller drivers: command -> delay (Pade) -> neuromuscular lag -> steer.
+
+    ``tau_N d(delta)/dt = delta_d - delta`` with delta_d the command delayed by ``delay`` (a Pade
+    approximant, states ``driver_delay_1..n``); the output ``front_steer_angle`` is the state
+    ``driver_steer_angle``, so the driver's output never depends on its feedback at the same
+    instant (the loop is not algebraic).
+    """
+
+    feedback = ("x", "y", "yaw_angle", "longitudinal_velocity")
+    _gain_names: tuple = ()
+
+    def _setup(self, path_x, path_y, *, delay, neuromuscular_lag, preview_time, minimum_preview_distance,
+               max_steer_angle, pade_order, **gains):
+        from ..chassis.closed_loop import check_gains
+
+        self.path_x, self.path_y = _check_path(path_x, path_y)
+        owner = type(self).__name__
+        values = check_gains(owner, positive=("neuromuscular_lag", "preview_time", "max_steer_angle") + tuple(gains),
+                             nonnegative=("delay", "minimum_preview_distance"), delay=delay,
+                             neuromuscular_lag=neuromuscular_lag, preview_time=preview_time,
+                             minimum_preview_distance=minimum_preview_distance, max_steer_angle=max_steer_angle,
+                             **gains)
+        if isinstance(pade_order, bool) or pade_order not in range(1, 11):
+            raise ParameterError(f"{owner} pade_order must be an integer 1..10, got {pade_order!r}", key="pade_order",
+                                 value=pade_order)
+        for name, value in values.items():
+            setattr(self, name, value)
+        self.pade_order = int(pade_order)
+        self._pade = pade_delay(self.delay, self.pade_order)
+        n = self._pade[0].shape[0]
+        states = tuple(Signal(f"driver_delay_{k + 1}", "-", f"Pade state {k + 1} of the driver's delay")
+                       for k in range(n))
+        self.declare(states=states + (Signal("driver_steer_angle", "rad", "road-wheel steer applied by the driver"),),
+                     inputs=tuple(Signal(name, _FEEDBACK_UNITS[name], f"{name} of the vehicle (feedback)")
+                                  for name in self.feedback),
+                     outputs=(Signal("front_steer_angle", "rad", "front road-wheel steer commanded by the driver"),))
+
+    def named_parameters(self) -> dict:
+        """The driver's named parameters (SI)."""
+        names = ("delay", "neuromuscular_lag", "preview_time", "minimum_preview_distance", "max_steer_angle")
+        return {name: getattr(self, name) for name in self._gain_names + names} | {"pade_order": self.pade_order}
+
+    def preview_distance(self, speed):
+        """d = max(|u| T_p, d_min) [m]."""
+        return np.maximum(np.abs(speed) * self.preview_time, self.minimum_preview_distance)
+
+    def _feedback(self, u):
+        return {name: u[k] for k, name in enumerate(self.feedback)}
+
+    def command(self, t, signals):
+        """The driver's steer command [rad] (before delay and lag) from the feedback signals."""
+        raise NotImplementedError
+
+    def perception(self, speed) -> dict:
+        """The linear command law about straight running on a straight path at y = 0.
+
+        ``{signal: k}`` such that delta_c = -sum_k k * signal (the driver's gains on the vehicle's
+        signals; used by :func:`driver_loop_margins`).
+        """
+        raise NotImplementedError
+
+    def rhs(self, t, x, u):
+        x = np.asarray(x, dtype=float)
+        u = np.asarray(u, dtype=float)
+        A, B, C, D = self._pade
+        n = A.shape[0]
+        command = np.clip(self.command(t, self._feedback(u)), -self.max_steer_angle, self.max_steer_angle)
+        z, steer = x[:n], x[n]
+        dz = np.tensordot(A, z, axes=1) + B[:, 0].reshape((n,) + (1,) * (x.ndim - 1)) * command
+        delayed = np.tensordot(C[0], z, axes=1) + D[0, 0] * command
+        return np.concatenate([dz, ((delayed - steer) / self.neuromuscular_lag)[None]])
+
+    def output(self, t, x, u):
+        x = np.asarray(x, dtype=float)
+        return x[-1:].copy()
+
+    def close(self, plant: Model):
+        """The driver steering ``plant``: a :class:`vehdyn.chassis.ClosedLoop` (errors name the feedback
+        the plant lacks) that also has a compiled rhs when the plant has one (:class:`DrivenVehicle`)."""
+        return DrivenVehicle(plant, self)
+
+    def _compiled_args(self):
+        A, B, C, D = self._pade
+        empty = np.zeros(0)
+        times, q, h = (getattr(self, "preview_times", empty), getattr(self, "_q", empty),
+                       getattr(self, "_h", np.zeros((0, 2))))
+        return (1 if times.size else 0, self.path_x, self.path_y, self.gain, self.preview_time,
+                self.minimum_preview_distance, self.max_steer_angle, np.ascontiguousarray(A), B[:, 0].copy(),
+                C[0].copy(), float(D[0, 0]), self.neuromuscular_lag, np.ascontiguousarray(times),
+                np.ascontiguousarray(q), np.ascontiguousarray(h[:, 0]), np.ascontiguousarray(h[:, 1]))
+
+
+class CrossoverDriver(_PathDriver):
+    """McRuer's crossover-model driver: a gain on the previewed path error, a delay, a neuromuscular lag.
+
+    The driver reads the lateral offset e of the path from the point d = max(u T_p, d_min) ahead
+    (:func:`preview_offsets`) and steers the front wheels through a pure delay tau and a
+    first-order neuromuscular lag T_N::
+
+        delta(s) = K_p e^(-tau s) / (T_N s + 1) e(s)
+
+    The preview is the driver's lead equalization: to the lateral position y of a car (about a
+    double integrator of the steer at low frequency, Y_c ~ K / s^2) the preview point adds
+    d psi, a lead of time constant about d / u = T_p, so that near the crossover frequency omega_c
+    the open loop takes McRuer's form Y_p Y_c ~ omega_c e^(-tau_e s) / s, tau_e ~ tau + T_N: phase
+    margin pi/2 - omega_c tau_e, stable for omega_c tau_e < pi/2 (McRuer & Jex, "A review of
+    quasi-linear pilot models", IEEE Trans. HFE 8(3), 1967; McRuer et al., "New results in driver
+    steering control models", Human Factors 19(4), 1977). :meth:`tuned` sets K_p for a
+    crossover frequency on a given car, as the human adapts (McRuer's adjustment rule).
+
+    Parameters
+    ----------
+    path_x, path_y : array_like
+        Desired CG path in earth axes [m] (SAE, y right), x strictly increasing.
+    gain : float
+        K_p [rad/m] > 0 (road-wheel steer per metre of previewed error).
+    preview_time : float
+        T_p [s] > 0 (default 1.0).
+    delay : float
+        tau [s] >= 0 (default 0.15; McRuer's effective delays are 0.1-0.3 s), through a
+        Pade approximant of order ``pade_order`` (default 3) in time-domain runs.
+    neuromuscular_lag : float
+        T_N [s] > 0 (default 0.1).
+    minimum_preview_distance : float
+        d_min [m] (default 3).
+    max_steer_angle : float
+        Limit of the command [rad] (default 0.6).
+
+    Signals
+    -------
+    Inputs (feedback, read from the plant's states by ClosedLoop): ``x``, ``y``, ``yaw_angle``,
+    ``longitudinal_velocity``. States: ``driver_delay_1..n``, ``driver_steer_angle``. Output:
+    ``front_steer_angle``.
+    """
+
+    _gain_names = ("gain",)
+
+    def __init__(self, path_x, path_y, *, gain: float, preview_time: float = 1.0, delay: float = 0.15,
+                 neuromuscular_lag: float = 0.1, minimum_preview_distance: float = 3.0,
+                 max_steer_angle: float = 0.6, pade_order: int = 3):
+        self._setup(path_x, path_y, delay=delay, neuromuscular_lag=neuromuscular_lag, preview_time=preview_time,
+                    minimum_preview_distance=minimum_preview_distance, max_steer_angle=max_steer_angle,
+                    pade_order=pade_order, gain=gain)
+
+    def command(self, t, s):
+        distance = self.preview_distance(s["longitudinal_velocity"])
+        return self.gain * preview_offsets(self.path_x, self.path_y, s["x"], s["y"], s["yaw_angle"], distance)
+
+    def perception(self, speed) -> dict:
+        return {"y": self.gain, "yaw_angle": self.gain * float(self.preview_distance(speed))}
+
+    @classmethod
+    def tuned(cls, plant: Model, speed: float, path_x, path_y, *, crossover_frequency: float = 2.5, **options):
+        """The driver whose open loop with ``plant`` at ``speed`` [m/s] crosses over at ``crossover_frequency`` [rad/s].
+
+        K_p = 1 / |L_1(j omega_c)| with L_1 the loop at unit gain (McRuer's adjustment of the
+        gain to the controlled element; the default 2.5 rad/s is within the 2-4 rad/s that
+        McRuer et al. 1977 report for lane keeping). ``options`` are the other parameters.
+        """
+        from ..chassis.closed_loop import check_gains
+
+        wc = check_gains(cls.__name__, positive=("crossover_frequency",),
+                         crossover_frequency=crossover_frequency)["crossover_frequency"]
+        unit = cls(path_x, path_y, gain=1.0, **options)
+        loop = driver_loop_response(plant, unit, speed, np.array([wc]))
+        return cls(path_x, path_y, gain=1.0 / abs(loop[0]), **options)
+
+
+def preview_gains(A, B, C, times, weights=None):
+    """MacAdam's optimal preview gains for an internal model dx/dt = A x + B delta, y = C x.
+
+    With the steer held constant over the preview window, the steer that minimizes
+    J = int_0^T W(eta) [f(t + eta) - y(t + eta)]^2 d eta is (MacAdam 1981, eq. 8-11)::
+
+        delta* = sum_k q_k (f_k - h_k x),   q_k = w_k g_k / sum_j w_j g_j^2,
+        g_k = C int_0^{eta_k} e^(A s) ds B  (the step response),   h_k = C e^(A eta_k)
+
+    at the preview instants eta_k with quadrature weights w_k (times the weighting W).
+
+    Parameters
+    ----------
+    A, B, C : array_like
+        (n, n), (n, 1), (1, n).
+    times : array_like
+        eta_k [s] > 0.
+    weights : array_like, optional
+        w_k (default: ones).
+
+    Returns
+    -------
+    q : ndarray (n_k,)
+        [rad/m].
+    h : ndarray (n_k, n)
+        Free-response rows.
+    """
+    from scipy.linalg import expm
+
+    A, B, C = (np.atleast_2d(np.asarray(m, dtype=float)) for m in (A, B, C))
+    times = np.asarray(times, dtype=float)
+    weights = np.ones_like(times) if weights is None else np.asarray(weights, dtype=float)
+    n = A.shape[0]
+    block = np.zeros((n + 1, n + 1))
+    block[:n, :n], block[:n, n:] = A, B
+    g, h = np.empty(times.size), np.empty((times.size, n))
+    for k, eta in enumerate(times):
+        e = expm(block * eta)
+        g[k] = (C @ e[:n, n:])[0, 0]
+        h[k] = (C @ e[:n, :n])[0]
+    q = weights * g / np.sum(weights * g**2)
+    return q, h
+
+
+class OptimalPreviewDriver(_PathDriver):
+    """MacAdam's optimal preview driver: a linear internal model of the car, a preview window, a delay.
+
+    At each instant the driver predicts, with a linear single-track model of the car at the design
+    ``speed`` (lateral velocity, yaw rate and, in the vehicle's own frame, heading and lateral
+    position), the car's lateral displacement over the preview window [0, T_p] for the steer held
+    constant, and chooses the steer that minimizes the squared distance to the path at the preview
+    points (:func:`preview_gains`; Gauss-Legendre points on the window, uniform weighting). The
+    command then passes a delay tau and a neuromuscular lag T_N (as :class:`CrossoverDriver`)::
+
+        delta_c = K sum_k q_k (e_k - h_k [v, r]),   e_k = path offset at u eta_k ahead
+
+    (C. C. MacAdam, "Application of an optimal preview control for simulation of closed-loop
+    automobile driving", IEEE Trans. SMC 11(6), 393-399, 1981; "Understanding and modeling the
+    human driver", Vehicle System Dynamics 40(1-3), 2003.)
+
+    Parameters
+    ----------
+    path_x, path_y : array_like
+        Desired CG path [m] (SAE earth axes).
+    vehicle : Vehicle
+        The car the driver knows: its linear bicycle (:class:`~vehdyn.handling.LinearBicycle`,
+        cornering stiffnesses of the vehicle's tires) at ``speed`` is the internal model.
+    speed : float
+        Design speed of the internal model [m/s] > 0.
+    preview_time : float
+        T_p [s] (default 1.0).
+    gain : float
+        K [-] > 0 (default 1: the optimal steer).
+    delay, neuromuscular_lag, minimum_preview_distance, max_steer_angle, pade_order
+        As :class:`CrossoverDriver` (minimum_preview_distance unused).
+    n_preview : int
+        Number of preview points (default 10).
+
+    Signals
+    -------
+    Inputs (feedback): ``x``, ``y``, ``yaw_angle``, ``longitudinal_velocity``,
+    ``lateral_velocity``, ``yaw_rate``; states and output as :class:`CrossoverDriver`.
+    """
+
+    feedback = ("x", "y", "yaw_angle", "longitudinal_velocity", "lateral_velocity", "yaw_rate")
+    _gain_names = ("gain", "speed")
+
+    def __init__(self, path_x, path_y, *, vehicle, speed: float, preview_time: float = 1.0, gain: float = 1.0,
+                 delay: float = 0.15, neuromuscular_lag: float = 0.1, minimum_preview_distance: float = 0.0,
+                 max_steer_angle: float = 0.6, pade_order: int = 3, n_preview: int = 10):
+        from .bicycle import LinearBicycle
+
+        self._setup(path_x, path_y, delay=delay, neuromuscular_lag=neuromuscular_lag, preview_time=preview_time,
+                    minimum_preview_distance=minimum_preview_distance, max_steer_angle=max_steer_angle,
+                    pade_order=pade_order, gain=gain, speed=speed)
+        if isinstance(n_preview, bool) or n_preview not in range(1, 101):
+            raise ParameterError(f"n_preview must be an integer 1..100, got {n_preview!r}", key="n_preview",
+                                 value=n_preview)
+        bicycle = LinearBicycle(vehicle, self.speed)
+        iv, ir = bicycle.index("lateral_velocity"), bicycle.index("yaw_rate")
+        steer = bicycle.index("front_steer_angle", "inputs")
+        # internal model in the vehicle's frame: [v, r, psi, y], dpsi/dt = r, dy/dt = u psi + v
+        A = np.zeros((4, 4))
+        A[:2, :2] = bicycle.A[np.ix_([iv, ir], [iv, ir])]
+        A[2, 1], A[3, 2], A[3, 0] = 1.0, self.speed, 1.0
+        B = np.zeros((4, 1))
+        B[:2, 0] = bicycle.B[[iv, ir], steer]
+        nodes, weights = np.polynomial.legendre.leggauss(int(n_preview))
+        self.preview_times = 0.5 * self.preview_time * (nodes + 1.0)
+        q, h = preview_gains(A, B, np.array([[0.0, 0.0, 0.0, 1.0]]), self.preview_times, weights)
+        self._q, self._h = q, h[:, :2]
+        self.n_preview = int(n_preview)
+
+    def command(self, t, s):
+        shape = (-1,) + (1,) * np.ndim(s["x"])
+        distance = np.maximum(np.abs(s["longitudinal_velocity"]) * self.preview_times.reshape(shape),
+                              self.minimum_preview_distance)
+        offsets = preview_offsets(self.path_x, self.path_y, s["x"], s["y"], s["yaw_angle"], distance)
+        free = self._h[:, 0].reshape(shape) * s["lateral_velocity"] + self._h[:, 1].reshape(shape) * s["yaw_rate"]
+        return self.gain * np.sum(self._q.reshape(shape) * (offsets - free), axis=0)
+
+    def perception(self, speed) -> dict:
+        distance = np.maximum(abs(speed) * self.preview_times, self.minimum_preview_distance)
+        return {"y": self.gain * self._q.sum(), "yaw_angle": self.gain * np.sum(self._q * distance),
+                "lateral_velocity": self.gain * np.sum(self._q * self._h[:, 0]),
+                "yaw_rate": self.gain * np.sum(self._q * self._h[:, 1])}
+
+
+# ====================================================================== loop analysis
+def _plant_steer_model(plant: Model, speed: float):
+    """The plant's linearization at straight running at ``speed`` (front steer input only)."""
+    if hasattr(plant, "straight_running"):
+        lin = plant.linearize(speed=speed)
+    else:
+        raise ParameterError(f"{type(plant).__name__} has no straight_running(speed): give a SingleTrack-like model",
+                             key="plant", value=type(plant).__name__)
+    return lin
+
+
+def _perception_row(lin, driver, speed):
+    """Row F over the linear plant's states such that delta_c = -F x (about straight running)."""
+    gains = driver.perception(speed)
+    missing = [name for name in gains if name not in lin.state_names and name not in lin.output_names]
+    if missing:
+        raise ParameterError(f"{type(driver).__name__} cannot be attached to the plant: missing inputs {missing}",
+                             key="missing_inputs", value=missing)
+    row = np.zeros(lin.n_states)
+    for name, k in gains.items():
+        if name in lin.state_names:
+            row[lin.index(name)] += k
+        else:
+            j = lin.index(name, "outputs")
+            row += k * lin.C[j]
+    return row
+
+
+def driver_loop_response(plant: Model, driver, speed: float, omega) -> np.ndarray:
+    """Open-loop frequency response L(j omega) of the driver-vehicle loop cut at the steer [-].
+
+    L(s) = e^(-tau s) / (T_N s + 1) F (sI - A)^-1 B, with the exact delay, (A, B) the plant's
+    linearization at straight running at ``speed`` [m/s] (front steer input) and F the driver's
+    linear gains on the vehicle's signals (``driver.perception(speed)``); the loop is closed with
+    negative feedback (delta = -L delta).
+    """
+    lin = _plant_steer_model(plant, speed)
+    row = _perception_row(lin, driver, speed)
+    b = lin.B[:, lin.index("front_steer_angle", "inputs")]
+    omega = np.asarray(omega, dtype=float)
+    eye = np.eye(lin.n_states)
+    plant_part = np.array([row @ np.linalg.solve(1j * w * eye - lin.A, b) for w in omega])
+    return plant_part * np.exp(-1j * omega * driver.delay) / (1j * omega * driver.neuromuscular_lag + 1.0)
+
+
+def driver_loop(plant: Model, driver, speed: float, *, pade_order: int = 6):
+    """The open loop L(s) as a ``control.StateSpace`` (delay as a Pade approximant of ``pade_order``).
+
+    Its input and output are the steer [rad]; ``control.feedback(L, 1)`` is the closed loop.
+    """
+    import control
+
+    lin = _plant_steer_model(plant, speed)
+    row = _perception_row(lin, driver, speed)
+    b = lin.B[:, [lin.index("front_steer_angle", "inputs")]]
+    # the states the steer reaches (structurally): x and the speed decouple in straight running
+    reached = b[:, 0] != 0
+    while True:
+        grown = reached | np.any(lin.A[:, reached] != 0, axis=1)
+        if np.array_equal(grown, reached):
+            break
+        reached = grown
+    keep = np.nonzero(reached)[0]
+    car = control.ss(lin.A[np.ix_(keep, keep)], b[keep], row[None, keep], 0.0)
+    lag = control.tf([1.0], [driver.neuromuscular_lag, 1.0])
+    loop = lag * car
+    if driver.delay > 0:
+        num, den = control.pade(driver.delay, pade_order)
+        loop = control.tf(num, den) * loop
+    return control.ss(loop)
+
+
+def driver_loop_margins(plant: Model, driver, speed: float, *, omega=None) -> dict:
+    """Gain and phase margins of the driver-vehicle loop at ``speed`` (python-control).
+
+    The margins come from ``control.stability_margins`` on the loop's frequency response with the
+    exact delay (a ``control.FRD`` on ``omega``, default 400 log-spaced points 0.05-60 rad/s);
+    ``stable`` from the poles of the closed loop with the delay as a 6th-order Pade approximant.
+
+    Returns
+    -------
+    dict
+        ``gain_margin`` [-] (inf if the phase never crosses -180 deg), ``phase_margin`` [rad],
+        ``crossover_frequency`` omega_c [rad/s], ``phase_crossover_frequency`` [rad/s], ``stable``.
+    """
+    import control
+
+    omega = np.geomspace(0.05, 60.0, 400) if omega is None else np.asarray(omega, dtype=float)
+    response = driver_loop_response(plant, driver, speed, omega)
+    gm, pm, _, wpc, wgc, _ = control.stability_margins(control.FRD(response, omega), returnall=False)
+    closed = control.feedback(driver_loop(plant, driver, speed), 1.0)
+    stable = bool(np.all(np.real(closed.poles()) < 0))
+    return {"gain_margin": float(gm), "phase_margin": float(np.radians(pm)), "crossover_frequency": float(wgc),
+            "phase_crossover_frequency": float(wpc), "stable": stable}
+
+
+# ====================================================================== compiled driver-vehicle loop
+def _driven_rhs(t, x, u, args, dxdt):  # pragma: no cover - compiled by numba (tested through simulate)
+    """dx/dt of plant + driver for the compiled backend; ``_plant_rhs`` is bound to the plant's compiled rhs."""
+    (plant_args, n_p, i_steer, ix, iy, ipsi, iu, iv, ir, kind, px, py, gain, tp, dmin, smax, pa, pb, pc, pd, tn,
+     times, q, h0, h1) = args
+    n_z = pa.shape[0]
+    steer = x[n_p + n_z]
+    up = u.copy()
+    up[i_steer] = steer
+    _plant_rhs(t, x[:n_p], up, plant_args, dxdt[:n_p])  # noqa: F821 (bound by compiled_copy)
+    X, Y, psi, speed = x[ix], x[iy], x[ipsi], abs(x[iu])
+    c, s = math.cos(psi), math.sin(psi)
+    if kind == 0:
+        d = max(speed * tp, dmin)
+        command = gain * (np.interp(X + d * c, px, py) - (Y + d * s)) * c
+    else:
+        total = 0.0
+        for k in range(times.size):
+            d = max(speed * times[k], dmin)
+            offset = (np.interp(X + d * c, px, py) - (Y + d * s)) * c
+            total += q[k] * (offset - h0[k] * x[iv] - h1[k] * x[ir])
+        command = gain * total
+    command = min(max(command, -smax), smax)
+    delayed = pd * command
+    for i in range(n_z):
+        rate = pb[i] * command
+        for j in range(n_z):
+            rate += pa[i, j] * x[n_p + j]
+        dxdt[n_p + i] = rate
+        delayed += pc[i] * x[n_p + i]
+    dxdt[n_p + n_z] = (delayed - steer) / tn
+
+
+def _closed_loop_class():
+    from ..chassis.closed_loop import ClosedLoop
+
+    return ClosedLoop
+
+
+class DrivenVehicle(_closed_loop_class()):
+    """A :class:`vehdyn.chassis.ClosedLoop` of a vehicle model and a :class:`CrossoverDriver` or
+    :class:`OptimalPreviewDriver` (made by ``driver.close(plant)``).
+
+    Identical signals and numpy evaluation to ``ClosedLoop(plant, driver)``; in addition, when the
+    plant has a compiled rhs (:class:`~vehdyn.handling.SingleTrack` with Magic Formula or linear
+    tires), :meth:`compiled_rhs` composes it with the driver's law in numba, so that
+    ``vehdyn.simulate(loop, t, ..., method="RK45")`` runs compiled (tens of times faster than numpy
+    for one run).
+    """
+
+    def compiled_rhs(self):
+        from .._compiled_ode import CompiledModel, compiled_copy, source_stamp
+
+        plant = self.plant.compiled_rhs()
+        if plant is None:
+            return None
+        key = f"driven_{plant.key}_{source_stamp(sys.modules[__name__])}"
+        cached = self.__dict__.get("_compiled")
+        if cached is not None and cached.key == key:
+            return cached
+        rhs = compiled_copy(_driven_rhs, f"{key}_rhs", _plant_rhs=plant.rhs)
+        p = self.plant
+        index = tuple(p.index(n) for n in ("x", "y", "yaw_angle", "longitudinal_velocity", "lateral_velocity",
+                                           "yaw_rate"))
+        args = (plant.args, p.n_states, p.index("front_steer_angle", "inputs")) + index + self.controller._compiled_args()
+        self._compiled = CompiledModel(rhs, None, key, args)
+        return self._compiled
