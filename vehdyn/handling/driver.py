@@ -22,8 +22,6 @@ the driven axle's longitudinal force, F = m k_u (u_target - u).
 
 from __future__ import annotations
 
-import math
-import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,7 +32,7 @@ from ..signals import Signal
 
 __all__ = ["PreviewDriver", "DriverInTheLoop", "CrossoverDriver", "OptimalPreviewDriver", "pade_delay",
            "preview_gains", "preview_offsets", "driver_loop", "driver_loop_response", "driver_loop_margins",
-           "DrivenVehicle"]
+           "DrivenVehicle", "lane_change_run", "lane_change_limit"]
 
 
 @dataclass(frozen=True)
@@ -284,15 +282,16 @@ class _PathDriver(Model):
     def _feedback(self, u):
         return {name: u[k] for k, name in enumerate(self.feedback)}
 
-    def command(self, t, signals):
-        """The driver's steer command [rad] (before delay and lag) from the feedback signals."""
+    def command(self, t, signals, steer):
+        """The driver's steer command [rad] (before delay and lag) from the feedback signals and the
+        present road-wheel steer ``steer`` [rad] (the driver's own state)."""
         raise NotImplementedError
 
     def perception(self, speed) -> dict:
         """The linear command law about straight running on a straight path at y = 0.
 
         ``{signal: k}`` such that delta_c = -sum_k k * signal (the driver's gains on the vehicle's
-        signals; used by :func:`driver_loop_margins`).
+        signals and, under ``driver_steer_angle``, on its own steer; used by :func:`driver_loop_margins`).
         """
         raise NotImplementedError
 
@@ -301,8 +300,8 @@ class _PathDriver(Model):
         u = np.asarray(u, dtype=float)
         A, B, C, D = self._pade
         n = A.shape[0]
-        command = np.clip(self.command(t, self._feedback(u)), -self.max_steer_angle, self.max_steer_angle)
         z, steer = x[:n], x[n]
+        command = np.clip(self.command(t, self._feedback(u), steer), -self.max_steer_angle, self.max_steer_angle)
         dz = np.tensordot(A, z, axes=1) + B[:, 0].reshape((n,) + (1,) * (x.ndim - 1)) * command
         delayed = np.tensordot(C[0], z, axes=1) + D[0, 0] * command
         return np.concatenate([dz, ((delayed - steer) / self.neuromuscular_lag)[None]])
@@ -320,11 +319,12 @@ class _PathDriver(Model):
         A, B, C, D = self._pade
         empty = np.zeros(0)
         times, q, h = (getattr(self, "preview_times", empty), getattr(self, "_q", empty),
-                       getattr(self, "_h", np.zeros((0, 2))))
+                       getattr(self, "_h", np.zeros((0, 3))))
         return (1 if times.size else 0, self.path_x, self.path_y, self.gain, self.preview_time,
                 self.minimum_preview_distance, self.max_steer_angle, np.ascontiguousarray(A), B[:, 0].copy(),
                 C[0].copy(), float(D[0, 0]), self.neuromuscular_lag, np.ascontiguousarray(times),
-                np.ascontiguousarray(q), np.ascontiguousarray(h[:, 0]), np.ascontiguousarray(h[:, 1]))
+                np.ascontiguousarray(q), np.ascontiguousarray(h[:, 0]), np.ascontiguousarray(h[:, 1]),
+                np.ascontiguousarray(h[:, 2]), self.delay)
 
 
 class CrossoverDriver(_PathDriver):
@@ -379,7 +379,7 @@ class CrossoverDriver(_PathDriver):
                     minimum_preview_distance=minimum_preview_distance, max_steer_angle=max_steer_angle,
                     pade_order=pade_order, gain=gain)
 
-    def command(self, t, s):
+    def command(self, t, s, steer):
         distance = self.preview_distance(s["longitudinal_velocity"])
         return self.gain * preview_offsets(self.path_x, self.path_y, s["x"], s["y"], s["yaw_angle"], distance)
 
@@ -450,34 +450,40 @@ def preview_gains(A, B, C, times, weights=None):
 class OptimalPreviewDriver(_PathDriver):
     """MacAdam's optimal preview driver: a linear internal model of the car, a preview window, a delay.
 
-    At each instant the driver predicts, with a linear single-track model of the car at the design
-    ``speed`` (lateral velocity, yaw rate and, in the vehicle's own frame, heading and lateral
-    position), the car's lateral displacement over the preview window [0, T_p] for the steer held
-    constant, and chooses the steer that minimizes the squared distance to the path at the preview
-    points (:func:`preview_gains`; Gauss-Legendre points on the window, uniform weighting). The
-    command then passes a delay tau and a neuromuscular lag T_N (as :class:`CrossoverDriver`)::
+    The driver knows the car as a linear single-track model at the design ``speed`` (lateral
+    velocity v, yaw rate r and, in the car's own frame, heading and lateral position; the steer
+    is its input, not a state). It predicts the car's free motion over its own delay tau and
+    chooses the steer c, held over the preview window [tau, tau + T_p], that minimizes the squared
+    distance between the predicted lateral position and the path at the preview points
+    (:func:`preview_gains`; Gauss-Legendre points, uniform weighting)::
 
-        delta_c = K sum_k q_k (e_k - h_k [v, r]),   e_k = path offset at u eta_k ahead
+        c = K sum_k q_k (e_k - h_k [v, r, 0, 0]),   e_k = path offset at u (tau + eta_k) ahead,
+        h_k = C e^(A eta_k) e^(A tau)
 
-    (C. C. MacAdam, "Application of an optimal preview control for simulation of closed-loop
-    automobile driving", IEEE Trans. SMC 11(6), 393-399, 1981; "Understanding and modeling the
-    human driver", Vehicle System Dynamics 40(1-3), 2003.)
+    then applies it through the delay tau (Pade approximant) and the lag T_N as
+    :class:`CrossoverDriver` does (the lag is not in the internal model). With K = 1 the command is the
+    optimal one for the internal model; K scales it. C. C. MacAdam, "Application of an optimal
+    preview control for simulation of closed-loop automobile driving", IEEE Trans. SMC 11(6),
+    393-399, 1981 (the delay ahead of the preview window, eq. 12-16); "Understanding and modeling
+    the human driver", Vehicle System Dynamics 40(1-3), 101-134, 2003.
 
     Parameters
     ----------
     path_x, path_y : array_like
         Desired CG path [m] (SAE earth axes).
     vehicle : Vehicle
-        The car the driver knows: its linear bicycle (:class:`~vehdyn.handling.LinearBicycle`,
-        cornering stiffnesses of the vehicle's tires) at ``speed`` is the internal model.
+        The car the driver knows: its :class:`~vehdyn.handling.LinearBicycle` (cornering
+        stiffnesses of its tires) at ``speed`` is the internal model.
     speed : float
         Design speed of the internal model [m/s] > 0.
     preview_time : float
         T_p [s] (default 1.0).
     gain : float
-        K [-] > 0 (default 1: the optimal steer).
-    delay, neuromuscular_lag, minimum_preview_distance, max_steer_angle, pade_order
-        As :class:`CrossoverDriver` (minimum_preview_distance unused).
+        K [-] > 0 (default 1: the optimal command).
+    delay, neuromuscular_lag, max_steer_angle, pade_order
+        As :class:`CrossoverDriver`.
+    minimum_preview_distance : float
+        Lower bound of the preview distances [m] (default 0).
     n_preview : int
         Number of preview points (default 10).
 
@@ -493,6 +499,8 @@ class OptimalPreviewDriver(_PathDriver):
     def __init__(self, path_x, path_y, *, vehicle, speed: float, preview_time: float = 1.0, gain: float = 1.0,
                  delay: float = 0.15, neuromuscular_lag: float = 0.1, minimum_preview_distance: float = 0.0,
                  max_steer_angle: float = 0.6, pade_order: int = 3, n_preview: int = 10):
+        from scipy.linalg import expm
+
         from .bicycle import LinearBicycle
 
         self._setup(path_x, path_y, delay=delay, neuromuscular_lag=neuromuscular_lag, preview_time=preview_time,
@@ -504,7 +512,7 @@ class OptimalPreviewDriver(_PathDriver):
         bicycle = LinearBicycle(vehicle, self.speed)
         iv, ir = bicycle.index("lateral_velocity"), bicycle.index("yaw_rate")
         steer = bicycle.index("front_steer_angle", "inputs")
-        # internal model in the vehicle's frame: [v, r, psi, y], dpsi/dt = r, dy/dt = u psi + v
+        # internal model in the car's frame: [v, r, psi, y], dpsi/dt = r, dy/dt = u psi + v
         A = np.zeros((4, 4))
         A[:2, :2] = bicycle.A[np.ix_([iv, ir], [iv, ir])]
         A[2, 1], A[3, 2], A[3, 0] = 1.0, self.speed, 1.0
@@ -513,38 +521,45 @@ class OptimalPreviewDriver(_PathDriver):
         nodes, weights = np.polynomial.legendre.leggauss(int(n_preview))
         self.preview_times = 0.5 * self.preview_time * (nodes + 1.0)
         q, h = preview_gains(A, B, np.array([[0.0, 0.0, 0.0, 1.0]]), self.preview_times, weights)
-        self._q, self._h = q, h[:, :2]
+        h = h @ expm(A * self.delay)  # the free motion during the delay, then over the window
+        self._q, self._h = q, np.column_stack([h[:, 0], h[:, 1], np.zeros(len(q))])
         self.n_preview = int(n_preview)
 
-    def command(self, t, s):
+    def _distances(self, speed):
+        return np.maximum(np.abs(speed) * (self.delay + self.preview_times), self.minimum_preview_distance)
+
+    def command(self, t, s, steer):
         shape = (-1,) + (1,) * np.ndim(s["x"])
-        distance = np.maximum(np.abs(s["longitudinal_velocity"]) * self.preview_times.reshape(shape),
+        distance = np.maximum(np.abs(s["longitudinal_velocity"]) * (self.delay + self.preview_times).reshape(shape),
                               self.minimum_preview_distance)
         offsets = preview_offsets(self.path_x, self.path_y, s["x"], s["y"], s["yaw_angle"], distance)
-        free = self._h[:, 0].reshape(shape) * s["lateral_velocity"] + self._h[:, 1].reshape(shape) * s["yaw_rate"]
+        h = [self._h[:, j].reshape(shape) for j in range(3)]
+        free = h[0] * s["lateral_velocity"] + h[1] * s["yaw_rate"] + h[2] * steer
         return self.gain * np.sum(self._q.reshape(shape) * (offsets - free), axis=0)
 
     def perception(self, speed) -> dict:
-        distance = np.maximum(abs(speed) * self.preview_times, self.minimum_preview_distance)
-        return {"y": self.gain * self._q.sum(), "yaw_angle": self.gain * np.sum(self._q * distance),
-                "lateral_velocity": self.gain * np.sum(self._q * self._h[:, 0]),
-                "yaw_rate": self.gain * np.sum(self._q * self._h[:, 1])}
+        distance = self._distances(np.full(self.n_preview, float(speed)))
+        k = self.gain * self._q
+        return {"y": k.sum(), "yaw_angle": np.sum(k * distance), "lateral_velocity": np.sum(k * self._h[:, 0]),
+                "yaw_rate": np.sum(k * self._h[:, 1]), "driver_steer_angle": np.sum(k * self._h[:, 2])}
 
 
 # ====================================================================== loop analysis
 def _plant_steer_model(plant: Model, speed: float):
-    """The plant's linearization at straight running at ``speed`` (front steer input only)."""
-    if hasattr(plant, "straight_running"):
-        lin = plant.linearize(speed=speed)
-    else:
+    """The plant's linearization at straight running at ``speed`` (cached on the plant per speed)."""
+    if not hasattr(plant, "straight_running"):
         raise ParameterError(f"{type(plant).__name__} has no straight_running(speed): give a SingleTrack-like model",
                              key="plant", value=type(plant).__name__)
-    return lin
+    cache = plant.__dict__.setdefault("_driver_loop_linearizations", {})
+    if float(speed) not in cache:
+        cache[float(speed)] = plant.linearize(speed=speed)
+    return cache[float(speed)]
 
 
 def _perception_row(lin, driver, speed):
     """Row F over the linear plant's states such that delta_c = -F x (about straight running)."""
-    gains = driver.perception(speed)
+    gains = dict(driver.perception(speed))
+    gains.pop("driver_steer_angle", None)
     missing = [name for name in gains if name not in lin.state_names and name not in lin.output_names]
     if missing:
         raise ParameterError(f"{type(driver).__name__} cannot be attached to the plant: missing inputs {missing}",
@@ -562,10 +577,10 @@ def _perception_row(lin, driver, speed):
 def driver_loop_response(plant: Model, driver, speed: float, omega) -> np.ndarray:
     """Open-loop frequency response L(j omega) of the driver-vehicle loop cut at the steer [-].
 
-    L(s) = e^(-tau s) / (T_N s + 1) F (sI - A)^-1 B, with the exact delay, (A, B) the plant's
-    linearization at straight running at ``speed`` [m/s] (front steer input) and F the driver's
-    linear gains on the vehicle's signals (``driver.perception(speed)``); the loop is closed with
-    negative feedback (delta = -L delta).
+    L(s) = P_d / (1 + k_d P_d) F (sI - A)^-1 B, P_d = e^(-tau s) / (T_N s + 1), with the exact
+    delay, (A, B) the plant's linearization at straight running at ``speed`` [m/s] (front steer
+    input), F the driver's linear gains on the vehicle's signals and k_d its gain on its own steer
+    (``driver.perception(speed)``); the loop is closed with negative feedback (delta = -L delta).
     """
     lin = _plant_steer_model(plant, speed)
     row = _perception_row(lin, driver, speed)
@@ -573,7 +588,9 @@ def driver_loop_response(plant: Model, driver, speed: float, omega) -> np.ndarra
     omega = np.asarray(omega, dtype=float)
     eye = np.eye(lin.n_states)
     plant_part = np.array([row @ np.linalg.solve(1j * w * eye - lin.A, b) for w in omega])
-    return plant_part * np.exp(-1j * omega * driver.delay) / (1j * omega * driver.neuromuscular_lag + 1.0)
+    own = driver.perception(speed).get("driver_steer_angle", 0.0)
+    applied = np.exp(-1j * omega * driver.delay) / (1j * omega * driver.neuromuscular_lag + 1.0)
+    return plant_part * applied / (1.0 + own * applied)
 
 
 def driver_loop(plant: Model, driver, speed: float, *, pade_order: int = 6):
@@ -595,12 +612,14 @@ def driver_loop(plant: Model, driver, speed: float, *, pade_order: int = 6):
         reached = grown
     keep = np.nonzero(reached)[0]
     car = control.ss(lin.A[np.ix_(keep, keep)], b[keep], row[None, keep], 0.0)
-    lag = control.tf([1.0], [driver.neuromuscular_lag, 1.0])
-    loop = lag * car
+    applied = control.tf([1.0], [driver.neuromuscular_lag, 1.0])
     if driver.delay > 0:
         num, den = control.pade(driver.delay, pade_order)
-        loop = control.tf(num, den) * loop
-    return control.ss(loop)
+        applied = control.tf(num, den) * applied
+    own = driver.perception(speed).get("driver_steer_angle", 0.0)
+    if own:
+        applied = control.feedback(applied, own)
+    return control.ss(applied * car)
 
 
 def driver_loop_margins(plant: Model, driver, speed: float, *, omega=None) -> dict:
@@ -628,38 +647,6 @@ def driver_loop_margins(plant: Model, driver, speed: float, *, omega=None) -> di
 
 
 # ====================================================================== compiled driver-vehicle loop
-def _driven_rhs(t, x, u, args, dxdt):  # pragma: no cover - compiled by numba (tested through simulate)
-    """dx/dt of plant + driver for the compiled backend; ``_plant_rhs`` is bound to the plant's compiled rhs."""
-    (plant_args, n_p, i_steer, ix, iy, ipsi, iu, iv, ir, kind, px, py, gain, tp, dmin, smax, pa, pb, pc, pd, tn,
-     times, q, h0, h1) = args
-    n_z = pa.shape[0]
-    steer = x[n_p + n_z]
-    up = u.copy()
-    up[i_steer] = steer
-    _plant_rhs(t, x[:n_p], up, plant_args, dxdt[:n_p])  # noqa: F821 (bound by compiled_copy)
-    X, Y, psi, speed = x[ix], x[iy], x[ipsi], abs(x[iu])
-    c, s = math.cos(psi), math.sin(psi)
-    if kind == 0:
-        d = max(speed * tp, dmin)
-        command = gain * (np.interp(X + d * c, px, py) - (Y + d * s)) * c
-    else:
-        total = 0.0
-        for k in range(times.size):
-            d = max(speed * times[k], dmin)
-            offset = (np.interp(X + d * c, px, py) - (Y + d * s)) * c
-            total += q[k] * (offset - h0[k] * x[iv] - h1[k] * x[ir])
-        command = gain * total
-    command = min(max(command, -smax), smax)
-    delayed = pd * command
-    for i in range(n_z):
-        rate = pb[i] * command
-        for j in range(n_z):
-            rate += pa[i, j] * x[n_p + j]
-        dxdt[n_p + i] = rate
-        delayed += pc[i] * x[n_p + i]
-    dxdt[n_p + n_z] = (delayed - steer) / tn
-
-
 def _closed_loop_class():
     from ..chassis.closed_loop import ClosedLoop
 
@@ -683,14 +670,140 @@ class DrivenVehicle(_closed_loop_class()):
         plant = self.plant.compiled_rhs()
         if plant is None:
             return None
-        key = f"driven_{plant.key}_{source_stamp(sys.modules[__name__])}"
+        from . import _driver_numba
+
+        key = f"driven_{plant.key}_{source_stamp(_driver_numba)}"
         cached = self.__dict__.get("_compiled")
         if cached is not None and cached.key == key:
             return cached
-        rhs = compiled_copy(_driven_rhs, f"{key}_rhs", _plant_rhs=plant.rhs)
+        rhs = compiled_copy(_driver_numba.driven_rhs, f"{key}_rhs", _plant_rhs=plant.rhs)
         p = self.plant
         index = tuple(p.index(n) for n in ("x", "y", "yaw_angle", "longitudinal_velocity", "lateral_velocity",
                                            "yaw_rate"))
         args = (plant.args, p.n_states, p.index("front_steer_angle", "inputs")) + index + self.controller._compiled_args()
         self._compiled = CompiledModel(rhs, None, key, args)
         return self._compiled
+
+
+# ====================================================================== the lane change that measures the car
+def lane_change_run(model: Model, track, driver, speed: float, *, throttle: str = "hold", rtol: float = 1e-5):
+    """One run of ``driver`` steering ``model`` through ``track`` from ``speed`` [m/s].
+
+    The car starts on the path's first point in straight running. ``throttle="hold"``: the rear
+    axle force balances the aerodynamic drag at the entry speed (the speed held, ISO 3888-1);
+    ``"release"``: no drive force (coasting from the entry, the ISO 3888-2 procedure). Compiled
+    when the model has a compiled rhs. Returns ``(result, outcome)`` with
+    :func:`~vehdyn.handling.lane_change_outcome` plus ``spin_out_time``; ``passed`` is False on a
+    spin (|sideslip| > 45 deg).
+    """
+    from ..simulate import simulate
+    from .maneuvers import lane_change_outcome, spin_out_time
+
+    if throttle not in ("hold", "release"):
+        raise ParameterError(f"throttle must be 'hold' or 'release', got {throttle!r}", key="throttle", value=throttle)
+    loop = driver.close(model)
+    x_start, x_end = float(track.path_x[0]), float(track.path_x[-1])
+    n = int(np.ceil((x_end - x_start) / 0.25)) + 1
+    t = np.linspace(0.0, 1.15 * (x_end - x_start) / speed, n)
+    x0 = np.concatenate([model.straight_running(speed, x=x_start), np.zeros(loop.n_states - model.n_states)])
+    force = float(np.asarray(model.parameters.drag_factor)) * speed**2 if throttle == "hold" else 0.0
+    result = simulate(loop, t, {"rear_longitudinal_force": force}, x0=x0, method="RK45", rtol=rtol, atol=1e-8)
+    outcome = lane_change_outcome(track, result)
+    outcome["spin_out_time"] = spin_out_time(result)
+    outcome["passed"] = outcome["passed"] and outcome["spin_out_time"] is None
+    return result, outcome
+
+
+def _saturation(model, result) -> dict:
+    """Per axle: the largest |tan(slip angle)| over the peak-force one (static load) and when it first passed 1."""
+    out = {}
+    for axle in ("front", "rear"):
+        peak = float(np.asarray(model._peak_slip[axle][1]))
+        ratio = np.abs(np.tan(np.asarray(result[f"{axle}_slip_angle"]))) / peak
+        over = np.nonzero(ratio > 1.0)[0]
+        out[axle] = (float(ratio.max()), float(result.time[over[0]]) if over.size else None)
+    return out
+
+
+def lane_change_limit(model: Model, track, make_driver, tunings, *, throttle: str = "hold",
+                      speeds=(8.0, 40.0), resolution: float = 0.25) -> dict:
+    """The highest entry speed [m/s] at which some driver tuning clears the cones (bisection on speed).
+
+    At each trial speed the tunings are tried (the last one that passed first) until one passes;
+    the speed is raised if one did, lowered if none did, until the bracket is ``resolution`` wide.
+    So the speed found is the car's (within the drivers swept), not one tuning's; it assumes that
+    what passes at a speed passes at lower ones.
+
+    Parameters
+    ----------
+    model : SingleTrack
+    track : DoubleLaneChangeTrack
+    make_driver : callable
+        ``make_driver(speed, **tuning)`` -> a driver (:class:`OptimalPreviewDriver`, ...).
+    tunings : sequence of dict
+        The driver parameters swept.
+    throttle, speeds, resolution
+        :func:`lane_change_run`'s throttle; the bracket [m/s]; its final width [m/s].
+
+    Returns
+    -------
+    dict
+        ``speed`` (highest passing, NaN if none passed at ``speeds[0]``; ``speeds[1]`` if that passed),
+        ``tuning`` (the tuning that passed there), ``failing_speed`` (the lowest failing speed tried),
+        ``passing`` (``(result, outcome)`` of the passing run) and ``failing`` (that of the run
+        closest to passing at ``failing_speed``: the largest cone margin over the tunings), ``runs``
+        (simulations made), and ``limiting_factor`` from that failing run: ``"tire saturation,
+        front axle"`` / ``"... rear axle"`` (the axle whose slip angle first passed its peak-force
+        one), else ``"driver"`` (the cones were hit with unsaturated tires: no tuning swept found a
+        line through them).
+    """
+    tunings = list(tunings)
+    if not tunings:
+        raise ParameterError("tunings must not be empty", key="tunings", value=tunings)
+    lo, hi = (float(s) for s in speeds)
+    if not (0 < lo < hi) or not np.isfinite(hi):
+        raise ParameterError(f"speeds must be 0 < low < high, finite, got {speeds!r}", key="speeds", value=speeds)
+    order = list(range(len(tunings)))
+    runs = 0
+
+    def attempt(speed):
+        nonlocal runs
+        best_fail = None
+        for i in list(order):
+            result, outcome = lane_change_run(model, track, make_driver(speed, **tunings[i]), speed, throttle=throttle)
+            runs += 1
+            if outcome["passed"]:
+                order.remove(i)
+                order.insert(0, i)
+                return i, (result, outcome)
+            if best_fail is None or outcome["worst_margin"] > best_fail[2][1]["worst_margin"]:
+                best_fail = (i, None, (result, outcome))
+        return None, best_fail
+
+    low_pass = attempt(lo)
+    if low_pass[0] is None:
+        return {"speed": np.nan, "tuning": None, "failing_speed": lo, "passing": None, "failing": low_pass[1][2],
+                "runs": runs, "limiting_factor": _factor(model, low_pass[1][2][0])}
+    passing, failing, failing_speed = low_pass, None, None
+    high = attempt(hi)
+    if high[0] is not None:
+        return {"speed": hi, "tuning": tunings[high[0]], "failing_speed": np.nan, "passing": high[1], "failing": None,
+                "runs": runs, "limiting_factor": "none within the bracket"}
+    failing, failing_speed = high[1], hi
+    while hi - lo > resolution:
+        mid = 0.5 * (lo + hi)
+        trial = attempt(mid)
+        if trial[0] is not None:
+            lo, passing = mid, trial
+        else:
+            hi, failing, failing_speed = mid, trial[1], mid
+    return {"speed": lo, "tuning": tunings[passing[0]], "failing_speed": failing_speed, "passing": passing[1],
+            "failing": failing[2], "runs": runs, "limiting_factor": _factor(model, failing[2][0])}
+
+
+def _factor(model, result) -> str:
+    saturation = _saturation(model, result)
+    first = [(time, axle) for axle, (_, time) in saturation.items() if time is not None]
+    if first:
+        return f"tire saturation, {min(first)[1]} axle"
+    return "driver"
