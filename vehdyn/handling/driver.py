@@ -586,8 +586,8 @@ def driver_loop_response(plant: Model, driver, speed: float, omega) -> np.ndarra
     row = _perception_row(lin, driver, speed)
     b = lin.B[:, lin.index("front_steer_angle", "inputs")]
     omega = np.asarray(omega, dtype=float)
-    eye = np.eye(lin.n_states)
-    plant_part = np.array([row @ np.linalg.solve(1j * w * eye - lin.A, b) for w in omega])
+    matrices = 1j * omega[:, None, None] * np.eye(lin.n_states) - lin.A
+    plant_part = np.linalg.solve(matrices, np.broadcast_to(b[:, None], (omega.size, b.size, 1)))[:, :, 0] @ row
     own = driver.perception(speed).get("driver_steer_angle", 0.0)
     applied = np.exp(-1j * omega * driver.delay) / (1j * omega * driver.neuromuscular_lag + 1.0)
     return plant_part * applied / (1.0 + own * applied)
@@ -622,12 +622,14 @@ def driver_loop(plant: Model, driver, speed: float, *, pade_order: int = 6):
     return control.ss(applied * car)
 
 
-def driver_loop_margins(plant: Model, driver, speed: float, *, omega=None) -> dict:
-    """Gain and phase margins of the driver-vehicle loop at ``speed`` (python-control).
+def driver_loop_margins(plant: Model, driver, speed: float, *, pade_order: int = 6) -> dict:
+    """Gain and phase margins of the driver-vehicle loop at ``speed`` [m/s] (python-control).
 
-    The margins come from ``control.stability_margins`` on the loop's frequency response with the
-    exact delay (a ``control.FRD`` on ``omega``, default 400 log-spaced points 0.05-60 rad/s);
-    ``stable`` from the poles of the closed loop with the delay as a 6th-order Pade approximant.
+    ``control.stability_margins`` of :func:`driver_loop` (the delay as a Pade approximant of
+    ``pade_order``: at the default 6 its phase error is below 1e-8 rad up to omega tau = 1.6, so
+    the margins are those of the exact delay) and ``stable`` from the poles of the closed loop
+    ``control.feedback(L, 1)``. The margins are Nyquist's when the open loop has no poles in the
+    right half-plane (the car below its critical speed); ``stable`` holds in any case.
 
     Returns
     -------
@@ -637,11 +639,9 @@ def driver_loop_margins(plant: Model, driver, speed: float, *, omega=None) -> di
     """
     import control
 
-    omega = np.geomspace(0.05, 60.0, 400) if omega is None else np.asarray(omega, dtype=float)
-    response = driver_loop_response(plant, driver, speed, omega)
-    gm, pm, _, wpc, wgc, _ = control.stability_margins(control.FRD(response, omega), returnall=False)
-    closed = control.feedback(driver_loop(plant, driver, speed), 1.0)
-    stable = bool(np.all(np.real(closed.poles()) < 0))
+    loop = driver_loop(plant, driver, speed, pade_order=pade_order)
+    gm, pm, _, wpc, wgc, _ = control.stability_margins(loop, returnall=False)
+    stable = bool(np.all(np.real(control.feedback(loop, 1.0).poles()) < 0))
     return {"gain_margin": float(gm), "phase_margin": float(np.radians(pm)), "crossover_frequency": float(wgc),
             "phase_crossover_frequency": float(wpc), "stable": stable}
 
