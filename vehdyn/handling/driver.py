@@ -291,7 +291,7 @@ class _PathDriver(Model):
         """The linear command law about straight running on a straight path at y = 0.
 
         ``{signal: k}`` such that delta_c = -sum_k k * signal (the driver's gains on the vehicle's
-        signals and, under ``driver_steer_angle``, on its own steer; used by :func:`driver_loop_margins`).
+        signals; used by :func:`driver_loop_margins`).
         """
         raise NotImplementedError
 
@@ -541,7 +541,7 @@ class OptimalPreviewDriver(_PathDriver):
         distance = self._distances(np.full(self.n_preview, float(speed)))
         k = self.gain * self._q
         return {"y": k.sum(), "yaw_angle": np.sum(k * distance), "lateral_velocity": np.sum(k * self._h[:, 0]),
-                "yaw_rate": np.sum(k * self._h[:, 1]), "driver_steer_angle": np.sum(k * self._h[:, 2])}
+                "yaw_rate": np.sum(k * self._h[:, 1])}
 
 
 # ====================================================================== loop analysis
@@ -558,8 +558,7 @@ def _plant_steer_model(plant: Model, speed: float):
 
 def _perception_row(lin, driver, speed):
     """Row F over the linear plant's states such that delta_c = -F x (about straight running)."""
-    gains = dict(driver.perception(speed))
-    gains.pop("driver_steer_angle", None)
+    gains = driver.perception(speed)
     missing = [name for name in gains if name not in lin.state_names and name not in lin.output_names]
     if missing:
         raise ParameterError(f"{type(driver).__name__} cannot be attached to the plant: missing inputs {missing}",
@@ -577,10 +576,10 @@ def _perception_row(lin, driver, speed):
 def driver_loop_response(plant: Model, driver, speed: float, omega) -> np.ndarray:
     """Open-loop frequency response L(j omega) of the driver-vehicle loop cut at the steer [-].
 
-    L(s) = P_d / (1 + k_d P_d) F (sI - A)^-1 B, P_d = e^(-tau s) / (T_N s + 1), with the exact
-    delay, (A, B) the plant's linearization at straight running at ``speed`` [m/s] (front steer
-    input), F the driver's linear gains on the vehicle's signals and k_d its gain on its own steer
-    (``driver.perception(speed)``); the loop is closed with negative feedback (delta = -L delta).
+    L(s) = e^(-tau s) / (T_N s + 1) F (sI - A)^-1 B, with the exact delay, (A, B) the plant's
+    linearization at straight running at ``speed`` [m/s] (front steer input) and F the driver's
+    linear gains on the vehicle's signals (``driver.perception(speed)``); the loop is closed with
+    negative feedback (delta = -L delta).
     """
     lin = _plant_steer_model(plant, speed)
     row = _perception_row(lin, driver, speed)
@@ -588,38 +587,43 @@ def driver_loop_response(plant: Model, driver, speed: float, omega) -> np.ndarra
     omega = np.asarray(omega, dtype=float)
     matrices = 1j * omega[:, None, None] * np.eye(lin.n_states) - lin.A
     plant_part = np.linalg.solve(matrices, np.broadcast_to(b[:, None], (omega.size, b.size, 1)))[:, :, 0] @ row
-    own = driver.perception(speed).get("driver_steer_angle", 0.0)
-    applied = np.exp(-1j * omega * driver.delay) / (1j * omega * driver.neuromuscular_lag + 1.0)
-    return plant_part * applied / (1.0 + own * applied)
+    return plant_part * np.exp(-1j * omega * driver.delay) / (1j * omega * driver.neuromuscular_lag + 1.0)
 
 
 def driver_loop(plant: Model, driver, speed: float, *, pade_order: int = 6):
     """The open loop L(s) as a ``control.StateSpace`` (delay as a Pade approximant of ``pade_order``).
 
-    Its input and output are the steer [rad]; ``control.feedback(L, 1)`` is the closed loop.
+    Input and output are the road-wheel steer [rad]: the car (its states that the steer reaches and
+    that the driver sees; the position x and the speed drop out in straight running), the driver's
+    gains, its delay and its lag in series. ``control.feedback(L, 1)`` is the closed loop.
     """
     import control
 
     lin = _plant_steer_model(plant, speed)
     row = _perception_row(lin, driver, speed)
-    b = lin.B[:, [lin.index("front_steer_angle", "inputs")]]
-    # the states the steer reaches (structurally): x and the speed decouple in straight running
-    reached = b[:, 0] != 0
-    while True:
-        grown = reached | np.any(lin.A[:, reached] != 0, axis=1)
-        if np.array_equal(grown, reached):
+    b = lin.B[:, lin.index("front_steer_angle", "inputs")]
+    reached, seen = b != 0, row != 0
+    while True:  # structural reachability from the steer and observability by the driver
+        grown = (reached | np.any(lin.A[:, reached] != 0, axis=1), seen | np.any(lin.A[seen, :] != 0, axis=0))
+        if np.array_equal(grown[0], reached) and np.array_equal(grown[1], seen):
             break
-        reached = grown
-    keep = np.nonzero(reached)[0]
-    car = control.ss(lin.A[np.ix_(keep, keep)], b[keep], row[None, keep], 0.0)
-    applied = control.tf([1.0], [driver.neuromuscular_lag, 1.0])
-    if driver.delay > 0:
-        num, den = control.pade(driver.delay, pade_order)
-        applied = control.tf(num, den) * applied
-    own = driver.perception(speed).get("driver_steer_angle", 0.0)
-    if own:
-        applied = control.feedback(applied, own)
-    return control.ss(applied * car)
+        reached, seen = grown
+    keep = np.nonzero(reached & seen)[0]
+    Ac, bc, rc = lin.A[np.ix_(keep, keep)], b[keep], row[keep]
+    Ap, Bp, Cp, Dp = pade_delay(driver.delay, pade_order)
+    n, m = keep.size, Ap.shape[0]
+    A = np.zeros((n + m + 1, n + m + 1))
+    A[:n, :n] = Ac
+    A[n:n + m, :n] = np.outer(Bp[:, 0], rc)
+    A[n:n + m, n:n + m] = Ap
+    A[-1, :n] = Dp[0, 0] * rc / driver.neuromuscular_lag
+    A[-1, n:n + m] = Cp[0] / driver.neuromuscular_lag
+    A[-1, -1] = -1.0 / driver.neuromuscular_lag
+    B = np.zeros((n + m + 1, 1))
+    B[:n, 0] = bc
+    C = np.zeros((1, n + m + 1))
+    C[0, -1] = 1.0
+    return control.ss(A, B, C, 0.0)
 
 
 def driver_loop_margins(plant: Model, driver, speed: float, *, pade_order: int = 6) -> dict:
@@ -640,7 +644,8 @@ def driver_loop_margins(plant: Model, driver, speed: float, *, pade_order: int =
     import control
 
     loop = driver_loop(plant, driver, speed, pade_order=pade_order)
-    gm, pm, _, wpc, wgc, _ = control.stability_margins(loop, returnall=False)
+    with np.errstate(over="ignore", invalid="ignore"):  # polynomial evaluation far above crossover
+        gm, pm, _, wpc, wgc, _ = control.stability_margins(loop, returnall=False)
     stable = bool(np.all(np.real(control.feedback(loop, 1.0).poles()) < 0))
     return {"gain_margin": float(gm), "phase_margin": float(np.radians(pm)), "crossover_frequency": float(wgc),
             "phase_crossover_frequency": float(wpc), "stable": stable}
