@@ -148,3 +148,30 @@ def test_driver_on_a_model_without_its_feedback_names_the_missing_inputs():
     assert info.value.key == "missing_inputs"
     with pytest.raises(ParameterError, match=r"missing inputs \['yaw_angle'\]"):
         driver_loop_margins(Integrator(1.0, states=("y", "lateral_velocity", "yaw_rate")), driver, 20.0)
+
+
+def test_lane_change_limit_brackets_the_speed_at_which_the_cones_are_cleared():
+    from vehdyn.handling import lane_change_limit, lane_change_run, obstacle_avoidance_track
+
+    model = SingleTrack(SEDAN)
+    track = obstacle_avoidance_track(SEDAN.geometry.front_track + 0.2)
+
+    def make(speed, **tuning):
+        return OptimalPreviewDriver(track.path_x, track.path_y, vehicle=SEDAN, speed=speed, **tuning)
+
+    tunings = [{"preview_time": 0.5, "gain": 1.5, "delay": 0.1}]
+    res = lane_change_limit(model, track, make, tunings, throttle="release", speeds=(8.0, 30.0), resolution=1.0)
+    assert 8.0 <= res["speed"] < res["failing_speed"] <= res["speed"] + 1.0
+    # independent re-runs: passes at the limit, fails at the failing speed
+    assert lane_change_run(model, track, make(res["speed"], **tunings[0]), res["speed"], throttle="release")[1]["passed"]
+    fail = lane_change_run(model, track, make(res["failing_speed"], **tunings[0]), res["failing_speed"],
+                           throttle="release")[1]
+    assert not fail["passed"]
+    assert res["failing"][1]["worst_margin"] == pytest.approx(fail["worst_margin"])
+    assert res["limiting_factor"] in ("driver", "tire saturation, front axle", "tire saturation, rear axle")
+    with pytest.raises(ParameterError, match="tunings"):
+        lane_change_limit(model, track, make, [])
+    with pytest.raises(ParameterError, match="speeds"):
+        lane_change_limit(model, track, make, tunings, speeds=(20.0, 10.0))
+    with pytest.raises(ParameterError, match="throttle"):
+        lane_change_run(model, track, make(20.0, **tunings[0]), 20.0, throttle="coast")

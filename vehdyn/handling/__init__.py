@@ -105,7 +105,10 @@ from .driver import (  # noqa: E402
     driver_loop,
     driver_loop_margins,
     driver_loop_response,
+    lane_change_limit,
+    lane_change_run,
     preview_gains,
+    slip_angle_utilization,
 )
 from .crosswind import (  # noqa: E402
     CrosswindSensitivity,
@@ -154,6 +157,9 @@ __all__ += [
     "driver_loop_margins",
     "driver_loop_response",
     "preview_gains",
+    "lane_change_limit",
+    "lane_change_run",
+    "slip_angle_utilization",
     "step_steer",
     "ramp_steer",
     "sine_steer",

@@ -32,7 +32,8 @@ from ..signals import Signal
 
 __all__ = ["PreviewDriver", "DriverInTheLoop", "CrossoverDriver", "OptimalPreviewDriver", "pade_delay",
            "preview_gains", "preview_offsets", "driver_loop", "driver_loop_response", "driver_loop_margins",
-           "DrivenVehicle", "lane_change_run", "lane_change_limit"]
+           "DrivenVehicle", "lane_change_run", "lane_change_limit",
+           "slip_angle_utilization"]
 
 
 @dataclass(frozen=True)
@@ -719,8 +720,11 @@ def lane_change_run(model: Model, track, driver, speed: float, *, throttle: str 
     return result, outcome
 
 
-def _saturation(model, result) -> dict:
-    """Per axle: the largest |tan(slip angle)| over the peak-force one (static load) and when it first passed 1."""
+def slip_angle_utilization(model, result) -> dict:
+    """``{axle: (largest |tan(slip angle)| over the peak-force one, first time [s] it passed 1 or None)}``.
+
+    The peak-force slip angle is the tire law's at the static axle load (``model`` a SingleTrack).
+    """
     out = {}
     for axle in ("front", "rear"):
         peak = float(np.asarray(model._peak_slip[axle][1]))
@@ -807,7 +811,7 @@ def lane_change_limit(model: Model, track, make_driver, tunings, *, throttle: st
 
 
 def _factor(model, result) -> str:
-    saturation = _saturation(model, result)
+    saturation = slip_angle_utilization(model, result)
     first = [(time, axle) for axle, (_, time) in saturation.items() if time is not None]
     if first:
         return f"tire saturation, {min(first)[1]} axle"
