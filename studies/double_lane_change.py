@@ -55,7 +55,8 @@ def run(study: Study) -> None:
 
             res = lane_change_limit(model, track, make, tunings, throttle=throttle, speeds=(8.0, 40.0),
                                     resolution=resolution)
-            use = slip_angle_utilization(model, res["failing"][0]) if res["failing"] else {"front": (np.nan,), "rear": (np.nan,)}
+            use = (slip_angle_utilization(model, res["failing"][0]) if res["failing"]
+                   else {"front": (np.nan,), "rear": (np.nan,)})
             passing = res["passing"][0] if res["passing"] else None
             rows.append({"vehicle": name, "test": standard, "limit_speed_kmh": res["speed"] * 3.6,
                          "failing_speed_kmh": res["failing_speed"] * 3.6,

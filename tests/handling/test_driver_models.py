@@ -109,7 +109,8 @@ def test_drivers_settle_on_an_offset_path_numpy_and_compiled_agree(kind):
         driver = OptimalPreviewDriver(PATH_X, path_y, vehicle=SEDAN, speed=20.0, delay=0.1)
     loop = driver.close(model)
     assert loop.state_names[:model.n_states] == model.state_names
-    assert loop.output_names[-1] == ("front_steer_angle_after_" + {"crossover": "crossover_driver", "optimal": "optimal_preview_driver"}[kind])
+    suffix = {"crossover": "crossover_driver", "optimal": "optimal_preview_driver"}[kind]
+    assert loop.output_names[-1] == "front_steer_angle_after_" + suffix
     t = np.linspace(0, 12, 121)
     x0 = np.concatenate([model.straight_running(20.0), np.zeros(loop.n_states - model.n_states)])
     drag = float(model.parameters.drag_factor) * 400.0
@@ -163,7 +164,8 @@ def test_lane_change_limit_brackets_the_speed_at_which_the_cones_are_cleared():
     res = lane_change_limit(model, track, make, tunings, throttle="release", speeds=(8.0, 30.0), resolution=1.0)
     assert 8.0 <= res["speed"] < res["failing_speed"] <= res["speed"] + 1.0
     # independent re-runs: passes at the limit, fails at the failing speed
-    assert lane_change_run(model, track, make(res["speed"], **tunings[0]), res["speed"], throttle="release")[1]["passed"]
+    passing = lane_change_run(model, track, make(res["speed"], **tunings[0]), res["speed"], throttle="release")[1]
+    assert passing["passed"]
     fail = lane_change_run(model, track, make(res["failing_speed"], **tunings[0]), res["failing_speed"],
                            throttle="release")[1]
     assert not fail["passed"]

@@ -5,8 +5,8 @@ import pytest
 
 import vehdyn
 from vehdyn.handling import (DriverInTheLoop, PreviewDriver, SingleTrack, braking_in_turn, crosswind_gust,
-                             double_lane_change_track, lane_change_outcome, obstacle_avoidance_track, ramp_steer, sine_steer,
-                             sine_with_dwell, sine_with_dwell_metrics, step_steer)
+                             double_lane_change_track, lane_change_outcome, obstacle_avoidance_track, ramp_steer,
+                             sine_steer, sine_with_dwell, sine_with_dwell_metrics, step_steer)
 from vehdyn.results import SimulationResult
 from vehdyn.tire import FialaTire
 

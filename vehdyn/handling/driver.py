@@ -1,4 +1,18 @@
-"""Preview driver model and the driver-in-the-loop model.
+"""Driver models: the preview driver, McRuer's crossover model, MacAdam's optimal preview driver.
+
+Three drivers steer a vehicle model along a path:
+
+* :class:`PreviewDriver` with :class:`DriverInTheLoop` (pure pursuit with a lag, below);
+* :class:`CrossoverDriver` (McRuer) and :class:`OptimalPreviewDriver` (MacAdam 1981): controller
+  :class:`~vehdyn.Model` objects with named parameters (gain, preview time, delay as a Pade
+  approximant, neuromuscular lag) that close the loop through :class:`vehdyn.chassis.ClosedLoop`
+  (``driver.close(plant)``; compiled with a :class:`~vehdyn.handling.SingleTrack`).
+
+:func:`driver_loop` / :func:`driver_loop_margins` analyse the driver-vehicle loop with
+python-control; :func:`lane_change_limit` finds the highest entry speed at which some tuning of a
+driver sweep clears the cones of a lane change.
+
+The preview driver (pure pursuit):
 
 The driver looks ahead along the vehicle's heading by the preview distance d = max(u T_p, d_min)
 (T_p the preview time), measures the lateral offset e of the desired path from that preview point
@@ -686,7 +700,8 @@ class DrivenVehicle(_closed_loop_class()):
         p = self.plant
         index = tuple(p.index(n) for n in ("x", "y", "yaw_angle", "longitudinal_velocity", "lateral_velocity",
                                            "yaw_rate"))
-        args = (plant.args, p.n_states, p.index("front_steer_angle", "inputs")) + index + self.controller._compiled_args()
+        args = ((plant.args, p.n_states, p.index("front_steer_angle", "inputs")) + index
+                + self.controller._compiled_args())
         self._compiled = CompiledModel(rhs, None, key, args)
         return self._compiled
 

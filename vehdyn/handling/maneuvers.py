@@ -362,7 +362,8 @@ def double_lane_change_track(vehicle_width: float, *, lateral_offset: float = 3.
                               offset, "ISO 3888-1", run_in, run_out)
 
 
-def obstacle_avoidance_track(vehicle_width: float, *, run_in: float = 30.0, run_out: float = 30.0) -> DoubleLaneChangeTrack:
+def obstacle_avoidance_track(vehicle_width: float, *, run_in: float = 30.0,
+                             run_out: float = 30.0) -> DoubleLaneChangeTrack:
     """ISO 3888-2:2011 obstacle avoidance (the "moose test") track: cone lanes and a centre-line path.
 
     Section 1 (length 12 m, width 1.1 b + 0.25), section 2 (13.5 m), section 3 (11 m, width
