@@ -10,12 +10,13 @@ driven with the speed held (the rear axle force balances the drag), ISO 3888-2 w
 released at the entry. A run fails when the vehicle (a rectangle of width track + 0.2 m) crosses a
 cone line in a coned lane, or spins (|sideslip| > 45 deg).
 
-The limiting factor comes from the failing run closest to passing just above the limit: the axle
-whose slip angle first passed its peak-force slip angle (tire saturation), else "driver" (the cones
-were hit with tires short of saturation: no tuning found a line). peak_lateral_acceleration_g is
-that of the passing run at the limit, axle utilizations (|tan slip| over the peak-force value) are
-those of the failing run. Default: the sedan, 8 tunings; ``vehdyn report --full``: the three cars,
-36 tunings.
+The limiting factor: the axle whose slip angle first passed its peak-force slip angle (tire
+saturation) in the failing run closest to passing just above the limit or, failing that, in the
+passing run at the limit; else "driver" (the cones were hit with tires short of saturation: no
+tuning swept found a line). Axle utilizations are the largest |tan slip angle| over the
+peak-force one (static load), in the passing run at the limit and in that failing run. Default:
+the sedan, 6 tunings (delay 0.1 s); ``vehdyn report --full``: the three cars, 18 tunings with
+delays 0.05 and 0.1 s.
 """
 
 import itertools
@@ -38,9 +39,9 @@ def run(study: Study) -> None:
         vehicles, previews, gains, delays, resolution = ["sedan"], (0.5,), (1.5,), (0.1,), 1.0
     elif study.full:
         vehicles = vehdyn.shipped_vehicles("passenger_car")
-        previews, gains, delays, resolution = (0.3, 0.5, 0.8, 1.2), (1.0, 1.5, 2.0), (0.05, 0.1, 0.2), 0.25
+        previews, gains, delays, resolution = (0.3, 0.5, 0.8), (1.0, 1.5, 2.0), (0.05, 0.1), 0.25
     else:
-        vehicles, previews, gains, delays, resolution = ["sedan"], (0.3, 0.5, 0.8, 1.2), (1.0, 1.5), (0.1,), 0.5
+        vehicles, previews, gains, delays, resolution = ["sedan"], (0.5, 0.8, 1.2), (1.0, 1.5), (0.1,), 0.5
     tunings = [{"preview_time": p, "gain": g, "delay": d} for p, g, d in itertools.product(previews, gains, delays)]
     rows, shown = [], {}
     for name in vehicles:
@@ -55,9 +56,10 @@ def run(study: Study) -> None:
 
             res = lane_change_limit(model, track, make, tunings, throttle=throttle, speeds=(8.0, 40.0),
                                     resolution=resolution)
-            use = (slip_angle_utilization(model, res["failing"][0]) if res["failing"]
-                   else {"front": (np.nan,), "rear": (np.nan,)})
+            none = {"front": (np.nan,), "rear": (np.nan,)}
+            use = slip_angle_utilization(model, res["failing"][0]) if res["failing"] else none
             passing = res["passing"][0] if res["passing"] else None
+            use_limit = slip_angle_utilization(model, passing) if passing is not None else none
             rows.append({"vehicle": name, "test": standard, "limit_speed_kmh": res["speed"] * 3.6,
                          "failing_speed_kmh": res["failing_speed"] * 3.6,
                          **{k: (res["tuning"] or {}).get(k, np.nan) for k in ("preview_time", "gain", "delay")},
@@ -65,14 +67,17 @@ def run(study: Study) -> None:
                          "cone_hit_in_lane": 1 + 2 * res["failing"][1]["section"] if res["failing"] else None,
                          "peak_lateral_acceleration_g": (np.abs(passing["lateral_acceleration"]).max() / 9.80665
                                                          if passing is not None else np.nan),
-                         "front_utilization": use["front"][0], "rear_utilization": use["rear"][0],
+                         "front_utilization_at_limit": use_limit["front"][0],
+                         "rear_utilization_at_limit": use_limit["rear"][0],
+                         "front_utilization_failing": use["front"][0], "rear_utilization_failing": use["rear"][0],
                          "runs": res["runs"]})
             if name == vehicles[0]:
                 shown[standard] = (track, res)
     frame = pd.DataFrame(rows).set_index(["vehicle", "test"])
     frame.attrs["units"] = {"limit_speed_kmh": "km/h", "failing_speed_kmh": "km/h", "preview_time": "s",
                             "gain": "-", "delay": "s", "peak_lateral_acceleration_g": "g",
-                            "front_utilization": "-", "rear_utilization": "-"}
+                            "front_utilization_at_limit": "-", "rear_utilization_at_limit": "-",
+                            "front_utilization_failing": "-", "rear_utilization_failing": "-"}
     study.table(frame, "limit_speeds", caption=f"Highest entry speed clearing the cones over {len(tunings)} driver "
                 "tunings (preview time, gain, delay), and what limits it")
 

@@ -776,10 +776,10 @@ def lane_change_limit(model: Model, track, make_driver, tunings, *, throttle: st
         ``tuning`` (the tuning that passed there), ``failing_speed`` (the lowest failing speed tried),
         ``passing`` (``(result, outcome)`` of the passing run) and ``failing`` (that of the run
         closest to passing at ``failing_speed``: the largest cone margin over the tunings), ``runs``
-        (simulations made), and ``limiting_factor`` from that failing run: ``"tire saturation,
-        front axle"`` / ``"... rear axle"`` (the axle whose slip angle first passed its peak-force
-        one), else ``"driver"`` (the cones were hit with unsaturated tires: no tuning swept found a
-        line through them).
+        (simulations made), and ``limiting_factor``: ``"tire saturation, front axle"`` / ``"... rear
+        axle"`` (the axle whose slip angle first passed its peak-force one in that failing run or,
+        failing that, in the passing run at the limit), else ``"driver"`` (the cones were hit with
+        unsaturated tires: no tuning swept found a line through them).
     """
     tunings = list(tunings)
     if not tunings:
@@ -822,12 +822,13 @@ def lane_change_limit(model: Model, track, make_driver, tunings, *, throttle: st
         else:
             hi, failing, failing_speed = mid, trial[1], mid
     return {"speed": lo, "tuning": tunings[passing[0]], "failing_speed": failing_speed, "passing": passing[1],
-            "failing": failing[2], "runs": runs, "limiting_factor": _factor(model, failing[2][0])}
+            "failing": failing[2], "runs": runs, "limiting_factor": _factor(model, failing[2][0], passing[1][0])}
 
 
-def _factor(model, result) -> str:
-    saturation = slip_angle_utilization(model, result)
-    first = [(time, axle) for axle, (_, time) in saturation.items() if time is not None]
-    if first:
-        return f"tire saturation, {min(first)[1]} axle"
+def _factor(model, *results) -> str:
+    """The axle that passed its peak-force slip angle first in the first of ``results`` where one did, else "driver"."""
+    for result in results:
+        first = [(time, axle) for axle, (_, time) in slip_angle_utilization(model, result).items() if time is not None]
+        if first:
+            return f"tire saturation, {min(first)[1]} axle"
     return "driver"
