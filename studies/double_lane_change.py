@@ -10,13 +10,16 @@ driven with the speed held (the rear axle force balances the drag), ISO 3888-2 w
 released at the entry. A run fails when the vehicle (a rectangle of width track + 0.2 m) crosses a
 cone line in a coned lane, or spins (|sideslip| > 45 deg).
 
-The limiting factor: the axle whose slip angle first passed its peak-force slip angle (tire
+The cone geometry's bound (vehdyn.handling.lane_change_speed_bound) is the highest speed at which
+a point mass at the tires' friction coefficient could clear the cones on the least-curvature
+path: a car at it is limited by the geometry and friction ("cone geometry"). Otherwise the
+limiting factor is the axle whose slip angle first passed its peak-force slip angle (tire
 saturation) in the failing run closest to passing just above the limit or, failing that, in the
 passing run at the limit; else "driver" (the cones were hit with tires short of saturation: no
 tuning swept found a line). Axle utilizations are the largest |tan slip angle| over the
 peak-force one (static load), in the passing run at the limit and in that failing run. Default:
-the sedan, 6 tunings (delay 0.1 s); ``vehdyn report --full``: the three cars, 18 tunings with
-delays 0.05 and 0.1 s.
+the sedan, 6 tunings (delay 0.1 s); ``vehdyn report --full``: the three cars, 27 tunings with
+delays 0.05, 0.1 and 0.2 s (and the limit against the delay).
 """
 
 import itertools
@@ -25,7 +28,7 @@ import numpy as np
 
 import vehdyn
 from vehdyn.handling import (OptimalPreviewDriver, SingleTrack, double_lane_change_track, lane_change_limit,
-                             obstacle_avoidance_track, slip_angle_utilization)
+                             lane_change_speed_bound, obstacle_avoidance_track, slip_angle_utilization)
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 
@@ -39,11 +42,10 @@ def run(study: Study) -> None:
         vehicles, previews, gains, delays, resolution = ["sedan"], (0.5,), (1.5,), (0.1,), 1.0
     elif study.full:
         vehicles = vehdyn.shipped_vehicles("passenger_car")
-        previews, gains, delays, resolution = (0.3, 0.5, 0.8), (1.0, 1.5, 2.0), (0.05, 0.1), 0.25
+        previews, gains, delays, resolution = (0.3, 0.5, 0.8), (1.0, 1.5, 2.0), (0.05, 0.1, 0.2), 0.25
     else:
         vehicles, previews, gains, delays, resolution = ["sedan"], (0.5, 0.8, 1.2), (1.0, 1.5), (0.1,), 0.5
-    tunings = [{"preview_time": p, "gain": g, "delay": d} for p, g, d in itertools.product(previews, gains, delays)]
-    rows, shown = [], {}
+    rows, by_delay, shown = [], [], {}
     for name in vehicles:
         car = vehdyn.load_vehicle(name)
         model = SingleTrack(car)
@@ -54,35 +56,53 @@ def run(study: Study) -> None:
             def make(speed, **tuning):
                 return OptimalPreviewDriver(track.path_x, track.path_y, vehicle=car, speed=speed, **tuning)
 
-            res = lane_change_limit(model, track, make, tunings, throttle=throttle, speeds=(8.0, 40.0),
-                                    resolution=resolution)
+            results = []
+            for delay in delays:  # one search per driver delay: the driver's share in the limit
+                tunings = [{"preview_time": p, "gain": g, "delay": delay} for p, g in itertools.product(previews, gains)]
+                results.append(lane_change_limit(model, track, make, tunings, throttle=throttle, speeds=(8.0, 40.0),
+                                                 resolution=resolution))
+                by_delay.append({"vehicle": name, "test": standard, "delay": delay,
+                                 "limit_speed_kmh": results[-1]["speed"] * 3.6})
+            res = max(results, key=lambda r: np.nan_to_num(r["speed"], nan=-1.0))
+            bound, bound_x, bound_y = lane_change_speed_bound(track, car.tires.friction_coefficient)
+            factor = res["limiting_factor"]
+            if res["speed"] >= 0.95 * bound:
+                factor = "cone geometry (at the friction bound)"
             none = {"front": (np.nan,), "rear": (np.nan,)}
             use = slip_angle_utilization(model, res["failing"][0]) if res["failing"] else none
             passing = res["passing"][0] if res["passing"] else None
             use_limit = slip_angle_utilization(model, passing) if passing is not None else none
             rows.append({"vehicle": name, "test": standard, "limit_speed_kmh": res["speed"] * 3.6,
-                         "failing_speed_kmh": res["failing_speed"] * 3.6,
+                         "failing_speed_kmh": res["failing_speed"] * 3.6, "cone_geometry_bound_kmh": bound * 3.6,
                          **{k: (res["tuning"] or {}).get(k, np.nan) for k in ("preview_time", "gain", "delay")},
-                         "limiting_factor": res["limiting_factor"],
+                         "limiting_factor": factor,
                          "cone_hit_in_lane": 1 + 2 * res["failing"][1]["section"] if res["failing"] else None,
                          "peak_lateral_acceleration_g": (np.abs(passing["lateral_acceleration"]).max() / 9.80665
                                                          if passing is not None else np.nan),
                          "front_utilization_at_limit": use_limit["front"][0],
                          "rear_utilization_at_limit": use_limit["rear"][0],
                          "front_utilization_failing": use["front"][0], "rear_utilization_failing": use["rear"][0],
-                         "runs": res["runs"]})
+                         "runs": sum(r["runs"] for r in results)})
             if name == vehicles[0]:
-                shown[standard] = (track, res)
+                shown[standard] = (track, res, bound_x, bound_y)
     frame = pd.DataFrame(rows).set_index(["vehicle", "test"])
-    frame.attrs["units"] = {"limit_speed_kmh": "km/h", "failing_speed_kmh": "km/h", "preview_time": "s",
+    frame.attrs["units"] = {"limit_speed_kmh": "km/h", "failing_speed_kmh": "km/h", "cone_geometry_bound_kmh": "km/h",
+                            "preview_time": "s",
                             "gain": "-", "delay": "s", "peak_lateral_acceleration_g": "g",
                             "front_utilization_at_limit": "-", "rear_utilization_at_limit": "-",
                             "front_utilization_failing": "-", "rear_utilization_failing": "-"}
-    study.table(frame, "limit_speeds", caption=f"Highest entry speed clearing the cones over {len(tunings)} driver "
-                "tunings (preview time, gain, delay), and what limits it")
+    n_tunings = len(previews) * len(gains) * len(delays)
+    study.table(frame, "limit_speeds", caption=f"Highest entry speed clearing the cones over {n_tunings} driver "
+                "tunings (preview time, gain, delay), what limits it, and the point-mass bound of the cone geometry")
+    if len(delays) > 1:
+        table = pd.DataFrame(by_delay).pivot_table(index=["vehicle", "test"], columns="delay", values="limit_speed_kmh")
+        table.columns = [f"delay_{d:g}_s" for d in table.columns]
+        table.attrs["units"] = {c: "km/h" for c in table.columns}
+        study.table(table, "limit_vs_delay", caption="Limit speed [km/h] against the driver's delay (best preview "
+                    "time and gain at each delay)")
 
     fig, axes = new_figure(2, 1, height_per_row=2.8, width=8.0)
-    for ax, (standard, (track, res)) in zip(axes[:, 0], shown.items()):
+    for ax, (standard, (track, res, bound_x, bound_y)) in zip(axes[:, 0], shown.items()):
         for x0, x1, left, right in track.sections:
             for y in (left, right):
                 ax.plot([x0, x1], [y, y], "ko", ms=3)
@@ -91,6 +111,7 @@ def run(study: Study) -> None:
             if entry:
                 ax.plot(entry[0]["x"], entry[0]["y"], label=f"{label} at {speed * 3.6:.1f} km/h")
         ax.plot(track.path_x, track.path_y, "k:", lw=0.8, label="driver's path")
+        ax.plot(bound_x, bound_y, "--", color="0.5", lw=0.8, label="least-curvature path (geometry bound)")
         ax.invert_yaxis()  # SAE y to the right: draw the left turn upwards
         ax.set_xlim(track.path_x[0] + 20, track.path_x[-1] - 10)
         ax.set_ylabel("y (SAE, right) [m]")

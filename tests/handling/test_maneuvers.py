@@ -141,3 +141,25 @@ def test_braking_in_turn_decelerates_as_asked():
     assert out.mean_deceleration == pytest.approx(3.0, rel=0.1)
     assert np.all(np.isfinite(out.result.states))
     assert out.yaw_rate_ratio > 0.5  # no spin at moderate braking
+
+
+def test_lane_change_speed_bound_closed_form_and_real_tracks():
+    from vehdyn.handling import DoubleLaneChangeTrack, lane_change_speed_bound
+
+    # three zero-slack gates y(0) = 0, y(L) = D, y(2L) = 0: the least largest |y''| is the parabola's 2 D / L^2
+    # (the second difference (y(0) - 2 y(L) + y(2L)) / L^2 = -2 D / L^2 is an average of y'')
+    b, L, D = 1.6, 30.0, 2.0
+    gates = [(0.0, 0.0, -b / 2, b / 2), (L, L, -D - b / 2, -D + b / 2), (2 * L, 2 * L, -b / 2, b / 2)]
+    track = DoubleLaneChangeTrack(gates, np.array([0.0, 2 * L]), np.zeros(2), b)
+    speed, x, y = lane_change_speed_bound(track, 1.0, step=0.5, gravity=9.81)
+    assert speed == pytest.approx(np.sqrt(9.81 * L**2 / (2 * D)), rel=1e-6)
+    # on the ISO tracks the path stays inside the lanes
+    for build in (double_lane_change_track, obstacle_avoidance_track):
+        track = build(1.6)
+        speed, x, y = lane_change_speed_bound(track, 0.9)
+        for x0, x1, left, right in track.sections:
+            inside = (x >= x0) & (x <= x1)
+            assert np.all(y[inside] >= left + 0.8 - 1e-7) and np.all(y[inside] <= right - 0.8 + 1e-7)
+        assert 10.0 < speed < 60.0
+    with pytest.raises(vehdyn.ParameterError, match="friction_coefficient"):
+        lane_change_speed_bound(track, -0.5)

@@ -31,7 +31,7 @@ from ..piecewise_signal import PiecewiseSignal
 __all__ = ["step_steer", "ramp_steer", "sine_steer", "sine_with_dwell", "sine_with_dwell_metrics",
            "SineWithDwellMetrics", "constant_radius_test", "crosswind_gust", "braking_in_turn",
            "BrakingInTurn", "DoubleLaneChangeTrack", "double_lane_change_track", "obstacle_avoidance_track",
-           "lane_change_outcome",
+           "lane_change_speed_bound", "lane_change_outcome",
            "spin_out_time"]
 
 
@@ -376,6 +376,53 @@ def obstacle_avoidance_track(vehicle_width: float, *, run_in: float = 30.0,
     w1 = 1.1 * b + 0.25
     return _lane_change_track(b, (12.0, 13.5, 11.0, 12.5, 12.0), (w1, b + 1.0, max(1.3 * b + 0.25, 3.0)),
                               w1 + 1.0, "ISO 3888-2", run_in, run_out)
+
+
+def lane_change_speed_bound(track: DoubleLaneChangeTrack, friction_coefficient: float, *, step: float = 0.5,
+                            gravity: float = 9.80665):
+    """The cone geometry's speed bound: the highest speed at which a point mass at mu g clears the cones.
+
+    The path y(x) through the coned lanes (the CG kept b/2 from the cone lines, as
+    :func:`lane_change_outcome` checks) whose largest curvature |y''| is smallest: a linear program
+    on a grid of ``step`` [m] (second differences, the small-angle curvature; free before lane 1
+    and after lane 5). A vehicle whose lateral acceleration cannot exceed mu g cannot clear the
+    cones faster than u* = sqrt(mu g / kappa_min) [m/s] on any path: a bound from the geometry and
+    the friction alone, without yaw dynamics or driver.
+
+    Returns
+    -------
+    speed : float
+        u* [m/s].
+    x, y : ndarray
+        The minimal-curvature path [m].
+    """
+    from scipy.optimize import linprog
+    from scipy.sparse import diags, hstack, vstack
+
+    mu = _finite("friction_coefficient", friction_coefficient, positive=True)
+    h = _finite("step", step, positive=True)
+    start, end = track.sections[0][0], track.sections[-1][1]
+    x = start + h * np.arange(int(round((end - start) / h)) + 1)
+    n = x.size
+    if n < 3:
+        raise ParameterError(f"step {h!r} m leaves fewer than 3 grid points on the track", key="step", value=h)
+    lower, upper = np.full(n, -np.inf), np.full(n, np.inf)
+    half = track.vehicle_width / 2
+    for x0, x1, left, right in track.sections:
+        inside = (x >= x0 - 1e-9) & (x <= x1 + 1e-9)
+        lower[inside], upper[inside] = left + half, right - half
+    second = diags([1.0, -2.0, 1.0], [0, 1, 2], shape=(n - 2, n)) / h**2
+    column = np.ones((n - 2, 1))
+    A = vstack([hstack([second, -column]), hstack([-second, -column])]).tocsr()
+    cost = np.zeros(n + 1)
+    cost[-1] = 1.0
+    bounds = [(lo if np.isfinite(lo) else None, hi if np.isfinite(hi) else None) for lo, hi in zip(lower, upper)]
+    solution = linprog(cost, A_ub=A, b_ub=np.zeros(2 * (n - 2)), bounds=bounds + [(0.0, None)], method="highs")
+    if solution.status != 0:
+        raise ParameterError(f"no path through the cones: {solution.message}", key="track", value=track.standard)
+    curvature = solution.x[-1]
+    speed = np.inf if curvature <= 0 else float(np.sqrt(mu * gravity / curvature))
+    return speed, x, solution.x[:-1]
 
 
 def lane_change_outcome(track: DoubleLaneChangeTrack, result) -> dict:
