@@ -177,3 +177,24 @@ def test_lane_change_limit_brackets_the_speed_at_which_the_cones_are_cleared():
         lane_change_limit(model, track, make, tunings, speeds=(20.0, 10.0))
     with pytest.raises(ParameterError, match="throttle"):
         lane_change_run(model, track, make(20.0, **tunings[0]), 20.0, throttle="coast")
+
+
+@pytest.mark.parametrize("kind", ["crossover", "optimal"])
+def test_loop_analysis_matches_the_linearized_closed_loop(kind):
+    # the linear driver law of the analysis (perception) is the linearization of the driver's command:
+    # the closed-loop poles of driver_loop are poles of the finite-difference linearization of the ClosedLoop
+    import control
+
+    model = SingleTrack(SEDAN)
+    path_y = np.zeros_like(PATH_X)
+    if kind == "crossover":
+        driver = CrossoverDriver(PATH_X, path_y, gain=0.03, preview_time=1.0, delay=0.12, pade_order=3)
+    else:
+        driver = OptimalPreviewDriver(PATH_X, path_y, vehicle=SEDAN, speed=20.0, delay=0.12, pade_order=3)
+    loop = driver.close(model)
+    x0 = np.concatenate([model.straight_running(20.0), np.zeros(loop.n_states - model.n_states)])
+    drag = float(model.parameters.drag_factor) * 400.0
+    full = np.linalg.eigvals(loop.linearize(x0, {"rear_longitudinal_force": drag}).A)
+    analysed = control.feedback(driver_loop(model, driver, 20.0, pade_order=3), 1.0).poles()
+    for pole in analysed:
+        assert np.min(np.abs(full - pole)) < 1e-4 * max(1.0, abs(pole))
