@@ -3,8 +3,10 @@
 Each vehicle (nonlinear single-track model, its Magic Formula tires, compiled) is steered through
 the cones by MacAdam's optimal preview driver (vehdyn.handling.OptimalPreviewDriver: a linear
 bicycle of the car as internal model, a preview window after its delay, a 0.1 s neuromuscular
-lag). vehdyn.handling.lane_change_limit finds by bisection on the entry speed the highest speed
-at which ANY tuning of a sweep of driver parameters (preview time, gain, delay) clears the cones,
+lag) along one of two lines: the lanes' centre line (cosine transitions) or the least-curvature
+line through the lanes narrowed by 0.15 m (DoubleLaneChangeTrack.least_curvature_line).
+vehdyn.handling.lane_change_limit finds by bisection on the entry speed the highest speed at which
+ANY tuning of a sweep of driver parameters (line, preview time, gain, delay) clears the cones,
 so the speed reported is the car's limit within the drivers swept, not one tuning's. ISO 3888-1 is
 driven with the speed held (the rear axle force balances the drag), ISO 3888-2 with the throttle
 released at the entry. A run fails when the vehicle (a rectangle of width track + 0.2 m) crosses a
@@ -18,7 +20,7 @@ saturation) in the failing run closest to passing just above the limit or, faili
 passing run at the limit; else "driver" (the cones were hit with tires short of saturation: no
 tuning swept found a line). Axle utilizations are the largest |tan slip angle| over the
 peak-force one (static load), in the passing run at the limit and in that failing run. Default:
-the sedan, 6 tunings (delay 0.1 s); ``vehdyn report --full``: the three cars, 27 tunings with
+the sedan, 8 tunings (delay 0.1 s); ``vehdyn report --full``: the three cars, 36 tunings with
 delays 0.05, 0.1 and 0.2 s (and the limit against the delay).
 """
 
@@ -38,13 +40,14 @@ TRACKS = (("ISO 3888-1", double_lane_change_track, "hold"), ("ISO 3888-2", obsta
 def run(study: Study) -> None:
     import pandas as pd
 
+    lines = ("centre", "least curvature")
     if study.quick:
-        vehicles, previews, gains, delays, resolution = ["sedan"], (0.5,), (1.5,), (0.1,), 1.0
+        vehicles, lines, previews, gains, delays, resolution = ["sedan"], ("centre",), (0.5,), (1.5,), (0.1,), 1.0
     elif study.full:
         vehicles = vehdyn.shipped_vehicles("passenger_car")
-        previews, gains, delays, resolution = (0.3, 0.5, 0.8), (1.0, 1.5, 2.0), (0.05, 0.1, 0.2), 0.25
+        previews, gains, delays, resolution = (0.3, 0.5, 0.8), (1.0, 1.5), (0.05, 0.1, 0.2), 0.25
     else:
-        vehicles, previews, gains, delays, resolution = ["sedan"], (0.5, 0.8, 1.2), (1.0, 1.5), (0.1,), 0.5
+        vehicles, previews, gains, delays, resolution = ["sedan"], (0.5, 0.8), (1.0, 1.5), (0.1,), 0.5
     rows, by_delay, shown = [], [], {}
     for name in vehicles:
         car = vehdyn.load_vehicle(name)
@@ -53,12 +56,15 @@ def run(study: Study) -> None:
         for standard, build, throttle in TRACKS:
             track = build(width)
 
-            def make(speed, **tuning):
-                return OptimalPreviewDriver(track.path_x, track.path_y, vehicle=car, speed=speed, **tuning)
+            paths = {"centre": (track.path_x, track.path_y), "least curvature": track.least_curvature_line(0.15)}
+
+            def make(speed, line, **tuning):
+                return OptimalPreviewDriver(*paths[line], vehicle=car, speed=speed, **tuning)
 
             results = []
             for delay in delays:  # one search per driver delay: the driver's share in the limit
-                tunings = [{"preview_time": p, "gain": g, "delay": delay} for p, g in itertools.product(previews, gains)]
+                tunings = [{"line": line, "preview_time": p, "gain": g, "delay": delay}
+                           for line, p, g in itertools.product(lines, previews, gains)]
                 results.append(lane_change_limit(model, track, make, tunings, throttle=throttle, speeds=(8.0, 40.0),
                                                  resolution=resolution))
                 by_delay.append({"vehicle": name, "test": standard, "delay": delay,
@@ -74,7 +80,7 @@ def run(study: Study) -> None:
             use_limit = slip_angle_utilization(model, passing) if passing is not None else none
             rows.append({"vehicle": name, "test": standard, "limit_speed_kmh": res["speed"] * 3.6,
                          "failing_speed_kmh": res["failing_speed"] * 3.6, "cone_geometry_bound_kmh": bound * 3.6,
-                         **{k: (res["tuning"] or {}).get(k, np.nan) for k in ("preview_time", "gain", "delay")},
+                         **{k: (res["tuning"] or {}).get(k, np.nan) for k in ("line", "preview_time", "gain", "delay")},
                          "limiting_factor": factor,
                          "cone_hit_in_lane": 1 + 2 * res["failing"][1]["section"] if res["failing"] else None,
                          "peak_lateral_acceleration_g": (np.abs(passing["lateral_acceleration"]).max() / 9.80665
@@ -84,16 +90,18 @@ def run(study: Study) -> None:
                          "front_utilization_failing": use["front"][0], "rear_utilization_failing": use["rear"][0],
                          "runs": sum(r["runs"] for r in results)})
             if name == vehicles[0]:
-                shown[standard] = (track, res, bound_x, bound_y)
+                path = paths[res["tuning"]["line"]] if res["tuning"] else None
+                shown[standard] = (track, res, bound_x, bound_y, path)
     frame = pd.DataFrame(rows).set_index(["vehicle", "test"])
     frame.attrs["units"] = {"limit_speed_kmh": "km/h", "failing_speed_kmh": "km/h", "cone_geometry_bound_kmh": "km/h",
-                            "preview_time": "s",
+                            "line": "-", "preview_time": "s",
                             "gain": "-", "delay": "s", "peak_lateral_acceleration_g": "g",
                             "front_utilization_at_limit": "-", "rear_utilization_at_limit": "-",
                             "front_utilization_failing": "-", "rear_utilization_failing": "-"}
-    n_tunings = len(previews) * len(gains) * len(delays)
+    n_tunings = len(lines) * len(previews) * len(gains) * len(delays)
     study.table(frame, "limit_speeds", caption=f"Highest entry speed clearing the cones over {n_tunings} driver "
-                "tunings (preview time, gain, delay), what limits it, and the point-mass bound of the cone geometry")
+                "tunings (line, preview time, gain, delay), what limits it, and the point-mass bound of the cone "
+                "geometry")
     if len(delays) > 1:
         table = pd.DataFrame(by_delay).pivot_table(index=["vehicle", "test"], columns="delay", values="limit_speed_kmh")
         table.columns = [f"delay_{d:g}_s" for d in table.columns]
@@ -102,7 +110,7 @@ def run(study: Study) -> None:
                     "time and gain at each delay)")
 
     fig, axes = new_figure(2, 1, height_per_row=2.8, width=8.0)
-    for ax, (standard, (track, res, bound_x, bound_y)) in zip(axes[:, 0], shown.items()):
+    for ax, (standard, (track, res, bound_x, bound_y, path)) in zip(axes[:, 0], shown.items()):
         for x0, x1, left, right in track.sections:
             for y in (left, right):
                 ax.plot([x0, x1], [y, y], "ko", ms=3)
@@ -110,7 +118,8 @@ def run(study: Study) -> None:
                                                                               res["failing_speed"])):
             if entry:
                 ax.plot(entry[0]["x"], entry[0]["y"], label=f"{label} at {speed * 3.6:.1f} km/h")
-        ax.plot(track.path_x, track.path_y, "k:", lw=0.8, label="driver's path")
+        if path is not None:
+            ax.plot(*path, "k:", lw=0.8, label=f"driver's path ({res['tuning']['line']} line)")
         ax.plot(bound_x, bound_y, "--", color="0.5", lw=0.8, label="least-curvature path (geometry bound)")
         ax.invert_yaxis()  # SAE y to the right: draw the left turn upwards
         ax.set_xlim(track.path_x[0] + 20, track.path_x[-1] - 10)

@@ -163,3 +163,12 @@ def test_lane_change_speed_bound_closed_form_and_real_tracks():
         assert 10.0 < speed < 60.0
     with pytest.raises(vehdyn.ParameterError, match="friction_coefficient"):
         lane_change_speed_bound(track, -0.5)
+
+
+def test_least_curvature_line_keeps_its_margin_inside_the_lanes():
+    track = obstacle_avoidance_track(1.6)
+    x, y = track.least_curvature_line(0.2)
+    assert np.array_equal(x, track.path_x)
+    for x0, x1, left, right in track.sections:
+        inside = (x >= x0) & (x <= x1)
+        assert np.all(y[inside] >= left + 0.8 + 0.2 - 1e-6) and np.all(y[inside] <= right - 0.8 - 0.2 + 1e-6)

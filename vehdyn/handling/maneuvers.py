@@ -314,6 +314,20 @@ class DoubleLaneChangeTrack:
         (_, _, l1, _), (_, _, _, r3), (_, _, l5, _) = self.sections
         return self.path_x, _lane_blend(self.path_x, self.sections, [l1 + half, r3 - half, l5 + half])
 
+    def least_curvature_line(self, margin: float = 0.15):
+        """(path_x, path_y): the path of least largest curvature through the lanes narrowed by ``margin`` [m].
+
+        The path of :func:`lane_change_speed_bound` for lanes ``margin`` narrower on each side (room
+        for the driver's tracking error), held constant before lane 1 and after lane 5: the racing
+        line of the lane change.
+        """
+        margin = _finite("margin", margin)
+        narrow = DoubleLaneChangeTrack([(x0, x1, left + margin, right - margin)
+                                        for x0, x1, left, right in self.sections], self.path_x, self.path_y,
+                                       self.vehicle_width, self.standard)
+        _, x, y = lane_change_speed_bound(narrow, 1.0)
+        return self.path_x, np.interp(self.path_x, x, y)
+
 
 def _lane_blend(x, sections, levels):
     """y(x): ``levels`` in the sections, cosine transitions across the gaps between them."""
