@@ -125,7 +125,8 @@ class FullVehicle(Model):
         geometry (roll-centre heights), suspension (wheel rates, dampers, anti-roll bars, roll
         steer, optional camber gains and anti-dive/anti-squat), tires (vertical stiffness and
         damping, rolling radius, wheel inertia, relaxation lengths, law), steering (Ackermann
-        fraction), aero (drag, lift, cross-flow drag).
+        fraction), aero (drag, lift, the crosswind's side-force slope and
+        centre of pressure, as the handling models).
     front_tire, rear_tire : TireModel, optional
         The law of one tire of each axle (ISO-W); default the vehicle's (``vehicle.tires.model``,
         through :func:`vehdyn.tire.tire_for_vehicle`). It must take combined slip.
@@ -309,6 +310,7 @@ class FullVehicle(Model):
 
     def constants(self) -> assembly.Constants:
         """The :class:`~vehdyn.full_vehicle.assembly.Constants` the equations read (floats and tuples)."""
+        from ..handling.crosswind import wind_side_force_factor
         from .body import added_mass_projection
 
         v = self.vehicle
@@ -344,7 +346,8 @@ class FullVehicle(Model):
             wheel_spin_inertia=float(t.wheel_spin_inertia), friction_coefficient=float(t.friction_coefficient),
             low_speed_damping_speed=self.low_speed_damping_speed,
             brake_regularization_speed=self.brake_regularization_speed, wheel_spin=True, tire_lag=self.tire_lag,
-            drag_factor=half * a.drag_coefficient, lateral_drag_factor=half * a.lateral_drag_coefficient,
+            drag_factor=half * a.drag_coefficient, wind_side_force_factor=wind_side_force_factor(v),
+            centre_of_pressure=float(self.corner_x[0] - a.centre_of_pressure_from_front_axle * L),
             front_lift_factor=half * a.front_lift_coefficient, rear_lift_factor=half * a.rear_lift_coefficient,
             **self._tire_constants)
 
