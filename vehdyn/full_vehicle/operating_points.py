@@ -222,9 +222,10 @@ def _jacobian(residual, z, r):
 
 
 def _solve(residual, z0, tol):
-    """``(z, largest |residual|, message)``: Powell's hybrid method from ``z0``, then Newton steps
-    on the central-difference Jacobian with backtracking (halving the step until the largest
-    residual falls), until the largest residual is below tol / 100 or stops falling."""
+    """``(z, largest |residual|, message)``: Powell's hybrid method from ``z0``, then, where it ended
+    near a root (largest residual below 1e-3), Newton steps on the central-difference Jacobian with
+    backtracking (halving the step until the largest residual falls), until the largest residual is
+    below tol / 100 or no longer falls by a factor of ten a step."""
     from scipy.optimize import root
 
     solution = root(residual, z0, method="hybr", options={"xtol": 1e-14, "maxfev": 20000})
@@ -234,7 +235,7 @@ def _solve(residual, z0, tol):
     if not np.isfinite(worst):
         return z, float("inf"), solution.message
     for _ in range(8):
-        if worst < 0.01 * tol:
+        if worst < 0.01 * tol or worst > 1e-3:  # done, or no root near enough for Newton's method
             break
         J = _jacobian(residual, z, r)
         if not np.all(np.isfinite(J)):
@@ -249,5 +250,8 @@ def _solve(residual, z0, tol):
             step = 0.5 * step
         else:  # no step lowers the residual: as good as it gets
             break
+        converging = worst_trial < 0.1 * worst
         z, r, worst = trial, r_trial, worst_trial
+        if not converging:  # Newton's method near a root cuts the residual by far more
+            break
     return z, worst, solution.message
