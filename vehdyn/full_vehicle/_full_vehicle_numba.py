@@ -44,7 +44,7 @@ from .. import conventions
 from .._compiled_ode import CompiledModel, compiled_copy, source_stamp
 from ..errors import ParameterError
 from ..handling import _single_track_numba as stn
-from ..handling import single_track_equations
+from ..handling import crosswind, single_track_equations
 from ..tire import _mf_numba, linear, magic_formula
 from . import aero, assembly, body, corner, driveline, steering
 
@@ -208,7 +208,8 @@ def _output(t, x, u, args, y):
 @functools.lru_cache(maxsize=None)
 def compiled_functions():
     """(rhs, output, cache key): compiled on first call, cached on disk per source digest."""
-    key = "full_vehicle_" + source_stamp(assembly, body, corner, steering, driveline, aero, single_track_equations,
+    key = "full_vehicle_" + source_stamp(assembly, body, corner, steering, driveline, aero, crosswind,
+                                         single_track_equations,
                                          conventions, linear, *_mf_numba.SOURCE_MODULES, stn, sys.modules[__name__])
     compiled = [compiled_copy(python, f"{key}_{suffix}") for python, suffix in ((_rhs, "rhs"), (_output, "output"))]
     return compiled[0], compiled[1], key

@@ -66,11 +66,12 @@ Constants = namedtuple("Constants", (
     "longitudinal_relaxation_length", "peak_slip_ratio", "peak_tan_slip_angle", "low_speed_damping_speed",
     "brake_regularization_speed", "wheel_spin", "tire_lag",
     # aero
-    "drag_factor", "lateral_drag_factor", "front_lift_factor", "rear_lift_factor"))
+    "drag_factor", "wind_side_force_factor", "centre_of_pressure", "front_lift_factor", "rear_lift_factor"))
 Constants.__doc__ = """The numbers the equations read (floats; 4-tuples per corner; ``inertia``, ``inverse_inertia``
 3x3 and ``projection`` 6x6 nested tuples). ``spring_z``, ``wheel_z``, ``contact_z`` are the body-z
 coordinates (from the sprung CG, down +) of the spring seats, wheel centres and contact points;
-``anti_pitch`` is e_i f h / L per corner; ``camber_on`` 1.0 or 0.0; ``wheel_spin`` is always True
+``anti_pitch`` is e_i f h / L per corner; ``centre_of_pressure`` the crosswind's centre of pressure
+ahead of the sprung CG [m] (:mod:`~vehdyn.full_vehicle.aero`); ``camber_on`` 1.0 or 0.0; ``wheel_spin`` is always True
 (the slip functions of the single track read it), ``tire_lag`` a bool. :meth:`FullVehicle.constants`
 builds them; a compiled version takes the same tuple."""
 
@@ -241,14 +242,14 @@ def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
                _corner(xp, tires, k, 2, s, i, R, travel_rate[2], spring[2], steer[2]),
                _corner(xp, tires, k, 3, s, i, R, travel_rate[3], spring[3], steer[3]))
 
-    drag, side, front_lift, rear_lift = aero.aero_forces(xp, k, u, v, i[18])
+    drag, side, wind_moment, front_lift, rear_lift = aero.aero_forces(xp, k, u, i[18])
     weight = k.sprung_mass * k.gravity
     fx_body = _total(corners, 9) + drag + weight * R20
     fy_body = _total(corners, 10) + side + weight * R21
     fz_body = _total(corners, 11) - front_lift - rear_lift + weight * R22
     moment_y = _total(corners, 13) + k.corner_x[0] * front_lift + k.corner_x[2] * rear_lift
     velocity_rate, angular, cg_acc = body.body_accelerations(
-        xp, k, (u, v, w), (p, q, r), (fx_body, fy_body, fz_body), (_total(corners, 12), moment_y, _total(corners, 14)))
+        xp, k, (u, v, w), (p, q, r), (fx_body, fy_body, fz_body), (_total(corners, 12), moment_y, _total(corners, 14) + wind_moment))
 
     euler = xp.euler_angle_rates(roll, pitch, p, q, r)
     position = (R[0][0] * u + R[0][1] * v + R[0][2] * w, R[1][0] * u + R[1][1] * v + R[1][2] * w,
