@@ -57,7 +57,8 @@ def main(vehicles, repeat: int = 3, only=None) -> None:
                 matrix.append({"vehicle": name_v, "scene": name, "rung": row["rung"] + (" *" if row["planned"] else ""),
                                "wall_time_s": row["wall_time_s"], "error": row["error"],
                                "estimated_error": row["estimated_error"]})
-                costs.append({"rung": row["rung"], "cost_per_s": row["wall_time_s"] / scene.duration})
+                costs.append({"rung": row["rung"], "cost_per_s": row["wall_time_s"] / scene.duration,
+                              "duration": scene.duration, "wall_time_s": row["wall_time_s"]})
                 if not row["reference"]:
                     calibration.append({"vehicle": name_v, "scene": name, "rung": row["rung"],
                                         "estimated": row["estimated_error"], "measured": row["error"],
@@ -84,6 +85,16 @@ def main(vehicles, repeat: int = 3, only=None) -> None:
     k = pd.DataFrame(costs).groupby("rung")["cost_per_s"].median()
     print("\n3b. median cost per simulated second [s/s] (COST_PER_SIMULATED_SECOND)")
     print(k.to_string(float_format=lambda v: f"{v:.2e}"))
+    fits = []
+    for rung, group in pd.DataFrame(costs).groupby("rung"):
+        duration, wall = group["duration"].to_numpy(), group["wall_time_s"].to_numpy()
+        if np.unique(duration).size < 2:
+            continue
+        # wall = start + rate * duration, least squares (the start: trim, linearization, derivation)
+        start, rate = np.linalg.lstsq(np.column_stack([np.ones_like(duration), duration]), wall, rcond=None)[0]
+        fits.append({"rung": rung, "start_s": start, "per_s": rate, "scenes": duration.size})
+    print("\n3c. wall time = start + rate * duration, least squares over the scenes (START_COST_S and the rate)")
+    print(pd.DataFrame(fits).to_string(index=False, float_format=lambda v: f"{v:.2e}"))
     print(f"\ntotal {time.perf_counter() - start:.1f} s")
 
 
