@@ -31,6 +31,12 @@ error (the steady-state algebra's missing transient). The estimates are of two k
   lifting off where its linear tire goes into tension (a floor plus a gain times the largest
   tension over the static wheel load of the linear ride probes, which the plan runs on a road).
 
+Against the full vehicle, a linear rung with roll (LateralYawRoll+lag, the linearized full vehicle)
+misses the tire law's saturation and its load sensitivity under the lateral load transfer: the
+saturation estimate plus the load-transfer term above. A handling rung without the full vehicle's
+pitch, heave and wheel motion, on a flat road, carries a measured floor
+(``handling_reduction_floor``): what is left when every other difference is represented.
+
 A phenomenon without an estimate gives NaN: such a rung is never picked. In closed loop (the
 ISO 3888-1 driver) every estimate is multiplied by ``closed_loop_factor``.
 
@@ -118,7 +124,11 @@ THRESHOLDS = {
 
 #: Measured cost [s of wall time per s simulated] of each rung: bench_ladder, median over the
 #: standard scenes of the three shipped vehicles, best of 3 runs, one core of the development
-#: machine (2-core x86_64, shared); the plan scales it by the scene's duration.
+#: machine (2-core x86_64, shared); the plan scales it by the scene's duration and adds the
+#: rung's START_COST_S. What is timed is a rung's ``Setup.run()``: its per-scene start (the full
+#: vehicle's trim, a steady turn, a linearization, a derivation from the tire law) and the
+#: simulation, every run; building a model from the vehicle and reading its files (per vehicle),
+#: importing and compiling (per process) are not (see :mod:`vehdyn.scene.rungs`).
 COST_PER_SIMULATED_SECOND = {
     "SteadyState": 1.6e-5,
     "LinearBicycle": 9.8e-5,

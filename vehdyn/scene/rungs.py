@@ -7,7 +7,8 @@ for a scene and runs it on the scene's inputs. The planner knows nothing model-s
 model to the ladder is one :func:`register_rung` call (or one entry below) beside its builder.
 
 A rung whose module cannot be imported is skipped (``available`` is False). The entries for
-``vehdyn.full_vehicle.FullVehicle`` call that module's ``ladder_setup(drive, ladder)``
+``vehdyn.full_vehicle.FullVehicle`` call that module's ``ladder_setup(drive, ladder)`` and, for the
+full vehicle linearized at the scene's trim, ``linearized_setup(drive, ladder)``
 (:mod:`vehdyn.full_vehicle.ladder`).
 
 What a rung costs is what ``Setup.run()`` does, every time it is called: the scene's start (a
