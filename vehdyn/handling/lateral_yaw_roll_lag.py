@@ -46,31 +46,18 @@ from ..params import Vehicle
 from ..signals import STEER_INPUTS, Signal
 from ..units import GRAVITY
 from .bicycle import linear_model_speed
-from .lateral_yaw_roll import lateral_yaw_roll_parameters
+from .lateral_yaw_roll import _OUTPUTS as _LYR_OUTPUTS, _STATES as _LYR_STATES, lateral_yaw_roll_parameters
 
 __all__ = ["LateralYawRollLag", "running_axle_loads"]
 
-_STATES = (
-    Signal("lateral_velocity", "m/s", "lateral velocity v of the non-rolling frame at the total CG (SAE)"),
-    Signal("yaw_rate", "rad/s", "yaw rate r (positive turning right, SAE)"),
-    Signal("roll_rate", "rad/s", "roll rate p of the body about the roll axis"),
-    Signal("roll_angle", "rad", "roll angle phi of the body (positive right side down, SAE)"),
+# the states and outputs of LateralYawRoll, with the two transient slip angles and the lateral
+# acceleration of the total CG
+_STATES = _LYR_STATES + (
     Signal("front_transient_slip_angle", "rad", "front axle's lagged slip angle alpha'_f (SAE)"),
     Signal("rear_transient_slip_angle", "rad", "rear axle's lagged slip angle alpha'_r (SAE)"),
 )
-_OUTPUTS = (
-    Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the total CG, (F_f + F_r) / m"),
-    Signal("sideslip_angle", "rad", "vehicle sideslip angle at the CG, v / u"),
-    Signal("yaw_rate", "rad/s", "yaw rate"),
-    Signal("lateral_velocity", "m/s", "lateral velocity"),
-    Signal("roll_angle", "rad", "roll angle (positive right side down)"),
-    Signal("roll_rate", "rad/s", "roll rate"),
-    Signal("front_slip_angle", "rad", "front-axle kinematic slip angle including roll steer (SAE)"),
-    Signal("rear_slip_angle", "rad", "rear-axle kinematic slip angle including roll steer (SAE)"),
-    Signal("path_curvature", "1/m", "curvature of the CG path, a_y / u^2"),
-    Signal("front_lateral_force", "N", "lateral force of the front axle (SAE y)"),
-    Signal("rear_lateral_force", "N", "lateral force of the rear axle (SAE y)"),
-)
+_OUTPUTS = (Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the total CG, (F_f + F_r) / m"),) \
+    + _LYR_OUTPUTS[1:]
 
 
 def running_axle_loads(vehicle: Vehicle, speed: float, gravity: float = GRAVITY) -> tuple[float, float]:

@@ -134,31 +134,36 @@ COST_PER_SIMULATED_SECOND = {
     "LinearBicycle": 9.8e-5,
     "LinearBicycle+lag": 9.6e-5,
     "LateralYawRoll": 9.6e-5,
-    "LateralYawRoll+lag": 1.0e-4,
+    "LateralYawRoll+lag": 1.0e-4,  # its start (the tire law at the running loads) in START_COST_S
     "SingleTrack(linear tires)": 3.4e-4,
     "SingleTrack": 9.2e-4,
     "QuarterCar": 1.9e-4,
     "BouncePitch": 1.8e-4,
     "FullCar": 3.2e-4,
     # compiled right-hand side (RK45, rtol 1e-6, max_step the scene's time step: 0.01 s, on a
-    # road 0.002 s); bench_ladder on the three vehicles as above. On a road the handling rung costs
-    # as the ride rung (cornering on a rough road: 2e-2 s/s). The numpy right-hand side costs
-    # about 1.8 and 24 s/s.
+    # road 0.002 s), the trim in START_COST_S; bench_ladder on the three vehicles as above. On a
+    # road the handling rung costs as the ride rung (cornering on a rough road: 2e-2 s/s). The numpy
+    # right-hand side costs about 1.8 and 24 s/s.
     "FullVehicle": 4.0e-3,
     "FullVehicle(ride)": 1.6e-2,
-    "FullVehicle(linearized)": 1e-3,
-    "FullVehicle(linearized, ride)": 1e-3,
+    # exact simulation of the linearization (one matrix exponential); on a road the corners' road
+    # inputs are sampled on the scene's grid (2 ms): 2000 samples per 4 s
+    "FullVehicle(linearized)": 1.0e-3,
+    "FullVehicle(linearized, ride)": 1.0e-2,
 }
-#: Measured fixed cost [s] of a rung's start in every run, besides the cost per simulated second:
-#: the full vehicle's trim, the linearized full vehicle's trim and Jacobian, the tire law's
-#: evaluations of LateralYawRoll+lag (bench_ladder, table 3c: a least-squares fit of wall time =
-#: start + rate * duration over the standard scenes of the three shipped vehicles).
+#: Measured fixed cost [s] of a rung's start in every run, added to the cost per simulated second:
+#: the full vehicle's trim (FullVehicle.trim: 43 ms sedan, 80-87 ms compact and van), the
+#: linearized full vehicle's trim and Jacobian (12.5 ms, 204 perturbed points in one batched
+#: call of the numpy right-hand side), LateralYawRoll+lag's tire-law evaluations and matrices
+#: (1.7 ms of its 3-6 s runs). CPU time (time.process_time, best of 5) of each piece on the
+#: development machine, 24 Nov 2026: its wall times were 3-10x longer under the shared load of
+#: that day (bench_ladder table 3c fits start + rate * duration to the wall times of a run).
 START_COST_S = {
-    "LateralYawRoll+lag": 1.5e-3,
-    "FullVehicle": 0.035,
-    "FullVehicle(ride)": 0.035,
-    "FullVehicle(linearized)": 0.045,
-    "FullVehicle(linearized, ride)": 0.045,
+    "LateralYawRoll+lag": 1.7e-3,
+    "FullVehicle": 0.06,
+    "FullVehicle(ride)": 0.06,
+    "FullVehicle(linearized)": 0.073,
+    "FullVehicle(linearized, ride)": 0.073,
 }
 #: The same in the loop of the ISO 3888-1 preview driver (``manoeuvre="iso3888_1"``): every rung,
 #: linear ones included, then runs through ``solve_ivp`` on the driver's nonlinear loop. Measured
