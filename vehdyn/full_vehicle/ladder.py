@@ -193,7 +193,7 @@ def scene_inputs(drive, model, trim_inputs, road=None) -> dict:
 def _model_for(drive, ladder, name):
     """The FullVehicle for ``drive`` and the corners' road inputs, or NotAdmissible (see
     :func:`ladder_setup`: which of the two ladders answers which scene)."""
-    from ..tire import load_tire
+    from ..scene.rungs import tire_laws
     from .model import FullVehicle
 
     if ladder not in ("handling", "ride"):
@@ -204,8 +204,8 @@ def _model_for(drive, ladder, name):
         raise _not_admissible("no road input")
     if ladder == "handling" and not drive.handling_input:
         raise _not_admissible(f"no steer or braking: the ride rung {name}(ride) answers")
-    tire = load_tire(drive.scene.tire) if drive.scene.tire is not None else None
-    model = FullVehicle(drive.vehicle, tire, tire)
+    # one model for this plan's full-vehicle rungs, the tire laws the other rungs read
+    model = drive.once("FullVehicle", lambda: FullVehicle(drive.vehicle, *tire_laws(drive)))
     unknown = [k for k in drive.inputs if k not in model.input_names]
     if unknown:
         raise _not_admissible(f"has no input {unknown[0]!r}")

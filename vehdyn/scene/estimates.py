@@ -172,6 +172,8 @@ CLOSED_LOOP_COST_PER_SIMULATED_SECOND = {
     "LinearBicycle": 0.051,
     "LinearBicycle+lag": 0.048,
     "LateralYawRoll": 0.058,
+    # CPU time, 24 Nov 2026 (shared load): 0.031 s/s, LateralYawRoll 0.033 s/s in the same run
+    "LateralYawRoll+lag": 0.054,
     "SingleTrack(linear tires)": 0.17,
     "SingleTrack": 0.21,
     # the driver loop calls the full vehicle's numpy right-hand side (a compiled loop would need

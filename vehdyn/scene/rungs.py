@@ -263,17 +263,26 @@ def build_lateral_yaw_roll(drive) -> Setup:
     return _linear_setup(LateralYawRoll(drive.vehicle, drive.scene.speed), drive)
 
 
+def tire_laws(drive) -> tuple:
+    """(front, rear) tire laws of the scene: its ``tire`` on both axles, else the vehicle's; read
+    once per plan (:meth:`Drive.once`)."""
+    from ..tire import load_tire, tire_for_vehicle
+
+    def read():
+        if drive.scene.tire is not None:
+            return (load_tire(drive.scene.tire),) * 2
+        return tuple(tire_for_vehicle(drive.vehicle, axle) for axle in ("front", "rear"))
+
+    return drive.once("tire laws", read)
+
+
 def build_lateral_yaw_roll_lag(drive) -> Setup:
     """LateralYawRollLag: the tires' laws are loaded here (per vehicle); the model, whose cornering
     stiffnesses and ply-steer coefficients come from the law at the running loads of the scene's
     speed, is derived again in every run (per-scene work is part of the cost)."""
     from ..handling.lateral_yaw_roll_lag import LateralYawRollLag
-    from ..tire import load_tire, tire_for_vehicle
 
-    if drive.scene.tire is not None:
-        front = rear = load_tire(drive.scene.tire)
-    else:
-        front, rear = (tire_for_vehicle(drive.vehicle, axle) for axle in ("front", "rear"))
+    front, rear = tire_laws(drive)
 
     def make():
         return LateralYawRollLag(drive.vehicle, drive.scene.speed, front_tire=front, rear_tire=rear)
