@@ -36,6 +36,7 @@ from .four_wheel_steer import (
     zero_sideslip_rear_steer_ratio,
 )
 from .lateral_yaw_roll import LateralYawRoll, LateralYawRollParameters, lateral_yaw_roll_parameters, roll_gradient
+from .lateral_yaw_roll_lag import LateralYawRollLag
 from .transient import (
     StepResponseMetrics,
     YawMode,
@@ -75,6 +76,7 @@ __all__ = [
     "yaw_rate_feedback_rear_steer",
     "zero_sideslip_rear_steer_ratio",
     "LateralYawRoll",
+    "LateralYawRollLag",
     "LateralYawRollParameters",
     "lateral_yaw_roll_parameters",
     "roll_gradient",
