@@ -178,3 +178,10 @@ class DriverInTheLoop(Model):
         x = np.asarray(x, dtype=float)
         xv, uv = self._vehicle_inputs(x, np.asarray(u, dtype=float))
         return np.concatenate([np.asarray(self.vehicle_model.output(t, xv, uv), dtype=float), x[-1:]])
+
+    def compiled_rhs(self):
+        """The loop compiled by numba (:mod:`vehdyn.handling._driver_numba`) when the vehicle model has a
+        compiled rhs and output, else None (see :meth:`vehdyn.Model.compiled_rhs`)."""
+        from . import _driver_numba
+
+        return _driver_numba.compiled_model(self)
