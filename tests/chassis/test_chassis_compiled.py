@@ -86,11 +86,12 @@ def _panic(speed, mu, backend, rtol, duration=1.0):
 def test_compiled_abs_braking_equals_solve_ivp_within_the_integration_error(mu):
     # The same RK45 with the same step control on the same rhs: where both take the same steps the states agree
     # to rounding; where one accepts a step the other rejects (error norms equal to rounding), they differ by the
-    # local error, which the apply/release cycles amplify -- a difference that shrinks with the tolerance.
-    runs = {backend: _panic(20.0, mu, backend, 1e-10) for backend in ("numpy", "compiled")}
+    # local error, which the apply/release cycles amplify (measured at rtol 1e-8: up to 6e-8 in speed, 3e-6 in
+    # wheel speed, 3e-5 in brake torque, relative to the peak; 1e-6, 3e-4 and 2e-3 at rtol 1e-6 over 1 s).
+    runs = {backend: _panic(20.0, mu, backend, 1e-8, duration=0.6) for backend in ("numpy", "compiled")}
     assert "compiled" in runs["compiled"].method_reason and "compiled" not in runs["numpy"].method_reason
-    for name, bound in (("longitudinal_velocity", 1e-7), ("x", 1e-7), ("front_wheel_speed", 1e-5),
-                        ("front_abs_brake_torque", 1e-4)):
+    for name, bound in (("longitudinal_velocity", 1e-6), ("x", 1e-6), ("front_wheel_speed", 1e-4),
+                        ("front_abs_brake_torque", 1e-3)):
         reference = runs["numpy"][name]
         assert np.max(np.abs(runs["compiled"][name] - reference)) < bound * np.max(np.abs(reference)), name
 
@@ -121,11 +122,12 @@ def test_compiled_driver_around_abs_equals_numpy():
     dxdt = np.empty(loop.n_states)
     compiled.rhs(0.0, x0, u, compiled.args, dxdt)
     np.testing.assert_allclose(dxdt, loop.rhs(0.0, x0, u), rtol=1e-12, atol=1e-12)
-    t = np.linspace(0.0, 1.5, 31)
+    t = np.linspace(0.0, 1.0, 21)
     runs = [vehdyn.simulate(loop, t, {"front_brake_torque": 3000.0, "rear_brake_torque": 1000.0}, x0=x0,
-                            method="RK45", rtol=1e-10, atol=1e-12, max_step=0.05, backend=b) for b in ("numpy", "compiled")]
+                            method="RK45", rtol=1e-8, atol=1e-10, max_step=0.05, backend=b) for b in ("numpy", "compiled")]
+    assert "compiled" in runs[1].method_reason
     for name in ("y", "driver_steer_angle"):
-        assert np.max(np.abs(runs[1][name] - runs[0][name])) < 1e-6 * np.max(np.abs(runs[0][name])), name
+        assert np.max(np.abs(runs[1][name] - runs[0][name])) < 1e-5 * np.max(np.abs(runs[0][name])), name
 
 
 def test_loop_without_compiled_parts_falls_back_to_numpy():
