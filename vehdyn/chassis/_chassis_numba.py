@@ -44,9 +44,16 @@ def _stamp() -> str:
     return source_stamp(closed_loop, abs_law, traction_control, esc, sys.modules[__name__])
 
 
+@functools.lru_cache(maxsize=None)
 def _compile_pair(rhs, output, name):
     key = f"{name}_{_stamp()}"
     return compiled_copy(rhs, f"{key}_rhs"), compiled_copy(output, f"{key}_output"), key
+
+
+def _controller(rhs, output, name, controller, extra) -> CompiledModel:
+    """The CompiledModel of a controller law: args (its gains with plain floats, ``extra``)."""
+    rhs, output, key = _compile_pair(rhs, output, name)
+    return CompiledModel(rhs, output, key, (_floats(controller.gains), extra))
 
 
 # ------------------------------------------------------------------------------------ ABS
@@ -63,15 +70,9 @@ def _abs_output(t, x, u, args, y):
         y[i] = max(x[i], 0.0)
 
 
-@functools.lru_cache(maxsize=None)
-def _abs_functions():
-    return _compile_pair(_abs_rhs, _abs_output, "chassis_abs")
-
-
 def compiled_abs(controller) -> CompiledModel:
     """The compiled :class:`~vehdyn.chassis.ABS` (one channel per axle or wheel)."""
-    rhs, output, key = _abs_functions()
-    return CompiledModel(rhs, output, key, (_floats(controller.gains), len(controller.channels)))
+    return _controller(_abs_rhs, _abs_output, "chassis_abs", controller, len(controller.channels))
 
 
 # ------------------------------------------------------------------------------------ traction control
@@ -95,15 +96,9 @@ def _tcs_output(t, x, u, args, y):
         y[n + i] = brake
 
 
-@functools.lru_cache(maxsize=None)
-def _tcs_functions():
-    return _compile_pair(_tcs_rhs, _tcs_output, "chassis_tcs")
-
-
 def compiled_traction_control(controller) -> CompiledModel:
     """The compiled :class:`~vehdyn.chassis.TractionControl`."""
-    rhs, output, key = _tcs_functions()
-    return CompiledModel(rhs, output, key, (_floats(controller.gains), len(controller.channels)))
+    return _controller(_tcs_rhs, _tcs_output, "chassis_tcs", controller, len(controller.channels))
 
 
 # ------------------------------------------------------------------------------------ ESC
@@ -132,16 +127,10 @@ def _esc_output(t, x, u, args, y):
         y[2] = moment
 
 
-@functools.lru_cache(maxsize=None)
-def _esc_functions():
-    return _compile_pair(_esc_rhs, _esc_output, "chassis_esc")
-
-
 def compiled_esc(controller) -> CompiledModel:
     """The compiled :class:`~vehdyn.chassis.ESC` (force, wheel-spin or corner mode)."""
-    rhs, output, key = _esc_functions()
     mode = _CORNERS if controller.corners else _WHEEL_SPIN if controller.wheel_spin else _FORCE
-    return CompiledModel(rhs, output, key, (_floats(controller.gains), mode))
+    return _controller(_esc_rhs, _esc_output, "chassis_esc", controller, mode)
 
 
 def _floats(gains):
@@ -150,25 +139,24 @@ def _floats(gains):
 
 
 # ------------------------------------------------------------------------------------ the loop
-def _commands(t, x, u, args, uc, up, command):
-    """Controller inputs with the demands, the commands, and the plant's inputs with them substituted."""
+def _commands(t, x, u, args):
+    """(controller inputs with the demands, plant inputs with the commands substituted, the commands)."""
     plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs = args
+    uc = np.zeros(demand.shape[0] + feedback_state.shape[0] + feedback_output.shape[0])
+    up = u.copy()
+    command = np.empty(commanded.shape[0])
     for k in range(demand.shape[0]):
         uc[demand[k, 0]] = u[demand[k, 1]]
     _controller_output(t, x[n_plant:], uc, controller_args, command)
-    for j in range(u.shape[0]):
-        up[j] = u[j]
     for k in range(commanded.shape[0]):
         up[commanded[k]] = command[k]
+    return uc, up, command
 
 
 def _loop_rhs(t, x, u, args, dxdt):
     """dx/dt of the closed loop: the plant's, then the controller's."""
     plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs = args
-    uc = np.zeros(demand.shape[0] + feedback_state.shape[0] + feedback_output.shape[0])
-    up = np.empty(u.shape[0])
-    command = np.empty(commanded.shape[0])
-    _commands(t, x, u, args, uc, up, command)
+    uc, up, command = _commands(t, x, u, args)
     xp = x[:n_plant]
     for k in range(feedback_state.shape[0]):
         uc[feedback_state[k, 0]] = xp[feedback_state[k, 1]]
@@ -184,10 +172,7 @@ def _loop_rhs(t, x, u, args, dxdt):
 def _loop_output(t, x, u, args, y):
     """The plant's outputs, then the commands."""
     plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs = args
-    uc = np.zeros(demand.shape[0] + feedback_state.shape[0] + feedback_output.shape[0])
-    up = np.empty(u.shape[0])
-    command = np.empty(commanded.shape[0])
-    _commands(t, x, u, args, uc, up, command)
+    uc, up, command = _commands(t, x, u, args)
     _plant_output(t, x[:n_plant], up, plant_args, y[:n_plant_outputs])
     for k in range(commanded.shape[0]):
         y[n_plant_outputs + k] = command[k]
