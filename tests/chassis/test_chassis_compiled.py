@@ -130,6 +130,23 @@ def test_compiled_driver_around_abs_equals_numpy():
         assert np.max(np.abs(runs[1][name] - runs[0][name])) < 1e-5 * np.max(np.abs(runs[0][name])), name
 
 
+def test_compiled_driver_with_speed_control_equals_numpy():
+    plant = SingleTrack(CAR)
+    path_x = np.linspace(-10.0, 100.0, 111)
+    driver = PreviewDriver(path_x, np.sin(path_x / 20.0), preview_time=0.8, lag=0.1, target_speed=18.0)
+    loop = DriverInTheLoop(plant, driver, wheelbase=CAR.geometry.wheelbase, mass=CAR.mass.mass)
+    compiled = loop.compiled_rhs()
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        x = np.concatenate([plant.straight_running(15.0), [0.0]]) + rng.normal(0.0, 0.2, loop.n_states)
+        u = rng.normal(0.0, 100.0, loop.n_inputs)
+        dxdt, y = np.empty(loop.n_states), np.empty(loop.n_outputs)
+        compiled.rhs(0.0, x, u, compiled.args, dxdt)
+        compiled.output(0.0, x, u, compiled.args, y)
+        np.testing.assert_allclose(dxdt, loop.rhs(0.0, x, u), rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(y, loop.output(0.0, x, u), rtol=1e-12, atol=1e-9)
+
+
 def test_loop_without_compiled_parts_falls_back_to_numpy():
     A = np.array([[-1.0]])
     ctrl = LinearModel(A, np.array([[0.0, 1.0]]), np.array([[2.0]]), np.array([[1.0, 0.0]]), states=["integral"],

@@ -139,6 +139,12 @@ class ESC(ChassisController):
     outputs
         The longitudinal forces (or brake torques) and ``external_yaw_moment`` with the ESC's
         share; with ``corners`` the four wheel brake torques.
+
+    Examples
+    --------
+    >>> car = vehdyn.load_vehicle("sedan")
+    >>> ClosedLoop(SingleTrack(car), ESC(car))                 # doctest: +SKIP
+    >>> ClosedLoop(FullVehicle(car), ESC(car, corners=True))   # doctest: +SKIP
     """
 
     def __init__(self, vehicle: Vehicle, *, wheel_spin: bool = False, corners: bool = False,
