@@ -12,12 +12,14 @@ single track one-wheel braking enters as a yaw moment and an axle force, on the 
 ESC brakes the wheel itself (ESC(car, corners=True)). The results describe the models, not a
 certification. Every run is compiled (numba), controller included. The complete series runs on the
 single track; on the full vehicle the 5 A and 6.5 A runs (both directions) by default and the
-complete series with --full.
+complete series with --full. (Without numba the runs are numpy batches: then the single track runs
+only the 5 A and 6.5 A runs and the full vehicle none, unless --full.)
 """
 
 import numpy as np
 
 import vehdyn
+from vehdyn._compiled_ode import numba_available
 from vehdyn.chassis import ESC, ClosedLoop
 from vehdyn.handling import SingleTrack, fmvss126, sine_with_dwell, steady_state_cornering
 from vehdyn.plotting import new_figure
@@ -30,7 +32,10 @@ def run(study: Study) -> None:
     import pandas as pd
 
     # the full vehicle's complete series only with --full
-    subsets = {"single_track": {}, "full_vehicle": {} if study.full else dict(amplitude_multiples=[5.0, 6.5])}
+    subset = {} if study.full else dict(amplitude_multiples=[5.0, 6.5])
+    subsets = {"single_track": {} if numba_available() else subset}
+    if numba_available() or study.full:
+        subsets["full_vehicle"] = subset
     frames, verdicts = [], []
     for plant, options in subsets.items():
         for name in vehdyn.shipped_vehicles("passenger_car"):
@@ -52,10 +57,11 @@ def run(study: Study) -> None:
     study.table(table[columns], "runs", caption="Every run of the series (limits 0.35, 0.20, >= 1.83 m from 5 A)")
     summary = pd.DataFrame(verdicts)
     study.table(summary, "verdict", caption="49 CFR 571.126 S5.2 verdict per car and model, without and with ESC")
-    if subsets["full_vehicle"]:
-        study.text("The single track runs the complete series (1.5 A to 6.5 A or 270 deg, both directions); the full "
-                   "vehicle here the 5 A and 6.5 A runs, both directions (amplitudes where the cars without ESC "
-                   "fail); `vehdyn report --full` runs its complete series too.")
+    for plant, options in subsets.items():
+        study.text(f"{plant.replace('_', ' ').capitalize()}: "
+                   + ("the 5 A and 6.5 A runs, both directions (amplitudes where the cars without ESC fail; "
+                      "`vehdyn report --full` runs the complete series)." if options else
+                      "the complete series (1.5 A to 6.5 A or 270 deg, both directions)."))
     for plant in subsets:
         study.text(f"{plant.replace('_', ' ').capitalize()}, without ESC: "
                    + ", ".join(f"{v['vehicle']} {'passes' if v['passed'] else 'fails'}"

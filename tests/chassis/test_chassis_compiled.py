@@ -124,7 +124,8 @@ def test_compiled_driver_around_abs_equals_numpy():
     np.testing.assert_allclose(dxdt, loop.rhs(0.0, x0, u), rtol=1e-12, atol=1e-12)
     t = np.linspace(0.0, 1.0, 21)
     runs = [vehdyn.simulate(loop, t, {"front_brake_torque": 3000.0, "rear_brake_torque": 1000.0}, x0=x0,
-                            method="RK45", rtol=1e-8, atol=1e-10, max_step=0.05, backend=b) for b in ("numpy", "compiled")]
+                            method="RK45", rtol=1e-8, atol=1e-10, max_step=0.05, backend=backend)
+            for backend in ("numpy", "compiled")]
     assert "compiled" in runs[1].method_reason
     for name in ("y", "driver_steer_angle"):
         assert np.max(np.abs(runs[1][name] - runs[0][name])) < 1e-5 * np.max(np.abs(runs[0][name])), name

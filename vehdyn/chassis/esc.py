@@ -99,7 +99,7 @@ def axle_commands(p, wheel_spin, fl, fr, rl, rr, front_demand, rear_demand, mome
 
 
 class ESC(ChassisController):
-    """Electronic stability control for the :class:`~vehdyn.handling.SingleTrack` or the full vehicle (module docstring).
+    """Electronic stability control of the :class:`~vehdyn.handling.SingleTrack` or the full vehicle.
 
     Parameters
     ----------
@@ -171,7 +171,8 @@ class ESC(ChassisController):
         self.rolling_radius = float(t.rolling_radius)
         self.half_tracks = np.array([g.front_track, g.front_track, g.rear_track, g.rear_track]) / 2.0
         front, rear = vehicle.static_axle_loads(GRAVITY)
-        self.torque_limits = self.friction_coefficient * np.array([front, front, rear, rear]) / 2.0 * self.rolling_radius
+        self.torque_limits = (self.friction_coefficient * np.array([front, front, rear, rear]) / 2.0
+                              * self.rolling_radius)
         if self.corners:
             commanded = [Signal(f"brake_torque_{w}", "N*m", f"brake torque of the {w.replace('_', ' ')} wheel")
                          for w in _WHEELS]
