@@ -172,8 +172,9 @@ def test_fullvehicle_with_esc_passes_fmvss126_where_it_fails_alone():
     assert run["yaw_rate_ratio_1000ms"] <= 0.35 and run["yaw_rate_ratio_1750ms"] <= 0.20
     assert run["lateral_displacement"] >= 1.83
     # the ESC of the single track's signals cannot drive the full vehicle: the missing inputs are named
-    with pytest.raises(ParameterError, match="front_longitudinal_force"):
+    with pytest.raises(ParameterError, match="front_longitudinal_force") as info:
         fmvss126(CAR, ESC(CAR), **kwargs)
+    assert "corners=True" in str(info.value)
 
 
 def test_fmvss126_bad_plant():

@@ -135,8 +135,11 @@ class ClosedLoop(Model):
         missing = [n for n in controller.input_names if n not in p_in and n not in p_states and n not in p_out]
         missing += [n for n in controller.output_names if n not in p_in and n not in missing]
         if missing:
+            hint = ""
+            if getattr(controller, "corners", None) is False and "brake_torque_front_left" in p_in:
+                hint = f"; for a plant with one signal per wheel build {c_name}(vehicle, corners=True)"
             raise ParameterError(f"{c_name} cannot be attached to {type(plant).__name__}: missing inputs {missing} "
-                                 f"(the plant's inputs are {list(p_in)}, its states {list(p_states)})",
+                                 f"(the plant's inputs are {list(p_in)}, its states {list(p_states)}){hint}",
                                  key="missing_inputs", value=missing)
         clash = sorted(set(p_states) & set(controller.state_names))
         if clash:
