@@ -9,14 +9,17 @@ scripts ``studies/*.py`` — the same files ``vehdyn report`` runs — in quick 
     Which studies the gallery executes: unset or ``all`` every study; ``none`` none (their pages
     show the code without output); otherwise a regular expression matched against the file path
     (the docs test in ``tests/docs`` runs a quick subset this way).
+``VEHDYN_DOCS_ROOT``
+    The checkout whose ``studies/`` the gallery shows (default: the folder above this one).
 """
 
 import os
 import sys
+import warnings
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-ROOT = HERE.parent
+ROOT = Path(os.environ.get("VEHDYN_DOCS_ROOT", HERE.parent))  # the checkout (tests build a copy of docs/)
 sys.path.insert(0, str(HERE / "_ext"))
 sys.path.insert(0, str(ROOT))
 
@@ -59,6 +62,10 @@ numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 numpydoc_validation_checks = set()
 
+# numpydoc parses the raw docstrings once more for signatures; the "Signals" sections it does not
+# know are rendered through vehdyn_docs (moved into the extended summary), so its notice is noise.
+warnings.filterwarnings("ignore", message="Unknown section (Signals|States|Inputs|Outputs)", category=UserWarning)
+
 # matplotlib's plot directive (figures in the user guide, run at build time)
 plot_include_source = True
 plot_html_show_source_link = False
@@ -86,6 +93,10 @@ sphinx_gallery_conf = {
     "show_memory": False,
     "plot_gallery": "True",
     "capture_repr": (),
+    # a downloaded notebook runs the study as its script would: figures and tables go to out/study
+    "first_notebook_cell": ("import sys\n"
+                            "sys.argv = sys.argv[:1]  # Study.main takes its output folder from sys.argv[1]\n"
+                            "__file__ = 'study.py'  # and its name from __file__"),
 }
 
 intersphinx_mapping = {}  # offline builds: no inventories fetched

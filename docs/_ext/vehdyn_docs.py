@@ -162,7 +162,13 @@ def gallery_pattern(choice: str) -> str:
 
 
 def study_argv(gallery_conf, script_vars) -> list[str]:
-    """``sys.argv[1:]`` for a study run by the gallery: its output folder (see ``Study.main``)."""
+    """``sys.argv[1:]`` for a study run by the gallery: its output folder (see ``Study.main``).
+
+    sphinx-gallery calls this just before it runs the script, with the script's globals in
+    ``script_vars``; a study's last line is ``Study.main(run, __file__)``, so ``__file__`` (which
+    sphinx-gallery leaves undefined) is set to the script's path as Python would.
+    """
+    script_vars["example_globals"]["__file__"] = str(script_vars["src_file"])
     return [str(_out_root() / Path(script_vars["src_file"]).stem)]
 
 
