@@ -71,7 +71,7 @@ plot_include_source = True
 plot_html_show_source_link = False
 plot_html_show_formats = False
 plot_formats = [("png", 90)]
-plot_rcparams = {"figure.autolayout": True}
+plot_rcparams = {}
 
 # Gallery: the study scripts, executed in quick mode; their figures are collected from the folder
 # the study writes to (a study saves and closes its figures through Study.figure).
