@@ -45,8 +45,6 @@ extensions = [
 root_doc = "index"
 exclude_patterns = ["_build", "**.ipynb_checkpoints", "gallery/*.md5", "gallery/*.py", "gallery/*.ipynb",
                     "gallery/*.zip", "gallery/*.json"]
-templates_path = ["_templates"]
-html_static_path = ["_static"]
 default_role = "obj"
 nitpicky = False
 
