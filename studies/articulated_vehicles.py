@@ -11,7 +11,9 @@ nonlinear articulated single track (vehdyn.handling.ArticulatedSingleTrack) then
 shipped tractor–semitrailer through a gentle curve at 20 m/s three times: free rolling, with the
 tractor's drive axle locked (jackknife) and with the trailer axle locked at 25 m/s in a tighter
 curve (trailer swing); the runs report when the articulation angle leaves its safe range.
-The caravan's numbers are typical values, not a measurement (see data/trailers/caravan.toml).
+The caravan's numbers are typical values, not a measurement (see data/trailers/caravan.toml); the
+published truck-and-trailer set of Minaker's EoM (vehdyn.handling.car_trailer.EOM_TRUCK_TRAILER)
+is shown next to them.
 """
 
 import dataclasses
@@ -20,6 +22,7 @@ import numpy as np
 
 import vehdyn
 from vehdyn.handling import ArticulatedSingleTrack, LinearCarTrailer, car_trailer_parameters
+from vehdyn.handling.car_trailer import EOM_TRUCK_TRAILER
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 
@@ -73,7 +76,8 @@ def run(study: Study) -> None:
 
     # --- snaking-mode damping against speed
     combos = {"compact + caravan": LinearCarTrailer(car, caravan, 20.0),
-              "tractor + semitrailer": LinearCarTrailer(tractor, semi, 20.0)}
+              "tractor + semitrailer": LinearCarTrailer(tractor, semi, 20.0),
+              "EoM truck + trailer (Minaker 2019)": LinearCarTrailer(EOM_TRUCK_TRAILER, speed=20.0)}
     speeds = np.linspace(5.0, 45.0, 21 if not study.full else 81)
     fig, axes = new_figure(2, 1, width=7.0, height_per_row=2.8, sharex=True)
     rows = []
@@ -112,8 +116,9 @@ def run(study: Study) -> None:
                             "articulation_deg_per_g_at_80kmh": "deg/g", "tongue_load_N": "N",
                             "offtracking_at_R15m": "m", "max_real_part_at_100kmh": "1/s"}
     study.table(table, "articulated_stability", caption="Linear stability and steady-state numbers of the shipped "
-                                                        "combinations (off-tracking of the trailer axle inside the "
-                                                        "towing vehicle's rear axle on a 15 m circle at walking pace)")
+                                                        "combinations and of the published EoM truck-and-trailer set "
+                                                        "(off-tracking of the trailer axle inside the towing "
+                                                        "vehicle's rear axle on a 15 m circle at walking pace)")
 
     # --- jackknife and trailer swing of the tractor-semitrailer (nonlinear)
     model = ArticulatedSingleTrack(tractor, semi)
@@ -161,7 +166,9 @@ def run(study: Study) -> None:
     vc = rows[0]["critical_speed_kmh"]
     study.text(f"The compact towing the caravan snakes above {vc:.0f} km/h; the critical speed falls as the tongue "
                "load is reduced and as the caravan's yaw inertia grows, and it drops furthest when the caravan's CG "
-               "moves behind its axle. Locking the tractor's drive axle in a curve jackknifes the tractor within "
+               "moves behind its axle. The published truck-and-trailer set of Minaker's EoM (every linear "
+               f"parameter stated by its source, a light tongue load) snakes above {rows[2]['critical_speed_kmh']:.0f} "
+               "km/h. Locking the tractor's drive axle in a curve jackknifes the tractor within "
                f"{events[1]['time_s'] - 1.0:.1f} s; locking the semitrailer's axle lets the trailer swing out. "
                "The model knows no contact between cab and trailer: articulation beyond about 90 deg is drawn to show "
                "that the run stays finite, not as a physical motion.")

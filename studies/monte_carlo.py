@@ -13,6 +13,8 @@ Wk-weighted r.m.s. body acceleration of the front quarter car on an ISO 8608 cla
 the Sobol' indices (SALib, Saltelli design) of each number to each factor.
 """
 
+import importlib.util
+
 import numpy as np
 
 import vehdyn
@@ -110,6 +112,10 @@ def run(study: Study) -> None:
     # Sobol' indices need finite numbers: the characteristic speed sqrt(L/K) is infinite for the
     # oversteering variants, and its indices are those of K (a monotone function of it)
     indexed = [k for k in METRICS if k != "characteristic_speed"]
+    if importlib.util.find_spec("SALib") is None:
+        study.text("The Sobol' sensitivity indices need SALib, which is not installed here: "
+                   "pip install \"vehdyn[sensitivity]\" (the README's report command installs it).")
+        return
     sobol = vehdyn.sensitivity(numbers, RANGES, indexed, method="sobol", n=16 if study.quick else 256, seed=2)
     fig, axes = new_figure(1, 3, width=12.0, height_per_row=3.4)
     for ax, name in zip(axes.ravel(), indexed):

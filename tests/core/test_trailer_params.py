@@ -32,6 +32,15 @@ def test_caravan_tongue_load_and_tire_values_follow_their_formulas():
     assert t.cornering_stiffness == pytest.approx(-2 * float(dfy) / (2 * eps), rel=2e-3)
 
 
+def test_caravan_wind_numbers_follow_their_comments():
+    t = load_trailer("caravan")
+    # "body 2.2 m wide x 2.5 m high"; centre of pressure "0.7 m ahead of the axle"
+    assert t.frontal_area == pytest.approx(2.2 * 2.5, rel=1e-12)
+    assert t.hitch_to_axle - t.centre_of_pressure_behind_hitch == pytest.approx(0.7, abs=1e-12)
+    # a trailer without wind numbers feels no wind (the defaults)
+    assert load_trailer("semitrailer").frontal_area * load_trailer("semitrailer").side_force_coefficient_slope == 0
+
+
 def test_semitrailer_sits_on_the_tractor_drive_tandem():
     t, tractor = load_trailer("semitrailer"), vehdyn.load_vehicle("tractor")
     assert t.coupling == "fifth_wheel" and t.hitch_behind_rear_axle == 0.0
@@ -59,7 +68,8 @@ def test_cg_behind_the_axle_is_accepted():
 
 @pytest.mark.parametrize("field, value", [("mass", 0.0), ("yaw_inertia", 0.0), ("hitch_to_cg", -1.0),
                                           ("cg_to_axle", -5.0), ("cornering_stiffness", -3.0),
-                                          ("relaxation_length", -0.1), ("coupling", "hook")])
+                                          ("relaxation_length", -0.1), ("coupling", "hook"),
+                                          ("frontal_area", -1.0), ("side_force_coefficient_slope", -0.5)])
 def test_bad_fields_are_named(field, value):
     with pytest.raises(ParameterError) as err:
         load_trailer("caravan").replace(**{field: value})

@@ -80,6 +80,62 @@ def test_heave_pitch_and_wheel_hop_modes_are_the_full_car_s(sedan, linear_tires)
     assert np.all(_nearest_errors(corrected, full) < 1e-3)
 
 
+def _grounded(vehicle, height):
+    """``vehicle`` with its sprung CG ``height`` [m] above the ground and the unsprung masses at half
+    of it (the total CG where they put it): the test configuration that switches off every coupling
+    the full vehicle adds to :class:`FullCar`. Each of them has the sprung CG's height above the
+    contact points as its lever:
+
+    * gravity's moment on the pitched or rolled body, m_s g h_s theta (the loads act at the contact
+      points, h_s below the CG; sedan: 4.0 % of the pitch, 11 % of the roll stiffness);
+    * the unsprung masses' fore-aft and sideways inertia, m_u (h_s - h_u)^2 (0.9 % of the sprung pitch
+      inertia, 6.8 % of the roll inertia);
+    * the tires' longitudinal slip: pitching about the CG moves the contact points fore and aft by
+      h_s theta, which spins the wheels (4 I_w (h_s / R_e)^2, 1.4 % of the pitch inertia, as a rigid
+      wheel; through the slip stiffness a lag that leaves 1e-4 to 7e-4 in the eigenvalues);
+    * the tires' lateral slip: rolling about the CG moves the contact points sideways by h_s phi, so
+      that roll couples with the lateral and yaw motion (the roll mode 41 % off FullCar's at 20 m/s:
+      compared with LateralYawRoll instead);
+    * the anti-dive and anti-squat lines (slope f h / L; 0 in the shipped files) and the drag's
+      pitch moment (drag times h_s).
+
+    The roll centres stay (on the ground in the file); no roll steer, no camber gains.
+    """
+    m = vehicle.mass
+    return vehicle.replace(mass__sprung_cg_height=height,
+                           mass__cg_height=(m.sprung_mass * height + m.unsprung_mass * 0.5 * height) / m.mass)
+
+
+@pytest.mark.parametrize("height", [1e-4, 1e-7])
+def test_full_car_is_the_full_vehicle_with_its_cg_on_the_ground(sedan, linear_tires, height):
+    """Straight running at 20 m/s (drag, wheel spin and the drive torque that holds the speed all
+    there) linearized: with the CG heights going to zero (:func:`_grounded`) all seven FullCar
+    modes -- heave, pitch, roll and the four wheel hops -- and the frequency responses from each
+    road input to heave acceleration, pitch, roll and suspension travel converge on FullCar's in
+    proportion to the height: to 1e-6 at 0.1 um. What is left at 0.1 um is the linearization's
+    finite-difference error (1e-7)."""
+    vehicle = _grounded(sedan, height)
+    model = FullVehicle(vehicle, *linear_tires(vehicle), tire_lag=False)
+    x0, u0 = model.trim(20.0)
+    linear = model.linearize(x0, u0)
+    car = FullCar.from_vehicle(vehicle)
+    reference = [e for e in np.linalg.eigvals(car.A) if e.imag > 0]
+    assert len(reference) == 7
+    errors = _nearest_errors(reference, np.linalg.eigvals(linear.A))
+    bound = max(height / 1.0, 1e-6)  # 1 per metre of height (the roll mode: 0.13, responses 0.43), >= 1e-6
+    assert np.all(errors < bound)
+    omega = np.array([1.0, 8.0, 15.0, 60.0, 200.0])  # through heave/pitch, roll and wheel hop
+    outputs = ["sprung_acceleration", "pitch_angle", "roll_angle", "suspension_travel_front_left",
+               "suspension_travel_rear_right"]
+    for corner in CORNERS:
+        responses = []
+        for system in (linear, car):
+            inputs = [f"road_displacement{corner}", f"road_velocity{corner}"]
+            H = system.frequency_response(omega, outputs=outputs, inputs=inputs).response
+            responses.append(H[:, 0, :] + 1j * omega * H[:, 1, :])  # the road's velocity is its rate
+        assert np.max(np.abs(responses[0] - responses[1]) / np.abs(responses[1])) < bound
+
+
 @pytest.mark.parametrize("speed", [10.0, 20.0, 30.0])
 def test_lateral_yaw_roll_modes_are_lateral_yaw_roll_s(reduced, linear_tires, speed):
     """With the full vehicle's additions made negligible (``reduced``: no drag, whose load transfer
@@ -242,3 +298,57 @@ def test_straight_running_is_stable_with_magic_formula_tires_and_lag(sedan, spee
     assert np.all(eigenvalues.real < 1e-8)
     assert np.sum(np.abs(eigenvalues) < 1e-8) <= 3  # x, y, yaw angle
     assert np.min(eigenvalues.real) > -150.0
+
+
+def _steady_wind_gains(model, speed):
+    """Steady yaw rate [rad/s] and lateral acceleration [m/s^2] per m/s of lateral wind, from the
+    linearization about straight running (steer and torques held; the earth position and heading,
+    which drift, left out; without drag the speed's coast mode is neutral, so least squares)."""
+    x0, u0 = model.trim(speed)
+    linear = model.linearize(x0, u0)
+    keep = [j for j, n in enumerate(model.state_names) if n not in ("x", "y", "yaw_angle")]
+    wind = model.index("wind_velocity_lateral", "inputs")
+    rows = [model.index(n, "outputs") for n in ("yaw_rate", "lateral_acceleration")]
+    A, B = linear.A[np.ix_(keep, keep)], linear.B[keep, wind]
+    steady = np.linalg.lstsq(A, -B, rcond=None)[0]
+    assert np.max(np.abs(A @ steady + B)) < 1e-9 * np.max(np.abs(B))  # a true steady state
+    return linear.C[np.ix_(rows, keep)] @ steady + linear.D[rows, wind]
+
+
+def _bicycle_wind_gains(vehicle, speed):
+    bicycle = LinearBicycle(vehicle, speed, crosswind=True)
+    return bicycle.select(["yaw_rate", "lateral_acceleration"], ["wind_velocity_lateral"]).dc_gain()[:, 0]
+
+
+@pytest.mark.parametrize("speed", [10.0, 20.0, 30.0])
+def test_crosswind_gains_are_the_bicycle_s(sedan, linear_tires, speed):
+    """The steady yaw rate and lateral acceleration per m/s of lateral wind (side force at the centre
+    of pressure, the law of :mod:`vehdyn.handling.crosswind`) equal LinearBicycle(crosswind=True)'s:
+
+    * without drag to 1e-9 (the wind's roll moment shifts load between sides, which linear tires
+      with stiffness proportional to load do not feel);
+    * with the sedan's drag within 3 %: the drag acts at the sprung CG's height and the drive force
+      at the ground, so the axle loads shift by D h_s / L to the rear, and with them the axles'
+      cornering stiffnesses (0.5 %, 0.7 %, -2.8 % at 10, 20, 30 m/s; the gains are small
+      differences, the centre of pressure lying near the neutral steer point). The bicycle with its
+      cornering stiffnesses shifted so is within 0.5 %; and with the CG on the ground (drag kept)
+      the difference vanishes (1e-6): it is the heights' alone.
+    """
+    drag_free = sedan.replace(aero__drag_coefficient=0.0)
+    model = FullVehicle(drag_free, *linear_tires(drag_free), tire_lag=False)
+    np.testing.assert_allclose(_steady_wind_gains(model, speed), _bicycle_wind_gains(drag_free, speed), rtol=1e-9)
+
+    model = FullVehicle(sedan, *linear_tires(sedan), tire_lag=False)
+    gains = _steady_wind_gains(model, speed)
+    np.testing.assert_allclose(gains, _bicycle_wind_gains(sedan, speed), rtol=0.03)
+    aero, tires, m = sedan.aero, sedan.tires, sedan.mass
+    shift = 0.5 * aero.air_density * aero.drag_coefficient * aero.frontal_area * speed**2 * m.sprung_cg_height \
+        / sedan.wheelbase
+    front_load = m.mass * GRAVITY * sedan.geometry.b / sedan.wheelbase
+    shifted = sedan.replace(
+        tires__front_cornering_stiffness=tires.front_cornering_stiffness * (1 - shift / front_load),
+        tires__rear_cornering_stiffness=tires.rear_cornering_stiffness * (1 + shift / (m.mass * GRAVITY - front_load)))
+    np.testing.assert_allclose(gains, _bicycle_wind_gains(shifted, speed), rtol=0.005)
+    grounded = _grounded(sedan, 1e-6)
+    model = FullVehicle(grounded, *linear_tires(grounded), tire_lag=False)
+    np.testing.assert_allclose(_steady_wind_gains(model, speed), _bicycle_wind_gains(grounded, speed), rtol=1e-6)

@@ -40,6 +40,59 @@ def test_linearization_equals_linear_car_trailer(vehicle, trailer):
             np.testing.assert_allclose(mine, theirs, rtol=1e-6, atol=1e-6 * np.abs(theirs).max())
 
 
+def test_linearized_wind_equals_linear_car_trailer_wind_input():
+    vehicle = COMPACT.replace(aero__drag_coefficient=0.0)
+    assert CARAVAN.frontal_area > 0 and CARAVAN.side_force_coefficient_slope > 0
+    model = ArticulatedSingleTrack(vehicle, CARAVAN, *linear_tires(vehicle, CARAVAN), tire_lag=False)
+    for speed in (8.0, 25.0):
+        block = model.lateral_yaw(speed, crosswind=True)
+        ref = LinearCarTrailer(vehicle, CARAVAN, speed, crosswind=True)
+        assert block.input_names == ref.input_names == ("front_steer_angle", "wind_velocity_lateral")
+        for mine, theirs in ((block.B, ref.B), (block.D, ref.D)):
+            np.testing.assert_allclose(mine, theirs, rtol=1e-6, atol=1e-6 * np.abs(theirs).max())
+
+
+def test_nonlinear_wind_force_on_each_body_is_the_crosswind_law():
+    """At rest in the wind's first instant (x'' from forces alone): the hitch carries what Newton says."""
+    from vehdyn.handling.crosswind import aero_side_force, trailer_wind_side_force_factor, wind_side_force_factor
+
+    u, w = 20.0, 15.0
+    model = ArticulatedSingleTrack(COMPACT.replace(aero__drag_coefficient=0.0), CARAVAN, tire_lag=False)
+    x0 = model.straight_running(u)
+    calm, windy = model.input_vector(), model.input_vector({"wind_velocity_lateral": w})
+    ext = model.input_vector({"external_lateral_force": aero_side_force(np, wind_side_force_factor(COMPACT), u, w),
+                              "external_yaw_moment": model.tractor.parameters.centre_of_pressure
+                              * aero_side_force(np, wind_side_force_factor(COMPACT), u, w)})
+    ft = aero_side_force(np, trailer_wind_side_force_factor(CARAVAN, COMPACT.aero.air_density), u, w)
+    ext[model.index("trailer_external_lateral_force", "inputs")] = ft
+    ext[model.index("trailer_external_yaw_moment", "inputs")] = -(CARAVAN.centre_of_pressure_behind_hitch
+                                                                  - CARAVAN.hitch_to_cg) * ft
+    # the wind input acts exactly as the same forces put in through the external-force inputs
+    np.testing.assert_allclose(model.rhs(0.0, x0, windy), model.rhs(0.0, x0, ext), rtol=1e-12, atol=1e-12)
+    assert not np.allclose(model.rhs(0.0, x0, windy), model.rhs(0.0, x0, calm))
+
+
+def test_small_wind_zone_response_equals_the_linear_combination():
+    """crosswind_sensitivity drives the nonlinear combination; a 0.5 m/s zone stays in the linear range."""
+    from vehdyn.handling import crosswind_sensitivity
+    from vehdyn.handling.crosswind import wind_zone_signal
+
+    vehicle = COMPACT.replace(aero__drag_coefficient=0.0)
+    model = ArticulatedSingleTrack(vehicle, CARAVAN, *linear_tires(vehicle, CARAVAN), tire_lag=False)
+    u, w, length = 22.0, 0.5, 30.0
+    m = crosswind_sensitivity(vehicle, u, wind_speed=w, wind_length=length, duration=3.0, model=model, rtol=1e-9)
+    res = m.result
+    linear = LinearCarTrailer(vehicle, CARAVAN, u, crosswind=True)
+    zone = wind_zone_signal(u, w, length, vehicle.wheelbase)
+    ref = vehdyn.simulate(linear, res.time, {"wind_velocity_lateral": zone}, rtol=1e-10, atol=1e-12)
+    for name in ("yaw_rate", "articulation_angle", "lateral_acceleration"):
+        peak = np.max(np.abs(ref[name]))
+        assert np.max(np.abs(res[name] - ref[name])) < 2e-3 * peak, name  # 3e-4 measured (w^2 terms)
+    # the caravan turns the compact into the wind (its hitch share acts behind the neutral steer point)
+    assert m.peak_yaw_rate < 0 and LinearCarTrailer(vehicle, CARAVAN, u, crosswind=True).dc_gain()[
+        linear.index("yaw_rate", "outputs"), 1] < 0
+
+
 def test_low_speed_articulation_follows_the_kinematic_trailer():
     # hitch over the rear axle: d(theta)/dt = v (tan(delta) / L - sin(theta) / l_t) (theta = car - trailer yaw)
     trailer = CARAVAN.replace(hitch_behind_rear_axle=0.0)

@@ -9,17 +9,33 @@ from scipy.integrate import solve_ivp
 
 import vehdyn
 from vehdyn import ParameterError
-from vehdyn.handling import CarTrailerParameters, LinearBicycle, LinearCarTrailer, car_trailer_parameters
+from vehdyn.handling import (CarTrailerParameters, LinearBicycle, LinearCarTrailer, car_trailer_parameters,
+                             trailer_crosswind_amplification)
+from vehdyn.handling.car_trailer import EOM_TRUCK_TRAILER
+from vehdyn.handling.crosswind import trailer_wind_side_force_factor
 
 # A labelled car–caravan set: the shipped "compact" towing the shipped "caravan". The caravan's
 # numbers are typical values (data/trailers/caravan.toml says so line by line): no published
 # measured car–caravan set could be confirmed while writing these tests.
 SHIPPED = car_trailer_parameters(vehdyn.load_vehicle("compact"), vehdyn.load_trailer("caravan"))
+# A PUBLISHED car–trailer set (every linear parameter stated by its source, nothing assumed; the source
+# and its commits are in EOM_TRUCK_TRAILER's docstring): Minaker's EoM truck-and-trailer example. The numbers
+# are checked here against the source's own lines, then the model against independent derivations.
+MINAKER = EOM_TRUCK_TRAILER
 # the textbook-style set of the LinearCarTrailer docstring
 TEXTBOOK = CarTrailerParameters(mass=1500.0, yaw_inertia=2500.0, a=1.1, b=1.6, front_cornering_stiffness=110e3,
                                 rear_cornering_stiffness=120e3, hitch_distance=2.6, trailer_mass=1200.0,
                                 trailer_yaw_inertia=2500.0, trailer_hitch_to_cg=3.2, trailer_cg_to_axle=0.3,
                                 trailer_cornering_stiffness=80e3)
+
+
+def lagrange_mass_matrix(p: CarTrailerParameters) -> np.ndarray:
+    """The mass matrix of the Lagrange derivation below over (v', r', theta'')."""
+    m, iz, h = p.mass, p.yaw_inertia, p.hitch_distance
+    mt, it, e = p.trailer_mass, p.trailer_yaw_inertia, p.trailer_hitch_to_cg
+    return np.array([[m + mt, -mt * (h + e), mt * e],
+                     [-mt * (h + e), iz + it + mt * (h + e) ** 2, -it - mt * (h + e) * e],
+                     [mt * e, -it - mt * e * (h + e), it + mt * e * e]])
 
 
 def lagrange_state_matrix(p: CarTrailerParameters, u: float) -> np.ndarray:
@@ -48,9 +64,7 @@ def lagrange_state_matrix(p: CarTrailerParameters, u: float) -> np.ndarray:
         yt = -p.trailer_cornering_stiffness * (v - h * r + u * th - lt * (r - dth)) / u
         return yf, yr, yt
 
-    M = np.array([[m + mt, -mt * (h + e), mt * e],
-                  [-mt * (h + e), iz + it + mt * (h + e) ** 2, -it - mt * (h + e) * e],
-                  [mt * e, -it - mt * e * (h + e), it + mt * e * e]])
+    M = lagrange_mass_matrix(p)
 
     def rest(x):  # right-hand sides minus the velocity terms of the left
         v, r, th, dth = x
@@ -89,7 +103,8 @@ def independent_critical_speed(p, lo=0.5, hi=100.0):
     return 0.5 * (a + b)
 
 
-@pytest.mark.parametrize("params", [SHIPPED, TEXTBOOK], ids=["compact_caravan", "textbook"])
+@pytest.mark.parametrize("params", [MINAKER, SHIPPED, TEXTBOOK], ids=["minaker_published", "compact_caravan",
+                                                                      "textbook"])
 def test_matrices_and_critical_speed_equal_the_lagrange_derivation(params):
     for u in (3.0, 17.0, 42.0):
         np.testing.assert_allclose(LinearCarTrailer(params, speed=u).A, lagrange_state_matrix(params, u),
@@ -100,6 +115,50 @@ def test_matrices_and_critical_speed_equal_the_lagrange_derivation(params):
     vc = model.critical_speed()
     assert model.snaking_mode(vc).damping_ratio == pytest.approx(0.0, abs=1e-8)
     assert model.snaking_mode(0.95 * vc).damping_ratio > 0 > model.snaking_mode(1.05 * vc).damping_ratio
+
+
+def hurwitz_critical_speed(p, lo=0.5, hi=100.0):
+    """Critical speed from the characteristic polynomial alone (no eigenvalues): the Hopf point of a quartic.
+
+    det(sI - A) = s^4 + a1 s^3 + a2 s^2 + a3 s + a4 (A from the Lagrange derivation above) has a pair of
+    roots on the imaginary axis where the third Hurwitz determinant a1 a2 a3 - a3^2 - a1^2 a4 vanishes
+    (Routh–Hurwitz; e.g. Pacejka 2012, sec. 1.3.3, uses the same criterion for the car–trailer).
+    """
+    from scipy.optimize import brentq
+
+    def hurwitz3(u):
+        _, a1, a2, a3, a4 = np.poly(lagrange_state_matrix(p, u))
+        return a1 * a2 * a3 - a3**2 - a1**2 * a4
+
+    grid = np.linspace(lo, hi, 400)
+    h = np.array([hurwitz3(u) for u in grid])
+    k = np.flatnonzero(h <= 0)[0]
+    return brentq(hurwitz3, grid[k - 1], grid[k], xtol=1e-13, rtol=1e-15)
+
+
+def test_published_set_is_the_source_text():
+    # input_ex_truck_trailer(; a = 1.289, b = 2.885 - 1.289, cf = 80000, cr = 80000, m = 16975 / 9.81, Iz = 3508,
+    # d = 2.7, ..., ct = 80000, mt = 2000, It = 3000) and truck_trailer.jl: e = 2.9, h = 0.1
+    source = dict(a=1.289, b=2.885 - 1.289, front_cornering_stiffness=80000, rear_cornering_stiffness=80000,
+                  mass=16975 / 9.81, yaw_inertia=3508, hitch_distance=2.7, trailer_cornering_stiffness=80000,
+                  trailer_mass=2000, trailer_yaw_inertia=3000, trailer_hitch_to_cg=2.9, trailer_cg_to_axle=0.1)
+    for name, value in source.items():
+        assert getattr(MINAKER, name) == value, name
+    assert MINAKER.wind_side_force_factor == MINAKER.trailer_wind_side_force_factor == 0.0
+
+
+def test_published_set_critical_speed_equals_the_hurwitz_derivation():
+    model = LinearCarTrailer(MINAKER, speed=10.0)
+    vc = model.critical_speed()
+    assert vc == pytest.approx(hurwitz_critical_speed(MINAKER), rel=1e-6)
+    # at that speed the snaking pair sits on the imaginary axis at the Hurwitz frequency sqrt(a3 / a1)
+    _, a1, _, a3, _ = np.poly(lagrange_state_matrix(MINAKER, vc))
+    assert model.snaking_mode(vc).frequency_hz == pytest.approx(math.sqrt(a3 / a1) / (2 * math.pi), rel=1e-6)
+    # this light-tongue-load set snakes inside the 0.4-40 m/s sweep of its source; its understeer gradient
+    # from the closed form is small and positive (no divergence below the critical speed)
+    assert 0.4 < vc < 40.0
+    assert model.understeer_gradient > 0
+    assert model.max_real_part(0.99 * vc) < 0 < model.max_real_part(1.01 * vc)
 
 
 def test_vanishing_trailer_leaves_the_bicycle_eigenvalues():
@@ -225,3 +284,123 @@ def test_bad_speed_and_hitch_ahead_of_the_front_axle_from_files():
     with pytest.raises(ParameterError) as err:
         LinearCarTrailer(car, "caravan", 20.0)
     assert err.value.key == "trailer"
+
+
+# ----------------------------------------------------------------------------- crosswind on the combination
+WINDY = dataclasses.replace(SHIPPED)  # the compact's and the caravan's wind numbers (car_trailer_parameters)
+
+
+def test_shipped_combination_carries_both_bodies_wind_numbers():
+    car, caravan = vehdyn.load_vehicle("compact"), vehdyn.load_trailer("caravan")
+    assert WINDY.wind_side_force_factor == pytest.approx(
+        0.5 * car.aero.air_density * car.aero.frontal_area * car.aero.side_force_coefficient_slope, rel=1e-14)
+    assert WINDY.trailer_wind_side_force_factor == pytest.approx(
+        0.5 * car.aero.air_density * caravan.frontal_area * caravan.side_force_coefficient_slope, rel=1e-14)
+    assert WINDY.trailer_centre_of_pressure == caravan.centre_of_pressure_behind_hitch
+    assert WINDY.trailer_wind_side_force_factor > 0 and WINDY.wind_side_force_factor > 0
+
+
+def test_wind_input_column_equals_the_lagrange_generalized_forces():
+    """The wind's generalized forces from its virtual power, independently of the Newton–Euler form.
+
+    Car force F_c = k_c u w at x_p: Q = (F_c, x_p F_c, 0). Trailer force F_t = k_t u w at d_p behind the hitch,
+    whose lateral velocity is v - h r - d_p (r - theta') + u theta: Q = (F_t, -(h + d_p) F_t, d_p F_t).
+    """
+    p = WINDY
+    for u in (8.0, 22.0, 31.0):
+        windy, plain = LinearCarTrailer(p, speed=u, crosswind=True), LinearCarTrailer(p, speed=u)
+        assert windy.input_names == ("front_steer_angle", "wind_velocity_lateral")
+        np.testing.assert_array_equal(windy.A, plain.A)
+        np.testing.assert_array_equal(windy.B[:, :1], plain.B)
+        fc, ft, dp = p.wind_side_force_factor * u, p.trailer_wind_side_force_factor * u, p.trailer_centre_of_pressure
+        q = np.array([fc + ft, p.centre_of_pressure * fc - (p.hitch_distance + dp) * ft, dp * ft])
+        z = np.linalg.solve(lagrange_mass_matrix(p), q)
+        np.testing.assert_allclose(windy.B[:, 1], [z[0], z[1], 0.0, z[2]], rtol=1e-10, atol=1e-14)
+    assert "aero" in windy.phenomena and windy.at_speed(12.0).input_names == windy.input_names
+
+
+@pytest.mark.parametrize("dp", [1.5, 3.9, 4.6, 5.5])
+def test_steady_wind_response_equals_the_closed_form(dp):
+    p = dataclasses.replace(WINDY, trailer_centre_of_pressure=dp)
+    u = 22.0
+    model = LinearCarTrailer(p, speed=u, crosswind=True)
+    gain = model.dc_gain()[:, model.index("wind_velocity_lateral", "inputs")]
+    out = {name: gain[k] for k, name in enumerate(model.output_names)}
+    cf, cr, L, lt, h = p.front_cornering_stiffness, p.rear_cornering_stiffness, p.wheelbase, p.trailer_wheelbase, \
+        p.hitch_distance
+    fc, ft = p.wind_side_force_factor * u, p.trailer_wind_side_force_factor * u
+    # the trailer, in moment balance about the hitch, passes (l_t - d_p)/l_t of its wind force to the hitch
+    ay = out["lateral_acceleration"]
+    assert out["trailer_lateral_force"] == pytest.approx((p.trailer_hitch_to_cg * p.trailer_mass * ay - dp * ft) / lt,
+                                                         rel=1e-9, abs=1e-9 * ft)
+    assert out["hitch_lateral_force"] == pytest.approx(-p.hitch_mass * ay + ft * (lt - dp) / lt, rel=1e-9,
+                                                       abs=1e-9 * ft)
+    # the car: a bicycle under F_s at x_s with the combination's understeer gradient
+    fs = fc + ft * (lt - dp) / lt
+    xs = (p.centre_of_pressure * fc - h * ft * (lt - dp) / lt) / fs
+    xn = (p.a * cf - p.b * cr) / (cf + cr)
+    r = u * fs * (cf + cr) * (xs - xn) / (cf * cr * L * (L + p.understeer_gradient * u**2))
+    assert out["yaw_rate"] == pytest.approx(r, rel=1e-9)
+    assert ay == pytest.approx(u * r, rel=1e-9)
+    assert out["trailer_yaw_rate"] == pytest.approx(r, rel=1e-9)
+
+
+def test_weightless_windless_trailer_leaves_the_cars_wind_response():
+    light = dataclasses.replace(WINDY, trailer_mass=1e-6, trailer_yaw_inertia=1e-6, trailer_wind_side_force_factor=0.0)
+    amp = trailer_crosswind_amplification(light, speed=25.0)
+    assert amp.steady_yaw_rate_ratio == pytest.approx(1.0, rel=1e-6)
+    np.testing.assert_allclose(amp.combination_yaw_rate, amp.car_yaw_rate, rtol=1e-5)
+    np.testing.assert_allclose(amp.combination_lateral_offset, amp.car_lateral_offset, rtol=1e-5)
+    assert amp.peak_yaw_rate_ratio == pytest.approx(1.0, rel=1e-5)
+
+
+def test_lateral_offset_gain_is_the_integrated_path():
+    amp = trailer_crosswind_amplification(WINDY, speed=22.0, omega=[0.5, 2.0, 8.0])
+    model = LinearCarTrailer(WINDY, speed=22.0, crosswind=True)
+    fr = model.frequency_response(amp.omega, outputs=["lateral_velocity", "yaw_rate"], inputs=["wind_velocity_lateral"])
+    s = 1j * amp.omega
+    # y'' = v' + u r (small angles, straight path): Y = (V + u R / s) / s
+    np.testing.assert_allclose(amp.combination_lateral_offset,
+                               np.abs((fr.response[0, 0] + 22.0 * fr.response[1, 0] / s) / s), rtol=1e-12)
+    np.testing.assert_allclose(amp.combination_yaw_rate, np.abs(fr.response[1, 0]), rtol=1e-12)
+
+
+def test_amplification_grows_with_side_area_and_towards_the_critical_speed():
+    caravan = vehdyn.load_trailer("caravan")
+    car = vehdyn.load_vehicle("compact")
+    by_area = [trailer_crosswind_amplification(car, caravan.replace(frontal_area=a), 80 / 3.6).peak_yaw_rate_ratio
+               for a in (2.0, 4.0, 6.0, 8.0)]
+    assert np.all(np.diff(by_area) > 0), by_area
+    vc = LinearCarTrailer(car, caravan, 20.0).critical_speed()
+    omega = np.linspace(0.5, 8.0, 1500)  # fine enough to catch the snaking resonance
+    by_speed = [trailer_crosswind_amplification(car, caravan, q * vc, omega).peak_yaw_rate_ratio
+                for q in (0.5, 0.7, 0.85, 0.95)]
+    assert np.all(np.diff(by_speed) > 0), by_speed
+    # the resonance peak sits at the snaking frequency and grows like 1 / damping ratio
+    model = LinearCarTrailer(car, caravan, 0.95 * vc, crosswind=True)
+    amp = trailer_crosswind_amplification(car, caravan, 0.95 * vc, omega)
+    mode = model.snaking_mode()
+    assert amp.omega[np.argmax(amp.combination_yaw_rate)] == pytest.approx(2 * np.pi * mode.frequency_hz, rel=0.03)
+
+
+def test_crosswind_errors_name_the_parameter():
+    with pytest.raises(ParameterError) as err:
+        trailer_crosswind_amplification(WINDY, speed=20.0, omega=[1.0, -2.0])
+    assert err.value.key == "omega"
+    with pytest.raises(ParameterError) as err:
+        trailer_crosswind_amplification(WINDY, speed=0.0)
+    assert err.value.key == "speed"
+    with pytest.raises(ParameterError) as err:
+        trailer_wind_side_force_factor(vehdyn.load_trailer("caravan"), air_density=0.0)
+    assert err.value.key == "air_density"
+    with pytest.raises(ParameterError) as err:
+        trailer_wind_side_force_factor("caravan")
+    assert err.value.key == "trailer"
+    with pytest.raises(ParameterError) as err:
+        vehdyn.load_trailer("caravan").replace(frontal_area=-1.0)
+    assert err.value.key == "frontal_area"
+    with pytest.raises(ParameterError) as err:
+        LinearCarTrailer.from_parameters(**{**dataclasses.asdict(TEXTBOOK), "trailer_wind_side_force_factor": -1.0,
+                                            "speed": 20.0})
+    assert err.value.key == "trailer_wind_side_force_factor"
+

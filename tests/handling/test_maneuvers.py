@@ -5,8 +5,8 @@ import pytest
 
 import vehdyn
 from vehdyn.handling import (DriverInTheLoop, PreviewDriver, SingleTrack, braking_in_turn, crosswind_gust,
-                             double_lane_change_track, lane_change_outcome, ramp_steer, sine_steer,
-                             sine_with_dwell, sine_with_dwell_metrics, step_steer)
+                             double_lane_change_track, lane_change_outcome, obstacle_avoidance_track, ramp_steer,
+                             sine_steer, sine_with_dwell, sine_with_dwell_metrics, step_steer)
 from vehdyn.results import SimulationResult
 from vehdyn.tire import FialaTire
 
@@ -74,11 +74,27 @@ def test_crosswind_gust_force_formula():
 def test_double_lane_change_track_dimensions_iso_3888_1():
     track = double_lane_change_track(1.8)
     widths = [right - left for _, _, left, right in track.sections]
-    assert widths == pytest.approx([1.1 * 1.8 + 0.25, 1.8 + 1.0, 1.3 * 1.8 + 0.25])
+    assert widths == pytest.approx([1.1 * 1.8 + 0.25, 1.2 * 1.8 + 0.25, 1.3 * 1.8 + 0.25])
     lengths = [x1 - x0 for x0, x1, _, _ in track.sections]
     assert lengths == [15.0, 25.0, 15.0]
+    assert [track.sections[k][0] for k in range(3)] == [0.0, 45.0, 95.0]
     assert track.sections[0][3] - track.sections[1][3] == pytest.approx(3.5)  # right boundaries 3.5 m apart
     assert track.sections[0][3] == pytest.approx(track.sections[2][3])
+    assert track.standard == "ISO 3888-1"
+    # the inner line keeps b/2 + margin from the inner cone lines: lateral travel 3.25 - 0.1 b, 3.25 - 0.3 b
+    x, y = track.inner_line(margin=0.0)
+    assert np.max(y) - np.min(y) == pytest.approx(3.25 - 0.1 * 1.8, rel=1e-12)
+    assert y[-1] - np.min(y) == pytest.approx(3.25 - 0.3 * 1.8, rel=1e-12)
+
+
+def test_obstacle_avoidance_track_dimensions_iso_3888_2():
+    for b, w5 in ((1.8, 3.0), (2.2, 1.3 * 2.2 + 0.25)):
+        track = obstacle_avoidance_track(b)
+        (s1, e1, l1, r1), (s3, e3, l3, r3), (s5, e5, l5, r5) = track.sections
+        assert [s1, e1, s3, e3, s5, e5] == pytest.approx([0, 12, 25.5, 36.5, 49, 61])  # 61 m in all
+        assert [r1 - l1, r3 - l3, r5 - l5] == pytest.approx([1.1 * b + 0.25, b + 1.0, w5])
+        assert l1 - r3 == pytest.approx(1.0)  # 1 m between lane 1's left and lane 3's right cone lines
+        assert r5 == pytest.approx(r1)
 
 
 def test_preview_driver_settles_on_an_offset_straight_path():
@@ -125,3 +141,34 @@ def test_braking_in_turn_decelerates_as_asked():
     assert out.mean_deceleration == pytest.approx(3.0, rel=0.1)
     assert np.all(np.isfinite(out.result.states))
     assert out.yaw_rate_ratio > 0.5  # no spin at moderate braking
+
+
+def test_lane_change_speed_bound_closed_form_and_real_tracks():
+    from vehdyn.handling import DoubleLaneChangeTrack, lane_change_speed_bound
+
+    # three zero-slack gates y(0) = 0, y(L) = D, y(2L) = 0: the least largest |y''| is the parabola's 2 D / L^2
+    # (the second difference (y(0) - 2 y(L) + y(2L)) / L^2 = -2 D / L^2 is an average of y'')
+    b, L, D = 1.6, 30.0, 2.0
+    gates = [(0.0, 0.0, -b / 2, b / 2), (L, L, -D - b / 2, -D + b / 2), (2 * L, 2 * L, -b / 2, b / 2)]
+    track = DoubleLaneChangeTrack(gates, np.array([0.0, 2 * L]), np.zeros(2), b)
+    speed, x, y = lane_change_speed_bound(track, 1.0, step=0.5, gravity=9.81)
+    assert speed == pytest.approx(np.sqrt(9.81 * L**2 / (2 * D)), rel=1e-6)
+    # on the ISO tracks the path stays inside the lanes
+    for build in (double_lane_change_track, obstacle_avoidance_track):
+        track = build(1.6)
+        speed, x, y = lane_change_speed_bound(track, 0.9)
+        for x0, x1, left, right in track.sections:
+            inside = (x >= x0) & (x <= x1)
+            assert np.all(y[inside] >= left + 0.8 - 1e-7) and np.all(y[inside] <= right - 0.8 + 1e-7)
+        assert 10.0 < speed < 60.0
+    with pytest.raises(vehdyn.ParameterError, match="friction_coefficient"):
+        lane_change_speed_bound(track, -0.5)
+
+
+def test_least_curvature_line_keeps_its_margin_inside_the_lanes():
+    track = obstacle_avoidance_track(1.6)
+    x, y = track.least_curvature_line(0.2)
+    assert np.array_equal(x, track.path_x)
+    for x0, x1, left, right in track.sections:
+        inside = (x >= x0) & (x <= x1)
+        assert np.all(y[inside] >= left + 0.8 + 0.2 - 1e-6) and np.all(y[inside] <= right - 0.8 - 0.2 + 1e-6)

@@ -44,7 +44,8 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["ladder_setup", "scene_inputs", "road_inputs", "corner_body_accelerations", "SOLVER_OPTIONS"]
+__all__ = ["ladder_setup", "linearized_setup", "scene_inputs", "road_inputs", "corner_body_accelerations",
+           "SOLVER_OPTIONS"]
 
 #: Options of :func:`vehdyn.simulate` for the full vehicle on the ladder (``max_step`` is the scene's
 #: time step). rtol 1e-6 keeps the reference's integration error far below the tolerances of the
@@ -189,6 +190,28 @@ def scene_inputs(drive, model, trim_inputs, road=None) -> dict:
     return inputs
 
 
+def _model_for(drive, ladder, name):
+    """The FullVehicle for ``drive`` and the corners' road inputs, or NotAdmissible (see
+    :func:`ladder_setup`: which of the two ladders answers which scene)."""
+    from ..scene.rungs import tire_laws
+    from .model import FullVehicle
+
+    if ladder not in ("handling", "ride"):
+        raise ParameterError(f"ladder must be 'handling' or 'ride', got {ladder!r}", key="ladder", value=ladder)
+    if ladder == "ride" and drive.handling_input:
+        raise _not_admissible(f"steer or braking: the handling rung {name} answers")
+    if ladder == "ride" and drive.road is None:
+        raise _not_admissible("no road input")
+    if ladder == "handling" and not drive.handling_input:
+        raise _not_admissible(f"no steer or braking: the ride rung {name}(ride) answers")
+    # one model for this plan's full-vehicle rungs, the tire laws the other rungs read
+    model = drive.once("FullVehicle", lambda: FullVehicle(drive.vehicle, *tire_laws(drive)))
+    unknown = [k for k in drive.inputs if k not in model.input_names]
+    if unknown:
+        raise _not_admissible(f"has no input {unknown[0]!r}")
+    return model, (road_inputs(drive) if drive.road is not None else {})
+
+
 def ladder_setup(drive, ladder: str = "handling"):
     """The full vehicle built for a scene: a :class:`~vehdyn.scene.rungs.Setup`.
 
@@ -215,34 +238,17 @@ def ladder_setup(drive, ladder: str = "handling"):
     """
     from ..scene.rungs import Setup
     from ..simulate import simulate
-    from ..tire import load_tire
     from .corner import CORNERS
-    from .model import FullVehicle
 
-    if ladder not in ("handling", "ride"):
-        raise ParameterError(f"ladder must be 'handling' or 'ride', got {ladder!r}", key="ladder", value=ladder)
-    if ladder == "ride" and drive.handling_input:
-        raise _not_admissible("steer or braking: the handling rung FullVehicle answers")
-    if ladder == "ride" and drive.road is None:
-        raise _not_admissible("no road input")
-    if ladder == "handling" and not drive.handling_input:
-        raise _not_admissible("no steer or braking: the ride rung FullVehicle(ride) answers")
-    vehicle, scene = drive.vehicle, drive.scene
-    tire = load_tire(scene.tire) if scene.tire is not None else None
-    model = FullVehicle(vehicle, tire, tire)
-    unknown = [k for k in drive.inputs if k not in model.input_names]
-    if unknown:
-        raise _not_admissible(f"has no input {unknown[0]!r}")
-    road = road_inputs(drive) if drive.road is not None else {}
+    model, road = _model_for(drive, ladder, "FullVehicle")
+    scene = drive.scene
     options = dict(SOLVER_OPTIONS, max_step=float(scene.effective_time_step))
-    trimmed = {}
 
     def start():
-        """(x0, inputs): the trim (once) and the scene's programmes on top of it."""
-        if not trimmed:
-            x0, u0 = model.trim(scene.speed, lateral_acceleration=drive.initial_turn or 0.0)
-            trimmed.update(x0=x0, u0=u0)
-        return trimmed["x0"], scene_inputs(drive, model, trimmed["u0"], road)
+        """(x0, inputs): the trim and the scene's programmes on top of it (every run: the trim is
+        part of what the scene costs, see :mod:`vehdyn.scene.rungs`)."""
+        x0, u0 = model.trim(scene.speed, lateral_acceleration=drive.initial_turn or 0.0)
+        return x0, scene_inputs(drive, model, u0, road)
 
     if drive.track is not None:
         from ..scene.rungs import _with_driver
@@ -263,3 +269,86 @@ def ladder_setup(drive, ladder: str = "handling"):
         return _with_corner_accelerations(model, simulate(model, drive.time, inputs, x0=x0, **options))
 
     return _setup_class()(model, run, extra_outputs=tuple(f"sprung_acceleration{sfx}" for sfx in CORNERS))
+
+
+#: States of the full vehicle that the linearized rung leaves out: the earth position and heading
+#: integrate the motion and feed nothing else back (flat road, uniform friction).
+_INTEGRATED_ONLY = ("x", "y", "yaw_angle")
+
+
+def linearized_run(model, drive, road):
+    """One run of the linearized full vehicle on ``drive``: trim, linearize, simulate exactly.
+
+    The full vehicle is trimmed (:meth:`FullVehicle.trim`: straight running, or the steady turn of
+    ``drive.initial_turn``), linearized there (:meth:`vehdyn.Model.linearize`: fourth-order central
+    differences, all perturbed points in one batched call of the numpy right-hand side), the earth
+    position and heading dropped (they feed nothing back on a flat road), and the deviation system
+    dx/dt = A dx + B du simulated exactly on the scene's grid (:func:`vehdyn.simulate`,
+    ``method="exact"``: one matrix exponential, inputs held first-order between samples). The result
+    holds the full vehicle's outputs y_op + C dx + D du and states x_op + dx.
+
+    Returns
+    -------
+    SimulationResult
+    """
+    import dataclasses
+    import time as _time
+
+    from ..linear import LinearModel
+    from ..simulate import simulate
+
+    start = _time.perf_counter()
+    x0, u0 = model.trim(drive.scene.speed, lateral_acceleration=drive.initial_turn or 0.0)
+    lin = model.linearize(x0, u0)
+    keep = [j for j, n in enumerate(model.state_names) if n not in _INTEGRATED_ONLY]
+    dropped = [model.index(n) for n in _INTEGRATED_ONLY]
+    coupling = np.max(np.abs(lin.A[np.ix_(keep, dropped)]))  # finite differences: round-off, not zero
+    if coupling > 1e-6 * np.max(np.abs(lin.A)):  # a position-dependent road or friction: not this rung's
+        raise ParameterError("the linearized full vehicle needs a road and friction that do not depend on the "
+                             "position", key="road", value=model.road)
+    inputs = scene_inputs(drive, model, u0, road)
+    used = [i for i, n in enumerate(model.input_names) if n in inputs]
+    t = drive.time
+    du = np.empty((len(used), t.size))
+    for row, i in zip(du, used):
+        value = inputs[model.input_names[i]]
+        row[:] = np.asarray(value(t) if callable(value) else value, dtype=float) - u0[i]
+    reduced = LinearModel(lin.A[np.ix_(keep, keep)], lin.B[np.ix_(keep, used)], lin.C[:, keep], lin.D[:, used],
+                          states=[model.states[j] for j in keep], inputs=[model.inputs[i] for i in used],
+                          outputs=model.output_signals)
+    res = simulate(reduced, t, du, method="exact", hold="foh")
+    return dataclasses.replace(res, states=res.states + x0[keep][:, None], inputs=res.inputs + u0[used][:, None],
+                               outputs=res.outputs + lin.y_op[:, None], method="linearized full vehicle, exact",
+                               wall_time=_time.perf_counter() - start)
+
+
+def linearized_setup(drive, ladder: str = "handling"):
+    """The full vehicle linearized at the scene's trim: a :class:`~vehdyn.scene.rungs.Setup`.
+
+    The rung below :func:`ladder_setup`'s on both ladders: the same model, equations and parameters,
+    linear about the operating point the scene starts in (:func:`linearized_run`). Exact for small
+    steer and road inputs (gentle handling, smooth roads); it misses the tire's saturation, the
+    load changes' effect on the tire forces and the wheels lifting off (the plan's estimates). Its
+    cost is the trim, the Jacobian and the simulation, every run.
+
+    Parameters
+    ----------
+    drive : vehdyn.scene.drive.Drive
+    ladder : {"handling", "ride"}
+        As :func:`ladder_setup`.
+
+    Raises
+    ------
+    NotAdmissible
+        As :func:`ladder_setup`, and for braking and the ISO 3888-1 driver (large slips, the
+        driver's nonlinear loop on the earth position: the nonlinear rung answers).
+    """
+    from ..scene.rungs import Setup
+
+    model, road = _model_for(drive, ladder, "FullVehicle(linearized)")
+    if drive.braking is not None:
+        raise _not_admissible("braking: the tire forces of a braking programme are far from the trim's")
+    if drive.track is not None:
+        raise _not_admissible("the driver loop steers on the earth position (nonlinear kinematics)")
+    return Setup(model, lambda: linearized_run(model, drive, road), (),
+                 phenomena=model.phenomena - {"tire_saturation"})

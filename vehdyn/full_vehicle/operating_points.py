@@ -118,14 +118,17 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
         roll_stiffness = v.front_roll_stiffness + v.rear_roll_stiffness
         x0[model.index("roll_angle")] = -model.sprung_mass * v.mass.sprung_cg_height * lateral_acceleration \
             / roll_stiffness
-    z0 = np.concatenate([x0[free], [torque0 / 1000.0, delta0]])
-    if guess is not None:  # continuation from a nearby operating point (x, u)
+    starts = [np.concatenate([x0[free], [torque0 / 1000.0, delta0]])]  # the closed-form start
+    if guess is not None:  # continuation from a nearby operating point (x, u), tried first
         gx, gu = (np.asarray(g, dtype=float) for g in guess)
         if gx.shape != (model.n_states,) or gu.shape != (model.n_inputs,):
             raise ParameterError(f"guess must be (x, u) of shapes ({model.n_states},), ({model.n_inputs},)",
                                  key="guess", value=(gx.shape, gu.shape))
+        if not (np.all(np.isfinite(gx)) and np.all(np.isfinite(gu))):
+            raise ParameterError("guess must be finite", key="guess", value=(gx, gu))
         total = sum(gu[j] for j in drive)
-        z0 = np.concatenate([gx[free], [total / 1000.0, gu[steer]]])
+        starts.insert(0, np.concatenate([_towards_speed(model, gx, speed, heading_rate)[free],
+                                         [total / 1000.0, gu[steer]]]))
 
     def unpack(z):
         x = x0.copy()
@@ -157,25 +160,98 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
             out.append((model.output(0.0, x, u)[ay_output] - lateral_acceleration) / model.gravity)
         return np.array(out)
 
-    solution = root(residual, z0, method="hybr", options={"xtol": 1e-14, "maxfev": 20000})
-    z = solution.x
-    for _ in range(3):  # polish with Newton steps on the central-difference Jacobian
-        r = residual(z)
-        if np.max(np.abs(r)) < 0.01 * tol:
+    best = None
+    for z0 in starts:  # the guess first; the closed-form start when it fails
+        z, worst, message = _solve(residual, z0, tol)
+        if best is None or worst < best[1]:
+            best = (z, worst, message)
+        if worst <= tol:
             break
-        J = np.empty((r.size, z.size))
-        for j in range(z.size):
-            h = 1e-7 * max(abs(z[j]), 1e-3)
-            e = np.zeros_like(z)
-            e[j] = h
-            J[:, j] = (residual(z + e) - residual(z - e)) / (2 * h)
-        if not np.all(np.isfinite(J)):
-            break
-        z = z - np.linalg.lstsq(J, r, rcond=None)[0]
-    worst = float(np.max(np.abs(residual(z))))
-    if not np.isfinite(worst) or worst > tol:
+    z, worst, message = best
+    if not worst <= tol:
         raise ParameterError(f"trim found no steady state at speed = {speed} m/s, lateral_acceleration = "
                              f"{lateral_acceleration} m/s^2: the largest relative derivative is {worst:.3g} "
-                             f"(> {tol:g}); {solution.message}", key="lateral_acceleration",
-                             value=lateral_acceleration)
+                             f"(> {tol:g}) from {'the guess and ' if guess is not None else ''}the closed-form "
+                             f"start; {message}", key="lateral_acceleration", value=lateral_acceleration)
     return unpack(z)
+
+
+def _towards_speed(model, x, speed, heading_rate):
+    """A guess's states carried to ``speed`` and the heading rate: velocities and wheel speeds scaled
+    by the speed ratio (the slips and attitude kept), the yaw rate set to the heading rate, position
+    and heading zeroed; for straight running its left-right symmetric part (a noisy guess could
+    otherwise lead the solver to another equilibrium, a steady yaw under braking)."""
+    x = np.array(x, dtype=float, copy=True)
+    names = model.state_names
+    u, v = x[model.index("longitudinal_velocity")], x[model.index("lateral_velocity")]
+    old = float(np.hypot(u, v))
+    ratio = speed / old if np.isfinite(old) and old > 0.0 else 1.0
+    for j, name in enumerate(names):
+        if name in ("longitudinal_velocity", "lateral_velocity", "vertical_velocity", "roll_rate", "pitch_rate") \
+                or name.startswith("wheel_speed"):
+            x[j] *= ratio
+        elif name in _FIXED:
+            x[j] = 0.0
+    if ratio == 1.0 and not old > 0.0:
+        x[model.index("longitudinal_velocity")] = speed
+    x[model.index("yaw_rate")] = heading_rate * np.cos(x[model.index("roll_angle")]) \
+        * np.cos(x[model.index("pitch_angle")])
+    if heading_rate == 0.0:  # straight: the symmetric part of the guess (no other equilibrium to slide to)
+        for name in ("lateral_velocity", "roll_rate", "yaw_rate", "roll_angle"):
+            x[model.index(name)] = 0.0
+        for kind in ("wheel_speed", "unsprung_displacement", "unsprung_velocity", "longitudinal_deflection"):
+            for left, right in ((CORNERS[0], CORNERS[1]), (CORNERS[2], CORNERS[3])):
+                if f"{kind}{left}" in names:
+                    j, k = model.index(f"{kind}{left}"), model.index(f"{kind}{right}")
+                    x[j] = x[k] = 0.5 * (x[j] + x[k])
+        for sfx in CORNERS:
+            if f"lateral_deflection{sfx}" in names:
+                x[model.index(f"lateral_deflection{sfx}")] = 0.0
+    return x
+
+
+def _jacobian(residual, z, r):
+    """Central-difference Jacobian of ``residual`` at ``z`` (``r`` = residual(z), for the shape)."""
+    J = np.empty((r.size, z.size))
+    for j in range(z.size):
+        h = 1e-7 * max(abs(z[j]), 1e-3)
+        e = np.zeros_like(z)
+        e[j] = h
+        J[:, j] = (residual(z + e) - residual(z - e)) / (2 * h)
+    return J
+
+
+def _solve(residual, z0, tol):
+    """``(z, largest |residual|, message)``: Powell's hybrid method from ``z0``, then, where it ended
+    near a root (largest residual below 1e-3), Newton steps on the central-difference Jacobian with
+    backtracking (halving the step until the largest residual falls), until the largest residual is
+    below tol / 100 or no longer falls by a factor of ten a step."""
+    from scipy.optimize import root
+
+    solution = root(residual, z0, method="hybr", options={"xtol": 1e-14, "maxfev": 20000})
+    z = solution.x
+    r = residual(z)
+    worst = float(np.max(np.abs(r)))
+    if not np.isfinite(worst):
+        return z, float("inf"), solution.message
+    for _ in range(8):
+        if worst < 0.01 * tol or worst > 1e-3:  # done, or no root near enough for Newton's method
+            break
+        J = _jacobian(residual, z, r)
+        if not np.all(np.isfinite(J)):
+            break
+        step = np.linalg.lstsq(J, r, rcond=None)[0]
+        for _halving in range(12):
+            trial = z - step
+            r_trial = residual(trial)
+            worst_trial = float(np.max(np.abs(r_trial)))
+            if worst_trial < worst:
+                break
+            step = 0.5 * step
+        else:  # no step lowers the residual: as good as it gets
+            break
+        converging = worst_trial < 0.1 * worst
+        z, r, worst = trial, r_trial, worst_trial
+        if not converging:  # Newton's method near a root cuts the residual by far more
+            break
+    return z, worst, solution.message

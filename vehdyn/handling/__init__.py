@@ -36,6 +36,7 @@ from .four_wheel_steer import (
     zero_sideslip_rear_steer_ratio,
 )
 from .lateral_yaw_roll import LateralYawRoll, LateralYawRollParameters, lateral_yaw_roll_parameters, roll_gradient
+from .lateral_yaw_roll_lag import LateralYawRollLag
 from .transient import (
     StepResponseMetrics,
     YawMode,
@@ -75,6 +76,7 @@ __all__ = [
     "yaw_rate_feedback_rear_steer",
     "zero_sideslip_rear_steer_ratio",
     "LateralYawRoll",
+    "LateralYawRollLag",
     "LateralYawRollParameters",
     "lateral_yaw_roll_parameters",
     "roll_gradient",
@@ -97,7 +99,19 @@ from .nonlinear_steady_state import (  # noqa: E402
     nonlinear_handling_diagram,
     steady_state_cornering,
 )
-from .driver import DriverInTheLoop, PreviewDriver  # noqa: E402
+from .driver import (  # noqa: E402
+    CrossoverDriver,
+    DriverInTheLoop,
+    OptimalPreviewDriver,
+    PreviewDriver,
+    driver_loop,
+    driver_loop_margins,
+    driver_loop_response,
+    lane_change_limit,
+    lane_change_run,
+    preview_gains,
+    slip_angle_utilization,
+)
 from .crosswind import (  # noqa: E402
     CrosswindSensitivity,
     crosswind_sensitivity,
@@ -119,6 +133,8 @@ from .maneuvers import (  # noqa: E402
     constant_radius_test,
     crosswind_gust,
     double_lane_change_track,
+    obstacle_avoidance_track,
+    lane_change_speed_bound,
     lane_change_outcome,
     ramp_steer,
     sine_steer,
@@ -138,6 +154,15 @@ __all__ += [
     "limit_lateral_acceleration",
     "PreviewDriver",
     "DriverInTheLoop",
+    "CrossoverDriver",
+    "OptimalPreviewDriver",
+    "driver_loop",
+    "driver_loop_margins",
+    "driver_loop_response",
+    "preview_gains",
+    "lane_change_limit",
+    "lane_change_run",
+    "slip_angle_utilization",
     "step_steer",
     "ramp_steer",
     "sine_steer",
@@ -150,6 +175,8 @@ __all__ += [
     "BrakingInTurn",
     "DoubleLaneChangeTrack",
     "double_lane_change_track",
+    "obstacle_avoidance_track",
+    "lane_change_speed_bound",
     "lane_change_outcome",
     "spin_out_time",
     "CrosswindSensitivity",
@@ -166,10 +193,18 @@ __all__ += [
 ]
 
 # Articulated vehicles (issue 14)
-from .car_trailer import CarTrailerParameters, LinearCarTrailer, SnakingMode, car_trailer_parameters  # noqa: E402
+from .car_trailer import (  # noqa: E402
+    CarTrailerParameters,
+    CrosswindAmplification,
+    LinearCarTrailer,
+    SnakingMode,
+    car_trailer_parameters,
+    trailer_crosswind_amplification,
+)
 from .articulated_single_track import ArticulatedSingleTrack, ArticulationEvent  # noqa: E402
 
-__all__ += ["CarTrailerParameters", "LinearCarTrailer", "SnakingMode", "car_trailer_parameters",
+__all__ += ["CarTrailerParameters", "CrosswindAmplification", "LinearCarTrailer", "SnakingMode",
+            "car_trailer_parameters", "trailer_crosswind_amplification",
             "ArticulatedSingleTrack", "ArticulationEvent"]
 
 # FMVSS 126 compliance (issue 15)

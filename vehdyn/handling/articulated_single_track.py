@@ -40,7 +40,15 @@ load between the towing vehicle's axles (front -F_zh (h - b)/L, rear +F_zh (h + 
 towing vehicle's own quasi-static longitudinal load transfer of SingleTrack acts on top; the
 trailer axle carries m_t g e / l_t. Not modelled: the trailer's pitch and the load transfer
 through the hitch height under braking (both bodies' longitudinal inertia forces act at ground
-level here), roll, and aerodynamic forces on the trailer.
+level here) and roll.
+
+Crosswind (input ``wind_velocity_lateral`` w, the air's velocity along the towing vehicle's y axis):
+the side-force law of :mod:`vehdyn.handling.crosswind` on each body, F_w(u, w) on the towing vehicle
+at its centre of pressure x_p (as :class:`~vehdyn.handling.SingleTrack`) and F_w(V_x, w cos(theta))
+on the trailer (its own forward speed and the wind's component across it) along n at its centre of
+pressure d_p behind the hitch (``trailer.centre_of_pressure_behind_hitch``), which adds
+-(d_p - e) F_wt to the trailer's moment about its CG. Linearized it is the wind input of
+:class:`~vehdyn.handling.LinearCarTrailer` (``crosswind=True``).
 
 Longitudinal input is force mode only (axle forces ``front_longitudinal_force``,
 ``rear_longitudinal_force``, ``trailer_longitudinal_force`` in wheel axes), clipped at mu F_z,
@@ -70,6 +78,7 @@ from ..params import Trailer, Vehicle
 from ..signals import Signal
 from ..units import GRAVITY
 from . import single_track_equations as eq
+from .crosswind import aero_side_force, trailer_wind_side_force_factor
 from .single_track import SingleTrack, _stack
 
 __all__ = ["ArticulatedSingleTrack", "ArticulationEvent", "LOCKED_SLIDING_SPEED"]
@@ -95,7 +104,7 @@ _STATE_NAMES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y
                 "trailer_lateral_deflection")
 _INPUT_NAMES = ("front_steer_angle", "front_longitudinal_force", "rear_longitudinal_force",
                 "trailer_longitudinal_force", "external_lateral_force", "external_yaw_moment",
-                "trailer_external_lateral_force", "trailer_external_yaw_moment")
+                "trailer_external_lateral_force", "trailer_external_yaw_moment", "wind_velocity_lateral")
 
 
 LOCKED_SLIDING_SPEED = 0.1
@@ -186,6 +195,8 @@ class ArticulatedSingleTrack(Model):
                                  key="trailer_tire", value=trailer_tire)
         self.trailer_tire = trailer_tire
         self.gravity = float(gravity)
+        # the trailer's k_w with the towing vehicle's air density (vehdyn.handling.crosswind)
+        self._trailer_wind_factor = trailer_wind_side_force_factor(trailer, vehicle.aero.air_density)
         half_load = 0.5 * trailer.static_axle_load(self.gravity)
         mirrored = SingleTrack._needs_mirror(trailer_tire, half_load)
         # SingleTrack.axle_law_forces applied to the trailer tire (its "front" axle)
@@ -210,7 +221,9 @@ class ArticulatedSingleTrack(Model):
         inputs += [Signal("external_lateral_force", "N", "lateral force at the towing vehicle's CG (SAE y)"),
                    Signal("external_yaw_moment", "N*m", "yaw moment on the towing vehicle (SAE z)"),
                    Signal("trailer_external_lateral_force", "N", "lateral force at the trailer's CG (trailer y)"),
-                   Signal("trailer_external_yaw_moment", "N*m", "yaw moment on the trailer (SAE z)")]
+                   Signal("trailer_external_yaw_moment", "N*m", "yaw moment on the trailer (SAE z)"),
+                   Signal("wind_velocity_lateral", "m/s", "lateral wind: the air's velocity along the towing "
+                          "vehicle's y axis (toward +y), on both bodies at their centres of pressure")]
         outputs = [
             Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the towing vehicle's CG, dv/dt + u r"),
             Signal("trailer_lateral_acceleration", "m/s^2", "lateral acceleration of the trailer's CG (trailer axes)"),
@@ -265,7 +278,7 @@ class ArticulatedSingleTrack(Model):
         x = np.asarray(x, dtype=float)
         u = np.asarray(u, dtype=float)
         lon, lat, r, _X, _Y, psi, theta, dtheta, rho_f, rho_r, rho_t = (eq._at(x, i) for i in self._state_index)
-        steer, ff, fr, ft, ext_f, ext_m, ext_tf, ext_tm = (u[i] for i in range(8))
+        steer, ff, fr, ft, ext_f, ext_m, ext_tf, ext_tm, wind = (u[i] for i in range(9))
         k = self.tractor._constants()
         p = self.tractor.parameters
         tr = self.trailer
@@ -310,11 +323,14 @@ class ArticulatedSingleTrack(Model):
         front = _lock(front, ff, k.friction_coefficient * fz_f, vxf, vyf)
         rear = _lock(rear, fr, k.friction_coefficient * fz_r, vxr, vyr)
         trail = _lock(trail, ft, tr.friction_coefficient * fz_t, vxt, vyt)
+        # crosswind on both bodies: one law (vehdyn.handling.crosswind), each at its centre of pressure
+        wind_car = aero_side_force(xp, p.wind_side_force_factor, lon, wind)
+        wind_trailer = aero_side_force(xp, self._trailer_wind_factor, lon * ct - hitch_lat * st, wind * ct)
         # forces on the towing vehicle (its axes) and on the trailer (along t, n)
         X1 = front[0] * cd - front[1] * sd + rear[0] - p.drag_factor * lon * np.abs(lon)
-        Y1 = front[0] * sd + front[1] * cd + rear[1] + ext_f
-        M1 = a * (front[0] * sd + front[1] * cd) - b * rear[1] + ext_m
-        Xt, Yt = trail[0], trail[1] + ext_tf
+        Y1 = front[0] * sd + front[1] * cd + rear[1] + ext_f + wind_car
+        M1 = a * (front[0] * sd + front[1] * cd) - b * rear[1] + ext_m + p.centre_of_pressure * wind_car
+        Xt, Yt = trail[0], trail[1] + ext_tf + wind_trailer
         F3x, F3y = Xt * ct + Yt * st, -Xt * st + Yt * ct
         m1, i1, m2, i2 = p.mass, p.yaw_inertia, tr.mass, tr.yaw_inertia
         # a_t = P z + q over z = [du/dt, dv/dt, dr/dt, dr_t/dt]; t = (ct, -st), n = (st, ct)
@@ -331,7 +347,8 @@ class ArticulatedSingleTrack(Model):
         rhs = [X1 + F3x + m1 * lat * r - m2 * qx,
                Y1 + F3y - m1 * lon * r - m2 * qy,
                M1 - h * F3y + h * m2 * qy,
-               -e * Yt - f * trail[1] + ext_tm + e * m2 * (st * qx + ct * qy)]
+               -e * Yt - f * trail[1] + ext_tm - (tr.centre_of_pressure_behind_hitch - e) * wind_trailer
+               + e * m2 * (st * qx + ct * qy)]
         if np.ndim(lon) == 0:  # one vehicle: plain 4 x 4
             z = np.linalg.solve(np.array(rows, dtype=float), np.array(rhs, dtype=float))
         else:  # batch: (n, 4, 4) systems
@@ -378,13 +395,14 @@ class ArticulatedSingleTrack(Model):
         """State vector of straight running at ``speed`` [m/s], trailer in line, tires relaxed."""
         return self.state_vector({"longitudinal_velocity": speed, **states})
 
-    def lateral_yaw(self, speed: float):
+    def lateral_yaw(self, speed: float, *, crosswind: bool = False):
         """The lateral–yaw–articulation block of the linearization at straight running at ``speed``.
 
         States ``lateral_velocity``, ``yaw_rate``, ``articulation_angle``, ``articulation_rate``
-        (and the lateral deflections with tire lag), input ``front_steer_angle``, the first
-        fifteen outputs (those of :class:`~vehdyn.handling.LinearCarTrailer`, in its order). With
-        linear tires and no tire lag its matrices are those of LinearCarTrailer.
+        (and the lateral deflections with tire lag), input ``front_steer_angle`` (and
+        ``wind_velocity_lateral`` with ``crosswind=True``), the first fifteen outputs (those of
+        :class:`~vehdyn.handling.LinearCarTrailer`, in its order). With linear tires and no tire
+        lag its matrices are those of LinearCarTrailer (with the same ``crosswind``).
         """
         from ..linear import LinearModel
 
@@ -393,7 +411,8 @@ class ArticulatedSingleTrack(Model):
         if self.tire_lag:
             names += ["front_lateral_deflection", "rear_lateral_deflection", "trailer_lateral_deflection"]
         keep = [self.index(n) for n in names]
-        inputs = [self.index("front_steer_angle", "inputs")]
+        inputs = [self.index(n, "inputs") for n in ("front_steer_angle",) + (("wind_velocity_lateral",)
+                                                                              if crosswind else ())]
         from .car_trailer import _OUTPUTS
 
         outputs = [self.index(s.name, "outputs") for s in _OUTPUTS]

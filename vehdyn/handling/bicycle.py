@@ -66,6 +66,7 @@ from ..model import float_array
 from ..params import ParameterSet, Vehicle
 from ..params.base import parameter
 from ..signals import STEER_INPUTS, Signal
+from .crosswind import optional_wind_input
 
 __all__ = ["BicycleParameters", "LinearBicycle", "bicycle_parameters", "LINEAR_MIN_SPEED"]
 
@@ -84,8 +85,6 @@ _LAG_SIGNALS = {
                    "rear-axle transient slip angle alpha' of the relaxation-length law (SAE)"),
 }
 _INPUT_SIGNALS = STEER_INPUTS
-_WIND_SIGNAL = Signal("wind_velocity_lateral", "m/s",
-                      "lateral wind: the air's velocity along the vehicle's y axis (toward +y)")
 _OUTPUT_SIGNALS = (
     Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the CG, dv/dt + u r (right, SAE)"),
     Signal("sideslip_angle", "rad", "vehicle sideslip angle at the CG, beta = v / u"),
@@ -266,11 +265,7 @@ class LinearBicycle(LinearModel):
         self.speed = u
         A, B, C, D, states = _state_space(params, u)
         phenomena = {"lateral", "yaw"} | ({"tire_lag"} if len(states) > 2 else set())
-        inputs = _INPUT_SIGNALS
-        if crosswind:
-            inputs, phenomena = inputs + (_WIND_SIGNAL,), phenomena | {"aero"}
-        else:
-            B, D = B[:, :2], D[:, :2]
+        B, D, inputs, phenomena = optional_wind_input(crosswind, B, D, _INPUT_SIGNALS, phenomena)
         super().__init__(A, B, C, D, states=states, inputs=inputs, outputs=_OUTPUT_SIGNALS,
                          name=f"LinearBicycle at {u:g} m/s", phenomena=phenomena)
 

@@ -23,7 +23,23 @@ car; the trailer feels -F_h)::
     m_t a_t         = Y_t - F_h                       I_t dr_t/dt = -e F_h - f Y_t
 
 Eliminating F_h = Y_t - m_t a_t leaves three second-order equations in (dv/dt, dr/dt,
-d^2theta/dt^2), solved here for the state-space form. References: Ellis, *Vehicle Dynamics*,
+d^2theta/dt^2), solved here for the state-space form.
+
+Crosswind (optional, ``crosswind=True``: input ``wind_velocity_lateral`` w [m/s], the air's velocity
+across the road, positive toward the right): the side-force law of :mod:`vehdyn.handling.crosswind`
+linearized about w = 0 acts on each body, F_w = k_w u w on the car at its centre of pressure x_p ahead
+of its CG and F_wt = k_wt u w on the trailer at its centre of pressure d_p behind the hitch (to first
+order in the articulation angle the wind crosses both bodies alike). The car's equations gain F_w and
+x_p F_w, the trailer's m_t a_t = Y_t - F_h + F_wt and I_t dr_t/dt = -e F_h - f Y_t - (d_p - e) F_wt.
+In the steady state the trailer passes the share (l_t - d_p)/l_t of its wind force to the hitch, so
+the car steers as a bicycle under the side force F_s = F_w + F_wt (l_t - d_p)/l_t acting at
+x_s = (x_p F_w - h F_wt (l_t - d_p)/l_t) / F_s, with the combination's understeer gradient K::
+
+    r = u F_s (C_f + C_r) (x_s - x_n) / (C_f C_r L (L + K u^2))
+
+(x_n the car's neutral steer point; :func:`~vehdyn.handling.steady_state_crosswind_yaw_rate` with
+K of the combination). Near the critical speed the snaking mode is lightly damped and a gust that
+excites it is amplified (:func:`trailer_crosswind_amplification`). References: Ellis, *Vehicle Dynamics*,
 1969, ch. 10 (articulated vehicles); Bundorf, "Directional control dynamics of automobile–travel
 trailer combinations", SAE 670099, 1967; Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012,
 sec. 1.3.3 (the car–trailer combination, derived there with Lagrange's equations in the car's
@@ -62,8 +78,11 @@ from ..params import ParameterSet, Trailer, Vehicle
 from ..params.base import parameter
 from ..signals import Signal
 from .bicycle import bicycle_parameters, check_speed
+from .crosswind import optional_wind_input
 
-__all__ = ["CarTrailerParameters", "LinearCarTrailer", "SnakingMode", "car_trailer_parameters"]
+__all__ = ["CarTrailerParameters", "CrosswindAmplification", "EOM_TRUCK_TRAILER", "LinearCarTrailer", "SnakingMode",
+           "car_trailer_parameters", "trailer_crosswind_amplification"]
+
 
 _STATES = (
     Signal("lateral_velocity", "m/s", "body-frame lateral velocity v of the car's CG (right, SAE)"),
@@ -111,6 +130,14 @@ class CarTrailerParameters(ParameterSet):
     trailer_hitch_to_cg: float = parameter("m", "e: from the hitch back to the trailer CG", ge=0)
     trailer_cg_to_axle: float = parameter("m", "f: from the trailer CG back to its axle (negative: CG behind it)")
     trailer_cornering_stiffness: float = parameter("N/rad", "trailer AXLE cornering stiffness C_t", gt=0)
+    wind_side_force_factor: float = parameter("kg/m", "car's k_w = 0.5 rho A C_Y' of the crosswind side force "
+                                                      "(0: no wind force on the car)", ge=0, default=0.0)
+    centre_of_pressure: float = parameter("m", "car's aerodynamic centre of pressure x_p ahead of its CG",
+                                          default=0.0)
+    trailer_wind_side_force_factor: float = parameter("kg/m", "trailer's k_wt = 0.5 rho A_t C_Y,t' (0: no wind "
+                                                              "force on the trailer)", ge=0, default=0.0)
+    trailer_centre_of_pressure: float = parameter("m", "d_p: from the hitch back to the trailer's aerodynamic "
+                                                       "centre of pressure", default=0.0)
 
     def check(self):
         if self.hitch_distance <= -self.a:
@@ -146,6 +173,24 @@ class CarTrailerParameters(ParameterSet):
             - (m * a + mh * (a + h)) / (L * self.rear_cornering_stiffness)
 
 
+EOM_TRUCK_TRAILER = CarTrailerParameters(
+    mass=16975 / 9.81, yaw_inertia=3508.0, a=1.289, b=2.885 - 1.289, front_cornering_stiffness=80e3,
+    rear_cornering_stiffness=80e3, hitch_distance=2.7, trailer_mass=2000.0, trailer_yaw_inertia=3000.0,
+    trailer_hitch_to_cg=2.9, trailer_cg_to_axle=0.1, trailer_cornering_stiffness=80e3)
+"""A published light-truck–trailer set: the truck-and-trailer example of Minaker's EoM.
+
+Source: B. P. Minaker, *Fundamentals of Vehicle Dynamics and Modelling*, Wiley, 2019, companion
+code github.com/BPMinaker/EoM_samples (GPL-3): ``models/input_ex_truck_trailer.jl`` (commit c32ed25)
+gives the truck (a = 1.289 m, b = 2.885 - 1.289 m, m = 16975/9.81 kg, I_z = 3508 kg m^2, hitch
+d = 2.7 m behind its CG), the trailer (m_t = 2000 kg, I_t = 3000 kg m^2) and the AXLE cornering
+stiffnesses ("total") c_f = c_r = c_t = 80 kN/rad; the sample script ``truck_trailer.jl`` (commit
+5c7d008) places the trailer CG e = 2.9 m behind the hitch and its axle h = 0.1 m behind the CG.
+Every parameter of the linear model is stated there (no wind data). Its light tongue load makes
+it snake at about 18.4 m/s, inside the script's 0.4-40 m/s sweep; the source states no critical
+speed as a number.
+"""
+
+
 def car_trailer_parameters(vehicle, trailer: Trailer | None = None) -> CarTrailerParameters:
     """The :class:`CarTrailerParameters` of a towing vehicle and a trailer.
 
@@ -162,7 +207,10 @@ def car_trailer_parameters(vehicle, trailer: Trailer | None = None) -> CarTraile
     if not isinstance(trailer, Trailer):
         raise ParameterError(f"trailer must be a vehdyn Trailer (see vehdyn.load_trailer), got "
                              f"{type(trailer).__name__}", key="trailer", value=trailer)
+    from .crosswind import trailer_wind_side_force_factor
+
     car = bicycle_parameters(vehicle)
+    rho = vehicle.aero.air_density if isinstance(vehicle, Vehicle) else None  # None: the standard air
     h = car.b + trailer.hitch_behind_rear_axle
     if h <= -car.a:
         raise ParameterError(f"hitch_behind_rear_axle = {trailer.hitch_behind_rear_axle} m puts the hitch at or "
@@ -173,7 +221,10 @@ def car_trailer_parameters(vehicle, trailer: Trailer | None = None) -> CarTraile
         front_cornering_stiffness=car.front_cornering_stiffness, rear_cornering_stiffness=car.rear_cornering_stiffness,
         hitch_distance=h, trailer_mass=trailer.mass, trailer_yaw_inertia=trailer.yaw_inertia,
         trailer_hitch_to_cg=trailer.hitch_to_cg, trailer_cg_to_axle=trailer.cg_to_axle,
-        trailer_cornering_stiffness=trailer.cornering_stiffness)
+        trailer_cornering_stiffness=trailer.cornering_stiffness,
+        wind_side_force_factor=car.wind_side_force_factor, centre_of_pressure=car.centre_of_pressure,
+        trailer_wind_side_force_factor=trailer_wind_side_force_factor(trailer, rho),
+        trailer_centre_of_pressure=trailer.centre_of_pressure_behind_hitch)
 
 
 class SnakingMode(NamedTuple):
@@ -192,7 +243,7 @@ class SnakingMode(NamedTuple):
 
 
 def _state_space(p: CarTrailerParameters, u: float):
-    """Exact (A, B, C, D) of the car–trailer model at speed ``u`` (equations in the module docstring)."""
+    """Exact (A, B, C, D) at speed ``u``, inputs (steer, wind) (equations in the module docstring)."""
     m, iz, a, b, h = p.mass, p.yaw_inertia, p.a, p.b, p.hitch_distance
     mt, it, e, f = p.trailer_mass, p.trailer_yaw_inertia, p.trailer_hitch_to_cg, p.trailer_cg_to_axle
     cf, cr, ct = p.front_cornering_stiffness, p.rear_cornering_stiffness, p.trailer_cornering_stiffness
@@ -201,7 +252,7 @@ def _state_space(p: CarTrailerParameters, u: float):
     S = np.array([[1 / u, a / u, 0.0, 0.0],
                   [1 / u, -b / u, 0.0, 0.0],
                   [1 / u, -(h + lt) / u, 1.0, lt / u]])
-    T = np.array([[-1.0], [0.0], [0.0]])
+    T = np.array([[-1.0, 0.0], [0.0, 0.0], [0.0, 0.0]])  # inputs: steer (front slip), wind (no slip)
     stiff = np.array([cf, cr, ct])
     Y_x, Y_u = -stiff[:, None] * S, -stiff[:, None] * T  # axle forces Y = Y_x x + Y_u delta
     # a_t = dv/dt - (h + e) dr/dt + e theta'' + u r: its acceleration part over z = [v', r', theta'']
@@ -212,19 +263,22 @@ def _state_space(p: CarTrailerParameters, u: float):
     g = np.zeros((3, 4))
     g[:, 1] = -u * mt * np.array([1.0, -h, -e])  # the u r part of m_t a_t
     g[0, 1] -= m * u  # m u r of the car
+    # wind per unit w: F_w = k_w u at x_p on the car, F_wt = k_wt u at d_p behind the hitch on the trailer
+    fw, fwt = p.wind_side_force_factor * u, p.trailer_wind_side_force_factor * u
+    wind = fw * np.array([1.0, p.centre_of_pressure, 0.0]) + fwt * np.array([1.0, -h, -p.trailer_centre_of_pressure])
     Minv = np.linalg.inv(M)
-    z_x, z_u = Minv @ (G @ Y_x + g), Minv @ (G @ Y_u)
+    z_x, z_u = Minv @ (G @ Y_x + g), Minv @ (G @ Y_u + np.column_stack([np.zeros(3), wind]))
     A = np.zeros((4, 4))
-    B = np.zeros((4, 1))
+    B = np.zeros((4, 2))
     A[0], A[1], A[3] = z_x[0], z_x[1], z_x[2]
     A[2, 3] = 1.0
     B[0], B[1], B[3] = z_u[0], z_u[1], z_u[2]
     eye = np.eye(4)
     ay_x, ay_u = A[0] + u * eye[1], B[0]
     at_x, at_u = at_z @ z_x + u * eye[1], at_z @ z_u
-    fh_x, fh_u = Y_x[2] - mt * at_x, Y_u[2] - mt * at_u
+    fh_x, fh_u = Y_x[2] - mt * at_x, Y_u[2] + np.array([0.0, fwt]) - mt * at_u  # F_h = Y_t + F_wt - m_t a_t
     C = np.vstack([ay_x, at_x, eye[2], eye[1], eye[1] - eye[3], eye[3], eye[0], eye[0] / u, S, Y_x, fh_x])
-    D = np.vstack([ay_u, at_u, np.zeros((6, 1)), T, Y_u, fh_u])
+    D = np.vstack([ay_u, at_u, np.zeros((6, 2)), T, Y_u, fh_u])
     return A, B, C, D
 
 
@@ -240,11 +294,17 @@ class LinearCarTrailer(LinearModel):
         The trailer (mass, yaw inertia, hitch and axle positions, axle cornering stiffness).
     speed : float
         Constant forward speed u [m/s], > 0.
+    crosswind : bool
+        Add the input ``wind_velocity_lateral`` [m/s] (module docstring), the wind acting on both
+        bodies with the side-force factors and centres of pressure of the parameters (from
+        ``vehicle.aero`` and the trailer's ``frontal_area``, ``side_force_coefficient_slope`` and
+        ``centre_of_pressure_behind_hitch``). Default False.
 
     Notes
     -----
     States ``lateral_velocity`` [m/s], ``yaw_rate`` [rad/s], ``articulation_angle`` [rad] (car yaw
-    minus trailer yaw), ``articulation_rate`` [rad/s]; input ``front_steer_angle`` [rad]; outputs
+    minus trailer yaw), ``articulation_rate`` [rad/s]; input ``front_steer_angle`` [rad] (and with
+    ``crosswind=True`` ``wind_velocity_lateral`` [m/s]); outputs
     ``lateral_acceleration``, ``trailer_lateral_acceleration``, ``articulation_angle``,
     ``yaw_rate``, ``trailer_yaw_rate``, ``articulation_rate``, ``lateral_velocity``,
     ``sideslip_angle``, the three slip angles and axle forces and ``hitch_lateral_force``. SAE
@@ -263,7 +323,8 @@ class LinearCarTrailer(LinearModel):
 
     phenomena = frozenset({"lateral", "yaw"})
 
-    def __init__(self, vehicle, trailer: Trailer | None = None, speed: float | None = None):
+    def __init__(self, vehicle, trailer: Trailer | None = None, speed: float | None = None, *,
+                 crosswind: bool = False):
         if speed is None:
             raise ParameterError("a speed [m/s] is needed (LinearCarTrailer(vehicle, trailer, speed))", key="speed",
                                  value=None)
@@ -272,15 +333,18 @@ class LinearCarTrailer(LinearModel):
         self.car_trailer_parameters = params
         self.speed = u
         A, B, C, D = _state_space(params, u)
-        super().__init__(A, B, C, D, states=_STATES, inputs=_INPUTS, outputs=_OUTPUTS,
-                         name=f"LinearCarTrailer at {u:g} m/s", phenomena={"lateral", "yaw"})
+        B, D, inputs, phenomena = optional_wind_input(crosswind, B, D, _INPUTS, {"lateral", "yaw"})
+        super().__init__(A, B, C, D, states=_STATES, inputs=inputs, outputs=_OUTPUTS,
+                         name=f"LinearCarTrailer at {u:g} m/s", phenomena=phenomena)
 
     @classmethod
     def from_parameters(cls, *, mass: float, yaw_inertia: float, a: float, b: float,
                         front_cornering_stiffness: float, rear_cornering_stiffness: float, hitch_distance: float,
                         trailer_mass: float, trailer_yaw_inertia: float, trailer_hitch_to_cg: float,
                         trailer_cg_to_axle: float, trailer_cornering_stiffness: float,
-                        speed: float) -> "LinearCarTrailer":
+                        speed: float, wind_side_force_factor: float = 0.0, centre_of_pressure: float = 0.0,
+                        trailer_wind_side_force_factor: float = 0.0,
+                        trailer_centre_of_pressure: float = 0.0) -> "LinearCarTrailer":
         """A car–trailer model from the classical numbers (SI units; see :class:`CarTrailerParameters`).
 
         Parameters
@@ -301,18 +365,26 @@ class LinearCarTrailer(LinearModel):
             Trailer AXLE cornering stiffness [N/rad].
         speed : float
             Forward speed [m/s].
+        wind_side_force_factor, centre_of_pressure : float, optional
+            The car's k_w = 0.5 rho A C_Y' [kg/m] and centre of pressure x_p ahead of its CG [m].
+        trailer_wind_side_force_factor, trailer_centre_of_pressure : float, optional
+            The trailer's k_wt [kg/m] and centre of pressure d_p behind the hitch [m]. A positive
+            k_w or k_wt adds the crosswind input ``wind_velocity_lateral``.
         """
         params = CarTrailerParameters(
             mass=mass, yaw_inertia=yaw_inertia, a=a, b=b, front_cornering_stiffness=front_cornering_stiffness,
             rear_cornering_stiffness=rear_cornering_stiffness, hitch_distance=hitch_distance,
             trailer_mass=trailer_mass, trailer_yaw_inertia=trailer_yaw_inertia,
             trailer_hitch_to_cg=trailer_hitch_to_cg, trailer_cg_to_axle=trailer_cg_to_axle,
-            trailer_cornering_stiffness=trailer_cornering_stiffness)
-        return cls(params, speed=speed)
+            trailer_cornering_stiffness=trailer_cornering_stiffness, wind_side_force_factor=wind_side_force_factor,
+            centre_of_pressure=centre_of_pressure, trailer_wind_side_force_factor=trailer_wind_side_force_factor,
+            trailer_centre_of_pressure=trailer_centre_of_pressure)
+        return cls(params, speed=speed, crosswind=wind_side_force_factor > 0 or trailer_wind_side_force_factor > 0)
 
     def at_speed(self, speed: float) -> "LinearCarTrailer":
-        """The same combination at another forward speed [m/s]."""
-        return type(self)(self.car_trailer_parameters, speed=speed)
+        """The same combination at another forward speed [m/s] (with the wind input if this one has it)."""
+        return type(self)(self.car_trailer_parameters, speed=speed,
+                          crosswind="wind_velocity_lateral" in self.input_names)
 
     # ------------------------------------------------------------------ stability
     def snaking_mode(self, speed: float | None = None) -> SnakingMode:
@@ -417,3 +489,86 @@ def _snaking_eigenvalue(p: CarTrailerParameters, u: float):
 def _snaking_real_part(p: CarTrailerParameters, u: float) -> float:
     lam = _snaking_eigenvalue(p, u)
     return -math.inf if lam is None else float(lam.real)
+
+
+class CrosswindAmplification(NamedTuple):
+    """How a trailer changes the towing car's response to a lateral wind (:func:`trailer_crosswind_amplification`).
+
+    Gains are per unit lateral wind w [m/s] (steering held), magnitudes of the frequency responses
+    of the linear models with the wind input.
+    """
+
+    speed: float
+    """[m/s]"""
+    omega: np.ndarray
+    """angular frequencies of the wind [rad/s]"""
+    car_yaw_rate: np.ndarray
+    """|r / w| of the car alone [(rad/s)/(m/s)]"""
+    combination_yaw_rate: np.ndarray
+    """|r / w| of the car with the trailer [(rad/s)/(m/s)]"""
+    car_lateral_offset: np.ndarray
+    """|y / w| of the car alone, y the lateral offset of its CG from the straight path [m/(m/s)]"""
+    combination_lateral_offset: np.ndarray
+    """|y / w| of the car's CG with the trailer [m/(m/s)]"""
+    steady_yaw_rate_ratio: float
+    """steady (w constant) yaw rate of the combination over that of the car alone [-] (signed)"""
+    peak_yaw_rate_ratio: float
+    """largest |r / w| of the combination over the car's largest, both over ``omega`` [-]"""
+
+
+def trailer_crosswind_amplification(vehicle, trailer: Trailer | None = None, speed: float = 80 / 3.6,
+                                    omega=None) -> CrosswindAmplification:
+    """Crosswind sensitivity of a car–trailer combination against that of the car alone.
+
+    Both are the exact linear models with the wind input (:class:`LinearCarTrailer` and
+    :class:`~vehdyn.handling.LinearBicycle` with ``crosswind=True``, the same side-force law of
+    :mod:`vehdyn.handling.crosswind` on each body) at the same speed, steering held. The lateral
+    offset of the car's CG from its straight path follows from its lateral velocity and yaw rate,
+    y = (v + u psi) / (j omega) with psi = r / (j omega) (small angles).
+
+    Parameters
+    ----------
+    vehicle : Vehicle or CarTrailerParameters
+    trailer : Trailer, optional
+        Not needed with a CarTrailerParameters.
+    speed : float
+        [m/s]; default 80 km/h (a common speed limit for cars towing caravans).
+    omega : array_like, optional
+        Wind frequencies [rad/s]; default 200 points from 0.1 to 30 rad/s (log-spaced).
+
+    Returns
+    -------
+    CrosswindAmplification
+        The amplification grows as the speed approaches the critical speed (the lightly damped
+        snaking mode resonates) and, once the trailer's side force dominates, with its area; a
+        small trailer side force can first cancel the car's own wind yaw (its hitch share acts
+        behind the car's neutral steer point, turning the car the other way).
+    """
+    from .bicycle import BicycleParameters, LinearBicycle
+
+    p = car_trailer_parameters(vehicle, trailer)
+    u = float(check_speed(speed))
+    w = np.logspace(-1, np.log10(30.0), 200) if omega is None else np.asarray(omega, dtype=float)
+    if w.ndim != 1 or w.size == 0 or not np.all(np.isfinite(w)) or np.any(w <= 0):
+        raise ParameterError(f"omega must be a non-empty 1-D array of positive finite frequencies [rad/s], got "
+                             f"{omega!r}", key="omega", value=omega)
+    car = LinearBicycle(BicycleParameters(
+        mass=p.mass, yaw_inertia=p.yaw_inertia, a=p.a, b=p.b, front_cornering_stiffness=p.front_cornering_stiffness,
+        rear_cornering_stiffness=p.rear_cornering_stiffness, wind_side_force_factor=p.wind_side_force_factor,
+        centre_of_pressure=p.centre_of_pressure), u, crosswind=True)
+    combo = LinearCarTrailer(p, speed=u, crosswind=True)
+    s = 1j * w
+    gains = {}
+    for key, model in (("car", car), ("combination", combo)):
+        fr = model.frequency_response(w, outputs=["lateral_velocity", "yaw_rate"], inputs=["wind_velocity_lateral"])
+        v, r = fr.response[0, 0], fr.response[1, 0]
+        gains[key] = (np.abs(r), np.abs((v + u * r / s) / s))
+        j, k = model.index("yaw_rate", "outputs"), model.index("wind_velocity_lateral", "inputs")
+        # steady state D - C A^-1 B of the one gain (A is regular below the divergence speed)
+        gains[key + "_dc"] = float(model.D[j, k] - model.C[j] @ np.linalg.solve(model.A, model.B[:, k]))
+    return CrosswindAmplification(
+        speed=u, omega=w, car_yaw_rate=gains["car"][0], combination_yaw_rate=gains["combination"][0],
+        car_lateral_offset=gains["car"][1], combination_lateral_offset=gains["combination"][1],
+        steady_yaw_rate_ratio=gains["combination_dc"] / gains["car_dc"],
+        peak_yaw_rate_ratio=float(np.max(gains["combination"][0]) / np.max(gains["car"][0])))
+

@@ -46,9 +46,9 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Vehicle
 
-__all__ = ["aero_side_force", "wind_side_force_factor", "centre_of_pressure_ahead_of_cg",
-           "steady_state_crosswind_yaw_rate", "wind_zone_signal", "CrosswindSensitivity",
-           "crosswind_sensitivity"]
+__all__ = ["aero_side_force", "wind_side_force_factor", "trailer_wind_side_force_factor",
+           "centre_of_pressure_ahead_of_cg", "steady_state_crosswind_yaw_rate", "wind_zone_signal",
+           "CrosswindSensitivity", "crosswind_sensitivity", "optional_wind_input"]
 
 
 def aero_side_force(xp, side_force_factor, speed, wind_velocity_lateral):
@@ -77,10 +77,59 @@ def _vehicle(vehicle) -> Vehicle:
     return vehicle
 
 
+def optional_wind_input(crosswind: bool, B, D, inputs, phenomena):
+    """A linear model's wind input (the last column of B and D): named and kept, or dropped.
+
+    Returns ``(B, D, inputs, phenomena)`` with ``wind_velocity_lateral`` [m/s] appended to the
+    input signals and ``"aero"`` to the phenomena when ``crosswind`` is true.
+    """
+    from ..signals import Signal
+
+    if not crosswind:
+        return B[:, :-1], D[:, :-1], tuple(inputs), set(phenomena)
+    wind = Signal("wind_velocity_lateral", "m/s", "lateral wind: the air's velocity along the vehicle's y axis "
+                                                  "(toward +y)")
+    return B, D, tuple(inputs) + (wind,), set(phenomena) | {"aero"}
+
+
+def _side_force_factor(air_density: float, area: float, slope: float) -> float:
+    """k_w = 0.5 rho A C_Y' [kg/m]: the one factor of the side-force law for every body."""
+    return 0.5 * air_density * area * slope
+
+
 def wind_side_force_factor(vehicle: Vehicle) -> float:
     """k_w = 0.5 rho A C_Y' [kg/m] of ``vehicle`` (its ``aero`` group)."""
     aero = _vehicle(vehicle).aero
-    return 0.5 * aero.air_density * aero.frontal_area * aero.side_force_coefficient_slope
+    return _side_force_factor(aero.air_density, aero.frontal_area, aero.side_force_coefficient_slope)
+
+
+def trailer_wind_side_force_factor(trailer, air_density: float | None = None) -> float:
+    """k_w,t = 0.5 rho A_t C_Y,t' [kg/m] of a :class:`~vehdyn.Trailer` (same law as the towing vehicle's).
+
+    Parameters
+    ----------
+    trailer : Trailer
+        Its ``frontal_area`` and ``side_force_coefficient_slope`` (0: no wind force on the trailer).
+    air_density : float, optional
+        rho [kg/m^3]; :func:`~vehdyn.handling.car_trailer_parameters` passes the towing vehicle's.
+        Default: the vehicle files' standard air (``Aerodynamics.air_density``'s default, 20 degC).
+    """
+    import dataclasses
+
+    from ..params import Trailer
+    from ..params.vehicle import Aerodynamics
+
+    if air_density is None:
+        air_density = next(f.default for f in dataclasses.fields(Aerodynamics) if f.name == "air_density")
+
+    if not isinstance(trailer, Trailer):
+        raise ParameterError(f"trailer must be a vehdyn Trailer, got {type(trailer).__name__}", key="trailer",
+                             value=trailer)
+    rho = float(air_density)
+    if not (np.isfinite(rho) and rho > 0):
+        raise ParameterError(f"air_density must be finite and positive [kg/m^3], got {air_density!r}",
+                             key="air_density", value=air_density)
+    return _side_force_factor(rho, trailer.frontal_area, trailer.side_force_coefficient_slope)
 
 
 def centre_of_pressure_ahead_of_cg(vehicle: Vehicle) -> float:

@@ -30,7 +30,8 @@ from ..piecewise_signal import PiecewiseSignal
 
 __all__ = ["step_steer", "ramp_steer", "sine_steer", "sine_with_dwell", "sine_with_dwell_metrics",
            "SineWithDwellMetrics", "constant_radius_test", "crosswind_gust", "braking_in_turn",
-           "BrakingInTurn", "DoubleLaneChangeTrack", "double_lane_change_track", "lane_change_outcome",
+           "BrakingInTurn", "DoubleLaneChangeTrack", "double_lane_change_track", "obstacle_avoidance_track",
+           "lane_change_speed_bound", "lane_change_outcome",
            "spin_out_time"]
 
 
@@ -279,7 +280,7 @@ def braking_in_turn(model, *, radius: float = 100.0, lateral_acceleration: float
 
 @dataclass(frozen=True)
 class DoubleLaneChangeTrack:
-    """The ISO 3888-1 severe lane-change track (SAE earth axes: y to the right; the change is to the left).
+    """A severe lane-change track, ISO 3888-1 or -2 (SAE earth axes: y to the right; the change is to the left).
 
     Attributes
     ----------
@@ -289,22 +290,80 @@ class DoubleLaneChangeTrack:
         A centre-line path through the lanes for a driver (cosine transitions) [m].
     vehicle_width : float
         [m].
+    standard : str
+        ``"ISO 3888-1"`` or ``"ISO 3888-2"``.
     """
 
     sections: list
     path_x: np.ndarray
     path_y: np.ndarray
     vehicle_width: float
+    standard: str = "ISO 3888-1"
+
+    def inner_line(self, margin: float = 0.1):
+        """(path_x, path_y): a path that keeps to the inner side of each lane (``margin`` [m] from the cones).
+
+        In lanes 1 and 3 (5) the CG runs ``margin`` + b/2 from the cone line nearer the next
+        lane, with cosine transitions across the gaps: the least lateral travel the cones allow
+        (3.25 - 0.1 b and 3.25 - 0.3 b m in ISO 3888-1, against 3.5 + 0.05 b and 3.5 - 0.05 b between
+        the lane centres),
+        the line a test driver aims for.
+        """
+        margin = _finite("margin", margin)
+        half = self.vehicle_width / 2 + margin
+        (_, _, l1, _), (_, _, _, r3), (_, _, l5, _) = self.sections
+        return self.path_x, _lane_blend(self.path_x, self.sections, [l1 + half, r3 - half, l5 + half])
+
+    def least_curvature_line(self, margin: float = 0.15):
+        """(path_x, path_y): the path of least largest curvature through the lanes narrowed by ``margin`` [m].
+
+        The path of :func:`lane_change_speed_bound` for lanes ``margin`` narrower on each side (room
+        for the driver's tracking error), held constant before lane 1 and after lane 5: the racing
+        line of the lane change.
+        """
+        margin = _finite("margin", margin)
+        narrow = DoubleLaneChangeTrack([(x0, x1, left + margin, right - margin)
+                                        for x0, x1, left, right in self.sections], self.path_x, self.path_y,
+                                       self.vehicle_width, self.standard)
+        _, x, y = lane_change_speed_bound(narrow, 1.0)
+        return self.path_x, np.interp(self.path_x, x, y)
+
+
+def _lane_blend(x, sections, levels):
+    """y(x): ``levels`` in the sections, cosine transitions across the gaps between them."""
+
+    def blend(x0, x1, y0, y1):
+        s = np.clip((x - x0) / (x1 - x0), 0, 1)
+        return y0 + (y1 - y0) * 0.5 * (1 - np.cos(np.pi * s))
+
+    (_, e1, _, _), (s3, e3, _, _), (s5, _, _, _) = sections
+    return np.where(x <= e3, blend(e1, s3, levels[0], levels[1]), blend(e3, s5, levels[1], levels[2]))
+
+
+def _lane_change_track(b, lengths, widths, near_gap, standard, run_in, run_out):
+    """Sections from lengths (lane 1, gap, lane 3, gap, lane 5) and lane widths; lane 3's right cone line
+    ``near_gap`` [m] left of lane 1's right (ISO 3888-1) cone line; lanes 1 and 5 share their right line."""
+    w1, w3, w5 = widths
+    edges = np.cumsum((0.0,) + tuple(lengths))
+    right1 = w1 / 2  # lane 1 centred on y = 0
+    sections = [(edges[0], edges[1], right1 - w1, right1),
+                (edges[2], edges[3], right1 - near_gap - w3, right1 - near_gap),
+                (edges[4], edges[5], right1 - w5, right1)]
+    x = np.linspace(-run_in, edges[5] + run_out, int(round((edges[5] + run_in + run_out) / 0.1)) + 1)
+    y = _lane_blend(x, sections, [0.5 * (sec[2] + sec[3]) for sec in sections])
+    return DoubleLaneChangeTrack(sections, x, y, b, standard)
 
 
 def double_lane_change_track(vehicle_width: float, *, lateral_offset: float = 3.5, run_in: float = 30.0,
                              run_out: float = 30.0) -> DoubleLaneChangeTrack:
     """ISO 3888-1:2018 double lane change: cone lanes and a centre-line path.
 
-    Section 1 (length 15 m, width 1.1 b + 0.25), section 2 (30 m), section 3 (25 m, width b + 1, its
-    right boundary ``lateral_offset`` = 3.5 m left of section 1's), section 4 (25 m), section 5
-    (15 m, width 1.3 b + 0.25), with b the vehicle width; sections 1 and 5 share their right
-    boundary (ISO 3888-1, Fig. 1 and Table 1).
+    Section 1 (length 15 m, width 1.1 b + 0.25), section 2 (30 m), section 3 (25 m, width
+    1.2 b + 0.25, its right cone line ``lateral_offset`` = 3.5 m left of section 1's), section 4
+    (25 m), section 5 (15 m, width 1.3 b + 0.25), with b the vehicle width; sections 1 and 5 share
+    their right boundary (ISO 3888-1, Fig. 1 and Table 1; the same dimensions in Project Chrono's
+    ``demo_VEH_HMMWV_DoubleLaneChange``, which however measures the 3.5 m from lane 1's centre
+    line to lane 3's near cone line: 1.1 b / 2 + 0.125 m more travel).
 
     Parameters
     ----------
@@ -313,22 +372,71 @@ def double_lane_change_track(vehicle_width: float, *, lateral_offset: float = 3.
     """
     b = _finite("vehicle_width", vehicle_width, positive=True)
     offset = _finite("lateral_offset", lateral_offset, positive=True)
-    w1, w3, w5 = 1.1 * b + 0.25, b + 1.0, 1.3 * b + 0.25
-    # x from the start of section 1; right boundary of lane 1 at y = w1 / 2 (lane 1 centred on y = 0)
-    right1 = w1 / 2
-    sections = [(0.0, 15.0, right1 - w1, right1),
-                (45.0, 70.0, right1 - offset - w3, right1 - offset),
-                (95.0, 110.0, right1 - w5, right1)]
-    centres = [0.5 * (s[2] + s[3]) for s in sections]
-    x = np.linspace(-run_in, 110.0 + run_out, 1401)
-    y = np.full_like(x, centres[0])
+    return _lane_change_track(b, (15.0, 30.0, 25.0, 25.0, 15.0), (1.1 * b + 0.25, 1.2 * b + 0.25, 1.3 * b + 0.25),
+                              offset, "ISO 3888-1", run_in, run_out)
 
-    def blend(x0, x1, y0, y1):
-        s = np.clip((x - x0) / (x1 - x0), 0, 1)
-        return y0 + (y1 - y0) * 0.5 * (1 - np.cos(np.pi * s))
 
-    y = np.where(x <= 70.0, blend(15.0, 45.0, centres[0], centres[1]), blend(70.0, 95.0, centres[1], centres[2]))
-    return DoubleLaneChangeTrack(sections, x, y, b)
+def obstacle_avoidance_track(vehicle_width: float, *, run_in: float = 30.0,
+                             run_out: float = 30.0) -> DoubleLaneChangeTrack:
+    """ISO 3888-2:2011 obstacle avoidance (the "moose test") track: cone lanes and a centre-line path.
+
+    Section 1 (length 12 m, width 1.1 b + 0.25), section 2 (13.5 m), section 3 (11 m, width
+    b + 1, its right cone line 1 m left of section 1's left one), section 4 (12.5 m), section 5
+    (12 m, width 1.3 b + 0.25 but at least 3 m, its right cone line section 1's): 61 m in all
+    (ISO 3888-2:2011, Fig. 1 and Table 1; the same in Project Chrono's
+    ``demo_VEH_HMMWV_DoubleLaneChange``). b is the vehicle width [m].
+    """
+    b = _finite("vehicle_width", vehicle_width, positive=True)
+    w1 = 1.1 * b + 0.25
+    return _lane_change_track(b, (12.0, 13.5, 11.0, 12.5, 12.0), (w1, b + 1.0, max(1.3 * b + 0.25, 3.0)),
+                              w1 + 1.0, "ISO 3888-2", run_in, run_out)
+
+
+def lane_change_speed_bound(track: DoubleLaneChangeTrack, friction_coefficient: float, *, step: float = 0.5,
+                            gravity: float = 9.80665):
+    """The cone geometry's speed bound: the highest speed at which a point mass at mu g clears the cones.
+
+    The path y(x) through the coned lanes (the CG kept b/2 from the cone lines, as
+    :func:`lane_change_outcome` checks) whose largest curvature |y''| is smallest: a linear program
+    on a grid of ``step`` [m] (second differences, the small-angle curvature; free before lane 1
+    and after lane 5). A vehicle whose lateral acceleration cannot exceed mu g cannot clear the
+    cones faster than u* = sqrt(mu g / kappa_min) [m/s] on any path: a bound from the geometry and
+    the friction alone, without yaw dynamics or driver.
+
+    Returns
+    -------
+    speed : float
+        u* [m/s].
+    x, y : ndarray
+        The minimal-curvature path [m].
+    """
+    from scipy.optimize import linprog
+    from scipy.sparse import diags, hstack, vstack
+
+    mu = _finite("friction_coefficient", friction_coefficient, positive=True)
+    h = _finite("step", step, positive=True)
+    start, end = track.sections[0][0], track.sections[-1][1]
+    x = start + h * np.arange(int(round((end - start) / h)) + 1)
+    n = x.size
+    if n < 3:
+        raise ParameterError(f"step {h!r} m leaves fewer than 3 grid points on the track", key="step", value=h)
+    lower, upper = np.full(n, -np.inf), np.full(n, np.inf)
+    half = track.vehicle_width / 2
+    for x0, x1, left, right in track.sections:
+        inside = (x >= x0 - 1e-9) & (x <= x1 + 1e-9)
+        lower[inside], upper[inside] = left + half, right - half
+    second = diags([1.0, -2.0, 1.0], [0, 1, 2], shape=(n - 2, n)) / h**2
+    column = np.ones((n - 2, 1))
+    A = vstack([hstack([second, -column]), hstack([-second, -column])]).tocsr()
+    cost = np.zeros(n + 1)
+    cost[-1] = 1.0
+    bounds = [(lo if np.isfinite(lo) else None, hi if np.isfinite(hi) else None) for lo, hi in zip(lower, upper)]
+    solution = linprog(cost, A_ub=A, b_ub=np.zeros(2 * (n - 2)), bounds=bounds + [(0.0, None)], method="highs")
+    if solution.status != 0:
+        raise ParameterError(f"no path through the cones: {solution.message}", key="track", value=track.standard)
+    curvature = solution.x[-1]
+    speed = np.inf if curvature <= 0 else float(np.sqrt(mu * gravity / curvature))
+    return speed, x, solution.x[:-1]
 
 
 def lane_change_outcome(track: DoubleLaneChangeTrack, result) -> dict:

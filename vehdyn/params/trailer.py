@@ -52,6 +52,15 @@ class Trailer(ParameterSet):
     relaxation_length: float = parameter("m", "lateral relaxation length of the trailer tires", ge=0, default=0.0)
     friction_coefficient: float = parameter("-", "peak road-tire friction coefficient of the trailer tires", gt=0,
                                             default=0.9)
+    # crosswind (optional; 0 area or slope: no wind force on the trailer). The side force follows the law of
+    # vehdyn.handling.crosswind, F = 0.5 rho A C_Y' beta_w V_r^2, with rho the towing vehicle's air density
+    frontal_area: float = parameter("m^2", "reference area A of the trailer's side-force coefficient (its frontal "
+                                           "area; 0: no wind force on the trailer)", ge=0, default=0.0)
+    side_force_coefficient_slope: float = parameter(
+        "1/rad", "dC_Y/d(beta_aero) of the trailer's aerodynamic side force, referred to frontal_area", ge=0,
+        default=0.0)
+    centre_of_pressure_behind_hitch: float = parameter(
+        "m", "distance from the hitch back to the trailer's aerodynamic centre of pressure", default=0.0)
 
     def check(self):
         if self.hitch_to_cg + self.cg_to_axle <= 0:

@@ -222,9 +222,6 @@ class Aerodynamics(ParameterSet):
                                    default=1.206)
     front_lift_coefficient: float = parameter("-", "front-axle lift coefficient", default=0.0)
     rear_lift_coefficient: float = parameter("-", "rear-axle lift coefficient", default=0.0)
-    lateral_drag_coefficient: float = parameter(
-        "-", "cross-flow drag coefficient on the frontal area: side force -0.5 rho c_y A |V_a| V_ay of the "
-        "air-relative velocity V_a (0: no side force from wind)", ge=0, default=0.0)
     # crosswind (optional; typical passenger-car values, not measurements of a given vehicle):
     # Hucho, Aerodynamics of Road Vehicles, 4th ed., 1998, sec. 4.4 (side force and yaw moment of
     # passenger cars grow about linearly with the aerodynamic sideslip up to about 20 deg);

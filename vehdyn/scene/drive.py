@@ -41,6 +41,9 @@ class Drive:
         The ISO 3888-1 track with the driver's parameters in ``driver``.
     road : tuple of (distance, left, right) or None
         Road profile of each track [m] on a common distance grid (front axle at distance V t).
+    built : dict
+        What rung builders made from the vehicle (per vehicle, not per scene: a model, its tire
+        laws), shared between the rungs of one plan, by a key of the builder's choosing.
     """
 
     scene: Any
@@ -52,6 +55,13 @@ class Drive:
     track: Any = None
     driver: dict = field(default_factory=dict)
     road: tuple | None = None
+    built: dict = field(default_factory=dict)
+
+    def once(self, key, make: Callable):
+        """``make()`` the first time ``key`` is asked for, the same object after (see ``built``)."""
+        if key not in self.built:
+            self.built[key] = make()
+        return self.built[key]
 
     @property
     def steer(self) -> Callable | None:

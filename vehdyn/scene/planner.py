@@ -106,7 +106,8 @@ class Plan:
 
     def row(self, name: str) -> RungAssessment:
         """The row of rung ``name`` (rung name or model class name; the first admissible match)."""
-        matches = [r for r in self.rows if name in (r.rung.name, r.rung.model.split(":")[1])]
+        matches = [r for r in self.rows if name == r.rung.name] \
+            or [r for r in self.rows if name == r.rung.model.split(":")[1]]  # a rung's name first
         admissible = [r for r in matches if r.admissible]
         if admissible:
             return admissible[0]
@@ -179,7 +180,7 @@ def plan(scene) -> Plan:
     # on a road the linear ride rungs too (milliseconds), whose tire loads show a wheel lifting
     probes = {}
     for r in admissible:
-        if r.rung.linear and (r.rung.ladder == "handling" or drive.road is not None):
+        if r.rung.linear and r.rung.probe and (r.rung.ladder == "handling" or drive.road is not None):
             probes[r.rung.name] = r.setup.run()
     utilization = None
     linear_probe = next((probes[n] for n in ("LinearBicycle", "LinearBicycle+lag", "LateralYawRoll") if n in probes),
@@ -296,8 +297,15 @@ class _Context:
         if p == "tire_saturation":
             e = self._saturation()
             note = f"tire saturation ~{e:.1e}" if e != 0 else ""
-            if "load_transfer" in rung.rung.phenomena(rung.setup) and not d.longitudinal:
-                # a linear tire with load transfer: its load sensitivity differs from the law's
+            both_roll = "roll" in rung.rung.phenomena(rung.setup) and "roll" in self.top.rung.phenomena(self.top.setup)
+            if both_roll and d.handling_input and not d.longitudinal:
+                # a linear tire with roll: the law's load sensitivity under the lateral load transfer
+                transfer = self._lateral_load_transfer()
+                e += transfer
+                note = " and ".join(filter(None, [note, f"lateral load transfer ~{transfer:.1e}"]))
+            if "load_transfer" in rung.rung.phenomena(rung.setup) and not d.longitudinal and not rung.rung.linear:
+                # a linear tire law in a nonlinear model with load transfer: its load sensitivity
+                # differs from the law's (a linear model takes the law's stiffness at its loads)
                 dg = abs(est.drag_load_transfer_gain_change(d.vehicle, self.scene.speed, law="linear")
                          - est.drag_load_transfer_gain_change(d.vehicle, self.scene.speed, self.scene.tire))
                 e += dg
@@ -312,6 +320,8 @@ class _Context:
             if probe is None or "lateral_velocity" not in probe:
                 return 0.0, ""
             du = est.speed_change(probe, d.vehicle, self.scene.speed)
+            if "load_transfer" in rung.rung.phenomena(rung.setup):
+                return du, f"speed change ~{du:.1e}"  # the rung carries the drag's load transfer
             dg = est.drag_load_transfer_gain_change(d.vehicle, self.scene.speed, self.scene.tire)
             return du + dg, f"speed change ~{du:.1e} and drag load transfer ~{dg:.1e}"
         if p in ("heave", "wheel_hop", "road_input") and d.road is None:
@@ -334,6 +344,11 @@ class _Context:
             if transfer:
                 return {o: v + transfer for o, v in diff.items()}, f"roll (probes), lateral load transfer ~{transfer:.1e}"
             return diff, "roll (probes)"
+        if p == "pitch" and d.road is None:
+            # steer on a flat road: the body's pitch and heave and the wheels' motion that a planar or
+            # roll model leaves out (a floor measured against the full vehicle linearized)
+            k = est.THRESHOLDS["handling_reduction_floor"] if d.handling_input else 0.0
+            return k, (f"pitch, heave and wheel motion ~{k:.1e}" if k else "")
         if p == "pitch":
             k = est.THRESHOLDS["dynamic_index_gain"] * est.dynamic_index_coupling(d.vehicle) ** 2
             return k, f"pitch coupling (1-DI)^2 ~{k:.1e}"

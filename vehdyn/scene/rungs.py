@@ -7,8 +7,14 @@ for a scene and runs it on the scene's inputs. The planner knows nothing model-s
 model to the ladder is one :func:`register_rung` call (or one entry below) beside its builder.
 
 A rung whose module cannot be imported is skipped (``available`` is False). The entries for
-``vehdyn.full_vehicle.FullVehicle`` call that module's ``ladder_setup(drive, ladder)``
+``vehdyn.full_vehicle.FullVehicle`` call that module's ``ladder_setup(drive, ladder)`` and, for the
+full vehicle linearized at the scene's trim, ``linearized_setup(drive, ladder)``
 (:mod:`vehdyn.full_vehicle.ladder`).
+
+What a rung costs is what ``Setup.run()`` does, every time it is called: the scene's start (a
+trim, a steady turn), a linearization, the simulation. Building the model from the vehicle (and
+reading its ``.tir`` file) is per vehicle and stays in the builder; importing and compiling are per
+process (:func:`vehdyn.ladder` reports the best of several runs, the first loads compiled code).
 
 The builder contract: ``build(drive, **options) -> Setup``. ``drive`` is a
 :class:`~vehdyn.scene.drive.Drive`: ``vehicle``, ``scene`` (speed, duration, tire, ...), ``time``
@@ -86,6 +92,10 @@ class Rung:
     linear : bool
         A linear model (its domain ends where the tires saturate).
     description : str
+    probe : bool
+        For a linear rung: the plan runs it while planning to estimate the others' errors (the
+        linear models of a few states cost about a millisecond); False for a rung whose run costs
+        more (a trim and a linearization).
     """
 
     name: str
@@ -96,6 +106,7 @@ class Rung:
     linear: bool = False
     description: str = ""
     options: dict = field(default_factory=dict)
+    probe: bool = True
 
     def model_class(self):
         """The model class, or None when its module is not importable."""
@@ -252,6 +263,40 @@ def build_lateral_yaw_roll(drive) -> Setup:
     return _linear_setup(LateralYawRoll(drive.vehicle, drive.scene.speed), drive)
 
 
+def tire_laws(drive) -> tuple:
+    """(front, rear) tire laws of the scene: its ``tire`` on both axles, else the vehicle's; read
+    once per plan (:meth:`Drive.once`)."""
+    from ..tire import load_tire, tire_for_vehicle
+
+    def read():
+        if drive.scene.tire is not None:
+            return (load_tire(drive.scene.tire),) * 2
+        return tuple(tire_for_vehicle(drive.vehicle, axle) for axle in ("front", "rear"))
+
+    return drive.once("tire laws", read)
+
+
+def build_lateral_yaw_roll_lag(drive) -> Setup:
+    """LateralYawRollLag: the tires' laws are loaded here (per vehicle); the model, whose cornering
+    stiffnesses and ply-steer coefficients come from the law at the running loads of the scene's
+    speed, is derived again in every run (per-scene work is part of the cost)."""
+    from ..handling.lateral_yaw_roll_lag import LateralYawRollLag
+
+    front, rear = tire_laws(drive)
+
+    def make():
+        return LateralYawRollLag(drive.vehicle, drive.scene.speed, front_tire=front, rear_tire=rear)
+
+    setup = _linear_setup(make(), drive)
+    if drive.track is None:
+        from ..simulate import simulate
+
+        inputs = _steer_only(drive)
+        setup.run = lambda: simulate(make(), drive.time, inputs, method="exact")
+    setup.phenomena = LateralYawRollLag.phenomena | {"load_transfer"}
+    return setup
+
+
 def _positioned_class():
     from ..model import Model
     from ..signals import Signal
@@ -309,23 +354,6 @@ def build_single_track(drive, tires="vehicle") -> Setup:
     unknown = [k for k in drive.inputs if k not in accepted]
     if unknown:
         raise NotAdmissible(f"has no input {unknown[0]!r}")
-    drag = float(model.parameters.drag_factor) * scene.speed**2
-    x0 = model.straight_running(scene.speed)
-    inputs = dict(drive.inputs)
-    if drive.initial_turn is not None:
-        from ..handling.nonlinear_steady_state import steady_state_cornering
-
-        turn = steady_state_cornering(model, lateral_acceleration=drive.initial_turn, speed=scene.speed)
-        x0, drag = turn.state, float(turn.drive)
-        inputs["front_steer_angle"] = float(turn.steer_angle)
-    if drive.braking is not None:
-        front_force, rear_force, start = drive.braking
-        hold = drag
-        inputs["front_longitudinal_force"] = front_force
-        inputs["rear_longitudinal_force"] = lambda t: np.where(np.asarray(t) >= start, rear_force(t), hold)
-    elif "rear_longitudinal_force" not in inputs:
-        inputs["rear_longitudinal_force"] = drag  # hold the entry speed against the drag
-    inputs = {k: (v if callable(v) else (lambda t, c=float(v): np.full(np.shape(t), c))) for k, v in inputs.items()}
     ignores = ("road",) if drive.road is not None else ()
     kw = dict(method="RK45", rtol=1e-8, atol=1e-10)
     phenomena = model.phenomena - {"tire_saturation"} if tires == "linear" else model.phenomena
@@ -333,7 +361,33 @@ def build_single_track(drive, tires="vehicle") -> Setup:
         loop = _with_driver(model, drive, speed_control=True)
         x0 = np.concatenate([model.straight_running(scene.speed, x=float(drive.track.path_x[0])), [0.0]])
         return Setup(loop, lambda: simulate(loop, drive.time, None, x0=x0, **kw), ignores, phenomena)
-    return Setup(model, lambda: simulate(model, drive.time, inputs, x0=x0, **kw), ignores, phenomena)
+    if drive.initial_turn is not None:
+        from ..handling.nonlinear_steady_state import steady_state_cornering
+
+        # the steady turn the scene starts in: checked here (no turn: not admissible), solved again
+        # in every run (the start is part of what the scene costs)
+        steady_state_cornering(model, lateral_acceleration=drive.initial_turn, speed=scene.speed)
+
+    def run():
+        drag = float(model.parameters.drag_factor) * scene.speed**2
+        x0 = model.straight_running(scene.speed)
+        inputs = dict(drive.inputs)
+        if drive.initial_turn is not None:
+            turn = steady_state_cornering(model, lateral_acceleration=drive.initial_turn, speed=scene.speed)
+            x0, drag = turn.state, float(turn.drive)
+            inputs["front_steer_angle"] = float(turn.steer_angle)
+        if drive.braking is not None:
+            front_force, rear_force, start = drive.braking
+            hold = drag
+            inputs["front_longitudinal_force"] = front_force
+            inputs["rear_longitudinal_force"] = lambda t: np.where(np.asarray(t) >= start, rear_force(t), hold)
+        elif "rear_longitudinal_force" not in inputs:
+            inputs["rear_longitudinal_force"] = drag  # hold the entry speed against the drag
+        inputs = {k: (v if callable(v) else (lambda t, c=float(v): np.full(np.shape(t), c)))
+                  for k, v in inputs.items()}
+        return simulate(model, drive.time, inputs, x0=x0, **kw)
+
+    return Setup(model, run, ignores, phenomena)
 
 
 # ====================================================================== ride builders
@@ -426,6 +480,9 @@ for _rung in (
          linear=True, options={"tire_lag": True}, description="linear single track with tire relaxation"),
     Rung("LateralYawRoll", "vehdyn.handling.lateral_yaw_roll:LateralYawRoll", "handling", 30,
          build_lateral_yaw_roll, linear=True, description="3-DOF linear lateral-yaw-roll"),
+    Rung("LateralYawRoll+lag", "vehdyn.handling.lateral_yaw_roll_lag:LateralYawRollLag", "handling", 35,
+         build_lateral_yaw_roll_lag, linear=True,
+         description="3-DOF linear lateral-yaw-roll, tire lag, tire law at the running loads"),
     Rung("SingleTrack(linear tires)", "vehdyn.handling.single_track:SingleTrack", "handling", 40,
          build_single_track, options={"tires": "linear"}, description="nonlinear planar, linear tire law"),
     Rung("SingleTrack", "vehdyn.handling.single_track:SingleTrack", "handling", 50, build_single_track,
@@ -443,6 +500,13 @@ for _rung in (
          options={"ladder": "handling"}, description="6-DOF body, four corners, wheel spin"),
     Rung("FullVehicle(ride)", "vehdyn.full_vehicle:FullVehicle", "ride", 100, "vehdyn.full_vehicle:ladder_setup",
          options={"ladder": "ride"}, description="6-DOF body, four corners, wheel spin"),
+    # the same model linearized at the scene's trim (vehdyn.full_vehicle.ladder.linearized_setup)
+    Rung("FullVehicle(linearized)", "vehdyn.full_vehicle:FullVehicle", "handling", 90,
+         "vehdyn.full_vehicle.ladder:linearized_setup", linear=True, probe=False, options={"ladder": "handling"},
+         description="the full vehicle linearized at the trim, simulated exactly"),
+    Rung("FullVehicle(linearized, ride)", "vehdyn.full_vehicle:FullVehicle", "ride", 90,
+         "vehdyn.full_vehicle.ladder:linearized_setup", linear=True, probe=False, options={"ladder": "ride"},
+         description="the full vehicle linearized at the trim, simulated exactly"),
 ):
     register_rung(_rung)
 del _rung

@@ -1,0 +1,92 @@
+"""LateralYawRollLag: the full vehicle's linear lateral-yaw-roll reduction with tire lag."""
+
+import numpy as np
+import pytest
+
+import vehdyn
+from vehdyn.handling import LateralYawRollLag
+from vehdyn.handling.bicycle import BicycleParameters
+from vehdyn.handling.lateral_yaw_roll_lag import running_axle_loads
+from vehdyn.handling.steady_state import steady_state_gains
+from vehdyn.tire import tire_for_vehicle
+from vehdyn.units import GRAVITY
+
+
+def test_without_ply_steer_the_steady_state_is_the_bicycles():
+    """Linear tire laws (no force at zero slip) leave no ply-steer term; roll then has no steady
+    effect on the yaw (no roll steer), and the steady-state gains are the bicycle's closed forms
+    u / (L + K u^2) with the model's own axle stiffnesses (Gillespie 1992, eq. 6-15)."""
+    vehicle = vehdyn.load_vehicle("sedan")
+    tires = [tire_for_vehicle(vehicle, axle, "linear") for axle in ("front", "rear")]
+    model = LateralYawRollLag(vehicle, 20.0, front_tire=tires[0], rear_tire=tires[1])
+    assert model.ply_steer_load_coefficient == (0.0, 0.0)
+    cf, cr = model.cornering_stiffness
+    bicycle = BicycleParameters(mass=vehicle.mass.mass, yaw_inertia=vehicle.mass.yaw_inertia, a=vehicle.geometry.a,
+                                b=vehicle.geometry.b, front_cornering_stiffness=cf, rear_cornering_stiffness=cr)
+    closed = steady_state_gains(bicycle, 20.0)
+    A, B, C, D = model.A, model.B, model.C, model.D
+    steady = -C @ np.linalg.solve(A, B[:, 0]) + D[:, 0]
+    assert steady[model.index("yaw_rate", "outputs")] == pytest.approx(closed.yaw_rate, rel=1e-9)
+    assert steady[model.index("lateral_acceleration", "outputs")] == pytest.approx(closed.lateral_acceleration,
+                                                                                   rel=1e-9)
+
+
+def test_cornering_stiffness_is_the_law_at_the_running_loads():
+    """At 30 m/s the drive force that holds the speed against the drag moves h_s F_drag / L from
+    the front to the rear axle (moment balance about the ground); the axle stiffness is twice the
+    tire law's slope at half that axle load (central difference here, independent of the model)."""
+    vehicle = vehdyn.load_vehicle("sedan")
+    u = 30.0
+    aero = vehicle.aero
+    shift = vehicle.mass.sprung_cg_height * 0.5 * aero.air_density * aero.frontal_area * aero.drag_coefficient \
+        * u**2 / vehicle.geometry.wheelbase
+    static = vehicle.static_axle_loads(GRAVITY)
+    loads = running_axle_loads(vehicle, u)
+    assert loads == pytest.approx((static[0] - shift, static[1] + shift), rel=1e-12)
+    model = LateralYawRollLag(vehicle, u)
+    for k, axle in enumerate(("front", "rear")):
+        tire = tire_for_vehicle(vehicle, axle)
+        h = 1e-5
+        slope = (tire.forces(0.5 * loads[k], 0.0, h, 0.0, 20.0).fy - tire.forces(0.5 * loads[k], 0.0, -h, 0.0, 20.0).fy)
+        assert model.cornering_stiffness[k] == pytest.approx(abs(float(slope)) / h, rel=1e-5)
+
+
+def test_lateral_acceleration_is_the_axle_forces_over_the_mass():
+    """a_y of the total CG is Newton's (F_f + F_r) / m at every instant of a step steer (the body's
+    roll acceleration makes it differ from dv/dt + u r of the non-rolling frame)."""
+    vehicle = vehdyn.load_vehicle("compact")
+    model = LateralYawRollLag(vehicle, 20.0)
+    t = np.linspace(0.0, 2.0, 401)
+    res = vehdyn.simulate(model, t, {"front_steer_angle": vehdyn.handling.maneuvers.step_steer(0.01, 0.2, 0.1)},
+                          method="exact")
+    total = (res["front_lateral_force"] + res["rear_lateral_force"]) / vehicle.mass.mass
+    assert np.max(np.abs(res["lateral_acceleration"] - total)) < 1e-9 * np.max(np.abs(total))
+    frame_rate = np.gradient(res["lateral_velocity"], t) + 20.0 * res["yaw_rate"]
+    assert np.max(np.abs(frame_rate - total)) > 0.01 * np.max(np.abs(total))  # the roll acceleration shows
+
+
+@pytest.mark.parametrize("name", ["sedan", "van"])
+def test_steady_turn_matches_the_full_vehicle_trim(name):
+    """The full vehicle's steady turn at 0.05 g and 22.2 m/s (FullVehicle.trim, its nonlinear
+    equations) needs the steer angle the model's steady-state gain gives, within 0.5 % (the
+    bicycle with the vehicle file's stiffnesses is 3 % off: drag load transfer and ply steer)."""
+    from vehdyn.full_vehicle import FullVehicle
+
+    vehicle = vehdyn.load_vehicle(name)
+    u, a_y = 22.2, 0.05 * GRAVITY
+    full = FullVehicle(vehicle)
+    _, inputs = full.trim(u, lateral_acceleration=a_y)
+    steer = inputs[full.index("front_steer_angle", "inputs")]
+    model = LateralYawRollLag(vehicle, u)
+    gain = (-model.C @ np.linalg.solve(model.A, model.B[:, 0]) + model.D[:, 0])[model.index("lateral_acceleration",
+                                                                                            "outputs")]
+    assert a_y / gain == pytest.approx(steer, rel=5e-3)
+    bicycle = float(steady_state_gains(vehicle, u).lateral_acceleration)
+    assert abs(a_y / bicycle / steer - 1.0) > 0.01
+
+
+def test_errors():
+    with pytest.raises(vehdyn.ParameterError, match="vehicle"):
+        LateralYawRollLag("sedan", 20.0)
+    with pytest.raises(vehdyn.ParameterError):
+        LateralYawRollLag(vehdyn.load_vehicle("sedan"), -1.0)

@@ -1,0 +1,188 @@
+r"""Lateral-yaw-roll model with tire lag and the tire law's parameters at the operating point.
+
+:class:`LateralYawRollLag` is the linear model of a vehicle's lateral, yaw and roll motion at
+constant speed that the full vehicle (:class:`vehdyn.full_vehicle.FullVehicle`) reduces to for
+small steer about straight running, with every parameter derived from the same vehicle file and
+tire law. It extends :class:`~vehdyn.handling.LateralYawRoll` (Segel's 3-DOF model; symbols and
+derivation there) by:
+
+* **Tire lag**: each axle's force follows a transient slip angle alpha' with
+  d(alpha')/dt = (u / sigma)(alpha - alpha'), sigma the vehicle's relaxation lengths (Pacejka,
+  *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 7.2.1; as :class:`~vehdyn.handling.LinearBicycle`
+  with ``tire_lag``).
+* **Cornering stiffness at the running loads**: C_i = -dF_y/d(alpha) of the axle's two tires from
+  the tire law at the axle load of steady running at speed u -- the static load, minus the aero
+  lift, with the load transfer h_s F_drag / L of the drive force that holds the speed against the
+  drag (drag at the sprung CG height h_s, drive at the ground; Gillespie, *Fundamentals of Vehicle
+  Dynamics*, 1992, eq. 2-18). Near neutral steer at speed the yaw gain changes by several percent.
+* **Ply steer under lateral load transfer**: the two tires of an axle are mirror images (a law with
+  a lateral force at zero slip, as in :meth:`vehdyn.handling.SingleTrack.axle_law_forces`); their
+  zero-slip forces cancel at equal loads, not under a load transfer dF_z onto the left wheel, which
+  adds k_i dF_z with k_i = 2 dF_y0/dF_z (SAE y; F_y0 the law's force at zero slip). The elastic
+  load transfer of axle i is dF_z = -(K_i phi + C_i p) / T_i (its roll stiffness and damping over
+  its track), the geometric one F_i h_rc,i / T_i. The law's load sensitivity at equal and opposite
+  load changes is of second order and left out.
+* **Wheels rolling with the body**: the wheel carriers of the full vehicle keep the body's
+  orientation, so the unsprung masses m_u swing with the roll at their height above the roll axis
+  r_w - h_ra (wheel-centre height r_w, the rolling radius): they add m_u (r_w - h_ra) to the
+  coupling m_s h and m_u (r_w - h_ra)^2 to the roll inertia and the pendulum term.
+* **Lateral acceleration of the total CG**: a_y = (F_f + F_r) / m, what an accelerometer at the
+  CG reads (the non-rolling frame's dv/dt + u r of :class:`LateralYawRoll` differs from it by
+  m_s h dp/dt / m while the body rolls).
+
+It leaves out what the full vehicle adds beyond small steer at constant speed: tire saturation,
+the speed change, the pitch and heave motion and the wheels' spin. Roll centres are taken on the
+ground by the shipped vehicles; with raised roll centres the full vehicle's wheel carriers still
+move with the body, and the coupling of the unsprung masses above is an approximation.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..linear import LinearModel
+from ..params import Vehicle
+from ..signals import STEER_INPUTS, Signal
+from ..units import GRAVITY
+from .bicycle import linear_model_speed
+from .lateral_yaw_roll import _OUTPUTS as _LYR_OUTPUTS, _STATES as _LYR_STATES, lateral_yaw_roll_parameters
+
+__all__ = ["LateralYawRollLag", "running_axle_loads"]
+
+# the states and outputs of LateralYawRoll, with the two transient slip angles and the lateral
+# acceleration of the total CG
+_STATES = _LYR_STATES + (
+    Signal("front_transient_slip_angle", "rad", "front axle's lagged slip angle alpha'_f (SAE)"),
+    Signal("rear_transient_slip_angle", "rad", "rear axle's lagged slip angle alpha'_r (SAE)"),
+)
+_OUTPUTS = (Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the total CG, (F_f + F_r) / m"),) \
+    + _LYR_OUTPUTS[1:]
+
+
+def running_axle_loads(vehicle: Vehicle, speed: float, gravity: float = GRAVITY) -> tuple[float, float]:
+    """(front, rear) axle loads [N] in steady straight running at ``speed`` [m/s].
+
+    The static loads minus each axle's aero lift, with h_s F_drag / L moved from the front to the
+    rear axle by the drive force that holds the speed (drag at the sprung CG height h_s).
+    """
+    aero, geometry = vehicle.aero, vehicle.geometry
+    front, rear = vehicle.static_axle_loads(gravity)
+    half = 0.5 * aero.air_density * aero.frontal_area * speed**2
+    shift = vehicle.mass.sprung_cg_height * half * aero.drag_coefficient / geometry.wheelbase
+    return (front - half * aero.front_lift_coefficient - shift, rear - half * aero.rear_lift_coefficient + shift)
+
+
+def _axle_law(tire, axle_load):
+    """(C, k): cornering stiffness [N/rad] of the axle's two tires and the SAE axle force per unit
+    load moved onto the left wheel [N/N] (ply steer of mirrored tires), from the law at half the
+    axle load (central differences)."""
+    from .single_track import SingleTrack
+
+    load = 0.5 * float(axle_load)
+    if load <= 0:
+        raise ParameterError(f"axle load {axle_load} N at this speed (aero lift): no tire force", key="speed",
+                             value=axle_load)
+    step, dz = 1e-4, 0.01 * load
+    fz = np.array([load, load, load + dz, load - dz])
+    alpha = np.array([step, -step, 0.0, 0.0])
+    fy = np.asarray(tire.forces(fz, 0.0 * fz, alpha, 0.0, np.full(4, 20.0)).fy, dtype=float)  # one batched call
+    stiffness = abs(fy[0] - fy[1]) / step  # two tires: 2 |dF_y/d alpha|
+    ply = (fy[2] - fy[3]) / dz if SingleTrack._needs_mirror(tire, load) else 0.0  # 2 dF_y0/dF_z
+    return stiffness, ply
+
+
+class LateralYawRollLag(LinearModel):
+    """Lateral-yaw-roll model with tire lag, parameters from the tire law at the running loads.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+    speed : float
+        Forward speed u [m/s] (the cornering stiffnesses are those of straight running at it).
+    front_tire, rear_tire : tire law, optional
+        Default: the vehicle's (:func:`vehdyn.tire.tire_for_vehicle`).
+    gravity : float
+        [m/s^2].
+
+    Notes
+    -----
+    States ``lateral_velocity``, ``yaw_rate``, ``roll_rate``, ``roll_angle``,
+    ``front_transient_slip_angle``, ``rear_transient_slip_angle``; inputs ``front_steer_angle``,
+    ``rear_steer_angle``; outputs as :class:`~vehdyn.handling.LateralYawRoll` with the lateral
+    acceleration of the total CG. Equations in the module docstring; with zero relaxation length the
+    tire lag is that of a very short one (1 mm).
+    """
+
+    phenomena = frozenset({"lateral", "yaw", "roll", "tire_lag"})
+
+    def __init__(self, vehicle: Vehicle, speed: float, *, front_tire=None, rear_tire=None,
+                 gravity: float = GRAVITY):
+        from ..tire import tire_for_vehicle
+
+        if not isinstance(vehicle, Vehicle):
+            raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
+                                 value=vehicle)
+        u = linear_model_speed(speed, "LateralYawRollLag")
+        p = lateral_yaw_roll_parameters(vehicle, gravity=gravity)
+        g, s, masses = vehicle.geometry, vehicle.suspension, vehicle.mass
+        tires = [tire_for_vehicle(vehicle, axle) if t is None else t
+                 for axle, t in (("front", front_tire), ("rear", rear_tire))]
+        (cf, kf), (cr, kr) = (_axle_law(t, load) for t, load in zip(tires, running_axle_loads(vehicle, u, gravity)))
+        self.cornering_stiffness, self.ply_steer_load_coefficient = (cf, cr), (kf, kr)
+        sigma = [max(x, 1e-3) for x in (vehicle.tires.front_relaxation_length, vehicle.tires.rear_relaxation_length)]
+        axis = g.front_roll_centre_height + (g.rear_roll_centre_height - g.front_roll_centre_height) \
+            * g.sprung_cg_to_front_axle / g.wheelbase
+        arm_u = vehicle.tires.rolling_radius - axis
+        m_u = masses.front_unsprung_mass + masses.rear_unsprung_mass
+        coupling = p.sprung_mass * p.roll_arm + m_u * arm_u
+        roll_inertia = p.roll_inertia + m_u * arm_u**2
+        pendulum = (p.sprung_mass * p.roll_arm * np.cos(p.roll_axis_inclination) + m_u * arm_u) * gravity
+        if p.roll_stiffness <= pendulum:
+            raise ParameterError(f"roll stiffness {p.roll_stiffness:.6g} N*m/rad does not exceed the pendulum term "
+                                 f"{pendulum:.6g} N*m/rad", key="suspension", value=p.roll_stiffness)
+        a, b, m = p.a, p.b, p.mass
+        n = 6
+        # kinematic slip angles alpha = S x + T delta (SAE), as LateralYawRoll
+        S = np.zeros((2, n))
+        S[0, :4] = [1.0 / u, a / u, 0.0, -p.front_roll_steer]
+        S[1, :4] = [1.0 / u, -b / u, 0.0, -p.rear_roll_steer]
+        T = -np.eye(2)
+        # axle forces F_i = (-C_i alpha'_i + k_i dFz_el,i) / (1 - k_i h_rc,i / T_i)
+        F_x = np.zeros((2, n))
+        for i, (c, k, kroll, damping, track, rc) in enumerate((
+                (cf, kf, vehicle.front_roll_stiffness, s.front_damping, g.front_track, g.front_roll_centre_height),
+                (cr, kr, vehicle.rear_roll_stiffness, s.rear_damping, g.rear_track, g.rear_roll_centre_height))):
+            F_x[i, 4 + i] = -c
+            F_x[i, 3] = -k * kroll / track
+            F_x[i, 2] = -k * damping * track / 2.0  # C_phi,i / T_i with C_phi,i = c T^2 / 2
+            F_x[i] /= 1.0 - k * rc / track
+        M = np.eye(n)
+        M[:4, :4] = [[m, 0.0, coupling, 0.0], [0.0, p.yaw_inertia, -p.roll_yaw_product, 0.0],
+                     [coupling, -p.roll_yaw_product, roll_inertia, 0.0], [0.0, 0.0, 0.0, 1.0]]
+        Q_x, Q_u = np.zeros((n, n)), np.zeros((n, 2))
+        Q_x[0] = F_x[0] + F_x[1]
+        Q_x[0, 1] -= m * u
+        Q_x[1] = a * F_x[0] - b * F_x[1]
+        Q_x[2, 1] = -coupling * u
+        Q_x[2, 2] = -p.roll_damping
+        Q_x[2, 3] = -(p.roll_stiffness - pendulum)
+        Q_x[3, 2] = 1.0
+        for i in range(2):
+            rate = u / sigma[i]
+            Q_x[4 + i] = rate * S[i]
+            Q_x[4 + i, 4 + i] -= rate
+            Q_u[4 + i] = rate * T[i]
+        A, B = np.linalg.solve(M, Q_x), np.linalg.solve(M, Q_u)
+        ay = (F_x[0] + F_x[1]) / m
+        eye = np.eye(n)
+        C = np.vstack([ay, eye[0] / u, eye[1], eye[0], eye[3], eye[2], S[0], S[1], ay / u**2, F_x[0], F_x[1]])
+        D = np.vstack([np.zeros((6, 2)), T[0], T[1], np.zeros((3, 2))])
+        self.speed = u
+        self.mass_matrix = M
+        super().__init__(A, B, C, D, states=_STATES, inputs=STEER_INPUTS, outputs=_OUTPUTS,
+                         name=f"LateralYawRollLag at {u:g} m/s", phenomena=self.phenomena)
+
+    def __repr__(self) -> str:
+        return (f"<LateralYawRollLag at {self.speed:g} m/s: C_f={self.cornering_stiffness[0]:.6g}, "
+                f"C_r={self.cornering_stiffness[1]:.6g} N/rad>")
