@@ -727,7 +727,11 @@ def simulate(
 
     counters = {"nfev": 0, "njev": 0, "nlu": 0, "n_steps": t.size - 1, "message": ""}
     start = _time.perf_counter()
-    if compiled is not None:
+    if compiled is not None and hasattr(compiled, "pick"):
+        x, stats = _solve_compiled_batch(model, compiled, t, inputs, u, x0v, hold, method, rtol, atol, first_step,
+                                         max_step)
+        counters.update(stats)
+    elif compiled is not None:
         from . import _compiled_ode
 
         try:
@@ -763,7 +767,12 @@ def simulate(
             f"state {model.state_names[i]!r} became non-finite at t = {t[k]:.6g} s ({method})",
             time=float(t[k]), signal=model.state_names[i],
         )
-    if compiled is not None and compiled.output is not None:
+    if compiled is not None:
+        from . import _compiled_ode
+    if compiled is not None and hasattr(compiled, "pick"):
+        uu = np.moveaxis(u, 2, 0) if u.ndim == 3 else u
+        y = np.moveaxis(_compiled_ode.batch_outputs(compiled, model.n_outputs, t, np.moveaxis(x, 2, 0), uu), 0, 2)
+    elif compiled is not None and compiled.output is not None:
         y = _compiled_ode.outputs(compiled, model.n_outputs, t, x, u)
     else:
         y = _outputs(model, t, x, u)
@@ -878,13 +887,17 @@ def _compiled_backend(model, method, backend, x0, u):
     problem = None
     if method not in _compiled_ode.METHODS:
         problem = f"method {method!r} (the compiled backend integrates with {_compiled_ode.METHODS})"
-    elif x0.ndim > 1 or u.ndim > 2:
-        problem = "a batch (the compiled backend runs one vehicle; batches run vectorized on numpy)"
+    elif (x0.ndim > 1 or u.ndim > 2) and not hasattr(model, "compiled_batch"):
+        problem = (f"a batch ({type(model).__name__} has no compiled batch: batches of it run vectorized on "
+                   "numpy)")
     elif not _compiled_ode.numba_available():
         problem = "numba is not installed (pip install vehdyn[fast])"
     else:
         try:
-            compiled = model.compiled_rhs()
+            if x0.ndim > 1 or u.ndim > 2:
+                compiled = model.compiled_batch(x0.shape[1] if x0.ndim > 1 else u.shape[2])
+            else:
+                compiled = model.compiled_rhs()
         except ParameterError:
             if explicit:
                 raise
@@ -895,7 +908,33 @@ def _compiled_backend(model, method, backend, x0, u):
         if explicit:
             raise ParameterError(f"backend='compiled' cannot run: {problem}", key="backend", value=backend)
         return None, ""
+    if hasattr(compiled, "pick"):
+        return compiled, (f"compiled backend ({method} on {type(model).__name__}'s compiled rhs, numba; "
+                          f"{compiled.n_variants} variants, each with its own step-size control)")
     return compiled, f"compiled backend ({method} on {type(model).__name__}'s compiled rhs, numba)"
+
+
+def _solve_compiled_batch(model, compiled, t, inputs, u, x0, hold, method, rtol, atol, first_step, max_step):
+    """States (n, n_t, n_variants) and counters of a batch on the compiled backend
+    (:func:`vehdyn._compiled_ode.solve_batch`); the first failed variant raises SimulationError."""
+    from . import _compiled_ode
+
+    n = compiled.n_variants
+    x0 = np.broadcast_to(x0.reshape(x0.shape[0], -1), (x0.shape[0], n))
+    table = _compiled_ode.input_table(model, inputs, t, u, hold)
+    y, report = _compiled_ode.solve_batch(compiled, t, x0, table, method, rtol, atol, first_step, max_step)
+    failed = np.nonzero(report[:, 0] != 0)[0]
+    if failed.size:
+        i = int(failed[0])
+        raise SimulationError(f"variant {i} of the batch: {_compiled_ode.status_message(method, report[i])}",
+                              time=float(report[i, 1]))
+    x = np.moveaxis(y, 0, 2)
+    violation = _domain_violation(model, t, x)
+    if violation is not None:
+        raise violation
+    nfev, accepted, rejected = (int(v) for v in report[:, 2:].sum(axis=0))
+    return x, {"nfev": nfev, "n_steps": accepted,
+               "message": f"compiled {method}, {n} variants: {accepted} steps ({rejected} rejected), {nfev} rhs calls"}
 
 
 def _outputs(model, t, x, u):
