@@ -71,6 +71,22 @@ class ChunkTask:
             record["error"] = _message(exc)
         return record
 
+    def _many(self, ids, rows, block: int = 256) -> list[dict]:
+        """Records of a chunk whose simulations run batched (blocks of ``block`` variants bound
+        the memory of the batched outputs)."""
+        records = []
+        for k in range(0, len(rows), block):
+            params = [dict(zip(self.names, row)) for row in rows[k:k + block]]
+            for variant, p, values in zip(ids[k:k + block], params, self.target.run_many(params, self.metrics)):
+                record = {"variant": int(variant), **p}
+                if isinstance(values, Exception):
+                    record["error"] = _message(values)
+                else:
+                    record.update(values)
+                    record["error"] = None
+                records.append(record)
+        return records
+
     def __call__(self, ids: Sequence[int], rows: Sequence[tuple]):
         import pandas as pd
 
@@ -83,7 +99,10 @@ class ChunkTask:
             else:
                 data = {"variant": np.asarray(ids, dtype=np.int64), **columns, **values, "error": [None] * len(rows)}
                 return chunk_frame(data, self.names, self.metrics)
-        records = pd.DataFrame.from_records([self._one(i, r) for i, r in zip(ids, rows)])
+        if hasattr(self.target, "run_many") and len(rows) > 1:
+            records = pd.DataFrame.from_records(self._many(ids, rows))
+        else:
+            records = pd.DataFrame.from_records([self._one(i, r) for i, r in zip(ids, rows)])
         return chunk_frame({c: records[c] for c in records.columns}, self.names, self.metrics)
 
 
