@@ -85,8 +85,8 @@ def test_batched_chunk_is_bitwise_the_one_at_a_time_runs(scene):
     from vehdyn.sweep.targets import SceneTarget, simulation_call
 
     target = SceneTarget(scene, "SingleTrack")
-    names = ["speed", "vehicle.mass.mass", "vehicle.geometry.cg_to_front_axle"]
-    rows = [(22.0, 1500.0, 1.1), (28.0, 1650.0, 1.3), (25.0, -5.0, 1.2), (25.0, 1450.0, 1.25)]
+    names = ["speed", "vehicle.mass.mass", "vehicle.mass.yaw_inertia"]
+    rows = [(22.0, 1500.0, 1900.0), (28.0, 1650.0, 2050.0), (25.0, -5.0, 2000.0), (25.0, 1450.0, 1950.0)]
     metrics = ["peak_yaw_rate", "rms_lateral_acceleration", "final_yaw_rate"]
     params = dict(zip(names, rows[0]))
     _, setup = target._prepare(params, [vehdyn.sweep.metrics.metric(m, target.units) for m in metrics])
