@@ -20,8 +20,9 @@ run on this machine:
      and 2 threads, at the reference's tolerance and at rtol 1e-5 (speed against error);
    - shared step: blocks of 16 variants integrated as one system by the same compiled RK45 (one
      step size per block, chosen on the r.m.s. error of all its states);
-   - ``vehdyn.sweep`` of a ``Scene`` (the same steer through the ladder's SingleTrack, mass
-     varied): one variant at a time (chunks of 1, as before batching) and batched;
+   - ``vehdyn.sweep`` of a ``Scene`` (the same steer, mass varied, ``model="SingleTrack"``: the
+     planner resolves that name to its first admissible match, the rung "SingleTrack(linear
+     tires)"): one variant at a time (chunks of 1, as before batching) and batched;
    - ``vehdyn.sweep`` with ``executor="processes"`` (2 workers) and on a Dask ``LocalCluster``
      (2 workers, 1 thread each), per-variant compiled runs, 125 variants per task, on a subset.
 
@@ -245,7 +246,7 @@ def main(n: int = 10_000) -> None:
     for batched in (False, True):
         start = time.perf_counter()
         scene_sweep(scene_set, batched=batched)
-        rows.append((f"vehdyn.sweep of a Scene, {'batched' if batched else 'one at a time'} (mass only)",
+        rows.append((f"vehdyn.sweep of a Scene, {'batched' if batched else 'one at a time'} (linear tires)",
                      len(scene_set), len(scene_set) / (time.perf_counter() - start), np.nan))
 
     # --- process pool and Dask through vehdyn.sweep, per-variant compiled runs, on a larger subset

@@ -414,9 +414,10 @@ def _integrate_batch(lo, hi, t_eval, Y0, batch, kinds, values, pieces, rows, bre
     ``_pick(batch, i)``, and writes its states into ``Y_out[i]`` and (status, t, nfev, accepted,
     rejected) into ``report[i]``. Compiled without the GIL: threads run blocks side by side."""
     for i in range(lo, hi):
+        inputs = values[i if values.shape[0] > 1 else 0]
         status, t, nfev, accepted, rejected = _integrate_one(
-            t_eval, Y0[i], _pick(batch, i), kinds, values[i if values.shape[0] > 1 else 0], pieces, rows, breakpoints, method, rtol, atol,
-            first_step, max_step, max_steps, Y_out[i])
+            t_eval, Y0[i], _pick(batch, i), kinds, inputs, pieces, rows, breakpoints, method, rtol, atol, first_step,
+            max_step, max_steps, Y_out[i])
         report[i, 0] = status
         report[i, 1] = t
         report[i, 2] = nfev
@@ -425,7 +426,8 @@ def _integrate_batch(lo, hi, t_eval, Y0, batch, kinds, values, pieces, rows, bre
 
 
 def _output_batch(lo, hi, t, X, U, batch, Y):
-    """Outputs of the variants ``lo <= i < hi``: X (n_variants, n_t, n), U (n_variants, n_t, m) -> Y (n_variants, n_t, p)."""
+    """Outputs of the variants ``lo <= i < hi``: X (n_variants, n_t, n), U (n_variants, n_t, m) ->
+    Y (n_variants, n_t, p)."""
     for i in range(lo, hi):
         args = _pick(batch, i)
         for k in range(t.shape[0]):
@@ -528,7 +530,7 @@ def solve(rhs, key, args, t, y0, inputs_table, method="RK45", rtol=1e-6, atol=1e
         1 if method == "DOP853" else 0, rtol, atol_vec, 0.0 if first_step is None else float(first_step),
         np.inf if max_step is None else float(max_step), int(max_steps), y)
     if status != 0:
-        error = SimulationError(f"compiled {method} failed at t = {t_stop:.6g} s: {_STATUS[status]}", time=float(t_stop))
+        error = SimulationError(status_message(method, (status, t_stop)), time=float(t_stop))
         error.partial_states = y[:, t <= t_stop]  # the output instants the loop reached
         raise error
     return y, {"nfev": int(nfev), "n_steps": int(accepted),

@@ -32,9 +32,14 @@ any ``scipy.integrate.solve_ivp`` method
 
 Backends (``backend=``): ``"numpy"`` runs the methods above on the model's ``rhs``;
 ``"compiled"`` runs ``"RK45"`` and ``"DOP853"`` compiled (numba, optional) on the model's
-:meth:`~vehdyn.Model.compiled_rhs` for one vehicle (:mod:`vehdyn._compiled_ode`); ``"auto"``
-(default) takes the compiled one when the method is one of those two, numba is installed, the
-model has a compiled rhs and there is no batch, and says so in ``result.method_reason``.
+:meth:`~vehdyn.Model.compiled_rhs` for one vehicle (:mod:`vehdyn._compiled_ode`), and a batch
+(array parameters, or a batch of initial states or inputs) of a model with a compiled batch
+(:meth:`SingleTrack.compiled_batch <vehdyn.handling.SingleTrack.compiled_batch>`): every variant
+integrated by the same loop with its own step-size control, so that it gets bitwise the states of
+its own compiled run, the variants spread over the cores; ``"auto"`` (default) takes the compiled
+one when the method is one of those two, numba is installed and the model has a compiled rhs (and,
+for a batch, a compiled batch), and says so in ``result.method_reason``. :func:`simulate_many`
+runs many calls, grouping those of one model structure into compiled batches.
 """
 
 from __future__ import annotations
@@ -51,8 +56,8 @@ from .errors import ParameterError, SimulationError, VehdynWarning
 from .model import Model, float_array, signal_vector
 from .results import SimulationResult
 
-__all__ = ["simulate", "simulate_many", "SOLVE_IVP_METHODS", "rk4_stability_limit", "stability_interval", "exact_discretization",
-           "STIFF_STEPS_WARN", "STIFF_STEPS_REFUSE"]
+__all__ = ["simulate", "simulate_many", "SOLVE_IVP_METHODS", "rk4_stability_limit", "stability_interval",
+           "exact_discretization", "STIFF_STEPS_WARN", "STIFF_STEPS_REFUSE"]
 
 SOLVE_IVP_METHODS = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
 _HOLDS = ("zoh", "foh")

@@ -5,7 +5,9 @@ same metrics; they differ only in where a chunk runs:
 
 ``None``
     In this process, chunk after chunk. A :func:`~vehdyn.sweep.vectorized` function gets each
-    chunk as one batch of arrays.
+    chunk as one batch of arrays; a Scene's variants in a chunk run their simulations through
+    :func:`vehdyn.simulate.simulate_many` (those of one model structure as one compiled batch on
+    every core, bitwise their single runs) - in every engine, since all run the same task.
 ``"processes"``
     A :class:`concurrent.futures.ProcessPoolExecutor` on every core, one chunk per task.
 ``"threads"``
