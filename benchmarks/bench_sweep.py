@@ -70,9 +70,10 @@ def _inputs(model):
     return {"front_steer_angle": sine_steer(AMPLITUDE, 0.5), "rear_longitudinal_force": drag}
 
 
-def _call(mass_factor, cg_shift, rtol=1e-8):
-    """The ``simulate`` call of one variant, as (args, kwargs) (compiled backend, RK45)."""
-    model = _model()
+def _call(mass_factor, cg_shift, rtol=1e-8, model=None):
+    """The ``simulate`` call of one variant, as (args, kwargs) (compiled backend, RK45), from
+    ``model`` (default: built anew, as a loop of single runs does)."""
+    model = _model() if model is None else model
     p = model.parameters
     m = model.variants(mass=p.mass * mass_factor, yaw_inertia=p.yaw_inertia * mass_factor, a=p.a - cg_shift,
                        b=p.b + cg_shift)
@@ -88,7 +89,8 @@ def one_run(mass_factor, cg_shift):
 
 def many_runs(design, rtol=1e-8, threads=None):
     """Peak yaw rates of the variants of ``design`` through ``vehdyn.simulate_many`` (one compiled batch)."""
-    calls = [_call(mf, cs, rtol) for mf, cs in design.itertuples(index=False)]
+    base = _model()  # built once: every variant is its parameters (SingleTrack.variants)
+    calls = [_call(mf, cs, rtol, base) for mf, cs in design.itertuples(index=False)]
     results = vehdyn.simulate_many(calls, threads=threads)
     return np.array([np.max(np.abs(r.states[2])) for r in results])  # state 2: yaw rate
 
@@ -111,7 +113,7 @@ def shared_step_runs(design, block=16, rtol=1e-8):
     table = _compiled_ode.input_table(model, _inputs(model), T, u, "foh")
     peaks = []
     for k in range(0, len(design), block):
-        calls = [_call(mf, cs, rtol) for mf, cs in design.iloc[k:k + block].itertuples(index=False)]
+        calls = [_call(mf, cs, rtol, model) for mf, cs in design.iloc[k:k + block].itertuples(index=False)]
         batch = type(model).compiled_batch_of([c[0][0] for c in calls])
         rhs = _compiled_ode.compiled_copy(_chunk_rhs, f"bench_chunk_rhs_{batch.key}", _rhs=batch.rhs,
                                           _pick=batch.pick)
