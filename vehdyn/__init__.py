@@ -40,7 +40,7 @@ from .params import Trailer, Vehicle, data_path, load_trailer, load_vehicle, shi
 from .piecewise_signal import PiecewiseSignal
 from .results import FrequencyResponse, SimulationResult
 from .signals import Signal
-from .simulate import simulate
+from .simulate import simulate, simulate_many
 
 __version__ = "0.1.0"
 
@@ -50,6 +50,7 @@ __all__ = [
     "LinearModel",
     "connect_in_series",
     "simulate",
+    "simulate_many",
     "PiecewiseSignal",
     "SimulationResult",
     "FrequencyResponse",

@@ -46,8 +46,8 @@ import numpy as np
 
 from .errors import ParameterError, SimulationError
 
-__all__ = ["METHODS", "CompiledModel", "integrator", "input_table", "solve", "outputs", "numba_available",
-           "source_stamp", "compiled_copy"]
+__all__ = ["METHODS", "CompiledModel", "CompiledBatch", "integrator", "input_table", "batch_input_table", "solve",
+           "solve_batch", "outputs", "batch_outputs", "numba_available", "source_stamp", "compiled_copy"]
 
 METHODS = ("RK45", "DOP853")
 
@@ -56,6 +56,12 @@ CompiledModel.__doc__ = """What :meth:`vehdyn.Model.compiled_rhs` returns: numba
 (dx/dt of one vehicle into ``dxdt``) and ``output(t, x, u, args, y)`` (or None: the numpy
 ``output`` is used), a short name of their source (part of the cached code's name, so a changed
 source is recompiled) and the tuple ``args`` of numbers they read."""
+
+CompiledBatch = namedtuple("CompiledBatch", ("rhs", "output", "key", "pick", "batch", "n_variants"))
+CompiledBatch.__doc__ = """A batch of variants of one model structure for :func:`solve_batch`: the compiled ``rhs`` and
+``output`` of one vehicle (as in :class:`CompiledModel`), ``key`` naming their source and ``pick``'s,
+the compiled ``pick(batch, i) -> args`` that returns variant ``i``'s ``args`` from ``batch`` (the
+parameters as arrays, one row per variant) and the number of variants."""
 
 _STATUS = {-1: "step size underflow (the step fell below 10 ulp of t: the problem may be stiff or singular)",
            -2: "non-finite state or derivative at every step size down to the underflow limit", -3: "too many steps"}
@@ -102,8 +108,10 @@ def input_table(model, inputs, t, u, hold):
     """The inputs as the compiled loop reads them.
 
     Returns ``(kinds, values, pieces, piece_rows, breakpoints)``: per input its kind (constant,
-    zoh, foh, piecewise), the sampled values (n_inputs, n_t), all pieces stacked with each input's
-    row range, and the sorted breakpoints inside (t[0], t[-1]).
+    zoh, foh, piecewise), the sampled values (n_inputs, n_t) -- (n_variants, n_inputs, n_t) for
+    inputs ``u`` of shape (n_inputs, n_t, n_variants) --, all pieces stacked with each input's
+    row range, and the sorted breakpoints inside (t[0], t[-1]) (in a batch, those of every
+    variant: a variant's steps also end where another's input has a kink).
     """
     from .piecewise_signal import PiecewiseSignal
 
@@ -121,21 +129,23 @@ def input_table(model, inputs, t, u, hold):
             count += len(signal.pieces)
             breaks.append(signal.breakpoints)
             continue
-        samples = u[i]
+        samples = u[i].reshape(t.size, -1)  # (n_t, n_variants)
         if np.all(samples == samples[0]):
             kinds[i] = _CONSTANT
             continue
         kinds[i] = _ZOH if hold == "zoh" else _FOH
         if hold == "zoh":
-            changes = np.nonzero(np.diff(samples) != 0)[0] + 1
+            changes = np.nonzero(np.any(np.diff(samples, axis=0) != 0, axis=1))[0] + 1
         else:
-            slope = np.diff(samples) / np.diff(t)
-            changes = np.nonzero(np.abs(np.diff(slope)) > 1e-14 * np.max(np.abs(slope)))[0] + 1
+            slope = np.diff(samples, axis=0) / np.diff(t)[:, None]
+            kink = np.abs(np.diff(slope, axis=0)) > 1e-14 * np.max(np.abs(slope), axis=0)
+            changes = np.nonzero(np.any(kink, axis=1))[0] + 1
         breaks.append(t[changes])
     pieces = np.concatenate(tables) if tables else np.zeros((0, 7))
     points = np.unique(np.concatenate(breaks)) if breaks else np.zeros(0)
     points = points[(points > t[0]) & (points < t[-1])]
-    return kinds, np.ascontiguousarray(u, dtype=float), np.ascontiguousarray(pieces), rows, points
+    values = np.moveaxis(u, 2, 0) if u.ndim == 3 else u
+    return kinds, np.ascontiguousarray(values, dtype=float), np.ascontiguousarray(pieces), rows, points
 
 
 def _sample_interval(t_grid, t_ref):
@@ -397,6 +407,33 @@ def _integrate(t_eval, y0, args, kinds, values, pieces, rows, breakpoints, metho
     return 0, t, nfev, accepted, rejected
 
 
+def _integrate_batch(lo, hi, t_eval, Y0, batch, kinds, values, pieces, rows, breakpoints, method, rtol, atol,
+                     first_step, max_step, max_steps, Y_out, report):
+    """:func:`_integrate` of the variants ``lo <= i < hi``, each with its own step-size control:
+    variant ``i`` starts from ``Y0[i]`` with the inputs ``values[i]`` (``values[0]`` if shared) and the arguments
+    ``_pick(batch, i)``, and writes its states into ``Y_out[i]`` and (status, t, nfev, accepted,
+    rejected) into ``report[i]``. Compiled without the GIL: threads run blocks side by side."""
+    for i in range(lo, hi):
+        inputs = values[i if values.shape[0] > 1 else 0]
+        status, t, nfev, accepted, rejected = _integrate_one(
+            t_eval, Y0[i], _pick(batch, i), kinds, inputs, pieces, rows, breakpoints, method, rtol, atol, first_step,
+            max_step, max_steps, Y_out[i])
+        report[i, 0] = status
+        report[i, 1] = t
+        report[i, 2] = nfev
+        report[i, 3] = accepted
+        report[i, 4] = rejected
+
+
+def _output_batch(lo, hi, t, X, U, batch, Y):
+    """Outputs of the variants ``lo <= i < hi``: X (n_variants, n_t, n), U (n_variants, n_t, m) ->
+    Y (n_variants, n_t, p)."""
+    for i in range(lo, hi):
+        args = _pick(batch, i)
+        for k in range(t.shape[0]):
+            _output(t[k], X[i, k], U[i, k], args, Y[i, k])
+
+
 # ------------------------------------------------------------------------------------ compile
 _XP = None
 _piece_value = None
@@ -483,20 +520,8 @@ def solve(rhs, key, args, t, y0, inputs_table, method="RK45", rtol=1e-6, atol=1e
     Raises :class:`~vehdyn.SimulationError` on failure and :class:`~vehdyn.ParameterError` on bad
     options (naming the option and its value).
     """
-    if method not in METHODS:
-        raise ParameterError(f"the compiled backend integrates with {METHODS}, got method {method!r}", key="method",
-                             value=method)
-    rtol = float(rtol)
-    if not (math.isfinite(rtol) and rtol >= 100 * np.finfo(float).eps):
-        raise ParameterError(f"rtol must be a finite number >= 100 machine epsilons (2.2e-14), got {rtol!r}",
-                             key="rtol", value=rtol)
     y0 = np.ascontiguousarray(y0, dtype=float)
-    atol_vec = np.ascontiguousarray(np.broadcast_to(np.asarray(atol, dtype=float), y0.shape))
-    if not (np.all(np.isfinite(atol_vec)) and np.all(atol_vec > 0)):
-        raise ParameterError(f"atol must be positive and finite, got {atol!r}", key="atol", value=atol)
-    for name, value in (("first_step", first_step), ("max_step", max_step)):
-        if value is not None and not (value > 0):
-            raise ParameterError(f"{name} must be > 0 [s], got {value!r}", key=name, value=value)
+    rtol, atol_vec = _check_options(method, rtol, atol, y0.shape, first_step, max_step)
     loop = integrator(rhs, key)
     y = np.empty((y0.size, t.size))
     kinds, values, pieces, rows, breakpoints = inputs_table
@@ -505,8 +530,120 @@ def solve(rhs, key, args, t, y0, inputs_table, method="RK45", rtol=1e-6, atol=1e
         1 if method == "DOP853" else 0, rtol, atol_vec, 0.0 if first_step is None else float(first_step),
         np.inf if max_step is None else float(max_step), int(max_steps), y)
     if status != 0:
-        error = SimulationError(f"compiled {method} failed at t = {t_stop:.6g} s: {_STATUS[status]}", time=float(t_stop))
+        error = SimulationError(status_message(method, (status, t_stop)), time=float(t_stop))
         error.partial_states = y[:, t <= t_stop]  # the output instants the loop reached
         raise error
     return y, {"nfev": int(nfev), "n_steps": int(accepted),
                "message": f"compiled {method}: {accepted} steps ({rejected} rejected), {nfev} rhs calls"}
+
+
+def _check_options(method, rtol, atol, shape, first_step, max_step):
+    """rtol (float) and atol (array of ``shape``), or ParameterError naming the bad option."""
+    if method not in METHODS:
+        raise ParameterError(f"the compiled backend integrates with {METHODS}, got method {method!r}", key="method",
+                             value=method)
+    rtol = float(rtol)
+    if not (math.isfinite(rtol) and rtol >= 100 * np.finfo(float).eps):
+        raise ParameterError(f"rtol must be a finite number >= 100 machine epsilons (2.2e-14), got {rtol!r}",
+                             key="rtol", value=rtol)
+    atol_vec = np.ascontiguousarray(np.broadcast_to(np.asarray(atol, dtype=float), shape))
+    if not (np.all(np.isfinite(atol_vec)) and np.all(atol_vec > 0)):
+        raise ParameterError(f"atol must be positive and finite, got {atol!r}", key="atol", value=atol)
+    for name, value in (("first_step", first_step), ("max_step", max_step)):
+        if value is not None and not (value > 0):
+            raise ParameterError(f"{name} must be > 0 [s], got {value!r}", key=name, value=value)
+    return rtol, atol_vec
+
+
+def threads_option(threads) -> int:
+    """The number of threads of a batch (None: every core), or ParameterError."""
+    import os
+
+    if threads is None:
+        return os.cpu_count() or 1
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
+        raise ParameterError(f"threads must be an integer >= 1, got {threads!r}", key="threads", value=threads)
+    return int(threads)
+
+
+def _in_threads(loop, n: int, threads: int, *args) -> None:
+    """``loop(lo, hi, *args)`` over blocks of [0, n) on ``threads`` threads (the loop releases the
+    GIL); small blocks, taken in turn, balance variants of unequal cost."""
+    block = max(1, min(64, -(-n // (8 * threads))))
+    edges = [(lo, min(n, lo + block)) for lo in range(0, n, block)]
+    if threads == 1 or len(edges) == 1:
+        loop(0, n, *args)
+        return
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(max_workers=threads) as pool:
+        for _ in pool.map(lambda edge: loop(edge[0], edge[1], *args), edges):
+            pass
+
+
+def solve_batch(model: CompiledBatch, t, y0, inputs_table, method="RK45", rtol=1e-6, atol=1e-9, first_step=None,
+                max_step=None, max_steps=10_000_000, threads=None):
+    """Integrate every variant of a :class:`CompiledBatch` over the grid ``t``, in parallel.
+
+    Each variant runs :func:`_integrate` -- the loop of :func:`solve`, with its own adaptive
+    step-size control -- so that it gives bitwise the states of its own :func:`solve` run; blocks
+    of variants run on ``threads`` threads, the compiled loop releasing the GIL.
+
+    Parameters
+    ----------
+    model : CompiledBatch
+    t : ndarray
+        Output grid (n_t,) [s], shared.
+    y0 : ndarray
+        Initial states (n, n_variants).
+    inputs_table : tuple
+        :func:`input_table` of inputs of shape (n_inputs, n_t, n_variants).
+    method, rtol, atol, first_step, max_step, max_steps
+        As :func:`solve`; ``atol`` a number or (n,).
+    threads : int, optional
+        Threads to run on (default: every core).
+
+    Returns
+    -------
+    y : ndarray
+        States (n_variants, n, n_t); a failed variant's states are valid up to its stop time.
+    report : ndarray
+        (n_variants, 5): status (0 success, -1 step underflow, -2 non-finite, -3 too many steps),
+        the time reached, rhs calls, accepted and rejected steps (see :func:`status_message`).
+    """
+    y0 = np.ascontiguousarray(np.asarray(y0, dtype=float).T)
+    rtol, atol_vec = _check_options(method, rtol, atol, y0.shape[1:], first_step, max_step)
+    threads = threads_option(threads)
+    kinds, values, pieces, rows, breakpoints = inputs_table
+    if values.ndim == 2:  # inputs shared by every variant
+        values = values[None]
+    _setup()
+    one = integrator(model.rhs, model.key)
+    loop = compiled_copy(_integrate_batch, f"_integrate_batch_{model.key}_{_stamp()}", nogil=True,
+                         _integrate_one=one, _pick=model.pick)
+    y = np.empty((y0.shape[0], y0.shape[1], t.size))
+    report = np.zeros((y0.shape[0], 5))
+    _in_threads(loop, y0.shape[0], threads, np.ascontiguousarray(t, dtype=float), y0, model.batch, kinds, values,
+                pieces, rows, breakpoints, 1 if method == "DOP853" else 0, rtol, atol_vec,
+                0.0 if first_step is None else float(first_step), np.inf if max_step is None else float(max_step),
+                int(max_steps), y, report)
+    return y, report
+
+
+def status_message(method: str, report_row) -> str:
+    """The failure of one variant's run from its row of :func:`solve_batch`'s report ("" on success)."""
+    status = int(report_row[0])
+    return "" if status == 0 else f"compiled {method} failed at t = {report_row[1]:.6g} s: {_STATUS[status]}"
+
+
+def batch_outputs(model: CompiledBatch, n_outputs: int, t, x, u, threads=None):
+    """Outputs (n_variants, p, n_t) of a :class:`CompiledBatch` at states x (n_variants, n, n_t)
+    and inputs u (m, n_t) shared or (n_variants, m, n_t), on ``threads`` threads."""
+    _setup()
+    loop = compiled_copy(_output_batch, f"_output_batch_{model.key}_{_stamp()}", nogil=True,
+                         _output=model.output, _pick=model.pick)
+    u = np.broadcast_to(u, (x.shape[0],) + u.shape[-2:])  # (the transposed copy below is per variant)
+    y = np.empty((x.shape[0], t.size, n_outputs))
+    _in_threads(loop, x.shape[0], threads_option(threads), np.ascontiguousarray(t, dtype=float),
+                np.ascontiguousarray(np.swapaxes(x, 1, 2)), np.ascontiguousarray(np.swapaxes(u, 1, 2)), model.batch, y)
+    return np.swapaxes(y, 1, 2)

@@ -32,9 +32,14 @@ any ``scipy.integrate.solve_ivp`` method
 
 Backends (``backend=``): ``"numpy"`` runs the methods above on the model's ``rhs``;
 ``"compiled"`` runs ``"RK45"`` and ``"DOP853"`` compiled (numba, optional) on the model's
-:meth:`~vehdyn.Model.compiled_rhs` for one vehicle (:mod:`vehdyn._compiled_ode`); ``"auto"``
-(default) takes the compiled one when the method is one of those two, numba is installed, the
-model has a compiled rhs and there is no batch, and says so in ``result.method_reason``.
+:meth:`~vehdyn.Model.compiled_rhs` for one vehicle (:mod:`vehdyn._compiled_ode`), and a batch
+(array parameters, or a batch of initial states or inputs) of a model with a compiled batch
+(:meth:`SingleTrack.compiled_batch <vehdyn.handling.SingleTrack.compiled_batch>`): every variant
+integrated by the same loop with its own step-size control, so that it gets bitwise the states of
+its own compiled run, the variants spread over the cores; ``"auto"`` (default) takes the compiled
+one when the method is one of those two, numba is installed and the model has a compiled rhs (and,
+for a batch, a compiled batch), and says so in ``result.method_reason``. :func:`simulate_many`
+runs many calls, grouping those of one model structure into compiled batches.
 """
 
 from __future__ import annotations
@@ -51,8 +56,8 @@ from .errors import ParameterError, SimulationError, VehdynWarning
 from .model import Model, float_array, signal_vector
 from .results import SimulationResult
 
-__all__ = ["simulate", "SOLVE_IVP_METHODS", "rk4_stability_limit", "stability_interval", "exact_discretization",
-           "STIFF_STEPS_WARN", "STIFF_STEPS_REFUSE"]
+__all__ = ["simulate", "simulate_many", "SOLVE_IVP_METHODS", "rk4_stability_limit", "stability_interval",
+           "exact_discretization", "STIFF_STEPS_WARN", "STIFF_STEPS_REFUSE"]
 
 SOLVE_IVP_METHODS = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
 _HOLDS = ("zoh", "foh")
@@ -727,7 +732,11 @@ def simulate(
 
     counters = {"nfev": 0, "njev": 0, "nlu": 0, "n_steps": t.size - 1, "message": ""}
     start = _time.perf_counter()
-    if compiled is not None:
+    if compiled is not None and hasattr(compiled, "pick"):
+        x, stats = _solve_compiled_batch(model, compiled, t, inputs, u, x0v, hold, method, rtol, atol, first_step,
+                                         max_step)
+        counters.update(stats)
+    elif compiled is not None:
         from . import _compiled_ode
 
         try:
@@ -763,7 +772,12 @@ def simulate(
             f"state {model.state_names[i]!r} became non-finite at t = {t[k]:.6g} s ({method})",
             time=float(t[k]), signal=model.state_names[i],
         )
-    if compiled is not None and compiled.output is not None:
+    if compiled is not None:
+        from . import _compiled_ode
+    if compiled is not None and hasattr(compiled, "pick"):
+        uu = np.moveaxis(u, 2, 0) if u.ndim == 3 else u
+        y = np.moveaxis(_compiled_ode.batch_outputs(compiled, model.n_outputs, t, np.moveaxis(x, 2, 0), uu), 0, 2)
+    elif compiled is not None and compiled.output is not None:
         y = _compiled_ode.outputs(compiled, model.n_outputs, t, x, u)
     else:
         y = _outputs(model, t, x, u)
@@ -878,13 +892,17 @@ def _compiled_backend(model, method, backend, x0, u):
     problem = None
     if method not in _compiled_ode.METHODS:
         problem = f"method {method!r} (the compiled backend integrates with {_compiled_ode.METHODS})"
-    elif x0.ndim > 1 or u.ndim > 2:
-        problem = "a batch (the compiled backend runs one vehicle; batches run vectorized on numpy)"
+    elif (x0.ndim > 1 or u.ndim > 2) and not hasattr(model, "compiled_batch"):
+        problem = (f"a batch ({type(model).__name__} has no compiled batch: batches of it run vectorized on "
+                   "numpy)")
     elif not _compiled_ode.numba_available():
         problem = "numba is not installed (pip install vehdyn[fast])"
     else:
         try:
-            compiled = model.compiled_rhs()
+            if x0.ndim > 1 or u.ndim > 2:
+                compiled = model.compiled_batch(x0.shape[1] if x0.ndim > 1 else u.shape[2])
+            else:
+                compiled = model.compiled_rhs()
         except ParameterError:
             if explicit:
                 raise
@@ -895,7 +913,33 @@ def _compiled_backend(model, method, backend, x0, u):
         if explicit:
             raise ParameterError(f"backend='compiled' cannot run: {problem}", key="backend", value=backend)
         return None, ""
+    if hasattr(compiled, "pick"):
+        return compiled, (f"compiled backend ({method} on {type(model).__name__}'s compiled rhs, numba; "
+                          f"{compiled.n_variants} variants, each with its own step-size control)")
     return compiled, f"compiled backend ({method} on {type(model).__name__}'s compiled rhs, numba)"
+
+
+def _solve_compiled_batch(model, compiled, t, inputs, u, x0, hold, method, rtol, atol, first_step, max_step):
+    """States (n, n_t, n_variants) and counters of a batch on the compiled backend
+    (:func:`vehdyn._compiled_ode.solve_batch`); the first failed variant raises SimulationError."""
+    from . import _compiled_ode
+
+    n = compiled.n_variants
+    x0 = np.broadcast_to(x0.reshape(x0.shape[0], -1), (x0.shape[0], n))
+    table = _compiled_ode.input_table(model, inputs, t, u, hold)
+    y, report = _compiled_ode.solve_batch(compiled, t, x0, table, method, rtol, atol, first_step, max_step)
+    failed = np.nonzero(report[:, 0] != 0)[0]
+    if failed.size:
+        i = int(failed[0])
+        raise SimulationError(f"variant {i} of the batch: {_compiled_ode.status_message(method, report[i])}",
+                              time=float(report[i, 1]))
+    x = np.moveaxis(y, 0, 2)
+    violation = _domain_violation(model, t, x)
+    if violation is not None:
+        raise violation
+    nfev, accepted, rejected = (int(v) for v in report[:, 2:].sum(axis=0))
+    return x, {"nfev": nfev, "n_steps": accepted,
+               "message": f"compiled {method}, {n} variants: {accepted} steps ({rejected} rejected), {nfev} rhs calls"}
 
 
 def _outputs(model, t, x, u):
@@ -923,3 +967,111 @@ def _outputs(model, t, x, u):
         # the batch axis cannot take time folded into it)
         Y = np.stack([np.asarray(model.output(t[k], x[:, k], uu[:, k]), dtype=float) for k in range(n_t)], axis=1)
     return Y.reshape((model.n_outputs, n_t) + extra)
+
+
+# --------------------------------------------------------------------------- many runs at once
+_BATCH_OPTIONS = {"x0", "method", "rtol", "atol", "hold", "backend"}
+
+
+def _compiled_member(args, kwargs):
+    """A call of :func:`simulate` prepared for a compiled batch, or None when it must run alone:
+    (group key, model, t, inputs, u, x0, options). Any doubt (a bad argument, an option a batch
+    does not take) leaves the call to :func:`simulate`, which raises the proper error."""
+    from . import _compiled_ode
+
+    if len(args) != 3 or not set(kwargs) <= _BATCH_OPTIONS:
+        return None
+    model, time, inputs = args
+    method = kwargs.get("method", "auto")
+    if (not hasattr(model, "compiled_batch_of") or method not in _compiled_ode.METHODS
+            or kwargs.get("backend", "auto") not in ("auto", "compiled") or not _compiled_ode.numba_available()):
+        return None
+    try:
+        t = _time_grid(time)
+        hold = kwargs.get("hold", "foh")
+        if hold not in _HOLDS:
+            return None
+        options = {"method": method, "rtol": _positive_option(kwargs.get("rtol", 1e-6), "rtol"),
+                   "atol": _positive_option(kwargs.get("atol", 1e-9), "atol"), "hold": hold}
+        u = _sample_inputs(model, inputs, t)
+        x0 = signal_vector(kwargs.get("x0"), model.states, "x0")
+        if x0.ndim != 1 or u.ndim != 2 or _domain_violation(model, t[0], x0) is not None:
+            return None
+        model.compiled_rhs()  # a configuration without a compiled form runs alone (and says why)
+        table = _compiled_ode.input_table(model, inputs, t, u, hold)
+    except (ParameterError, SimulationError):
+        return None
+    kinds, _, pieces, rows, breakpoints = table
+    key = (type(model), model.batch_structure(), t.tobytes(), tuple(sorted((k, repr(v)) for k, v in options.items())),
+           kinds.tobytes(), pieces.tobytes(), rows.tobytes(), breakpoints.tobytes())
+    return key, model, t, table, u, x0, options
+
+
+def simulate_many(calls, *, threads=None) -> list:
+    """Run many :func:`simulate` calls; those that can run as compiled batches do.
+
+    Calls of models with a compiled batch (:meth:`SingleTrack.compiled_batch_of
+    <vehdyn.handling.SingleTrack.compiled_batch_of>`), an explicit ``"RK45"`` or ``"DOP853"``, the
+    same time grid, options and input layout (constants and sampled inputs with the same
+    breakpoints, the same piecewise signals) are grouped; each group is one compiled batch
+    (:func:`vehdyn._compiled_ode.solve_batch`) in which every variant keeps its own step-size
+    control, on ``threads`` threads. A variant's result is bitwise the one its own ``simulate``
+    call gives. Other calls run one by one through :func:`simulate`.
+
+    Parameters
+    ----------
+    calls : sequence of (args, kwargs)
+        The positional ``(model, time, inputs)`` and keyword arguments of each ``simulate`` call.
+    threads : int, optional
+        Threads of the compiled batches (default: every core).
+
+    Returns
+    -------
+    list
+        Per call, its :class:`~vehdyn.results.SimulationResult` or the exception it raised
+        (a :class:`~vehdyn.ParameterError` or :class:`~vehdyn.SimulationError`: one bad call
+        never stops the others).
+    """
+    from . import _compiled_ode
+
+    out: list = [None] * len(calls)
+    groups: dict = {}
+    for i, (args, kwargs) in enumerate(calls):
+        member = _compiled_member(args, kwargs)
+        if member is None:
+            try:
+                out[i] = simulate(*args, **kwargs)
+            except (ParameterError, SimulationError) as exc:
+                out[i] = exc
+        else:
+            groups.setdefault(member[0], []).append((i, *member[1:]))
+    for members in groups.values():
+        models = [m[1] for m in members]
+        first, t, table, options = models[0], members[0][2], members[0][3], members[0][6]
+        method = options["method"]
+        start = _time.perf_counter()
+        compiled = type(first).compiled_batch_of(models)
+        U = np.stack([m[4] for m in members], axis=2)
+        table = (table[0], np.ascontiguousarray(np.moveaxis(U, 2, 0)), *table[2:])
+        states, report = _compiled_ode.solve_batch(compiled, t, np.stack([m[5] for m in members], axis=1), table,
+                                                   method, options["rtol"], options["atol"], threads=threads)
+        outputs = _compiled_ode.batch_outputs(compiled, first.n_outputs, t, states, table[1], threads=threads)
+        wall = (_time.perf_counter() - start) / len(members)
+        reason = f"compiled backend ({method} on {type(first).__name__}'s compiled rhs, numba; one of a batch " \
+                 f"of {len(members)} variants, each with its own step-size control)"
+        for j, (i, model, *_rest) in enumerate(members):
+            if report[j, 0] != 0:
+                out[i] = SimulationError(_compiled_ode.status_message(method, report[j]), time=float(report[j, 1]))
+                continue
+            violation = _domain_violation(model, t, states[j])
+            if violation is not None:
+                out[i] = violation
+                continue
+            status, _, nfev, accepted, rejected = (int(v) for v in report[j])
+            out[i] = SimulationResult(
+                time=t, states=states[j], inputs=U[..., j], outputs=outputs[j], state_signals=model.states,
+                input_signals=model.inputs, output_signals=model.output_signals, method=method,
+                method_reason=reason, wall_time=wall, nfev=nfev, n_steps=accepted,
+                message=f"compiled {method}: {accepted} steps ({rejected} rejected), {nfev} rhs calls",
+                options={"rtol": options["rtol"], "atol": options["atol"], "hold": options["hold"], "substeps": 1})
+    return out

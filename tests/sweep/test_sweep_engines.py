@@ -77,3 +77,28 @@ def test_samples_identical_across_engines(scene):
     b = sweep(scene, executor="processes", **args)
     _same(a, b)
     assert np.all(np.diff(a["speed"].to_numpy()) != 0)
+
+
+def test_batched_chunk_is_bitwise_the_one_at_a_time_runs(scene):
+    """A chunk's scenes run as one compiled batch (simulate_many) and give bitwise each variant's own run."""
+    from vehdyn.sweep.engines import ChunkTask
+    from vehdyn.sweep.targets import SceneTarget, simulation_call
+
+    target = SceneTarget(scene, "SingleTrack")
+    names = ["speed", "vehicle.mass.mass", "vehicle.mass.yaw_inertia"]
+    rows = [(22.0, 1500.0, 1900.0), (28.0, 1650.0, 2050.0), (25.0, -5.0, 2000.0), (25.0, 1450.0, 1950.0)]
+    metrics = ["peak_yaw_rate", "rms_lateral_acceleration", "final_yaw_rate"]
+    params = dict(zip(names, rows[0]))
+    _, setup = target._prepare(params, [vehdyn.sweep.metrics.metric(m, target.units) for m in metrics])
+    args, kwargs = simulation_call(setup.run)  # the ladder's SingleTrack runs through simulate
+    assert kwargs["method"] == "RK45" and args[0] is setup.model
+    batched = ChunkTask(target, names, metrics)(list(range(4)), rows)
+    alone = [ChunkTask(target, names, metrics)([i], [r]) for i, r in enumerate(rows)]
+    for i, frame in enumerate(alone):
+        for c in metrics:
+            assert batched[c].to_numpy()[i].tobytes() == frame[c].to_numpy()[0].tobytes(), (i, c)
+        assert batched["error"][i] == frame["error"][0]
+    assert "ParameterError" in batched["error"][2] and batched["error"].isna().sum() == 3
+    result = vehdyn.simulate_many([simulation_call(setup.run)])[0]
+    assert "batch of 1" in result.method_reason
+    assert simulation_call(lambda: 1.0) is None and simulation_call(print) is None

@@ -112,7 +112,7 @@ def _corner_tire_loads(tires, corner_index, fz, kappa, alpha, vx):
     if mirror:
         alpha, gamma = -alpha, -gamma
     if law.kind == _MAGIC_FORMULA:
-        c = law.coefficients
+        c = law.records[law.record]
         f = magic_formula._forces_kernel(_mf_numba.OPS, c, fz, kappa, alpha, gamma, vx, c.INFLPRES, True, False)
         fx, fy, my = f[0], f[1], f[4]
     else:

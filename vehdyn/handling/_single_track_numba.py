@@ -21,9 +21,10 @@ from collections import namedtuple
 import numba
 import numpy as np
 from numba.extending import register_jitable
+from numba.np.unsafe.ndarray import to_fixed_tuple
 
 from .. import conventions
-from .._compiled_ode import CompiledModel, compiled_copy, source_stamp
+from .._compiled_ode import CompiledBatch, CompiledModel, compiled_copy, source_stamp
 from ..errors import ParameterError
 from ..tire import _mf_numba, linear, magic_formula
 from ..tire.linear import LinearTire
@@ -31,7 +32,7 @@ from ..tire.magic_formula import MagicFormula
 from . import crosswind
 from . import single_track_equations as equations
 
-__all__ = ["XP", "compiled_model", "compiled_functions"]
+__all__ = ["XP", "compiled_model", "compiled_functions", "compiled_batch", "batch_structure"]
 
 _JIT = {"error_model": "numpy"}
 _MAGIC_FORMULA, _LINEAR = 0, 1
@@ -45,11 +46,13 @@ for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_s
     register_jitable(**_JIT)(getattr(equations, _name))
 register_jitable(**_JIT)(crosswind.aero_side_force)
 
-TireLaw = namedtuple("TireLaw", ("kind", "mirrored", "coefficients", "linear"))
+TireLaw = namedtuple("TireLaw", ("kind", "mirrored", "records", "record", "linear"))
 TireLaw.__doc__ = """The law of one axle's tires for compiled code: ``kind`` (0 Magic Formula, 1 linear),
-``mirrored`` (axle force = tire + mirror image, see :meth:`SingleTrack.axle_law_forces`), the
-Magic Formula coefficient record (a placeholder for other laws) and the linear law's coefficients
-(:attr:`LinearTire.coefficients`; zeros for a Magic Formula)."""
+``mirrored`` (axle force = tire + mirror image, see :meth:`SingleTrack.axle_law_forces`), an array
+of Magic Formula coefficient records and which one is this law's (placeholders for other laws:
+an array, not a record, so that a batch can pick a variant's record without returning one from a
+compiled function) and the linear law's coefficients (:attr:`LinearTire.coefficients`; zeros for
+a Magic Formula)."""
 
 
 def _axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
@@ -58,7 +61,7 @@ def _axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
     law = tires[axle]
     load = 0.5 * fz
     if law.kind == _MAGIC_FORMULA:
-        c = law.coefficients
+        c = law.records[law.record]
         f = magic_formula._forces_kernel(_mf_numba.OPS, c, load, kappa, alpha, 0.0, vx, c.INFLPRES, True, False)
         if law.mirrored:
             g = magic_formula._forces_kernel(_mf_numba.OPS, c, load, kappa, -alpha, 0.0, vx, c.INFLPRES, True, False)
@@ -119,16 +122,18 @@ def compiled_functions():
     return compiled[0], compiled[1], key
 
 
-def _placeholder_record():
-    return np.zeros(1, dtype=[(name, np.float64) for name in magic_formula.MFCoefficients._fields])[0]
+def _records(c=None):
+    """An array of one coefficient record (zeros without ``c``), the fields of :func:`_mf_numba._record`."""
+    dtype = [(name, np.float64) for name in magic_formula.MFCoefficients._fields]
+    return np.zeros(1, dtype=dtype) if c is None else np.array([tuple(c)], dtype=dtype)
 
 
 def tire_law(tire, mirrored: bool, axle: str) -> TireLaw:
     """The compiled description of ``tire`` (a MagicFormula or LinearTire), else ParameterError."""
     if isinstance(tire, MagicFormula):
-        return TireLaw(_MAGIC_FORMULA, bool(mirrored), _mf_numba._record(tire._c), (0.0, 0.0, 0.0, 0.0, 0.0))
+        return TireLaw(_MAGIC_FORMULA, bool(mirrored), _records(tire._c), 0, (0.0, 0.0, 0.0, 0.0, 0.0))
     if isinstance(tire, LinearTire):
-        return TireLaw(_LINEAR, bool(mirrored), _placeholder_record(), tire.coefficients)
+        return TireLaw(_LINEAR, bool(mirrored), _records(), 0, tire.coefficients)
     raise ParameterError(f"the compiled SingleTrack supports the MagicFormula and LinearTire laws; the {axle} tire is "
                          f"a {type(tire).__name__}: use backend='numpy'", key=f"{axle}_tire", value=type(tire).__name__)
 
@@ -147,3 +152,107 @@ def compiled_model(model) -> CompiledModel:
     # tuples, not arrays: passed by value, without reference counting on every call
     index = (tuple(int(i) for i in model._state_index), tuple(int(i) for i in model._input_index))
     return CompiledModel(rhs, output, key, (k, tires, *index))
+
+
+# ------------------------------------------------------------------------------ batches
+_FLOATS = tuple(name for name in equations.Constants._fields if name not in ("wheel_spin", "tire_lag"))
+_N_FLOATS = len(_FLOATS)
+_N_LINEAR = 5
+
+
+def _law(axle, i):
+    """Variant ``i``'s TireLaw from an axle of a batch (kind, mirrored, tire index, records, linear)."""
+    kind, mirrored, which, records, linear_coefficients = axle
+    j = which[i]
+    return TireLaw(kind, mirrored[i], records, j, to_fixed_tuple(linear_coefficients[j], _N_LINEAR))
+
+
+def _pick(batch, i):
+    """The ``args`` of :func:`_rhs` for variant ``i`` of a batch built by :func:`compiled_batch`."""
+    K, wheel_spin, tire_lag, front, rear, state_index, input_index = batch
+    k = equations.Constants(*(to_fixed_tuple(K[i], _N_FLOATS) + (wheel_spin, tire_lag)))
+    return k, (_law(front, i), _law(rear, i)), state_index, input_index
+
+
+# inlined into the batch loops (a compiled function of its own could not return a record to Python)
+register_jitable(**_JIT)(_law)
+register_jitable(**_JIT)(_pick)
+
+
+def batch_structure(model) -> tuple:
+    """What variants must share to run in one compiled batch: the modes, the tire laws' kinds
+    and the signals' layout (a hashable key)."""
+    kinds = tuple(_LINEAR if isinstance(tire, LinearTire) else _MAGIC_FORMULA if isinstance(tire, MagicFormula)
+                  else type(tire).__name__ for tire in (model.front_tire, model.rear_tire))
+    return (type(model).__name__, model.wheel_spin, model.tire_lag, kinds, tuple(model.state_names),
+            tuple(model.input_names))
+
+
+def _axle(tires, mirrored, axle):
+    """A batch axle: (kind, mirrored per variant, tire index per variant, unique records, unique linear rows)."""
+    laws, which, index = [], np.empty(len(tires), dtype=np.int64), {}
+    for i, tire in enumerate(tires):
+        key = id(tire)
+        if key not in index:
+            index[key] = len(laws)
+            laws.append(tire_law(tire, False, axle))
+        which[i] = index[key]
+    kinds = {law.kind for law in laws}
+    if len(kinds) > 1:
+        raise ParameterError(f"a compiled batch needs one {axle} tire law for every variant", key=f"{axle}_tire",
+                             value=sorted(kinds))
+    records = np.concatenate([law.records for law in laws])
+    linear_rows = np.array([law.linear for law in laws], dtype=float).reshape(len(laws), _N_LINEAR)
+    return laws[0].kind, np.asarray(mirrored, dtype=np.bool_), which, records, linear_rows
+
+
+def compiled_batch(models, n_variants: int | None = None) -> CompiledBatch:
+    """The compiled rhs of many single-track vehicles for :func:`vehdyn._compiled_ode.solve_batch`.
+
+    Parameters
+    ----------
+    models : SingleTrack or sequence of SingleTrack
+        One model whose parameters are arrays (:meth:`SingleTrack.variants`, one entry per
+        variant) or scalars shared by ``n_variants`` variants; or one scalar model per variant,
+        all of one :func:`batch_structure` (their tires may differ).
+    n_variants : int, optional
+        With one model: the number of variants (default: its ``n_variants``).
+
+    Raises
+    ------
+    ParameterError
+        For a tire law without a compiled form, or models of different structures.
+    """
+    rhs, output, key = compiled_functions()
+    if isinstance(models, (list, tuple)):
+        if not models:
+            raise ParameterError("a compiled batch needs at least one model", key="models", value=models)
+        structure = batch_structure(models[0])
+        for m in models:
+            if m.n_variants is not None:
+                raise ParameterError("a list of models for a compiled batch holds models with scalar parameters",
+                                     key="models", value=m.n_variants)
+            if batch_structure(m) != structure:
+                raise ParameterError(f"the models of a compiled batch must share one structure; {batch_structure(m)} "
+                                     f"differs from {structure}", key="models", value=batch_structure(m))
+        constants = [m._constants() for m in models]
+        K = np.array([[getattr(k, name) for name in _FLOATS] for k in constants], dtype=float)
+        tires = {axle: [getattr(m, f"{axle}_tire") for m in models] for axle in ("front", "rear")}
+        mirrored = {axle: [m._mirrored[axle] for m in models] for axle in ("front", "rear")}
+        first = models[0]
+    else:
+        first = models
+        n = first.n_variants if n_variants is None else int(n_variants)
+        if n is None or n < 1 or (first.n_variants not in (None, n)):
+            raise ParameterError(f"n_variants = {n_variants!r} for a model of {first.n_variants} variants",
+                                 key="n_variants", value=n_variants)
+        k = first._constants()
+        K = np.empty((n, _N_FLOATS))
+        for j, name in enumerate(_FLOATS):
+            K[:, j] = np.broadcast_to(np.asarray(getattr(k, name), dtype=float), (n,))
+        tires = {axle: [getattr(first, f"{axle}_tire")] * n for axle in ("front", "rear")}
+        mirrored = {axle: [first._mirrored[axle]] * n for axle in ("front", "rear")}
+    batch = (np.ascontiguousarray(K), bool(first.wheel_spin), bool(first.tire_lag),
+             _axle(tires["front"], mirrored["front"], "front"), _axle(tires["rear"], mirrored["rear"], "rear"),
+             tuple(int(i) for i in first._state_index), tuple(int(i) for i in first._input_index))
+    return CompiledBatch(rhs, output, key, _pick, batch, K.shape[0])

@@ -513,6 +513,30 @@ class SingleTrack(Model):
         self._compiled_model = (self.parameters, compiled)
         return compiled
 
+    def compiled_batch(self, n_variants: int | None = None):
+        """The compiled rhs of a batch (:func:`vehdyn._compiled_ode.solve_batch`): this model's
+        variants (array parameters, :meth:`variants`), or ``n_variants`` copies of a model with
+        scalar parameters (a batch of initial states or inputs). ``simulate`` runs it on the compiled
+        backend, each variant with its own step-size control: every variant's states are bitwise
+        those of its own compiled run. Raises ParameterError as :meth:`compiled_rhs` does."""
+        from . import _single_track_numba
+
+        return _single_track_numba.compiled_batch(self, n_variants)
+
+    @staticmethod
+    def compiled_batch_of(models):
+        """The compiled batch of many models with scalar parameters and one :meth:`batch_structure`
+        (their parameters and tires may differ): what :func:`vehdyn.simulate.simulate_many` runs."""
+        from . import _single_track_numba
+
+        return _single_track_numba.compiled_batch(list(models))
+
+    def batch_structure(self) -> tuple:
+        """What models must share to run in one compiled batch (modes, tire laws, signals): a hashable key."""
+        from . import _single_track_numba
+
+        return _single_track_numba.batch_structure(self)
+
     def rhs(self, t, x, u):
         """State derivatives (equations in the module docstring)."""
         states, inputs, k, e = self._evaluate(x, u)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import codecs
 import dataclasses
+import functools
 import math
 import os
 import tomllib
@@ -53,6 +54,13 @@ def _type_name(value: Any) -> str:
     return type(value).__name__
 
 
+@functools.lru_cache(maxsize=None)
+def _type_hints(cls) -> dict:
+    """``typing.get_type_hints`` of a parameter class, once per class (it costs about a
+    millisecond: a sweep validates thousands of variants)."""
+    return typing.get_type_hints(cls)
+
+
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class ParameterSet:
     """Base of vehdyn's parameter groups: validation on construction, dict and TOML round trip."""
@@ -70,7 +78,7 @@ class ParameterSet:
         return f"{prefix}{name}"
 
     def _validate_fields(self) -> None:
-        hints = typing.get_type_hints(type(self))
+        hints = _type_hints(type(self))
         for f in dataclasses.fields(self):
             value = getattr(self, f.name)
             key = f.name

@@ -5,7 +5,9 @@ same metrics; they differ only in where a chunk runs:
 
 ``None``
     In this process, chunk after chunk. A :func:`~vehdyn.sweep.vectorized` function gets each
-    chunk as one batch of arrays.
+    chunk as one batch of arrays; a Scene's variants in a chunk run their simulations through
+    :func:`vehdyn.simulate.simulate_many` (those of one model structure as one compiled batch on
+    every core, bitwise their single runs) - in every engine, since all run the same task.
 ``"processes"``
     A :class:`concurrent.futures.ProcessPoolExecutor` on every core, one chunk per task.
 ``"threads"``
@@ -71,6 +73,22 @@ class ChunkTask:
             record["error"] = _message(exc)
         return record
 
+    def _many(self, ids, rows, block: int = 256) -> list[dict]:
+        """Records of a chunk whose simulations run batched (blocks of ``block`` variants bound
+        the memory of the batched outputs)."""
+        records = []
+        for k in range(0, len(rows), block):
+            params = [dict(zip(self.names, row)) for row in rows[k:k + block]]
+            for variant, p, values in zip(ids[k:k + block], params, self.target.run_many(params, self.metrics)):
+                record = {"variant": int(variant), **p}
+                if isinstance(values, Exception):
+                    record["error"] = _message(values)
+                else:
+                    record.update(values)
+                    record["error"] = None
+                records.append(record)
+        return records
+
     def __call__(self, ids: Sequence[int], rows: Sequence[tuple]):
         import pandas as pd
 
@@ -83,7 +101,10 @@ class ChunkTask:
             else:
                 data = {"variant": np.asarray(ids, dtype=np.int64), **columns, **values, "error": [None] * len(rows)}
                 return chunk_frame(data, self.names, self.metrics)
-        records = pd.DataFrame.from_records([self._one(i, r) for i, r in zip(ids, rows)])
+        if hasattr(self.target, "run_many") and len(rows) > 1:
+            records = pd.DataFrame.from_records(self._many(ids, rows))
+        else:
+            records = pd.DataFrame.from_records([self._one(i, r) for i, r in zip(ids, rows)])
         return chunk_frame({c: records[c] for c in records.columns}, self.names, self.metrics)
 
 

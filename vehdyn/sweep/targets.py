@@ -17,7 +17,7 @@ import numpy as np
 from ..errors import ParameterError
 from . import metrics as _metrics
 
-__all__ = ["vectorized", "SceneTarget", "FunctionTarget", "as_target", "vehicle_parameter_names"]
+__all__ = ["vectorized", "SceneTarget", "FunctionTarget", "as_target", "vehicle_parameter_names", "simulation_call"]
 
 
 def vectorized(function: Callable) -> Callable:
@@ -136,20 +136,98 @@ class SceneTarget:
             fields["road"] = {**self.scene.road, **road}
         return self.scene.replace(**fields)
 
-    def run(self, params: Mapping[str, Any], metric_names) -> dict[str, float]:
+    def _prepare(self, params: Mapping[str, Any], wanted):
+        """(run, setup) of one variant: the metrics' :class:`~vehdyn.sweep.metrics.Run` without
+        outputs and the rung built for the variant's scene (None when no metric needs a run)."""
         from ..scene.drive import drive_of
         from ..scene.rungs import rungs
 
         scene = self.variant(params)
-        wanted = [_metrics.metric(n, self.units) for n in metric_names]
         run = _metrics.Run(time=scene.time(), outputs={}, units=self.units, vehicle=scene.load_vehicle(),
                            speed=scene.speed)
-        if any(m.needs_run for m in wanted):
-            rung = next(r for r in rungs() if r.name == self.rung)
-            result = rung.setup(drive_of(scene)).run()
+        if not any(m.needs_run for m in wanted):
+            return run, None
+        rung = next(r for r in rungs() if r.name == self.rung)
+        return run, rung.setup(drive_of(scene))
+
+    def _finish(self, run, result, wanted) -> dict[str, float]:
+        if result is not None:
             run.outputs = {o: np.asarray(result[m], dtype=float) for o, m in self.signals.items()}
             run.result = result
         return {m.name: float(m.function(run)) for m in wanted}
+
+    def run(self, params: Mapping[str, Any], metric_names) -> dict[str, float]:
+        wanted = [_metrics.metric(n, self.units) for n in metric_names]
+        run, setup = self._prepare(params, wanted)
+        return self._finish(run, None if setup is None else setup.run(), wanted)
+
+    def run_many(self, rows: list[Mapping[str, Any]], metric_names, threads=None) -> list:
+        """:meth:`run` of many variants, their simulations batched by
+        :func:`vehdyn.simulate.simulate_many` (compiled batches of the variants that share a
+        model structure; bitwise the results of :meth:`run`). Per variant its metrics, or the
+        exception it raised."""
+        from ..simulate import simulate_many
+
+        wanted = [_metrics.metric(n, self.units) for n in metric_names]
+        out: list = [None] * len(rows)
+        pending, calls = [], []
+        for i, params in enumerate(rows):
+            try:
+                run, setup = self._prepare(params, wanted)
+                call = None if setup is None else simulation_call(setup.run)
+                if setup is None or call is None:
+                    out[i] = self._finish(run, None if setup is None else setup.run(), wanted)
+                else:
+                    pending.append((i, run))
+                    calls.append(call)
+            except Exception as exc:  # one bad variant never loses the sweep
+                out[i] = exc
+        for (i, run), result in zip(pending, simulate_many(calls, threads=threads)):
+            try:
+                if isinstance(result, Exception):
+                    raise result
+                out[i] = self._finish(run, result, wanted)
+            except Exception as exc:
+                out[i] = exc
+        return out
+
+
+class _Recorded(Exception):
+    pass
+
+
+def simulation_call(run: Callable):
+    """The ``simulate`` call a rung's ``Setup.run`` makes, as ``(args, kwargs)``, without running it;
+    None when ``run`` is not a closure that calls :func:`vehdyn.simulate` (it then runs as is).
+
+    The ladder's builders return ``lambda: simulate(model, time, inputs, x0=..., **options)``: the
+    closure is called once with its ``simulate`` cell replaced by a recorder.
+    """
+    import types
+
+    from ..simulate import simulate
+
+    code, cells = getattr(run, "__code__", None), getattr(run, "__closure__", None)
+    if code is None or not cells or "simulate" not in code.co_freevars:
+        return None
+    names = dict(zip(code.co_freevars, cells))
+    try:
+        if names["simulate"].cell_contents is not simulate:
+            return None
+    except ValueError:  # an empty cell
+        return None
+    recorded = []
+
+    def record(*args, **kwargs):
+        recorded.append((args, kwargs))
+        raise _Recorded
+
+    closure = tuple(types.CellType(record) if n == "simulate" else c for n, c in names.items())
+    try:
+        types.FunctionType(code, run.__globals__, run.__name__, run.__defaults__, closure)()
+    except _Recorded:
+        return recorded[0]
+    return None
 
 
 class FunctionTarget:
