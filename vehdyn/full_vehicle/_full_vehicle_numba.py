@@ -130,7 +130,7 @@ for _function in (_matrix_vector,):
 
 XP = types.ModuleType("vehdyn.full_vehicle._full_vehicle_numba.XP")
 XP.__doc__ = "The ``xp`` of the full-vehicle equations in compiled code (floats; hooks on tuples)."
-for _name in ("cos", "sin", "tan", "atan", "sqrt", "atan2"):
+for _name in ("cos", "sin", "tan", "tanh", "atan", "sqrt", "atan2"):
     setattr(XP, _name, getattr(math, _name))
 for _name in ("abs", "where", "minimum", "maximum"):
     setattr(XP, _name, getattr(_mf_numba.OPS, _name))

@@ -41,8 +41,7 @@ for _function in (conventions.planar_tire_slips_sae_to_iso_w, conventions.planar
     register_jitable(**_JIT)(_function)
 for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_speed_blend", "sliding_slip",
               "limit_deflection_rate", "axle_slips", "demanded_forces", "axle_forces", "axle_loads", "normal_loads",
-              "evaluate", "derivatives", "outputs", "net_wheel_torque", "spin_saturation", "deflection_rate",
-              "deflection_rates"):
+              "evaluate", "derivatives", "outputs", "net_wheel_torque", "deflection_rate", "deflection_rates"):
     register_jitable(**_JIT)(getattr(equations, _name))
 register_jitable(**_JIT)(crosswind.aero_side_force)
 
@@ -82,7 +81,7 @@ def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
 
 XP = types.ModuleType("vehdyn.handling._single_track_numba.XP")
 XP.__doc__ = "The ``xp`` of the single-track equations in compiled code (floats; the tire laws compiled)."
-for _name in ("cos", "sin", "atan", "sqrt", "atan2"):
+for _name in ("cos", "sin", "tanh", "atan", "sqrt", "atan2"):
     setattr(XP, _name, getattr(math, _name))
 for _name in ("abs", "where", "minimum", "maximum"):
     setattr(XP, _name, getattr(_mf_numba.OPS, _name))
