@@ -40,7 +40,7 @@ for _function in (conventions.planar_tire_slips_sae_to_iso_w, conventions.planar
     register_jitable(**_JIT)(_function)
 for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_speed_blend", "sliding_slip",
               "limit_deflection_rate", "axle_forces", "normal_loads", "evaluate", "derivatives", "outputs", "net_wheel_torque",
-              "deflection_rate", "deflection_rates"):
+              "deflection_rate", "deflection_rates", "lateral_load_transfer", "wheel_pair", "wheel_load_outputs"):
     register_jitable(**_JIT)(getattr(equations, _name))
 register_jitable(**_JIT)(crosswind.aero_side_force)
 
@@ -99,6 +99,10 @@ def _output(t, x, u, args, y):
     values = equations.outputs(XP, states, e)
     for j in range(len(values)):
         y[j] = values[j]
+    if k.lateral_load_transfer:
+        loads = equations.wheel_load_outputs(e)
+        for j in range(len(loads)):
+            y[len(values) + j] = loads[j]
 
 
 @functools.lru_cache(maxsize=None)
@@ -131,7 +135,7 @@ def compiled_model(model) -> CompiledModel:
                              f"({model.n_variants} variants): use backend='numpy'", key="variants",
                              value=model.n_variants)
     k = model._constants()
-    k = k._replace(**{name: float(getattr(k, name)) for name in k._fields if name not in ("wheel_spin", "tire_lag")})
+    k = k._replace(**{name: float(getattr(k, name)) for name in k._fields if name not in ("wheel_spin", "tire_lag", "lateral_load_transfer")})
     tires = (tire_law(model.front_tire, model._mirrored["front"], "front"),
              tire_law(model.rear_tire, model._mirrored["rear"], "rear"))
     rhs, output, key = compiled_functions()
