@@ -8,12 +8,14 @@ closed-form static sinkage and compaction resistance where their assumptions hol
 maximum stress at the bottom, small sinkage). (3) Rigid wheel against flexible tire: the sedan's
 tire at its corner load, at road inflation and aired down, in the rigid or elastic (flat-contact)
 mode that the inflation plus carcass pressure selects. (4) A launch of the sedan (rear drive,
-wheel-spin states) on dry sand and on sandy loam against asphalt (Fiala tires from the vehicle
-file): acceleration, wheel slip and rear sinkage, against the traction limit of the rear tires'
-peak drawbar pull.
+wheel-spin states) on dry sand and on sandy loam (road inflation, and aired down) against asphalt
+(Fiala tires from the vehicle file): acceleration, wheel slip and rear sinkage, against the traction limit: the rear tires' peak
+drawbar pull less the motion resistance of the free-rolling (towed) front tires.
 """
 
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 
@@ -96,17 +98,20 @@ def run(study: Study) -> None:
                 caption="Mode, sinkage and resistance at slip 0.2")
 
     # (4) launch of the sedan: asphalt against sand
-    duration = 0.4 if study.quick else 2.0
+    duration = 2.0 if study.full else 0.4  # each soft-soil rhs solves the Wong-Reece wheel: ~10-30 ms
     t = np.linspace(0.0, duration, int(duration / 0.02) + 1)
     torque = 1500.0
     geometry = SoftSoilTireGeometry(radius=radius, width=width, inflation_pressure=2.2e5, carcass_pressure=0.3e5)
     surfaces = {"asphalt (Fiala)": (tire_for_vehicle(vehicle, "front", "fiala"), tire_for_vehicle(vehicle, "rear", "fiala"))}
     for soil_name in ("sandy_loam", "dry_sand"):
         tire = SoftSoilTire(geometry, soils[soil_name])
-        surfaces[soil_name] = (tire, tire)
+        surfaces[f"{soil_name}, 2.2 bar"] = (tire, tire)
+    aired_down = SoftSoilTire(dataclasses.replace(geometry, inflation_pressure=0.8e5), soils["sandy_loam"])
+    surfaces["sandy_loam, 0.8 bar"] = (aired_down, aired_down)  # the elastic (flat-contact) mode
     fig, axes = new_figure(2, 2, width=10.0, height_per_row=2.6)
     rows = []
     rear_static = vehicle.mass.mass * G * vehicle.geometry.a / vehicle.wheelbase
+    front_static = vehicle.mass.mass * G - rear_static
     for number, (label, (front, rear)) in enumerate(surfaces.items()):
         color = f"C{number}"
         model = SingleTrack(vehicle, front, rear, wheel_spin=True, tire_lag=False)
@@ -122,7 +127,10 @@ def run(study: Study) -> None:
             state = rear.evaluate(0.5 * rear_static, slip_ratio)
             axes[1, 1].plot(t, state.sinkage * 1e3, color=color, label=label)
             peak = rear.evaluate(0.5 * rear_static, np.linspace(0.0, 20.0, 201)).drawbar_pull.max()
-            row.update(rear_sinkage_mm=float(state.sinkage[-1]) * 1e3, traction_limit_a_x=2 * peak / vehicle.mass.mass)
+            towed = front.evaluate(0.5 * front_static, np.linspace(-0.5, 0.5, 2001))  # towed: zero torque
+            front_resistance = -float(towed.drawbar_pull[np.argmin(np.abs(towed.torque))])
+            row.update(rear_sinkage_mm=float(state.sinkage[-1]) * 1e3, front_resistance=2 * front_resistance,
+                       traction_limit_a_x=2 * (peak - front_resistance) / vehicle.mass.mass)
         rows.append(row)
     for ax, ylabel in zip(axes.flat, ("a_x [m/s^2]", "speed u [m/s]", "rear slip s [-]", "rear sinkage [mm]")):
         ax.set_ylabel(ylabel)
@@ -130,14 +138,16 @@ def run(study: Study) -> None:
         ax.legend(fontsize=8)
     study.figure(fig, "launch", caption=f"Sedan launch, {torque:.0f} N*m on the rear axle: asphalt against soft soil")
     study.table(pd.DataFrame(rows).set_index("surface"), "launch",
-                caption="Launch: peak acceleration against the rear tires' traction limit 2 max(DP) / m at the "
-                        "static rear load")
+                caption="Launch: peak acceleration against the traction limit 2 (max DP_rear - R_front) / m at the "
+                        "static loads (R_front: motion resistance of a towed front tire, at zero torque)")
     study.text("On soft soil the drawbar pull peaks at a moderate slip and the sinkage grows with slip (slip "
                "sinkage through theta_m = (c1 + c2 s) theta_1); on loose dry sand a street tire's net traction "
                "is a small fraction of its load, so the launch is traction-limited far below the asphalt value. "
-               "In the single-track model the wheel-spin balance uses F_x r only: a free-rolling soft-soil wheel "
-               "settles at zero drawbar pull (its rolling-resistance moment M_y is returned by the tire law but "
-               "not used by the vehicle model).")
+               "The free-rolling front tires run as towed wheels: their wheel-spin balance carries the tire's "
+               "rolling-resistance moment M_y = r F_x - T, so they settle at zero soil torque with the motion "
+               "resistance of a towed wheel, which the rear tires must overcome before the car accelerates: at "
+               "road inflation the sedan bogs down on sandy loam and on dry sand; aired down to 0.8 bar its tires "
+               "run flattened (elastic mode) with less sinkage and compaction resistance, and it drives off.")
 
 
 if __name__ == "__main__":

@@ -113,6 +113,34 @@ def test_coast_down_follows_the_drag_closed_form():
     assert np.allclose(r["x"], m / k * np.log(1 + k * u0 * t / m), rtol=1e-8)
 
 
+def test_coast_down_decelerates_by_the_rolling_resistance_moment():
+    # MF 5.2 file with QSY2 = QSY3 = QSY4 = 0: M_y = -R0 F_z LMY QSY1 per tire, linear in the load, so
+    # that the four tires together give -R0 LMY QSY1 m g whatever the load transfer. A free-rolling
+    # axle has 2 I_w d(omega)/dt = M_y - R_e F_x; with omega = (1 + kappa) u / R_e and no drag or lift
+    #   m du/dt = sum F_x  ->  du/dt = -g QSY1 LMY (R0 / R_e) m / (m + 4 I_w / R_e^2)
+    # up to the relative term |kappa| (4 I_w / R_e^2) / m (kappa ~ -2e-3 here: < 1e-4).
+    tire = MagicFormula.from_tir(vehdyn.data_path("tires", "MagicFormula52_Parameters.tir"))
+    c = tire._c
+    assert (c.QSY2, c.QSY3, c.QSY4, c.QSY1) == (0.0, 0.0, 0.0, 0.01) and c.is_mf52
+    model = SingleTrack(SEDAN, tire, tire, wheel_spin=True, tire_lag=False).variants(
+        drag_factor=0.0, front_lift_factor=0.0, rear_lift_factor=0.0)
+    p = model.parameters
+    t = np.linspace(0.0, 2.0, 21)
+    r = vehdyn.simulate(model, t, None, x0=model.straight_running(20.0), method="DOP853", rtol=1e-10, atol=1e-10,
+                        backend="numpy")
+    rotating = 4.0 * p.wheel_spin_inertia / p.rolling_radius**2
+    expected = -p.gravity * c.QSY1 * c.LMY * c.UNLOADED_RADIUS / p.rolling_radius * p.mass / (p.mass + rotating)
+    assert np.allclose(r["longitudinal_acceleration"][10:], expected, rtol=2e-4)
+    assert np.allclose(r["longitudinal_velocity"][10:], 20.0 + expected * t[10:], rtol=2e-4, atol=0)
+    # the compiled rhs carries the same moment, bit for bit
+    pytest.importorskip("numba")
+    compiled = model.compiled_rhs()
+    x, u = r.states[:, 15].copy(), model.input_vector()
+    dxdt = np.empty(model.n_states)
+    compiled.rhs(0.0, x, u, compiled.args, dxdt)
+    assert np.array_equal(dxdt, model.rhs(0.0, x, u))
+
+
 def test_load_transfer_case_I_BRAKE_1():
     case = {c["id"]: c for c in json.loads(_CASES.read_text())["cases"]}["I-BRAKE-1"]
     i = {k: v[0] for k, v in case["inputs"].items()}

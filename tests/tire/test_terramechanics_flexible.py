@@ -85,24 +85,56 @@ def test_single_track_launches_on_sand_below_the_traction_limit():
 
     vehicle = vehdyn.load_vehicle("sedan")
     soil = load_soil("sandy_loam")
-    geometry = SoftSoilTireGeometry(radius=vehicle.tires.rolling_radius, width=0.205, inflation_pressure=2.2e5)
+    # aired down to 0.8 bar: the elastic (flattened) mode at these loads
+    geometry = SoftSoilTireGeometry(radius=vehicle.tires.rolling_radius, width=0.205, inflation_pressure=0.8e5)
     tire = SoftSoilTire(geometry, soil)
     model = SingleTrack(vehicle, tire, tire, wheel_spin=True, tire_lag=False)
     t = np.linspace(0.0, 0.5, 26)
     result = vehdyn.simulate(model, t, {"rear_drive_torque": 2500.0}, x0=model.straight_running(2.0), method="rk4",
-                             substeps=4)
+                             substeps=8)
     ax = result["longitudinal_acceleration"]
     assert np.all(np.isfinite(ax))
-    # independent bound: the rear axle cannot push more than its peak drawbar pull, the free-rolling
-    # front axle (zero torque <=> zero net force in this model) adds nothing; loads at most the
-    # static rear load plus the transfer at that acceleration
+    assert np.all(tire.evaluate(result["rear_normal_load"] / 2, 0.5, 0.0).mode == "elastic")
+    # independent bound: the rear axle cannot push more than its Coulomb limit (A c + W tan(phi) per
+    # tire, A = W / p the flat contact), at most the static rear load plus 20 % transfer; the
+    # free-rolling front axle only resists (its wheel balances M_y - R_e F_x: a towed wheel, F_x <= 0)
     g = vehicle.geometry
     weight = vehicle.mass.mass * vehdyn.units.GRAVITY
-    rear_load = weight * g.a / vehicle.wheelbase
-    peak = RigidWheel(radius=geometry.radius, width=geometry.width, soil=soil).solve(
-        0.5 * rear_load * 1.2, np.linspace(0, 1, 101)).drawbar_pull.max()
-    assert np.max(ax[5:]) < 2 * peak / vehicle.mass.mass
-    assert np.max(ax[5:]) > 0.0  # it does accelerate on firm sandy loam
+    rear_load = 1.2 * weight * g.a / vehicle.wheelbase
+    limit = rear_load / geometry.stiffness_pressure * soil.cohesion + rear_load * math.tan(soil.friction_angle)
+    assert np.max(ax[5:]) < limit / vehicle.mass.mass
+    assert np.max(ax[5:]) > 0.0  # it does accelerate on sandy loam, aired down
+    assert np.all(result["front_longitudinal_force"][5:] < 0.0)
+
+
+def test_single_track_coasts_down_on_soil_by_the_compaction_resistance():
+    # Free-rolling tires in the elastic mode: the wheel balance 2 I_w d(omega)/dt = M_y - R_e F_x with
+    # M_y = r F_x - T (SoftSoilTire) and r = R_e settles at T = 0, i.e. zero thrust (slip 0) and
+    # F_x = -R_c = -b k z^(n+1) / (n+1), z = ((p_i + p_c) / k)^(1/n) the flat section's sinkage
+    # (Wong 2008, sec. 2.7), the same at every load. With no drag or lift and omega = (1 + kappa) u / R_e
+    # (the thrust that spins the wheels down needs a small slip kappa):
+    #   du/dt = -4 R_c / (m + 4 I_w / R_e^2)    up to the relative term |kappa| (4 I_w / R_e^2) / m
+    from vehdyn.handling import SingleTrack
+
+    vehicle = vehdyn.load_vehicle("sedan")
+    soil = load_soil("sandy_loam")
+    geometry = SoftSoilTireGeometry(radius=vehicle.tires.rolling_radius, width=0.205, inflation_pressure=0.8e5)
+    tire = SoftSoilTire(geometry, soil)
+    model = SingleTrack(vehicle, tire, tire, wheel_spin=True, tire_lag=False).variants(
+        drag_factor=0.0, front_lift_factor=0.0, rear_lift_factor=0.0)
+    p = model.parameters
+    t = np.linspace(0.0, 2.0, 11)
+    r = vehdyn.simulate(model, t, None, x0=model.straight_running(10.0), method="DOP853", rtol=1e-9, atol=1e-9)
+    loads = np.concatenate([r["front_normal_load"], r["rear_normal_load"]]) / 2
+    assert np.all(tire.evaluate(loads, 0.0, 0.0).mode == "elastic")  # the closed form's premise
+    k = soil.modulus(geometry.width)
+    z = (geometry.stiffness_pressure / k) ** (1.0 / soil.n)
+    resistance = geometry.width * k * z ** (soil.n + 1.0) / (soil.n + 1.0)
+    expected = -4.0 * resistance / (p.mass + 4.0 * p.wheel_spin_inertia / p.rolling_radius**2)
+    kappa = np.max(np.abs(np.concatenate([r["front_slip_ratio"][2:], r["rear_slip_ratio"][2:]])))
+    assert kappa < 2e-3
+    rotating_share = 4.0 * p.wheel_spin_inertia / p.rolling_radius**2 / p.mass
+    assert np.allclose(r["longitudinal_acceleration"][2:], expected, rtol=kappa * rotating_share + 1e-6)
 
 
 def test_elastic_side_force_against_quadrature():

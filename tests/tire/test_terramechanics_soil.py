@@ -28,6 +28,30 @@ def test_dry_sand_matches_wong_table_2_3():
     assert "Wong 2008" in soil_source("dry_sand")
 
 
+@pytest.mark.parametrize("name, n, k_c, k_phi, cohesion, phi", [
+    # the hand-transcribed rows against an independent transcription of the same table (Wong 2008
+    # Table 2.3, SI columns: kN/m^(n+1), kN/m^(n+2), kPa, deg; a public Project Chrono SCM script,
+    # see data/soils.toml): heavy clay at 40 % moisture (WES) and "Snow (U.S.)"
+    ("heavy_clay", 0.11, 1.84, 103.27, 20.69, 6.0),
+    ("snow", 1.6, 4.37, 196.72, 1.03, 19.7),
+    ("lete_sand", 0.79, 102.0, 5301.0, 1.3, 31.1),
+])
+def test_hand_transcribed_rows_match_an_independent_transcription(name, n, k_c, k_phi, cohesion, phi):
+    soil = load_soil(name)
+    assert soil.n == n
+    assert (soil.k_c, soil.k_phi, soil.cohesion) == pytest.approx((k_c * 1e3, k_phi * 1e3, cohesion * 1e3), rel=1e-12)
+    assert math.degrees(soil.friction_angle) == pytest.approx(phi, rel=1e-12)
+    # converted back to U.S. units (lb/in^(n+1), lb/in^(n+2)) the moduli of these rows are values of
+    # two significant digits (snow 0.070, 0.080; heavy clay 7.0, 10) to within the rounding of the SI
+    # columns (< 0.3 %): a check on the digits, which a mistyped digit would fail. LETE sand is
+    # Wong's own measurement, not a conversion.
+    if name != "lete_sand":
+        lbf, inch = 4.4482216152605, 0.0254
+        for value in (soil.k_c * inch ** (n + 1) / lbf, soil.k_phi * inch ** (n + 2) / lbf):
+            two_digits = round(value, 1 - math.floor(math.log10(value)))
+            assert abs(value / two_digits - 1.0) < 3e-3
+
+
 def test_every_shipped_soil_loads_in_si_with_its_source():
     with open(vehdyn.data_path("soils.toml"), "rb") as f:
         raw = tomllib.load(f)

@@ -2,9 +2,9 @@
 
 Imported only when the compiled backend is used. Nothing here restates a single-track equation:
 the functions of :mod:`~vehdyn.handling.single_track_equations` are registered with
-``register_jitable`` and run with a compiled ``xp`` (:data:`XP`) whose ``axle_tire_forces`` calls
-the axle's tire law: the Magic Formula through the compiled equations of
-:mod:`vehdyn.tire._mf_numba` (``magic_formula._forces_kernel`` on the coefficient record, the same
+``register_jitable`` and run with a compiled ``xp`` (:data:`XP`) whose ``axle_tire_loads`` calls
+the axle's tire law (forces and rolling-resistance moment): the Magic Formula through the compiled
+equations of :mod:`vehdyn.tire._mf_numba` (``magic_formula._forces_kernel`` on the coefficient record, the same
 call as :meth:`MagicFormula.forces` with its defaults ``limits=True``, ``alpha_star=False``), or
 the linear law. Other laws (brush, Fiala, Dugoff) have no compiled form: the model then refuses
 the compiled backend and names the law.
@@ -39,8 +39,9 @@ _MAGIC_FORMULA, _LINEAR = 0, 1
 for _function in (conventions.planar_tire_slips_sae_to_iso_w, conventions.planar_tire_forces_iso_w_to_sae):
     register_jitable(**_JIT)(_function)
 for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_speed_blend", "sliding_slip",
-              "limit_deflection_rate", "axle_forces", "normal_loads", "evaluate", "derivatives", "outputs", "net_wheel_torque",
-              "deflection_rate", "deflection_rates", "lateral_load_transfer", "wheel_pair", "wheel_load_outputs"):
+              "limit_deflection_rate", "axle_slips", "demanded_forces", "axle_forces", "axle_loads", "normal_loads",
+              "evaluate", "derivatives", "outputs", "net_wheel_torque", "deflection_rate", "deflection_rates",
+              "lateral_load_transfer", "wheel_pair", "wheel_load_outputs"):
     register_jitable(**_JIT)(getattr(equations, _name))
 register_jitable(**_JIT)(crosswind.aero_side_force)
 
@@ -51,8 +52,9 @@ Magic Formula coefficient record (a placeholder for other laws) and the linear l
 (:attr:`LinearTire.coefficients`; zeros for a Magic Formula)."""
 
 
-def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
-    """ISO-W axle forces (fx, fy) [N]: two tires at half the load ``fz`` (see ``SingleTrack.axle_law_forces``)."""
+def _axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
+    """ISO-W axle forces and rolling-resistance moment (fx, fy, my) [N, N, N*m]: two tires at half the
+    load ``fz`` (see ``SingleTrack.axle_law_loads``); the linear law has no M_y."""
     law = tires[axle]
     load = 0.5 * fz
     if law.kind == _MAGIC_FORMULA:
@@ -60,13 +62,19 @@ def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
         f = magic_formula._forces_kernel(_mf_numba.OPS, c, load, kappa, alpha, 0.0, vx, c.INFLPRES, True, False)
         if law.mirrored:
             g = magic_formula._forces_kernel(_mf_numba.OPS, c, load, kappa, -alpha, 0.0, vx, c.INFLPRES, True, False)
-            return f[0] + g[0], f[1] - g[1]
-        return 2.0 * f[0], 2.0 * f[1]
+            return f[0] + g[0], f[1] - g[1], f[4] + g[4]
+        return 2.0 * f[0], 2.0 * f[1], 2.0 * f[4]
     fx, fy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, load, kappa, alpha, 0.0, vx)
     if law.mirrored:
         gx, gy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, load, kappa, -alpha, 0.0, vx)
-        return fx + gx, fy - gy
-    return 2.0 * fx, 2.0 * fy
+        return fx + gx, fy - gy, 0.0
+    return 2.0 * fx, 2.0 * fy, 0.0
+
+
+def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
+    """ISO-W axle forces (fx, fy) [N] of :func:`_axle_tire_loads`."""
+    fx, fy, _ = _axle_tire_loads(tires, axle, fz, kappa, alpha, vx)
+    return fx, fy
 
 
 XP = types.ModuleType("vehdyn.handling._single_track_numba.XP")
@@ -75,6 +83,7 @@ for _name in ("cos", "sin", "atan", "sqrt", "atan2"):
     setattr(XP, _name, getattr(math, _name))
 for _name in ("abs", "where", "minimum", "maximum"):
     setattr(XP, _name, getattr(_mf_numba.OPS, _name))
+XP.axle_tire_loads = numba.njit(**_JIT)(_axle_tire_loads)
 XP.axle_tire_forces = numba.njit(**_JIT)(_axle_tire_forces)
 register_jitable(**_JIT)(linear.linear_tire_law)
 

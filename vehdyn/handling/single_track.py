@@ -89,10 +89,13 @@ Longitudinal input, two modes:
   sqrt(1 - (F_x / (mu F_z))^2) (Rajamani 2012, sec. 13.7; mu = ``vehicle.tires.friction_coefficient``).
 * ``wheel_spin=True``: each axle has a spin state omega (both wheels together, inertia 2 I_w)::
 
-      2 I_w d(omega)/dt = T_drive - T_brake sat(omega / omega_b) - R_e F_x
+      2 I_w d(omega)/dt = T_drive - T_brake sat(omega / omega_b) - R_e F_x + M_y
 
-  and the tire law computes F_x and F_y from the (transient) slips with its own combined-slip
-  rule. The brake torque opposes the spin; sat(z) = z / sqrt(1 + z^2) regularizes its sign
+  and the tire law computes F_x, F_y and the rolling-resistance moment M_y (ISO-W, negative
+  rolling forwards: the Magic Formula's, a soft-soil tire's ``r F_x - T``; 0 for the laws without
+  one) from the (transient) slips with its own combined-slip rule. With M_y a free-rolling axle
+  settles at F_x = M_y / R_e: the rolling resistance decelerates the vehicle (Pacejka 2012,
+  sec. 4.3.5; Wong 2008, sec. 2.7 for a towed wheel on soil). The brake torque opposes the spin; sat(z) = z / sqrt(1 + z^2) regularizes its sign
   within ``brake_regularization_speed`` omega_b so that a locked wheel stops without chatter.
 
 The equations are written once, as pure functions over an ``xp`` namespace, in
@@ -520,14 +523,21 @@ class SingleTrack(Model):
         return states, inputs, k, equations.evaluate(equations.NUMPY, self, k, states, inputs)
 
     def axle_law_forces(self, axle, fz, kappa, alpha, vx):
-        """Axle forces (fx, fy) [N] in ISO-W from the law of one tire at half the load ``fz`` [N].
+        """Axle forces (fx, fy) [N] in ISO-W from the law of one tire at half the load ``fz`` [N]:
+        the forces of :meth:`axle_law_loads`."""
+        fx, fy, _ = SingleTrack.axle_law_loads(self, axle, fz, kappa, alpha, vx)
+        return fx, fy
+
+    def axle_law_loads(self, axle, fz, kappa, alpha, vx):
+        """Axle forces and rolling-resistance moment (fx, fy, my) [N, N, N*m] in ISO-W from the law of
+        one tire at half the load ``fz`` [N].
 
         ``axle`` is 0 (front) or 1 (rear); ``kappa``, ``alpha`` the ISO-W slips, ``vx`` the signed
         wheel-centre speed [m/s]. The two tires of an axle are mirror images: when the law has a
         lateral force at zero slip (ply-steer and conicity shifts of a Magic Formula file), the axle
         force is the tire's plus its mirror image's, F_y = F_y(alpha) - F_y(-alpha),
-        F_x = F_x(alpha) + F_x(-alpha), so that a vehicle with zero steer runs straight. Laws
-        without such shifts are evaluated once.
+        F_x = F_x(alpha) + F_x(-alpha), M_y = M_y(alpha) + M_y(-alpha), so that a vehicle with zero
+        steer runs straight. Laws without such shifts are evaluated once.
         """
         name = _AXLES[axle]
         tire = self.front_tire if axle == 0 else self.rear_tire
@@ -540,12 +550,12 @@ class SingleTrack(Model):
         if self._mirrored[name]:
             if scalar:
                 f, g = tire.forces(load, kap, alp, 0.0, vx), tire.forces(load, kap, -alp, 0.0, vx)
-                return f.fx + g.fx, f.fy - g.fy
+                return f.fx + g.fx, f.fy - g.fy, f.my + g.my
             both = tire.forces(np.stack(np.broadcast_arrays(load, load)), np.stack(np.broadcast_arrays(kap, kap)),
                                np.stack(np.broadcast_arrays(alp, -alp)), 0.0, np.stack(np.broadcast_arrays(vx, vx)))
-            return both.fx[0] + both.fx[1], both.fy[0] - both.fy[1]
+            return both.fx[0] + both.fx[1], both.fy[0] - both.fy[1], both.my[0] + both.my[1]
         f = tire.forces(load, kap, alp, 0.0, vx)
-        return 2.0 * f.fx, 2.0 * f.fy
+        return 2.0 * f.fx, 2.0 * f.fy, 2.0 * f.my
 
     @staticmethod
     def _needs_mirror(tire, load) -> bool:

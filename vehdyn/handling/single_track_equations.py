@@ -2,8 +2,8 @@
 
 One source for both backends (the pattern of :mod:`vehdyn.tire._mf_ops`): the functions below
 use only ``xp.cos``, ``xp.sin``, ``xp.atan``, ``xp.sqrt``, ``xp.abs``, ``xp.where``,
-``xp.minimum``, ``xp.maximum`` and ``xp.axle_tire_forces`` (the tire law of an axle), and plain
-arithmetic, so that they run
+``xp.minimum``, ``xp.maximum`` and ``xp.axle_tire_forces`` / ``xp.axle_tire_loads`` (the tire law
+of an axle: forces, or forces and rolling-resistance moment), and plain arithmetic, so that they run
 
 * on numpy arrays with a trailing batch axis (:data:`NUMPY`, what ``SingleTrack.rhs`` and
   ``output`` use; the tire law is the model's :class:`~vehdyn.tire.TireModel`), and
@@ -26,8 +26,9 @@ from ..conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slips_sae
 from ..tire._mf_ops import NumpyOps
 from .crosswind import aero_side_force
 
-__all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate", "derivatives",
-           "outputs", "wheel_load_outputs", "lateral_load_transfer"]
+__all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate",
+           "derivatives", "outputs", "axle_slips", "axle_forces", "axle_loads", "wheel_load_outputs",
+           "lateral_load_transfer"]
 
 STATES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y", "yaw_angle", "front_wheel_speed",
           "rear_wheel_speed", "front_lateral_deflection", "rear_lateral_deflection", "front_longitudinal_deflection",
@@ -60,13 +61,14 @@ Evaluation = namedtuple("Evaluation", (
     "front_lateral_force", "front_slip_angle", "front_slip_ratio", "rear_longitudinal_force", "rear_lateral_force",
     "rear_slip_angle", "rear_slip_ratio", "front_normal_load", "rear_normal_load", "front_vx", "front_vy",
     "rear_vx", "rear_vy", "front_lateral_deflection_rate", "rear_lateral_deflection_rate",
-    "front_longitudinal_deflection_rate", "rear_longitudinal_deflection_rate", "front_load_transfer",
-    "rear_load_transfer"))
+    "front_longitudinal_deflection_rate", "rear_longitudinal_deflection_rate", "front_rolling_moment",
+    "rear_rolling_moment", "front_load_transfer", "rear_load_transfer"))
 Evaluation.__doc__ = """Accelerations of the CG (du/dt - v r, dv/dt + u r [m/s^2], dr/dt [rad/s^2]), axle forces
 in SAE wheel axes [N], the slips acting in the laws (SAE slip angle [rad], slip ratio [-]), normal
 loads [N], the wheel-centre velocities in wheel axes [m/s], the tire deflection rates [m/s] (0 without
-tire lag) and the lateral load transfer of each axle [N] (load onto its left wheel, which carries
-F_z / 2 + dF_z; 0 without lateral load transfer)."""
+tire lag), the axles' rolling-resistance moments M_y [N*m] (ISO-W: about the axis of forward spin,
+negative rolling forwards; 0 in force mode, where no wheel spins) and the lateral load transfer of
+each axle [N] (load onto its left wheel, which carries F_z / 2 + dF_z; 0 without lateral load transfer)."""
 
 
 class NUMPY(NumpyOps):
@@ -81,6 +83,11 @@ class NUMPY(NumpyOps):
     def axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
         """ISO-W axle forces (fx, fy) [N] of ``axle`` (0 front, 1 rear) from ISO-W slips."""
         return tires.axle_law_forces(axle, fz, kappa, alpha, vx)
+
+    @staticmethod
+    def axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
+        """ISO-W axle forces and rolling-resistance moment (fx, fy, my) [N, N, N*m] of ``axle``."""
+        return tires.axle_law_loads(axle, fz, kappa, alpha, vx)
 
 
 def _at(values, i):
@@ -127,10 +134,9 @@ def limit_deflection_rate(xp, rate, slip, peak):
     return xp.where(rate * slip > 0, rate * room, rate)
 
 
-def axle_forces(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection,
-                lateral_rate, longitudinal_rate, lateral_length, longitudinal_length, peak_slip_ratio,
-                peak_tan_slip_angle, force_demand):
-    """Axle forces (fx, fy) in SAE wheel axes [N] and the slips (alpha SAE [rad], kappa [-]) at load ``fz``.
+def axle_slips(xp, k, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection, lateral_rate,
+               longitudinal_rate, lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle):
+    """The slips acting in an axle's law: (alpha SAE [rad], kappa [-], sign of vx, |vx| [m/s]).
 
     With tire lag the low-speed damping acts on the deflection rates ``lateral_rate``,
     ``longitudinal_rate`` [m/s] (:func:`deflection_rates`): zero in the steady state."""
@@ -155,15 +161,50 @@ def axle_forces(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection,
             kappa = -vsx / (direction * regularized_speed(xp, vx))
     else:
         kappa = 0.0 * alpha
+    return alpha, kappa, direction, speed
+
+
+def demanded_forces(xp, k, fz, fx, fy, force_demand):
+    """Force mode (no wheel spin): F_x the demand clipped at mu F_z, F_y of the law reduced by the
+    friction ellipse."""
+    limit = k.friction_coefficient * xp.maximum(fz, 0.0)
+    fx = xp.minimum(xp.maximum(force_demand, -limit), limit)
+    safe = xp.where(limit > 0, limit, 1.0)
+    return fx, fy * xp.sqrt(xp.maximum(1.0 - (fx / safe) ** 2, 0.0))
+
+
+def axle_forces(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection,
+                lateral_rate, longitudinal_rate, lateral_length, longitudinal_length, peak_slip_ratio,
+                peak_tan_slip_angle, force_demand):
+    """Axle forces (fx, fy) in SAE wheel axes [N] and the slips (alpha SAE [rad], kappa [-]) at load ``fz``
+    (slips: :func:`axle_slips`; the law: ``xp.axle_tire_forces``)."""
+    alpha, kappa, direction, speed = axle_slips(
+        xp, k, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection, lateral_rate, longitudinal_rate,
+        lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle)
     kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
     fx_iso, fy_iso = xp.axle_tire_forces(tires, axle, fz, kappa_iso, alpha_iso, direction * xp.maximum(speed, 1e-3))
     fx, fy = planar_tire_forces_iso_w_to_sae(fx_iso, fy_iso)
-    if not k.wheel_spin:  # force mode: the demand, clipped by friction; the friction ellipse on F_y
-        limit = k.friction_coefficient * xp.maximum(fz, 0.0)
-        fx = xp.minimum(xp.maximum(force_demand, -limit), limit)
-        safe = xp.where(limit > 0, limit, 1.0)
-        fy = fy * xp.sqrt(xp.maximum(1.0 - (fx / safe) ** 2, 0.0))
+    if not k.wheel_spin:
+        fx, fy = demanded_forces(xp, k, fz, fx, fy, force_demand)
     return fx, fy, alpha, kappa
+
+
+def axle_loads(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection,
+               lateral_rate, longitudinal_rate, lateral_length, longitudinal_length, peak_slip_ratio,
+               peak_tan_slip_angle, force_demand):
+    """:func:`axle_forces` and the axle's rolling-resistance moment M_y [N*m] (ISO-W, about the axis
+    of forward spin; 0 in force mode), from one evaluation of the law (``xp.axle_tire_loads``)."""
+    alpha, kappa, direction, speed = axle_slips(
+        xp, k, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection, lateral_rate, longitudinal_rate,
+        lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle)
+    kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
+    fx_iso, fy_iso, my = xp.axle_tire_loads(tires, axle, fz, kappa_iso, alpha_iso,
+                                            direction * xp.maximum(speed, 1e-3))
+    fx, fy = planar_tire_forces_iso_w_to_sae(fx_iso, fy_iso)
+    if not k.wheel_spin:
+        fx, fy = demanded_forces(xp, k, fz, fx, fy, force_demand)
+        my = 0.0 * my
+    return fx, fy, alpha, kappa, my
 
 
 def normal_loads(xp, k, x_force, front_lift, rear_lift):
@@ -197,10 +238,12 @@ def lateral_load_transfer(xp, k, front_lateral, rear_lateral, front_load, rear_l
 
 
 def wheel_pair(left, right):
-    """The forces and slips of an axle whose two wheels carry different loads: ``left``, ``right``
-    are :func:`axle_forces` at axle loads F_z +- 2 dF_z (each: two wheels at F_z / 2 +- dF_z), so
-    their mean is the sum of one wheel at each load; the slips are the same on both sides."""
-    return 0.5 * (left[0] + right[0]), 0.5 * (left[1] + right[1]), left[2], left[3]
+    """The forces, slips and rolling moment of an axle whose two wheels carry different loads:
+    ``left``, ``right`` are :func:`axle_loads` at axle loads F_z +- 2 dF_z (each: two wheels at
+    F_z / 2 +- dF_z), so their mean is the sum of one wheel at each load; the slips are the same on
+    both sides."""
+    return (0.5 * (left[0] + right[0]), 0.5 * (left[1] + right[1]), left[2], left[3],
+            0.5 * (left[4] + right[4]))
 
 
 def evaluate(xp, tires, k, states, inputs):
@@ -219,16 +262,16 @@ def evaluate(xp, tires, k, states, inputs):
     rates = deflection_rates(xp, k, vxf, vyf, vxr, vyr, states)
 
     def front_axle(fz):
-        return axle_forces(xp, tires, 0, k, fz, vxf, vyf, front_wheel_speed, front_lateral_deflection,
-                           front_longitudinal_deflection, rates[0], rates[2], k.front_lateral_relaxation_length,
-                           k.front_longitudinal_relaxation_length, k.front_peak_slip_ratio,
-                           k.front_peak_tan_slip_angle, front_force)
+        return axle_loads(xp, tires, 0, k, fz, vxf, vyf, front_wheel_speed, front_lateral_deflection,
+                          front_longitudinal_deflection, rates[0], rates[2], k.front_lateral_relaxation_length,
+                          k.front_longitudinal_relaxation_length, k.front_peak_slip_ratio,
+                          k.front_peak_tan_slip_angle, front_force)
 
     def rear_axle(fz):
-        return axle_forces(xp, tires, 1, k, fz, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
-                           rear_longitudinal_deflection, rates[1], rates[3], k.rear_lateral_relaxation_length,
-                           k.rear_longitudinal_relaxation_length, k.rear_peak_slip_ratio,
-                           k.rear_peak_tan_slip_angle, rear_force)
+        return axle_loads(xp, tires, 1, k, fz, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
+                          rear_longitudinal_deflection, rates[1], rates[3], k.rear_lateral_relaxation_length,
+                          k.rear_longitudinal_relaxation_length, k.rear_peak_slip_ratio,
+                          k.rear_peak_tan_slip_angle, rear_force)
 
     # with lateral load transfer the left wheel carries fz / 2 + shift, the right fz / 2 - shift
     def front(fz, shift):
@@ -277,7 +320,7 @@ def evaluate(xp, tires, k, states, inputs):
     drag = k.drag_factor * lon * xp.abs(lon)
     return Evaluation((fx_body - drag) / k.mass, (front_lateral + rear_lateral + external_force) / k.mass,
                       moment / k.yaw_inertia, f[0], f[1], f[2], f[3], r[0], r[1], r[2], r[3], fz_f, fz_r,
-                      vxf, vyf, vxr, vyr, rates[0], rates[1], rates[2], rates[3], shift_f, shift_r)
+                      vxf, vyf, vxr, vyr, rates[0], rates[1], rates[2], rates[3], f[4], r[4], shift_f, shift_r)
 
 
 def deflection_rates(xp, k, front_vx, front_vy, rear_vx, rear_vy, states):
@@ -312,10 +355,10 @@ def derivatives(xp, k, e, states, inputs):
     d_front_wheel = d_rear_wheel = zero
     if k.wheel_spin:
         inertia = 2.0 * k.wheel_spin_inertia
-        d_front_wheel = net_wheel_torque(xp, k, front_wheel_speed, front_drive, front_brake,
-                                         e.front_longitudinal_force) / inertia
-        d_rear_wheel = net_wheel_torque(xp, k, rear_wheel_speed, rear_drive, rear_brake,
-                                        e.rear_longitudinal_force) / inertia
+        d_front_wheel = (net_wheel_torque(xp, k, front_wheel_speed, front_drive, front_brake,
+                                          e.front_longitudinal_force) + e.front_rolling_moment) / inertia
+        d_rear_wheel = (net_wheel_torque(xp, k, rear_wheel_speed, rear_drive, rear_brake,
+                                         e.rear_longitudinal_force) + e.rear_rolling_moment) / inertia
     return (e.longitudinal_acceleration + lat * yaw_rate, e.lateral_acceleration - lon * yaw_rate,
             e.yaw_acceleration, lon * cpsi - lat * spsi, lon * spsi + lat * cpsi, yaw_rate, d_front_wheel,
             d_rear_wheel, e.front_lateral_deflection_rate, e.rear_lateral_deflection_rate,

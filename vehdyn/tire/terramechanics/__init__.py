@@ -20,6 +20,15 @@ Curves (CLI ``vehdyn tire --soil NAME``, the off-road study)
     module ``curves``: ``soil_curves``, ``describe_soil``, ``plot_soil_curves``
 
 Slip ``s`` in [-1, 1]: ``1 - V / (r omega)`` driven, ``r omega / V - 1`` braked (skid).
+
+Validation
+----------
+The tests check the Wong-Reece quadrature against adaptive quadrature and against Bekker's closed
+forms where their assumptions hold, the Coulomb limit of the drawbar pull, the flexible tire's
+elastic mode against its closed forms, a SingleTrack coast-down on soil against the towed tires'
+compaction resistance, and the shipped soils against an independent transcription of Wong's table.
+Not yet against measured drawbar pull, sinkage or torque: no measured data set together with the
+soil parameters of the same test (Wong and Reece 1967; Ding et al. 2011) was at hand.
 """
 
 from .bekker import (bekker_pressure, bulldozing_resistance, compaction_resistance, parabolic_wheel_sinkage,

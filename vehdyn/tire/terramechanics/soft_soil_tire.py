@@ -13,10 +13,11 @@ Slip mapping (ISO-W slip ratio ``kappa = (omega r - V) / V`` to the terramechani
 wheel), signed with the rolling direction like the road laws; ``F_y`` the side force of the
 flexible wheel (ISO-W: negative for a positive slip angle). The rolling-resistance moment
 ``M_y = r F_x - T`` (T the soil's torque on the wheel, so that ``-T = -r F_x + M_y``; <= 0 rolling
-forwards, like the Magic Formula's) carries the part of the soil torque that ``F_x r`` does not:
-a vehicle model that closes the wheel-spin balance with ``F_x r`` alone sees a free-rolling wheel
-settle at zero drawbar pull and misses that moment (the motion resistance of a driven wheel still
-acts on the vehicle through ``F_x``). ``M_x = M_z = 0``. :meth:`SoftSoilTire.evaluate` gives sinkage,
+forwards, like the Magic Formula's) carries the part of the soil torque that ``F_x r`` does not.
+:class:`~vehdyn.handling.SingleTrack` closes its wheel-spin balance with it
+(``2 I_w d(omega)/dt = T_drive - ... - R_e F_x + M_y``), so that with ``R_e = r`` a free-rolling wheel
+settles at zero soil torque, the towed wheel, and the vehicle feels its motion resistance; a model
+that used ``F_x r`` alone would let a free-rolling wheel settle at zero drawbar pull instead. ``M_x = M_z = 0``. :meth:`SoftSoilTire.evaluate` gives sinkage,
 motion resistance, torque, mode and the stuck status.
 
 Inputs that are not finite give NaN at those points, as for every tire law (:mod:`vehdyn.tire.base`):
