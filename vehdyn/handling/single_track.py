@@ -45,9 +45,14 @@ F_y,f = m a_y b / L), t_i the track, z_i the roll-centre height, K_i the suspens
 (springs and anti-roll bar, :attr:`vehdyn.Vehicle.front_roll_stiffness`), h_1 the CG height above
 the roll axis (whole mass on the roll axis: the unsprung masses' own transfer is neglected) and
 positive dF_z onto the left wheels (SAE: F_y > 0 turns right). The roll moment of a crosswind is
-taken as acting at the CG height. The transfer is iterated with the forces (two fixed-point passes
-from none, after the longitudinal passes with wheel spin); an inner wheel that would lift carries
-0. No roll degree of freedom: the transfer follows the forces without the roll mode's lag, and
+taken as acting at the CG height. The forces take the transfer of the steady turn at the present
+yaw rate (side forces m u r b / L and m u r a / L, exact in a steady turn; in a transient it
+follows the yaw rate, not the forces); with wheel spin it is then updated with the forces along the
+two fixed-point passes of the longitudinal transfer; the outputs show the transfer of the final
+forces. One evaluation of the law per wheel (force mode), so the cost is about that without the
+transfer. An inner wheel that would lift carries 0. The
+right tire of an axle is the left one's mirror image when the law has ply steer (as without the
+transfer). No roll degree of freedom: the transfer follows the forces without the roll mode's lag, and
 roll steer and camber are absent. With wheel spin the axle's two wheels share one spin state.
 
 An axle whose load would become negative (the vehicle would tip over that axle) is held at zero
@@ -556,6 +561,22 @@ class SingleTrack(Model):
             return both.fx[0] + both.fx[1], both.fy[0] - both.fy[1], both.my[0] + both.my[1]
         f = tire.forces(load, kap, alp, 0.0, vx)
         return 2.0 * f.fx, 2.0 * f.fy, 2.0 * f.my
+
+    def wheel_pair_law_loads(self, axle, left_load, right_load, kappa, alpha, vx):
+        """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N].
+
+        The right tire is the left's mirror image when the law has ply steer (see
+        :meth:`axle_law_loads`): (F_x, -F_y, M_y) of the law at -alpha."""
+        tire = self.front_tire if axle == 0 else self.rear_tire
+        mirror = -1.0 if self._mirrored[_AXLES[axle]] else 1.0
+        if all(np.ndim(v) == 0 for v in (left_load, right_load, kappa, alpha, vx)):
+            f = tire.forces(float(left_load), float(kappa), float(alpha), 0.0, float(vx))
+            g = tire.forces(float(right_load), float(kappa), mirror * float(alpha), 0.0, float(vx))
+            return f.fx, f.fy, f.my, g.fx, mirror * g.fy, g.my
+        both = tire.forces(np.stack(np.broadcast_arrays(left_load, right_load)),
+                           np.stack(np.broadcast_arrays(kappa, kappa)),
+                           np.stack(np.broadcast_arrays(alpha, mirror * alpha)), 0.0, np.stack(np.broadcast_arrays(vx, vx)))
+        return both.fx[0], both.fy[0], both.my[0], both.fx[1], mirror * both.fy[1], both.my[1]
 
     @staticmethod
     def _needs_mirror(tire, load) -> bool:

@@ -27,7 +27,7 @@ from ..tire._mf_ops import NumpyOps
 from .crosswind import aero_side_force
 
 __all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate",
-           "derivatives", "outputs", "axle_slips", "axle_forces", "axle_loads", "wheel_load_outputs",
+           "derivatives", "outputs", "axle_slips", "axle_forces", "axle_loads", "wheel_pair_loads", "wheel_load_outputs",
            "lateral_load_transfer"]
 
 STATES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y", "yaw_angle", "front_wheel_speed",
@@ -88,6 +88,11 @@ class NUMPY(NumpyOps):
     def axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
         """ISO-W axle forces and rolling-resistance moment (fx, fy, my) [N, N, N*m] of ``axle``."""
         return tires.axle_law_loads(axle, fz, kappa, alpha, vx)
+
+    @staticmethod
+    def wheel_pair_tire_loads(tires, axle, left_load, right_load, kappa, alpha, vx):
+        """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N]."""
+        return tires.wheel_pair_law_loads(axle, left_load, right_load, kappa, alpha, vx)
 
 
 def _at(values, i):
@@ -237,13 +242,28 @@ def lateral_load_transfer(xp, k, front_lateral, rear_lateral, front_load, rear_l
             xp.minimum(xp.maximum(rear, -rear_half), rear_half))
 
 
-def wheel_pair(left, right):
-    """The forces, slips and rolling moment of an axle whose two wheels carry different loads:
-    ``left``, ``right`` are :func:`axle_loads` at axle loads F_z +- 2 dF_z (each: two wheels at
-    F_z / 2 +- dF_z), so their mean is the sum of one wheel at each load; the slips are the same on
-    both sides."""
-    return (0.5 * (left[0] + right[0]), 0.5 * (left[1] + right[1]), left[2], left[3],
-            0.5 * (left[4] + right[4]))
+def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral_deflection,
+                     longitudinal_deflection, lateral_rate, longitudinal_rate, lateral_length, longitudinal_length,
+                     peak_slip_ratio, peak_tan_slip_angle, force_demand):
+    """:func:`axle_loads` of an axle whose left wheel carries F_z / 2 + ``shift`` and right wheel
+    F_z / 2 - ``shift`` [N]: each wheel's law at its own load (``xp.wheel_pair_tire_loads``); in
+    force mode each wheel takes half the demand, clipped at mu times its load, and its own
+    friction ellipse."""
+    alpha, kappa, direction, speed = axle_slips(
+        xp, k, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection, lateral_rate, longitudinal_rate,
+        lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle)
+    kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
+    left_load, right_load = 0.5 * fz + shift, 0.5 * fz - shift
+    w = xp.wheel_pair_tire_loads(tires, axle, left_load, right_load, kappa_iso, alpha_iso,
+                                 direction * xp.maximum(speed, 1e-3))
+    fx_left, fy_left = planar_tire_forces_iso_w_to_sae(w[0], w[1])
+    fx_right, fy_right = planar_tire_forces_iso_w_to_sae(w[3], w[4])
+    my = w[2] + w[5]
+    if not k.wheel_spin:
+        fx_left, fy_left = demanded_forces(xp, k, left_load, fx_left, fy_left, 0.5 * force_demand)
+        fx_right, fy_right = demanded_forces(xp, k, right_load, fx_right, fy_right, 0.5 * force_demand)
+        my = 0.0 * my
+    return fx_left + fx_right, fy_left + fy_right, alpha, kappa, my
 
 
 def evaluate(xp, tires, k, states, inputs):
@@ -276,12 +296,18 @@ def evaluate(xp, tires, k, states, inputs):
     # with lateral load transfer the left wheel carries fz / 2 + shift, the right fz / 2 - shift
     def front(fz, shift):
         if k.lateral_load_transfer:
-            return wheel_pair(front_axle(fz + 2.0 * shift), front_axle(fz - 2.0 * shift))
+            return wheel_pair_loads(xp, tires, 0, k, fz, shift, vxf, vyf, front_wheel_speed, front_lateral_deflection,
+                                    front_longitudinal_deflection, rates[0], rates[2],
+                                    k.front_lateral_relaxation_length, k.front_longitudinal_relaxation_length,
+                                    k.front_peak_slip_ratio, k.front_peak_tan_slip_angle, front_force)
         return front_axle(fz)
 
     def rear(fz, shift):
         if k.lateral_load_transfer:
-            return wheel_pair(rear_axle(fz + 2.0 * shift), rear_axle(fz - 2.0 * shift))
+            return wheel_pair_loads(xp, tires, 1, k, fz, shift, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
+                                    rear_longitudinal_deflection, rates[1], rates[3],
+                                    k.rear_lateral_relaxation_length, k.rear_longitudinal_relaxation_length,
+                                    k.rear_peak_slip_ratio, k.rear_peak_tan_slip_angle, rear_force)
         return rear_axle(fz)
 
     def transfer(f, r, fz_f, fz_r):
@@ -290,11 +316,15 @@ def evaluate(xp, tires, k, states, inputs):
     # quasi-static load transfer: the forces depend on the loads and the loads on the forces.
     # Longitudinal: with force inputs the dependence is explicit, with wheel spin two fixed-point
     # passes from the static loads: the iteration contracts by about mu h / L (~0.2), so the load
-    # transfer is within (mu h / L)^2 ~ 4 % of its converged value. Lateral: two passes from no
-    # transfer; the side force changes with the transfer only through the load sensitivity, by a
-    # fraction e quadratic in the transfer, so the pass contracts by about 2 e and the final
-    # forces are within about 4 e^3 of the converged ones (e ~ 0.05 at 0.6 g: 5e-4).
+    # transfer is within (mu h / L)^2 ~ 4 % of its converged value. Lateral: from the transfer of
+    # the steady turn at the present yaw rate (side forces m u r b / L and m u r a / L: exact in a
+    # steady turn), with wheel spin updated along the two longitudinal passes; in force mode the
+    # forces take one evaluation of the law at each wheel's load.
     shift_f = shift_r = 0.0 * lon
+    if k.lateral_load_transfer:
+        turn = k.mass * lon * yaw_rate / (k.a + k.b)
+        fz_f, fz_r = normal_loads(xp, k, front_force * cf + rear_force * cr, front_lift, rear_lift)
+        shift_f, shift_r = lateral_load_transfer(xp, k, turn * k.b, turn * k.a, fz_f, fz_r)
     if k.wheel_spin:
         weight, wheelbase = k.mass * k.gravity, k.a + k.b
         fz_f, fz_r = weight * k.b / wheelbase - front_lift, weight * k.a / wheelbase - rear_lift
@@ -305,10 +335,6 @@ def evaluate(xp, tires, k, states, inputs):
                 shift_f, shift_r = transfer(f, r, fz_f, fz_r)
     else:
         fz_f, fz_r = normal_loads(xp, k, front_force * cf + rear_force * cr, front_lift, rear_lift)
-        if k.lateral_load_transfer:
-            for _ in range(2):
-                f, r = front(fz_f, shift_f), rear(fz_r, shift_r)
-                shift_f, shift_r = transfer(f, r, fz_f, fz_r)
     f, r = front(fz_f, shift_f), rear(fz_r, shift_r)
     if k.lateral_load_transfer:  # the transfer of the final forces (shown in the outputs)
         shift_f, shift_r = transfer(f, r, fz_f, fz_r)
