@@ -145,9 +145,10 @@ COST_PER_SIMULATED_SECOND = {
     "SingleTrack(linear tires)": 3.4e-4,
     "SingleTrack": 9.2e-4,
     # with the lateral load transfer: one law evaluation per wheel, as without it; bench_ladder
-    # (sedan, compact, van, best of 2, one run): median 1.28e-3 s/s against SingleTrack's 1.16e-3
-    # in the same run (1.10x; a 4 s sine steer of the sedan, CPU time best of 5: 1.05x)
-    "SingleTrack+LLT": 1.0e-3,
+    # (sedan, compact, van, one run each, median over the scenes): 1.28e-3 s/s against
+    # SingleTrack's 1.16e-3 (best of 2, 1.10x), 1.72e-3 against 1.38e-3 (best of 3, 1.25x) on the
+    # shared machine; a 4 s sine steer of the sedan, CPU time best of 5: 1.05x. 1.17x SingleTrack's
+    "SingleTrack+LLT": 1.08e-3,
     "QuarterCar": 1.9e-4,
     "BouncePitch": 1.8e-4,
     "FullCar": 3.2e-4,
