@@ -45,8 +45,9 @@ def test_steady_turn_transfer_equals_the_closed_form(steady_turn):
     assert y["rear_left_normal_load"] - 0.5 * y["rear_normal_load"] == pytest.approx(rear, rel=1e-3)
     # a right turn (SAE) loads the left (outer) wheels; each axle keeps its load
     assert front > 0 and rear > 0
-    assert y["front_left_normal_load"] + y["front_right_normal_load"] == pytest.approx(y["front_normal_load"], rel=1e-12)
-    assert y["rear_left_normal_load"] + y["rear_right_normal_load"] == pytest.approx(y["rear_normal_load"], rel=1e-12)
+    for axle in ("front", "rear"):
+        total = y[f"{axle}_left_normal_load"] + y[f"{axle}_right_normal_load"]
+        assert total == pytest.approx(y[f"{axle}_normal_load"], rel=1e-12)
 
 
 @pytest.mark.parametrize("nominal_load", [None, 3000.0])

@@ -161,7 +161,8 @@ def compiled_model(model) -> CompiledModel:
                              f"({model.n_variants} variants): use backend='numpy'", key="variants",
                              value=model.n_variants)
     k = model._constants()
-    k = k._replace(**{name: float(getattr(k, name)) for name in k._fields if name not in ("wheel_spin", "tire_lag", "lateral_load_transfer")})
+    flags = ("wheel_spin", "tire_lag", "lateral_load_transfer")
+    k = k._replace(**{name: float(getattr(k, name)) for name in k._fields if name not in flags})
     tires = (tire_law(model.front_tire, model._mirrored["front"], "front"),
              tire_law(model.rear_tire, model._mirrored["rear"], "rear"))
     rhs, output, key = compiled_functions()

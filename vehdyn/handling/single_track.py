@@ -575,7 +575,8 @@ class SingleTrack(Model):
             return f.fx, f.fy, f.my, g.fx, mirror * g.fy, g.my
         both = tire.forces(np.stack(np.broadcast_arrays(left_load, right_load)),
                            np.stack(np.broadcast_arrays(kappa, kappa)),
-                           np.stack(np.broadcast_arrays(alpha, mirror * alpha)), 0.0, np.stack(np.broadcast_arrays(vx, vx)))
+                           np.stack(np.broadcast_arrays(alpha, mirror * alpha)), 0.0,
+                           np.stack(np.broadcast_arrays(vx, vx)))
         return both.fx[0], both.fy[0], both.my[0], both.fx[1], mirror * both.fy[1], both.my[1]
 
     @staticmethod

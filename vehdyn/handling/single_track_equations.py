@@ -27,8 +27,8 @@ from ..tire._mf_ops import NumpyOps
 from .crosswind import aero_side_force
 
 __all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate",
-           "derivatives", "outputs", "axle_slips", "axle_forces", "axle_loads", "wheel_pair_loads", "wheel_load_outputs",
-           "lateral_load_transfer"]
+           "derivatives", "outputs", "axle_slips", "axle_forces", "axle_loads", "wheel_pair_loads",
+           "wheel_load_outputs", "lateral_load_transfer"]
 
 STATES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y", "yaw_angle", "front_wheel_speed",
           "rear_wheel_speed", "front_lateral_deflection", "rear_lateral_deflection", "front_longitudinal_deflection",
@@ -48,8 +48,8 @@ Constants = namedtuple("Constants", (
     "rear_longitudinal_relaxation_length", "drag_factor", "front_lift_factor", "rear_lift_factor", "gravity",
     "low_speed_damping_speed", "brake_regularization_speed", "front_peak_slip_ratio", "front_peak_tan_slip_angle",
     "rear_peak_slip_ratio", "rear_peak_tan_slip_angle", "wind_side_force_factor", "centre_of_pressure", "wheel_spin",
-    "tire_lag", "front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer", "rear_elastic_transfer",
-    "lateral_load_transfer"))
+    "tire_lag", "front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer",
+    "rear_elastic_transfer", "lateral_load_transfer"))
 Constants.__doc__ = """What the equations read: the fields of :class:`SingleTrackParameters` (floats, or arrays
 across batch variants on numpy), the model's options and the peak-force slips of the two laws
 (the limits of the tire deflections); ``wheel_spin``, ``tire_lag`` and ``lateral_load_transfer`` are

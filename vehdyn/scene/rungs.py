@@ -494,7 +494,8 @@ for _rung in (
          description="nonlinear planar, the vehicle's Magic Formula tires"),
     Rung("SingleTrack+LLT", "vehdyn.handling.single_track:SingleTrack", "handling", 60, build_single_track,
          options={"lateral_load_transfer": True},
-         description="nonlinear planar, Magic Formula tires at the wheel loads of the quasi-static lateral load transfer"),
+         description="nonlinear planar, Magic Formula tires at the wheel loads of the quasi-static lateral "
+                     "load transfer"),
     Rung("QuarterCar", "vehdyn.ride.quarter_car:QuarterCar", "ride", 10, build_quarter_car, linear=True,
          description="front and rear quarter cars, mean track"),
     Rung("BouncePitch", "vehdyn.ride.bounce_pitch:BouncePitch", "ride", 20, build_bounce_pitch, linear=True,
