@@ -13,11 +13,17 @@ Steerability: on mu 0.5 the preview driver (vehdyn.handling.DriverInTheLoop) fol
 (a smooth step over the friction-limited stopping distance) while the car brakes fully. With ABS the wheels keep rolling near the peak slip and keep
 side force: the car follows the path. Without ABS the front wheels lock, the front axle has no
 side force left and the car slides straight on whatever the driver does.
+
+Every run is compiled (numba): the closed loop of car and ABS (vehdyn.chassis.ClosedLoop) and the
+driver around it (DriverInTheLoop) have compiled right-hand sides, so the stops from 100 km/h and
+the swerve from 80 km/h take about a second together (numpy: about 2 minutes; without numba the
+study brakes from 40 km/h and swerves at 50 km/h unless run with --full).
 """
 
 import numpy as np
 
 import vehdyn
+from vehdyn._compiled_ode import numba_available
 from vehdyn.chassis import ABS, ClosedLoop, road_friction_tire
 from vehdyn.handling import DriverInTheLoop, PreviewDriver, SingleTrack
 from vehdyn.plotting import new_figure
@@ -74,7 +80,8 @@ def run(study: Study) -> None:
     import pandas as pd
 
     car = vehdyn.load_vehicle("sedan")
-    speed = float(vehdyn.units.kmh_to_ms(40.0 if not study.full else 100.0))
+    heavy = study.full or numba_available()  # the numpy loops take minutes from 100 km/h
+    speed = float(vehdyn.units.kmh_to_ms(100.0 if heavy else 40.0))
     demand = panic_demand(car)
     rows = []
     fig, axes = new_figure(2, 1, height_per_row=2.8)
@@ -103,7 +110,7 @@ def run(study: Study) -> None:
     study.table(frame, "stopping", caption="Stopping distance, MFDD and mean deceleration (v0 / t_stop)")
 
     # steerability: full braking through a swerve on mu 0.5
-    mu, speed = 0.5, float(vehdyn.units.kmh_to_ms(50.0 if not study.full else 80.0))
+    mu, speed = 0.5, float(vehdyn.units.kmh_to_ms(80.0 if heavy else 50.0))
     plant = plant_on(car, mu)
     path_x = np.linspace(-10.0, 200.0, 421)
     start, length = 2.0, speed**2 / (2 * mu * G)  # the swerve takes the whole friction-limited stopping distance

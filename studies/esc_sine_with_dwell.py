@@ -1,19 +1,25 @@
-"""FMVSS 126 compliance of the shipped passenger cars with and without ESC.
+"""FMVSS 126 compliance of the shipped passenger cars with and without ESC, on two vehicle models.
 
 vehdyn.handling.fmvss126 runs the sine-with-dwell series of 49 CFR 571.126 S7.9 on each car's
-nonlinear single-track model at 80 km/h: amplitudes from 1.5 A in steps of 0.5 A up to the greater
+nonlinear single-track model and on its full vehicle model (vehdyn.full_vehicle.FullVehicle: roll,
+lateral load transfer, four wheels) at 80 km/h: amplitudes from 1.5 A in steps of 0.5 A up to the greater
 of 6.5 A and 270 degrees of hand-wheel angle, steered counter-clockwise and clockwise, and checks
 S5.2: the yaw rate 1.00 s and 1.75 s after completion of steer within 35 % and 20 % of its peak,
 and for runs of 5 A or more a lateral displacement of at least 1.83 m 1.07 s after the beginning of
 steer. Each car runs alone and with vehdyn.chassis.ESC (yaw-rate reference of the linear bicycle
-limited by mu g / u, one-wheel braking as a yaw moment, sideslip guard), closed around the model by
-vehdyn.chassis.ClosedLoop. A single-track model has no roll and no lateral load transfer: the
-results describe the model, not a certification. Quick mode runs 5 A and 6.5 A, clockwise only.
+limited by mu g / u, sideslip guard) closed around the model by vehdyn.chassis.ClosedLoop: on the
+single track one-wheel braking enters as a yaw moment and an axle force, on the full vehicle the
+ESC brakes the wheel itself (ESC(car, corners=True)). The results describe the models, not a
+certification. Every run is compiled (numba), controller included. The complete series runs on the
+single track; on the full vehicle the 5 A and 6.5 A runs (both directions) by default and the
+complete series with --full. (Without numba the runs are numpy batches: then the single track runs
+only the 5 A and 6.5 A runs and the full vehicle none, unless --full.)
 """
 
 import numpy as np
 
 import vehdyn
+from vehdyn._compiled_ode import numba_available
 from vehdyn.chassis import ESC, ClosedLoop
 from vehdyn.handling import SingleTrack, fmvss126, sine_with_dwell, steady_state_cornering
 from vehdyn.plotting import new_figure
@@ -25,34 +31,43 @@ G = vehdyn.units.GRAVITY
 def run(study: Study) -> None:
     import pandas as pd
 
-    # the complete series with ESC (about 30 numpy-batched runs per car) only with --full
-    options = {} if study.full else dict(amplitude_multiples=[5.0, 6.5], directions=("clockwise",))
+    # the full vehicle's complete series only with --full
+    subset = {} if study.full else dict(amplitude_multiples=[5.0, 6.5])
+    subsets = {"single_track": {} if numba_available() else subset}
+    if numba_available() or study.full:
+        subsets["full_vehicle"] = subset
     frames, verdicts = [], []
-    for name in vehdyn.shipped_vehicles("passenger_car"):
-        car = vehdyn.load_vehicle(name)
-        for controller in (None, ESC(car)):
-            result = fmvss126(car, controller, **options)  # a subset unless --full (see the text)
-            frame = result.to_frame()
-            frame.insert(0, "esc", controller is not None)
-            frame.insert(0, "vehicle", name)
-            frames.append(frame)
-            verdicts.append({"vehicle": name, "esc": controller is not None, "runs": len(result.runs),
-                             "passed": result.passed, "failed_runs": int(sum(not r["passed"] for r in result.runs))})
+    for plant, options in subsets.items():
+        for name in vehdyn.shipped_vehicles("passenger_car"):
+            car = vehdyn.load_vehicle(name)
+            for controller in (None, ESC(car, corners=plant == "full_vehicle")):
+                result = fmvss126(car, controller, plant=plant, **options)
+                frame = result.to_frame()
+                frame.insert(0, "esc", controller is not None)
+                frame.insert(0, "model", plant)
+                frame.insert(0, "vehicle", name)
+                frames.append(frame)
+                verdicts.append({"vehicle": name, "model": plant, "esc": controller is not None,
+                                 "runs": len(result.runs), "passed": result.passed,
+                                 "failed_runs": int(sum(not r["passed"] for r in result.runs))})
     table = pd.concat(frames, ignore_index=True)
     table.attrs["units"] = frames[0].attrs["units"]
-    columns = ["vehicle", "esc", "direction", "amplitude_multiple", "hand_wheel_amplitude_deg", "yaw_rate_ratio_1000ms",
-               "yaw_rate_ratio_1750ms", "lateral_displacement", "passed"]
+    columns = ["vehicle", "model", "esc", "direction", "amplitude_multiple", "hand_wheel_amplitude_deg",
+               "yaw_rate_ratio_1000ms", "yaw_rate_ratio_1750ms", "lateral_displacement", "passed"]
     study.table(table[columns], "runs", caption="Every run of the series (limits 0.35, 0.20, >= 1.83 m from 5 A)")
     summary = pd.DataFrame(verdicts)
-    study.table(summary, "verdict", caption="49 CFR 571.126 S5.2 verdict per car, without and with ESC")
-    if options:
-        study.text("The series here is the 5 A and 6.5 A runs, clockwise (amplitudes where the cars without ESC "
-                   "fail); `vehdyn report --full` runs the complete series (1.5 A to 6.5 A or 270 deg, both "
-                   "directions), without and with ESC.")
-    study.text("Without ESC: " + ", ".join(f"{v['vehicle']} {'passes' if v['passed'] else 'fails'}"
-                                           for v in verdicts if not v["esc"])
-               + ". With ESC: " + ", ".join(f"{v['vehicle']} {'passes' if v['passed'] else 'fails'}"
-                                           for v in verdicts if v["esc"]) + ".")
+    study.table(summary, "verdict", caption="49 CFR 571.126 S5.2 verdict per car and model, without and with ESC")
+    for plant, options in subsets.items():
+        study.text(f"{plant.replace('_', ' ').capitalize()}: "
+                   + ("the 5 A and 6.5 A runs, both directions (amplitudes where the cars without ESC fail; "
+                      "`vehdyn report --full` runs the complete series)." if options else
+                      "the complete series (1.5 A to 6.5 A or 270 deg, both directions)."))
+    for plant in subsets:
+        study.text(f"{plant.replace('_', ' ').capitalize()}, without ESC: "
+                   + ", ".join(f"{v['vehicle']} {'passes' if v['passed'] else 'fails'}"
+                               for v in verdicts if not v["esc"] and v["model"] == plant)
+                   + ". With ESC: " + ", ".join(f"{v['vehicle']} {'passes' if v['passed'] else 'fails'}"
+                                               for v in verdicts if v["esc"] and v["model"] == plant) + ".")
 
     # time histories of the sedan at 6.5 A, alone and with ESC
     car = vehdyn.load_vehicle("sedan")

@@ -258,7 +258,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="report", help="output folder (default: ./report)")
     p.add_argument("--quick", action="store_true", help="small grids (fast; as in CI)")
     p.add_argument("--full", action="store_true",
-                   help="also the heavy series (complete FMVSS 126 with ESC, ...; or VEHDYN_FULL=1)")
+                   help="also the heavy series (complete FMVSS 126 series on the full vehicle, ...; or VEHDYN_FULL=1)")
     p.add_argument("--only", nargs="+", metavar="NAME", help="run only these studies")
     p.add_argument("--studies", default=None, help=argparse.SUPPRESS)
     p.set_defaults(func=cmd_report)

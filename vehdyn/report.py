@@ -82,7 +82,7 @@ class Study:
         Small grids (CI and ``--quick``).
     full : bool
         The heavy series that would take the default report past a few minutes (a complete
-        FMVSS 126 series with ESC on every car, ...): ``vehdyn report --full`` or ``VEHDYN_FULL=1``.
+        FMVSS 126 series on every car's full vehicle, ...): ``vehdyn report --full`` or ``VEHDYN_FULL=1``.
         Without it such a study runs a representative subset and says so.
     """
 

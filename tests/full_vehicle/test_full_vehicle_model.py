@@ -276,3 +276,32 @@ def test_camber_follows_roll_and_travel(sedan, linear_tires):
     upright = FullVehicle(sedan, *linear_tires(sedan))
     y = dict(zip(upright.output_names, upright.output(0.0, x, upright.input_vector())))
     assert all(y[f"camber_angle{s}"] == 0.0 for s in CORNERS)
+
+
+@pytest.mark.parametrize("backend", ["numpy", "compiled"])
+def test_coast_down_decelerates_by_the_rolling_resistance_moment(backend):
+    # As tests/handling/test_single_track.py: MF 5.2 with QSY2 = QSY3 = QSY4 = 0 gives
+    # M_y = -R0 F_z LMY QSY1 per tire, so without drag and lift the four wheels decelerate the car by
+    #   du/dt = -g QSY1 LMY (R0 / R_e) s m / (m + 4 I_w / R_e^2)
+    # whatever the load transfer (the closed form; the pitch settles within the first second);
+    # s = z / sqrt(1 + z^2), z = omega / omega_b: the moment's fade at standstill (1 - 1.1e-4 here).
+    if backend == "compiled":
+        pytest.importorskip("numba")
+    from vehdyn.tire import MagicFormula
+
+    tire = MagicFormula.from_tir(vehdyn.data_path("tires", "MagicFormula52_Parameters.tir"))
+    c = tire._c
+    assert (c.QSY2, c.QSY3, c.QSY4, c.QSY1) == (0.0, 0.0, 0.0, 0.01) and c.is_mf52
+    sedan = vehdyn.load_vehicle("sedan")
+    vehicle = sedan.replace(aero__drag_coefficient=0.0, aero__front_lift_coefficient=0.0,
+                            aero__rear_lift_coefficient=0.0)
+    model = FullVehicle(vehicle, tire, tire, tire_lag=False)
+    x0, u0 = model.trim(20.0)
+    inputs = {name: (0.0 if name.startswith("drive_torque") else value) for name, value in zip(model.input_names, u0)}
+    t = np.linspace(0.0, 3.0, 31)
+    r = vehdyn.simulate(model, t, inputs, x0=x0, method="DOP853", rtol=1e-10, atol=1e-10, backend=backend)
+    radius, inertia, mass = vehicle.tires.rolling_radius, vehicle.tires.wheel_spin_inertia, vehicle.mass.mass
+    z = r["longitudinal_velocity"] / radius / model.brake_regularization_speed
+    fade = z / np.sqrt(1.0 + z * z)
+    expected = -GRAVITY * c.QSY1 * c.LMY * c.UNLOADED_RADIUS / radius * mass / (mass + 4.0 * inertia / radius**2)
+    assert np.allclose(r["longitudinal_acceleration"][15:], expected * fade[15:], rtol=3e-4)

@@ -5,8 +5,10 @@
 :class:`ESC` (yaw-rate control by one-wheel braking with a sideslip guard) are :class:`~vehdyn.Model`
 objects with named states, built from a :class:`~vehdyn.Vehicle` plus keyword gains. One helper,
 :class:`ClosedLoop`, wraps a controller around a plant by signal names (it simulates, linearizes
-and nests: ESC around ABS around the car). :func:`road_friction_tire` puts a Magic Formula tire on
-a road of other friction.
+and nests: ESC around ABS around the car) and, when the plant and the controller have compiled
+forms (the SingleTrack and FullVehicle with their compiled tire laws; these three controllers),
+compiles with numba for ``simulate(..., backend="compiled"/"auto")``. :func:`road_friction_tire`
+puts a Magic Formula tire on a road of other friction.
 """
 
 from .abs import ABS

@@ -24,6 +24,8 @@ mode. The slip uses the true forward speed u (a production ABS estimates it from
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numpy as np
 
 from ..errors import ParameterError
@@ -31,9 +33,33 @@ from ..params import Vehicle
 from ..signals import Signal
 from .closed_loop import ChassisController, channel_signals, check_gains, check_vehicle, sigmoid
 
-__all__ = ["ABS"]
+__all__ = ["ABS", "ABSGains", "braking_slip", "torque_rate"]
 
 _AXLES = ("front", "rear")
+
+ABSGains = namedtuple("ABSGains", ("rolling_radius", "apply_slip", "release_slip", "slip_width", "apply_time_constant",
+                                   "release_time_constant", "cutoff_speed", "minimum_speed"))
+ABSGains.__doc__ = """The numbers of the ABS law (SI): R_e, lambda_apply, lambda_release, w, tau_apply,
+tau_release, v_off, u_min (see :class:`ABS`)."""
+
+
+def braking_slip(p, wheel_speed, speed):
+    """lambda = (u - omega R_e) / max(u, u_min) [-] (positive braking); ``p`` an :data:`ABSGains`."""
+    return (speed - wheel_speed * p.rolling_radius) / np.maximum(speed, p.minimum_speed)
+
+
+def torque_rate(p, torque, demand, wheel_speed, speed):
+    """dT/dt [N*m/s] of one channel (module docstring): numpy arrays or, compiled, floats.
+
+    ``torque`` T, ``demand`` T_d (negative taken as 0), ``wheel_speed`` omega, ``speed`` u.
+    """
+    demand = np.maximum(demand, 0.0)
+    slip = braking_slip(p, wheel_speed, speed)
+    active = sigmoid((speed - p.cutoff_speed) / 0.5)
+    release = active * sigmoid((slip - p.release_slip) / p.slip_width)
+    apply = (1.0 - active) + active * sigmoid((p.apply_slip - slip) / p.slip_width)
+    return (apply * (demand - torque) / p.apply_time_constant - release * torque / p.release_time_constant
+            - (1.0 - apply) * np.maximum(torque - demand, 0.0) / p.release_time_constant)
 
 
 class ABS(ChassisController):
@@ -102,23 +128,28 @@ class ABS(ChassisController):
             + [Signal("longitudinal_velocity", "m/s", "forward velocity u")],
             outputs=[Signal(n, "N*m", "brake torque after the ABS modulator") for n in names["brake_torque"]])
 
+    @property
+    def gains(self) -> ABSGains:
+        """The numbers of the law as an :data:`ABSGains` (read from the attributes on every call)."""
+        return ABSGains(*(getattr(self, name) for name in ABSGains._fields))
+
     def braking_slip(self, wheel_speed, speed):
         """lambda = (u - omega R_e) / max(u, u_min) [-] (positive braking)."""
-        return (speed - wheel_speed * self.rolling_radius) / np.maximum(speed, self.minimum_speed)
+        return braking_slip(self.gains, wheel_speed, speed)
 
     def rhs(self, t, x, u):
         n = len(self.channels)
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
-        torque, demand = x, np.maximum(u[:n], 0.0)
-        slip = self.braking_slip(u[n:2 * n], u[2 * n])
-        active = sigmoid((u[2 * n] - self.cutoff_speed) / 0.5)
-        release = active * sigmoid((slip - self.release_slip) / self.slip_width)
-        apply = (1.0 - active) + active * sigmoid((self.apply_slip - slip) / self.slip_width)
-        return (apply * (demand - torque) / self.apply_time_constant - release * torque / self.release_time_constant
-                - (1.0 - apply) * np.maximum(torque - demand, 0.0) / self.release_time_constant)
+        return torque_rate(self.gains, x, u[:n], u[n:2 * n], u[2 * n])
 
     def output(self, t, x, u):
         return np.maximum(np.asarray(x, dtype=float), 0.0)
+
+    def compiled_rhs(self):
+        """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`."""
+        from . import _chassis_numba
+
+        return _chassis_numba.compiled_abs(self)
 
     def __repr__(self) -> str:
         return (f"<ABS of {self.vehicle.name!r}: apply below slip {self.apply_slip:g}, release above "

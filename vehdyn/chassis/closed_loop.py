@@ -95,7 +95,7 @@ def sigmoid(z):
 
 def deadband(value, width):
     """value - clip(value, -width, width): zero inside the band, continuous, slope 1 outside."""
-    return value - np.clip(value, -width, width)
+    return value - np.minimum(np.maximum(value, -width), width)
 
 
 class ChassisController(Model):
@@ -135,8 +135,11 @@ class ClosedLoop(Model):
         missing = [n for n in controller.input_names if n not in p_in and n not in p_states and n not in p_out]
         missing += [n for n in controller.output_names if n not in p_in and n not in missing]
         if missing:
+            hint = ""
+            if getattr(controller, "corners", None) is False and "brake_torque_front_left" in p_in:
+                hint = f"; for a plant with one signal per wheel build {c_name}(vehicle, corners=True)"
             raise ParameterError(f"{c_name} cannot be attached to {type(plant).__name__}: missing inputs {missing} "
-                                 f"(the plant's inputs are {list(p_in)}, its states {list(p_states)})",
+                                 f"(the plant's inputs are {list(p_in)}, its states {list(p_states)}){hint}",
                                  key="missing_inputs", value=missing)
         clash = sorted(set(p_states) & set(controller.state_names))
         if clash:
@@ -208,6 +211,20 @@ class ClosedLoop(Model):
         """Plant outputs, then the commands the controller applies (``<input>_after_<controller>``)."""
         xp, up, _, _, command = self._split(t, x, u)
         return np.concatenate([np.asarray(self.plant.output(t, xp, up), dtype=float), command])
+
+    def compiled_rhs(self):
+        """The loop compiled by numba for ``simulate(..., backend="compiled")`` (see :meth:`vehdyn.Model.compiled_rhs`).
+
+        Compiled when both the plant and the controller have a compiled rhs and output (the
+        SingleTrack and FullVehicle with their compiled tire laws; ABS, TractionControl, ESC; an
+        inner ClosedLoop of those): the same sequence as :meth:`rhs`, with the controllers' laws
+        from the same source (:mod:`vehdyn.chassis._chassis_numba`). None otherwise, so that
+        ``backend="auto"`` runs numpy; the plant's :class:`~vehdyn.ParameterError` (a configuration
+        without a compiled form) passes through.
+        """
+        from . import _chassis_numba
+
+        return _chassis_numba.compiled_loop(self)
 
     def __repr__(self) -> str:
         return f"<ClosedLoop {type(self.controller).__name__} around {self.plant!r}>"

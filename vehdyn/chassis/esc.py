@@ -20,6 +20,10 @@ y = +-t/2 gives the yaw moment +-F_b t/2 (right wheel: M > 0) and the longitudin
 Each of the four wheel channels has a first-order hydraulic lag tau and is limited to the friction
 of the wheel's static load, mu F_z,static R_e.
 
+On the full vehicle (:class:`vehdyn.full_vehicle.FullVehicle`, ``corners=True``) the four channels
+are added to the driver's brake torques of the four wheels (``brake_torque_front_left``, ...): the
+braked wheel's own tire makes the yaw moment, with its friction-ellipse loss of side force.
+
 The single-track model has one wheel per axle: it represents the braking of one wheel as the
 equivalent yaw moment (input ``external_yaw_moment``) plus the longitudinal force of the axle
 (``<axle>_longitudinal_force`` in force mode, ``<axle>_brake_torque`` with wheel spin). That
@@ -29,6 +33,8 @@ instead, in wheel-spin mode) and the yaw moment of the steered front wheel's sid
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numpy as np
 
 from ..params import Vehicle
@@ -36,13 +42,64 @@ from ..signals import Signal
 from ..units import GRAVITY
 from .closed_loop import ChassisController, check_gains, check_vehicle, deadband, sigmoid
 
-__all__ = ["ESC"]
+__all__ = ["ESC", "ESCGains", "reference_yaw_rate", "yaw_moment_demand", "wheel_torque_commands", "axle_commands"]
 
 _WHEELS = ("front_left", "front_right", "rear_left", "rear_right")
 
+ESCGains = namedtuple("ESCGains", ("wheelbase", "stability_factor", "yaw_inertia", "rolling_radius",
+                                   "friction_coefficient", "yaw_rate_gain", "sideslip_gain", "yaw_rate_deadband",
+                                   "sideslip_limit", "hydraulic_time_constant", "minimum_speed", "half_tracks",
+                                   "torque_limits"))
+ESCGains.__doc__ = """The numbers of the ESC law (SI): L, A, I_z, R_e, mu, k_r, k_beta, e_0, beta_0, tau, v_min,
+the half tracks t/2 and the torque limits of front_left, front_right, rear_left, rear_right (tuples)."""
+
+
+def reference_yaw_rate(p, steer_angle, speed):
+    """r_ref [rad/s]: the linear bicycle's steady-state yaw rate, limited by mu g / u (``p``: :data:`ESCGains`)."""
+    u = np.maximum(np.abs(speed), 1.0)
+    steady = speed * steer_angle / (p.wheelbase * (1.0 + p.stability_factor * speed**2))
+    limit = p.friction_coefficient * GRAVITY / u
+    return np.minimum(np.maximum(steady, -limit), limit)
+
+
+def yaw_moment_demand(p, steer_angle, speed, lateral_velocity, yaw_rate):
+    """M [N*m] the ESC asks for (SAE z: positive turns right)."""
+    error = yaw_rate - reference_yaw_rate(p, steer_angle, speed)
+    sideslip = np.arctan2(lateral_velocity, np.abs(speed))
+    active = sigmoid((speed - p.minimum_speed) / 1.0)
+    return active * p.yaw_inertia * (-p.yaw_rate_gain * deadband(error, p.yaw_rate_deadband)
+                                     + p.sideslip_gain * deadband(sideslip, p.sideslip_limit))
+
+
+def wheel_torque_commands(p, moment, yaw_rate):
+    """Brake torque commands [N*m] of front_left, front_right, rear_left, rear_right (one wheel at a time)."""
+    # oversteer: the moment opposes the yaw rate -> front outer wheel; understeer -> rear inner
+    front = sigmoid(-np.tanh(yaw_rate / 0.02) * moment / 100.0)
+    right, left = np.maximum(moment, 0.0), np.maximum(-moment, 0.0)
+    radius, h, limit = p.rolling_radius, p.half_tracks, p.torque_limits
+    return (np.minimum(front * left * radius / h[0], limit[0]), np.minimum(front * right * radius / h[1], limit[1]),
+            np.minimum((1.0 - front) * left * radius / h[2], limit[2]),
+            np.minimum((1.0 - front) * right * radius / h[3], limit[3]))
+
+
+def axle_commands(p, wheel_spin, fl, fr, rl, rr, front_demand, rear_demand, moment_demand):
+    """The single track's (front, rear, external_yaw_moment) with the wheel torques fl ... rr [N*m] applied.
+
+    ``front_demand``, ``rear_demand`` are the axle brake torques (``wheel_spin``) or longitudinal forces.
+    """
+    fl, fr, rl, rr = np.maximum(fl, 0.0), np.maximum(fr, 0.0), np.maximum(rl, 0.0), np.maximum(rr, 0.0)
+    radius, h = p.rolling_radius, p.half_tracks
+    if wheel_spin:
+        front, rear = np.maximum(front_demand, 0.0) + fl + fr, np.maximum(rear_demand, 0.0) + rl + rr
+    else:
+        front, rear = front_demand - (fl + fr) / radius, rear_demand - (rl + rr) / radius
+    moment = moment_demand + (h[1] * fr - h[0] * fl + h[3] * rr - h[2] * rl) / radius
+    return front, rear, moment
+
+
 
 class ESC(ChassisController):
-    """Electronic stability control for the :class:`~vehdyn.handling.SingleTrack` (module docstring).
+    """Electronic stability control of the :class:`~vehdyn.handling.SingleTrack` or the full vehicle.
 
     Parameters
     ----------
@@ -51,6 +108,9 @@ class ESC(ChassisController):
     wheel_spin : bool
         Command the plant's brake torques (``SingleTrack(..., wheel_spin=True)``) instead of its
         axle longitudinal forces (default False, the force mode).
+    corners : bool
+        Command the four wheel brake torques of :class:`~vehdyn.full_vehicle.FullVehicle`
+        (``brake_torque_front_left``, ...; default False). ``wheel_spin`` is then not used.
     yaw_rate_gain : float
         k_r [1/s] (default 10).
     sideslip_gain : float
@@ -73,15 +133,24 @@ class ESC(ChassisController):
     inputs
         demands ``front_steer_angle`` (read, not changed), ``front_longitudinal_force``,
         ``rear_longitudinal_force`` (or ``front_brake_torque``, ``rear_brake_torque``),
-        ``external_yaw_moment``; feedback ``longitudinal_velocity``, ``lateral_velocity``, ``yaw_rate``.
+        ``external_yaw_moment`` (or, with ``corners``, ``brake_torque_front_left`` ...
+        ``brake_torque_rear_right``); feedback ``longitudinal_velocity``, ``lateral_velocity``,
+        ``yaw_rate``.
     outputs
-        The longitudinal forces (or brake torques) and ``external_yaw_moment`` with the ESC's share.
+        The longitudinal forces (or brake torques) and ``external_yaw_moment`` with the ESC's
+        share; with ``corners`` the four wheel brake torques.
+
+    Examples
+    --------
+    >>> car = vehdyn.load_vehicle("sedan")
+    >>> ClosedLoop(SingleTrack(car), ESC(car))                 # doctest: +SKIP
+    >>> ClosedLoop(FullVehicle(car), ESC(car, corners=True))   # doctest: +SKIP
     """
 
-    def __init__(self, vehicle: Vehicle, *, wheel_spin: bool = False, yaw_rate_gain: float = 10.0,
-                 sideslip_gain: float = 50.0, yaw_rate_deadband: float = 0.03, sideslip_limit: float = 0.07,
-                 hydraulic_time_constant: float = 0.1, friction_coefficient: float | None = None,
-                 minimum_speed: float = 5.0):
+    def __init__(self, vehicle: Vehicle, *, wheel_spin: bool = False, corners: bool = False,
+                 yaw_rate_gain: float = 10.0, sideslip_gain: float = 50.0, yaw_rate_deadband: float = 0.03,
+                 sideslip_limit: float = 0.07, hydraulic_time_constant: float = 0.1,
+                 friction_coefficient: float | None = None, minimum_speed: float = 5.0):
         check_vehicle("ESC", vehicle)
         from ..handling import stability_factor
 
@@ -94,7 +163,7 @@ class ESC(ChassisController):
                             nonnegative=("yaw_rate_gain", "sideslip_gain", "yaw_rate_deadband", "sideslip_limit",
                                          "minimum_speed"))
         self.__dict__.update(gains)
-        self.vehicle, self.wheel_spin = vehicle, bool(wheel_spin)
+        self.vehicle, self.wheel_spin, self.corners = vehicle, bool(wheel_spin), bool(corners)
         g, t = vehicle.geometry, vehicle.tires
         self.wheelbase = float(g.wheelbase)
         self.stability_factor = float(stability_factor(vehicle))
@@ -102,12 +171,17 @@ class ESC(ChassisController):
         self.rolling_radius = float(t.rolling_radius)
         self.half_tracks = np.array([g.front_track, g.front_track, g.rear_track, g.rear_track]) / 2.0
         front, rear = vehicle.static_axle_loads(GRAVITY)
-        self.torque_limits = self.friction_coefficient * np.array([front, front, rear, rear]) / 2.0 * self.rolling_radius
-        axle_input = "brake_torque" if self.wheel_spin else "longitudinal_force"
-        unit = "N*m" if self.wheel_spin else "N"
-        self._axle_inputs = [f"front_{axle_input}", f"rear_{axle_input}"]
-        commanded = [Signal(n, unit, f"{n.replace('_', ' ')}") for n in self._axle_inputs]
-        commanded.append(Signal("external_yaw_moment", "N*m", "yaw moment about the CG (SAE z)"))
+        self.torque_limits = (self.friction_coefficient * np.array([front, front, rear, rear]) / 2.0
+                              * self.rolling_radius)
+        if self.corners:
+            commanded = [Signal(f"brake_torque_{w}", "N*m", f"brake torque of the {w.replace('_', ' ')} wheel")
+                         for w in _WHEELS]
+        else:
+            axle_input = "brake_torque" if self.wheel_spin else "longitudinal_force"
+            unit = "N*m" if self.wheel_spin else "N"
+            commanded = [Signal(n, unit, f"{n.replace('_', ' ')}")
+                         for n in (f"front_{axle_input}", f"rear_{axle_input}")]
+            commanded.append(Signal("external_yaw_moment", "N*m", "yaw moment about the CG (SAE z)"))
         self.declare(
             states=[Signal(f"{w}_esc_brake_torque", "N*m", f"ESC brake torque on the {w.replace('_', ' ')} wheel")
                     for w in _WHEELS],
@@ -117,51 +191,47 @@ class ESC(ChassisController):
                Signal("yaw_rate", "rad/s", "yaw rate r (SAE)")],
             outputs=commanded)
 
+    @property
+    def gains(self) -> ESCGains:
+        """The numbers of the law as an :data:`ESCGains` (read from the attributes on every call)."""
+        values = {name: getattr(self, name) for name in ESCGains._fields}
+        values["half_tracks"] = tuple(float(v) for v in self.half_tracks)
+        values["torque_limits"] = tuple(float(v) for v in self.torque_limits)
+        return ESCGains(**values)
+
     def reference_yaw_rate(self, steer_angle, speed):
         """r_ref [rad/s]: the linear bicycle's steady-state yaw rate, limited by mu g / u."""
-        u = np.maximum(np.abs(speed), 1.0)
-        steady = speed * steer_angle / (self.wheelbase * (1.0 + self.stability_factor * speed**2))
-        limit = self.friction_coefficient * GRAVITY / u
-        return np.clip(steady, -limit, limit)
+        return reference_yaw_rate(self.gains, steer_angle, speed)
 
     def yaw_moment_demand(self, steer_angle, speed, lateral_velocity, yaw_rate):
         """M [N*m] the ESC asks for (SAE z: positive turns right)."""
-        error = yaw_rate - self.reference_yaw_rate(steer_angle, speed)
-        sideslip = np.arctan2(lateral_velocity, np.abs(speed))
-        active = sigmoid((speed - self.minimum_speed) / 1.0)
-        return active * self.yaw_inertia * (-self.yaw_rate_gain * deadband(error, self.yaw_rate_deadband)
-                                            + self.sideslip_gain * deadband(sideslip, self.sideslip_limit))
+        return yaw_moment_demand(self.gains, steer_angle, speed, lateral_velocity, yaw_rate)
 
     def wheel_torque_commands(self, moment, yaw_rate):
         """Brake torque commands [N*m] of front_left, front_right, rear_left, rear_right (one wheel at a time)."""
-        # oversteer: the moment opposes the yaw rate -> front outer wheel; understeer -> rear inner
-        front = sigmoid(-np.tanh(yaw_rate / 0.02) * moment / 100.0)
-        right, left = np.maximum(moment, 0.0), np.maximum(-moment, 0.0)
-        shares = (front * left, front * right, (1.0 - front) * left, (1.0 - front) * right)
-        radius = self.rolling_radius
-        return [np.minimum(share * radius / self.half_tracks[k], self.torque_limits[k])
-                for k, share in enumerate(shares)]
+        return list(wheel_torque_commands(self.gains, moment, yaw_rate))
 
     def rhs(self, t, x, u):
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
-        steer, speed, lateral, yaw_rate = u[0], u[4], u[5], u[6]
-        moment = self.yaw_moment_demand(steer, speed, lateral, yaw_rate)
-        commands = self.wheel_torque_commands(moment, yaw_rate)
-        return np.stack([(c - x[k]) / self.hydraulic_time_constant for k, c in enumerate(commands)])
+        p = self.gains
+        k = 5 if self.corners else 4  # the first feedback input
+        moment = yaw_moment_demand(p, u[0], u[k], u[k + 1], u[k + 2])
+        commands = wheel_torque_commands(p, moment, u[k + 2])
+        return np.stack([(c - x[j]) / p.hydraulic_time_constant for j, c in enumerate(commands)])
 
     def output(self, t, x, u):
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
-        torque = np.maximum(x, 0.0)
-        fl, fr, rl, rr = torque
-        radius = self.rolling_radius
-        if self.wheel_spin:
-            front, rear = np.maximum(u[1], 0.0) + fl + fr, np.maximum(u[2], 0.0) + rl + rr
-        else:
-            front, rear = u[1] - (fl + fr) / radius, u[2] - (rl + rr) / radius
-        h = self.half_tracks
-        moment = u[3] + (h[1] * fr - h[0] * fl + h[3] * rr - h[2] * rl) / radius
-        return np.stack([front, rear, moment])
+        if self.corners:
+            return np.maximum(u[1:5], 0.0) + np.maximum(x, 0.0)
+        return np.stack(axle_commands(self.gains, self.wheel_spin, *x, u[1], u[2], u[3]))
+
+    def compiled_rhs(self):
+        """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`."""
+        from . import _chassis_numba
+
+        return _chassis_numba.compiled_esc(self)
 
     def __repr__(self) -> str:
+        commands = "wheel brake torques" if self.corners else "brake torques" if self.wheel_spin else "axle forces"
         return (f"<ESC of {self.vehicle.name!r}: k_r = {self.yaw_rate_gain:g} 1/s, k_beta = {self.sideslip_gain:g} "
-                f"1/s^2, {'brake torques' if self.wheel_spin else 'axle forces'}>")
+                f"1/s^2, {commands}>")

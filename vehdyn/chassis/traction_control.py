@@ -27,6 +27,8 @@ the other (that coupling needs a driveline model).
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numpy as np
 
 from ..errors import ParameterError
@@ -34,9 +36,37 @@ from ..params import Vehicle
 from ..signals import Signal
 from .closed_loop import ChassisController, channel_signals, check_gains, check_vehicle, sigmoid
 
-__all__ = ["TractionControl"]
+__all__ = ["TractionControl", "TractionGains", "drive_slip", "reduction_rate", "brake_rate", "applied_torques"]
 
 _AXLES = ("front", "rear")
+
+TractionGains = namedtuple("TractionGains", ("rolling_radius", "target_slip", "brake_slip", "slip_width",
+                                             "engine_time_constant", "brake_time_constant", "brake_gain",
+                                             "maximum_reduction", "minimum_speed"))
+TractionGains.__doc__ = """The numbers of the traction-control law (SI): R_e, lambda_t, lambda_b, w, tau_e, tau_b,
+k_b, rho_max, u_min (see :class:`TractionControl`)."""
+
+
+def drive_slip(p, wheel_speed, speed):
+    """lambda_s = (omega R_e - u) / max(u, u_min) [-] (positive spinning); ``p`` a :data:`TractionGains`."""
+    return (wheel_speed * p.rolling_radius - speed) / np.maximum(speed, p.minimum_speed)
+
+
+def reduction_rate(p, reduction, mean_slip):
+    """d(rho)/dt [1/s] of the engine's torque reduction at the channels' mean drive slip."""
+    return (sigmoid((mean_slip - p.target_slip) / p.slip_width) - reduction) / p.engine_time_constant
+
+
+def brake_rate(p, brake, demand, slip):
+    """d(T_b)/dt [N*m/s] of one channel's brake intervention at drive-torque demand T_d and slip."""
+    target = p.brake_gain * np.maximum(demand, 0.0) * np.maximum(slip - p.brake_slip, 0.0) / p.brake_slip
+    return (target - brake) / p.brake_time_constant
+
+
+def applied_torques(p, reduction, brake, drive_demand, brake_demand):
+    """(drive, brake) torques [N*m] applied to one channel."""
+    drive = (1.0 - p.maximum_reduction * np.minimum(np.maximum(reduction, 0.0), 1.0)) * np.maximum(drive_demand, 0.0)
+    return drive, np.maximum(brake_demand, 0.0) + np.maximum(brake, 0.0)
 
 
 class TractionControl(ChassisController):
@@ -116,29 +146,36 @@ class TractionControl(ChassisController):
             outputs=[Signal(n, "N*m", "drive torque after the engine reduction") for n in names["drive_torque"]]
             + [Signal(n, "N*m", "brake torque with the intervention") for n in names["brake_torque"]])
 
+    @property
+    def gains(self) -> TractionGains:
+        """The numbers of the law as a :data:`TractionGains` (read from the attributes on every call)."""
+        return TractionGains(*(getattr(self, name) for name in TractionGains._fields))
+
     def drive_slip(self, wheel_speed, speed):
         """lambda_s = (omega R_e - u) / max(u, u_min) [-] (positive spinning)."""
-        return (wheel_speed * self.rolling_radius - speed) / np.maximum(speed, self.minimum_speed)
+        return drive_slip(self.gains, wheel_speed, speed)
 
     def rhs(self, t, x, u):
         n = len(self.channels)
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
-        reduction, brake = x[0], x[1:]
-        demand = np.maximum(u[:n], 0.0)
-        slip = self.drive_slip(u[2 * n:3 * n], u[3 * n])
-        target = sigmoid((np.mean(slip, axis=0) - self.target_slip) / self.slip_width)
-        d_reduction = (target - reduction) / self.engine_time_constant
-        brake_target = self.brake_gain * demand * np.maximum(slip - self.brake_slip, 0.0) / self.brake_slip
-        d_brake = (brake_target - brake) / self.brake_time_constant
-        return np.concatenate([d_reduction[None], d_brake])
+        p = self.gains
+        slip = drive_slip(p, u[2 * n:3 * n], u[3 * n])
+        mean = slip[0]
+        for k in range(1, n):  # the compiled law's order of summation
+            mean = mean + slip[k]
+        d_reduction = reduction_rate(p, x[0], mean / n)
+        return np.concatenate([np.asarray(d_reduction)[None], brake_rate(p, x[1:], u[:n], slip)])
 
     def output(self, t, x, u):
         n = len(self.channels)
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
-        reduction = np.clip(x[0], 0.0, 1.0)
-        drive = (1.0 - self.maximum_reduction * reduction) * np.maximum(u[:n], 0.0)
-        brake = np.maximum(u[n:2 * n], 0.0) + np.maximum(x[1:], 0.0)
-        return np.concatenate([drive, brake])
+        return np.concatenate(applied_torques(self.gains, x[0], x[1:], u[:n], u[n:2 * n]))
+
+    def compiled_rhs(self):
+        """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`."""
+        from . import _chassis_numba
+
+        return _chassis_numba.compiled_traction_control(self)
 
     def __repr__(self) -> str:
         return f"<TractionControl of {self.vehicle.name!r}: target slip {self.target_slip:g}, channels {self.channels}>"

@@ -11,7 +11,7 @@ float forms of the mechanics layer's numpy functions:
   model's domain, |pitch| <= pi/4, is checked first);
 * ``rigid_body_accelerations`` -- :func:`vehdyn.mechanics.newton_euler.accelerations` written out
   for 3-tuples;
-* ``axle_tire_forces`` -- one corner's tire law as :meth:`FullVehicle.corner_law_forces` evaluates
+* ``axle_tire_loads`` -- one corner's tire law as :meth:`FullVehicle.corner_law_loads` evaluates
   it (friction similarity, mirrored left tire): the Magic Formula through the compiled equations of
   :mod:`vehdyn.tire._mf_numba` (the laws of :func:`vehdyn.handling._single_track_numba.tire_law`),
   or the linear law.
@@ -98,8 +98,9 @@ def _rigid_body_accelerations(mass, inertia, inverse, velocity, rates, force, mo
             _matrix_vector(inverse, moment[0] - gx, moment[1] - gy, moment[2] - gz))
 
 
-def _corner_tire_forces(tires, corner_index, fz, kappa, alpha, vx):
-    """ISO-W (fx, fy) [N] of one corner's tire (:meth:`FullVehicle.corner_law_forces`)."""
+def _corner_tire_loads(tires, corner_index, fz, kappa, alpha, vx):
+    """ISO-W (fx, fy, my) [N, N, N*m] of one corner's tire (:meth:`FullVehicle.corner_law_loads`;
+    the linear law has no M_y)."""
     laws, camber, friction = tires
     law = laws[corner_index // 2]
     mu = friction[corner_index]
@@ -113,14 +114,15 @@ def _corner_tire_forces(tires, corner_index, fz, kappa, alpha, vx):
     if law.kind == _MAGIC_FORMULA:
         c = law.coefficients
         f = magic_formula._forces_kernel(_mf_numba.OPS, c, fz, kappa, alpha, gamma, vx, c.INFLPRES, True, False)
-        fx, fy = f[0], f[1]
+        fx, fy, my = f[0], f[1], f[4]
     else:
         fx, fy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, fz, kappa, alpha, gamma, vx)
+        my = 0.0
     if mirror:
         fy = -fy
     if scaled:
-        return mu * fx, mu * fy
-    return fx, fy
+        return mu * fx, mu * fy, my
+    return fx, fy, my
 
 
 for _function in (_matrix_vector,):
@@ -135,7 +137,7 @@ for _name in ("abs", "where", "minimum", "maximum"):
 XP.rotation_body_to_earth = numba.njit(**_JIT)(_rotation_body_to_earth)
 XP.euler_angle_rates = numba.njit(**_JIT)(_euler_angle_rates)
 XP.rigid_body_accelerations = numba.njit(**_JIT)(_rigid_body_accelerations)
-XP.axle_tire_forces = numba.njit(**_JIT)(_corner_tire_forces)
+XP.axle_tire_loads = numba.njit(**_JIT)(_corner_tire_loads)
 
 
 def _states(x, index):

@@ -13,14 +13,14 @@ functions are reused here unchanged. Besides arithmetic the equations call ``xp.
 ``xp.rigid_body_accelerations(m, J, J_inv, velocity, rates, force, moment)``
     3-tuples in, (velocity rate, angular acceleration) out (numpy:
     :func:`vehdyn.mechanics.newton_euler.accelerations`);
-``xp.axle_tire_forces(tires, corner, fz, kappa, alpha, vx)``
+``xp.axle_tire_loads(tires, corner, fz, kappa, alpha, vx)``
     the ISO-W (fx, fy) of one corner's tire; ``tires`` is ``(laws, camber, friction)`` with the four
-    inclination angles and road friction ratios of this evaluation (numpy: ``laws.corner_law_forces``).
+    inclination angles and road friction ratios of this evaluation (numpy: ``laws.corner_law_loads``).
 
 Signals travel in the fixed orders :data:`STATES` and :data:`INPUTS`; a model's vectors hold a
 subset (without tire lag, no deflection states), mapped through an index (-1: absent, 0.0).
 Everything is in SAE vehicle axes at the sprung CG; signs flip between SAE and ISO-W only inside
-the reused :func:`~vehdyn.handling.single_track_equations.axle_forces` (through
+the reused :func:`~vehdyn.handling.single_track_equations.axle_loads` (through
 :mod:`vehdyn.conventions`).
 """
 
@@ -140,9 +140,9 @@ class NUMPY(st.NUMPY):
         return accelerations(mass, np.asarray(inertia), np.asarray(inverse), *vectors)
 
     @staticmethod
-    def axle_tire_forces(tires, corner, fz, kappa, alpha, vx):
+    def axle_tire_loads(tires, corner, fz, kappa, alpha, vx):
         laws, camber, friction = tires
-        return laws.corner_law_forces(corner, fz, kappa, alpha, camber[corner], vx, friction[corner])
+        return laws.corner_law_loads(corner, fz, kappa, alpha, camber[corner], vx, friction[corner])
 
 
 def gather(values, index):
@@ -180,7 +180,7 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
                                       k.peak_tan_slip_angle[c] * friction)
         lon_rate = st.deflection_rate(xp, -(vx - omega * k.rolling_radius), vx, longitudinal_deflection,
                                       k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction)
-    fx, fy, alpha, kappa = st.axle_forces(
+    fx, fy, alpha, kappa, rolling_moment = st.axle_loads(
         xp, tires, c, k, load, vx, vy, omega, lateral_deflection, longitudinal_deflection, lat_rate, lon_rate,
         k.lateral_relaxation_length[c], k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction,
         k.peak_tan_slip_angle[c] * friction, 0.0 * u)
@@ -198,7 +198,7 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
     f_z = jack - spring
     mx1, my1, mz1 = body.cross(x_c, y_c, h, link_x, link_y, f_z)
     mx2, my2, mz2 = body.cross(x_c, y_c, zw, wheel_x, wheel_y, 0.0 * u)
-    return (load, alpha, kappa, fx, fy, driveline.wheel_acceleration(xp, k, omega, i[2 + c], i[6 + c], fx),
+    return (load, alpha, kappa, fx, fy, driveline.wheel_acceleration(xp, k, omega, i[2 + c], i[6 + c], fx, rolling_moment),
             (load - spring + jack) / m_u - k.gravity, lat_rate, lon_rate,
             link_x + wheel_x, link_y + wheel_y, f_z, mx1 + mx2, my1 + my2, mz1 + mz2, link_x, link_y,
             -load * R[2][2])
@@ -216,7 +216,7 @@ def _total(corners, j):
 
 def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
     """An :class:`Evaluation` at states ``s`` and inputs ``i`` (sequences in the orders of :data:`STATES`,
-    :data:`INPUTS`); ``laws`` the tire laws (see ``xp.axle_tire_forces``), ``friction`` the road's
+    :data:`INPUTS`); ``laws`` the tire laws (see ``xp.axle_tire_loads``), ``friction`` the road's
     friction under each corner relative to the tire law's own (1: the law as it is).
 
     Per-corner values are tuples built from one function per corner (:func:`_corner`): no lists,

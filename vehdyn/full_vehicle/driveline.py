@@ -24,9 +24,11 @@ from ..handling.single_track_equations import net_wheel_torque
 __all__ = ["wheel_acceleration", "axle_torques"]
 
 
-def wheel_acceleration(xp, k, wheel_speed, drive, brake, longitudinal_force):
-    """d(omega)/dt [rad/s^2] of one wheel (module docstring)."""
-    return net_wheel_torque(xp, k, wheel_speed, drive, brake, longitudinal_force) / k.wheel_spin_inertia
+def wheel_acceleration(xp, k, wheel_speed, drive, brake, longitudinal_force, rolling_moment):
+    """d(omega)/dt [rad/s^2] of one wheel (module docstring): the net torque plus the tire's
+    rolling-resistance moment ``rolling_moment`` [N*m] (ISO-W M_y, about the axis of forward spin)."""
+    return (net_wheel_torque(xp, k, wheel_speed, drive, brake, longitudinal_force) + rolling_moment) \
+        / k.wheel_spin_inertia
 
 
 def axle_torques(total, front_fraction):

@@ -368,7 +368,18 @@ class FullVehicle(Model):
 
     # ------------------------------------------------------------------ tire laws
     def corner_law_forces(self, corner, fz, kappa, alpha, gamma, vx, friction=1.0):
-        """ISO-W (fx, fy) [N] of ``corner``'s tire (0 FL, 1 FR, 2 RL, 3 RR) from ISO-W slips.
+        """ISO-W (fx, fy) [N] of ``corner``'s tire (0 FL, 1 FR, 2 RL, 3 RR) from ISO-W slips: the
+        forces of :meth:`corner_law_loads`."""
+        fx, fy, _ = self.corner_law_loads(corner, fz, kappa, alpha, gamma, vx, friction)
+        return fx, fy
+
+    def corner_law_loads(self, corner, fz, kappa, alpha, gamma, vx, friction=1.0):
+        """ISO-W (fx, fy, my) [N, N, N*m] of ``corner``'s tire (0 FL, 1 FR, 2 RL, 3 RR) from ISO-W slips.
+
+        ``my`` is the tire's rolling-resistance moment (ISO-W, about the axis of forward spin; 0 for
+        laws without one), which acts on the wheel's spin as in
+        :func:`vehdyn.handling.single_track_equations.axle_loads`. It comes from the hysteresis of
+        the tire, not from the road's grip, so the friction ratio below does not scale it.
 
         ``friction`` is the road's friction relative to the law's own, applied by similarity
         (Pacejka 2012, sec. 4.3.2): F(kappa, tan alpha) -> mu F(kappa / mu, tan(alpha) / mu), which
@@ -390,7 +401,7 @@ class FullVehicle(Model):
             args = tuple(float(a) for a in args)
         f = tire.forces(*args)
         fx, fy = f.fx, (-f.fy if mirror else f.fy)
-        return (friction * fx, friction * fy) if scaled else (fx, fy)
+        return (friction * fx, friction * fy, f.my) if scaled else (fx, fy, f.my)
 
     # ------------------------------------------------------------------ the contract
     def _inputs_with_road(self, x, u):

@@ -40,8 +40,8 @@ for _function in (conventions.planar_tire_slips_sae_to_iso_w, conventions.planar
     register_jitable(**_JIT)(_function)
 for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_speed_blend", "sliding_slip",
               "limit_deflection_rate", "axle_slips", "demanded_forces", "axle_forces", "axle_loads", "normal_loads",
-              "evaluate", "derivatives", "outputs", "net_wheel_torque", "deflection_rate", "deflection_rates",
-              "lateral_load_transfer", "wheel_pair_loads", "wheel_load_outputs"):
+              "evaluate", "derivatives", "outputs", "net_wheel_torque", "spin_saturation", "deflection_rate",
+              "deflection_rates", "lateral_load_transfer", "wheel_pair_loads", "wheel_load_outputs"):
     register_jitable(**_JIT)(getattr(equations, _name))
 register_jitable(**_JIT)(crosswind.aero_side_force)
 

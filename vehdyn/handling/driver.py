@@ -186,6 +186,13 @@ class DriverInTheLoop(Model):
         xv, uv = self._vehicle_inputs(x, np.asarray(u, dtype=float))
         return np.concatenate([np.asarray(self.vehicle_model.output(t, xv, uv), dtype=float), x[-1:]])
 
+    def compiled_rhs(self):
+        """The loop compiled by numba (:mod:`vehdyn.handling._driver_in_the_loop_numba`) when the vehicle
+        model has a compiled rhs and output, else None (see :meth:`vehdyn.Model.compiled_rhs`)."""
+        from . import _driver_in_the_loop_numba
+
+        return _driver_in_the_loop_numba.compiled_model(self)
+
 
 # ====================================================================== drivers as controllers
 # The crossover-model driver (McRuer) and the optimal preview driver (MacAdam) are controller

@@ -16,8 +16,10 @@
   the CG 1.07 s after the beginning of steer is at least 1.83 m (vehicles with GVWR <= 3,500 kg) or
   1.52 m (GVWR > 3,500 kg).
 
-The metrics of one run come from :func:`~vehdyn.handling.sine_with_dwell_metrics`. A single-track
-model has no roll and no lateral load transfer: the results describe the model, not a certification.
+The metrics of one run come from :func:`~vehdyn.handling.sine_with_dwell_metrics`. The vehicle
+model is the nonlinear single track (no roll and no lateral load transfer) or the full vehicle
+(:class:`~vehdyn.full_vehicle.FullVehicle`: roll, load transfer, four wheels, which an ESC brakes
+one at a time); either way the results describe the model, not a certification.
 """
 
 from __future__ import annotations
@@ -111,19 +113,25 @@ def series_multiples(a: float, steering_ratio: float) -> np.ndarray:
     return np.array(multiples)
 
 
-def fmvss126(vehicle, controller=None, *, speed: float | None = None, directions=("counterclockwise", "clockwise"),
-             gross_vehicle_weight_rating: float | None = None, amplitude_multiples=None, rtol: float = 1e-5, atol: float = 1e-8,
-             n_points: int = 301) -> FMVSS126Result:
-    """Run the FMVSS 126 sine-with-dwell series on the single-track model of ``vehicle``.
+def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: float | None = None,
+             directions=("counterclockwise", "clockwise"), gross_vehicle_weight_rating: float | None = None,
+             amplitude_multiples=None, rtol: float = 1e-5, atol: float = 1e-8, n_points: int = 301) -> FMVSS126Result:
+    """Run the FMVSS 126 sine-with-dwell series on a model of ``vehicle``.
 
     Parameters
     ----------
     vehicle : Vehicle
     controller : Model, optional
-        A controller for the force-mode :class:`~vehdyn.handling.SingleTrack`, e.g.
-        ``vehdyn.chassis.ESC(vehicle)``, closed around it with :class:`vehdyn.chassis.ClosedLoop`
-        (numpy backend, all runs in one batch). None: the car alone (compiled backend where
-        available).
+        A controller for the plant, e.g. ``vehdyn.chassis.ESC(vehicle)`` for the force-mode
+        :class:`~vehdyn.handling.SingleTrack` or ``ESC(vehicle, corners=True)`` for the full
+        vehicle, closed around it with :class:`vehdyn.chassis.ClosedLoop`. None: the car alone.
+        Each run is compiled where the model (and controller) has a compiled form; otherwise all
+        runs go in one numpy batch.
+    plant : {"single_track", "full_vehicle"}
+        The vehicle model: :class:`~vehdyn.handling.SingleTrack` (force mode, coasting: no
+        longitudinal force) or :class:`~vehdyn.full_vehicle.FullVehicle` (from its straight-running
+        trim, coasting: no drive torque, S7.9.2). A is the steer angle of the model's own 0.3 g
+        steady turn.
     speed : float, optional
         Entry speed [m/s]; default 80 km/h (S7.9.1).
     directions : tuple of str
@@ -164,8 +172,20 @@ def fmvss126(vehicle, controller=None, *, speed: float | None = None, directions
     if isinstance(gvwr, bool) or not (np.isfinite(gvwr) and gvwr > 0):
         raise ParameterError(f"gross_vehicle_weight_rating must be > 0 [kg], got {gvwr!r}",
                              key="gross_vehicle_weight_rating", value=gvwr)
-    plant = SingleTrack(vehicle)
-    a = float(steady_state_cornering(plant, lateral_acceleration=0.3 * GRAVITY, speed=speed).steer_angle)
+    plants = ("single_track", "full_vehicle")
+    if plant not in plants:
+        raise ParameterError(f"plant must be one of {plants}, got {plant!r}", key="plant", value=plant)
+    if plant == "single_track":
+        model = SingleTrack(vehicle)
+        a = float(steady_state_cornering(model, lateral_acceleration=0.3 * GRAVITY, speed=speed).steer_angle)
+        x_car = model.straight_running(speed)
+    else:
+        from ..full_vehicle import FullVehicle
+
+        model = FullVehicle(vehicle)
+        _, u_turn = model.trim(speed, lateral_acceleration=0.3 * GRAVITY)
+        a = float(u_turn[model.index("front_steer_angle", "inputs")])
+        x_car = model.trim(speed)[0]
     ratio = float(vehicle.steering.ratio)
     if amplitude_multiples is None:
         multiples = series_multiples(a, ratio)
@@ -177,18 +197,19 @@ def fmvss126(vehicle, controller=None, *, speed: float | None = None, directions
     cases = [(d, k) for d in directions for k in multiples]
     steers = [sine_with_dwell(signs[d] * k * a) for d, k in cases]
     t = np.linspace(0.0, steers[0].completion_of_steer + 2.0, n_points)
-    x_car = plant.straight_running(speed)
     options = dict(method="RK45", rtol=rtol, atol=atol, max_step=0.02)
-    if controller is None:
-        name = "none"
-        results = [simulate(plant, t, {"front_steer_angle": s}, x0=x_car, **options) for s in steers]
-    else:
+    name, x0 = "none", x_car
+    if controller is not None:
         from ..chassis import ClosedLoop
 
-        loop = ClosedLoop(plant, controller)
+        loop = ClosedLoop(model, controller)
         name = type(controller).__name__
-        x0 = loop.state_vector(dict(zip(plant.state_names, x_car)))
-        batch = simulate(loop, t, {"front_steer_angle": lambda time: np.stack([s(time) for s in steers], axis=-1)},
+        x0 = loop.state_vector(dict(zip(model.state_names, x_car)))
+        model = loop
+    if _compiles(model):
+        results = [simulate(model, t, {"front_steer_angle": s}, x0=x0, **options) for s in steers]
+    else:
+        batch = simulate(model, t, {"front_steer_angle": lambda time: np.stack([s(time) for s in steers], axis=-1)},
                          x0=np.repeat(x0[:, None], len(steers), axis=1), **options)
         results = [_Member(batch, k) for k in range(len(steers))]
     limit = _DISPLACEMENT[gvwr <= GVWR_LIMIT]
@@ -205,6 +226,18 @@ def fmvss126(vehicle, controller=None, *, speed: float | None = None, directions
                      "lateral_displacement": m.lateral_displacement, "displacement_required": required,
                      "passed": bool(ok)})
     return FMVSS126Result(vehicle=vehicle.name, controller=name, amplitude_a=a, displacement_limit=limit, runs=runs)
+
+
+def _compiles(model) -> bool:
+    """Whether ``simulate`` runs ``model`` on the compiled backend (numba installed, a compiled rhs)."""
+    from .._compiled_ode import numba_available
+
+    if not numba_available():
+        return False
+    try:
+        return model.compiled_rhs() is not None
+    except ParameterError:
+        return False
 
 
 class _Member:

@@ -209,7 +209,10 @@ def axle_loads(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection, 
     if not k.wheel_spin:
         fx, fy = demanded_forces(xp, k, fz, fx, fy, force_demand)
         my = 0.0 * my
-    return fx, fy, alpha, kappa, my
+    # the rolling resistance opposes rolling: like a brake, it fades to 0 at standstill
+    # (|sat(omega / omega_b)|, the brake's regularization in net_wheel_torque), else the law's M_y
+    # at zero speed would spin a wheel at rest backwards
+    return fx, fy, alpha, kappa, my * xp.abs(spin_saturation(xp, k, wheel_speed))
 
 
 def normal_loads(xp, k, x_force, front_lift, rear_lift):
@@ -263,7 +266,8 @@ def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral
         fx_left, fy_left = demanded_forces(xp, k, left_load, fx_left, fy_left, 0.5 * force_demand)
         fx_right, fy_right = demanded_forces(xp, k, right_load, fx_right, fy_right, 0.5 * force_demand)
         my = 0.0 * my
-    return fx_left + fx_right, fy_left + fy_right, alpha, kappa, my
+    # the rolling resistance fades at standstill as in axle_loads
+    return fx_left + fx_right, fy_left + fy_right, alpha, kappa, my * xp.abs(spin_saturation(xp, k, wheel_speed))
 
 
 def evaluate(xp, tires, k, states, inputs):
@@ -391,10 +395,17 @@ def derivatives(xp, k, e, states, inputs):
             e.front_longitudinal_deflection_rate, e.rear_longitudinal_deflection_rate)
 
 
+def spin_saturation(xp, k, wheel_speed):
+    """sat(omega / omega_b) = z / sqrt(1 + z^2), z = omega / omega_b: the sign of the wheel's spin,
+    regularized over the brake regularization speed omega_b [rad/s] (a friction torque that opposes
+    the spin and vanishes smoothly at standstill)."""
+    z = wheel_speed / k.brake_regularization_speed
+    return z / xp.sqrt(1.0 + z * z)
+
+
 def net_wheel_torque(xp, k, wheel_speed, drive, brake, longitudinal_force):
     """Torque on the two wheels of an axle [N*m]: drive - brake sat(omega / omega_b) - R_e F_x."""
-    z = wheel_speed / k.brake_regularization_speed
-    return drive - xp.abs(brake) * z / xp.sqrt(1.0 + z * z) - k.rolling_radius * longitudinal_force
+    return drive - xp.abs(brake) * spin_saturation(xp, k, wheel_speed) - k.rolling_radius * longitudinal_force
 
 
 def deflection_rate(xp, slip_velocity, vx, deflection, length, peak):
