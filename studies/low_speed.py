@@ -7,19 +7,47 @@ shipped sedan is used with the Fiala law built from its data (vehdyn.tire.tire_f
 which keeps the stiff wheel-spin runs short; the Magic Formula behaves the same, more slowly.
 Cases: (1) a locked-wheel stop from 20 m/s, against the closed-form stopping distance
 u^2 / (2 mu g); (2) a launch from rest with more drive torque than the rear tires can carry,
-against the traction limit a_x / g = mu a / (L - mu h) of a rear-driven car; (3) a slow turn
-forwards and in reverse, against the kinematic single track r = u tan(delta) / L, v = b r.
+against the traction limit a_x / g = mu a / (L - mu h) of a rear-driven car; the drive torque is
+that of an engine of 100 kW (an assumed value: the vehicle files carry no engine data), at most
+the 3000 N*m demand and at most P / omega at the wheel speed omega, built up with a 0.1-s lag - a
+small controller Model in the loop (vehdyn.chassis.ClosedLoop) - so the spinning wheel's speed is
+held near P / F_x instead of running away as under a constant torque; (3) a slow turn forwards
+and in reverse, against the kinematic single track r = u tan(delta) / L, v = b r.
 """
 
 import numpy as np
 
 import vehdyn
+from vehdyn.chassis import ClosedLoop
 from vehdyn.handling import SingleTrack
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 from vehdyn.tire import tire_for_vehicle
 
 G = vehdyn.units.GRAVITY
+ENGINE_POWER = 100e3  # [W], assumed
+TORQUE_LAG = 0.1  # [s]
+
+
+class PowerLimitedDrive(vehdyn.Model):
+    """Rear drive torque of an engine of power P: T -> min(T_demand, P / |omega|) with a first-order lag."""
+
+    states = (vehdyn.Signal("engine_drive_torque", "N*m", "drive torque the engine delivers to the rear axle"),)
+    inputs = (vehdyn.Signal("rear_drive_torque", "N*m", "driver's drive torque demand"),
+              vehdyn.Signal("rear_wheel_speed", "rad/s", "rear wheel spin"))
+    outputs = (vehdyn.Signal("rear_drive_torque", "N*m", "drive torque after the power limit"),)
+    phenomena = frozenset({"longitudinal"})
+
+    def __init__(self, power: float, lag: float):
+        self.power, self.lag = power, lag
+
+    def rhs(self, t, x, u):
+        demand, omega = u
+        available = np.minimum(demand, self.power / np.maximum(np.abs(omega), 1.0))
+        return ((available - x[0]) / self.lag)[np.newaxis]
+
+    def output(self, t, x, u):
+        return x[:1]
 
 
 def run(study: Study) -> None:
@@ -39,11 +67,18 @@ def run(study: Study) -> None:
     rows.append({"case": "locked-wheel stop from 20 m/s", "quantity": "stopping distance [m]",
                  "model": stop["x"][-1], "closed_form": 20.0**2 / (2 * mu * G)})
     # (2) launch with wheel spin
-    launch = vehdyn.simulate(model, np.linspace(0, 3, 301), {"rear_drive_torque": 3000.0},
-                             x0=model.straight_running(0.0), method="LSODA", rtol=1e-6, atol=1e-8)
+    engine = ClosedLoop(model, PowerLimitedDrive(ENGINE_POWER, TORQUE_LAG))
+    x0 = np.concatenate([model.straight_running(0.0), [3000.0]])
+    launch = vehdyn.simulate(engine, np.linspace(0, 3, 301), {"rear_drive_torque": 3000.0},
+                             x0=x0, method="LSODA", rtol=1e-6, atol=1e-8)
     limit = mu * g.a / (g.wheelbase - mu * vehicle.mass.cg_height) * G
-    rows.append({"case": "launch, 3000 N*m on the rear axle", "quantity": "peak a_x [m/s^2]",
+    rows.append({"case": "launch, 3000 N*m and 100 kW on the rear axle", "quantity": "peak a_x [m/s^2]",
                  "model": float(np.max(launch["longitudinal_acceleration"])), "closed_form": limit})
+    # the spinning wheel settles where the engine's torque P / omega equals the tire's: omega R = P / F_x
+    k = np.searchsorted(launch.time, 2.0)
+    rows.append({"case": "launch, spinning rear wheel at 2 s", "quantity": "wheel speed omega R [m/s]",
+                 "model": launch["rear_wheel_speed"][k] * radius,
+                 "closed_form": ENGINE_POWER / launch["rear_longitudinal_force"][k]})
     # (3) slow turns forwards and in reverse (force mode)
     turning = SingleTrack(vehicle, *tires)
     steer = 0.35
@@ -74,7 +109,7 @@ def run(study: Study) -> None:
     axes[0, 1].plot(launch.time, launch["longitudinal_velocity"], label="vehicle u")
     axes[0, 1].plot(launch.time, launch["rear_wheel_speed"] * radius, label="rear wheel omega R")
     axes[0, 1].set_ylabel("speed [m/s]")
-    axes[0, 1].set_title("launch with wheel spin")
+    axes[0, 1].set_title(f"launch: 3000 N*m, at most {ENGINE_POWER / 1e3:.0f} kW")
     axes[0, 1].legend(fontsize=8)
     axes[1, 1].plot(launch.time, launch["longitudinal_acceleration"], label="model")
     axes[1, 1].axhline(limit, color="0.4", ls=":", label="traction limit")
@@ -86,7 +121,8 @@ def run(study: Study) -> None:
     axes[2, 1].set_ylabel("y (SAE) [m]")
     axes[2, 1].set_aspect("equal", adjustable="datalim")
     axes[2, 1].legend(fontsize=8)
-    study.figure(fig, "low_speed", caption="Stop, launch and slow turns of the sedan (Fiala tires, relaxation states)")
+    study.figure(fig, "low_speed", caption="Stop, launch and slow turns of the sedan (Fiala tires, relaxation states); "
+                 f"the launch torque is limited by an assumed engine power of {ENGINE_POWER / 1e3:.0f} kW")
     frame = pd.DataFrame(rows)
     frame["relative_difference"] = (frame["model"] - frame["closed_form"]) / np.abs(frame["closed_form"])
     study.table(frame, "checks", caption="Model against the closed forms")

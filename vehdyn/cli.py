@@ -15,10 +15,11 @@
     List the shipped vehicles with their key numbers.
 ``vehdyn scene FILE.toml [--verify]``
     Plan a scene (the fidelity ladder), run the chosen model and print the headline numbers.
-``vehdyn sweep FILE.toml [--grid NAME=START:STOP:COUNT ...] [--samples N --vary NAME=LAW:ARGS ...]
-[--metric NAME ...] [--out results.parquet [--resume]] [--processes | --scheduler ADDRESS]``
+``vehdyn sweep FILE.toml [OPTIONS]``
     Sweep a scene's parameters (:func:`vehdyn.sweep`) with a progress bar; print a summary of the
-    metrics and write the table chunk by chunk.
+    metrics and write the table chunk by chunk. Options: ``[--grid NAME=START:STOP:COUNT ...]
+    [--samples N --vary NAME=LAW:ARGS ...] [--metric NAME ...] [--out results.parquet [--resume]]
+    [--processes | --scheduler ADDRESS]``.
 
 Exit status: 0 on success; 1 if a study failed (its traceback is in the report and on stderr); 2 for
 a usage error - an unknown study, a missing or unreadable input file, an output folder that is a

@@ -6,7 +6,7 @@ import pytest
 import vehdyn
 from vehdyn.handling import LateralYawRollLag
 from vehdyn.handling.bicycle import BicycleParameters
-from vehdyn.handling.lateral_yaw_roll_lag import running_axle_loads
+from vehdyn.handling.lateral_yaw_roll_lag import running_axle_loads, running_slip_ratios
 from vehdyn.handling.steady_state import steady_state_gains
 from vehdyn.tire import tire_for_vehicle
 from vehdyn.units import GRAVITY
@@ -44,11 +44,34 @@ def test_cornering_stiffness_is_the_law_at_the_running_loads():
     loads = running_axle_loads(vehicle, u)
     assert loads == pytest.approx((static[0] - shift, static[1] + shift), rel=1e-12)
     model = LateralYawRollLag(vehicle, u)
-    for k, axle in enumerate(("front", "rear")):
-        tire = tire_for_vehicle(vehicle, axle)
+    tires = [tire_for_vehicle(vehicle, axle) for axle in ("front", "rear")]
+    slips = running_slip_ratios(vehicle, tires, loads, u)
+    for k, tire in enumerate(tires):
         h = 1e-5
-        slope = (tire.forces(0.5 * loads[k], 0.0, h, 0.0, 20.0).fy - tire.forces(0.5 * loads[k], 0.0, -h, 0.0, 20.0).fy)
+        slope = (tire.forces(0.5 * loads[k], slips[k], h, 0.0, 20.0).fy
+                 - tire.forces(0.5 * loads[k], slips[k], -h, 0.0, 20.0).fy)
         assert model.cornering_stiffness[k] == pytest.approx(abs(float(slope)) / h, rel=1e-5)
+
+
+@pytest.mark.parametrize("name", ["sedan", "van"])
+def test_running_slip_ratios_balance_the_wheels_and_the_drag(name):
+    """In steady running every wheel's torque balances, R_e F_x = T + M_y, with the drive torque
+    split by the driveline and equal on both sides: the four F_x add up to the drag, and an axle
+    without drive torque has F_x = M_y / R_e."""
+    vehicle = vehdyn.load_vehicle(name)
+    u = 30.0
+    tires = [tire_for_vehicle(vehicle, axle) for axle in ("front", "rear")]
+    loads = running_axle_loads(vehicle, u)
+    slips = running_slip_ratios(vehicle, tires, loads, u)
+    out = [t.forces(0.5 * load, k, 0.0, 0.0, u) for t, load, k in zip(tires, loads, slips)]
+    fx = np.array([float(o.fx) for o in out])
+    my = np.array([float(o.my) for o in out])
+    aero = vehicle.aero
+    drag = 0.5 * aero.air_density * aero.frontal_area * aero.drag_coefficient * u**2
+    assert 2.0 * fx.sum() == pytest.approx(drag, rel=1e-6)
+    radius, share = vehicle.tires.rolling_radius, vehicle.driveline.front_drive_fraction
+    torque = 2.0 * (radius * fx - my)  # drive torque per axle
+    assert torque[0] == pytest.approx(share * torque.sum(), abs=1e-6 * abs(torque.sum()))
 
 
 def test_lateral_acceleration_is_the_axle_forces_over_the_mass():

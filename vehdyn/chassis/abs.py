@@ -100,8 +100,13 @@ class ABS(ChassisController):
 
     Examples
     --------
+    >>> import vehdyn
+    >>> from vehdyn.chassis import ABS, ClosedLoop
+    >>> from vehdyn.handling import SingleTrack
     >>> car = vehdyn.load_vehicle("sedan")
-    >>> loop = ClosedLoop(SingleTrack(car, wheel_spin=True), ABS(car))   # doctest: +SKIP
+    >>> loop = ClosedLoop(SingleTrack(car, wheel_spin=True), ABS(car))
+    >>> loop.output_names[-2:]
+    ('front_brake_torque_after_abs', 'rear_brake_torque_after_abs')
     """
 
     def __init__(self, vehicle: Vehicle, *, apply_slip: float = 0.05, release_slip: float = 0.12,

@@ -142,9 +142,15 @@ class ESC(ChassisController):
 
     Examples
     --------
+    >>> import vehdyn
+    >>> from vehdyn.chassis import ESC, ClosedLoop
+    >>> from vehdyn.full_vehicle import FullVehicle
+    >>> from vehdyn.handling import SingleTrack
     >>> car = vehdyn.load_vehicle("sedan")
-    >>> ClosedLoop(SingleTrack(car), ESC(car))                 # doctest: +SKIP
-    >>> ClosedLoop(FullVehicle(car), ESC(car, corners=True))   # doctest: +SKIP
+    >>> ClosedLoop(SingleTrack(car), ESC(car)).output_names[-3:]
+    ('front_longitudinal_force_after_esc', 'rear_longitudinal_force_after_esc', 'external_yaw_moment_after_esc')
+    >>> ClosedLoop(FullVehicle(car), ESC(car, corners=True)).output_names[-1]
+    'brake_torque_rear_right_after_esc'
     """
 
     def __init__(self, vehicle: Vehicle, *, wheel_spin: bool = False, corners: bool = False,

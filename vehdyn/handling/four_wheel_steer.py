@@ -128,8 +128,10 @@ def yaw_rate_feedback_rear_steer(bicycle: LinearBicycle, gain: float) -> LinearM
 class FourWheelSteerComparison:
     """Front-steer-only (2WS) against zero-sideslip 4WS, against speed.
 
-    Attributes (arrays over ``speed``)
-    ----------------------------------
+    Every attribute is an array over ``speed``.
+
+    Attributes
+    ----------
     speed : [m/s]
     rear_steer_ratio : k of the 4WS law [-]
     sideslip_gain_2ws, sideslip_gain_4ws : steady beta / delta_f [rad/rad]

@@ -15,6 +15,16 @@ derivation there) by:
   lift, with the load transfer h_s F_drag / L of the drive force that holds the speed against the
   drag (drag at the sprung CG height h_s, drive at the ground; Gillespie, *Fundamentals of Vehicle
   Dynamics*, 1992, eq. 2-18). Near neutral steer at speed the yaw gain changes by several percent.
+* **Running slip ratios** (:func:`running_slip_ratios`): the stiffnesses below are taken at the
+  slip ratio each axle runs at -- the drive force holding the speed on the driven wheels, the
+  rolling-resistance moment M_y braking the others -- since a Magic Formula's lateral force
+  depends on the slip ratio (its kappa-induced ply steer S_Vyk, Pacejka 2012, eq. 4.E67, and the
+  combined-slip weighting).
+* **Rolling resistance under lateral load transfer**: each wheel turns steadily, R_e F_x = T + M_y,
+  with equal drive torques T on the two sides of an axle (an open differential, or none), so a
+  load dF_z moved onto the left wheel makes F_x,left - F_x,right = 2 e_i dF_z / R_e (e_i = dM_y/dF_z
+  of one tire, negative: the loaded wheel rolls harder) and the yaw moment T_i e_i dF_z / R_e
+  (track T_i): the outer wheels hold the car back, about 1.4 % of the sedan's steady steer.
 * **Ply steer under lateral load transfer**: the two tires of an axle are mirror images (a law with
   a lateral force at zero slip, as in :meth:`vehdyn.handling.SingleTrack.axle_law_forces`); their
   zero-slip forces cancel at equal loads, not under a load transfer dF_z onto the left wheel, which
@@ -48,7 +58,7 @@ from ..units import GRAVITY
 from .bicycle import linear_model_speed
 from .lateral_yaw_roll import _OUTPUTS as _LYR_OUTPUTS, _STATES as _LYR_STATES, lateral_yaw_roll_parameters
 
-__all__ = ["LateralYawRollLag", "running_axle_loads"]
+__all__ = ["LateralYawRollLag", "running_axle_loads", "running_slip_ratios"]
 
 # the states and outputs of LateralYawRoll, with the two transient slip angles and the lateral
 # acceleration of the total CG
@@ -73,10 +83,38 @@ def running_axle_loads(vehicle: Vehicle, speed: float, gravity: float = GRAVITY)
     return (front - half * aero.front_lift_coefficient - shift, rear - half * aero.rear_lift_coefficient + shift)
 
 
-def _axle_law(tire, axle_load):
-    """(C, k): cornering stiffness [N/rad] of the axle's two tires and the SAE axle force per unit
-    load moved onto the left wheel [N/N] (ply steer of mirrored tires), from the law at half the
-    axle load (central differences)."""
+def running_slip_ratios(vehicle: Vehicle, tires, loads, speed: float) -> tuple[float, float]:
+    """(front, rear) longitudinal slip ratios [-] of the wheels in steady straight running.
+
+    Each wheel turns steadily, so R_e F_x = T + M_y (drive torque T, the law's rolling-resistance
+    moment M_y, ISO-W): a wheel without drive torque brakes the car by F_x = M_y / R_e, and the drive
+    torque, split by ``driveline.front_drive_fraction``, makes the four F_x add up to the drag. The
+    slip ratio of each axle is the one at which the law gives that F_x at half the axle load
+    (Newton's method on the law; M_y taken at the slip of the previous iterate).
+    """
+    radius = vehicle.tires.rolling_radius
+    aero = vehicle.aero
+    drag = 0.5 * aero.air_density * aero.frontal_area * aero.drag_coefficient * speed**2
+    share = vehicle.driveline.front_drive_fraction
+    half = 0.5 * np.asarray(loads, dtype=float)
+    kappa, step = np.zeros(2), 1e-5
+    for _ in range(4):
+        evaluated = [t.forces(np.full(2, fz), np.array([k, k + step]), np.zeros(2), 0.0, np.full(2, speed))
+                     for t, fz, k in zip(tires, half, kappa)]
+        my = np.array([2.0 * float(f.my[0]) for f in evaluated])  # per axle
+        torque = drag * radius - my.sum()  # the drive torque of all four wheels
+        target = 0.5 * (np.array([share, 1.0 - share]) * torque + my) / radius  # F_x per tire
+        fx = np.array([float(f.fx[0]) for f in evaluated])
+        slope = np.array([(float(f.fx[1]) - float(f.fx[0])) / step for f in evaluated])
+        kappa = kappa + (target - fx) / slope
+    return float(kappa[0]), float(kappa[1])
+
+
+def _axle_law(tire, axle_load, kappa=0.0):
+    """(C, k, e): cornering stiffness [N/rad] of the axle's two tires, the SAE axle force per unit
+    load moved onto the left wheel [N/N] (ply steer of mirrored tires) and one tire's dM_y/dF_z [m]
+    (rolling-resistance moment per load), from the law at half the axle load and the running slip
+    ratio ``kappa`` (central differences)."""
     from .single_track import SingleTrack
 
     load = 0.5 * float(axle_load)
@@ -86,10 +124,13 @@ def _axle_law(tire, axle_load):
     step, dz = 1e-4, 0.01 * load
     fz = np.array([load, load, load + dz, load - dz])
     alpha = np.array([step, -step, 0.0, 0.0])
-    fy = np.asarray(tire.forces(fz, 0.0 * fz, alpha, 0.0, np.full(4, 20.0)).fy, dtype=float)  # one batched call
+    out = tire.forces(fz, np.full(4, kappa), alpha, 0.0, np.full(4, 20.0))  # one batched call
+    fy = np.asarray(out.fy, dtype=float)
+    my = np.asarray(out.my, dtype=float)
     stiffness = abs(fy[0] - fy[1]) / step  # two tires: 2 |dF_y/d alpha|
     ply = (fy[2] - fy[3]) / dz if SingleTrack._needs_mirror(tire, load) else 0.0  # 2 dF_y0/dF_z
-    return stiffness, ply
+    rolling = (my[2] - my[3]) / (2.0 * dz)  # dM_y/dF_z of one tire [m]
+    return stiffness, ply, rolling
 
 
 class LateralYawRollLag(LinearModel):
@@ -128,7 +169,9 @@ class LateralYawRollLag(LinearModel):
         g, s, masses = vehicle.geometry, vehicle.suspension, vehicle.mass
         tires = [tire_for_vehicle(vehicle, axle) if t is None else t
                  for axle, t in (("front", front_tire), ("rear", rear_tire))]
-        (cf, kf), (cr, kr) = (_axle_law(t, load) for t, load in zip(tires, running_axle_loads(vehicle, u, gravity)))
+        loads = running_axle_loads(vehicle, u, gravity)
+        slips = running_slip_ratios(vehicle, tires, loads, u)
+        (cf, kf, ef), (cr, kr, er) = (_axle_law(t, load, k) for t, load, k in zip(tires, loads, slips))
         self.cornering_stiffness, self.ply_steer_load_coefficient = (cf, cr), (kf, kr)
         sigma = [max(x, 1e-3) for x in (vehicle.tires.front_relaxation_length, vehicle.tires.rear_relaxation_length)]
         axis = g.front_roll_centre_height + (g.rear_roll_centre_height - g.front_roll_centre_height) \
@@ -149,21 +192,25 @@ class LateralYawRollLag(LinearModel):
         S[1, :4] = [1.0 / u, -b / u, 0.0, -p.rear_roll_steer]
         T = -np.eye(2)
         # axle forces F_i = (-C_i alpha'_i + k_i dFz_el,i) / (1 - k_i h_rc,i / T_i)
-        F_x = np.zeros((2, n))
-        for i, (c, k, kroll, damping, track, rc) in enumerate((
-                (cf, kf, vehicle.front_roll_stiffness, s.front_damping, g.front_track, g.front_roll_centre_height),
-                (cr, kr, vehicle.rear_roll_stiffness, s.rear_damping, g.rear_track, g.rear_roll_centre_height))):
+        # and the yaw moment of the rolling resistance's left-right difference, track * e_i dF_z / R_e
+        F_x, yaw_moment = np.zeros((2, n)), np.zeros(n)
+        for i, (c, k, e, kroll, damping, track, rc) in enumerate((
+                (cf, kf, ef, vehicle.front_roll_stiffness, s.front_damping, g.front_track, g.front_roll_centre_height),
+                (cr, kr, er, vehicle.rear_roll_stiffness, s.rear_damping, g.rear_track, g.rear_roll_centre_height))):
+            elastic = np.zeros(n)  # dF_z,el onto the left wheel
+            elastic[3] = -kroll / track
+            elastic[2] = -damping * track / 2.0  # C_phi,i / T_i with C_phi,i = c T^2 / 2
             F_x[i, 4 + i] = -c
-            F_x[i, 3] = -k * kroll / track
-            F_x[i, 2] = -k * damping * track / 2.0  # C_phi,i / T_i with C_phi,i = c T^2 / 2
+            F_x[i] += k * elastic
             F_x[i] /= 1.0 - k * rc / track
+            yaw_moment += track * e / vehicle.tires.rolling_radius * (elastic + F_x[i] * rc / track)
         M = np.eye(n)
         M[:4, :4] = [[m, 0.0, coupling, 0.0], [0.0, p.yaw_inertia, -p.roll_yaw_product, 0.0],
                      [coupling, -p.roll_yaw_product, roll_inertia, 0.0], [0.0, 0.0, 0.0, 1.0]]
         Q_x, Q_u = np.zeros((n, n)), np.zeros((n, 2))
         Q_x[0] = F_x[0] + F_x[1]
         Q_x[0, 1] -= m * u
-        Q_x[1] = a * F_x[0] - b * F_x[1]
+        Q_x[1] = a * F_x[0] - b * F_x[1] + yaw_moment
         Q_x[2, 1] = -coupling * u
         Q_x[2, 2] = -p.roll_damping
         Q_x[2, 3] = -(p.roll_stiffness - pendulum)

@@ -157,7 +157,8 @@ class InertiaTensor(ParameterSet):
 
     Examples
     --------
-    >>> InertiaTensor(500.0, 2000.0, 2200.0, ixz=40.0).matrix[0, 2]
+    >>> from vehdyn.mechanics import InertiaTensor
+    >>> float(InertiaTensor(500.0, 2000.0, 2200.0, ixz=40.0).matrix[0, 2])   # products enter with a minus sign
     -40.0
     """
 

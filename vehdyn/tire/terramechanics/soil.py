@@ -152,7 +152,8 @@ def load_soil(name_or_path: str | Path) -> Soil:
     """
     text_name = str(name_or_path)
     path, _, key = text_name.partition(".toml:")
-    if text_name.endswith(".toml") or key:
+    # a path (a .toml file, or any existing file or folder that is not a shipped name): read_toml names what is wrong
+    if text_name.endswith(".toml") or key or (Path(text_name).exists() and text_name not in _soil_table()):
         path = Path(path if not key else path + ".toml")
         table = read_toml(path)
         if not key:
