@@ -50,7 +50,13 @@ yaw rate (side forces m u r b / L and m u r a / L, exact in a steady turn; in a 
 follows the yaw rate, not the forces); with wheel spin it is then updated with the forces along the
 two fixed-point passes of the longitudinal transfer; the outputs show the transfer of the final
 forces. One evaluation of the law per wheel (force mode), so the cost is about that without the
-transfer. An inner wheel that would lift carries 0. The
+transfer. Unequal longitudinal forces of the left and right wheel make a yaw couple
+(t_i / 2)(F_x,left - F_x,right) cos(d_i) (SAE: the left wheel at y = -t_i / 2); in force mode each
+wheel takes half the axle's demand (open differential, equal brake pressures) and its rolling
+resistance M_y / R_e (the law's, at its own load, faded in over the low-speed range like the
+damping above) moves force between them, the axle's net force staying the demand: the outer wheel
+rolls harder, a couple toward understeer that the full vehicle has too (1 % of the yaw rate in the
+sedan's circle to the limit). An inner wheel that would lift carries 0. The
 right tire of an axle is the left one's mirror image when the law has ply steer (as without the
 transfer). No roll degree of freedom: the transfer follows the forces without the roll mode's lag, and
 roll steer and camber are absent. With wheel spin the axle's two wheels share one spin state.
@@ -500,12 +506,14 @@ class SingleTrack(Model):
         roll centres and roll stiffnesses and the parameters' mass, CG height, a, b and gravity)."""
         if not self.lateral_load_transfer:
             return dict.fromkeys(("front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer",
-                                  "rear_elastic_transfer"), 0.0)
+                                  "rear_elastic_transfer", "front_track", "rear_track"), 0.0)
         p, v = self.parameters, self.vehicle
         transfer = lateral_load_transfer_coefficients(v, mass=p.mass, cg_height=p.cg_height, a=p.a, b=p.b,
                                                       gravity=p.gravity)
-        return {f"{axle}_{kind}_transfer": value for axle, pair in zip(_AXLES, transfer)
-                for kind, value in zip(("geometric", "elastic"), pair)}
+        out = {f"{axle}_{kind}_transfer": value for axle, pair in zip(_AXLES, transfer)
+               for kind, value in zip(("geometric", "elastic"), pair)}
+        out["front_track"], out["rear_track"] = v.geometry.front_track, v.geometry.rear_track
+        return out
 
     def _constants(self) -> equations.Constants:
         p = self.parameters

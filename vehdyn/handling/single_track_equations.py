@@ -49,12 +49,13 @@ Constants = namedtuple("Constants", (
     "low_speed_damping_speed", "brake_regularization_speed", "front_peak_slip_ratio", "front_peak_tan_slip_angle",
     "rear_peak_slip_ratio", "rear_peak_tan_slip_angle", "wind_side_force_factor", "centre_of_pressure", "wheel_spin",
     "tire_lag", "front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer",
-    "rear_elastic_transfer", "lateral_load_transfer"))
+    "rear_elastic_transfer", "front_track", "rear_track", "lateral_load_transfer"))
 Constants.__doc__ = """What the equations read: the fields of :class:`SingleTrackParameters` (floats, or arrays
 across batch variants on numpy), the model's options and the peak-force slips of the two laws
 (the limits of the tire deflections); ``wheel_spin``, ``tire_lag`` and ``lateral_load_transfer`` are
 bools. The four ``*_transfer`` coefficients [-] give the load moved onto an axle's left wheel by the
-axles' lateral forces (:func:`lateral_load_transfer`; zero without lateral load transfer)."""
+axles' lateral forces (:func:`lateral_load_transfer`; zero without lateral load transfer), the tracks
+[m] the arm of the yaw couple of unequal left and right longitudinal forces (zero without)."""
 
 Evaluation = namedtuple("Evaluation", (
     "longitudinal_acceleration", "lateral_acceleration", "yaw_acceleration", "front_longitudinal_force",
@@ -249,9 +250,11 @@ def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral
                      longitudinal_deflection, lateral_rate, longitudinal_rate, lateral_length, longitudinal_length,
                      peak_slip_ratio, peak_tan_slip_angle, force_demand):
     """:func:`axle_loads` of an axle whose left wheel carries F_z / 2 + ``shift`` and right wheel
-    F_z / 2 - ``shift`` [N]: each wheel's law at its own load (``xp.wheel_pair_tire_loads``); in
-    force mode each wheel takes half the demand, clipped at mu times its load, and its own
-    friction ellipse."""
+    F_z / 2 - ``shift`` [N], and the difference F_x,left - F_x,right [N] of the wheels' longitudinal
+    forces: each wheel's law at its own load (``xp.wheel_pair_tire_loads``). In force mode each
+    wheel takes half the demand (an open differential, equal brake pressures), clipped at mu times
+    its load, with its own friction ellipse, and its rolling resistance M_y / R_e shifts the force
+    between the wheels (the demand stays the axle's net force)."""
     alpha, kappa, direction, speed = axle_slips(
         xp, k, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection, lateral_rate, longitudinal_rate,
         lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle)
@@ -265,9 +268,12 @@ def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral
     if not k.wheel_spin:
         fx_left, fy_left = demanded_forces(xp, k, left_load, fx_left, fy_left, 0.5 * force_demand)
         fx_right, fy_right = demanded_forces(xp, k, right_load, fx_right, fy_right, 0.5 * force_demand)
-        my = 0.0 * my
-    # the rolling resistance fades at standstill as in axle_loads
-    return fx_left + fx_right, fy_left + fy_right, alpha, kappa, my * xp.abs(spin_saturation(xp, k, wheel_speed))
+        resistance = (w[2] - w[5]) / k.rolling_radius  # ISO-W M_y < 0 rolling forwards: retarding
+        # the rolling resistance fades at standstill as in axle_loads
+        return (fx_left + fx_right, fy_left + fy_right, alpha, kappa, 0.0 * my,
+                fx_left - fx_right + resistance * xp.abs(low_speed_blend(xp, speed, k.low_speed_damping_speed) - 1.0))
+    return (fx_left + fx_right, fy_left + fy_right, alpha, kappa, my * xp.abs(spin_saturation(xp, k, wheel_speed)),
+            fx_left - fx_right)
 
 
 def evaluate(xp, tires, k, states, inputs):
@@ -298,13 +304,14 @@ def evaluate(xp, tires, k, states, inputs):
                           k.rear_peak_tan_slip_angle, rear_force)
 
     # with lateral load transfer the left wheel carries fz / 2 + shift, the right fz / 2 - shift
+    # (with the difference of the wheels' longitudinal forces, zero without the transfer)
     def front(fz, shift):
         if k.lateral_load_transfer:
             return wheel_pair_loads(xp, tires, 0, k, fz, shift, vxf, vyf, front_wheel_speed, front_lateral_deflection,
                                     front_longitudinal_deflection, rates[0], rates[2],
                                     k.front_lateral_relaxation_length, k.front_longitudinal_relaxation_length,
                                     k.front_peak_slip_ratio, k.front_peak_tan_slip_angle, front_force)
-        return front_axle(fz)
+        return front_axle(fz) + (0.0 * fz,)
 
     def rear(fz, shift):
         if k.lateral_load_transfer:
@@ -312,7 +319,7 @@ def evaluate(xp, tires, k, states, inputs):
                                     rear_longitudinal_deflection, rates[1], rates[3],
                                     k.rear_lateral_relaxation_length, k.rear_longitudinal_relaxation_length,
                                     k.rear_peak_slip_ratio, k.rear_peak_tan_slip_angle, rear_force)
-        return rear_axle(fz)
+        return rear_axle(fz) + (0.0 * fz,)
 
     def transfer(f, r, fz_f, fz_r):
         return lateral_load_transfer(xp, k, f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr, fz_f, fz_r)
@@ -347,6 +354,8 @@ def evaluate(xp, tires, k, states, inputs):
     wind_force = aero_side_force(xp, k.wind_side_force_factor, lon, wind)  # crosswind, at the centre of pressure
     external_force = external_force + wind_force
     moment = external_moment + k.centre_of_pressure * wind_force + k.a * front_lateral - k.b * rear_lateral
+    if k.lateral_load_transfer:  # the couple of unequal left and right longitudinal forces (SAE: left at -t/2)
+        moment = moment + 0.5 * (k.front_track * f[5] * cf + k.rear_track * r[5] * cr)
     drag = k.drag_factor * lon * xp.abs(lon)
     return Evaluation((fx_body - drag) / k.mass, (front_lateral + rear_lateral + external_force) / k.mass,
                       moment / k.yaw_inertia, f[0], f[1], f[2], f[3], r[0], r[1], r[2], r[3], fz_f, fz_r,
