@@ -69,8 +69,11 @@ def run(study: Study) -> None:
                "the scene: the full vehicle's trim (tens of milliseconds) and simulation, a linearization, the "
                "derivation of LateralYawRoll+lag's stiffnesses from the tire law; building a model from the "
                "vehicle file is not counted. At 0.1 g the linear lateral-yaw-roll model with tire lag, its "
-               "parameters from the tire law at the running loads, is within 2 % of the full vehicle; the "
-               "limit manoeuvres, rough roads (the wheels lift) and the pothole need the full vehicle.")
+               "parameters from the tire law at the running loads, is within 2 % of the full vehicle; in the "
+               "slow circle to the limit the single track with the quasi-static lateral load transfer "
+               "(SingleTrack+LLT: the tire law at each wheel's load) is; the transient limit manoeuvres (the "
+               "roll's dynamics), braking in a turn, rough roads (the wheels lift) and the pothole need the "
+               "full vehicle.")
 
 
 if __name__ == "__main__":

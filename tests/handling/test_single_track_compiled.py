@@ -17,9 +17,14 @@ LINEAR = (LinearTire(cornering_stiffness=SEDAN.tires.front_cornering_stiffness /
 MODELS = {(law, spin, lag): SingleTrack(SEDAN, *(LINEAR if law == "linear" else (None, None)), wheel_spin=spin,
                                         tire_lag=lag)
           for law in ("magic_formula", "linear") for spin in (False, True) for lag in (False, True)}
+# with the quasi-static lateral load transfer (roll centres raised so that both of its parts act)
+MODELS.update({(law, spin, lag, "lateral_load_transfer"): SingleTrack(
+    SEDAN.replace(geometry__front_roll_centre_height=0.05, geometry__rear_roll_centre_height=0.1),
+    *(LINEAR if law == "linear" else (None, None)), wheel_spin=spin, tire_lag=lag, lateral_load_transfer=True)
+    for law in ("magic_formula", "linear") for spin in (False, True) for lag in (False, True)})
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=90, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(key=st.sampled_from(sorted(MODELS)), data=st.data())
 def test_compiled_rhs_and_outputs_equal_the_numpy_ones(key, data):
     model = MODELS[key]

@@ -41,7 +41,8 @@ for _function in (conventions.planar_tire_slips_sae_to_iso_w, conventions.planar
     register_jitable(**_JIT)(_function)
 for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_speed_blend", "sliding_slip",
               "limit_deflection_rate", "axle_slips", "demanded_forces", "axle_forces", "axle_loads", "normal_loads",
-              "evaluate", "derivatives", "outputs", "net_wheel_torque", "deflection_rate", "deflection_rates"):
+              "evaluate", "derivatives", "outputs", "net_wheel_torque", "deflection_rate", "deflection_rates",
+              "lateral_load_transfer", "wheel_pair_loads", "wheel_load_outputs", "rolling_resistance_fade"):
     register_jitable(**_JIT)(getattr(equations, _name))
 register_jitable(**_JIT)(crosswind.aero_side_force)
 
@@ -73,6 +74,22 @@ def _axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
     return 2.0 * fx, 2.0 * fy, 0.0
 
 
+def _wheel_pair_tire_loads(tires, axle, left_load, right_load, kappa, alpha, vx):
+    """ISO-W (fx, fy, my) of the left, then the right tire of an axle at their own loads [N]: the
+    right one is the left's mirror image when the law has ply steer (as in :func:`_axle_tire_loads`)."""
+    law = tires[axle]
+    mirror = -1.0 if law.mirrored else 1.0
+    if law.kind == _MAGIC_FORMULA:
+        c = law.coefficients
+        f = magic_formula._forces_kernel(_mf_numba.OPS, c, left_load, kappa, alpha, 0.0, vx, c.INFLPRES, True, False)
+        g = magic_formula._forces_kernel(_mf_numba.OPS, c, right_load, kappa, mirror * alpha, 0.0, vx, c.INFLPRES,
+                                         True, False)
+        return f[0], f[1], f[4], g[0], mirror * g[1], g[4]
+    fx, fy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, left_load, kappa, alpha, 0.0, vx)
+    gx, gy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, right_load, kappa, mirror * alpha, 0.0, vx)
+    return fx, fy, 0.0, gx, mirror * gy, 0.0
+
+
 def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
     """ISO-W axle forces (fx, fy) [N] of :func:`_axle_tire_loads`."""
     fx, fy, _ = _axle_tire_loads(tires, axle, fz, kappa, alpha, vx)
@@ -87,6 +104,7 @@ for _name in ("abs", "where", "minimum", "maximum"):
     setattr(XP, _name, getattr(_mf_numba.OPS, _name))
 XP.axle_tire_loads = numba.njit(**_JIT)(_axle_tire_loads)
 XP.axle_tire_forces = numba.njit(**_JIT)(_axle_tire_forces)
+XP.wheel_pair_tire_loads = numba.njit(**_JIT)(_wheel_pair_tire_loads)
 register_jitable(**_JIT)(linear.linear_tire_law)
 
 
@@ -110,6 +128,10 @@ def _output(t, x, u, args, y):
     values = equations.outputs(XP, states, e)
     for j in range(len(values)):
         y[j] = values[j]
+    if k.lateral_load_transfer:
+        loads = equations.wheel_load_outputs(e)
+        for j in range(len(loads)):
+            y[len(values) + j] = loads[j]
 
 
 @functools.lru_cache(maxsize=None)
@@ -144,7 +166,8 @@ def compiled_model(model) -> CompiledModel:
                              f"({model.n_variants} variants): use backend='numpy'", key="variants",
                              value=model.n_variants)
     k = model._constants()
-    k = k._replace(**{name: float(getattr(k, name)) for name in k._fields if name not in ("wheel_spin", "tire_lag")})
+    flags = ("wheel_spin", "tire_lag", "lateral_load_transfer")
+    k = k._replace(**{name: float(getattr(k, name)) for name in k._fields if name not in flags})
     tires = (tire_law(model.front_tire, model._mirrored["front"], "front"),
              tire_law(model.rear_tire, model._mirrored["rear"], "rear"))
     rhs, output, key = compiled_functions()

@@ -29,6 +29,38 @@ Dynamics*, 1992, eq. 2-18) through the CG height h, plus aerodynamic lift::
 
 (with wheel spin the forces depend on the loads: two fixed-point passes from the static loads).
 
+Lateral load transfer (``lateral_load_transfer=True``; default off): the two wheels of an axle
+carry F_z,i / 2 +- dF_z,i and the axle force is the tire law at each wheel's load, summed, so the
+tire's load sensitivity takes side force off the axle as the load moves outward. dF_z,i is the
+quasi-static (steady-state) lateral load transfer through the roll centres and the roll
+stiffnesses (Milliken & Milliken, *Race Car Vehicle Dynamics*, 1995, ch. 18, "lateral load
+transfer": a geometric part through the roll-centre height and an elastic part shared by the roll
+stiffnesses; with Gillespie 1992, ch. 6, "Suspension roll", for the gravity term m g h_1 of the
+rolled body)::
+
+    dF_z,i = (z_i / t_i) F_y,i + h_1 K_i / ((K_f + K_r - m g h_1) t_i) (F_y,f + F_y,r)
+
+with the axle lateral forces F_y,i in body axes (in a steady turn F_y,f + F_y,r = m a_y and
+F_y,f = m a_y b / L), t_i the track, z_i the roll-centre height, K_i the suspension roll stiffness
+(springs and anti-roll bar, :attr:`vehdyn.Vehicle.front_roll_stiffness`), h_1 the CG height above
+the roll axis (whole mass on the roll axis: the unsprung masses' own transfer is neglected) and
+positive dF_z onto the left wheels (SAE: F_y > 0 turns right). The roll moment of a crosswind is
+taken as acting at the CG height. The forces take the transfer of the steady turn at the present
+yaw rate (side forces m u r b / L and m u r a / L, exact in a steady turn; in a transient it
+follows the yaw rate, not the forces); with wheel spin it is then updated with the forces along the
+two fixed-point passes of the longitudinal transfer; the outputs show the transfer of the final
+forces. One evaluation of the law per wheel (force mode), so the cost is about that without the
+transfer. Unequal longitudinal forces of the left and right wheel make a yaw couple
+(t_i / 2)(F_x,left - F_x,right) cos(d_i) (SAE: the left wheel at y = -t_i / 2); in force mode each
+wheel takes half the axle's demand (open differential, equal brake pressures) and its rolling
+resistance M_y / R_e (the law's, at its own load, faded in over the low-speed range like the
+damping above) moves force between them, the axle's net force staying the demand: the outer wheel
+rolls harder, a couple toward understeer that the full vehicle has too (1 % of the yaw rate in the
+sedan's circle to the limit). An inner wheel that would lift carries 0. The
+right tire of an axle is the left one's mirror image when the law has ply steer (as without the
+transfer). No roll degree of freedom: the transfer follows the forces without the roll mode's lag, and
+roll steer and camber are absent. With wheel spin the axle's two wheels share one spin state.
+
 An axle whose load would become negative (the vehicle would tip over that axle) is held at zero
 and the other axle carries the whole weight; the output ``front_normal_load`` shows it.
 
@@ -102,7 +134,7 @@ from ..units import GRAVITY
 from . import single_track_equations as equations
 from .crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
 
-__all__ = ["SingleTrack", "SingleTrackParameters"]
+__all__ = ["SingleTrack", "SingleTrackParameters", "lateral_load_transfer_coefficients"]
 
 _AXLES = ("front", "rear")
 
@@ -201,6 +233,41 @@ def _stack(rows) -> np.ndarray:
     return np.stack([np.broadcast_to(row, shape) for row in rows])
 
 
+def lateral_load_transfer_coefficients(vehicle, *, mass=None, cg_height=None, a=None, b=None, gravity=GRAVITY):
+    """Quasi-static lateral load transfer coefficients ((front geometric, front elastic), (rear ...)) [-].
+
+    The load moved onto the outer wheel of axle i by the axle lateral forces F_y,f, F_y,r [N]::
+
+        dF_z,i = g_i F_y,i + e_i (F_y,f + F_y,r),
+        g_i = z_i / t_i,   e_i = h_1 K_i / ((K_f + K_r - m g h_1) t_i)
+
+    (Milliken & Milliken, *Race Car Vehicle Dynamics*, 1995, ch. 18; the gravity term of the rolled
+    body after Gillespie, *Fundamentals of Vehicle Dynamics*, 1992, ch. 6): t_i the track, z_i the
+    roll-centre height, K_i the suspension roll stiffness (springs and anti-roll bar, tires
+    excluded), h_1 = h - z(a) the CG height above the roll axis. In a steady turn
+    F_y,f + F_y,r = m a_y and F_y,i = m a_y l_j / L, which gives the textbook
+    dF_z,i = m a_y / t_i (h_1 K_i / (K_f + K_r - m g h_1) + z_i l_j / L).
+
+    ``mass``, ``cg_height``, ``a``, ``b`` default to the vehicle's (floats or arrays across
+    variants). Raises ParameterError when K_f + K_r <= m g h_1 (the body would roll over).
+    """
+    m, g = vehicle.mass, vehicle.geometry
+    mass = m.mass if mass is None else mass
+    cg_height = m.cg_height if cg_height is None else cg_height
+    a = g.cg_to_front_axle if a is None else a
+    b = g.cg_to_rear_axle if b is None else b
+    kf, kr = vehicle.front_roll_stiffness, vehicle.rear_roll_stiffness
+    zf, zr = g.front_roll_centre_height, g.rear_roll_centre_height
+    h1 = cg_height - (zf + (zr - zf) * a / (a + b))
+    denominator = kf + kr - mass * gravity * h1
+    if np.any(np.asarray(denominator) <= 0):
+        raise ParameterError(f"lateral load transfer needs roll stiffness K_f + K_r = {kf + kr!r} N*m/rad above "
+                             f"m g h_1 = {np.max(mass * gravity * h1)!r} N*m (the body would roll over)",
+                             key="suspension", value=kf + kr)
+    elastic = h1 / denominator
+    return ((zf / g.front_track, elastic * kf / g.front_track), (zr / g.rear_track, elastic * kr / g.rear_track))
+
+
 class SingleTrack(Model):
     """Nonlinear planar single-track model with any tire law (equations in the module docstring).
 
@@ -227,6 +294,11 @@ class SingleTrack(Model):
         omega_b [rad/s] of the brake-torque sign regularization (default 1 rad/s).
     gravity : float
         [m/s^2].
+    lateral_load_transfer : bool
+        Split each axle's load between its left and right wheel by the quasi-static lateral load
+        transfer (module docstring; default False: both wheels at half the axle load). Adds the
+        outputs ``front_left_normal_load``, ``front_right_normal_load``, ``rear_left_normal_load``
+        and ``rear_right_normal_load``.
 
     Signals
     -------
@@ -253,7 +325,8 @@ class SingleTrack(Model):
 
     def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, wheel_spin: bool = False,
                  tire_lag: bool = True, longitudinal_relaxation_length=None, low_speed_damping_speed: float = 2.0,
-                 brake_regularization_speed: float = 1.0, gravity: float = GRAVITY):
+                 brake_regularization_speed: float = 1.0, gravity: float = GRAVITY,
+                 lateral_load_transfer: bool = False):
         if not isinstance(vehicle, Vehicle):
             raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
                                  value=vehicle)
@@ -271,6 +344,7 @@ class SingleTrack(Model):
         self.vehicle = vehicle
         self.wheel_spin = bool(wheel_spin)
         self.tire_lag = bool(tire_lag)
+        self.lateral_load_transfer = bool(lateral_load_transfer)
         for name, value in (("low_speed_damping_speed", low_speed_damping_speed),
                             ("brake_regularization_speed", brake_regularization_speed), ("gravity", gravity)):
             if not (np.isfinite(value) and value > 0):
@@ -299,6 +373,8 @@ class SingleTrack(Model):
         static = self.parameters.static_axle_loads()
         self._mirrored = {axle: self._needs_mirror(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
         self._peak_slip = {axle: self._peak_slips(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
+        if self.lateral_load_transfer:
+            self._transfer_coefficients()  # a vehicle whose body would roll over: error here
         self._declare_signals()
 
     # ------------------------------------------------------------------ construction helpers
@@ -373,6 +449,9 @@ class SingleTrack(Model):
             Signal("y", "m", "earth-fixed Y of the CG (SAE)"),
             Signal("yaw_angle", "rad", "heading psi"),
         ]
+        if self.lateral_load_transfer:
+            outputs += [Signal(f"{axle}_{side}_normal_load", "N", f"normal load of the {axle} {side} wheel")
+                        for axle in _AXLES for side in ("left", "right")]
         self.declare(states=states, inputs=inputs, outputs=outputs)
         # positions of the model's signals in the equations' fixed order (-1: not a signal of this model)
         self._state_index = np.array([self.state_names.index(n) if n in self.state_names else -1
@@ -421,11 +500,27 @@ class SingleTrack(Model):
     # ------------------------------------------------------------------ the equations
     # They live in single_track_equations (one source for numpy and the compiled backend); the
     # methods below map the model's vectors onto them and supply the tire laws.
+    def _transfer_coefficients(self) -> dict:
+        """The coefficients of the lateral load transfer (module docstring) [-]: geometric z_i / t_i
+        and elastic h_1 K_i / ((K_f + K_r - m g h_1) t_i) of each axle (from the vehicle's tracks,
+        roll centres and roll stiffnesses and the parameters' mass, CG height, a, b and gravity)."""
+        if not self.lateral_load_transfer:
+            return dict.fromkeys(("front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer",
+                                  "rear_elastic_transfer", "front_track", "rear_track"), 0.0)
+        p, v = self.parameters, self.vehicle
+        transfer = lateral_load_transfer_coefficients(v, mass=p.mass, cg_height=p.cg_height, a=p.a, b=p.b,
+                                                      gravity=p.gravity)
+        out = {f"{axle}_{kind}_transfer": value for axle, pair in zip(_AXLES, transfer)
+               for kind, value in zip(("geometric", "elastic"), pair)}
+        out["front_track"], out["rear_track"] = v.geometry.front_track, v.geometry.rear_track
+        return out
+
     def _constants(self) -> equations.Constants:
         p = self.parameters
         fields = {f.name: getattr(p, f.name) for f in dataclasses.fields(p)}
         return equations.Constants(
-            **fields, low_speed_damping_speed=self.low_speed_damping_speed,
+            **fields, **self._transfer_coefficients(), lateral_load_transfer=self.lateral_load_transfer,
+            low_speed_damping_speed=self.low_speed_damping_speed,
             brake_regularization_speed=self.brake_regularization_speed,
             front_peak_slip_ratio=self._peak_slip["front"][0], front_peak_tan_slip_angle=self._peak_slip["front"][1],
             rear_peak_slip_ratio=self._peak_slip["rear"][0], rear_peak_tan_slip_angle=self._peak_slip["rear"][1],
@@ -474,6 +569,23 @@ class SingleTrack(Model):
             return both.fx[0] + both.fx[1], both.fy[0] - both.fy[1], both.my[0] + both.my[1]
         f = tire.forces(load, kap, alp, 0.0, vx)
         return 2.0 * f.fx, 2.0 * f.fy, 2.0 * f.my
+
+    def wheel_pair_law_loads(self, axle, left_load, right_load, kappa, alpha, vx):
+        """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N].
+
+        The right tire is the left's mirror image when the law has ply steer (see
+        :meth:`axle_law_loads`): (F_x, -F_y, M_y) of the law at -alpha."""
+        tire = self.front_tire if axle == 0 else self.rear_tire
+        mirror = -1.0 if self._mirrored[_AXLES[axle]] else 1.0
+        if all(np.ndim(v) == 0 for v in (left_load, right_load, kappa, alpha, vx)):
+            f = tire.forces(float(left_load), float(kappa), float(alpha), 0.0, float(vx))
+            g = tire.forces(float(right_load), float(kappa), mirror * float(alpha), 0.0, float(vx))
+            return f.fx, f.fy, f.my, g.fx, mirror * g.fy, g.my
+        both = tire.forces(np.stack(np.broadcast_arrays(left_load, right_load)),
+                           np.stack(np.broadcast_arrays(kappa, kappa)),
+                           np.stack(np.broadcast_arrays(alpha, mirror * alpha)), 0.0,
+                           np.stack(np.broadcast_arrays(vx, vx)))
+        return both.fx[0], both.fy[0], both.my[0], both.fx[1], mirror * both.fy[1], both.my[1]
 
     @staticmethod
     def _needs_mirror(tire, load) -> bool:
@@ -546,7 +658,10 @@ class SingleTrack(Model):
     def output(self, t, x, u):
         """Outputs (see :attr:`outputs`)."""
         states, _, _, e = self._evaluate(x, u)
-        return _stack(equations.outputs(equations.NUMPY, states, e))
+        values = equations.outputs(equations.NUMPY, states, e)
+        if self.lateral_load_transfer:
+            values = values + equations.wheel_load_outputs(e)
+        return _stack(values)
 
     # ------------------------------------------------------------------ operating points
     def straight_running(self, speed: float, **states) -> np.ndarray:
@@ -624,4 +739,5 @@ class SingleTrack(Model):
     def __repr__(self) -> str:
         return (f"<SingleTrack of {self.vehicle.name!r}: tires {type(self.front_tire).__name__}/"
                 f"{type(self.rear_tire).__name__}, wheel_spin={self.wheel_spin}, tire_lag={self.tire_lag}, "
+                + ("lateral_load_transfer=True, " if self.lateral_load_transfer else "") +
                 f"{self.n_states} states>")

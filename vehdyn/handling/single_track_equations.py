@@ -27,7 +27,8 @@ from ..tire._mf_ops import NumpyOps
 from .crosswind import aero_side_force
 
 __all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate",
-           "derivatives", "outputs", "axle_slips", "axle_forces", "axle_loads"]
+           "derivatives", "outputs", "axle_slips", "axle_forces", "axle_loads", "wheel_pair_loads",
+           "wheel_load_outputs", "lateral_load_transfer"]
 
 STATES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y", "yaw_angle", "front_wheel_speed",
           "rear_wheel_speed", "front_lateral_deflection", "rear_lateral_deflection", "front_longitudinal_deflection",
@@ -47,10 +48,14 @@ Constants = namedtuple("Constants", (
     "rear_longitudinal_relaxation_length", "drag_factor", "front_lift_factor", "rear_lift_factor", "gravity",
     "low_speed_damping_speed", "brake_regularization_speed", "front_peak_slip_ratio", "front_peak_tan_slip_angle",
     "rear_peak_slip_ratio", "rear_peak_tan_slip_angle", "wind_side_force_factor", "centre_of_pressure", "wheel_spin",
-    "tire_lag"))
+    "tire_lag", "front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer",
+    "rear_elastic_transfer", "front_track", "rear_track", "lateral_load_transfer"))
 Constants.__doc__ = """What the equations read: the fields of :class:`SingleTrackParameters` (floats, or arrays
 across batch variants on numpy), the model's options and the peak-force slips of the two laws
-(the limits of the tire deflections); ``wheel_spin`` and ``tire_lag`` are bools."""
+(the limits of the tire deflections); ``wheel_spin``, ``tire_lag`` and ``lateral_load_transfer`` are
+bools. The four ``*_transfer`` coefficients [-] give the load moved onto an axle's left wheel by the
+axles' lateral forces (:func:`lateral_load_transfer`; zero without lateral load transfer), the tracks
+[m] the arm of the yaw couple of unequal left and right longitudinal forces (zero without)."""
 
 Evaluation = namedtuple("Evaluation", (
     "longitudinal_acceleration", "lateral_acceleration", "yaw_acceleration", "front_longitudinal_force",
@@ -58,12 +63,13 @@ Evaluation = namedtuple("Evaluation", (
     "rear_slip_angle", "rear_slip_ratio", "front_normal_load", "rear_normal_load", "front_vx", "front_vy",
     "rear_vx", "rear_vy", "front_lateral_deflection_rate", "rear_lateral_deflection_rate",
     "front_longitudinal_deflection_rate", "rear_longitudinal_deflection_rate", "front_rolling_moment",
-    "rear_rolling_moment"))
+    "rear_rolling_moment", "front_load_transfer", "rear_load_transfer"))
 Evaluation.__doc__ = """Accelerations of the CG (du/dt - v r, dv/dt + u r [m/s^2], dr/dt [rad/s^2]), axle forces
 in SAE wheel axes [N], the slips acting in the laws (SAE slip angle [rad], slip ratio [-]), normal
 loads [N], the wheel-centre velocities in wheel axes [m/s], the tire deflection rates [m/s] (0 without
-tire lag) and the axles' rolling-resistance moments M_y [N*m] (ISO-W: about the axis of forward spin,
-negative rolling forwards; 0 in force mode, where no wheel spins)."""
+tire lag), the axles' rolling-resistance moments M_y [N*m] (ISO-W: about the axis of forward spin,
+negative rolling forwards; 0 in force mode, where no wheel spins) and the lateral load transfer of
+each axle [N] (load onto its left wheel, which carries F_z / 2 + dF_z; 0 without lateral load transfer)."""
 
 
 class NUMPY(NumpyOps):
@@ -84,6 +90,11 @@ class NUMPY(NumpyOps):
     def axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
         """ISO-W axle forces and rolling-resistance moment (fx, fy, my) [N, N, N*m] of ``axle``."""
         return tires.axle_law_loads(axle, fz, kappa, alpha, vx)
+
+    @staticmethod
+    def wheel_pair_tire_loads(tires, axle, left_load, right_load, kappa, alpha, vx):
+        """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N]."""
+        return tires.wheel_pair_law_loads(axle, left_load, right_load, kappa, alpha, vx)
 
 
 def _at(values, i):
@@ -200,10 +211,14 @@ def axle_loads(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection, 
     if not k.wheel_spin:
         fx, fy = demanded_forces(xp, k, fz, fx, fy, force_demand)
         my = 0.0 * my
-    # the rolling resistance opposes rolling: it fades to 0 at standstill, tanh(|omega| / omega_b)
-    # (omega_b the brake regularization speed; exactly 1 in floating point above ~19 omega_b),
-    # else the law's M_y at zero speed would spin a wheel at rest backwards
-    return fx, fy, alpha, kappa, my * xp.tanh(xp.abs(wheel_speed) / k.brake_regularization_speed)
+    return fx, fy, alpha, kappa, my * rolling_resistance_fade(xp, k, wheel_speed)
+
+
+def rolling_resistance_fade(xp, k, wheel_speed):
+    """tanh(|omega| / omega_b) [-]: the rolling resistance opposes rolling and fades to 0 at
+    standstill (omega_b the brake regularization speed [rad/s]; exactly 1 in floating point above
+    about 19 omega_b), else a law's M_y at zero speed would spin a wheel at rest backwards."""
+    return xp.tanh(xp.abs(wheel_speed) / k.brake_regularization_speed)
 
 
 def normal_loads(xp, k, x_force, front_lift, rear_lift):
@@ -215,6 +230,55 @@ def normal_loads(xp, k, x_force, front_lift, rear_lift):
     total = weight - front_lift - rear_lift
     front = xp.minimum(xp.maximum(front, 0.0), xp.maximum(total, 0.0))
     return front, xp.maximum(total - front, 0.0)
+
+
+def lateral_load_transfer(xp, k, front_lateral, rear_lateral, front_load, rear_load):
+    """Quasi-static lateral load transfer (front, rear) [N]: the load moved onto each axle's left wheel.
+
+    ``front_lateral``, ``rear_lateral`` are the axles' lateral forces in body axes [N] (SAE y,
+    positive turning right, so the load moves onto the left, outer wheels)::
+
+        dF_z,i = (z_i / t_i) F_y,i + h_1 K_i / ((K_f + K_r - m g h_1) t_i) (F_y,f + F_y,r)
+
+    (the ``*_geometric_transfer`` and ``*_elastic_transfer`` coefficients of :class:`Constants`),
+    held within +-F_z,i / 2 (an inner wheel that would lift carries 0).
+    """
+    total = front_lateral + rear_lateral
+    front = k.front_geometric_transfer * front_lateral + k.front_elastic_transfer * total
+    rear = k.rear_geometric_transfer * rear_lateral + k.rear_elastic_transfer * total
+    front_half, rear_half = 0.5 * xp.maximum(front_load, 0.0), 0.5 * xp.maximum(rear_load, 0.0)
+    return (xp.minimum(xp.maximum(front, -front_half), front_half),
+            xp.minimum(xp.maximum(rear, -rear_half), rear_half))
+
+
+def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral_deflection,
+                     longitudinal_deflection, lateral_rate, longitudinal_rate, lateral_length, longitudinal_length,
+                     peak_slip_ratio, peak_tan_slip_angle, force_demand):
+    """:func:`axle_loads` of an axle whose left wheel carries F_z / 2 + ``shift`` and right wheel
+    F_z / 2 - ``shift`` [N], and the difference F_x,left - F_x,right [N] of the wheels' longitudinal
+    forces: each wheel's law at its own load (``xp.wheel_pair_tire_loads``). In force mode each
+    wheel takes half the demand (an open differential, equal brake pressures), clipped at mu times
+    its load, with its own friction ellipse, and its rolling resistance M_y / R_e shifts the force
+    between the wheels (the demand stays the axle's net force)."""
+    alpha, kappa, direction, speed = axle_slips(
+        xp, k, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection, lateral_rate, longitudinal_rate,
+        lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle)
+    kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
+    left_load, right_load = 0.5 * fz + shift, 0.5 * fz - shift
+    w = xp.wheel_pair_tire_loads(tires, axle, left_load, right_load, kappa_iso, alpha_iso,
+                                 direction * xp.maximum(speed, 1e-3))
+    fx_left, fy_left = planar_tire_forces_iso_w_to_sae(w[0], w[1])
+    fx_right, fy_right = planar_tire_forces_iso_w_to_sae(w[3], w[4])
+    my = w[2] + w[5]
+    if not k.wheel_spin:
+        fx_left, fy_left = demanded_forces(xp, k, left_load, fx_left, fy_left, 0.5 * force_demand)
+        fx_right, fy_right = demanded_forces(xp, k, right_load, fx_right, fy_right, 0.5 * force_demand)
+        resistance = (w[2] - w[5]) / k.rolling_radius  # ISO-W M_y < 0 rolling forwards: retarding
+        # the rolling resistance fades at standstill as in axle_loads
+        return (fx_left + fx_right, fy_left + fy_right, alpha, kappa, 0.0 * my,
+                fx_left - fx_right + resistance * xp.abs(low_speed_blend(xp, speed, k.low_speed_damping_speed) - 1.0))
+    return (fx_left + fx_right, fy_left + fy_right, alpha, kappa, my * rolling_resistance_fade(xp, k, wheel_speed),
+            fx_left - fx_right)
 
 
 def evaluate(xp, tires, k, states, inputs):
@@ -232,40 +296,75 @@ def evaluate(xp, tires, k, states, inputs):
     vxr, vyr = lon * cr + rear_body_lateral * sr, -lon * sr + rear_body_lateral * cr
     rates = deflection_rates(xp, k, vxf, vyf, vxr, vyr, states)
 
-    def front(fz):
+    def front_axle(fz):
         return axle_loads(xp, tires, 0, k, fz, vxf, vyf, front_wheel_speed, front_lateral_deflection,
-                           front_longitudinal_deflection, rates[0], rates[2], k.front_lateral_relaxation_length,
-                           k.front_longitudinal_relaxation_length, k.front_peak_slip_ratio,
-                           k.front_peak_tan_slip_angle, front_force)
+                          front_longitudinal_deflection, rates[0], rates[2], k.front_lateral_relaxation_length,
+                          k.front_longitudinal_relaxation_length, k.front_peak_slip_ratio,
+                          k.front_peak_tan_slip_angle, front_force)
 
-    def rear(fz):
+    def rear_axle(fz):
         return axle_loads(xp, tires, 1, k, fz, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
-                           rear_longitudinal_deflection, rates[1], rates[3], k.rear_lateral_relaxation_length,
-                           k.rear_longitudinal_relaxation_length, k.rear_peak_slip_ratio,
-                           k.rear_peak_tan_slip_angle, rear_force)
+                          rear_longitudinal_deflection, rates[1], rates[3], k.rear_lateral_relaxation_length,
+                          k.rear_longitudinal_relaxation_length, k.rear_peak_slip_ratio,
+                          k.rear_peak_tan_slip_angle, rear_force)
 
-    # quasi-static load transfer: the longitudinal forces depend on the loads and the loads on
-    # the forces; with force inputs the dependence is explicit, with wheel spin two fixed-point
-    # passes from the static loads: the iteration contracts by about mu h / L (~0.2), so the
-    # load transfer is within (mu h / L)^2 ~ 4 % of its converged value
+    # with lateral load transfer the left wheel carries fz / 2 + shift, the right fz / 2 - shift
+    # (with the difference of the wheels' longitudinal forces, zero without the transfer)
+    def front(fz, shift):
+        if k.lateral_load_transfer:
+            return wheel_pair_loads(xp, tires, 0, k, fz, shift, vxf, vyf, front_wheel_speed, front_lateral_deflection,
+                                    front_longitudinal_deflection, rates[0], rates[2],
+                                    k.front_lateral_relaxation_length, k.front_longitudinal_relaxation_length,
+                                    k.front_peak_slip_ratio, k.front_peak_tan_slip_angle, front_force)
+        return front_axle(fz) + (0.0 * fz,)
+
+    def rear(fz, shift):
+        if k.lateral_load_transfer:
+            return wheel_pair_loads(xp, tires, 1, k, fz, shift, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
+                                    rear_longitudinal_deflection, rates[1], rates[3],
+                                    k.rear_lateral_relaxation_length, k.rear_longitudinal_relaxation_length,
+                                    k.rear_peak_slip_ratio, k.rear_peak_tan_slip_angle, rear_force)
+        return rear_axle(fz) + (0.0 * fz,)
+
+    def transfer(f, r, fz_f, fz_r):
+        return lateral_load_transfer(xp, k, f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr, fz_f, fz_r)
+
+    # quasi-static load transfer: the forces depend on the loads and the loads on the forces.
+    # Longitudinal: with force inputs the dependence is explicit, with wheel spin two fixed-point
+    # passes from the static loads: the iteration contracts by about mu h / L (~0.2), so the load
+    # transfer is within (mu h / L)^2 ~ 4 % of its converged value. Lateral: from the transfer of
+    # the steady turn at the present yaw rate (side forces m u r b / L and m u r a / L: exact in a
+    # steady turn), with wheel spin updated along the two longitudinal passes; in force mode the
+    # forces take one evaluation of the law at each wheel's load.
+    shift_f = shift_r = 0.0 * lon
+    if k.lateral_load_transfer:
+        turn = k.mass * lon * yaw_rate / (k.a + k.b)
+        fz_f, fz_r = normal_loads(xp, k, front_force * cf + rear_force * cr, front_lift, rear_lift)
+        shift_f, shift_r = lateral_load_transfer(xp, k, turn * k.b, turn * k.a, fz_f, fz_r)
     if k.wheel_spin:
         weight, wheelbase = k.mass * k.gravity, k.a + k.b
         fz_f, fz_r = weight * k.b / wheelbase - front_lift, weight * k.a / wheelbase - rear_lift
         for _ in range(2):
-            f, r = front(fz_f), rear(fz_r)
+            f, r = front(fz_f, shift_f), rear(fz_r, shift_r)
             fz_f, fz_r = normal_loads(xp, k, f[0] * cf - f[1] * sf + r[0] * cr - r[1] * sr, front_lift, rear_lift)
+            if k.lateral_load_transfer:
+                shift_f, shift_r = transfer(f, r, fz_f, fz_r)
     else:
         fz_f, fz_r = normal_loads(xp, k, front_force * cf + rear_force * cr, front_lift, rear_lift)
-    f, r = front(fz_f), rear(fz_r)
+    f, r = front(fz_f, shift_f), rear(fz_r, shift_r)
+    if k.lateral_load_transfer:  # the transfer of the final forces (shown in the outputs)
+        shift_f, shift_r = transfer(f, r, fz_f, fz_r)
     fx_body = f[0] * cf - f[1] * sf + r[0] * cr - r[1] * sr
     front_lateral, rear_lateral = f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr
     wind_force = aero_side_force(xp, k.wind_side_force_factor, lon, wind)  # crosswind, at the centre of pressure
     external_force = external_force + wind_force
     moment = external_moment + k.centre_of_pressure * wind_force + k.a * front_lateral - k.b * rear_lateral
+    if k.lateral_load_transfer:  # the couple of unequal left and right longitudinal forces (SAE: left at -t/2)
+        moment = moment + 0.5 * (k.front_track * f[5] * cf + k.rear_track * r[5] * cr)
     drag = k.drag_factor * lon * xp.abs(lon)
     return Evaluation((fx_body - drag) / k.mass, (front_lateral + rear_lateral + external_force) / k.mass,
                       moment / k.yaw_inertia, f[0], f[1], f[2], f[3], r[0], r[1], r[2], r[3], fz_f, fz_r,
-                      vxf, vyf, vxr, vyr, rates[0], rates[1], rates[2], rates[3], f[4], r[4])
+                      vxf, vyf, vxr, vyr, rates[0], rates[1], rates[2], rates[3], f[4], r[4], shift_f, shift_r)
 
 
 def deflection_rates(xp, k, front_vx, front_vy, rear_vx, rear_vy, states):
@@ -331,3 +430,10 @@ def outputs(xp, states, e):
             e.rear_lateral_force, e.longitudinal_acceleration, lon, xp.sqrt(speed_squared),
             e.front_longitudinal_force, e.rear_longitudinal_force, e.front_normal_load, e.rear_normal_load,
             e.front_slip_ratio, e.rear_slip_ratio, states[3], states[4], states[5])
+
+
+def wheel_load_outputs(e):
+    """The wheel loads (front left, front right, rear left, rear right) [N] of a model with lateral
+    load transfer (in the order of its outputs after those of :func:`outputs`)."""
+    return (0.5 * e.front_normal_load + e.front_load_transfer, 0.5 * e.front_normal_load - e.front_load_transfer,
+            0.5 * e.rear_normal_load + e.rear_load_transfer, 0.5 * e.rear_normal_load - e.rear_load_transfer)

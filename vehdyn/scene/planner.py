@@ -340,7 +340,9 @@ class _Context:
             diff = self._difference("LinearBicycle", "LateralYawRoll")
             if not diff:
                 return float("nan"), "roll unestimated"
-            transfer = self._lateral_load_transfer() if "roll" in self.top.rung.phenomena(self.top.setup) else 0.0
+            # a rung that carries the lateral load transfer itself misses only the roll's dynamics
+            transfer = self._lateral_load_transfer() if "roll" in self.top.rung.phenomena(self.top.setup) \
+                and not rung.setup.lateral_load_transfer else 0.0
             if transfer:
                 return {o: v + transfer for o, v in diff.items()}, f"roll (probes), lateral load transfer ~{transfer:.1e}"
             return diff, "roll (probes)"

@@ -62,12 +62,16 @@ class Setup:
     phenomena : frozenset, optional
         What the rung represents when it differs from ``model.phenomena`` (a SingleTrack with
         linear tires does not saturate).
+    lateral_load_transfer : bool
+        A rung without roll that carries the quasi-static lateral load transfer (the planner then
+        does not charge it the side force that transfer takes through the tire's load sensitivity).
     """
 
     model: Any
     run: Callable[[], Any]
     ignores: tuple[str, ...] = ()
     phenomena: frozenset | None = None
+    lateral_load_transfer: bool = False
 
     @property
     def output_names(self) -> tuple[str, ...]:
@@ -337,7 +341,7 @@ def _Positioned(model, speed):  # noqa: N802 - a class made on first use (Model 
     return _positioned_class()(model, speed)
 
 
-def build_single_track(drive, tires="vehicle") -> Setup:
+def build_single_track(drive, tires="vehicle", lateral_load_transfer=False) -> Setup:
     from ..handling.single_track import SingleTrack
     from ..simulate import simulate
     from ..tire import load_tire, tire_for_vehicle
@@ -349,7 +353,7 @@ def build_single_track(drive, tires="vehicle") -> Setup:
         front = rear = load_tire(scene.tire)
     else:
         front = rear = None
-    model = SingleTrack(vehicle, front, rear)
+    model = SingleTrack(vehicle, front, rear, lateral_load_transfer=lateral_load_transfer)
     accepted = tuple(model.input_names)
     unknown = [k for k in drive.inputs if k not in accepted]
     if unknown:
@@ -360,7 +364,8 @@ def build_single_track(drive, tires="vehicle") -> Setup:
     if drive.track is not None:
         loop = _with_driver(model, drive, speed_control=True)
         x0 = np.concatenate([model.straight_running(scene.speed, x=float(drive.track.path_x[0])), [0.0]])
-        return Setup(loop, lambda: simulate(loop, drive.time, None, x0=x0, **kw), ignores, phenomena)
+        return Setup(loop, lambda: simulate(loop, drive.time, None, x0=x0, **kw), ignores, phenomena,
+                     lateral_load_transfer)
     if drive.initial_turn is not None:
         from ..handling.nonlinear_steady_state import steady_state_cornering
 
@@ -387,7 +392,7 @@ def build_single_track(drive, tires="vehicle") -> Setup:
                   for k, v in inputs.items()}
         return simulate(model, drive.time, inputs, x0=x0, **kw)
 
-    return Setup(model, run, ignores, phenomena)
+    return Setup(model, run, ignores, phenomena, lateral_load_transfer)
 
 
 # ====================================================================== ride builders
@@ -487,6 +492,10 @@ for _rung in (
          build_single_track, options={"tires": "linear"}, description="nonlinear planar, linear tire law"),
     Rung("SingleTrack", "vehdyn.handling.single_track:SingleTrack", "handling", 50, build_single_track,
          description="nonlinear planar, the vehicle's Magic Formula tires"),
+    Rung("SingleTrack+LLT", "vehdyn.handling.single_track:SingleTrack", "handling", 60, build_single_track,
+         options={"lateral_load_transfer": True},
+         description="nonlinear planar, Magic Formula tires at the wheel loads of the quasi-static lateral "
+                     "load transfer"),
     Rung("QuarterCar", "vehdyn.ride.quarter_car:QuarterCar", "ride", 10, build_quarter_car, linear=True,
          description="front and rear quarter cars, mean track"),
     Rung("BouncePitch", "vehdyn.ride.bounce_pitch:BouncePitch", "ride", 20, build_bounce_pitch, linear=True,
