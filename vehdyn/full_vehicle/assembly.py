@@ -198,7 +198,8 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
     f_z = jack - spring
     mx1, my1, mz1 = body.cross(x_c, y_c, h, link_x, link_y, f_z)
     mx2, my2, mz2 = body.cross(x_c, y_c, zw, wheel_x, wheel_y, 0.0 * u)
-    return (load, alpha, kappa, fx, fy, driveline.wheel_acceleration(xp, k, omega, i[2 + c], i[6 + c], fx, rolling_moment),
+    return (load, alpha, kappa, fx, fy,
+            driveline.wheel_acceleration(xp, k, omega, i[2 + c], i[6 + c], fx, rolling_moment),
             (load - spring + jack) / m_u - k.gravity, lat_rate, lon_rate,
             link_x + wheel_x, link_y + wheel_y, f_z, mx1 + mx2, my1 + my2, mz1 + mz2, link_x, link_y,
             -load * R[2][2])
