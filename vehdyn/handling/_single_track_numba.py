@@ -80,7 +80,7 @@ def _wheel_pair_tire_loads(tires, axle, left_load, right_load, kappa, alpha, vx)
     law = tires[axle]
     mirror = -1.0 if law.mirrored else 1.0
     if law.kind == _MAGIC_FORMULA:
-        c = law.coefficients
+        c = law.records[law.record]
         f = magic_formula._forces_kernel(_mf_numba.OPS, c, left_load, kappa, alpha, 0.0, vx, c.INFLPRES, True, False)
         g = magic_formula._forces_kernel(_mf_numba.OPS, c, right_load, kappa, mirror * alpha, 0.0, vx, c.INFLPRES,
                                          True, False)
@@ -166,8 +166,7 @@ def compiled_model(model) -> CompiledModel:
                              f"({model.n_variants} variants): use backend='numpy'", key="variants",
                              value=model.n_variants)
     k = model._constants()
-    flags = ("wheel_spin", "tire_lag", "lateral_load_transfer")
-    k = k._replace(**{name: float(getattr(k, name)) for name in k._fields if name not in flags})
+    k = k._replace(**{name: float(getattr(k, name)) for name in _FLOATS})
     tires = (tire_law(model.front_tire, model._mirrored["front"], "front"),
              tire_law(model.rear_tire, model._mirrored["rear"], "rear"))
     rhs, output, key = compiled_functions()
@@ -177,7 +176,9 @@ def compiled_model(model) -> CompiledModel:
 
 
 # ------------------------------------------------------------------------------ batches
-_FLOATS = tuple(name for name in equations.Constants._fields if name not in ("wheel_spin", "tire_lag"))
+_FLAGS = ("wheel_spin", "tire_lag", "lateral_load_transfer")
+assert equations.Constants._fields[-3:] == _FLAGS  # the floats first, then the flags
+_FLOATS = equations.Constants._fields[:-3]
 _N_FLOATS = len(_FLOATS)
 _N_LINEAR = 5
 
@@ -191,8 +192,8 @@ def _law(axle, i):
 
 def _pick(batch, i):
     """The ``args`` of :func:`_rhs` for variant ``i`` of a batch built by :func:`compiled_batch`."""
-    K, wheel_spin, tire_lag, front, rear, state_index, input_index = batch
-    k = equations.Constants(*(to_fixed_tuple(K[i], _N_FLOATS) + (wheel_spin, tire_lag)))
+    K, wheel_spin, tire_lag, lateral_load_transfer, front, rear, state_index, input_index = batch
+    k = equations.Constants(*(to_fixed_tuple(K[i], _N_FLOATS) + (wheel_spin, tire_lag, lateral_load_transfer)))
     return k, (_law(front, i), _law(rear, i)), state_index, input_index
 
 
@@ -206,8 +207,8 @@ def batch_structure(model) -> tuple:
     and the signals' layout (a hashable key)."""
     kinds = tuple(_LINEAR if isinstance(tire, LinearTire) else _MAGIC_FORMULA if isinstance(tire, MagicFormula)
                   else type(tire).__name__ for tire in (model.front_tire, model.rear_tire))
-    return (type(model).__name__, model.wheel_spin, model.tire_lag, kinds, tuple(model.state_names),
-            tuple(model.input_names))
+    return (type(model).__name__, model.wheel_spin, model.tire_lag, model.lateral_load_transfer, kinds,
+            tuple(model.state_names), tuple(model.input_names), tuple(model.output_names))
 
 
 def _axle(tires, mirrored, axle):
@@ -274,7 +275,7 @@ def compiled_batch(models, n_variants: int | None = None) -> CompiledBatch:
             K[:, j] = np.broadcast_to(np.asarray(getattr(k, name), dtype=float), (n,))
         tires = {axle: [getattr(first, f"{axle}_tire")] * n for axle in ("front", "rear")}
         mirrored = {axle: [first._mirrored[axle]] * n for axle in ("front", "rear")}
-    batch = (np.ascontiguousarray(K), bool(first.wheel_spin), bool(first.tire_lag),
+    batch = (np.ascontiguousarray(K), bool(first.wheel_spin), bool(first.tire_lag), bool(first.lateral_load_transfer),
              _axle(tires["front"], mirrored["front"], "front"), _axle(tires["rear"], mirrored["rear"], "rear"),
              tuple(int(i) for i in first._state_index), tuple(int(i) for i in first._input_index))
     return CompiledBatch(rhs, output, key, _pick, batch, K.shape[0])

@@ -47,15 +47,16 @@ Constants = namedtuple("Constants", (
     "front_lateral_relaxation_length", "rear_lateral_relaxation_length", "front_longitudinal_relaxation_length",
     "rear_longitudinal_relaxation_length", "drag_factor", "front_lift_factor", "rear_lift_factor", "gravity",
     "low_speed_damping_speed", "brake_regularization_speed", "front_peak_slip_ratio", "front_peak_tan_slip_angle",
-    "rear_peak_slip_ratio", "rear_peak_tan_slip_angle", "wind_side_force_factor", "centre_of_pressure", "wheel_spin",
-    "tire_lag", "front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer",
-    "rear_elastic_transfer", "front_track", "rear_track", "lateral_load_transfer"))
+    "rear_peak_slip_ratio", "rear_peak_tan_slip_angle", "wind_side_force_factor", "centre_of_pressure",
+    "front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer", "rear_elastic_transfer",
+    "front_track", "rear_track", "wheel_spin", "tire_lag", "lateral_load_transfer"))
 Constants.__doc__ = """What the equations read: the fields of :class:`SingleTrackParameters` (floats, or arrays
 across batch variants on numpy), the model's options and the peak-force slips of the two laws
 (the limits of the tire deflections); ``wheel_spin``, ``tire_lag`` and ``lateral_load_transfer`` are
-bools. The four ``*_transfer`` coefficients [-] give the load moved onto an axle's left wheel by the
-axles' lateral forces (:func:`lateral_load_transfer`; zero without lateral load transfer), the tracks
-[m] the arm of the yaw couple of unequal left and right longitudinal forces (zero without)."""
+bools, the last three fields (a compiled batch appends them to a variant's floats). The four
+``*_transfer`` coefficients [-] give the load moved onto an axle's left wheel by the axles' lateral
+forces (:func:`lateral_load_transfer`; zero without lateral load transfer), the tracks [m] the arm
+of the yaw couple of unequal left and right longitudinal forces (zero without)."""
 
 Evaluation = namedtuple("Evaluation", (
     "longitudinal_acceleration", "lateral_acceleration", "yaw_acceleration", "front_longitudinal_force",
