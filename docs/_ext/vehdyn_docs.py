@@ -30,7 +30,7 @@ LAYERS = [
      [("vehdyn", ["Signal", "Model", "LinearModel", "connect_in_series"])]),
     ("simulation", "Simulation and results",
      "``vehdyn.simulate`` and what it returns.",
-     [("vehdyn", ["simulate", "PiecewiseSignal", "SimulationResult", "FrequencyResponse", "Modes"])]),
+     [("vehdyn", ["simulate", "simulate_many", "PiecewiseSignal", "SimulationResult", "FrequencyResponse", "Modes"])]),
     ("parameters", "Parameters",
      "Frozen, validated parameter sets read from TOML; the shipped vehicles and trailers.",
      [("vehdyn", ["Vehicle", "load_vehicle", "shipped_vehicles", "data_path", "Trailer", "load_trailer",
