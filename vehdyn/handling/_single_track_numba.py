@@ -42,7 +42,8 @@ for _function in (conventions.planar_tire_slips_sae_to_iso_w, conventions.planar
 for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_speed_blend", "sliding_slip",
               "limit_deflection_rate", "axle_slips", "demanded_forces", "axle_forces", "axle_loads", "normal_loads",
               "evaluate", "derivatives", "outputs", "net_wheel_torque", "deflection_rate", "deflection_rates",
-              "lateral_load_transfer", "wheel_pair_loads", "wheel_load_outputs", "rolling_resistance_fade"):
+              "lateral_load_transfer", "wheel_pair_loads", "wheel_load_outputs", "rolling_resistance_fade",
+              "roll_acceleration"):
     register_jitable(**_JIT)(getattr(equations, _name))
 register_jitable(**_JIT)(crosswind.aero_side_force)
 
@@ -128,10 +129,15 @@ def _output(t, x, u, args, y):
     values = equations.outputs(XP, states, e)
     for j in range(len(values)):
         y[j] = values[j]
+    n = len(values)
     if k.lateral_load_transfer:
         loads = equations.wheel_load_outputs(e)
         for j in range(len(loads)):
-            y[len(values) + j] = loads[j]
+            y[n + j] = loads[j]
+        n += len(loads)
+    if state_index[12] >= 0:  # the roll degree of freedom: roll angle and rate
+        y[n] = states[12]
+        y[n + 1] = states[13]
 
 
 @functools.lru_cache(maxsize=None)

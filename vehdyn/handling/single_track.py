@@ -134,7 +134,7 @@ from ..units import GRAVITY
 from . import single_track_equations as equations
 from .crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
 
-__all__ = ["SingleTrack", "SingleTrackParameters", "lateral_load_transfer_coefficients"]
+__all__ = ["SingleTrack", "SingleTrackParameters", "lateral_load_transfer_coefficients", "roll_parameters"]
 
 _AXLES = ("front", "rear")
 
@@ -268,6 +268,40 @@ def lateral_load_transfer_coefficients(vehicle, *, mass=None, cg_height=None, a=
     return ((zf / g.front_track, elastic * kf / g.front_track), (zr / g.rear_track, elastic * kr / g.rear_track))
 
 
+def roll_parameters(vehicle, *, mass=None, cg_height=None, a=None, b=None) -> dict:
+    """The numbers of the roll degree of freedom of :class:`SingleTrack` (``roll=True``).
+
+    ``roll_arm`` h_1 = h - z(a) [m], the CG height above the roll axis (as in
+    :func:`lateral_load_transfer_coefficients`); ``roll_inertia`` J [kg*m^2], the effective roll
+    inertia of the body when the vehicle is free to move sideways: Segel's sprung-mass roll inertia
+    about the roll axis less (m_s h_s)^2 / m (:func:`vehdyn.handling.lateral_yaw_roll_parameters`;
+    eliminating dv/dt from Segel's lateral and roll equations); ``{axle}_roll_transfer_stiffness``
+    K_i / t_i [N/rad] with K_i the suspension roll stiffness (springs and anti-roll bar, tires
+    excluded), and ``{axle}_roll_transfer_damping`` C_i / t_i
+    [N*s/rad] with C_i = c_i t_i^2 / 2 from the corner dampers. ``mass``, ``cg_height``, ``a``,
+    ``b`` default to the vehicle's.
+    """
+    from .lateral_yaw_roll import lateral_yaw_roll_parameters
+
+    m, g, s = vehicle.mass, vehicle.geometry, vehicle.suspension
+    mass = m.mass if mass is None else mass
+    cg_height = m.cg_height if cg_height is None else cg_height
+    a = g.cg_to_front_axle if a is None else a
+    b = g.cg_to_rear_axle if b is None else b
+    zf, zr = g.front_roll_centre_height, g.rear_roll_centre_height
+    segel = lateral_yaw_roll_parameters(vehicle)
+    inertia = segel.roll_inertia - (segel.sprung_mass * segel.roll_arm) ** 2 / segel.mass
+    if not inertia > 0:
+        raise ParameterError(f"the roll degree of freedom needs a positive effective roll inertia, got {inertia!r} "
+                             "kg*m^2 (mass.sprung_roll_inertia too small for the sprung mass's roll arm)",
+                             key="mass.sprung_roll_inertia", value=m.sprung_roll_inertia)
+    return {"roll_arm": cg_height - (zf + (zr - zf) * a / (a + b)), "roll_inertia": float(inertia),
+            "front_roll_transfer_stiffness": vehicle.front_roll_stiffness / g.front_track,
+            "rear_roll_transfer_stiffness": vehicle.rear_roll_stiffness / g.rear_track,
+            "front_roll_transfer_damping": s.front_damping * g.front_track / 2,
+            "rear_roll_transfer_damping": s.rear_damping * g.rear_track / 2}
+
+
 class SingleTrack(Model):
     """Nonlinear planar single-track model with any tire law (equations in the module docstring).
 
@@ -326,7 +360,7 @@ class SingleTrack(Model):
     def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, wheel_spin: bool = False,
                  tire_lag: bool = True, longitudinal_relaxation_length=None, low_speed_damping_speed: float = 2.0,
                  brake_regularization_speed: float = 1.0, gravity: float = GRAVITY,
-                 lateral_load_transfer: bool = False):
+                 lateral_load_transfer: bool = False, roll: bool = False):
         if not isinstance(vehicle, Vehicle):
             raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
                                  value=vehicle)
@@ -345,6 +379,13 @@ class SingleTrack(Model):
         self.wheel_spin = bool(wheel_spin)
         self.tire_lag = bool(tire_lag)
         self.lateral_load_transfer = bool(lateral_load_transfer)
+        for name, value in (("lateral_load_transfer", lateral_load_transfer), ("roll", roll)):
+            if not isinstance(value, (bool, np.bool_)):
+                raise ParameterError(f"{name} must be True or False, got {value!r}", key=name, value=value)
+        if roll and not lateral_load_transfer:
+            raise ParameterError("roll=True needs lateral_load_transfer=True (the roll sets the wheels' loads)",
+                                 key="roll", value=roll)
+        self.roll = bool(roll)
         for name, value in (("low_speed_damping_speed", low_speed_damping_speed),
                             ("brake_regularization_speed", brake_regularization_speed), ("gravity", gravity)):
             if not (np.isfinite(value) and value > 0):
@@ -405,6 +446,9 @@ class SingleTrack(Model):
         if self.wheel_spin:
             states += [Signal(f"{axle}_wheel_speed", "rad/s", f"spin of the {axle} wheels (positive rolling forwards)")
                        for axle in _AXLES]
+        if self.roll:
+            states += [Signal("roll_angle", "rad", "roll angle phi of the body about the roll axis (right side down)"),
+                       Signal("roll_rate", "rad/s", "roll rate p of the body")]
         if self.tire_lag:
             states += [Signal(f"{axle}_lateral_deflection", "m",
                               f"lateral deflection of the {axle} tires' contact point (SAE y, relaxation state)")
@@ -452,6 +496,9 @@ class SingleTrack(Model):
         if self.lateral_load_transfer:
             outputs += [Signal(f"{axle}_{side}_normal_load", "N", f"normal load of the {axle} {side} wheel")
                         for axle in _AXLES for side in ("left", "right")]
+        if self.roll:
+            outputs += [Signal("roll_angle", "rad", "roll angle of the body (positive right side down, SAE)"),
+                        Signal("roll_rate", "rad/s", "roll rate of the body")]
         self.declare(states=states, inputs=inputs, outputs=outputs)
         # positions of the model's signals in the equations' fixed order (-1: not a signal of this model)
         self._state_index = np.array([self.state_names.index(n) if n in self.state_names else -1
@@ -464,6 +511,8 @@ class SingleTrack(Model):
             phenomena.add("wheel_spin")
         if self.tire_lag:
             phenomena.add("tire_lag")
+        if self.roll:
+            phenomena.add("roll")
         self.phenomena = frozenset(phenomena)
 
     def variants(self, **arrays) -> "SingleTrack":
@@ -503,16 +552,24 @@ class SingleTrack(Model):
     def _transfer_coefficients(self) -> dict:
         """The coefficients of the lateral load transfer (module docstring) [-]: geometric z_i / t_i
         and elastic h_1 K_i / ((K_f + K_r - m g h_1) t_i) of each axle (from the vehicle's tracks,
-        roll centres and roll stiffnesses and the parameters' mass, CG height, a, b and gravity)."""
+        roll centres and roll stiffnesses and the parameters' mass, CG height, a, b and gravity);
+        with roll the elastic ones are 0 and the roll's numbers (:func:`roll_parameters`) are set."""
+        out = dict.fromkeys(("front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer",
+                             "rear_elastic_transfer", "front_track", "rear_track", "roll_arm",
+                             "front_roll_transfer_stiffness", "rear_roll_transfer_stiffness",
+                             "front_roll_transfer_damping", "rear_roll_transfer_damping"), 0.0)
+        out["roll_inertia"] = 1.0  # unused without roll (its arm is 0)
         if not self.lateral_load_transfer:
-            return dict.fromkeys(("front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer",
-                                  "rear_elastic_transfer", "front_track", "rear_track"), 0.0)
+            return out
         p, v = self.parameters, self.vehicle
         transfer = lateral_load_transfer_coefficients(v, mass=p.mass, cg_height=p.cg_height, a=p.a, b=p.b,
                                                       gravity=p.gravity)
-        out = {f"{axle}_{kind}_transfer": value for axle, pair in zip(_AXLES, transfer)
-               for kind, value in zip(("geometric", "elastic"), pair)}
+        out.update({f"{axle}_{kind}_transfer": value for axle, pair in zip(_AXLES, transfer)
+                    for kind, value in zip(("geometric", "elastic"), pair)})
         out["front_track"], out["rear_track"] = v.geometry.front_track, v.geometry.rear_track
+        if self.roll:
+            out["front_elastic_transfer"] = out["rear_elastic_transfer"] = 0.0
+            out.update(roll_parameters(v, mass=p.mass, cg_height=p.cg_height, a=p.a, b=p.b))
         return out
 
     def _constants(self) -> equations.Constants:
@@ -661,6 +718,8 @@ class SingleTrack(Model):
         values = equations.outputs(equations.NUMPY, states, e)
         if self.lateral_load_transfer:
             values = values + equations.wheel_load_outputs(e)
+        if self.roll:
+            values = values + (states[12], states[13])
         return _stack(values)
 
     # ------------------------------------------------------------------ operating points
@@ -739,5 +798,6 @@ class SingleTrack(Model):
     def __repr__(self) -> str:
         return (f"<SingleTrack of {self.vehicle.name!r}: tires {type(self.front_tire).__name__}/"
                 f"{type(self.rear_tire).__name__}, wheel_spin={self.wheel_spin}, tire_lag={self.tire_lag}, "
-                + ("lateral_load_transfer=True, " if self.lateral_load_transfer else "") +
+                + ("lateral_load_transfer=True, " if self.lateral_load_transfer else "")
+                + ("roll=True, " if self.roll else "") +
                 f"{self.n_states} states>")

@@ -341,7 +341,7 @@ def _Positioned(model, speed):  # noqa: N802 - a class made on first use (Model 
     return _positioned_class()(model, speed)
 
 
-def build_single_track(drive, tires="vehicle", lateral_load_transfer=False) -> Setup:
+def build_single_track(drive, tires="vehicle", lateral_load_transfer=False, roll=False) -> Setup:
     from ..handling.single_track import SingleTrack
     from ..simulate import simulate
     from ..tire import load_tire, tire_for_vehicle
@@ -353,7 +353,7 @@ def build_single_track(drive, tires="vehicle", lateral_load_transfer=False) -> S
         front = rear = load_tire(scene.tire)
     else:
         front = rear = None
-    model = SingleTrack(vehicle, front, rear, lateral_load_transfer=lateral_load_transfer)
+    model = SingleTrack(vehicle, front, rear, lateral_load_transfer=lateral_load_transfer, roll=roll)
     accepted = tuple(model.input_names)
     unknown = [k for k in drive.inputs if k not in accepted]
     if unknown:
@@ -496,6 +496,10 @@ for _rung in (
          options={"lateral_load_transfer": True},
          description="nonlinear planar, Magic Formula tires at the wheel loads of the quasi-static lateral "
                      "load transfer"),
+    Rung("SingleTrack+roll", "vehdyn.handling.single_track:SingleTrack", "handling", 70, build_single_track,
+         options={"lateral_load_transfer": True, "roll": True},
+         description="nonlinear planar with a roll degree of freedom: Magic Formula tires at the wheel loads of "
+                     "the dynamic lateral load transfer"),
     Rung("QuarterCar", "vehdyn.ride.quarter_car:QuarterCar", "ride", 10, build_quarter_car, linear=True,
          description="front and rear quarter cars, mean track"),
     Rung("BouncePitch", "vehdyn.ride.bounce_pitch:BouncePitch", "ride", 20, build_bounce_pitch, linear=True,
