@@ -77,18 +77,18 @@ def _axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
 
 def _wheel_pair_tire_loads(tires, axle, left_load, right_load, kappa, alpha, vx):
     """ISO-W (fx, fy, my) of the left, then the right tire of an axle at their own loads [N]: the
-    right one is the left's mirror image when the law has ply steer (as in :func:`_axle_tire_loads`)."""
+    left one is the law's mirror image when the law has ply steer (``SingleTrack.wheel_pair_law_loads``)."""
     law = tires[axle]
     mirror = -1.0 if law.mirrored else 1.0
     if law.kind == _MAGIC_FORMULA:
         c = law.records[law.record]
-        f = magic_formula._forces_kernel(_mf_numba.OPS, c, left_load, kappa, alpha, 0.0, vx, c.INFLPRES, True, False)
-        g = magic_formula._forces_kernel(_mf_numba.OPS, c, right_load, kappa, mirror * alpha, 0.0, vx, c.INFLPRES,
+        f = magic_formula._forces_kernel(_mf_numba.OPS, c, left_load, kappa, mirror * alpha, 0.0, vx, c.INFLPRES,
                                          True, False)
-        return f[0], f[1], f[4], g[0], mirror * g[1], g[4]
-    fx, fy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, left_load, kappa, alpha, 0.0, vx)
-    gx, gy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, right_load, kappa, mirror * alpha, 0.0, vx)
-    return fx, fy, 0.0, gx, mirror * gy, 0.0
+        g = magic_formula._forces_kernel(_mf_numba.OPS, c, right_load, kappa, alpha, 0.0, vx, c.INFLPRES, True, False)
+        return f[0], mirror * f[1], f[4], g[0], g[1], g[4]
+    fx, fy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, left_load, kappa, mirror * alpha, 0.0, vx)
+    gx, gy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, right_load, kappa, alpha, 0.0, vx)
+    return fx, mirror * fy, 0.0, gx, gy, 0.0
 
 
 def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):

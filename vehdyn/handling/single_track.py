@@ -630,19 +630,20 @@ class SingleTrack(Model):
     def wheel_pair_law_loads(self, axle, left_load, right_load, kappa, alpha, vx):
         """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N].
 
-        The right tire is the left's mirror image when the law has ply steer (see
-        :meth:`axle_law_loads`): (F_x, -F_y, M_y) of the law at -alpha."""
+        The left tire is the law's mirror image when the law has ply steer (see
+        :meth:`axle_law_loads`): (F_x, -F_y, M_y) of the law at -alpha; the right tire is the law's
+        own, as in :meth:`vehdyn.full_vehicle.FullVehicle.corner_law_loads`."""
         tire = self.front_tire if axle == 0 else self.rear_tire
         mirror = -1.0 if self._mirrored[_AXLES[axle]] else 1.0
         if all(np.ndim(v) == 0 for v in (left_load, right_load, kappa, alpha, vx)):
-            f = tire.forces(float(left_load), float(kappa), float(alpha), 0.0, float(vx))
-            g = tire.forces(float(right_load), float(kappa), mirror * float(alpha), 0.0, float(vx))
-            return f.fx, f.fy, f.my, g.fx, mirror * g.fy, g.my
+            f = tire.forces(float(left_load), float(kappa), mirror * float(alpha), 0.0, float(vx))
+            g = tire.forces(float(right_load), float(kappa), float(alpha), 0.0, float(vx))
+            return f.fx, mirror * f.fy, f.my, g.fx, g.fy, g.my
         both = tire.forces(np.stack(np.broadcast_arrays(left_load, right_load)),
                            np.stack(np.broadcast_arrays(kappa, kappa)),
-                           np.stack(np.broadcast_arrays(alpha, mirror * alpha)), 0.0,
+                           np.stack(np.broadcast_arrays(mirror * alpha, alpha)), 0.0,
                            np.stack(np.broadcast_arrays(vx, vx)))
-        return both.fx[0], both.fy[0], both.my[0], both.fx[1], mirror * both.fy[1], both.my[1]
+        return both.fx[0], mirror * both.fy[0], both.my[0], both.fx[1], both.fy[1], both.my[1]
 
     @staticmethod
     def _needs_mirror(tire, load) -> bool:
