@@ -57,9 +57,35 @@ resistance M_y / R_e (the law's, at its own load, faded in over the low-speed ra
 damping above) moves force between them, the axle's net force staying the demand: the outer wheel
 rolls harder, a couple toward understeer that the full vehicle has too (1 % of the yaw rate in the
 sedan's circle to the limit). An inner wheel that would lift carries 0. The
-right tire of an axle is the left one's mirror image when the law has ply steer (as without the
-transfer). No roll degree of freedom: the transfer follows the forces without the roll mode's lag, and
-roll steer and camber are absent. With wheel spin the axle's two wheels share one spin state.
+left tire of an axle is the law's mirror image when the law has ply steer, the right one the law's
+own, as in :class:`vehdyn.full_vehicle.FullVehicle` (the zero-slip forces cancel at equal loads, not
+under the transfer: 2.7 % of the sedan's steady steer at 2 m/s^2, so the side must be the full
+vehicle's). Without the roll degree of freedom (below) the transfer follows the forces without the
+roll mode's lag; roll steer and camber are absent. With wheel spin the axle's two wheels share one
+spin state.
+
+Roll degree of freedom (``roll=True``, with ``lateral_load_transfer=True``): the body rolls by phi
+(SAE: positive right side down) about the roll axis through the roll centres, and the suspension's
+roll moment, not the quasi-static law, sets the elastic part of each axle's transfer (Segel 1956;
+Milliken & Milliken 1995, ch. 18; Gillespie 1992, ch. 6)::
+
+    dF_z,i = (z_i / t_i) F_y,i - (K_i phi + C_i p) / t_i
+    J dp/dt = -m h_1 a_y - (K_f + K_r - m g h_1) phi - (C_f + C_r) p,     dphi/dt = p
+    m (dv/dt + u r) + m h_1 dp/dt = F_y,f + F_y,r + F_ext            (lateral equation above)
+
+with a_y = (F_y,f + F_y,r + F_ext) / m the lateral acceleration of the CG (the output
+``lateral_acceleration``), h_1 the CG height above the roll axis and the whole mass on it, as in the
+quasi-static law (whose steady state this is: phi = -m h_1 a_y / (K_f + K_r - m g h_1) gives its
+dF_z,i exactly, and K -> infinity at a fixed distribution gives its transient), C_i = c_i t_i^2 / 2
+the roll damping of the corner dampers c_i, and J = I_x - (m_s h_s)^2 / m the body's roll inertia
+with the vehicle free to move sideways (I_x Segel's sprung-mass roll inertia about the roll axis,
+:func:`~vehdyn.handling.lateral_yaw_roll_parameters`; eliminating dv/dt from Segel's lateral and
+roll equations). v is then the lateral velocity of the non-rolling frame, from which the slips are
+taken. The geometric part follows the yaw rate as without roll; roll steer, camber and the roll-yaw
+product of inertia are left out. States ``roll_angle`` and ``roll_rate``, outputs of the same names.
+At 2 % on yaw rate and lateral acceleration against :class:`vehdyn.full_vehicle.FullVehicle`, what
+the quasi-static transfer misses in transient manoeuvres is the roll's lag (sine with dwell of the
+sedan: 12 % without the roll degree of freedom, 3.3 % with it; see the README's fidelity ladder).
 
 An axle whose load would become negative (the vehicle would tip over that axle) is held at zero
 and the other axle carries the whole weight; the output ``front_normal_load`` shows it.
@@ -274,7 +300,7 @@ def roll_parameters(vehicle, *, mass=None, cg_height=None, a=None, b=None) -> di
     ``roll_arm`` h_1 = h - z(a) [m], the CG height above the roll axis (as in
     :func:`lateral_load_transfer_coefficients`); ``roll_inertia`` J [kg*m^2], the effective roll
     inertia of the body when the vehicle is free to move sideways: Segel's sprung-mass roll inertia
-    about the roll axis less (m_s h_s)^2 / m (:func:`vehdyn.handling.lateral_yaw_roll_parameters`;
+    about the roll axis I_x = J_s + m_s h_s^2 less (m_s h_s)^2 / m (positive, as m_s < m) (:func:`vehdyn.handling.lateral_yaw_roll_parameters`;
     eliminating dv/dt from Segel's lateral and roll equations); ``{axle}_roll_transfer_stiffness``
     K_i / t_i [N/rad] with K_i the suspension roll stiffness (springs and anti-roll bar, tires
     excluded), and ``{axle}_roll_transfer_damping`` C_i / t_i
@@ -291,10 +317,6 @@ def roll_parameters(vehicle, *, mass=None, cg_height=None, a=None, b=None) -> di
     zf, zr = g.front_roll_centre_height, g.rear_roll_centre_height
     segel = lateral_yaw_roll_parameters(vehicle)
     inertia = segel.roll_inertia - (segel.sprung_mass * segel.roll_arm) ** 2 / segel.mass
-    if not inertia > 0:
-        raise ParameterError(f"the roll degree of freedom needs a positive effective roll inertia, got {inertia!r} "
-                             "kg*m^2 (mass.sprung_roll_inertia too small for the sprung mass's roll arm)",
-                             key="mass.sprung_roll_inertia", value=m.sprung_roll_inertia)
     return {"roll_arm": cg_height - (zf + (zr - zf) * a / (a + b)), "roll_inertia": float(inertia),
             "front_roll_transfer_stiffness": vehicle.front_roll_stiffness / g.front_track,
             "rear_roll_transfer_stiffness": vehicle.rear_roll_stiffness / g.rear_track,
@@ -333,6 +355,10 @@ class SingleTrack(Model):
         transfer (module docstring; default False: both wheels at half the axle load). Adds the
         outputs ``front_left_normal_load``, ``front_right_normal_load``, ``rear_left_normal_load``
         and ``rear_right_normal_load``.
+    roll : bool
+        The roll degree of freedom (module docstring; needs ``lateral_load_transfer=True``): the
+        roll angle and rate of the body set the elastic part of the lateral load transfer. Adds the
+        states and outputs ``roll_angle`` [rad] and ``roll_rate`` [rad/s] (default False).
 
     Signals
     -------
