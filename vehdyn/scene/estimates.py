@@ -135,7 +135,10 @@ THRESHOLDS = {
     # sine with dwell. bench_ladder (sedan): measured error less the floor / deficit 0.25 (limit step
     # steer), 0.7 (sine with dwell), 1.1 (lane change at 100 km/h); 0.5 keeps the sine with dwell's
     # estimate above the tolerance (where the rung is 3.3 % off)
-    "side_force_tilt_gain": 0.5,
+    "side_force_tilt_gain": 1.0,
+    # the largest steady lateral acceleration of the full vehicle / (mu g): the circle to the limit,
+    # bench_ladder: 0.70 (sedan, 6.41 m/s^2); the linear probe's a_y beyond it is capped there
+    "steady_limit_fraction": 0.7,
     # floor of every estimate: integration error of the references (rtol 1e-8, exact linear)
     "numerical_error": 1e-6,
 }
@@ -330,7 +333,9 @@ def side_force_tilt_deficit(vehicle, lateral_acceleration, gravity=GRAVITY) -> f
     except ParameterError:  # the body would roll over
         return 1.0
     h1 = m.cg_height - (g.front_roll_centre_height * g.b + g.rear_roll_centre_height * g.a) / g.wheelbase
-    a_y = abs(float(lateral_acceleration))
+    # the tires cap the turn: at most the full vehicle's largest steady a_y (THRESHOLDS)
+    a_y = min(abs(float(lateral_acceleration)),
+              THRESHOLDS["steady_limit_fraction"] * vehicle.tires.friction_coefficient * gravity)
     phi = m.mass * h1 * a_y / (vehicle.front_roll_stiffness + vehicle.rear_roll_stiffness - m.mass * gravity * h1)
     return a_y / gravity * abs(phi)
 
