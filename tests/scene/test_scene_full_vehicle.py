@@ -257,3 +257,15 @@ def test_circle_to_the_limit_picks_the_single_track_with_lateral_load_transfer(s
     plain = p.row("SingleTrack")
     assert "lateral load transfer" in plain.reason and "lateral load transfer" not in p.chosen.reason
     assert plain.estimated_error > scene.tolerance
+
+
+def test_lane_change_at_100_kmh_picks_the_roll_rung_against_the_full_vehicle():
+    """At 0.2 g the single track with the roll degree of freedom (SingleTrack+roll) is within the
+    tolerance of the full vehicle (measured 1.4 %) and picked; its estimate within a factor 3."""
+    pytest.importorskip("numba")
+    scene = standard_scenes("sedan")["lane_change_100"]
+    out = vehdyn.run(scene, verify=True)
+    assert out.rung == "SingleTrack+roll" and out.reference == "FullVehicle"
+    measured, estimated = max(out.verified_error.values()), max(out.estimated_error.values())
+    assert measured <= scene.tolerance
+    assert 1 / 3 <= estimated / measured <= 3
