@@ -91,12 +91,14 @@ def test_equal_loads_segel_coupling():
     rng = np.random.default_rng(5)
     for _ in range(10):
         values = dict(lateral_velocity=rng.uniform(-1, 1), yaw_rate=rng.uniform(-0.3, 0.3),
-                      front_lateral_deflection=rng.uniform(-0.01, 0.01), rear_lateral_deflection=rng.uniform(-0.01, 0.01))
+                      front_lateral_deflection=rng.uniform(-0.01, 0.01),
+                      rear_lateral_deflection=rng.uniform(-0.01, 0.01))
         phi, rate = rng.uniform(-0.05, 0.05), rng.uniform(-0.3, 0.3)
         u = plain.input_vector(front_steer_angle=rng.uniform(-0.05, 0.05))
         a = plain.rhs(0.0, plain.straight_running(25.0, **values), u)
         b = roll.rhs(0.0, roll.straight_running(25.0, roll_angle=phi, roll_rate=rate, **values), u)
-        a_y = plain.output(0.0, plain.straight_running(25.0, **values), u)[plain.index("lateral_acceleration", "outputs")]
+        y = plain.output(0.0, plain.straight_running(25.0, **values), u)
+        a_y = y[plain.index("lateral_acceleration", "outputs")]
         roll_acceleration = (-m * h1 * a_y - (stiffness - m * g * h1) * phi - damping * rate) / inertia
         assert b[roll.index("roll_angle")] == rate
         assert b[roll.index("roll_rate")] == pytest.approx(roll_acceleration, rel=1e-12)

@@ -300,11 +300,11 @@ def roll_parameters(vehicle, *, mass=None, cg_height=None, a=None, b=None) -> di
     ``roll_arm`` h_1 = h - z(a) [m], the CG height above the roll axis (as in
     :func:`lateral_load_transfer_coefficients`); ``roll_inertia`` J [kg*m^2], the effective roll
     inertia of the body when the vehicle is free to move sideways: Segel's sprung-mass roll inertia
-    about the roll axis I_x = J_s + m_s h_s^2 less (m_s h_s)^2 / m (positive, as m_s < m) (:func:`vehdyn.handling.lateral_yaw_roll_parameters`;
-    eliminating dv/dt from Segel's lateral and roll equations); ``{axle}_roll_transfer_stiffness``
-    K_i / t_i [N/rad] with K_i the suspension roll stiffness (springs and anti-roll bar, tires
-    excluded), and ``{axle}_roll_transfer_damping`` C_i / t_i
-    [N*s/rad] with C_i = c_i t_i^2 / 2 from the corner dampers. ``mass``, ``cg_height``, ``a``,
+    about the roll axis I_x = J_s + m_s h_s^2 (:func:`vehdyn.handling.lateral_yaw_roll_parameters`)
+    less (m_s h_s)^2 / m, eliminating dv/dt from Segel's lateral and roll equations (positive, as
+    m_s < m); ``{axle}_roll_transfer_stiffness`` K_i / t_i [N/rad] with K_i the suspension roll
+    stiffness (springs and anti-roll bar, tires excluded), and ``{axle}_roll_transfer_damping``
+    C_i / t_i [N*s/rad] with C_i = c_i t_i^2 / 2 from the corner dampers. ``mass``, ``cg_height``, ``a``,
     ``b`` default to the vehicle's.
     """
     from .lateral_yaw_roll import lateral_yaw_roll_parameters
