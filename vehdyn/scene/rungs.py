@@ -474,6 +474,22 @@ def build_full_car(drive) -> Setup:
     return Setup(model, lambda: simulate(model, drive.time, u, method="exact"), _ride_ignores(drive))
 
 
+def build_full_car_lift_off(drive) -> Setup:
+    """The full car with tires that lift off (:class:`vehdyn.ride.LiftOff`) and the couplings of the
+    sprung CG's height (``FullCar.from_vehicle(..., cg_heights=True)``), on both tracks; RK45 with
+    the full vehicle's tolerances and ``max_step`` the scene's time step (compiled when numba is
+    installed)."""
+    from ..full_vehicle.ladder import SOLVER_OPTIONS
+    from ..ride.full_car import FullCar
+    from ..ride.lift_off import LiftOff
+    from ..simulate import simulate
+
+    model = LiftOff(FullCar.from_vehicle(drive.vehicle, cg_heights=True))
+    u = _ride_inputs(model.linear, drive, average=False)
+    options = dict(SOLVER_OPTIONS, max_step=float(drive.scene.effective_time_step))
+    return Setup(model, lambda: simulate(model, drive.time, u, **options), _ride_ignores(drive))
+
+
 # ====================================================================== the registry
 _HERE = "vehdyn.scene.rungs"
 for _rung in (
@@ -502,6 +518,8 @@ for _rung in (
          description="half car in pitch, mean track"),
     Rung("FullCar", "vehdyn.ride.full_car:FullCar", "ride", 30, build_full_car, linear=True,
          description="7-DOF full car, both tracks"),
+    Rung("FullCar+lift", "vehdyn.ride.lift_off:LiftOff", "ride", 40, build_full_car_lift_off,
+         description="7-DOF full car, both tracks, tires that lift off, CG-height couplings"),
     # The top rung of both ladders: vehdyn.full_vehicle.ladder_setup(drive, ladder) -> Setup with the
     # contract of the builders above (the handling rung answers every scene with a ground-plane
     # input, road or not; the ride rung the road-only scenes).
