@@ -164,8 +164,8 @@ class RideModel(LinearModel):
             w[left], w[right] = 1.0, -1.0
             elements.append((w, k, 0.0))
         K = np.zeros((n, n))
-        if body_stiffness is not None:
-            K[range(nb), range(nb)] = body_stiffness
+        self.body_stiffness = np.zeros(nb) if body_stiffness is None else np.asarray(body_stiffness, dtype=float)
+        K[range(nb), range(nb)] = self.body_stiffness
         C = np.zeros((n, n))
         Fd = np.zeros((n, nc))
         Fv = np.zeros((n, nc))

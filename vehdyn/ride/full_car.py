@@ -54,6 +54,10 @@ class FullCarParameters(ParameterSet):
                                         "couplings of the height left out)", ge=0, default=0.0)
     unsprung_cg_height: float = parameter("m", "height of the unsprung masses above the contact points",
                                           ge=0, default=0.0)
+    wheel_spin_inertia: float = parameter("kg*m^2", "spin inertia of one wheel (with sprung_cg_height: the wheels "
+                                          "spin as the contact points move fore and aft)", ge=0, default=0.0)
+    rolling_radius: float = parameter("m", "rolling radius of the wheels (for wheel_spin_inertia)", gt=0,
+                                      default=0.3)
 
     @property
     def wheelbase(self) -> float:
@@ -82,6 +86,9 @@ class FullCar(RideModel):
     sprung_cg_height, unsprung_cg_height : float, optional
         Heights of the sprung CG and of the unsprung masses above the contact points [m] (default
         0): gravity's moment and the wheels' horizontal inertia (module docstring).
+    wheel_spin_inertia, rolling_radius : float, optional
+        Spin inertia of one wheel [kg*m^2] (default 0) and rolling radius [m]: the wheels' share
+        of the pitch inertia when the CG is above the ground.
     actuators : bool, optional
         Add an ``actuator_force_<corner>`` input per corner.
 
@@ -111,6 +118,7 @@ class FullCar(RideModel):
         # unsprung masses' fore-aft and sideways inertia about the sprung CG
         lever = p.sprung_cg_height - p.unsprung_cg_height
         wheels = 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass) * lever**2
+        spin = 4.0 * p.wheel_spin_inertia * (p.sprung_cg_height / p.rolling_radius) ** 2
         tilt = -p.mass * GRAVITY * p.sprung_cg_height
         pitch_stiffness = 2.0 * (p.front_spring_rate * p.a**2 + p.rear_spring_rate * p.b**2)
         roll_stiffness = (0.5 * p.front_spring_rate * p.front_track**2 + 0.5 * p.rear_spring_rate * p.rear_track**2
@@ -121,7 +129,7 @@ class FullCar(RideModel):
                                  f"({roll_stiffness:.4g}) stiffness [N*m/rad]: the body would tip over",
                                  key="sprung_cg_height", value=p.sprung_cg_height)
         self._assemble(body_dof=("heave", "pitch", "roll"),
-                       body_mass=[p.mass, p.pitch_inertia + wheels, p.roll_inertia + wheels],
+                       body_mass=[p.mass, p.pitch_inertia + wheels + spin, p.roll_inertia + wheels],
                        corners=corners, antiroll=antiroll, actuators=actuators, name=name,
                        phenomena=self.phenomena, body_stiffness=[0.0, tilt, tilt])
 
@@ -143,13 +151,15 @@ class FullCar(RideModel):
 
         ``cg_heights=True`` keeps the couplings of the sprung CG's height (``sprung_cg_height`` the
         file's, ``unsprung_cg_height`` where it puts the total CG at the file's height, as in
-        :class:`vehdyn.full_vehicle.FullVehicle`); by default both are 0.
+        :class:`vehdyn.full_vehicle.FullVehicle`, and the wheels' spin inertia and rolling radius);
+        by default the heights are 0.
         """
         g, m, s, t = vehicle.geometry, vehicle.mass, vehicle.suspension, vehicle.tires
         heights = {}
         if cg_heights:
             unsprung = (m.mass * m.cg_height - m.sprung_mass * m.sprung_cg_height) / m.unsprung_mass
-            heights = dict(sprung_cg_height=m.sprung_cg_height, unsprung_cg_height=unsprung)
+            heights = dict(sprung_cg_height=m.sprung_cg_height, unsprung_cg_height=unsprung,
+                           wheel_spin_inertia=t.wheel_spin_inertia, rolling_radius=t.rolling_radius)
         return cls(**heights,
             mass=m.sprung_mass, roll_inertia=m.sprung_roll_inertia, pitch_inertia=m.sprung_pitch_inertia,
             a=g.sprung_cg_to_front_axle, b=g.sprung_cg_to_rear_axle, front_track=g.front_track,

@@ -34,7 +34,7 @@ wheel is off the road it flies under gravity and its suspension spring and dampe
 m_u z_u'' = F_susp - m_u g in absolute terms (in the model's coordinates about the static
 equilibrium the static loads are part of the correction).
 
-Static loads: the static equilibrium of the linear model itself under gravity, K q_g = f_g with
+Static loads: the static equilibrium of the linear model's springs under gravity, K q_g = f_g with
 f_g = -g x (the mass of each translational coordinate: the body's heave, the wheels), F_s,i =
 -k_t,i z_u,i(q_g); for the full car of a vehicle the sprung weight splits by the sprung CG's
 position (m_s g b / (2 L) at a front wheel) and each wheel adds its own weight.
@@ -129,7 +129,11 @@ class LiftOff(Model):
         # static equilibrium of the linear model under gravity: the translational coordinates
         # (heave, wheels) carry their mass's weight, the angles none (the origin is the sprung CG)
         translational = np.array([name != "pitch_angle" and name != "roll_angle" for name in dof])
-        q_g = np.linalg.solve(K, -g * np.diag(M) * translational)
+        # (the suspension's and tires' stiffness: gravity's moment on a tilted body, in
+        # ``body_stiffness``, is no spring that carries the weight)
+        springs = K.copy()
+        springs[range(nb), range(nb)] -= model.body_stiffness
+        q_g = np.linalg.solve(springs, -g * np.diag(M) * translational)
         self.tire_stiffness = np.array([c.tire_stiffness for c in model.corners])
         self.tire_damping = np.array([c.tire_damping for c in model.corners])
         self.unsprung_mass = np.array([c.unsprung_mass for c in model.corners])
