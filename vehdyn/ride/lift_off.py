@@ -52,15 +52,40 @@ ch. 14 (vehicle vibrations) and 15 (suspension optimization; full car, sec. 15.5
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 
 import numpy as np
 
 from ..errors import ParameterError
 from ..model import Model
+from ..params.base import ParameterSet, parameter
 from ..units import GRAVITY
 
-__all__ = ["LiftOff"]
+__all__ = ["LiftOff", "LateralSlip"]
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class LateralSlip(ParameterSet):
+    """The tires' lateral slip under a rolling full car (:class:`LiftOff` option ``lateral``).
+
+    The contact points lie ``sprung_cg_height`` below the sprung CG (the full car's parameter), so
+    a roll rate p moves them sideways; the tires resist that as side slip, and the body gains a
+    lateral velocity v and a yaw rate r (module docstring, "Lateral slip").
+    """
+
+    speed: float = parameter("m/s", "forward speed u (constant)", gt=0)
+    yaw_inertia: float = parameter("kg*m^2", "yaw inertia of the whole vehicle", gt=0)
+    front_cornering_stiffness: float = parameter("N/rad", "cornering stiffness of one front tire at its static "
+                                                 "load", gt=0)
+    rear_cornering_stiffness: float = parameter("N/rad", "cornering stiffness of one rear tire at its static load",
+                                                gt=0)
+    front_load_sensitivity: float = parameter("1/rad", "dC/dF_z of a front tire at its static load", ge=0,
+                                              default=0.0)
+    rear_load_sensitivity: float = parameter("1/rad", "dC/dF_z of a rear tire at its static load", ge=0,
+                                             default=0.0)
+    front_relaxation_length: float = parameter("m", "lateral relaxation length of a front tire", gt=0)
+    rear_relaxation_length: float = parameter("m", "lateral relaxation length of a rear tire", gt=0)
 
 
 class LiftOff(Model):
@@ -100,7 +125,8 @@ class LiftOff(Model):
     'wheel_lift'
     """
 
-    def __init__(self, model, *, gravity: float = GRAVITY, name: str | None = None):
+    def __init__(self, model, *, gravity: float = GRAVITY, lateral: LateralSlip | None = None,
+                 name: str | None = None):
         from ._ride_model import RideModel
 
         if not isinstance(model, RideModel):
@@ -142,44 +168,123 @@ class LiftOff(Model):
             raise ParameterError(f"LiftOff: the static tire loads {self.static_tire_load} [N] must be positive (a "
                                  "wheel that carries no weight is off the road already)", key="model",
                                  value=self.static_tire_load.tolist())
+        # the compiled rhs relies on the second-order structure of A and B
+        assert np.array_equal(model.A[:n], np.hstack([np.zeros((n, n)), np.eye(n)])) and not np.any(model.B[:n])
         self._wheel = wheel  # states: wheel displacements
         self._wheel_rate = n + wheel  # states: wheel velocities (rows of their accelerations in x')
+        self._n = 2 * n  # states of the ride model
         names = model.input_names
         self._road = np.array([names.index(f"road_displacement{c.suffix}") for c in model.corners])
         self._road_rate = np.array([names.index(f"road_velocity{c.suffix}") for c in model.corners])
         out = model.output_names
         self._acc_rows = np.array([out.index(f"unsprung_acceleration{c.suffix}") for c in model.corners])
         self._load_rows = np.array([out.index(f"dynamic_tire_load{c.suffix}") for c in model.corners])
+        self.lateral = None
+        if lateral is not None:
+            self._lateral_setup(model, lateral, n, nb)
+
+    def _lateral_setup(self, model, lateral, n, nb):
+        from ..signals import Signal
+        from .full_car import FullCar
+
+        if not isinstance(lateral, LateralSlip):
+            raise ParameterError(f"lateral must be a LateralSlip, got {type(lateral).__name__}", key="lateral",
+                                 value=type(lateral).__name__)
+        if not isinstance(model, FullCar):
+            raise ParameterError(f"the lateral slip needs a FullCar (roll and four corners), got {type(model).__name__}",
+                                 key="lateral", value=type(model).__name__)
+        p = model.parameters
+        self.lateral = lateral
+        self.phenomena = self.phenomena | {"lateral", "yaw"}
+        front = np.array([c.suffix.startswith("_front") for c in model.corners])
+        self._x = np.array([c.x for c in model.corners])
+        self._h = p.sprung_cg_height
+        self._cornering = np.where(front, lateral.front_cornering_stiffness, lateral.rear_cornering_stiffness)
+        self._sensitivity = np.where(front, lateral.front_load_sensitivity, lateral.rear_load_sensitivity)
+        self._relaxation = np.where(front, lateral.front_relaxation_length, lateral.rear_relaxation_length)
+        self._mass = p.mass + 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass)
+        self._coupling = 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass) * (p.sprung_cg_height
+                                                                                  - p.unsprung_cg_height)
+        roll = model.body_dof.index("roll")
+        self._roll_inertia = model.mass_matrix[roll, roll]
+        self._roll_rate = n + roll
+        out = model.output_names
+        self._roll_rows = np.array([out.index("roll_acceleration")]
+                                   + [out.index(f"sprung_acceleration{c.suffix}") for c in model.corners])
+        self._roll_gains = np.concatenate([[1.0], [-c.y for c in model.corners]])
+        extra = (Signal("lateral_velocity", "m/s", "lateral velocity v of the sprung CG (SAE: right +)"),
+                 Signal("yaw_rate", "rad/s", "yaw rate r (SAE)"))
+        forces = tuple(Signal(f"lateral_force{c.suffix}", "N", "tire lateral force (SAE: right +), lagged")
+                       for c in model.corners)
+        self.declare(states=tuple(model.states) + extra + forces,
+                     outputs=tuple(model.output_signals) + extra + forces)
 
     def __repr__(self) -> str:
         return f"<LiftOff {self.name}: {self.n_states} states, static tire loads {np.round(self.static_tire_load)} N>"
 
-    def correction(self, x, u):
-        """f_c [N] per corner (rows; columns along any batch axis of ``x``, ``u``): the unilateral
-        contact force minus the linear tire's (0 while the tire is compressed and pushing)."""
-        x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
+    def _contact(self, x, u):
+        """(F, F_lin) [N] per corner (rows; columns along any batch axis): the unilateral contact
+        force and the linear tire's force, both with the static load."""
         col = (slice(None),) + (None,) * (x.ndim - 1)
         compression = u[self._road] - x[self._wheel]
         linear = self.static_tire_load[col] + self.tire_stiffness[col] * compression \
             + self.tire_damping[col] * (u[self._road_rate] - x[self._wheel_rate])
         deflection = self.static_tire_load[col] / self.tire_stiffness[col] + compression
-        return np.where(deflection > 0.0, np.maximum(linear, 0.0), 0.0) - linear
+        return np.where(deflection > 0.0, np.maximum(linear, 0.0), 0.0), linear
+
+    def correction(self, x, u):
+        """f_c [N] per corner (rows; columns along any batch axis of ``x``, ``u``): the unilateral
+        contact force minus the linear tire's (0 while the tire is compressed and pushing)."""
+        force, linear = self._contact(np.asarray(x, dtype=float), np.asarray(u, dtype=float))
+        return force - linear
+
+    def _ride(self, x, u):
+        """(d x_ride / dt, contact force F, correction f_c) with the contact law."""
+        col = (slice(None),) + (None,) * (x.ndim - 1)
+        force, linear = self._contact(x, u)
+        dxdt = self.linear.A @ x[:self._n] + self.linear.B @ u
+        dxdt[self._wheel_rate] += (force - linear) / self.unsprung_mass[col]
+        return dxdt, force, force - linear
+
+    def _slip(self, x, force, roll_acceleration):
+        """Roll acceleration, dv/dt, dr/dt and the lateral forces' rates with the tires' lateral slip."""
+        lat = self.lateral
+        col = (slice(None),) + (None,) * (x.ndim - 1)
+        u = lat.speed
+        v, r, fy = x[self._n], x[self._n + 1], x[self._n + 2:]
+        slip_velocity = v + self._x[col] * r - self._h * x[self._roll_rate]
+        stiffness = np.where(force > 0.0, np.maximum(self._cornering[col] + self._sensitivity[col]
+                                                     * (force - self.static_tire_load[col]), 0.0), 0.0)
+        rates = u / self._relaxation[col] * (-stiffness * slip_velocity / u - fy)
+        total, yaw_moment = np.sum(fy, axis=0), np.sum(self._x[col] * fy, axis=0)
+        moment = self._roll_inertia * roll_acceleration - self._h * total
+        m, mc, inertia = self._mass, self._coupling, self._roll_inertia
+        det = m * inertia - mc * mc
+        lateral_acceleration = (inertia * total + mc * moment) / det
+        roll = (mc * total + m * moment) / det
+        return roll, lateral_acceleration - u * r, yaw_moment / lat.yaw_inertia, rates
 
     def rhs(self, t, x, u):
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
-        col = (slice(None),) + (None,) * (x.ndim - 1)
-        dxdt = self.linear.A @ x + self.linear.B @ u
-        dxdt[self._wheel_rate] += self.correction(x, u) / self.unsprung_mass[col]
-        return dxdt
+        dxdt, force, _ = self._ride(x, u)
+        if self.lateral is None:
+            return dxdt
+        roll, dv, dr, rates = self._slip(x, force, dxdt[self._roll_rate])
+        dxdt[self._roll_rate] = roll
+        return np.concatenate([dxdt, dv[None], dr[None], rates])
 
     def output(self, t, x, u):
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
         col = (slice(None),) + (None,) * (x.ndim - 1)
-        f = self.correction(x, u)
-        y = self.linear.C @ x + self.linear.D @ u
+        dxdt, force, f = self._ride(x, u)
+        y = self.linear.C @ x[:self._n] + self.linear.D @ u
         y[self._acc_rows] += f / self.unsprung_mass[col]
         y[self._load_rows] += f
-        return y
+        if self.lateral is None:
+            return y
+        roll, _, _, _ = self._slip(x, force, dxdt[self._roll_rate])
+        y[self._roll_rows] += self._roll_gains[col] * (roll - dxdt[self._roll_rate])
+        return np.concatenate([y, x[self._n:]])
 
     def compiled_rhs(self):
         """The rhs compiled by numba (see :meth:`vehdyn.Model.compiled_rhs`): the same law, one loop
@@ -188,23 +293,35 @@ class LiftOff(Model):
 
         rhs, key = _compiled_rhs()
         c = np.ascontiguousarray
+        if self.lateral is None:
+            lateral = (0.0, 0, 0.0, c(np.zeros(1)), c(np.zeros(1)), c(np.zeros(1)), c(np.ones(1)), 1.0, 0.0, 1.0,
+                       1.0)
+        else:
+            lateral = (self.lateral.speed, self._roll_rate, self._h, c(self._x), c(self._cornering),
+                       c(self._sensitivity), c(self._relaxation), self._mass, self._coupling, self._roll_inertia,
+                       self.lateral.yaw_inertia)
         args = (c(self.linear.A), c(self.linear.B), c(self._wheel), c(self._wheel_rate), c(self._road),
                 c(self._road_rate), c(self.static_tire_load), c(self.tire_stiffness), c(self.tire_damping),
-                c(self.unsprung_mass))
+                c(self.unsprung_mass), lateral)
         return CompiledModel(rhs, None, key, args)
 
 
 def _rhs(t, x, u, args, dxdt):
     """dx/dt of a :class:`LiftOff` into ``dxdt`` (compiled; ``args`` from :meth:`LiftOff.compiled_rhs`)."""
-    A, B, wheel, wheel_rate, road, road_rate, static, stiffness, damping, mass = args
+    A, B, wheel, wheel_rate, road, road_rate, static, stiffness, damping, mass, lateral = args
+    speed, roll_rate, h, cx, cornering, sensitivity, relaxation, total_mass, coupling, inertia, yaw_inertia = lateral
     n, m = A.shape[0], B.shape[1]
-    for i in range(n):
+    half = n // 2
+    for i in range(half):  # A = [[0, I], [-M^-1 K, -M^-1 C]], B = [[0], [M^-1 F]] (from_second_order)
+        dxdt[i] = x[half + i]
+    for i in range(half, n):
         s = 0.0
         for j in range(n):
             s += A[i, j] * x[j]
         for j in range(m):
             s += B[i, j] * u[j]
         dxdt[i] = s
+    total, yaw_moment = 0.0, 0.0
     for c in range(wheel.shape[0]):
         compression = u[road[c]] - x[wheel[c]]
         linear = static[c] + stiffness[c] * compression + damping[c] * (u[road_rate[c]] - x[wheel_rate[c]])
@@ -212,6 +329,21 @@ def _rhs(t, x, u, args, dxdt):
         if static[c] / stiffness[c] + compression > 0.0 and linear > 0.0:
             force = linear
         dxdt[wheel_rate[c]] += (force - linear) / mass[c]
+        if speed > 0.0:
+            fy = x[n + 2 + c]
+            k = 0.0
+            if force > 0.0:
+                k = max(cornering[c] + sensitivity[c] * (force - static[c]), 0.0)
+            slip_velocity = x[n] + cx[c] * x[n + 1] - h * x[roll_rate]
+            dxdt[n + 2 + c] = speed / relaxation[c] * (-k * slip_velocity / speed - fy)
+            total += fy
+            yaw_moment += cx[c] * fy
+    if speed > 0.0:
+        moment = inertia * dxdt[roll_rate] - h * total
+        det = total_mass * inertia - coupling * coupling
+        dxdt[roll_rate] = (coupling * total + total_mass * moment) / det
+        dxdt[n] = (inertia * total + coupling * moment) / det - speed * x[n + 1]
+        dxdt[n + 1] = yaw_moment / yaw_inertia
 
 
 @functools.lru_cache(maxsize=None)
