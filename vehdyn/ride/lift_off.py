@@ -214,10 +214,12 @@ class LiftOff(Model):
         self._roll_gains = np.concatenate([[1.0], [-c.y for c in model.corners]])
         extra = (Signal("lateral_velocity", "m/s", "lateral velocity v of the sprung CG (SAE: right +)"),
                  Signal("yaw_rate", "rad/s", "yaw rate r (SAE)"))
-        forces = tuple(Signal(f"lateral_force{c.suffix}", "N", "tire lateral force (SAE: right +), lagged")
+        deflections = tuple(Signal(f"lateral_deflection{c.suffix}", "m", "tire lateral deflection (SAE: right +)")
+                            for c in model.corners)
+        forces = tuple(Signal(f"lateral_force{c.suffix}", "N", "tire lateral force on the vehicle (SAE: right +)")
                        for c in model.corners)
-        self.declare(states=tuple(model.states) + extra + forces,
-                     outputs=tuple(model.output_signals) + extra + forces)
+        self.declare(states=tuple(model.states) + extra + deflections,
+                     outputs=tuple(model.output_signals) + extra + deflections + forces)
 
     def __repr__(self) -> str:
         return f"<LiftOff {self.name}: {self.n_states} states, static tire loads {np.round(self.static_tire_load)} N>"
@@ -247,29 +249,30 @@ class LiftOff(Model):
         return dxdt, force, force - linear
 
     def _slip(self, x, force, roll_acceleration):
-        """Roll acceleration, dv/dt, dr/dt and the lateral forces' rates with the tires' lateral slip."""
+        """Roll acceleration, dv/dt, dr/dt, the tire deflections' rates and the lateral forces."""
         lat = self.lateral
         col = (slice(None),) + (None,) * (x.ndim - 1)
         u = lat.speed
-        v, r, fy = x[self._n], x[self._n + 1], x[self._n + 2:]
+        v, r, deflection = x[self._n], x[self._n + 1], x[self._n + 2:]
         slip_velocity = v + self._x[col] * r - self._h * x[self._roll_rate]
         stiffness = np.where(force > 0.0, np.maximum(self._cornering[col] + self._sensitivity[col]
                                                      * (force - self.static_tire_load[col]), 0.0), 0.0)
-        rates = u / self._relaxation[col] * (-stiffness * slip_velocity / u - fy)
+        rates = slip_velocity - u * deflection / self._relaxation[col]
+        fy = -stiffness * deflection / self._relaxation[col]
         total, yaw_moment = np.sum(fy, axis=0), np.sum(self._x[col] * fy, axis=0)
         moment = self._roll_inertia * roll_acceleration - self._h * total
         m, mc, inertia = self._mass, self._coupling, self._roll_inertia
         det = m * inertia - mc * mc
         lateral_acceleration = (inertia * total + mc * moment) / det
         roll = (mc * total + m * moment) / det
-        return roll, lateral_acceleration - u * r, yaw_moment / lat.yaw_inertia, rates
+        return roll, lateral_acceleration - u * r, yaw_moment / lat.yaw_inertia, rates, fy
 
     def rhs(self, t, x, u):
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
         dxdt, force, _ = self._ride(x, u)
         if self.lateral is None:
             return dxdt
-        roll, dv, dr, rates = self._slip(x, force, dxdt[self._roll_rate])
+        roll, dv, dr, rates, _ = self._slip(x, force, dxdt[self._roll_rate])
         dxdt[self._roll_rate] = roll
         return np.concatenate([dxdt, dv[None], dr[None], rates])
 
@@ -282,9 +285,9 @@ class LiftOff(Model):
         y[self._load_rows] += f
         if self.lateral is None:
             return y
-        roll, _, _, _ = self._slip(x, force, dxdt[self._roll_rate])
+        roll, _, _, _, fy = self._slip(x, force, dxdt[self._roll_rate])
         y[self._roll_rows] += self._roll_gains[col] * (roll - dxdt[self._roll_rate])
-        return np.concatenate([y, x[self._n:]])
+        return np.concatenate([y, x[self._n:], fy])
 
     def compiled_rhs(self):
         """The rhs compiled by numba (see :meth:`vehdyn.Model.compiled_rhs`): the same law, one loop
@@ -330,12 +333,12 @@ def _rhs(t, x, u, args, dxdt):
             force = linear
         dxdt[wheel_rate[c]] += (force - linear) / mass[c]
         if speed > 0.0:
-            fy = x[n + 2 + c]
             k = 0.0
             if force > 0.0:
                 k = max(cornering[c] + sensitivity[c] * (force - static[c]), 0.0)
+            fy = -k * x[n + 2 + c] / relaxation[c]
             slip_velocity = x[n] + cx[c] * x[n + 1] - h * x[roll_rate]
-            dxdt[n + 2 + c] = speed / relaxation[c] * (-k * slip_velocity / speed - fy)
+            dxdt[n + 2 + c] = slip_velocity - speed * x[n + 2 + c] / relaxation[c]
             total += fy
             yaw_moment += cx[c] * fy
     if speed > 0.0:

@@ -120,22 +120,22 @@ THRESHOLDS = {
     # tension 1.44, FullCar error 0.39 at the CG (compact 0.45)
     "tire_lift_floor": 3.7e-3,
     "tire_lift_gain": 0.15,
-    # the full car whose tires lift off (rung FullCar+lift: vehdyn.ride.LiftOff, with the CG-height
-    # couplings) against the full vehicle: error = floor + gain * the same tension of the linear
-    # probe, at the body outputs. bench (sedan, compact, van; body outputs): class B roads (no
-    # lift) 0.0014 / 0.0024 / 0.0017 (the floor); class D at 54 km/h tension 0.40 / 0.95 / 0.33,
-    # errors 0.0043 / 0.014 / 0.016; at 108 km/h 1.03 / 1.60 / 0.76, errors 0.019 / 0.022 / 0.0225;
-    # the pothole 1.44 / 2.0 / 1.34, errors 0.014 / 0.036 / 0.040. What is left is the tires'
-    # longitudinal and lateral slip as the contact points move with the pitching and rolling body
-    # (a FullVehicle with near-zero slip stiffnesses: 1.3-1.8 % -> the rest), which the full car
-    # has no horizontal motion for. The gain puts the van at 108 km/h (0.0225) above the
-    # tolerance (estimate 0.022) and keeps every estimate within 0.66-2.9x of the measured error.
+    # the full car whose tires lift off (rung FullCar+lift: vehdyn.ride.LiftOff with the CG-height
+    # couplings and the tires' lateral slip) against the full vehicle: error = floor + gain * the
+    # same tension of the linear probe * the speed [m/s], at the body outputs. What is left is the
+    # tires' longitudinal slip and the wheels' spin (a driven wheel spins up while it is off the
+    # road and lands with a longitudinal force spike that pitches the body), which grows with the
+    # speed. Measured (sedan / compact / van, body outputs): class B roads (no lift) 0.0011 /
+    # 0.0023 / 0.0022 (the floor); class D at 54 km/h, tension 0.40 / 0.95 / 0.33: 0.0045 / 0.0057
+    # / 0.0082; at 108 km/h, tension 1.03 / 1.60 / 0.76: 0.0097 / 0.0125 / 0.0122; the pothole at
+    # 36 km/h, tension 1.44 / 2.0 / 1.34: 0.0029 / 0.0020 / 0.0031 (estimates 0.45-2.3x, the
+    # compact's pothole 4x over)
     "lift_off_floor": 2e-3,
-    "lift_off_gain": 0.026,
-    # the same rung at a corner output (the body's roll): the roll about the contact points' line
-    # held by the tires' lateral slip, which the full car (roll about the sprung CG) misses; measured
-    # 0.14 / 0.14 / 0.17 at the front-left corner in the one-sided pothole (asymmetry 1)
-    "lift_off_roll_gain": 0.15,
+    "lift_off_gain": 3.3e-4,
+    # the same rung at an output that sees the body's roll and pitch at a corner: the longitudinal
+    # force spike above, measured 0.047 / 0.05 / 0.057 at the front-left corner in the one-sided
+    # pothole (road asymmetry 1; its pitch part 0.069 of the corner's peak in the sedan's)
+    "lift_off_roll_gain": 0.05,
     # a handling rung without the full vehicle's pitch, heave and wheel motion, on a flat road: the
     # error that is left when every other difference is represented -- LateralYawRoll+lag against
     # FullVehicle(linearized) in the three linear scenes (gentle step steer, lane changes at 60 and
@@ -428,14 +428,14 @@ def tire_lift(probe, vehicle) -> float:
     return worst
 
 
-def lift_off_error(lift: float, asymmetry: float, outputs) -> dict:
+def lift_off_error(lift: float, speed: float, asymmetry: float, outputs) -> dict:
     """Estimated error of the full car with lift-off (rung ``FullCar+lift``) against the full vehicle.
 
-    ``lift_off_floor + lift_off_gain * lift`` per output (``lift`` from :func:`tire_lift`), plus
-    ``lift_off_roll_gain * asymmetry`` (:func:`road_asymmetry`) at an output that sees the body's
-    roll (not :func:`is_body_output`).
+    ``lift_off_floor + lift_off_gain * lift * speed`` per output (``lift`` from :func:`tire_lift`,
+    ``speed`` [m/s]), plus ``lift_off_roll_gain * asymmetry`` (:func:`road_asymmetry`) at an output
+    that sees the body's roll (not :func:`is_body_output`).
     """
-    base = THRESHOLDS["lift_off_floor"] + THRESHOLDS["lift_off_gain"] * lift
+    base = THRESHOLDS["lift_off_floor"] + THRESHOLDS["lift_off_gain"] * lift * speed
     roll = THRESHOLDS["lift_off_roll_gain"] * asymmetry
     return {o: base + (0.0 if is_body_output(o) else roll) for o in outputs}
 

@@ -389,11 +389,11 @@ class _Context:
                          f"linear against nonlinear contact ~{value:.1e}")
         elif "wheel_lift" in r.rung.phenomena(r.setup) and r.rung.ladder == "ride" and not self.top.rung.linear \
                 and self.drive.road is not None:
-            # a ride model whose tires lift off: what it misses grows with the lift (horizontal slip)
+            # a ride model whose tires lift off: what it misses grows with the lift and the speed
             lift = self._lift()
-            value = est.lift_off_error(lift, est.road_asymmetry(self.drive.road), self.outputs)
+            value = est.lift_off_error(lift, self.scene.speed, est.road_asymmetry(self.drive.road), self.outputs)
             total = {o: v + value[o] for o, v in total.items()}
-            notes.append(f"lift-off with the contact points' slip left out ~{max(value.values()):.1e}")
+            notes.append(f"lift-off without wheel spin ~{max(value.values()):.1e}")
         if r.rung.name == "SteadyState":
             diff = self._difference("SteadyState", "LinearBicycle")
             notes.append("no transient (probes)")
