@@ -6,7 +6,7 @@ from scipy.linalg import expm
 
 import vehdyn
 from vehdyn import ParameterError
-from vehdyn.ride import BouncePitch, FullCar, LiftOff, QuarterCar
+from vehdyn.ride import BouncePitch, FullCar, LateralSlip, LiftOff, QuarterCar
 from vehdyn.units import GRAVITY
 
 _QC = dict(sprung_mass=300.0, unsprung_mass=35.0, spring_rate=20e3, damping=1500.0, tire_stiffness=180e3,
@@ -124,3 +124,87 @@ def test_bad_inputs_name_the_parameter(sedan):
     with pytest.raises(ParameterError, match="sprung_cg_height") as info:
         FullCar.from_vehicle(sedan).replace(sprung_cg_height=10.0)
     assert info.value.key == "sprung_cg_height"
+
+
+def _slip(speed=15.0):
+    return LateralSlip(speed=speed, yaw_inertia=1800.0, front_cornering_stiffness=4e4,
+                       rear_cornering_stiffness=3.5e4, front_load_sensitivity=5.0, rear_load_sensitivity=5.0,
+                       front_relaxation_length=0.45, rear_relaxation_length=0.4)
+
+
+def test_lateral_slip_stays_out_of_a_road_without_roll(sedan):
+    """Equal tracks excite no roll: v, r and the tire deflections stay 0, and the outputs are
+    those of the model without the option (to round-off; the same solver)."""
+    car = FullCar.from_vehicle(sedan, cg_heights=True)
+    plain, lateral = LiftOff(car), LiftOff(car, lateral=_slip())
+    t = np.linspace(0.0, 0.4, 41)
+    w = 2 * np.pi * 8.0
+    inputs = {}
+    for sfx, delay in zip(("_front_left", "_front_right", "_rear_left", "_rear_right"), (0.0, 0.0, 0.17, 0.17)):
+        inputs[f"road_displacement{sfx}"] = 0.02 * np.sin(w * (t - delay)) * (t > delay)  # lifts the wheels
+        inputs[f"road_velocity{sfx}"] = 0.02 * w * np.cos(w * (t - delay)) * (t > delay)
+    options = dict(method="RK45", rtol=1e-9, atol=1e-12, backend="numpy")
+    a = vehdyn.simulate(plain, t, inputs, **options)
+    b = vehdyn.simulate(lateral, t, inputs, **options)
+    assert np.min(plain.static_tire_load[0] + a["dynamic_tire_load_front_left"]) < 1e-9  # a wheel lifted
+    assert np.max(np.abs(b.states[plain.n_states:])) == 0.0
+    np.testing.assert_allclose(b.outputs[:plain.n_outputs], a.outputs, rtol=0, atol=1e-9 * np.max(np.abs(a.outputs)))
+
+
+def test_lateral_slip_holds_the_contact_points_steady_state(sedan):
+    """A steady roll rate p with the body otherwise at rest: each tire's deflection settles at
+    sigma V / u with V = -h p (first-order relaxation), the force at -C V / u (the tire law's
+    steady slip), and the roll moment of the forces is -h sum F (closed forms)."""
+    car = FullCar.from_vehicle(sedan, cg_heights=True)
+    slip = _slip()
+    model = LiftOff(car, lateral=slip)
+    x = np.zeros(model.n_states)
+    p_rate, h, u = 0.1, sedan.mass.sprung_cg_height, slip.speed
+    x[model.index("roll_rate")] = p_rate
+    sigma = np.array([0.45, 0.45, 0.4, 0.4])
+    stiffness = np.array([4e4, 4e4, 3.5e4, 3.5e4])
+    deflection = sigma * (-h * p_rate) / u
+    x[model.n_states - 4:] = deflection
+    d = model.rhs(0.0, x, np.zeros(model.n_inputs))
+    np.testing.assert_allclose(d[model.n_states - 4:], 0.0, atol=1e-15)  # settled
+    y = dict(zip(model.output_names, model.output(0.0, x, np.zeros(model.n_inputs))))
+    forces = np.array([y[f"lateral_force{s}"] for s in ("_front_left", "_front_right", "_rear_left", "_rear_right")])
+    np.testing.assert_allclose(forces, -stiffness * (-h * p_rate) / u, rtol=1e-12)
+    # lateral and roll equations: [m, -m_c; -m_c, I] [a_v; p'] = [sum F; M_susp - h sum F], M_susp the
+    # suspension dampers' roll moment (the linear full car's roll equation)
+    m_u = car.parameters.front_unsprung_mass, car.parameters.rear_unsprung_mass
+    m = car.parameters.mass + 2 * sum(m_u)
+    lever = car.parameters.sprung_cg_height - car.parameters.unsprung_cg_height
+    m_c = 2 * sum(m_u) * lever
+    inertia = car.mass_matrix[2, 2]
+    n = car.n_states
+    suspension = inertia * (car.A @ x[:n])[car.index("roll_rate")]
+    assert suspension < 0  # the dampers resist the roll rate
+    a_v, roll = np.linalg.solve([[m, -m_c], [-m_c, inertia]], [forces.sum(), suspension - h * forces.sum()])
+    assert d[model.index("roll_rate")] == pytest.approx(roll, rel=1e-12)
+    assert d[model.index("lateral_velocity")] == pytest.approx(a_v, rel=1e-12)
+    x_i = np.array([car.parameters.a] * 2 + [-car.parameters.b] * 2)
+    assert d[model.index("yaw_rate")] == pytest.approx(np.sum(x_i * forces) / 1800.0, rel=1e-12)
+
+
+def test_compiled_rhs_with_lateral_slip_is_the_numpy_rhs(sedan):
+    pytest.importorskip("numba")
+    model = LiftOff(FullCar.from_vehicle(sedan, cg_heights=True), lateral=_slip())
+    compiled = model.compiled_rhs()
+    rng = np.random.default_rng(2)
+    for scale in (1e-3, 5e-2):
+        x, u = rng.normal(0, scale, model.n_states), rng.normal(0, scale, model.n_inputs)
+        out = np.empty(model.n_states)
+        compiled.rhs(0.0, x, u, compiled.args, out)
+        np.testing.assert_allclose(out, model.rhs(0.0, x, u), rtol=1e-12, atol=1e-12 * np.max(np.abs(out)))
+
+
+def test_lateral_slip_bad_inputs(sedan):
+    with pytest.raises(ParameterError, match="FullCar") as info:
+        LiftOff(QuarterCar(**_QC), lateral=_slip())
+    assert info.value.key == "lateral"
+    with pytest.raises(ParameterError, match="LateralSlip"):
+        LiftOff(FullCar.from_vehicle(sedan), lateral={"speed": 10.0})
+    with pytest.raises(ParameterError, match="speed"):
+        LateralSlip(speed=0.0, yaw_inertia=1.0, front_cornering_stiffness=1.0, rear_cornering_stiffness=1.0,
+                    front_relaxation_length=0.4, rear_relaxation_length=0.4)

@@ -42,6 +42,30 @@ position (m_s g b / (2 L) at a front wheel) and each wheel adds its own weight.
 Signs: as the ride models (up positive, ``dynamic_tire_load`` positive = more load, so a lifted
 wheel shows -F_s). Units SI.
 
+Lateral slip (option ``lateral``, a full car only)
+--------------------------------------------------
+With the sprung CG at the height h above the contact points (``FullCar`` parameter
+``sprung_cg_height``), a roll rate p moves the contact points sideways, and the tires answer with
+side forces that roll the body back and push the vehicle sideways; the full car alone rolls about
+its CG as if the tires could slide freely. The option adds the lateral velocity v of the sprung CG,
+the yaw rate r and each tire's lateral deflection y_i (SAE axes: y right, roll right side down)
+at the constant speed u:
+
+    V_i = v + x_i r - h p                       (contact point's lateral velocity)
+    y_i' = V_i - u y_i / sigma_i,   F_i = -C_i(F_z,i) y_i / sigma_i     (first-order relaxation)
+    C_i(F_z) = max(C_0 + C_1 (F_z - F_s), 0) while the wheel is on the road, 0 when it is off
+    m (v' + u r) - m_c p' = sum F_i,     I_z r' = sum x_i F_i
+    I_x p' - m_c (v' + u r) = M_susp - h sum F_i
+
+with m the whole mass, m_c = sum m_u (h - h_u) (the wheels move sideways with the body), I_x the
+full car's roll inertia (with the wheels' share) and M_susp the suspension's roll moment (the
+linear model's roll equation); the lateral force acts at the contact points, through the roll
+centres on the ground (Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 7.2: relaxation;
+Segel's lateral-yaw-roll model for the coupling, as in :class:`vehdyn.handling.LateralYawRoll`).
+Without roll excitation (equal tracks) v, r and y_i stay zero and the model is the one without
+the option. Not modelled: the tires' longitudinal slip and the wheels' spin (a driven wheel spins
+up while it is off the road), anti-pitch and roll-centre heights above the ground.
+
 References
 ----------
 Gillespie, T. D., *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 5 (ride; wheel hop and the
@@ -100,6 +124,10 @@ class LiftOff(Model):
     gravity : float, optional
         Gravitational acceleration [m/s^2] that sets the static tire loads (default
         :data:`vehdyn.units.GRAVITY`).
+    lateral : LateralSlip, optional
+        The tires' lateral slip under the rolling body (a :class:`~vehdyn.ride.FullCar` only):
+        adds the states ``lateral_velocity``, ``yaw_rate`` and ``lateral_deflection_<corner>``
+        and the outputs ``lateral_force_<corner>`` (module docstring).
     name : str, optional
 
     Attributes
@@ -111,8 +139,8 @@ class LiftOff(Model):
 
     Notes
     -----
-    States, inputs and outputs are the linear model's (module docstring: the equations); the
-    phenomena add ``wheel_lift``. On a road that never unloads a wheel the result equals the
+    States, inputs and outputs are the linear model's (module docstring: the equations), with
+    ``lateral`` those above after them; the phenomena add ``wheel_lift`` (and ``lateral``, ``yaw``). On a road that never unloads a wheel the result equals the
     linear model's. ``simulate(model, ..., method="RK45")`` runs a compiled right-hand side when
     numba is installed (:meth:`compiled_rhs`), else the numpy one.
 
