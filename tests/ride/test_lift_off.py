@@ -147,7 +147,7 @@ def test_lateral_slip_stays_out_of_a_road_without_roll(sedan):
     a = vehdyn.simulate(plain, t, inputs, **options)
     b = vehdyn.simulate(lateral, t, inputs, **options)
     assert np.min(plain.static_tire_load[0] + a["dynamic_tire_load_front_left"]) < 1e-9  # a wheel lifted
-    assert np.max(np.abs(b.states[plain.n_states:])) == 0.0
+    assert np.max(np.abs(b.states[plain.n_states:])) < 1e-15  # round-off of the left-right sums
     np.testing.assert_allclose(b.outputs[:plain.n_outputs], a.outputs, rtol=0, atol=1e-9 * np.max(np.abs(a.outputs)))
 
 
