@@ -133,8 +133,8 @@ def _slip(speed=15.0):
 
 
 def test_lateral_slip_stays_out_of_a_road_without_roll(sedan):
-    """Equal tracks excite no roll: v, r and the tire deflections stay 0, and the outputs are
-    those of the model without the option (to round-off; the same solver)."""
+    """Equal tracks excite no roll: v, r and the tire deflections stay 0 (to round-off), and the
+    outputs are those of the model without the option (the same solver)."""
     car = FullCar.from_vehicle(sedan, cg_heights=True)
     plain, lateral = LiftOff(car), LiftOff(car, lateral=_slip())
     t = np.linspace(0.0, 0.4, 41)
@@ -148,7 +148,8 @@ def test_lateral_slip_stays_out_of_a_road_without_roll(sedan):
     b = vehdyn.simulate(lateral, t, inputs, **options)
     assert np.min(plain.static_tire_load[0] + a["dynamic_tire_load_front_left"]) < 1e-9  # a wheel lifted
     assert np.max(np.abs(b.states[plain.n_states:])) < 1e-15  # round-off of the left-right sums
-    np.testing.assert_allclose(b.outputs[:plain.n_outputs], a.outputs, rtol=0, atol=1e-9 * np.max(np.abs(a.outputs)))
+    # the same up to the integration error (rtol 1e-9; the extra states' round-off changes the steps)
+    np.testing.assert_allclose(b.outputs[:plain.n_outputs], a.outputs, rtol=0, atol=1e-6 * np.max(np.abs(a.outputs)))
 
 
 def test_lateral_slip_holds_the_contact_points_steady_state(sedan):

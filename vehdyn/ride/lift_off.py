@@ -53,11 +53,14 @@ at the constant speed u:
 
     V_i = v + x_i r - h p                       (contact point's lateral velocity)
     y_i' = V_i - u y_i / sigma_i,   F_i = -C_i(F_z,i) y_i / sigma_i     (first-order relaxation)
-    C_i(F_z) = max(C_0 + C_1 (F_z - F_s), 0) while the wheel is on the road, 0 when it is off
+    C_i(F_z) = K_1 sin(2 atan(F_z / K_2))       (0 when the wheel is off the road)
     m (v' + u r) - m_c p' = sum F_i,     I_z r' = sum x_i F_i
     I_x p' - m_c (v' + u r) = M_susp - h sum F_i
 
-with m the whole mass, m_c = sum m_u (h - h_u) (the wheels move sideways with the body), I_x the
+with K_1, K_2 such that C and dC/dF_z at the static load are the given ones (the load dependence
+of the Magic Formula's cornering stiffness, Pacejka 2012, eq. 4.E25: degressive, so that a wheel
+landing with twice its load does not get twice the stiffness), m the whole mass, m_c = sum m_u
+(h - h_u) (the wheels move sideways with the body), I_x the
 full car's roll inertia (with the wheels' share) and M_susp the suspension's roll moment (the
 linear model's roll equation); the lateral force acts at the contact points, through the roll
 centres on the ground (Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 7.2: relaxation;
@@ -227,8 +230,14 @@ class LiftOff(Model):
         front = np.array([c.suffix.startswith("_front") for c in model.corners])
         self._x = np.array([c.x for c in model.corners])
         self._h = p.sprung_cg_height
-        self._cornering = np.where(front, lateral.front_cornering_stiffness, lateral.rear_cornering_stiffness)
-        self._sensitivity = np.where(front, lateral.front_load_sensitivity, lateral.rear_load_sensitivity)
+        cornering = np.where(front, lateral.front_cornering_stiffness, lateral.rear_cornering_stiffness)
+        sensitivity = np.where(front, lateral.front_load_sensitivity, lateral.rear_load_sensitivity)
+        # C(F_z) = K_1 sin(2 atan(F_z / K_2)) through C_0 and dC/dF_z at the static load:
+        # with zeta = F_s / K_2, F_s C'/C = (1 - zeta^2) / (1 + zeta^2)
+        ratio = np.minimum(sensitivity * self.static_tire_load / cornering, 1.0 - 2e-6)
+        zeta = np.sqrt((1.0 - ratio) / (1.0 + ratio))
+        self._load_scale = self.static_tire_load / zeta  # K_2 [N]
+        self._cornering = cornering * (1.0 + zeta**2) / (2.0 * zeta)  # K_1 [N/rad]
         self._relaxation = np.where(front, lateral.front_relaxation_length, lateral.rear_relaxation_length)
         self._mass = p.mass + 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass)
         self._coupling = 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass) * (p.sprung_cg_height
@@ -283,8 +292,8 @@ class LiftOff(Model):
         u = lat.speed
         v, r, deflection = x[self._n], x[self._n + 1], x[self._n + 2:]
         slip_velocity = v + self._x[col] * r - self._h * x[self._roll_rate]
-        stiffness = np.where(force > 0.0, np.maximum(self._cornering[col] + self._sensitivity[col]
-                                                     * (force - self.static_tire_load[col]), 0.0), 0.0)
+        load = np.maximum(force, 0.0) / self._load_scale[col]
+        stiffness = self._cornering[col] * 2.0 * load / (1.0 + load * load)
         rates = slip_velocity - u * deflection / self._relaxation[col]
         fy = -stiffness * deflection / self._relaxation[col]
         total, yaw_moment = np.sum(fy, axis=0), np.sum(self._x[col] * fy, axis=0)
@@ -329,7 +338,7 @@ class LiftOff(Model):
                        1.0)
         else:
             lateral = (self.lateral.speed, self._roll_rate, self._h, c(self._x), c(self._cornering),
-                       c(self._sensitivity), c(self._relaxation), self._mass, self._coupling, self._roll_inertia,
+                       c(self._load_scale), c(self._relaxation), self._mass, self._coupling, self._roll_inertia,
                        self.lateral.yaw_inertia)
         args = (c(self.linear.A), c(self.linear.B), c(self._wheel), c(self._wheel_rate), c(self._road),
                 c(self._road_rate), c(self.static_tire_load), c(self.tire_stiffness), c(self.tire_damping),
@@ -340,7 +349,7 @@ class LiftOff(Model):
 def _rhs(t, x, u, args, dxdt):
     """dx/dt of a :class:`LiftOff` into ``dxdt`` (compiled; ``args`` from :meth:`LiftOff.compiled_rhs`)."""
     A, B, wheel, wheel_rate, road, road_rate, static, stiffness, damping, mass, lateral = args
-    speed, roll_rate, h, cx, cornering, sensitivity, relaxation, total_mass, coupling, inertia, yaw_inertia = lateral
+    speed, roll_rate, h, cx, cornering, load_scale, relaxation, total_mass, coupling, inertia, yaw_inertia = lateral
     n, m = A.shape[0], B.shape[1]
     half = n // 2
     for i in range(half):  # A = [[0, I], [-M^-1 K, -M^-1 C]], B = [[0], [M^-1 F]] (from_second_order)
@@ -361,9 +370,8 @@ def _rhs(t, x, u, args, dxdt):
             force = linear
         dxdt[wheel_rate[c]] += (force - linear) / mass[c]
         if speed > 0.0:
-            k = 0.0
-            if force > 0.0:
-                k = max(cornering[c] + sensitivity[c] * (force - static[c]), 0.0)
+            load = force / load_scale[c]
+            k = cornering[c] * 2.0 * load / (1.0 + load * load)
             fy = -k * x[n + 2 + c] / relaxation[c]
             slip_velocity = x[n] + cx[c] * x[n + 1] - h * x[roll_rate]
             dxdt[n + 2 + c] = slip_velocity - speed * x[n + 2 + c] / relaxation[c]
