@@ -122,20 +122,21 @@ THRESHOLDS = {
     "tire_lift_gain": 0.15,
     # the full car whose tires lift off (rung FullCar+lift: vehdyn.ride.LiftOff with the CG-height
     # couplings and the tires' lateral slip) against the full vehicle: error = floor + gain * the
-    # same tension of the linear probe * the speed [m/s], at the body outputs. What is left is the
-    # tires' longitudinal slip and the wheels' spin (a driven wheel spins up while it is off the
-    # road and lands with a longitudinal force spike that pitches the body), which grows with the
-    # speed. Measured (sedan / compact / van, body outputs): class B roads (no lift) 0.0011 /
-    # 0.0023 / 0.0022 (the floor); class D at 54 km/h, tension 0.40 / 0.95 / 0.33: 0.0045 / 0.0057
-    # / 0.0082; at 108 km/h, tension 1.03 / 1.60 / 0.76: 0.0097 / 0.0125 / 0.0122; the pothole at
-    # 36 km/h, tension 1.44 / 2.0 / 1.34: 0.0029 / 0.0020 / 0.0031 (estimates 0.45-2.3x, the
-    # compact's pothole 4x over)
+    # same tension of the linear probe * the speed [m/s], at the body outputs. What is left grows
+    # with the speed: the tires' longitudinal slip and the wheels' spin, and the drag's pitch
+    # moment, which the full car leaves out. bench_ladder (sedan / compact / van, body outputs):
+    # class B roads (no lift) 0.0011 / 0.0023 / 0.0022 (the floor); class D at 54 km/h, tension
+    # 0.40 / 0.95 / 0.33: 0.0045 / 0.0057 / 0.0082; at 108 km/h, tension 1.03 / 1.60 / 0.76:
+    # 0.0096 / 0.0122 / 0.0109 (estimated / measured 0.45-2.2)
     "lift_off_floor": 2e-3,
     "lift_off_gain": 3.3e-4,
-    # the same rung at an output that sees the body's roll and pitch at a corner: the longitudinal
-    # force spike above, measured 0.047 / 0.05 / 0.057 at the front-left corner in the one-sided
-    # pothole (road asymmetry 1; its pitch part 0.069 of the corner's peak in the sedan's)
-    "lift_off_roll_gain": 0.05,
+    # the same rung at an output that sees the body's roll and pitch at a corner, per unit road
+    # asymmetry: the front-left corner in the one-sided pothole (asymmetry 1) is 0.031 / 0.038 /
+    # 0.048 off. Against a full vehicle on linear tires of the same cornering stiffness (load
+    # proportional) and no longitudinal slip stiffness it is 0.007 (1.7 % with the slip stiffness):
+    # the rest is the Magic Formula's longitudinal force as the driven rear wheel lifts off, spins
+    # up and lands (1 kN at the sedan's rear left), pitching the body
+    "lift_off_roll_gain": 0.04,
     # a handling rung without the full vehicle's pitch, heave and wheel motion, on a flat road: the
     # error that is left when every other difference is represented -- LateralYawRoll+lag against
     # FullVehicle(linearized) in the three linear scenes (gentle step steer, lane changes at 60 and
@@ -172,7 +173,7 @@ COST_PER_SIMULATED_SECOND = {
     # compiled right-hand side (RK45 at the full vehicle's tolerances, max_step the scene's 2 ms;
     # about 1 ms/s on a smooth road); bench_ladder on the ride scenes of the three vehicles, see
     # README "Fidelity ladder"
-    "FullCar+lift": 3.0e-3,
+    "FullCar+lift": 3.2e-3,
     # compiled right-hand side (RK45, rtol 1e-6, max_step the scene's time step: 0.01 s, on a
     # road 0.002 s), the trim in START_COST_S; bench_ladder on the three vehicles as above. On a
     # road the handling rung costs as the ride rung (cornering on a rough road: 2e-2 s/s). The numpy
