@@ -132,10 +132,9 @@ THRESHOLDS = {
     "lift_off_gain": 3.3e-4,
     # the same rung at an output that sees the body's roll and pitch at a corner, per unit road
     # asymmetry: the front-left corner in the one-sided pothole (asymmetry 1) is 0.031 / 0.038 /
-    # 0.048 off. Against a full vehicle on linear tires of the same cornering stiffness (load
-    # proportional) and no longitudinal slip stiffness it is 0.007 (1.7 % with the slip stiffness):
-    # the rest is the Magic Formula's longitudinal force as the driven rear wheel lifts off, spins
-    # up and lands (1 kN at the sedan's rear left), pitching the body
+    # 0.048 off: the tires' longitudinal slip, which the full car has no fore-aft motion and wheel
+    # spin for (the sedan against a full vehicle on linear tires of the same cornering stiffness:
+    # 0.007 without longitudinal slip stiffness, 0.017 with it, 0.031 with the Magic Formula)
     "lift_off_roll_gain": 0.04,
     # a handling rung without the full vehicle's pitch, heave and wheel motion, on a flat road: the
     # error that is left when every other difference is represented -- LateralYawRoll+lag against
