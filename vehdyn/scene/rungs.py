@@ -509,7 +509,16 @@ def build_full_car_lift_off(drive) -> Setup:
     from ..ride.lift_off import LiftOff
     from ..simulate import simulate
 
-    model = LiftOff(FullCar.from_vehicle(drive.vehicle, cg_heights=True), lateral=lateral_slip(drive))
+    v = drive.vehicle
+    raised = {"geometry.front_roll_centre_height": v.geometry.front_roll_centre_height,
+              "geometry.rear_roll_centre_height": v.geometry.rear_roll_centre_height,
+              "suspension.front_anti_dive": v.suspension.front_anti_dive,
+              "suspension.rear_anti_squat": v.suspension.rear_anti_squat}
+    raised = {k: x for k, x in raised.items() if x}
+    if raised or v.suspension.front_camber_gain or v.suspension.rear_camber_gain:
+        raise NotAdmissible(f"the full car's lateral slip acts through roll centres on the ground, without "
+                            f"anti-pitch or camber gains ({raised or 'camber gains'})")
+    model = LiftOff(FullCar.from_vehicle(v, cg_heights=True), lateral=lateral_slip(drive))
     u = _ride_inputs(model.linear, drive, average=False)
     options = dict(SOLVER_OPTIONS, rtol=1e-5, atol=1e-7, max_step=float(drive.scene.effective_time_step))
     return Setup(model, lambda: simulate(model, drive.time, u, **options), _ride_ignores(drive))
