@@ -29,7 +29,10 @@ error (the steady-state algebra's missing transient). The estimates are of two k
   transfer takes through the tire's load sensitivity (a gain times that deficit at the linear
   probe's peak a_y and slip angles); a linear ride rung against the full vehicle misses the wheel
   lifting off where its linear tire goes into tension (a floor plus a gain times the largest
-  tension over the static wheel load of the linear ride probes, which the plan runs on a road).
+  tension over the static wheel load of the linear ride probes, which the plan runs on a road);
+  the full car whose tires lift off (FullCar+lift) misses the tires' longitudinal slip, which
+  grows with that tension and the speed (a floor plus a gain times their product), and at an
+  output off the CG the pitch and roll it makes (a gain times the road's asymmetry).
 
 Against the full vehicle, a linear rung with roll (LateralYawRoll+lag, the linearized full vehicle)
 misses the tire law's saturation and its load sensitivity under the lateral load transfer: the
