@@ -5,8 +5,10 @@ the functions of :mod:`~vehdyn.handling.single_track_equations` are registered w
 ``register_jitable`` and run with a compiled ``xp`` (:data:`XP`) whose ``axle_tire_loads`` calls
 the axle's tire law (forces and rolling-resistance moment): the Magic Formula through the compiled
 equations of :mod:`vehdyn.tire._mf_numba` (``magic_formula._forces_kernel`` on the coefficient record, the same
-call as :meth:`MagicFormula.forces` with its defaults ``limits=True``, ``alpha_star=False``), or
-the linear law. Other laws (brush, Fiala, Dugoff) have no compiled form: the model then refuses
+call as :meth:`MagicFormula.forces` with its defaults ``limits=True``, ``alpha_star=False``; in
+force mode without lateral load transfer, where the model takes only F_y at kappa = 0, the lean
+``magic_formula._lateral_force_kernel``, bitwise the same F_y at a quarter of the cost), or the
+linear law. Other laws (brush, Fiala, Dugoff) have no compiled form: the model then refuses
 the compiled backend and names the law.
 """
 
