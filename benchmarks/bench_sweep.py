@@ -34,7 +34,10 @@ run on this machine:
 
    The metric is the peak yaw rate; "max diff" is the largest relative difference to the
    reference single runs of the same variants. Rows are timed on subsets of the N variants
-   ("variants run") and scaled.
+   ("variants run") and scaled. The work-precision rows also give the process's CPU time per
+   variant and CPU/wall: on a machine shared with other sessions (Linux autogroup scheduling) a
+   session gets one fair share whatever its thread count, so the CPU time per variant is what
+   compares across loads; 2 cores / that time is the rate of two free cores.
 2. Ride: N quarter cars (sprung mass, spring rate and damping varied) on an ISO 8608 class B road
    at 25 m/s, r.m.s. body acceleration by the Lyapunov route: a loop of
    ``vehdyn.ride.random_response`` against ``vehdyn.sweep.vectorized`` functions: one batched
