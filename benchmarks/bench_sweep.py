@@ -17,22 +17,33 @@ run on this machine:
      batches, so it is timed on one batch of 100;
    - batched compiled (``vehdyn.simulate_many``: the variants' ``simulate`` calls grouped into one
      compiled batch, each variant with its own step-size control, bitwise its single run) on 1
-     and 2 threads, at the reference's tolerance and at rtol 1e-5 (speed against error);
+     and 2 threads, at the reference's tolerance;
+   - work-precision of one compiled batch of a batch model (``SingleTrack.variants`` with array
+     parameters, ``_compiled_ode.solve_batch``: states only, the metric is a state) at rtol 1e-8
+     to 1e-4, with the full model and without tire lag (the model a sine steer at constant speed
+     could use: its "max diff" is then the model's error against the full reference), with the
+     rhs calls per variant; and the same batch through ``vehdyn.simulate`` (outputs included);
    - shared step: blocks of 16 variants integrated as one system by the same compiled RK45 (one
      step size per block, chosen on the r.m.s. error of all its states);
    - ``vehdyn.sweep`` of a ``Scene`` (the same steer, mass varied, ``model="SingleTrack"``: the
      planner resolves that name to its first admissible match, the rung "SingleTrack(linear
      tires)"): one variant at a time (chunks of 1, as before batching) and batched;
    - ``vehdyn.sweep`` with ``executor="processes"`` (2 workers) and on a Dask ``LocalCluster``
-     (2 workers, 1 thread each), per-variant compiled runs, 125 variants per task, on a subset.
+     (2 workers, 1 thread each), per-variant compiled runs, 125 variants per task, 8 tasks or
+     more, each engine timed twice in turn (pool, Dask, pool, Dask; the best of each).
 
    The metric is the peak yaw rate; "max diff" is the largest relative difference to the
    reference single runs of the same variants. Rows are timed on subsets of the N variants
-   ("variants run") and scaled.
+   ("variants run") and scaled. The work-precision rows also give the process's CPU time per
+   variant and CPU/wall: on a machine shared with other sessions (Linux autogroup scheduling) a
+   session gets one fair share whatever its thread count, so the CPU time per variant is what
+   compares across loads; 2 cores / that time is the rate of two free cores.
 2. Ride: N quarter cars (sprung mass, spring rate and damping varied) on an ISO 8608 class B road
    at 25 m/s, r.m.s. body acceleration by the Lyapunov route: a loop of
-   ``vehdyn.ride.random_response`` against one batched Kronecker solve per chunk of a
-   ``vehdyn.sweep.vectorized`` function (numpy ``linalg.solve`` on a stack of 16x16 systems).
+   ``vehdyn.ride.random_response`` against ``vehdyn.sweep.vectorized`` functions: one batched
+   Kronecker solve per chunk (numpy ``linalg.solve`` on a stack of 16x16 systems), and the
+   4x4 Lyapunov equation's closed form for this input (the variance integral of a 4th-order
+   transfer function).
 
 Issue 17's goal for batched compiled on both cores (>= 2,000 variants/s) is printed after the table.
 """
@@ -93,6 +104,38 @@ def many_runs(design, rtol=1e-8, threads=None):
     calls = [_call(mf, cs, rtol, base) for mf, cs in design.itertuples(index=False)]
     results = vehdyn.simulate_many(calls, threads=threads)
     return np.array([np.max(np.abs(r.states[2])) for r in results])  # state 2: yaw rate
+
+
+def batch_states(design, rtol=1e-8, threads=None, tire_lag=True):
+    """Peak yaw rates and rhs calls per variant of one compiled batch of a batch model
+    (``SingleTrack.variants`` with array parameters; states only: the metric is a state)."""
+    from vehdyn import _compiled_ode
+    from vehdyn.simulate import _sample_inputs
+
+    base = handling.SingleTrack(BASE, tire_lag=tire_lag)
+    m = _batch_model(base, design)
+    n = len(design)
+    inputs = _inputs(m)
+    table = _compiled_ode.input_table(m, inputs, T, _sample_inputs(m, inputs, T), "foh")
+    x0 = np.repeat(base.straight_running(SPEED)[:, None], n, axis=1)
+    y, report = _compiled_ode.solve_batch(m.compiled_batch(n), T, x0, table, "RK45", rtol, rtol * 1e-2,
+                                          threads=threads)
+    return np.max(np.abs(y[:, m.state_names.index("yaw_rate")]), axis=1), float(np.mean(report[:, 2]))
+
+
+def batch_simulate(design, rtol=1e-5):
+    """Peak yaw rates of the same batch through ``vehdyn.simulate`` (states, inputs and outputs)."""
+    base = _model()
+    m = _batch_model(base, design)
+    x0 = np.repeat(base.straight_running(SPEED)[:, None], len(design), axis=1)
+    res = vehdyn.simulate(m, T, _inputs(m), x0=x0, method="RK45", rtol=rtol, atol=rtol * 1e-2)
+    return np.max(np.abs(res["yaw_rate"]), axis=0)
+
+
+def _batch_model(base, design):
+    p = base.parameters
+    mf, cs = design["mass_factor"].to_numpy(), design["cg_shift"].to_numpy()
+    return base.variants(mass=p.mass * mf, yaw_inertia=p.yaw_inertia * mf, a=p.a - cs, b=p.b + cs)
 
 
 def _chunk_rhs(t, x, u, args, dxdt):
@@ -200,10 +243,32 @@ def quarter_car_rms_batched(sprung_mass, spring_rate, damping, unsprung_mass=40.
     return {"rms_sprung_acceleration": np.sqrt(var)}
 
 
+@vehdyn.sweep.vectorized
+def quarter_car_rms_closed_form(sprung_mass, spring_rate, damping, unsprung_mass=40.0, tire_stiffness=2.0e5,
+                                speed=25.0):
+    """The same variance in closed form: the body acceleration over the road velocity is
+    H(s) = s k_t (c s + k) / (m_s m_u s^4 + c (m_s + m_u) s^3 + (k (m_s + m_u) + k_t m_s) s^2 + c k_t s + k k_t),
+    and the variance under white noise of intensity q is q I_4 with (1 / 2 pi) int |H(j w)|^2 dw
+    = I_4 = (b_2^2 a_0 a_1 a_4 + b_1^2 a_0 a_3 a_4) / (2 a_0 a_4 (a_1 a_2 a_3 - a_0 a_3^2 - a_1^2 a_4))
+    for H = (b_2 s^2 + b_1 s) / (a_4 s^4 + ... + a_0) (the table of integrals of James, Nichols &
+    Phillips, *Theory of Servomechanisms*, 1947, sec. 7.9): the 4x4 Lyapunov equation solved once
+    on paper."""
+    from vehdyn.ride import iso8608_class_value
+
+    ms, k, c = (np.asarray(v, dtype=float) for v in (sprung_mass, spring_rate, damping))
+    mu, kt = unsprung_mass, tire_stiffness
+    a4, a3, a2, a1, a0 = ms * mu, c * (ms + mu), k * (ms + mu) + kt * ms, c * kt, k * kt
+    b2, b1 = kt * c, kt * k
+    integral = (b2**2 * a0 * a1 * a4 + b1**2 * a0 * a3 * a4) / (2 * a0 * a4 * (a1 * a2 * a3 - a0 * a3**2 - a1**2 * a4))
+    intensity = 2 * np.pi**2 * iso8608_class_value("B") * 0.1**2 * speed
+    return {"rms_sprung_acceleration": np.sqrt(intensity * integral)}
+
+
 def main(n: int = 10_000) -> None:
     import pandas as pd
 
-    print(f"bench_sweep: {n} variants, {os.cpu_count()} cores, numpy {np.__version__}\n")
+    load = os.getloadavg()
+    print(f"bench_sweep: {n} variants, {os.cpu_count()} cores, numpy {np.__version__}, load average {load[0]:.2f}\n")
     design = _design(n)
     subset = design.iloc[: max(20, n // 500)]
     rows = []
@@ -223,18 +288,36 @@ def main(n: int = 10_000) -> None:
     rows.append((f"batched numpy (rk4 10 ms, {len(batch)}/batch)", len(batch), rate,
                  np.max(np.abs(peaks[: len(ref)] / ref - 1))))
 
-    # --- batched compiled (simulate_many), 1 and 2 threads, at the reference's tolerance and looser
+    # --- batched compiled (simulate_many), 1 and 2 threads, at the reference's tolerance: bitwise
     compiled_set = design.iloc[: max(len(ref), n // 20)]
     many_runs(compiled_set.iloc[:2])  # compile
-    many_runs(compiled_set.iloc[:2], rtol=1e-5)
     rates = {}
-    for rtol in (1e-8, 1e-5):
-        for threads in (1, 2):
-            start = time.perf_counter()
-            peaks = many_runs(compiled_set, rtol=rtol, threads=threads)
-            rates[rtol, threads] = len(compiled_set) / (time.perf_counter() - start)
-            rows.append((f"batched compiled RK45 rtol {rtol:g}, {threads} thread{'s' if threads > 1 else ''}",
-                         len(compiled_set), rates[rtol, threads], np.max(np.abs(peaks[: len(ref)] / ref - 1))))
+    for threads in (1, 2):
+        start = time.perf_counter()
+        peaks = many_runs(compiled_set, threads=threads)
+        rates["many", threads] = len(compiled_set) / (time.perf_counter() - start)
+        rows.append((f"simulate_many RK45 rtol 1e-08, {threads} thread{'s' if threads > 1 else ''}", len(compiled_set),
+                     rates["many", threads], np.max(np.abs(peaks[: len(ref)] / ref - 1))))
+
+    # --- work-precision of one compiled batch (states only), full model and without tire lag
+    wp, cpu_per_variant = [], {}
+    for tire_lag in (True, False):
+        batch_states(compiled_set.iloc[:2], tire_lag=tire_lag)  # compile
+        for rtol, threads in ((1e-8, 2), (1e-6, 2), (1e-5, 1), (1e-5, 2), (1e-4, 2)):
+            if not tire_lag and rtol == 1e-6:
+                continue
+            start, cpu = time.perf_counter(), time.process_time()
+            peaks, nfev = batch_states(compiled_set, rtol, threads, tire_lag)
+            wall, cpu = time.perf_counter() - start, time.process_time() - cpu
+            rates[tire_lag, rtol, threads] = len(compiled_set) / wall
+            key = tire_lag, rtol
+            cpu_per_variant[key] = min(cpu_per_variant.get(key, np.inf), cpu / len(compiled_set))
+            wp.append(("full" if tire_lag else "no tire lag", rtol, threads, nfev, len(compiled_set) / wall, cpu / wall,
+                       1e6 * cpu / len(compiled_set), np.max(np.abs(peaks[: len(ref)] / ref - 1))))
+    start = time.perf_counter()
+    peaks = batch_simulate(compiled_set)
+    rows.append(("simulate of the batch model, RK45 rtol 1e-05 (outputs incl.), 2 threads", len(compiled_set),
+                 len(compiled_set) / (time.perf_counter() - start), np.max(np.abs(peaks[: len(ref)] / ref - 1))))
     shared_set = compiled_set.iloc[: max(len(ref), 64)]
     shared_step_runs(shared_set.iloc[:16])  # compile
     start = time.perf_counter()
@@ -251,36 +334,65 @@ def main(n: int = 10_000) -> None:
         rows.append((f"vehdyn.sweep of a Scene, {'batched' if batched else 'one at a time'} (linear tires)",
                      len(scene_set), len(scene_set) / (time.perf_counter() - start), np.nan))
 
-    # --- process pool and Dask through vehdyn.sweep, per-variant compiled runs, on a larger subset
-    pool_set = design.iloc[: max(250, n // 40)]
+    # --- process pool and Dask through vehdyn.sweep, per-variant compiled runs, 125 variants per task, in turn
+    pool_set = design.iloc[: max(1000, n // 10)]
     from vehdyn.sweep.api import run_table
 
-    start = time.perf_counter()
-    pool = run_table(one_run, pool_set, executor="processes", chunk_size=125, progress=False)
-    pool_rate = len(pool_set) / (time.perf_counter() - start)
-    rows.append(("vehdyn.sweep processes (2 workers)", len(pool_set), pool_rate,
-                 np.max(np.abs(pool["peak_yaw_rate"].to_numpy()[: len(ref)] / ref - 1))))
+    def timed(executor):
+        start = time.perf_counter()
+        table = run_table(one_run, pool_set, executor=executor, chunk_size=125, progress=False)
+        return len(pool_set) / (time.perf_counter() - start), table
+
     try:
         from distributed import Client, LocalCluster
     except ImportError:
+        Client = None
+    if Client is None:
+        pool_rate, pool = timed("processes")
+        rows.append(("vehdyn.sweep processes (2 workers)", len(pool_set), pool_rate,
+                     np.max(np.abs(pool["peak_yaw_rate"].to_numpy()[: len(ref)] / ref - 1))))
         rows.append(("vehdyn.sweep Dask LocalCluster (not installed)", 0, np.nan, np.nan))
     else:
         with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None, silence_logs=40) as cluster, \
                 Client(cluster) as client:
             run_table(one_run, pool_set.iloc[:4], executor=client, chunk_size=2, progress=False)  # warm workers
-            start = time.perf_counter()
-            dask = run_table(one_run, pool_set, executor=client, chunk_size=125, progress=False)
-            dask_rate = len(pool_set) / (time.perf_counter() - start)
+            (pool_rate, pool), (dask_rate, dask) = timed("processes"), timed(client)
+            pool_rate, dask_rate = max(pool_rate, timed("processes")[0]), max(dask_rate, timed(client)[0])
+        rows.append(("vehdyn.sweep processes (2 workers)", len(pool_set), pool_rate,
+                     np.max(np.abs(pool["peak_yaw_rate"].to_numpy()[: len(ref)] / ref - 1))))
         rows.append(("vehdyn.sweep Dask LocalCluster (2 workers)", len(pool_set), dask_rate,
                      np.max(np.abs(dask["peak_yaw_rate"].to_numpy()[: len(ref)] / ref - 1))))
     frame = pd.DataFrame(rows, columns=["engine", "variants run", "variants/s", "max diff to single runs"])
     frame["x loop"] = frame["variants/s"] / loop_rate
+    print(f"load average before the run: {load[0]:.2f}, after the handling rows: {os.getloadavg()[0]:.2f}")
     print("Handling: 10-s sine steer, SingleTrack + Magic Formula, peak yaw rate")
     print(frame.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
-    print(f"Batched compiled on 2 threads: {rates[1e-8, 2]:.0f} variants/s at rtol 1e-8, {rates[1e-5, 2]:.0f} at "
-          f"rtol 1e-5 (goal >= 2,000: {'met' if max(rates.values()) >= 2000 else 'missed'}); 2 threads / 1 thread "
-          f"{rates[1e-8, 2] / rates[1e-8, 1]:.2f}")
-    if "dask_rate" in locals():
+    print(f"\nWork-precision, one compiled batch of {len(compiled_set)} variants (states only); max diff to the "
+          "full model's single runs at rtol 1e-8")
+    print(pd.DataFrame(wp, columns=["model", "rtol", "threads", "rhs calls/variant", "variants/s", "CPU/wall",
+                                    "CPU us/variant", "max diff"]).to_string(index=False,
+                                                                             float_format=lambda v: f"{v:.3g}"))
+    from _timing import compiled_rhs_call_time
+
+    for tire_lag in (True, False):
+        m = handling.SingleTrack(BASE, tire_lag=tire_lag)
+        x = m.straight_running(SPEED)
+        u = np.zeros(m.n_inputs)
+        u[m.input_names.index("front_steer_angle")] = AMPLITUDE
+        print(f"compiled rhs call ({'full' if tire_lag else 'no tire lag'}): "
+              f"{1e9 * compiled_rhs_call_time(m, x, u):.0f} ns")
+    print("CPU/wall: the share of the cores the run got (with kernel.sched_autogroup_enabled = 1 a session gets one "
+          "fair share whatever its thread count, so under other sessions' load 2 threads cannot show their gain); "
+          f"2 cores at the CPU time per variant (rtol 1e-5): full model {2 / cpu_per_variant[True, 1e-5]:.0f} "
+          f"variants/s, without tire lag {2 / cpu_per_variant[False, 1e-5]:.0f}/s")
+    print(f"Batched compiled on 2 threads, max diff <= 1e-5: full model {rates[True, 1e-5, 2]:.0f} variants/s "
+          f"(rtol 1e-5), without tire lag {rates[False, 1e-5, 2]:.0f}/s (goal >= 2,000: "
+          f"{'met' if rates[True, 1e-5, 2] >= 2000 else 'missed'} with the full model, "
+          f"{'met' if rates[False, 1e-5, 2] >= 2000 else 'missed'} without tire lag); 2 threads / 1 thread "
+          f"{rates[True, 1e-5, 2] / rates[True, 1e-5, 1]:.2f} (full), "
+          f"{rates[False, 1e-5, 2] / rates[False, 1e-5, 1]:.2f} (no tire lag); simulate_many at rtol 1e-8 "
+          f"{rates['many', 2] / rates['many', 1]:.2f}")
+    if Client is not None:
         print(f"Dask / process pool throughput: {dask_rate / pool_rate:.2f} (goal >= 0.75)")
 
     # --- ride
@@ -293,12 +405,15 @@ def main(n: int = 10_000) -> None:
     start = time.perf_counter()
     ref_ride = np.array([quarter_car_rms(*r)["rms_sprung_acceleration"] for r in sub.itertuples(index=False)])
     ride_loop = len(sub) / (time.perf_counter() - start)
-    best, out = best_time(lambda: run_table(quarter_car_rms_batched, ride, chunk_size=n, progress=False), repeats=3)
-    diff = np.max(np.abs(out["rms_sprung_acceleration"].to_numpy()[: len(sub)] / ref_ride - 1))
     print("\nRide: quarter car, class B at 25 m/s, r.m.s. body acceleration (Lyapunov)")
-    print(f"  loop of random_response: {ride_loop:9.0f} variants/s ({len(sub)} run)")
-    print(f"  vectorized sweep:        {n / best:9.0f} variants/s (x{n / best / ride_loop:.0f}; goal >= 50,000/s), "
-          f"max diff {diff:.1e}")
+    print(f"  loop of random_response:    {ride_loop:11.0f} variants/s ({len(sub)} run)")
+    for label, function in (("vectorized Kronecker solve", quarter_car_rms_batched),
+                            ("vectorized closed form", quarter_car_rms_closed_form)):
+        best, out = best_time(lambda: run_table(function, ride, chunk_size=n, progress=False), repeats=3)
+        diff = np.max(np.abs(out["rms_sprung_acceleration"].to_numpy()[: len(sub)] / ref_ride - 1))
+        print(f"  {label + ':':27} {n / best:11.0f} variants/s (x{n / best / ride_loop:.0f}; goal >= 50,000/s), "
+              f"max diff {diff:.1e}")
+    print(f"load average at the end: {os.getloadavg()[0]:.2f}")
 
 
 if __name__ == "__main__":

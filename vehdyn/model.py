@@ -49,6 +49,7 @@ PHENOMENA = frozenset(
         "pitch",
         "heave",
         "wheel_hop",
+        "wheel_lift",
         "wheel_spin",
         "load_transfer",
         "tire_saturation",

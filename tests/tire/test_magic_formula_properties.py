@@ -237,3 +237,21 @@ def test_empty_and_zero_dimensional_inputs():
     few = model.forces([[3000.0], [4000.0]], [0.0, 0.1, 0.2], 0.05)
     assert few.fy.shape == (2, 3)
     few.fy[0, 0] = 0.0  # outputs are writable arrays
+
+
+@pytest.mark.parametrize("name", TIRES)
+def test_lateral_force_kernel_is_the_combined_fy_at_zero_longitudinal_slip(name):
+    """The lean kernel (pure-slip Fy0, what a vehicle model in force mode takes) equals the full
+    kernel's combined-slip Fy at kappa = 0, gamma = 0 (Gyk = 1, SVyk = 0 there: 4.E58-4.E66)
+    bitwise, across loads up to beyond FZMAX, slip angles beyond the limits, reverse and low speed."""
+    from vehdyn.tire._mf_ops import NumpyOps
+
+    c = tire(name)._c
+    fz, alpha, vx = (a.ravel() for a in np.meshgrid(
+        np.linspace(0.0, 1.5 * c.FZMAX, 7), np.linspace(-1.5, 1.5, 13),
+        [-30.0, -c.VXLOW, -0.3 * c.VXLOW, 0.0, 0.3 * c.VXLOW, 2 * c.VXLOW, 30.0], indexing="ij"))
+    with np.errstate(all="ignore"):
+        full = mf_module._forces_kernel(NumpyOps, c, fz, 0.0 * fz, alpha, 0.0, vx, c.INFLPRES, True, False)[1]
+        lean = mf_module._lateral_force_kernel(NumpyOps, c, fz, alpha, vx, c.INFLPRES)
+    assert np.all(np.isfinite(full)) and np.any(full != 0)
+    np.testing.assert_array_equal(lean, full)

@@ -79,3 +79,20 @@ def test_register_a_law():
     with pytest.raises(ParameterError, match="neither"):
         tire_for_vehicle(vehicle)
     assert math.isfinite(1.0)
+
+
+def test_magic_formula_of_a_vehicle_is_read_once_per_version_of_its_file(tmp_path):
+    """A sweep builds a model per variant: the .tir file is parsed once and its law shared, until
+    the file changes (then the new values are read)."""
+    sedan = vehdyn.load_vehicle("sedan")
+    path = tmp_path / "copy.tir"
+    text = sedan.tir_path().read_text()
+    path.write_text(text)
+    vehicle = sedan.replace(tires__tir_file=str(path))
+    first = tire_for_vehicle(vehicle, "front")
+    assert tire_for_vehicle(vehicle.replace(mass__mass=1.1 * sedan.mass.mass), "rear") is first
+    lines = [line for line in text.splitlines() if line.strip().upper().startswith("FNOMIN")]
+    assert len(lines) == 1 and math.isclose(first._c.FNOMIN, float(lines[0].split("=")[1].split("$")[0]))
+    path.write_text(text.replace(lines[0], "FNOMIN = 1234.5 $ changed"))
+    second = tire_for_vehicle(vehicle, "front")
+    assert second is not first and second._c.FNOMIN == 1234.5

@@ -351,4 +351,4 @@ def linearized_setup(drive, ladder: str = "handling"):
     if drive.track is not None:
         raise _not_admissible("the driver loop steers on the earth position (nonlinear kinematics)")
     return Setup(model, lambda: linearized_run(model, drive, road), (),
-                 phenomena=model.phenomena - {"tire_saturation"})
+                 phenomena=model.phenomena - {"tire_saturation", "wheel_lift"})

@@ -241,8 +241,8 @@ class FullVehicle(Model):
             peak_tan_slip_angle=(peaks[0][1],) * 2 + (peaks[1][1],) * 2)
         self._k = self.constants()
         self._declare_signals()
-        phenomena = {"longitudinal", "lateral", "yaw", "roll", "pitch", "heave", "wheel_hop", "wheel_spin",
-                     "load_transfer", "tire_saturation", "road_input", "aero"}
+        phenomena = {"longitudinal", "lateral", "yaw", "roll", "pitch", "heave", "wheel_hop", "wheel_lift",
+                     "wheel_spin", "load_transfer", "tire_saturation", "road_input", "aero"}
         if self.tire_lag:
             phenomena.add("tire_lag")
         self.phenomena = frozenset(phenomena)

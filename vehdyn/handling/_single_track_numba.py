@@ -5,8 +5,10 @@ the functions of :mod:`~vehdyn.handling.single_track_equations` are registered w
 ``register_jitable`` and run with a compiled ``xp`` (:data:`XP`) whose ``axle_tire_loads`` calls
 the axle's tire law (forces and rolling-resistance moment): the Magic Formula through the compiled
 equations of :mod:`vehdyn.tire._mf_numba` (``magic_formula._forces_kernel`` on the coefficient record, the same
-call as :meth:`MagicFormula.forces` with its defaults ``limits=True``, ``alpha_star=False``), or
-the linear law. Other laws (brush, Fiala, Dugoff) have no compiled form: the model then refuses
+call as :meth:`MagicFormula.forces` with its defaults ``limits=True``, ``alpha_star=False``; in
+force mode without lateral load transfer, where the model takes only F_y at kappa = 0, the lean
+``magic_formula._lateral_force_kernel``, bitwise the same F_y at a quarter of the cost), or the
+linear law. Other laws (brush, Fiala, Dugoff) have no compiled form: the model then refuses
 the compiled backend and names the law.
 """
 
@@ -47,13 +49,17 @@ for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_s
     register_jitable(**_JIT)(getattr(equations, _name))
 register_jitable(**_JIT)(crosswind.aero_side_force)
 
-TireLaw = namedtuple("TireLaw", ("kind", "mirrored", "records", "record", "linear"))
+TireLaw = namedtuple("TireLaw", ("kind", "mirrored", "records", "record", "linear", "lateral_only"),
+                     defaults=(False,))
 TireLaw.__doc__ = """The law of one axle's tires for compiled code: ``kind`` (0 Magic Formula, 1 linear),
 ``mirrored`` (axle force = tire + mirror image, see :meth:`SingleTrack.axle_law_forces`), an array
 of Magic Formula coefficient records and which one is this law's (placeholders for other laws:
 an array, not a record, so that a batch can pick a variant's record without returning one from a
 compiled function) and the linear law's coefficients (:attr:`LinearTire.coefficients`; zeros for
-a Magic Formula)."""
+a Magic Formula); ``lateral_only``: the model takes only F_y from the law (force mode without
+lateral load transfer: the longitudinal force is the input and M_y unused), so a Magic Formula
+evaluates only its lateral force at kappa = 0 (``magic_formula._lateral_force_kernel``) and returns
+F_x = M_y = 0."""
 
 
 def _axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
@@ -63,6 +69,12 @@ def _axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
     load = 0.5 * fz
     if law.kind == _MAGIC_FORMULA:
         c = law.records[law.record]
+        if law.lateral_only:
+            fy = magic_formula._lateral_force_kernel(_mf_numba.OPS, c, load, alpha, vx, c.INFLPRES)
+            if law.mirrored:
+                return 0.0, fy - magic_formula._lateral_force_kernel(_mf_numba.OPS, c, load, -alpha, vx,
+                                                                      c.INFLPRES), 0.0
+            return 0.0, 2.0 * fy, 0.0
         f = magic_formula._forces_kernel(_mf_numba.OPS, c, load, kappa, alpha, 0.0, vx, c.INFLPRES, True, False)
         if law.mirrored:
             g = magic_formula._forces_kernel(_mf_numba.OPS, c, load, kappa, -alpha, 0.0, vx, c.INFLPRES, True, False)
@@ -155,10 +167,11 @@ def _records(c=None):
     return np.zeros(1, dtype=dtype) if c is None else np.array([tuple(c)], dtype=dtype)
 
 
-def tire_law(tire, mirrored: bool, axle: str) -> TireLaw:
+def tire_law(tire, mirrored: bool, axle: str, lateral_only: bool = False) -> TireLaw:
     """The compiled description of ``tire`` (a MagicFormula or LinearTire), else ParameterError."""
     if isinstance(tire, MagicFormula):
-        return TireLaw(_MAGIC_FORMULA, bool(mirrored), _records(tire._c), 0, (0.0, 0.0, 0.0, 0.0, 0.0))
+        return TireLaw(_MAGIC_FORMULA, bool(mirrored), _records(tire._c), 0, (0.0, 0.0, 0.0, 0.0, 0.0),
+                       bool(lateral_only))
     if isinstance(tire, LinearTire):
         return TireLaw(_LINEAR, bool(mirrored), _records(), 0, tire.coefficients)
     raise ParameterError(f"the compiled SingleTrack supports the MagicFormula and LinearTire laws; the {axle} tire is "
@@ -173,8 +186,9 @@ def compiled_model(model) -> CompiledModel:
                              value=model.n_variants)
     k = model._constants()
     k = k._replace(**{name: float(getattr(k, name)) for name in _FLOATS})
-    tires = (tire_law(model.front_tire, model._mirrored["front"], "front"),
-             tire_law(model.rear_tire, model._mirrored["rear"], "rear"))
+    lateral = _lateral_only(model.wheel_spin, model.lateral_load_transfer)
+    tires = (tire_law(model.front_tire, model._mirrored["front"], "front", lateral),
+             tire_law(model.rear_tire, model._mirrored["rear"], "rear", lateral))
     rhs, output, key = compiled_functions()
     # tuples, not arrays: passed by value, without reference counting on every call
     index = (tuple(int(i) for i in model._state_index), tuple(int(i) for i in model._input_index))
@@ -189,21 +203,28 @@ _N_FLOATS = len(_FLOATS)
 _N_LINEAR = 5
 
 
-def _law(axle, i):
+def _lateral_only(wheel_spin, lateral_load_transfer):
+    """Whether the model takes only F_y from its tire laws (:class:`TireLaw`)."""
+    return not (wheel_spin or lateral_load_transfer)
+
+
+def _law(axle, i, lateral_only):
     """Variant ``i``'s TireLaw from an axle of a batch (kind, mirrored, tire index, records, linear)."""
     kind, mirrored, which, records, linear_coefficients = axle
     j = which[i]
-    return TireLaw(kind, mirrored[i], records, j, to_fixed_tuple(linear_coefficients[j], _N_LINEAR))
+    return TireLaw(kind, mirrored[i], records, j, to_fixed_tuple(linear_coefficients[j], _N_LINEAR), lateral_only)
 
 
 def _pick(batch, i):
     """The ``args`` of :func:`_rhs` for variant ``i`` of a batch built by :func:`compiled_batch`."""
     K, wheel_spin, tire_lag, lateral_load_transfer, front, rear, state_index, input_index = batch
     k = equations.Constants(*(to_fixed_tuple(K[i], _N_FLOATS) + (wheel_spin, tire_lag, lateral_load_transfer)))
-    return k, (_law(front, i), _law(rear, i)), state_index, input_index
+    lateral = _lateral_only(wheel_spin, lateral_load_transfer)
+    return k, (_law(front, i, lateral), _law(rear, i, lateral)), state_index, input_index
 
 
 # inlined into the batch loops (a compiled function of its own could not return a record to Python)
+register_jitable(**_JIT)(_lateral_only)
 register_jitable(**_JIT)(_law)
 register_jitable(**_JIT)(_pick)
 

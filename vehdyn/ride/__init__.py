@@ -73,6 +73,7 @@ from .analysis import (
 )
 from .bounce_pitch import BouncePitch, BouncePitchParameters
 from .full_car import FullCar, FullCarParameters
+from .lift_off import LateralSlip, LiftOff
 from .quarter_car import QuarterCar, QuarterCarParameters
 from .wheelbase import road_frequency_response, road_inputs, wheel_delays, with_wheelbase_delay
 from .comfort import (
@@ -119,6 +120,8 @@ __all__ = [
     "BouncePitchParameters",
     "FullCar",
     "FullCarParameters",
+    "LiftOff",
+    "LateralSlip",
     "road_frequency_response",
     "road_inputs",
     "wheel_delays",

@@ -113,7 +113,8 @@ class RideModel(LinearModel):
     corners: tuple[Corner, ...] = ()
     body_dof: tuple[str, ...] = ()
 
-    def _assemble(self, *, body_dof, body_mass, corners, antiroll=(), actuators=False, name, phenomena):
+    def _assemble(self, *, body_dof, body_mass, corners, antiroll=(), actuators=False, name, phenomena,
+                  body_stiffness=None):
         """Build the matrices and initialize the :class:`LinearModel`.
 
         Parameters
@@ -127,6 +128,9 @@ class RideModel(LinearModel):
             in wheel-rate units: a bar of roll stiffness K [N*m/rad] over track t is K / t^2).
         actuators : bool
             Add an ``actuator_force`` input per corner.
+        body_stiffness : array_like, optional
+            Added to the diagonal of K on the body's coordinates [N/m, N*m/rad, N*m/rad] (gravity's
+            moment on a pitched or rolled body whose CG lies above the contact points: negative).
         """
         self.body_dof = tuple(body_dof)
         self.corners = tuple(corners)
@@ -160,6 +164,8 @@ class RideModel(LinearModel):
             w[left], w[right] = 1.0, -1.0
             elements.append((w, k, 0.0))
         K = np.zeros((n, n))
+        self.body_stiffness = np.zeros(nb) if body_stiffness is None else np.asarray(body_stiffness, dtype=float)
+        K[range(nb), range(nb)] = self.body_stiffness
         C = np.zeros((n, n))
         Fd = np.zeros((n, nc))
         Fv = np.zeros((n, nc))

@@ -17,6 +17,8 @@ from __future__ import annotations
 import dataclasses
 
 from ..params.base import ParameterSet, parameter
+from ..errors import ParameterError
+from ..units import GRAVITY
 from ._ride_model import Corner, RideModel
 
 __all__ = ["FullCar", "FullCarParameters", "CORNERS"]
@@ -48,6 +50,14 @@ class FullCarParameters(ParameterSet):
     rear_tire_stiffness: float = parameter("N/m", "vertical stiffness of one rear tire", gt=0)
     front_tire_damping: float = parameter("N*s/m", "vertical damping of one front tire", ge=0, default=0.0)
     rear_tire_damping: float = parameter("N*s/m", "vertical damping of one rear tire", ge=0, default=0.0)
+    sprung_cg_height: float = parameter("m", "height of the sprung CG above the contact points (0: the "
+                                        "couplings of the height left out)", ge=0, default=0.0)
+    unsprung_cg_height: float = parameter("m", "height of the unsprung masses above the contact points",
+                                          ge=0, default=0.0)
+    wheel_spin_inertia: float = parameter("kg*m^2", "spin inertia of one wheel (with sprung_cg_height: the wheels "
+                                          "spin as the contact points move fore and aft)", ge=0, default=0.0)
+    rolling_radius: float = parameter("m", "rolling radius of the wheels (for wheel_spin_inertia)", gt=0,
+                                      default=0.3)
 
     @property
     def wheelbase(self) -> float:
@@ -73,6 +83,12 @@ class FullCar(RideModel):
         Unsprung mass of one wheel [kg].
     front_tire_stiffness, rear_tire_stiffness, front_tire_damping, rear_tire_damping : float
         Per-tire vertical stiffness [N/m] and damping [N*s/m] (damping defaults to 0).
+    sprung_cg_height, unsprung_cg_height : float, optional
+        Heights of the sprung CG and of the unsprung masses above the contact points [m] (default
+        0): gravity's moment and the wheels' horizontal inertia (module docstring).
+    wheel_spin_inertia, rolling_radius : float, optional
+        Spin inertia of one wheel [kg*m^2] (default 0) and rolling radius [m]: the wheels' share
+        of the pitch inertia when the CG is above the ground.
     actuators : bool, optional
         Add an ``actuator_force_<corner>`` input per corner.
 
@@ -98,9 +114,24 @@ class FullCar(RideModel):
                     getattr(p, f"{axle}_tire_damping"), track=side))
         antiroll = [(0, 1, p.front_antiroll_stiffness / p.front_track**2),
                     (2, 3, p.rear_antiroll_stiffness / p.rear_track**2)]
-        self._assemble(body_dof=("heave", "pitch", "roll"), body_mass=[p.mass, p.pitch_inertia, p.roll_inertia],
+        # the CG above the contact points: gravity's moment on the pitched or rolled body and the
+        # unsprung masses' fore-aft and sideways inertia about the sprung CG
+        lever = p.sprung_cg_height - p.unsprung_cg_height
+        wheels = 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass) * lever**2
+        spin = 4.0 * p.wheel_spin_inertia * (p.sprung_cg_height / p.rolling_radius) ** 2
+        tilt = -p.mass * GRAVITY * p.sprung_cg_height
+        pitch_stiffness = 2.0 * (p.front_spring_rate * p.a**2 + p.rear_spring_rate * p.b**2)
+        roll_stiffness = (0.5 * p.front_spring_rate * p.front_track**2 + 0.5 * p.rear_spring_rate * p.rear_track**2
+                          + p.front_antiroll_stiffness + p.rear_antiroll_stiffness)
+        if min(pitch_stiffness, roll_stiffness) + tilt <= 0:
+            raise ParameterError(f"sprung_cg_height = {p.sprung_cg_height} m: gravity's moment m g h = {-tilt:.4g} "
+                                 f"N*m/rad exceeds the suspension's pitch ({pitch_stiffness:.4g}) or roll "
+                                 f"({roll_stiffness:.4g}) stiffness [N*m/rad]: the body would tip over",
+                                 key="sprung_cg_height", value=p.sprung_cg_height)
+        self._assemble(body_dof=("heave", "pitch", "roll"),
+                       body_mass=[p.mass, p.pitch_inertia + wheels + spin, p.roll_inertia + wheels],
                        corners=corners, antiroll=antiroll, actuators=actuators, name=name,
-                       phenomena=self.phenomena)
+                       phenomena=self.phenomena, body_stiffness=[0.0, tilt, tilt])
 
     @property
     def wheelbase(self) -> float:
@@ -115,10 +146,21 @@ class FullCar(RideModel):
                 + p.front_antiroll_stiffness + p.rear_antiroll_stiffness)
 
     @classmethod
-    def from_vehicle(cls, vehicle, *, actuators: bool = False) -> "FullCar":
-        """The full car of a shipped or user vehicle (sprung inertias about the sprung CG)."""
+    def from_vehicle(cls, vehicle, *, actuators: bool = False, cg_heights: bool = False) -> "FullCar":
+        """The full car of a shipped or user vehicle (sprung inertias about the sprung CG).
+
+        ``cg_heights=True`` keeps the couplings of the sprung CG's height (``sprung_cg_height`` the
+        file's, ``unsprung_cg_height`` where it puts the total CG at the file's height, as in
+        :class:`vehdyn.full_vehicle.FullVehicle`, and the wheels' spin inertia and rolling radius);
+        by default the heights are 0.
+        """
         g, m, s, t = vehicle.geometry, vehicle.mass, vehicle.suspension, vehicle.tires
-        return cls(
+        heights = {}
+        if cg_heights:
+            unsprung = (m.mass * m.cg_height - m.sprung_mass * m.sprung_cg_height) / m.unsprung_mass
+            heights = dict(sprung_cg_height=m.sprung_cg_height, unsprung_cg_height=unsprung,
+                           wheel_spin_inertia=t.wheel_spin_inertia, rolling_radius=t.rolling_radius)
+        return cls(**heights,
             mass=m.sprung_mass, roll_inertia=m.sprung_roll_inertia, pitch_inertia=m.sprung_pitch_inertia,
             a=g.sprung_cg_to_front_axle, b=g.sprung_cg_to_rear_axle, front_track=g.front_track,
             rear_track=g.rear_track, front_spring_rate=s.front_spring_rate, rear_spring_rate=s.rear_spring_rate,

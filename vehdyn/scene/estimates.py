@@ -29,7 +29,10 @@ error (the steady-state algebra's missing transient). The estimates are of two k
   transfer takes through the tire's load sensitivity (a gain times that deficit at the linear
   probe's peak a_y and slip angles); a linear ride rung against the full vehicle misses the wheel
   lifting off where its linear tire goes into tension (a floor plus a gain times the largest
-  tension over the static wheel load of the linear ride probes, which the plan runs on a road).
+  tension over the static wheel load of the linear ride probes, which the plan runs on a road);
+  the full car whose tires lift off (FullCar+lift) misses the tires' longitudinal slip, which
+  grows with that tension and the speed (a floor plus a gain times their product), and at an
+  output off the CG the pitch and roll it makes (a gain times the road's asymmetry).
 
 Against the full vehicle, a linear rung with roll (LateralYawRoll+lag, the linearized full vehicle)
 misses the tire law's saturation and its load sensitivity under the lateral load transfer: the
@@ -65,7 +68,8 @@ import numpy as np
 
 from ..units import GRAVITY
 
-__all__ = ["THRESHOLDS", "COST_PER_SIMULATED_SECOND", "START_COST_S", "relative_error", "relative_errors"]
+__all__ = ["THRESHOLDS", "COST_PER_SIMULATED_SECOND", "START_COST_S", "relative_error", "relative_errors",
+           "lift_off_error"]
 
 #: The planner's thresholds and gains. Provenance of each number in the comments: all from
 #: benchmarks/bench_ladder.py on the standard scenes of the three shipped vehicles (their Magic
@@ -126,6 +130,22 @@ THRESHOLDS = {
     # tension 1.44, FullCar error 0.39 at the CG (compact 0.45)
     "tire_lift_floor": 3.7e-3,
     "tire_lift_gain": 0.15,
+    # the full car whose tires lift off (rung FullCar+lift: vehdyn.ride.LiftOff with the CG-height
+    # couplings and the tires' lateral slip) against the full vehicle: error = floor + gain * the
+    # same tension of the linear probe * the speed [m/s], at the body outputs. What is left grows
+    # with the speed: the tires' longitudinal slip and the wheels' spin, and the drag's pitch
+    # moment, which the full car leaves out. bench_ladder (sedan / compact / van, body outputs):
+    # class B roads (no lift) 0.0011 / 0.0023 / 0.0022 (the floor); class D at 54 km/h, tension
+    # 0.40 / 0.95 / 0.33: 0.0045 / 0.0057 / 0.0082; at 108 km/h, tension 1.03 / 1.60 / 0.76:
+    # 0.0096 / 0.0122 / 0.0109 (estimated / measured 0.45-2.2)
+    "lift_off_floor": 2e-3,
+    "lift_off_gain": 3.3e-4,
+    # the same rung at an output that sees the body's roll and pitch at a corner, per unit road
+    # asymmetry: the front-left corner in the one-sided pothole (asymmetry 1) is 0.031 / 0.038 /
+    # 0.048 off: the tires' longitudinal slip, which the full car has no fore-aft motion and wheel
+    # spin for (the sedan against a full vehicle on linear tires of the same cornering stiffness:
+    # 0.007 without longitudinal slip stiffness, 0.017 with it, 0.031 with the Magic Formula)
+    "lift_off_roll_gain": 0.04,
     # a handling rung without the full vehicle's pitch, heave and wheel motion, on a flat road: the
     # error that is left when every other difference is represented -- LateralYawRoll+lag against
     # FullVehicle(linearized) in the three linear scenes (gentle step steer, lane changes at 60 and
@@ -178,6 +198,10 @@ COST_PER_SIMULATED_SECOND = {
     "QuarterCar": 1.9e-4,
     "BouncePitch": 1.8e-4,
     "FullCar": 3.2e-4,
+    # compiled right-hand side (RK45 at the full vehicle's tolerances, max_step the scene's 2 ms;
+    # about 1 ms/s on a smooth road); bench_ladder on the ride scenes of the three vehicles, see
+    # README "Fidelity ladder"
+    "FullCar+lift": 3.2e-3,
     # compiled right-hand side (RK45, rtol 1e-6, max_step the scene's time step: 0.01 s, on a
     # road 0.002 s), the trim in START_COST_S; bench_ladder on the three vehicles as above. On a
     # road the handling rung costs as the ride rung (cornering on a rough road: 2e-2 s/s). The numpy
@@ -458,6 +482,18 @@ def tire_lift(probe, vehicle) -> float:
             static = 0.5 * (loads[0] if "front" in name else loads[1])
             worst = max(worst, float(np.max(-(static + np.asarray(probe[name], dtype=float)))) / static)
     return worst
+
+
+def lift_off_error(lift: float, speed: float, asymmetry: float, outputs) -> dict:
+    """Estimated error of the full car with lift-off (rung ``FullCar+lift``) against the full vehicle.
+
+    ``lift_off_floor + lift_off_gain * lift * speed`` per output (``lift`` from :func:`tire_lift`,
+    ``speed`` [m/s]), plus ``lift_off_roll_gain * asymmetry`` (:func:`road_asymmetry`) at an output
+    that sees the body's roll (not :func:`is_body_output`).
+    """
+    base = THRESHOLDS["lift_off_floor"] + THRESHOLDS["lift_off_gain"] * lift * speed
+    roll = THRESHOLDS["lift_off_roll_gain"] * asymmetry
+    return {o: base + (0.0 if is_body_output(o) else roll) for o in outputs}
 
 
 def road_asymmetry(road) -> float:

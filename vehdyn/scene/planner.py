@@ -319,6 +319,8 @@ class _Context:
                 e += dg
                 note = " and ".join(filter(None, [note, f"load sensitivity ~{dg:.1e}"]))
             return e, note
+        if p == "wheel_lift":  # on a road, charged in errors() (the linear tire's tension); flat: none
+            return 0.0, ""
         if p == "wheel_spin":  # free-rolling wheels: the spin follows the speed
             return (float("nan"), "wheel spin under torque unestimated") if d.longitudinal else (0.0, "")
         if p in ("longitudinal", "aero", "load_transfer"):
@@ -399,6 +401,13 @@ class _Context:
             total = {o: v + value for o, v in total.items()}
             notes.append(f"wheel lift (linear tire in tension) ~{value:.1e}" if lift else
                          f"linear against nonlinear contact ~{value:.1e}")
+        elif "wheel_lift" in r.rung.phenomena(r.setup) and r.rung.ladder == "ride" and not self.top.rung.linear \
+                and self.drive.road is not None:
+            # a ride model whose tires lift off: what it misses grows with the lift and the speed
+            lift = self._lift()
+            value = est.lift_off_error(lift, self.scene.speed, est.road_asymmetry(self.drive.road), self.outputs)
+            total = {o: v + value[o] for o, v in total.items()}
+            notes.append(f"lift-off without wheel spin ~{max(value.values()):.1e}")
         if r.rung.name == "SteadyState":
             diff = self._difference("SteadyState", "LinearBicycle")
             notes.append("no transient (probes)")

@@ -476,6 +476,56 @@ def build_full_car(drive) -> Setup:
     return Setup(model, lambda: simulate(model, drive.time, u, method="exact"), _ride_ignores(drive))
 
 
+def lateral_slip(drive):
+    """:class:`vehdyn.ride.LateralSlip` of the scene's vehicle and tire laws at its speed: each
+    axle's tire law (antisymmetric part) at half the static axle load, its cornering stiffness
+    (slip 1e-4 rad) and the stiffness's load derivative (central difference, +-10 % load)."""
+    from ..ride.lift_off import LateralSlip
+    from ..units import GRAVITY
+    from .estimates import _axle_tire_forces
+
+    vehicle = drive.vehicle
+    loads = vehicle.static_axle_loads(GRAVITY)
+    alpha = 1e-4
+    stiffness = {}
+    for (axle, law), load in zip(zip(("front", "rear"), tire_laws(drive)), loads):
+        wheel = 0.5 * load
+        c = [float(_axle_tire_forces(law, wheel * f, alpha)) / alpha for f in (1.0, 0.9, 1.1)]
+        stiffness[f"{axle}_cornering_stiffness"] = c[0]
+        stiffness[f"{axle}_load_sensitivity"] = max((c[2] - c[1]) / (0.2 * wheel), 0.0)
+    t = vehicle.tires
+    return LateralSlip(speed=drive.scene.speed, yaw_inertia=vehicle.mass.yaw_inertia,
+                       front_relaxation_length=t.front_relaxation_length, rear_relaxation_length=t.rear_relaxation_length,
+                       **stiffness)
+
+
+def build_full_car_lift_off(drive) -> Setup:
+    """The full car with tires that lift off (:class:`vehdyn.ride.LiftOff`), the couplings of the
+    sprung CG's height (``FullCar.from_vehicle(..., cg_heights=True)``) and the tires' lateral slip
+    under the rolling body (:func:`lateral_slip`), on both tracks; RK45 at rtol 1e-5, atol 1e-7
+    and ``max_step`` the scene's time step (compiled when numba is installed): against rtol 1e-9,
+    1e-4 of the body accelerations on the sedan's rough road at 108 km/h, a 20th of the full
+    vehicle's rtol-1e-6 cost there (its wheel lifts make many steps fail at tighter tolerances)."""
+    from ..full_vehicle.ladder import SOLVER_OPTIONS
+    from ..ride.full_car import FullCar
+    from ..ride.lift_off import LiftOff
+    from ..simulate import simulate
+
+    v = drive.vehicle
+    raised = {"geometry.front_roll_centre_height": v.geometry.front_roll_centre_height,
+              "geometry.rear_roll_centre_height": v.geometry.rear_roll_centre_height,
+              "suspension.front_anti_dive": v.suspension.front_anti_dive,
+              "suspension.rear_anti_squat": v.suspension.rear_anti_squat}
+    raised = {k: x for k, x in raised.items() if x}
+    if raised or v.suspension.front_camber_gain or v.suspension.rear_camber_gain:
+        raise NotAdmissible(f"the full car's lateral slip acts through roll centres on the ground, without "
+                            f"anti-pitch or camber gains ({raised or 'camber gains'})")
+    model = LiftOff(FullCar.from_vehicle(v, cg_heights=True), lateral=lateral_slip(drive))
+    u = _ride_inputs(model.linear, drive, average=False)
+    options = dict(SOLVER_OPTIONS, rtol=1e-5, atol=1e-7, max_step=float(drive.scene.effective_time_step))
+    return Setup(model, lambda: simulate(model, drive.time, u, **options), _ride_ignores(drive))
+
+
 # ====================================================================== the registry
 _HERE = "vehdyn.scene.rungs"
 for _rung in (
@@ -509,6 +559,8 @@ for _rung in (
          description="half car in pitch, mean track"),
     Rung("FullCar", "vehdyn.ride.full_car:FullCar", "ride", 30, build_full_car, linear=True,
          description="7-DOF full car, both tracks"),
+    Rung("FullCar+lift", "vehdyn.ride.lift_off:LiftOff", "ride", 40, build_full_car_lift_off,
+         description="7-DOF full car, both tracks, tires that lift off, CG-height couplings"),
     # The top rung of both ladders: vehdyn.full_vehicle.ladder_setup(drive, ladder) -> Setup with the
     # contract of the builders above (the handling rung answers every scene with a ground-plane
     # input, road or not; the ride rung the road-only scenes).

@@ -108,6 +108,11 @@ class ChunkTask:
         return chunk_frame({c: records[c] for c in records.columns}, self.names, self.metrics)
 
 
+def _run_task(task: ChunkTask, ids, rows):
+    """``task(ids, rows)``: a Dask task whose ``task`` argument is scattered to the workers once."""
+    return task(ids, rows)
+
+
 def is_dask_client(executor) -> bool:
     """True for a ``dask.distributed.Client`` (checked without importing dask)."""
     return type(executor).__module__.startswith("distributed") and hasattr(executor, "scheduler_info")
@@ -151,7 +156,9 @@ def run_chunks(task: ChunkTask, chunks: list[tuple[list[int], list[tuple]]], exe
         if is_dask_client(executor):
             from distributed import as_completed
 
-            futures = [executor.submit(task, ids, rows, pure=False) for ids, rows in chunks]
+            # the task (target, base model, metrics) goes to every worker once, not with every chunk
+            shared = executor.scatter(task, broadcast=True, hash=False) if len(chunks) > 1 else task
+            futures = [executor.submit(_run_task, shared, ids, rows, pure=False) for ids, rows in chunks]
             for future in as_completed(futures):
                 on_done(future.result())
         elif isinstance(executor, cf.Executor):

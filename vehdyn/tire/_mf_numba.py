@@ -104,7 +104,8 @@ _EQUATIONS = (
     (mf_moments, ("overturning_moment", "rolling_resistance_moment", "aligning_moment")),
     (mf_vertical, ("_free_radius", "rolling_radius", "loaded_radius_mf61", "_load_mf62", "loaded_radius_mf62",
                    "contact_patch", "carcass_stiffness")),
-    (magic_formula, ("_forces_pass", "_forces_kernel", "_full_kernel")),
+    (magic_formula, ("_pass_inputs", "_forces_pass", "_forces_kernel",
+                     "_lateral_force_kernel", "_full_kernel")),
 )
 for _module, _names in _EQUATIONS:
     for _name in _names:

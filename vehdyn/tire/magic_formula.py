@@ -522,12 +522,10 @@ MFState.__doc__ = """Post-processed inputs of one evaluation and the quantities 
 (see :mod:`vehdyn.tire.mf_forces`)."""
 
 
-def _forces_pass(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omega_given, limits, alpha_star, turn_slip,
+def _pass_inputs(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omega_given, limits, alpha_star, turn_slip,
                  full):
-    """Inputs (limits, low-speed rules), forces and moments of one pass on arrays or floats.
-
-    Returns the six forces and moments and what :func:`_full_pass` needs besides.
-    """
+    """The inputs of one pass after the limits and low-speed rules, as an :class:`MFState`, and
+    (re, r_omega, spin, fz_low, kappa_output, alpha_input, gamma_input) for :func:`_full_kernel`."""
     fz = xp.maximum(fz, 0.0)
     reverse = xp.where(vx < 0, -1.0, 1.0)  # MFeval flips Fx0, My (and Fy0 with alpha*) when vx < 0
     fz_input, kappa_input, alpha_input, gamma_input = fz, kappa, alpha, gamma
@@ -583,12 +581,23 @@ def _forces_pass(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omeg
                 kappa_input=kappa_input, alpha=alpha, gamma=gamma, phit=phit, vx=vx, pressure=pressure, dpi=dpi,
                 dfz=dfz, alpha_star=alpha_s, gamma_star=gamma_s, camber_free=not xp.any(gamma_s != 0),
                 cos_alpha_prime=cos_alpha_prime, phi=phi, eps_gamma=eps_gamma)
+    return s, (re, r_omega, spin, fz_low, kappa_output, alpha_input, gamma_input)
+
+
+def _forces_pass(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omega_given, limits, alpha_star, turn_slip,
+                 full):
+    """Inputs (limits, low-speed rules), forces and moments of one pass on arrays or floats.
+
+    Returns the six forces and moments and what :func:`_full_pass` needs besides.
+    """
+    s, (re, r_omega, spin, fz_low, kappa_output, alpha_input, gamma_input) = _pass_inputs(
+        xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omega_given, limits, alpha_star, turn_slip, full)
     fx0, mux, kxk = longitudinal_pure(xp, c, s)
     pure = lateral_pure(xp, c, s, s.gamma_star, turn_slip)
     fx = longitudinal_combined(xp, c, s, fx0)
     fy, gyk, svyk = lateral_combined(xp, c, s, pure)
     mz = aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk)
-    forces = (fx, fy, fz_input, overturning_moment(xp, c, s, fy), rolling_resistance_moment(xp, c, s, fx), mz.mz)
+    forces = (fx, fy, s.fz_input, overturning_moment(xp, c, s, fy), rolling_resistance_moment(xp, c, s, fx), mz.mz)
     extras = (s, pure, mz, mux, kxk, re, r_omega, spin, fz_low, kappa_output, alpha_input, gamma_input)
     return forces, extras
 
@@ -597,6 +606,19 @@ def _forces_kernel(xp, c, fz, kappa, alpha, gamma, vx, pressure, limits, alpha_s
     """Fx, Fy, Fz, Mx, My, Mz (no turn slip, no rolling radius): :meth:`MagicFormula.forces`."""
     return _forces_pass(xp, c, fz, kappa, alpha, gamma, 0.0, vx, pressure, 0.0, False, limits, alpha_star, False,
                         False)[0]
+
+
+def _lateral_force_kernel(xp, c, fz, alpha, vx, pressure):
+    """Fy [N] of :func:`_forces_kernel` at kappa = 0 and gamma = 0 (``limits=True``,
+    ``alpha_star=False``), without the longitudinal force and the moments: what a vehicle model in
+    force mode (longitudinal forces as inputs, no wheel spin) takes from the law.
+
+    At kappa = 0 the combined-slip Fy = Gyk Fy0 + SVyk (book eq. 4.E58) is Fy0: Gyk (4.E59) divides
+    two equal numbers (kappa_s = kappa + SHyk = SHyk, 4.E61) and SVyk (4.E66) is sin(atan(0)) = 0,
+    so the pure-slip force is the combined one up to rounding (the test compares them).
+    """
+    s = _pass_inputs(xp, c, fz, 0.0, alpha, 0.0, 0.0, vx, pressure, 0.0, False, True, False, False, False)[0]
+    return lateral_pure(xp, c, s, s.gamma_star, False).fy0
 
 
 def _full_kernel(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omega_given, limits, alpha_star,

@@ -13,8 +13,10 @@ Users register their own laws with :func:`register_tire_law`.
 
 from __future__ import annotations
 
+import functools
 import importlib
 import math
+import os
 from typing import NamedTuple
 
 from ..errors import ParameterError
@@ -121,6 +123,14 @@ def vehicle_tire_data(vehicle, axle: str = "front") -> VehicleTireData:
     return VehicleTireData(stiffness, load, tires.friction_coefficient, half_length, relaxation)
 
 
+@functools.lru_cache(maxsize=16)
+def _from_tir(law, path: str, mtime_ns: int, size: int) -> TireModel:
+    """``law.from_tir(path)``, read once per version of the file (a sweep builds a model per
+    variant: parsing the file each time cost more than the variant's compiled run). The law is
+    shared by the models built from it (its coefficients are immutable)."""
+    return law.from_tir(path)
+
+
 def tire_for_vehicle(vehicle, axle: str = "front", model: str | None = None) -> TireModel:
     """The tire law of one wheel of ``vehicle``'s ``axle``.
 
@@ -142,6 +152,11 @@ def tire_for_vehicle(vehicle, axle: str = "front", model: str | None = None) -> 
     if hasattr(law, "from_vehicle"):
         return law.from_vehicle(vehicle, axle)
     if hasattr(law, "from_tir"):
-        return law.from_tir(vehicle.tir_path())
+        path = vehicle.tir_path()
+        try:
+            stat = os.stat(path)
+        except OSError:  # from_tir names the file
+            return law.from_tir(path)
+        return _from_tir(law, str(path), stat.st_mtime_ns, stat.st_size)
     raise ParameterError(f"tire law {law.__name__} can be built neither from a vehicle nor from a .tir file",
                          key="tires.model", value=vehicle.tires.model)

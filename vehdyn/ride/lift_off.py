@@ -1,0 +1,396 @@
+"""Unilateral tire contact for the linear ride models: the wheel lifts off the road and lands again.
+
+:class:`LiftOff` takes a linear ride model (:class:`~vehdyn.ride.FullCar`,
+:class:`~vehdyn.ride.BouncePitch`, :class:`~vehdyn.ride.QuarterCar`, each with unsprung masses)
+and replaces its bilateral tire spring by a contact that can push but not pull. Everything else
+is the linear model's own matrices: the model adds one correction force per wheel, nothing of the
+ride model's equations is restated.
+
+Equations
+---------
+The linear model (:mod:`vehdyn.ride._ride_model`) is M q'' + C q' + K q = F u with the tire of
+wheel i a spring k_t and damper c_t on the tire deflection (compression) z_r - z_u, so that its
+force on the wheel is the static load plus
+
+    dF_lin = k_t (z_r - z_u) + c_t (z_r' - z_u')           [N, up on the wheel]
+
+with z_r the road under the wheel and z_u the wheel's displacement (both up from static
+equilibrium, as in every ride model). A real tire carries no tension: with the static load F_s and
+the static deflection delta_0 = F_s / k_t, the tire's total compression is
+delta = delta_0 + z_r - z_u and its force
+
+    F = max(F_s + dF_lin, 0)   where delta > 0,   F = 0 where delta <= 0
+
+(the same law as the full vehicle's corners, :func:`vehdyn.full_vehicle.corner.normal_load`: the
+wheel is off the road when the tire is uncompressed; while it unloads, the damper cannot pull it
+down either). The model is the linear one with the correction f_c = F - (F_s + dF_lin) added as a
+force on the wheel:
+
+    x' = A x + B u + e_i f_c / m_u,       y = C x + D u (+ f_c in ``dynamic_tire_load``,
+    + f_c / m_u in ``unsprung_acceleration`` of wheel i)
+
+so that with every wheel on the road (f_c = 0) it *is* the linear model, to round-off. While a
+wheel is off the road it flies under gravity and its suspension spring and damper only,
+m_u z_u'' = F_susp - m_u g in absolute terms (in the model's coordinates about the static
+equilibrium the static loads are part of the correction).
+
+Static loads: the static equilibrium of the linear model's springs under gravity, K q_g = f_g with
+f_g = -g x (the mass of each translational coordinate: the body's heave, the wheels), F_s,i =
+-k_t,i z_u,i(q_g); for the full car of a vehicle the sprung weight splits by the sprung CG's
+position (m_s g b / (2 L) at a front wheel) and each wheel adds its own weight.
+
+Signs: as the ride models (up positive, ``dynamic_tire_load`` positive = more load, so a lifted
+wheel shows -F_s). Units SI.
+
+Lateral slip (option ``lateral``, a full car only)
+--------------------------------------------------
+With the sprung CG at the height h above the contact points (``FullCar`` parameter
+``sprung_cg_height``), a roll rate p moves the contact points sideways, and the tires answer with
+side forces that roll the body back and push the vehicle sideways; the full car alone rolls about
+its CG as if the tires could slide freely. The option adds the lateral velocity v of the sprung CG,
+the yaw rate r and each tire's lateral deflection y_i (SAE axes: y right, roll right side down)
+at the constant speed u:
+
+    V_i = v + x_i r - h p                       (contact point's lateral velocity)
+    y_i' = V_i - u y_i / sigma_i,   F_i = -C_i(F_z,i) y_i / sigma_i     (first-order relaxation)
+    C_i(F_z) = K_1 sin(2 atan(F_z / K_2))       (0 when the wheel is off the road)
+    m (v' + u r) - m_c p' = sum F_i,     I_z r' = sum x_i F_i
+    I_x p' - m_c (v' + u r) = M_susp - h sum F_i
+
+with K_1, K_2 such that C and dC/dF_z at the static load are the given ones (the load dependence
+of the Magic Formula's cornering stiffness, Pacejka 2012, eq. 4.E25: degressive, so that a wheel
+landing with twice its load does not get twice the stiffness), m the whole mass, m_c = sum m_u
+(h - h_u) (the wheels move sideways with the body), I_x the
+full car's roll inertia (with the wheels' share) and M_susp the suspension's roll moment (the
+linear model's roll equation); the lateral force acts at the contact points, through the roll
+centres on the ground (Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 7.2: relaxation;
+Segel's lateral-yaw-roll model for the coupling, as in :class:`vehdyn.handling.LateralYawRoll`).
+Without roll excitation (equal tracks) v, r and y_i stay zero and the model is the one without
+the option. Not modelled: the tires' longitudinal slip and the wheels' spin (a driven wheel spins
+up while it is off the road), anti-pitch and roll-centre heights above the ground.
+
+References
+----------
+Gillespie, T. D., *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 5 (ride; wheel hop and the
+tire's vertical load). Jazar, R. N., *Vehicle Dynamics: Theory and Application*, Springer, 2008,
+ch. 14 (vehicle vibrations) and 15 (suspension optimization; full car, sec. 15.5). Wong, J. Y.,
+*Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 7.2 (tire lift-off on rough roads).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..model import Model
+from ..params.base import ParameterSet, parameter
+from ..units import GRAVITY
+
+__all__ = ["LiftOff", "LateralSlip"]
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class LateralSlip(ParameterSet):
+    """The tires' lateral slip under a rolling full car (:class:`LiftOff` option ``lateral``).
+
+    The contact points lie ``sprung_cg_height`` below the sprung CG (the full car's parameter), so
+    a roll rate p moves them sideways; the tires resist that as side slip, and the body gains a
+    lateral velocity v and a yaw rate r (module docstring, "Lateral slip").
+    """
+
+    speed: float = parameter("m/s", "forward speed u (constant)", gt=0)
+    yaw_inertia: float = parameter("kg*m^2", "yaw inertia of the whole vehicle", gt=0)
+    front_cornering_stiffness: float = parameter("N/rad", "cornering stiffness of one front tire at its static "
+                                                 "load", gt=0)
+    rear_cornering_stiffness: float = parameter("N/rad", "cornering stiffness of one rear tire at its static load",
+                                                gt=0)
+    front_load_sensitivity: float = parameter("1/rad", "dC/dF_z of a front tire at its static load", ge=0,
+                                              default=0.0)
+    rear_load_sensitivity: float = parameter("1/rad", "dC/dF_z of a rear tire at its static load", ge=0,
+                                             default=0.0)
+    front_relaxation_length: float = parameter("m", "lateral relaxation length of a front tire", gt=0)
+    rear_relaxation_length: float = parameter("m", "lateral relaxation length of a rear tire", gt=0)
+
+
+class LiftOff(Model):
+    """A linear ride model with unilateral tire contact (the wheels lift off and land again).
+
+    Parameters
+    ----------
+    model : RideModel
+        A :class:`~vehdyn.ride.QuarterCar`, :class:`~vehdyn.ride.BouncePitch` or
+        :class:`~vehdyn.ride.FullCar` whose every corner has an unsprung mass (a wheel that can
+        leave the road).
+    gravity : float, optional
+        Gravitational acceleration [m/s^2] that sets the static tire loads (default
+        :data:`vehdyn.units.GRAVITY`).
+    lateral : LateralSlip, optional
+        The tires' lateral slip under the rolling body (a :class:`~vehdyn.ride.FullCar` only):
+        adds the states ``lateral_velocity``, ``yaw_rate`` and ``lateral_deflection_<corner>``
+        and the outputs ``lateral_force_<corner>`` (module docstring).
+    name : str, optional
+
+    Attributes
+    ----------
+    linear : RideModel
+        The model with bilateral tires (the same states, inputs and outputs).
+    static_tire_load : ndarray
+        F_s [N] per corner, in the order of ``linear.corners``.
+
+    Notes
+    -----
+    States, inputs and outputs are the linear model's (module docstring: the equations), with
+    ``lateral`` those above after them; the phenomena add ``wheel_lift`` (and ``lateral``, ``yaw``). On a road that never unloads a wheel the result equals the
+    linear model's. ``simulate(model, ..., method="RK45")`` runs a compiled right-hand side when
+    numba is installed (:meth:`compiled_rhs`), else the numpy one.
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> from vehdyn.ride import FullCar, LiftOff
+    >>> car = LiftOff(FullCar.from_vehicle(vehdyn.load_vehicle("sedan")))
+    >>> sorted(car.phenomena)[-1]
+    'wheel_lift'
+    """
+
+    def __init__(self, model, *, gravity: float = GRAVITY, lateral: LateralSlip | None = None,
+                 name: str | None = None):
+        from ._ride_model import RideModel
+
+        if not isinstance(model, RideModel):
+            raise ParameterError(f"LiftOff needs a linear ride model (QuarterCar, BouncePitch, FullCar), got "
+                                 f"{type(model).__name__}", key="model", value=type(model).__name__)
+        rigid = [c.suffix or "(single corner)" for c in model.corners if not c.has_unsprung_mass]
+        if rigid:
+            raise ParameterError(f"LiftOff needs an unsprung mass at every corner (a wheel that can leave the road); "
+                                 f"corners {rigid} have none", key="model", value=rigid)
+        if model.has_actuators:
+            raise ParameterError("LiftOff takes a passive ride model (no actuator inputs)", key="model",
+                                 value=model.name)
+        g = float(gravity) if isinstance(gravity, (int, float, np.floating)) and not isinstance(gravity, bool) \
+            else float("nan")
+        if not np.isfinite(g) or g <= 0:
+            raise ParameterError(f"gravity must be a finite number > 0 [m/s^2], got {gravity!r}", key="gravity",
+                                 value=gravity)
+        self.linear, self.gravity = model, g
+        self.name = name or f"{model.name}_lift_off"
+        self.declare(states=model.states, inputs=model.inputs, outputs=model.output_signals)
+        self.phenomena = frozenset(model.phenomena) | {"wheel_lift"}
+
+        M, _, K, _, dof = model.second_order
+        n, nb, nc = M.shape[0], len(model.body_dof), len(model.corners)
+        wheel = nb + np.arange(nc)  # the wheels' coordinates follow the body's, in corner order
+        # static equilibrium of the linear model under gravity: the translational coordinates
+        # (heave, wheels) carry their mass's weight, the angles none (the origin is the sprung CG)
+        translational = np.array([name != "pitch_angle" and name != "roll_angle" for name in dof])
+        # (the suspension's and tires' stiffness: gravity's moment on a tilted body, in
+        # ``body_stiffness``, is no spring that carries the weight)
+        springs = K.copy()
+        springs[range(nb), range(nb)] -= model.body_stiffness
+        q_g = np.linalg.solve(springs, -g * np.diag(M) * translational)
+        self.tire_stiffness = np.array([c.tire_stiffness for c in model.corners])
+        self.tire_damping = np.array([c.tire_damping for c in model.corners])
+        self.unsprung_mass = np.array([c.unsprung_mass for c in model.corners])
+        self.static_tire_load = -self.tire_stiffness * q_g[wheel]
+        if np.any(self.static_tire_load <= 0):
+            raise ParameterError(f"LiftOff: the static tire loads {self.static_tire_load} [N] must be positive (a "
+                                 "wheel that carries no weight is off the road already)", key="model",
+                                 value=self.static_tire_load.tolist())
+        # the compiled rhs relies on the second-order structure of A and B
+        assert np.array_equal(model.A[:n], np.hstack([np.zeros((n, n)), np.eye(n)])) and not np.any(model.B[:n])
+        self._wheel = wheel  # states: wheel displacements
+        self._wheel_rate = n + wheel  # states: wheel velocities (rows of their accelerations in x')
+        self._n = 2 * n  # states of the ride model
+        names = model.input_names
+        self._road = np.array([names.index(f"road_displacement{c.suffix}") for c in model.corners])
+        self._road_rate = np.array([names.index(f"road_velocity{c.suffix}") for c in model.corners])
+        out = model.output_names
+        self._acc_rows = np.array([out.index(f"unsprung_acceleration{c.suffix}") for c in model.corners])
+        self._load_rows = np.array([out.index(f"dynamic_tire_load{c.suffix}") for c in model.corners])
+        self.lateral = None
+        if lateral is not None:
+            self._lateral_setup(model, lateral, n, nb)
+
+    def _lateral_setup(self, model, lateral, n, nb):
+        from ..signals import Signal
+        from .full_car import FullCar
+
+        if not isinstance(lateral, LateralSlip):
+            raise ParameterError(f"lateral must be a LateralSlip, got {type(lateral).__name__}", key="lateral",
+                                 value=type(lateral).__name__)
+        if not isinstance(model, FullCar):
+            raise ParameterError(f"the lateral slip needs a FullCar (roll and four corners), got {type(model).__name__}",
+                                 key="lateral", value=type(model).__name__)
+        p = model.parameters
+        self.lateral = lateral
+        self.phenomena = self.phenomena | {"lateral", "yaw"}
+        front = np.array([c.suffix.startswith("_front") for c in model.corners])
+        self._x = np.array([c.x for c in model.corners])
+        self._h = p.sprung_cg_height
+        cornering = np.where(front, lateral.front_cornering_stiffness, lateral.rear_cornering_stiffness)
+        sensitivity = np.where(front, lateral.front_load_sensitivity, lateral.rear_load_sensitivity)
+        # C(F_z) = K_1 sin(2 atan(F_z / K_2)) through C_0 and dC/dF_z at the static load:
+        # with zeta = F_s / K_2, F_s C'/C = (1 - zeta^2) / (1 + zeta^2)
+        ratio = np.minimum(sensitivity * self.static_tire_load / cornering, 1.0 - 2e-6)
+        zeta = np.sqrt((1.0 - ratio) / (1.0 + ratio))
+        self._load_scale = self.static_tire_load / zeta  # K_2 [N]
+        self._cornering = cornering * (1.0 + zeta**2) / (2.0 * zeta)  # K_1 [N/rad]
+        self._relaxation = np.where(front, lateral.front_relaxation_length, lateral.rear_relaxation_length)
+        self._mass = p.mass + 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass)
+        self._coupling = 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass) * (p.sprung_cg_height
+                                                                                  - p.unsprung_cg_height)
+        roll = model.body_dof.index("roll")
+        self._roll_inertia = model.mass_matrix[roll, roll]
+        self._roll_rate = n + roll
+        out = model.output_names
+        self._roll_rows = np.array([out.index("roll_acceleration")]
+                                   + [out.index(f"sprung_acceleration{c.suffix}") for c in model.corners])
+        self._roll_gains = np.concatenate([[1.0], [-c.y for c in model.corners]])
+        extra = (Signal("lateral_velocity", "m/s", "lateral velocity v of the sprung CG (SAE: right +)"),
+                 Signal("yaw_rate", "rad/s", "yaw rate r (SAE)"))
+        deflections = tuple(Signal(f"lateral_deflection{c.suffix}", "m", "tire lateral deflection (SAE: right +)")
+                            for c in model.corners)
+        forces = tuple(Signal(f"lateral_force{c.suffix}", "N", "tire lateral force on the vehicle (SAE: right +)")
+                       for c in model.corners)
+        self.declare(states=tuple(model.states) + extra + deflections,
+                     outputs=tuple(model.output_signals) + extra + deflections + forces)
+
+    def __repr__(self) -> str:
+        return f"<LiftOff {self.name}: {self.n_states} states, static tire loads {np.round(self.static_tire_load)} N>"
+
+    def _contact(self, x, u):
+        """(F, F_lin) [N] per corner (rows; columns along any batch axis): the unilateral contact
+        force and the linear tire's force, both with the static load."""
+        col = (slice(None),) + (None,) * (x.ndim - 1)
+        compression = u[self._road] - x[self._wheel]
+        linear = self.static_tire_load[col] + self.tire_stiffness[col] * compression \
+            + self.tire_damping[col] * (u[self._road_rate] - x[self._wheel_rate])
+        deflection = self.static_tire_load[col] / self.tire_stiffness[col] + compression
+        return np.where(deflection > 0.0, np.maximum(linear, 0.0), 0.0), linear
+
+    def correction(self, x, u):
+        """f_c [N] per corner (rows; columns along any batch axis of ``x``, ``u``): the unilateral
+        contact force minus the linear tire's (0 while the tire is compressed and pushing)."""
+        force, linear = self._contact(np.asarray(x, dtype=float), np.asarray(u, dtype=float))
+        return force - linear
+
+    def _ride(self, x, u):
+        """(d x_ride / dt, contact force F, correction f_c) with the contact law."""
+        col = (slice(None),) + (None,) * (x.ndim - 1)
+        force, linear = self._contact(x, u)
+        dxdt = self.linear.A @ x[:self._n] + self.linear.B @ u
+        dxdt[self._wheel_rate] += (force - linear) / self.unsprung_mass[col]
+        return dxdt, force, force - linear
+
+    def _slip(self, x, force, roll_acceleration):
+        """Roll acceleration, dv/dt, dr/dt, the tire deflections' rates and the lateral forces."""
+        lat = self.lateral
+        col = (slice(None),) + (None,) * (x.ndim - 1)
+        u = lat.speed
+        v, r, deflection = x[self._n], x[self._n + 1], x[self._n + 2:]
+        slip_velocity = v + self._x[col] * r - self._h * x[self._roll_rate]
+        load = np.maximum(force, 0.0) / self._load_scale[col]
+        stiffness = self._cornering[col] * 2.0 * load / (1.0 + load * load)
+        rates = slip_velocity - u * deflection / self._relaxation[col]
+        fy = -stiffness * deflection / self._relaxation[col]
+        total, yaw_moment = np.sum(fy, axis=0), np.sum(self._x[col] * fy, axis=0)
+        moment = self._roll_inertia * roll_acceleration - self._h * total
+        m, mc, inertia = self._mass, self._coupling, self._roll_inertia
+        det = m * inertia - mc * mc
+        lateral_acceleration = (inertia * total + mc * moment) / det
+        roll = (mc * total + m * moment) / det
+        return roll, lateral_acceleration - u * r, yaw_moment / lat.yaw_inertia, rates, fy
+
+    def rhs(self, t, x, u):
+        x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
+        dxdt, force, _ = self._ride(x, u)
+        if self.lateral is None:
+            return dxdt
+        roll, dv, dr, rates, _ = self._slip(x, force, dxdt[self._roll_rate])
+        dxdt[self._roll_rate] = roll
+        return np.concatenate([dxdt, dv[None], dr[None], rates])
+
+    def output(self, t, x, u):
+        x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
+        col = (slice(None),) + (None,) * (x.ndim - 1)
+        dxdt, force, f = self._ride(x, u)
+        y = self.linear.C @ x[:self._n] + self.linear.D @ u
+        y[self._acc_rows] += f / self.unsprung_mass[col]
+        y[self._load_rows] += f
+        if self.lateral is None:
+            return y
+        roll, _, _, _, fy = self._slip(x, force, dxdt[self._roll_rate])
+        y[self._roll_rows] += self._roll_gains[col] * (roll - dxdt[self._roll_rate])
+        return np.concatenate([y, x[self._n:], fy])
+
+    def compiled_rhs(self):
+        """The rhs compiled by numba (see :meth:`vehdyn.Model.compiled_rhs`): the same law, one loop
+        over the corners; the outputs come from :meth:`output` (numpy, once on the time grid)."""
+        from .._compiled_ode import CompiledModel
+
+        rhs, key = _compiled_rhs()
+        c = np.ascontiguousarray
+        if self.lateral is None:
+            lateral = (0.0, 0, 0.0, c(np.zeros(1)), c(np.zeros(1)), c(np.zeros(1)), c(np.ones(1)), 1.0, 0.0, 1.0,
+                       1.0)
+        else:
+            lateral = (self.lateral.speed, self._roll_rate, self._h, c(self._x), c(self._cornering),
+                       c(self._load_scale), c(self._relaxation), self._mass, self._coupling, self._roll_inertia,
+                       self.lateral.yaw_inertia)
+        args = (c(self.linear.A), c(self.linear.B), c(self._wheel), c(self._wheel_rate), c(self._road),
+                c(self._road_rate), c(self.static_tire_load), c(self.tire_stiffness), c(self.tire_damping),
+                c(self.unsprung_mass), lateral)
+        return CompiledModel(rhs, None, key, args)
+
+
+def _rhs(t, x, u, args, dxdt):
+    """dx/dt of a :class:`LiftOff` into ``dxdt`` (compiled; ``args`` from :meth:`LiftOff.compiled_rhs`)."""
+    A, B, wheel, wheel_rate, road, road_rate, static, stiffness, damping, mass, lateral = args
+    speed, roll_rate, h, cx, cornering, load_scale, relaxation, total_mass, coupling, inertia, yaw_inertia = lateral
+    n, m = A.shape[0], B.shape[1]
+    half = n // 2
+    for i in range(half):  # A = [[0, I], [-M^-1 K, -M^-1 C]], B = [[0], [M^-1 F]] (from_second_order)
+        dxdt[i] = x[half + i]
+    for i in range(half, n):
+        s = 0.0
+        for j in range(n):
+            s += A[i, j] * x[j]
+        for j in range(m):
+            s += B[i, j] * u[j]
+        dxdt[i] = s
+    total, yaw_moment = 0.0, 0.0
+    for c in range(wheel.shape[0]):
+        compression = u[road[c]] - x[wheel[c]]
+        linear = static[c] + stiffness[c] * compression + damping[c] * (u[road_rate[c]] - x[wheel_rate[c]])
+        force = 0.0
+        if static[c] / stiffness[c] + compression > 0.0 and linear > 0.0:
+            force = linear
+        dxdt[wheel_rate[c]] += (force - linear) / mass[c]
+        if speed > 0.0:
+            load = force / load_scale[c]
+            k = cornering[c] * 2.0 * load / (1.0 + load * load)
+            fy = -k * x[n + 2 + c] / relaxation[c]
+            slip_velocity = x[n] + cx[c] * x[n + 1] - h * x[roll_rate]
+            dxdt[n + 2 + c] = slip_velocity - speed * x[n + 2 + c] / relaxation[c]
+            total += fy
+            yaw_moment += cx[c] * fy
+    if speed > 0.0:
+        moment = inertia * dxdt[roll_rate] - h * total
+        det = total_mass * inertia - coupling * coupling
+        dxdt[roll_rate] = (coupling * total + total_mass * moment) / det
+        dxdt[n] = (inertia * total + coupling * moment) / det - speed * x[n + 1]
+        dxdt[n + 1] = yaw_moment / yaw_inertia
+
+
+@functools.lru_cache(maxsize=None)
+def _compiled_rhs():
+    """(compiled rhs, cache key), compiled on first use and cached on disk per source digest."""
+    import sys
+
+    from .._compiled_ode import compiled_copy, source_stamp
+
+    key = "lift_off_" + source_stamp(sys.modules[__name__])
+    return compiled_copy(_rhs, f"{key}_rhs"), key
