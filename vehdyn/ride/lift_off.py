@@ -66,8 +66,35 @@ linear model's roll equation); the lateral force acts at the contact points, thr
 centres on the ground (Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 7.2: relaxation;
 Segel's lateral-yaw-roll model for the coupling, as in :class:`vehdyn.handling.LateralYawRoll`).
 Without roll excitation (equal tracks) v, r and y_i stay zero and the model is the one without
-the option. Not modelled: the tires' longitudinal slip and the wheels' spin (a driven wheel spins
-up while it is off the road), anti-pitch and roll-centre heights above the ground.
+the option.
+
+Longitudinal slip (option ``longitudinal``, a full car only)
+------------------------------------------------------------
+A pitch rate q moves the contact points fore and aft by h q, and a wheel off the road spins up
+under its drive torque and lands with slip; the full car alone rolls its wheels without slip. The
+option adds the body's fore-aft velocity change du (from the constant speed u), each wheel's spin
+change w_i (from its steady spin) and each tire's longitudinal deflection rho_i (from its steady
+value rho_0,i), with the same tire law as the full vehicle's relaxation
+(:func:`vehdyn.handling.single_track_equations.deflection_rate`, here about the steady state):
+
+    V_i = du + h q - R_e w_i                        (contact point's slip velocity change)
+    rho_i' = -V_i - u rho_i / sigma_i,   F_x,i = C_i(F_z,i) (rho_0,i + rho_i) / sigma_i
+    I_w w_i' = T_i - r_i F_z,i - R_e F_x,i          (:mod:`vehdyn.full_vehicle.driveline`)
+    m du' + m_c q' = sum (F_x,i - F_x0,i),     I_y q' + m_c du' = M_susp + h sum (F_x,i - F_x0,i)
+
+with C_i(F_z) the degressive law of the lateral slip through the slip stiffness and its load
+derivative at the static load, T_i the constant drive torque, r_i the rolling-resistance lever
+(M_y = -r F_z), F_x0,i = (T_i - r_i F_s,i) / R_e the steady force and rho_0,i = F_x0,i sigma_i /
+C_i(F_s,i) (so that the zero state is steady rolling), m, m_c as above, I_y the full car's pitch
+inertia without the wheels' spin (FullCar's 4 I_w (h / R_e)^2 for rolling without slip, which the
+spin states now carry) and M_susp the linear model's pitch moment; with the lateral slip the yaw
+moment -sum y_i F_x,i joins the yaw equation (SAE: y right, pitch nose up +; Pacejka 2012, sec.
+7.2; the full vehicle's contact-point slip, :mod:`vehdyn.full_vehicle.assembly`). A wheel off the
+road carries no force (C(0) = 0) and spins up at T_i / I_w. Without drive torque, rolling
+resistance and pitch (a road that rolls the body only) du, w_i and rho_i stay zero and the model
+is the one without the option. Not modelled: the tire law's saturation in slip (a landing wheel's
+slip ratio stays within a few per cent at the ride scenes' speeds), the drag's change with du,
+anti-pitch and roll-centre heights above the ground, the loaded rolling radius.
 
 References
 ----------
@@ -170,6 +197,11 @@ class LiftOff(Model):
         The tires' lateral slip under the rolling body (a :class:`~vehdyn.ride.FullCar` only):
         adds the states ``lateral_velocity``, ``yaw_rate`` and ``lateral_deflection_<corner>``
         and the outputs ``lateral_force_<corner>`` (module docstring).
+    longitudinal : LongitudinalSlip, optional
+        The tires' longitudinal slip, the wheels' spin and the body's fore-aft motion (a
+        :class:`~vehdyn.ride.FullCar` only): adds the states ``longitudinal_velocity_change``,
+        ``wheel_speed_change_<corner>`` and ``longitudinal_deflection_<corner>`` and the outputs
+        ``longitudinal_force_<corner>`` (module docstring).
     name : str, optional
 
     Attributes
@@ -178,11 +210,15 @@ class LiftOff(Model):
         The model with bilateral tires (the same states, inputs and outputs).
     static_tire_load : ndarray
         F_s [N] per corner, in the order of ``linear.corners``.
+    static_longitudinal_force : ndarray
+        F_x0 [N] per corner (with ``longitudinal`` only): the steady force of the drive torque.
 
     Notes
     -----
     States, inputs and outputs are the linear model's (module docstring: the equations), with
-    ``lateral`` those above after them; the phenomena add ``wheel_lift`` (and ``lateral``, ``yaw``). On a road that never unloads a wheel the result equals the
+    ``lateral`` and ``longitudinal`` those above after them (in that order); the phenomena add
+    ``wheel_lift`` (and ``lateral``, ``yaw``; ``longitudinal``, ``wheel_spin``). On a road that
+    never unloads a wheel the result equals the
     linear model's. ``simulate(model, ..., method="RK45")`` runs a compiled right-hand side when
     numba is installed (:meth:`compiled_rhs`), else the numpy one.
 
