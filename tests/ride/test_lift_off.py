@@ -216,9 +216,9 @@ _CORNERS = ("_front_left", "_front_right", "_rear_left", "_rear_right")
 
 def _spin(speed=15.0, **kw):
     values = dict(speed=speed, rolling_radius=0.31, wheel_spin_inertia=1.2, front_slip_stiffness=8e4,
-                  rear_slip_stiffness=7e4, front_load_sensitivity=20.0, rear_load_sensitivity=20.0,
+                  rear_slip_stiffness=7e4, front_load_sensitivity=10.0, rear_load_sensitivity=10.0,
                   front_relaxation_length=0.3, rear_relaxation_length=0.3, rear_drive_torque=60.0,
-                  front_rolling_resistance=3e-3, rear_rolling_resistance=3e-3)
+                  front_rolling_resistance=3e-3, rear_rolling_resistance=3e-3, rear_zero_slip_force=-0.03)
     return LongitudinalSlip(**{**values, **kw})
 
 
@@ -229,7 +229,7 @@ def test_longitudinal_slip_stays_out_of_a_road_without_pitch(sedan):
     car = FullCar.from_vehicle(sedan, cg_heights=True)
     plain = LiftOff(car)
     spin = LiftOff(car, longitudinal=_spin(rear_drive_torque=0.0, front_rolling_resistance=0.0,
-                                           rear_rolling_resistance=0.0))
+                                           rear_rolling_resistance=0.0, rear_zero_slip_force=0.0))
     t = np.linspace(0.0, 0.3, 31)
     w = 2 * np.pi * 6.0
     inputs = {}
@@ -247,7 +247,7 @@ def test_longitudinal_slip_stays_out_of_a_road_without_pitch(sedan):
 
 def test_longitudinal_slip_steady_rolling_and_airborne_spin_up(sedan):
     """Steady rolling: at the zero state the drive torque T_d holds F_x0 = (T_d - r F_s) / R_e
-    against the rolling resistance and every derivative is 0. A wheel lifted off the road carries no
+    against the rolling resistance (whatever the law's force at zero slip) and every derivative is 0. A wheel lifted off the road carries no
     load and no force: it spins up at T_d / I_w exactly (closed form omega(t) = T_d t / I_w)."""
     car = FullCar.from_vehicle(sedan, cg_heights=True)
     slip = _spin()

@@ -78,13 +78,14 @@ value rho_0,i), with the same tire law as the full vehicle's relaxation
 (:func:`vehdyn.handling.single_track_equations.deflection_rate`, here about the steady state):
 
     V_i = du + h q - R_e w_i                        (contact point's slip velocity change)
-    rho_i' = -V_i - u rho_i / sigma_i,   F_x,i = C_i(F_z,i) (rho_0,i + rho_i) / sigma_i
+    rho_i' = -V_i - u rho_i / sigma_i,   F_x,i = C_i(F_z,i) (rho_0,i + rho_i) / sigma_i + e_i F_z,i
     I_w w_i' = T_i - r_i F_z,i - R_e F_x,i          (:mod:`vehdyn.full_vehicle.driveline`)
     m du' + m_c q' = sum (F_x,i - F_x0,i),     I_y q' + m_c du' = M_susp + h sum (F_x,i - F_x0,i)
 
 with C_i(F_z) the degressive law of the lateral slip through the slip stiffness and its load
 derivative at the static load, T_i the constant drive torque, r_i the rolling-resistance lever
-(M_y = -r F_z), F_x0,i = (T_i - r_i F_s,i) / R_e the steady force and rho_0,i = F_x0,i sigma_i /
+(M_y = -r F_z), e_i the tire law's force at zero slip per unit load (its shifts S_Hx, S_Vx),
+F_x0,i = (T_i - r_i F_s,i) / R_e the steady force and rho_0,i = (F_x0,i - e_i F_s,i) sigma_i /
 C_i(F_s,i) (so that the zero state is steady rolling), m, m_c as above, I_y the full car's pitch
 inertia without the wheels' spin (FullCar's 4 I_w (h / R_e)^2 for rolling without slip, which the
 spin states now carry) and M_susp the linear model's pitch moment; with the lateral slip the yaw
@@ -166,6 +167,9 @@ class LongitudinalSlip(ParameterSet):
     rear_relaxation_length: float = parameter("m", "longitudinal relaxation length of a rear tire", gt=0)
     front_drive_torque: float = parameter("N*m", "drive torque on one front wheel (constant)", default=0.0)
     rear_drive_torque: float = parameter("N*m", "drive torque on one rear wheel (constant)", default=0.0)
+    front_zero_slip_force: float = parameter("-", "F_x / F_z of a front tire at zero slip (the tire law's shifts, "
+                                             "Pacejka's S_Hx, S_Vx)", default=0.0)
+    rear_zero_slip_force: float = parameter("-", "F_x / F_z of a rear tire at zero slip", default=0.0)
     front_rolling_resistance: float = parameter("m", "rolling-resistance lever r of a front tire: M_y = -r F_z "
                                                 "against the spin", ge=0, default=0.0)
     rear_rolling_resistance: float = parameter("m", "rolling-resistance lever of a rear tire", ge=0, default=0.0)
@@ -318,7 +322,9 @@ class LiftOff(Model):
         self._rolling = np.where(front, lon.front_rolling_resistance, lon.rear_rolling_resistance)
         # the steady state: R_e F_x0 = T_d - r F_s, the deflection rho_0 = F_x0 sigma / C(F_s)
         self.static_longitudinal_force = (self._drive - self._rolling * self.static_tire_load) / lon.rolling_radius
-        self._deflection0 = self.static_longitudinal_force * self._lon_relaxation / stiffness
+        self._zero_slip = np.where(front, lon.front_zero_slip_force, lon.rear_zero_slip_force)
+        self._deflection0 = (self.static_longitudinal_force - self._zero_slip * self.static_tire_load) \
+            * self._lon_relaxation / stiffness
         self._cx = np.array([c.x for c in model.corners])
         self._cy = np.array([c.y for c in model.corners])
         self._h = p.sprung_cg_height
@@ -442,7 +448,7 @@ class LiftOff(Model):
         load = np.maximum(force, 0.0) / self._slip_load_scale[col]
         stiffness = self._slip_stiffness[col] * 2.0 * load / (1.0 + load * load)
         sigma = self._lon_relaxation[col]
-        fx = stiffness * (self._deflection0[col] + deflection) / sigma
+        fx = stiffness * (self._deflection0[col] + deflection) / sigma + self._zero_slip[col] * force
         slip_velocity = du + self._h * x[self._pitch_rate] - lon.rolling_radius * spin
         rates = -slip_velocity - lon.speed * deflection / sigma
         spin_acceleration = (self._drive[col] - self._rolling[col] * force - lon.rolling_radius * fx) \
@@ -505,12 +511,13 @@ class LiftOff(Model):
                        self.lateral.yaw_inertia)
         if self.longitudinal is None:
             one = c(np.ones(1))
-            longitudinal = (0.0, 0, 0, 0.0, 1.0, 1.0, one, one, one, one, one, one, one, one, 1.0, 0.0, 1.0, 1.0)
+            longitudinal = (0.0, 0, 0, 0.0, 1.0, 1.0, one, one, one, one, one, one, one, one, one, 1.0, 0.0, 1.0,
+                            1.0)
         else:
             lon = self.longitudinal
             longitudinal = (lon.speed, self._o, self._pitch_rate, self._h, lon.rolling_radius, lon.wheel_spin_inertia,
                             c(self._slip_stiffness), c(self._slip_load_scale), c(self._lon_relaxation),
-                            c(self._deflection0), c(self._drive), c(self._rolling),
+                            c(self._deflection0), c(self._drive), c(self._rolling), c(self._zero_slip),
                             c(self.static_longitudinal_force), c(self._cy), self._mass, self._coupling,
                             self._pitch_inertia_full, self._pitch_inertia)
         args = (c(self.linear.A), c(self.linear.B), c(self._wheel), c(self._wheel_rate), c(self._road),
@@ -524,7 +531,7 @@ def _rhs(t, x, u, args, dxdt):
     A, B, wheel, wheel_rate, road, road_rate, static, stiffness, damping, mass, lateral, longitudinal = args
     speed, roll_rate, h, cx, cornering, load_scale, relaxation, total_mass, coupling, inertia, yaw_inertia = lateral
     (lon_speed, o, pitch_rate, lon_h, radius, spin_inertia, slip_stiffness, slip_scale, lon_relaxation, deflection0,
-     drive, rolling, static_fx, cy, lon_mass, lon_coupling, pitch_inertia_full, pitch_inertia) = longitudinal
+     drive, rolling, zero_slip, static_fx, cy, lon_mass, lon_coupling, pitch_inertia_full, pitch_inertia) = longitudinal
     n, m = A.shape[0], B.shape[1]
     half = n // 2
     for i in range(half):  # A = [[0, I], [-M^-1 K, -M^-1 C]], B = [[0], [M^-1 F]] (from_second_order)
@@ -556,7 +563,7 @@ def _rhs(t, x, u, args, dxdt):
         if lon_speed > 0.0:
             load = force / slip_scale[c]
             k = slip_stiffness[c] * 2.0 * load / (1.0 + load * load)
-            fx = k * (deflection0[c] + x[o + 1 + nc + c]) / lon_relaxation[c]
+            fx = k * (deflection0[c] + x[o + 1 + nc + c]) / lon_relaxation[c] + zero_slip[c] * force
             slip_velocity = x[o] + lon_h * x[pitch_rate] - radius * x[o + 1 + c]
             dxdt[o + 1 + nc + c] = -slip_velocity - lon_speed * x[o + 1 + nc + c] / lon_relaxation[c]
             dxdt[o + 1 + c] = (drive[c] - rolling[c] * force - radius * fx) / spin_inertia

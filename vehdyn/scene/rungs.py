@@ -500,8 +500,8 @@ def lateral_slip(drive):
 def longitudinal_slip(drive):
     """:class:`vehdyn.ride.LongitudinalSlip` of the scene's vehicle and tire laws at its speed: each
     axle's tire law at half the static axle load, its slip stiffness (antisymmetric part at slip
-    ratio 1e-4), the stiffness's load derivative (central difference, +-10 % load), the rolling
-    resistance lever -M_y / F_z at zero slip, the longitudinal relaxation lengths of the full
+    ratio 1e-4), the stiffness's load derivative (central difference, +-10 % load), the force F_x /
+    F_z and the rolling resistance lever -M_y / F_z at zero slip, the longitudinal relaxation lengths of the full
     vehicle, and the drive torques that hold the speed against the drag and the rolling resistance
     (split by ``driveline.front_drive_fraction``, as the full vehicle's trim)."""
     from ..handling.single_track import SingleTrack
@@ -522,7 +522,9 @@ def longitudinal_slip(drive):
             return 0.5 * (float(plus.fx) - float(minus.fx)) / kappa
 
         c = [fx(f) for f in (1.0, 0.9, 1.1)]
-        lever = max(-float(law.forces(wheel, 0.0, 0.0, 0.0, speed).my) / wheel, 0.0)
+        rolling = law.forces(wheel, 0.0, 0.0, 0.0, speed)
+        lever = max(-float(rolling.my) / wheel, 0.0)
+        values[f"{axle}_zero_slip_force"] = float(rolling.fx) / wheel
         values[f"{axle}_slip_stiffness"] = c[0]
         values[f"{axle}_load_sensitivity"] = max((c[2] - c[1]) / (0.2 * wheel), 0.0)
         values[f"{axle}_rolling_resistance"] = lever
