@@ -541,8 +541,9 @@ def longitudinal_slip(drive):
 
 def build_full_car_lift_off(drive) -> Setup:
     """The full car with tires that lift off (:class:`vehdyn.ride.LiftOff`), the couplings of the
-    sprung CG's height (``FullCar.from_vehicle(..., cg_heights=True)``) and the tires' lateral slip
-    under the rolling body (:func:`lateral_slip`), on both tracks; RK45 at rtol 1e-5, atol 1e-7
+    sprung CG's height (``FullCar.from_vehicle(..., cg_heights=True)``), the tires' lateral slip
+    under the rolling body (:func:`lateral_slip`) and their longitudinal slip with the wheels' spin
+    and the body's fore-aft motion (:func:`longitudinal_slip`), on both tracks; RK45 at rtol 1e-5, atol 1e-7
     and ``max_step`` the scene's time step (compiled when numba is installed): against rtol 1e-9,
     1e-4 of the body accelerations on the sedan's rough road at 108 km/h, a 20th of the full
     vehicle's rtol-1e-6 cost there (its wheel lifts make many steps fail at tighter tolerances)."""
@@ -596,7 +597,7 @@ for _rung in (
     Rung("FullCar", "vehdyn.ride.full_car:FullCar", "ride", 30, build_full_car, linear=True,
          description="7-DOF full car, both tracks"),
     Rung("FullCar+lift", "vehdyn.ride.lift_off:LiftOff", "ride", 40, build_full_car_lift_off,
-         description="7-DOF full car, both tracks, tires that lift off, CG-height couplings"),
+         description="7-DOF full car, both tracks, tires that lift off, slip and spin, CG-height couplings"),
     # The top rung of both ladders: vehdyn.full_vehicle.ladder_setup(drive, ladder) -> Setup with the
     # contract of the builders above (the handling rung answers every scene with a ground-plane
     # input, road or not; the ride rung the road-only scenes).
