@@ -247,8 +247,9 @@ def test_longitudinal_slip_stays_out_of_a_road_without_pitch(sedan):
 
 def test_longitudinal_slip_steady_rolling_and_airborne_spin_up(sedan):
     """Steady rolling: at the zero state the drive torque T_d holds F_x0 = (T_d - r F_s) / R_e
-    against the rolling resistance (whatever the law's force at zero slip) and every derivative is 0. A wheel lifted off the road carries no
-    load and no force: it spins up at T_d / I_w exactly (closed form omega(t) = T_d t / I_w)."""
+    against the rolling resistance (whatever the law's force at zero slip) and every derivative is
+    0. A wheel lifted off the road carries no load and no force: it spins up at T_d / I_w exactly
+    (closed form omega(t) = T_d t / I_w)."""
     car = FullCar.from_vehicle(sedan, cg_heights=True)
     slip = _spin()
     model = LiftOff(car, longitudinal=slip)
