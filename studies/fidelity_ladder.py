@@ -72,8 +72,9 @@ def run(study: Study) -> None:
                "parameters from the tire law at the running loads, is within 2 % of the full vehicle; in the "
                "slow circle to the limit the single track with the quasi-static lateral load transfer "
                "(SingleTrack+LLT: the tire law at each wheel's load) is; the transient limit manoeuvres (the "
-               "roll's dynamics), braking in a turn, rough roads (the wheels lift) and the pothole need the "
-               "full vehicle.")
+               "roll's dynamics) and braking in a turn need the full vehicle; on the rough roads and in the "
+               "pothole, where the wheels lift, the full car whose tires lift off, slip and spin up in the "
+               "air (FullCar+lift) is within it.")
 
 
 if __name__ == "__main__":
