@@ -6,7 +6,7 @@ from scipy.linalg import expm
 
 import vehdyn
 from vehdyn import ParameterError
-from vehdyn.ride import BouncePitch, FullCar, LateralSlip, LiftOff, QuarterCar
+from vehdyn.ride import BouncePitch, FullCar, LateralSlip, LiftOff, LongitudinalSlip, QuarterCar
 from vehdyn.units import GRAVITY
 
 _QC = dict(sprung_mass=300.0, unsprung_mass=35.0, spring_rate=20e3, damping=1500.0, tire_stiffness=180e3,
@@ -188,9 +188,9 @@ def test_lateral_slip_holds_the_contact_points_steady_state(sedan):
     assert d[model.index("yaw_rate")] == pytest.approx(np.sum(x_i * forces) / 1800.0, rel=1e-12)
 
 
-def test_compiled_rhs_with_lateral_slip_is_the_numpy_rhs(sedan):
+def test_compiled_rhs_with_both_slips_is_the_numpy_rhs(sedan):
     pytest.importorskip("numba")
-    model = LiftOff(FullCar.from_vehicle(sedan, cg_heights=True), lateral=_slip())
+    model = LiftOff(FullCar.from_vehicle(sedan, cg_heights=True), lateral=_slip(), longitudinal=_spin())
     compiled = model.compiled_rhs()
     rng = np.random.default_rng(2)
     for scale in (1e-3, 5e-2):
@@ -209,3 +209,76 @@ def test_lateral_slip_bad_inputs(sedan):
     with pytest.raises(ParameterError, match="speed"):
         LateralSlip(speed=0.0, yaw_inertia=1.0, front_cornering_stiffness=1.0, rear_cornering_stiffness=1.0,
                     front_relaxation_length=0.4, rear_relaxation_length=0.4)
+
+
+_CORNERS = ("_front_left", "_front_right", "_rear_left", "_rear_right")
+
+
+def _spin(speed=15.0, **kw):
+    values = dict(speed=speed, rolling_radius=0.31, wheel_spin_inertia=1.2, front_slip_stiffness=8e4,
+                  rear_slip_stiffness=7e4, front_load_sensitivity=10.0, rear_load_sensitivity=10.0,
+                  front_relaxation_length=0.3, rear_relaxation_length=0.3, rear_drive_torque=60.0,
+                  front_rolling_resistance=3e-3, rear_rolling_resistance=3e-3, rear_zero_slip_force=-0.03)
+    return LongitudinalSlip(**{**values, **kw})
+
+
+def test_longitudinal_slip_stays_out_of_a_road_without_pitch(sedan):
+    """Without drive torque or rolling resistance and on a road that rolls the body only (left up,
+    right down, the same under both axles): no pitch, no slip; the wheels' spin, the fore-aft speed
+    and the deflections stay 0 and the outputs are those of the model without the option."""
+    car = FullCar.from_vehicle(sedan, cg_heights=True)
+    plain = LiftOff(car)
+    spin = LiftOff(car, longitudinal=_spin(rear_drive_torque=0.0, front_rolling_resistance=0.0,
+                                           rear_rolling_resistance=0.0, rear_zero_slip_force=0.0))
+    t = np.linspace(0.0, 0.3, 31)
+    w = 2 * np.pi * 6.0
+    inputs = {}
+    for sfx, side in zip(_CORNERS, (1.0, -1.0, 1.0, -1.0)):
+        inputs[f"road_displacement{sfx}"] = side * 0.01 * np.sin(w * t)
+        inputs[f"road_velocity{sfx}"] = side * 0.01 * w * np.cos(w * t)
+    options = dict(method="RK45", rtol=1e-9, atol=1e-12, backend="numpy")
+    a = vehdyn.simulate(plain, t, inputs, **options)
+    b = vehdyn.simulate(spin, t, inputs, **options)
+    assert np.max(np.abs(a["roll_angle"])) > 1e-3
+    assert np.max(np.abs(b.states[plain.n_states:])) < 1e-15
+    assert np.max(np.abs(b.outputs[plain.n_outputs:])) < 1e-9  # the forces: C * round-off
+    np.testing.assert_allclose(b.outputs[:plain.n_outputs], a.outputs, rtol=0, atol=1e-6 * np.max(np.abs(a.outputs)))
+
+
+def test_longitudinal_slip_steady_rolling_and_airborne_spin_up(sedan):
+    """Steady rolling: at the zero state the drive torque T_d holds F_x0 = (T_d - r F_s) / R_e
+    against the rolling resistance (whatever the law's force at zero slip) and every derivative is
+    0. A wheel lifted off the road carries no load and no force: it spins up at T_d / I_w exactly
+    (closed form omega(t) = T_d t / I_w)."""
+    car = FullCar.from_vehicle(sedan, cg_heights=True)
+    slip = _spin()
+    model = LiftOff(car, longitudinal=slip)
+    zero_x, zero_u = np.zeros(model.n_states), np.zeros(model.n_inputs)
+    np.testing.assert_allclose(model.rhs(0.0, zero_x, zero_u), 0.0, atol=1e-12)
+    y = dict(zip(model.output_names, model.output(0.0, zero_x, zero_u)))
+    drive = np.array([0.0, 0.0, 60.0, 60.0])
+    expected = (drive - 3e-3 * model.static_tire_load) / 0.31
+    np.testing.assert_allclose([y[f"longitudinal_force{s}"] for s in _CORNERS], expected, rtol=1e-12)
+    # the rear left wheel starts 6 cm up: off the road until it falls back
+    x0 = np.zeros(model.n_states)
+    x0[model.index("unsprung_displacement_rear_left")] = 0.06
+    t = np.linspace(0.0, 0.04, 21)
+    res = vehdyn.simulate(model, t, {}, x0=x0, method="RK45", rtol=1e-10, atol=1e-12, backend="numpy")
+    airborne = np.abs(res["dynamic_tire_load_rear_left"] + model.static_tire_load[2]) < 1e-9 * model.static_tire_load[2]
+    assert airborne[:10].all()
+    np.testing.assert_allclose(res["wheel_speed_change_rear_left"][airborne], 60.0 * t[airborne] / 1.2,
+                               rtol=1e-8, atol=1e-12)
+    assert np.all(res["longitudinal_force_rear_left"][airborne] == 0.0)
+
+
+def test_longitudinal_slip_bad_inputs(sedan):
+    with pytest.raises(ParameterError, match="FullCar") as info:
+        LiftOff(QuarterCar(**_QC), longitudinal=_spin())
+    assert info.value.key == "longitudinal"
+    with pytest.raises(ParameterError, match="LongitudinalSlip"):
+        LiftOff(FullCar.from_vehicle(sedan), longitudinal={"speed": 10.0})
+    with pytest.raises(ParameterError, match="differs") as info:
+        LiftOff(FullCar.from_vehicle(sedan), lateral=_slip(15.0), longitudinal=_spin(12.0))
+    assert info.value.key == "longitudinal.speed"
+    with pytest.raises(ParameterError, match="rolling_radius"):
+        _spin(rolling_radius=-0.3)

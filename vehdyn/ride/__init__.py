@@ -73,7 +73,7 @@ from .analysis import (
 )
 from .bounce_pitch import BouncePitch, BouncePitchParameters
 from .full_car import FullCar, FullCarParameters
-from .lift_off import LateralSlip, LiftOff
+from .lift_off import LateralSlip, LiftOff, LongitudinalSlip
 from .quarter_car import QuarterCar, QuarterCarParameters
 from .wheelbase import road_frequency_response, road_inputs, wheel_delays, with_wheelbase_delay
 from .comfort import (
@@ -122,6 +122,7 @@ __all__ = [
     "FullCarParameters",
     "LiftOff",
     "LateralSlip",
+    "LongitudinalSlip",
     "road_frequency_response",
     "road_inputs",
     "wheel_delays",

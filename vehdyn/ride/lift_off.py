@@ -66,8 +66,36 @@ linear model's roll equation); the lateral force acts at the contact points, thr
 centres on the ground (Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 7.2: relaxation;
 Segel's lateral-yaw-roll model for the coupling, as in :class:`vehdyn.handling.LateralYawRoll`).
 Without roll excitation (equal tracks) v, r and y_i stay zero and the model is the one without
-the option. Not modelled: the tires' longitudinal slip and the wheels' spin (a driven wheel spins
-up while it is off the road), anti-pitch and roll-centre heights above the ground.
+the option.
+
+Longitudinal slip (option ``longitudinal``, a full car only)
+------------------------------------------------------------
+A pitch rate q moves the contact points fore and aft by h q, and a wheel off the road spins up
+under its drive torque and lands with slip; the full car alone rolls its wheels without slip. The
+option adds the body's fore-aft velocity change du (from the constant speed u), each wheel's spin
+change w_i (from its steady spin) and each tire's longitudinal deflection rho_i (from its steady
+value rho_0,i), with the same tire law as the full vehicle's relaxation
+(:func:`vehdyn.handling.single_track_equations.deflection_rate`, here about the steady state):
+
+    V_i = du + h q - R_e w_i                        (contact point's slip velocity change)
+    rho_i' = -V_i - u rho_i / sigma_i,   F_x,i = C_i(F_z,i) (rho_0,i + rho_i) / sigma_i + e_i F_z,i
+    I_w w_i' = T_i - r_i F_z,i - R_e F_x,i          (:mod:`vehdyn.full_vehicle.driveline`)
+    m du' + m_c q' = sum (F_x,i - F_x0,i),     I_y q' + m_c du' = M_susp + h sum (F_x,i - F_x0,i)
+
+with C_i(F_z) the degressive law of the lateral slip through the slip stiffness and its load
+derivative at the static load, T_i the constant drive torque, r_i the rolling-resistance lever
+(M_y = -r F_z), e_i the tire law's force at zero slip per unit load (its shifts S_Hx, S_Vx),
+F_x0,i = (T_i - r_i F_s,i) / R_e the steady force and rho_0,i = (F_x0,i - e_i F_s,i) sigma_i /
+C_i(F_s,i) (so that the zero state is steady rolling), m, m_c as above, I_y the full car's pitch
+inertia without the wheels' spin (FullCar's 4 I_w (h / R_e)^2 for rolling without slip, which the
+spin states now carry) and M_susp the linear model's pitch moment; with the lateral slip the yaw
+moment -sum y_i F_x,i joins the yaw equation (SAE: y right, pitch nose up +; Pacejka 2012, sec.
+7.2; the full vehicle's contact-point slip, :mod:`vehdyn.full_vehicle.assembly`). A wheel off the
+road carries no force (C(0) = 0) and spins up at T_i / I_w. Without drive torque, rolling
+resistance and pitch (a road that rolls the body only) du, w_i and rho_i stay zero and the model
+is the one without the option. Not modelled: the tire law's saturation in slip (a landing wheel's
+slip ratio stays within a few per cent at the ride scenes' speeds), the drag's change with du,
+anti-pitch and roll-centre heights above the ground, the loaded rolling radius.
 
 References
 ----------
@@ -89,7 +117,7 @@ from ..model import Model
 from ..params.base import ParameterSet, parameter
 from ..units import GRAVITY
 
-__all__ = ["LiftOff", "LateralSlip"]
+__all__ = ["LiftOff", "LateralSlip", "LongitudinalSlip"]
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -115,6 +143,48 @@ class LateralSlip(ParameterSet):
     rear_relaxation_length: float = parameter("m", "lateral relaxation length of a rear tire", gt=0)
 
 
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class LongitudinalSlip(ParameterSet):
+    """The tires' longitudinal slip, the wheels' spin and the body's fore-aft motion under a full car
+    (:class:`LiftOff` option ``longitudinal``; module docstring, "Longitudinal slip").
+
+    The drive torques are those that hold the constant speed (per wheel); a wheel off the road spins
+    up under its drive torque and lands with slip.
+    """
+
+    speed: float = parameter("m/s", "forward speed u (constant)", gt=0)
+    rolling_radius: float = parameter("m", "effective rolling radius R_e", gt=0)
+    wheel_spin_inertia: float = parameter("kg*m^2", "spin inertia of one wheel", gt=0)
+    front_slip_stiffness: float = parameter("N", "longitudinal slip stiffness dF_x/dkappa of one front tire at its "
+                                            "static load", gt=0)
+    rear_slip_stiffness: float = parameter("N", "longitudinal slip stiffness of one rear tire at its static load",
+                                           gt=0)
+    front_load_sensitivity: float = parameter("-", "dC_kappa/dF_z of a front tire at its static load", ge=0,
+                                              default=0.0)
+    rear_load_sensitivity: float = parameter("-", "dC_kappa/dF_z of a rear tire at its static load", ge=0,
+                                             default=0.0)
+    front_relaxation_length: float = parameter("m", "longitudinal relaxation length of a front tire", gt=0)
+    rear_relaxation_length: float = parameter("m", "longitudinal relaxation length of a rear tire", gt=0)
+    front_drive_torque: float = parameter("N*m", "drive torque on one front wheel (constant)", default=0.0)
+    rear_drive_torque: float = parameter("N*m", "drive torque on one rear wheel (constant)", default=0.0)
+    front_zero_slip_force: float = parameter("-", "F_x / F_z of a front tire at zero slip (the tire law's shifts, "
+                                             "Pacejka's S_Hx, S_Vx)", default=0.0)
+    rear_zero_slip_force: float = parameter("-", "F_x / F_z of a rear tire at zero slip", default=0.0)
+    front_rolling_resistance: float = parameter("m", "rolling-resistance lever r of a front tire: M_y = -r F_z "
+                                                "against the spin", ge=0, default=0.0)
+    rear_rolling_resistance: float = parameter("m", "rolling-resistance lever of a rear tire", ge=0, default=0.0)
+
+
+def _degressive(static_load, stiffness, sensitivity):
+    """(K_1, K_2) of C(F_z) = K_1 sin(2 atan(F_z / K_2)) = K_1 2 l / (1 + l^2), l = F_z / K_2, with
+    C and dC/dF_z at the static load the given ones (module docstring; a sensitivity above
+    C / F_s, which this law cannot reach, gives C proportional to the load)."""
+    # with zeta = F_s / K_2, F_s C'/C = (1 - zeta^2) / (1 + zeta^2)
+    ratio = np.minimum(sensitivity * static_load / stiffness, 1.0 - 2e-6)
+    zeta = np.sqrt((1.0 - ratio) / (1.0 + ratio))
+    return stiffness * (1.0 + zeta**2) / (2.0 * zeta), static_load / zeta
+
+
 class LiftOff(Model):
     """A linear ride model with unilateral tire contact (the wheels lift off and land again).
 
@@ -131,6 +201,11 @@ class LiftOff(Model):
         The tires' lateral slip under the rolling body (a :class:`~vehdyn.ride.FullCar` only):
         adds the states ``lateral_velocity``, ``yaw_rate`` and ``lateral_deflection_<corner>``
         and the outputs ``lateral_force_<corner>`` (module docstring).
+    longitudinal : LongitudinalSlip, optional
+        The tires' longitudinal slip, the wheels' spin and the body's fore-aft motion (a
+        :class:`~vehdyn.ride.FullCar` only): adds the states ``longitudinal_velocity_change``,
+        ``wheel_speed_change_<corner>`` and ``longitudinal_deflection_<corner>`` and the outputs
+        ``longitudinal_force_<corner>`` (module docstring).
     name : str, optional
 
     Attributes
@@ -139,11 +214,15 @@ class LiftOff(Model):
         The model with bilateral tires (the same states, inputs and outputs).
     static_tire_load : ndarray
         F_s [N] per corner, in the order of ``linear.corners``.
+    static_longitudinal_force : ndarray
+        F_x0 [N] per corner (with ``longitudinal`` only): the steady force of the drive torque.
 
     Notes
     -----
     States, inputs and outputs are the linear model's (module docstring: the equations), with
-    ``lateral`` those above after them; the phenomena add ``wheel_lift`` (and ``lateral``, ``yaw``). On a road that never unloads a wheel the result equals the
+    ``lateral`` and ``longitudinal`` those above after them (in that order); the phenomena add
+    ``wheel_lift`` (and ``lateral``, ``yaw``; ``longitudinal``, ``wheel_spin``). On a road that
+    never unloads a wheel the result equals the
     linear model's. ``simulate(model, ..., method="RK45")`` runs a compiled right-hand side when
     numba is installed (:meth:`compiled_rhs`), else the numpy one.
 
@@ -157,7 +236,7 @@ class LiftOff(Model):
     """
 
     def __init__(self, model, *, gravity: float = GRAVITY, lateral: LateralSlip | None = None,
-                 name: str | None = None):
+                 longitudinal: LongitudinalSlip | None = None, name: str | None = None):
         from ._ride_model import RideModel
 
         if not isinstance(model, RideModel):
@@ -210,9 +289,69 @@ class LiftOff(Model):
         out = model.output_names
         self._acc_rows = np.array([out.index(f"unsprung_acceleration{c.suffix}") for c in model.corners])
         self._load_rows = np.array([out.index(f"dynamic_tire_load{c.suffix}") for c in model.corners])
-        self.lateral = None
+        self.lateral = self.longitudinal = None
+        self._o = self._n  # first longitudinal state
         if lateral is not None:
             self._lateral_setup(model, lateral, n, nb)
+            self._o = self._n + 2 + nc
+        if longitudinal is not None:
+            self._longitudinal_setup(model, longitudinal, n)
+
+    def _longitudinal_setup(self, model, lon, n):
+        from ..signals import Signal
+        from .full_car import FullCar
+
+        if not isinstance(lon, LongitudinalSlip):
+            raise ParameterError(f"longitudinal must be a LongitudinalSlip, got {type(lon).__name__}",
+                                 key="longitudinal", value=type(lon).__name__)
+        if not isinstance(model, FullCar):
+            raise ParameterError(f"the longitudinal slip needs a FullCar (pitch and four corners), got "
+                                 f"{type(model).__name__}", key="longitudinal", value=type(model).__name__)
+        if self.lateral is not None and self.lateral.speed != lon.speed:
+            raise ParameterError(f"the longitudinal slip's speed {lon.speed} m/s differs from the lateral slip's "
+                                 f"{self.lateral.speed} m/s", key="longitudinal.speed", value=lon.speed)
+        p = model.parameters
+        self.longitudinal = lon
+        self.phenomena = self.phenomena | {"longitudinal", "wheel_spin"}
+        front = np.array([c.suffix.startswith("_front") for c in model.corners])
+        stiffness = np.where(front, lon.front_slip_stiffness, lon.rear_slip_stiffness)
+        sensitivity = np.where(front, lon.front_load_sensitivity, lon.rear_load_sensitivity)
+        self._slip_stiffness, self._slip_load_scale = _degressive(self.static_tire_load, stiffness, sensitivity)
+        self._lon_relaxation = np.where(front, lon.front_relaxation_length, lon.rear_relaxation_length)
+        self._drive = np.where(front, lon.front_drive_torque, lon.rear_drive_torque)
+        self._rolling = np.where(front, lon.front_rolling_resistance, lon.rear_rolling_resistance)
+        # the steady state: R_e F_x0 = T_d - r F_s, the deflection rho_0 = F_x0 sigma / C(F_s)
+        self.static_longitudinal_force = (self._drive - self._rolling * self.static_tire_load) / lon.rolling_radius
+        self._zero_slip = np.where(front, lon.front_zero_slip_force, lon.rear_zero_slip_force)
+        self._deflection0 = (self.static_longitudinal_force - self._zero_slip * self.static_tire_load) \
+            * self._lon_relaxation / stiffness
+        self._cx = np.array([c.x for c in model.corners])
+        self._cy = np.array([c.y for c in model.corners])
+        self._h = p.sprung_cg_height
+        self._mass = p.mass + 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass)
+        self._coupling = 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass) * (p.sprung_cg_height
+                                                                                  - p.unsprung_cg_height)
+        pitch = model.body_dof.index("pitch")
+        # the full car's pitch inertia holds the wheels' spin for rolling without slip (FullCar:
+        # 4 I_w (h / R)^2); here the spin is a state of its own
+        self._pitch_inertia_full = model.mass_matrix[pitch, pitch]
+        self._pitch_inertia = self._pitch_inertia_full - 4.0 * p.wheel_spin_inertia * (p.sprung_cg_height
+                                                                                         / p.rolling_radius) ** 2
+        self._pitch_rate = n + pitch
+        out = model.output_names
+        self._pitch_rows = np.array([out.index("pitch_acceleration")]
+                                    + [out.index(f"sprung_acceleration{c.suffix}") for c in model.corners])
+        self._pitch_gains = np.concatenate([[1.0], self._cx])
+        extra = (Signal("longitudinal_velocity_change", "m/s", "forward velocity of the sprung CG less the constant "
+                        "speed (SAE: forward +)"),)
+        spins = tuple(Signal(f"wheel_speed_change{c.suffix}", "rad/s", "wheel spin less its steady value (rolling "
+                             "forwards +)") for c in model.corners)
+        deflections = tuple(Signal(f"longitudinal_deflection{c.suffix}", "m", "tire longitudinal deflection less its "
+                                   "steady value (driving +)") for c in model.corners)
+        forces = tuple(Signal(f"longitudinal_force{c.suffix}", "N", "tire longitudinal force on the vehicle (SAE: "
+                              "forward +)") for c in model.corners)
+        self.declare(states=tuple(self.states) + extra + spins + deflections,
+                     outputs=tuple(self.outputs) + extra + spins + deflections + forces)
 
     def _lateral_setup(self, model, lateral, n, nb):
         from ..signals import Signal
@@ -232,12 +371,7 @@ class LiftOff(Model):
         self._h = p.sprung_cg_height
         cornering = np.where(front, lateral.front_cornering_stiffness, lateral.rear_cornering_stiffness)
         sensitivity = np.where(front, lateral.front_load_sensitivity, lateral.rear_load_sensitivity)
-        # C(F_z) = K_1 sin(2 atan(F_z / K_2)) through C_0 and dC/dF_z at the static load:
-        # with zeta = F_s / K_2, F_s C'/C = (1 - zeta^2) / (1 + zeta^2)
-        ratio = np.minimum(sensitivity * self.static_tire_load / cornering, 1.0 - 2e-6)
-        zeta = np.sqrt((1.0 - ratio) / (1.0 + ratio))
-        self._load_scale = self.static_tire_load / zeta  # K_2 [N]
-        self._cornering = cornering * (1.0 + zeta**2) / (2.0 * zeta)  # K_1 [N/rad]
+        self._cornering, self._load_scale = _degressive(self.static_tire_load, cornering, sensitivity)
         self._relaxation = np.where(front, lateral.front_relaxation_length, lateral.rear_relaxation_length)
         self._mass = p.mass + 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass)
         self._coupling = 2.0 * (p.front_unsprung_mass + p.rear_unsprung_mass) * (p.sprung_cg_height
@@ -290,7 +424,7 @@ class LiftOff(Model):
         lat = self.lateral
         col = (slice(None),) + (None,) * (x.ndim - 1)
         u = lat.speed
-        v, r, deflection = x[self._n], x[self._n + 1], x[self._n + 2:]
+        v, r, deflection = x[self._n], x[self._n + 1], x[self._n + 2:self._n + 6]
         slip_velocity = v + self._x[col] * r - self._h * x[self._roll_rate]
         load = np.maximum(force, 0.0) / self._load_scale[col]
         stiffness = self._cornering[col] * 2.0 * load / (1.0 + load * load)
@@ -304,14 +438,44 @@ class LiftOff(Model):
         roll = (mc * total + m * moment) / det
         return roll, lateral_acceleration - u * r, yaw_moment / lat.yaw_inertia, rates, fy
 
+    def _spin(self, x, force, pitch_acceleration):
+        """Pitch acceleration, du/dt, the wheels' spin accelerations, the deflections' rates, the
+        longitudinal forces F_x and their yaw moment (SAE)."""
+        lon = self.longitudinal
+        col = (slice(None),) + (None,) * (x.ndim - 1)
+        o, nc = self._o, self._cx.size
+        du, spin, deflection = x[o], x[o + 1:o + 1 + nc], x[o + 1 + nc:]
+        load = np.maximum(force, 0.0) / self._slip_load_scale[col]
+        stiffness = self._slip_stiffness[col] * 2.0 * load / (1.0 + load * load)
+        sigma = self._lon_relaxation[col]
+        fx = stiffness * (self._deflection0[col] + deflection) / sigma + self._zero_slip[col] * force
+        slip_velocity = du + self._h * x[self._pitch_rate] - lon.rolling_radius * spin
+        rates = -slip_velocity - lon.speed * deflection / sigma
+        spin_acceleration = (self._drive[col] - self._rolling[col] * force - lon.rolling_radius * fx) \
+            / lon.wheel_spin_inertia
+        total = np.sum(fx - self.static_longitudinal_force[col], axis=0)
+        moment = self._pitch_inertia_full * pitch_acceleration + self._h * total
+        m, mc, inertia = self._mass, self._coupling, self._pitch_inertia
+        det = m * inertia - mc * mc
+        return ((m * moment - mc * total) / det, (inertia * total - mc * moment) / det, spin_acceleration, rates, fx,
+                -np.sum(self._cy[col] * fx, axis=0))
+
     def rhs(self, t, x, u):
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
         dxdt, force, _ = self._ride(x, u)
-        if self.lateral is None:
-            return dxdt
-        roll, dv, dr, rates, _ = self._slip(x, force, dxdt[self._roll_rate])
-        dxdt[self._roll_rate] = roll
-        return np.concatenate([dxdt, dv[None], dr[None], rates])
+        parts = [dxdt]
+        if self.longitudinal is not None:
+            pitch, du, spin, rates, _, yaw_moment = self._spin(x, force, dxdt[self._pitch_rate])
+            dxdt[self._pitch_rate] = pitch
+        if self.lateral is not None:
+            roll, dv, dr, lateral_rates, _ = self._slip(x, force, dxdt[self._roll_rate])
+            dxdt[self._roll_rate] = roll
+            if self.longitudinal is not None:
+                dr = dr + yaw_moment / self.lateral.yaw_inertia
+            parts += [dv[None], dr[None], lateral_rates]
+        if self.longitudinal is not None:
+            parts += [du[None], spin, rates]
+        return np.concatenate(parts)
 
     def output(self, t, x, u):
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
@@ -320,11 +484,16 @@ class LiftOff(Model):
         y = self.linear.C @ x[:self._n] + self.linear.D @ u
         y[self._acc_rows] += f / self.unsprung_mass[col]
         y[self._load_rows] += f
-        if self.lateral is None:
-            return y
-        roll, _, _, _, fy = self._slip(x, force, dxdt[self._roll_rate])
-        y[self._roll_rows] += self._roll_gains[col] * (roll - dxdt[self._roll_rate])
-        return np.concatenate([y, x[self._n:], fy])
+        parts = [y]
+        if self.lateral is not None:
+            roll, _, _, _, fy = self._slip(x, force, dxdt[self._roll_rate])
+            y[self._roll_rows] += self._roll_gains[col] * (roll - dxdt[self._roll_rate])
+            parts += [x[self._n:self._o], fy]
+        if self.longitudinal is not None:
+            pitch, _, _, _, fx, _ = self._spin(x, force, dxdt[self._pitch_rate])
+            y[self._pitch_rows] += self._pitch_gains[col] * (pitch - dxdt[self._pitch_rate])
+            parts += [x[self._o:], fx]
+        return np.concatenate(parts)
 
     def compiled_rhs(self):
         """The rhs compiled by numba (see :meth:`vehdyn.Model.compiled_rhs`): the same law, one loop
@@ -340,16 +509,29 @@ class LiftOff(Model):
             lateral = (self.lateral.speed, self._roll_rate, self._h, c(self._x), c(self._cornering),
                        c(self._load_scale), c(self._relaxation), self._mass, self._coupling, self._roll_inertia,
                        self.lateral.yaw_inertia)
+        if self.longitudinal is None:
+            one = c(np.ones(1))
+            longitudinal = (0.0, 0, 0, 0.0, 1.0, 1.0, one, one, one, one, one, one, one, one, one, 1.0, 0.0, 1.0,
+                            1.0)
+        else:
+            lon = self.longitudinal
+            longitudinal = (lon.speed, self._o, self._pitch_rate, self._h, lon.rolling_radius, lon.wheel_spin_inertia,
+                            c(self._slip_stiffness), c(self._slip_load_scale), c(self._lon_relaxation),
+                            c(self._deflection0), c(self._drive), c(self._rolling), c(self._zero_slip),
+                            c(self.static_longitudinal_force), c(self._cy), self._mass, self._coupling,
+                            self._pitch_inertia_full, self._pitch_inertia)
         args = (c(self.linear.A), c(self.linear.B), c(self._wheel), c(self._wheel_rate), c(self._road),
                 c(self._road_rate), c(self.static_tire_load), c(self.tire_stiffness), c(self.tire_damping),
-                c(self.unsprung_mass), lateral)
+                c(self.unsprung_mass), lateral, longitudinal)
         return CompiledModel(rhs, None, key, args)
 
 
 def _rhs(t, x, u, args, dxdt):
     """dx/dt of a :class:`LiftOff` into ``dxdt`` (compiled; ``args`` from :meth:`LiftOff.compiled_rhs`)."""
-    A, B, wheel, wheel_rate, road, road_rate, static, stiffness, damping, mass, lateral = args
+    A, B, wheel, wheel_rate, road, road_rate, static, stiffness, damping, mass, lateral, longitudinal = args
     speed, roll_rate, h, cx, cornering, load_scale, relaxation, total_mass, coupling, inertia, yaw_inertia = lateral
+    (lon_speed, o, pitch_rate, lon_h, radius, spin_inertia, slip_stiffness, slip_scale, lon_relaxation, deflection0,
+     drive, rolling, zero_slip, static_fx, cy, lon_mass, lon_coupling, pitch_inertia_full, pitch_inertia) = longitudinal
     n, m = A.shape[0], B.shape[1]
     half = n // 2
     for i in range(half):  # A = [[0, I], [-M^-1 K, -M^-1 C]], B = [[0], [M^-1 F]] (from_second_order)
@@ -361,8 +543,9 @@ def _rhs(t, x, u, args, dxdt):
         for j in range(m):
             s += B[i, j] * u[j]
         dxdt[i] = s
-    total, yaw_moment = 0.0, 0.0
-    for c in range(wheel.shape[0]):
+    total, yaw_moment, lon_total = 0.0, 0.0, 0.0
+    nc = wheel.shape[0]
+    for c in range(nc):
         compression = u[road[c]] - x[wheel[c]]
         linear = static[c] + stiffness[c] * compression + damping[c] * (u[road_rate[c]] - x[wheel_rate[c]])
         force = 0.0
@@ -377,6 +560,20 @@ def _rhs(t, x, u, args, dxdt):
             dxdt[n + 2 + c] = slip_velocity - speed * x[n + 2 + c] / relaxation[c]
             total += fy
             yaw_moment += cx[c] * fy
+        if lon_speed > 0.0:
+            load = force / slip_scale[c]
+            k = slip_stiffness[c] * 2.0 * load / (1.0 + load * load)
+            fx = k * (deflection0[c] + x[o + 1 + nc + c]) / lon_relaxation[c] + zero_slip[c] * force
+            slip_velocity = x[o] + lon_h * x[pitch_rate] - radius * x[o + 1 + c]
+            dxdt[o + 1 + nc + c] = -slip_velocity - lon_speed * x[o + 1 + nc + c] / lon_relaxation[c]
+            dxdt[o + 1 + c] = (drive[c] - rolling[c] * force - radius * fx) / spin_inertia
+            lon_total += fx - static_fx[c]
+            yaw_moment -= cy[c] * fx
+    if lon_speed > 0.0:
+        moment = pitch_inertia_full * dxdt[pitch_rate] + lon_h * lon_total
+        det = lon_mass * pitch_inertia - lon_coupling * lon_coupling
+        dxdt[pitch_rate] = (lon_mass * moment - lon_coupling * lon_total) / det
+        dxdt[o] = (pitch_inertia * lon_total - lon_coupling * moment) / det
     if speed > 0.0:
         moment = inertia * dxdt[roll_rate] - h * total
         det = total_mass * inertia - coupling * coupling

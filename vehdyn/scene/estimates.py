@@ -30,7 +30,7 @@ error (the steady-state algebra's missing transient). The estimates are of two k
   probe's peak a_y and slip angles); a linear ride rung against the full vehicle misses the wheel
   lifting off where its linear tire goes into tension (a floor plus a gain times the largest
   tension over the static wheel load of the linear ride probes, which the plan runs on a road);
-  the full car whose tires lift off (FullCar+lift) misses the tires' longitudinal slip, which
+  the full car whose tires lift off (FullCar+lift) misses the tire law's saturation, which
   grows with that tension and the speed (a floor plus a gain times their product), and at an
   output off the CG the pitch and roll it makes (a gain times the road's asymmetry).
 
@@ -131,21 +131,21 @@ THRESHOLDS = {
     "tire_lift_floor": 3.7e-3,
     "tire_lift_gain": 0.15,
     # the full car whose tires lift off (rung FullCar+lift: vehdyn.ride.LiftOff with the CG-height
-    # couplings and the tires' lateral slip) against the full vehicle: error = floor + gain * the
-    # same tension of the linear probe * the speed [m/s], at the body outputs. What is left grows
-    # with the speed: the tires' longitudinal slip and the wheels' spin, and the drag's pitch
-    # moment, which the full car leaves out. bench_ladder (sedan / compact / van, body outputs):
-    # class B roads (no lift) 0.0011 / 0.0023 / 0.0022 (the floor); class D at 54 km/h, tension
-    # 0.40 / 0.95 / 0.33: 0.0045 / 0.0057 / 0.0082; at 108 km/h, tension 1.03 / 1.60 / 0.76:
-    # 0.0096 / 0.0122 / 0.0109 (estimated / measured 0.45-2.2)
+    # couplings, the tires' lateral and longitudinal slip and the wheels' spin) against the full
+    # vehicle: error = floor + gain * the same tension of the linear probe * the speed [m/s], at the
+    # body outputs. What is left grows with the speed: the tire law's saturation and the drag's
+    # pitch moment, which the full car leaves out. bench_ladder (sedan / compact / van, body outputs,
+    # before the longitudinal slip): class B roads (no lift) 0.0011 / 0.0023 / 0.0022 (the floor);
+    # class D at 54 km/h, tension 0.40 / 0.95 / 0.33: 0.0045 / 0.0057 / 0.0082; at 108 km/h,
+    # tension 1.03 / 1.60 / 0.76: 0.0096 / 0.0122 / 0.0109 (estimated / measured 0.45-2.2); the
+    # pothole at the CG 0.0027 / 0.0023 / 0.0032
     "lift_off_floor": 2e-3,
     "lift_off_gain": 3.3e-4,
     # the same rung at an output that sees the body's roll and pitch at a corner, per unit road
-    # asymmetry: the front-left corner in the one-sided pothole (asymmetry 1) is 0.031 / 0.038 /
-    # 0.048 off: the tires' longitudinal slip, which the full car has no fore-aft motion and wheel
-    # spin for (the sedan against a full vehicle on linear tires of the same cornering stiffness:
-    # 0.007 without longitudinal slip stiffness, 0.017 with it, 0.031 with the Magic Formula)
-    "lift_off_roll_gain": 0.04,
+    # asymmetry: the front-left corner in the one-sided pothole (asymmetry 1) is 0.0071 / 0.0070 /
+    # 0.0093 off, 0.003-0.005 above the CG's (0.031 / 0.038 / 0.048 without the longitudinal slip
+    # and the wheels' spin: a driven wheel spins up in the air and lands with ~1 kN of F_x)
+    "lift_off_roll_gain": 0.004,
     # a handling rung without the full vehicle's pitch, heave and wheel motion, on a flat road: the
     # error that is left when every other difference is represented -- LateralYawRoll+lag against
     # FullVehicle(linearized) in the three linear scenes (gentle step steer, lane changes at 60 and

@@ -499,10 +499,53 @@ def lateral_slip(drive):
                        **stiffness)
 
 
+def longitudinal_slip(drive):
+    """:class:`vehdyn.ride.LongitudinalSlip` of the scene's vehicle and tire laws at its speed: each
+    axle's tire law at half the static axle load, its slip stiffness (antisymmetric part at slip
+    ratio 1e-4), the stiffness's load derivative (central difference, +-10 % load), the force F_x /
+    F_z and the rolling resistance lever -M_y / F_z at zero slip, the longitudinal relaxation lengths of the full
+    vehicle, and the drive torques that hold the speed against the drag and the rolling resistance
+    (split by ``driveline.front_drive_fraction``, as the full vehicle's trim)."""
+    from ..handling.single_track import SingleTrack
+    from ..ride.lift_off import LongitudinalSlip
+    from ..units import GRAVITY
+
+    vehicle, speed = drive.vehicle, drive.scene.speed
+    loads = vehicle.static_axle_loads(GRAVITY)
+    t, a = vehicle.tires, vehicle.aero
+    kappa = 1e-4
+    values, resistance = {}, 0.0
+    laws = tire_laws(drive)
+    for axle, law, load in zip(("front", "rear"), laws, loads):
+        wheel = 0.5 * load
+
+        def fx(f):
+            plus, minus = law.forces(wheel * f, kappa, 0.0, 0.0, speed), law.forces(wheel * f, -kappa, 0.0, 0.0, speed)
+            return 0.5 * (float(plus.fx) - float(minus.fx)) / kappa
+
+        c = [fx(f) for f in (1.0, 0.9, 1.1)]
+        rolling = law.forces(wheel, 0.0, 0.0, 0.0, speed)
+        lever = max(-float(rolling.my) / wheel, 0.0)
+        values[f"{axle}_zero_slip_force"] = float(rolling.fx) / wheel
+        values[f"{axle}_slip_stiffness"] = c[0]
+        values[f"{axle}_load_sensitivity"] = max((c[2] - c[1]) / (0.2 * wheel), 0.0)
+        values[f"{axle}_rolling_resistance"] = lever
+        resistance += 2.0 * lever * wheel
+    lengths = SingleTrack._longitudinal_lengths(vehicle, dict(zip(("front", "rear"), laws)), None,
+                                                (t.front_relaxation_length, t.rear_relaxation_length), GRAVITY)
+    torque = t.rolling_radius * 0.5 * a.air_density * a.frontal_area * a.drag_coefficient * speed**2 + resistance
+    front = vehicle.driveline.front_drive_fraction
+    return LongitudinalSlip(speed=speed, rolling_radius=t.rolling_radius, wheel_spin_inertia=t.wheel_spin_inertia,
+                            front_relaxation_length=lengths[0], rear_relaxation_length=lengths[1],
+                            front_drive_torque=0.5 * front * torque, rear_drive_torque=0.5 * (1.0 - front) * torque,
+                            **values)
+
+
 def build_full_car_lift_off(drive) -> Setup:
     """The full car with tires that lift off (:class:`vehdyn.ride.LiftOff`), the couplings of the
-    sprung CG's height (``FullCar.from_vehicle(..., cg_heights=True)``) and the tires' lateral slip
-    under the rolling body (:func:`lateral_slip`), on both tracks; RK45 at rtol 1e-5, atol 1e-7
+    sprung CG's height (``FullCar.from_vehicle(..., cg_heights=True)``), the tires' lateral slip
+    under the rolling body (:func:`lateral_slip`) and their longitudinal slip with the wheels' spin
+    and the body's fore-aft motion (:func:`longitudinal_slip`), on both tracks; RK45 at rtol 1e-5, atol 1e-7
     and ``max_step`` the scene's time step (compiled when numba is installed): against rtol 1e-9,
     1e-4 of the body accelerations on the sedan's rough road at 108 km/h, a 20th of the full
     vehicle's rtol-1e-6 cost there (its wheel lifts make many steps fail at tighter tolerances)."""
@@ -520,7 +563,8 @@ def build_full_car_lift_off(drive) -> Setup:
     if raised or v.suspension.front_camber_gain or v.suspension.rear_camber_gain:
         raise NotAdmissible(f"the full car's lateral slip acts through roll centres on the ground, without "
                             f"anti-pitch or camber gains ({raised or 'camber gains'})")
-    model = LiftOff(FullCar.from_vehicle(v, cg_heights=True), lateral=lateral_slip(drive))
+    model = LiftOff(FullCar.from_vehicle(v, cg_heights=True), lateral=lateral_slip(drive),
+                    longitudinal=longitudinal_slip(drive))
     u = _ride_inputs(model.linear, drive, average=False)
     options = dict(SOLVER_OPTIONS, rtol=1e-5, atol=1e-7, max_step=float(drive.scene.effective_time_step))
     return Setup(model, lambda: simulate(model, drive.time, u, **options), _ride_ignores(drive))
@@ -560,7 +604,7 @@ for _rung in (
     Rung("FullCar", "vehdyn.ride.full_car:FullCar", "ride", 30, build_full_car, linear=True,
          description="7-DOF full car, both tracks"),
     Rung("FullCar+lift", "vehdyn.ride.lift_off:LiftOff", "ride", 40, build_full_car_lift_off,
-         description="7-DOF full car, both tracks, tires that lift off, CG-height couplings"),
+         description="7-DOF full car, both tracks, tires that lift off, slip and spin, CG-height couplings"),
     # The top rung of both ladders: vehdyn.full_vehicle.ladder_setup(drive, ladder) -> Setup with the
     # contract of the builders above (the handling rung answers every scene with a ground-plane
     # input, road or not; the ride rung the road-only scenes).
