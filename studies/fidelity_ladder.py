@@ -71,8 +71,11 @@ def run(study: Study) -> None:
                "vehicle file is not counted. At 0.1 g the linear lateral-yaw-roll model with tire lag, its "
                "parameters from the tire law at the running loads, is within 2 % of the full vehicle; in the "
                "slow circle to the limit the single track with the quasi-static lateral load transfer "
-               "(SingleTrack+LLT: the tire law at each wheel's load) is; the transient limit manoeuvres (the "
-               "roll's dynamics) and braking in a turn need the full vehicle; on the rough roads and in the "
+               "(SingleTrack+LLT: the tire law at each wheel's load) is, and in the lane change at 100 km/h the "
+               "single track with a roll degree of freedom (SingleTrack+roll: the roll moment sets the dynamic "
+               "lateral load transfer); the transient limit manoeuvres (the full vehicle's tire loads miss "
+               "sum(F_y) sin(phi) of the weight, which a cheaper model does not share) and braking in a turn (the "
+               "inner rear wheel locks: per-wheel spin) need the full vehicle; on the rough roads and in the "
                "pothole, where the wheels lift, the full car whose tires lift off, slip and spin up in the "
                "air (FullCar+lift) is within it.")
 

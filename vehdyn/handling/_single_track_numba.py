@@ -44,7 +44,8 @@ for _function in (conventions.planar_tire_slips_sae_to_iso_w, conventions.planar
 for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_speed_blend", "sliding_slip",
               "limit_deflection_rate", "axle_slips", "demanded_forces", "axle_forces", "axle_loads", "normal_loads",
               "evaluate", "derivatives", "outputs", "net_wheel_torque", "deflection_rate", "deflection_rates",
-              "lateral_load_transfer", "wheel_pair_loads", "wheel_load_outputs", "rolling_resistance_fade"):
+              "lateral_load_transfer", "wheel_pair_loads", "wheel_load_outputs", "rolling_resistance_fade",
+              "roll_acceleration"):
     register_jitable(**_JIT)(getattr(equations, _name))
 register_jitable(**_JIT)(crosswind.aero_side_force)
 
@@ -88,18 +89,18 @@ def _axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
 
 def _wheel_pair_tire_loads(tires, axle, left_load, right_load, kappa, alpha, vx):
     """ISO-W (fx, fy, my) of the left, then the right tire of an axle at their own loads [N]: the
-    right one is the left's mirror image when the law has ply steer (as in :func:`_axle_tire_loads`)."""
+    left one is the law's mirror image when the law has ply steer (``SingleTrack.wheel_pair_law_loads``)."""
     law = tires[axle]
     mirror = -1.0 if law.mirrored else 1.0
     if law.kind == _MAGIC_FORMULA:
         c = law.records[law.record]
-        f = magic_formula._forces_kernel(_mf_numba.OPS, c, left_load, kappa, alpha, 0.0, vx, c.INFLPRES, True, False)
-        g = magic_formula._forces_kernel(_mf_numba.OPS, c, right_load, kappa, mirror * alpha, 0.0, vx, c.INFLPRES,
+        f = magic_formula._forces_kernel(_mf_numba.OPS, c, left_load, kappa, mirror * alpha, 0.0, vx, c.INFLPRES,
                                          True, False)
-        return f[0], f[1], f[4], g[0], mirror * g[1], g[4]
-    fx, fy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, left_load, kappa, alpha, 0.0, vx)
-    gx, gy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, right_load, kappa, mirror * alpha, 0.0, vx)
-    return fx, fy, 0.0, gx, mirror * gy, 0.0
+        g = magic_formula._forces_kernel(_mf_numba.OPS, c, right_load, kappa, alpha, 0.0, vx, c.INFLPRES, True, False)
+        return f[0], mirror * f[1], f[4], g[0], g[1], g[4]
+    fx, fy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, left_load, kappa, mirror * alpha, 0.0, vx)
+    gx, gy, _ = linear.linear_tire_law(_mf_numba.OPS, law.linear, right_load, kappa, alpha, 0.0, vx)
+    return fx, mirror * fy, 0.0, gx, gy, 0.0
 
 
 def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
@@ -140,10 +141,15 @@ def _output(t, x, u, args, y):
     values = equations.outputs(XP, states, e)
     for j in range(len(values)):
         y[j] = values[j]
+    n = len(values)
     if k.lateral_load_transfer:
         loads = equations.wheel_load_outputs(e)
         for j in range(len(loads)):
-            y[len(values) + j] = loads[j]
+            y[n + j] = loads[j]
+        n += len(loads)
+    if state_index[12] >= 0:  # the roll degree of freedom: roll angle and rate
+        y[n] = states[12]
+        y[n + 1] = states[13]
 
 
 @functools.lru_cache(maxsize=None)

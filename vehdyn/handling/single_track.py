@@ -57,9 +57,35 @@ resistance M_y / R_e (the law's, at its own load, faded in over the low-speed ra
 damping above) moves force between them, the axle's net force staying the demand: the outer wheel
 rolls harder, a couple toward understeer that the full vehicle has too (1 % of the yaw rate in the
 sedan's circle to the limit). An inner wheel that would lift carries 0. The
-right tire of an axle is the left one's mirror image when the law has ply steer (as without the
-transfer). No roll degree of freedom: the transfer follows the forces without the roll mode's lag, and
-roll steer and camber are absent. With wheel spin the axle's two wheels share one spin state.
+left tire of an axle is the law's mirror image when the law has ply steer, the right one the law's
+own, as in :class:`vehdyn.full_vehicle.FullVehicle` (the zero-slip forces cancel at equal loads, not
+under the transfer: 2.7 % of the sedan's steady steer at 2 m/s^2, so the side must be the full
+vehicle's). Without the roll degree of freedom (below) the transfer follows the forces without the
+roll mode's lag; roll steer and camber are absent. With wheel spin the axle's two wheels share one
+spin state.
+
+Roll degree of freedom (``roll=True``, with ``lateral_load_transfer=True``): the body rolls by phi
+(SAE: positive right side down) about the roll axis through the roll centres, and the suspension's
+roll moment, not the quasi-static law, sets the elastic part of each axle's transfer (Segel 1956;
+Milliken & Milliken 1995, ch. 18; Gillespie 1992, ch. 6)::
+
+    dF_z,i = (z_i / t_i) F_y,i - (K_i phi + C_i p) / t_i
+    J dp/dt = -m h_1 a_y - (K_f + K_r - m g h_1) phi - (C_f + C_r) p,     dphi/dt = p
+    m (dv/dt + u r) + m h_1 dp/dt = F_y,f + F_y,r + F_ext            (lateral equation above)
+
+with a_y = (F_y,f + F_y,r + F_ext) / m the lateral acceleration of the CG (the output
+``lateral_acceleration``), h_1 the CG height above the roll axis and the whole mass on it, as in the
+quasi-static law (whose steady state this is: phi = -m h_1 a_y / (K_f + K_r - m g h_1) gives its
+dF_z,i exactly, and K -> infinity at a fixed distribution gives its transient), C_i = c_i t_i^2 / 2
+the roll damping of the corner dampers c_i, and J = I_x - (m_s h_s)^2 / m the body's roll inertia
+with the vehicle free to move sideways (I_x Segel's sprung-mass roll inertia about the roll axis,
+:func:`~vehdyn.handling.lateral_yaw_roll_parameters`; eliminating dv/dt from Segel's lateral and
+roll equations). v is then the lateral velocity of the non-rolling frame, from which the slips are
+taken. The geometric part follows the yaw rate as without roll; roll steer, camber and the roll-yaw
+product of inertia are left out. States ``roll_angle`` and ``roll_rate``, outputs of the same names.
+At 2 % on yaw rate and lateral acceleration against :class:`vehdyn.full_vehicle.FullVehicle`, what
+the quasi-static transfer misses in transient manoeuvres is the roll's lag (sine with dwell of the
+sedan: 12 % without the roll degree of freedom, 3.3 % with it; see the README's fidelity ladder).
 
 An axle whose load would become negative (the vehicle would tip over that axle) is held at zero
 and the other axle carries the whole weight; the output ``front_normal_load`` shows it.
@@ -134,7 +160,7 @@ from ..units import GRAVITY
 from . import single_track_equations as equations
 from .crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
 
-__all__ = ["SingleTrack", "SingleTrackParameters", "lateral_load_transfer_coefficients"]
+__all__ = ["SingleTrack", "SingleTrackParameters", "lateral_load_transfer_coefficients", "roll_parameters"]
 
 _AXLES = ("front", "rear")
 
@@ -268,6 +294,36 @@ def lateral_load_transfer_coefficients(vehicle, *, mass=None, cg_height=None, a=
     return ((zf / g.front_track, elastic * kf / g.front_track), (zr / g.rear_track, elastic * kr / g.rear_track))
 
 
+def roll_parameters(vehicle, *, mass=None, cg_height=None, a=None, b=None) -> dict:
+    """The numbers of the roll degree of freedom of :class:`SingleTrack` (``roll=True``).
+
+    ``roll_arm`` h_1 = h - z(a) [m], the CG height above the roll axis (as in
+    :func:`lateral_load_transfer_coefficients`); ``roll_inertia`` J [kg*m^2], the effective roll
+    inertia of the body when the vehicle is free to move sideways: Segel's sprung-mass roll inertia
+    about the roll axis I_x = J_s + m_s h_s^2 (:func:`vehdyn.handling.lateral_yaw_roll_parameters`)
+    less (m_s h_s)^2 / m, eliminating dv/dt from Segel's lateral and roll equations (positive, as
+    m_s < m); ``{axle}_roll_transfer_stiffness`` K_i / t_i [N/rad] with K_i the suspension roll
+    stiffness (springs and anti-roll bar, tires excluded), and ``{axle}_roll_transfer_damping``
+    C_i / t_i [N*s/rad] with C_i = c_i t_i^2 / 2 from the corner dampers. ``mass``, ``cg_height``, ``a``,
+    ``b`` default to the vehicle's.
+    """
+    from .lateral_yaw_roll import lateral_yaw_roll_parameters
+
+    m, g, s = vehicle.mass, vehicle.geometry, vehicle.suspension
+    mass = m.mass if mass is None else mass
+    cg_height = m.cg_height if cg_height is None else cg_height
+    a = g.cg_to_front_axle if a is None else a
+    b = g.cg_to_rear_axle if b is None else b
+    zf, zr = g.front_roll_centre_height, g.rear_roll_centre_height
+    segel = lateral_yaw_roll_parameters(vehicle)
+    inertia = segel.roll_inertia - (segel.sprung_mass * segel.roll_arm) ** 2 / segel.mass
+    return {"roll_arm": cg_height - (zf + (zr - zf) * a / (a + b)), "roll_inertia": float(inertia),
+            "front_roll_transfer_stiffness": vehicle.front_roll_stiffness / g.front_track,
+            "rear_roll_transfer_stiffness": vehicle.rear_roll_stiffness / g.rear_track,
+            "front_roll_transfer_damping": s.front_damping * g.front_track / 2,
+            "rear_roll_transfer_damping": s.rear_damping * g.rear_track / 2}
+
+
 class SingleTrack(Model):
     """Nonlinear planar single-track model with any tire law (equations in the module docstring).
 
@@ -299,6 +355,10 @@ class SingleTrack(Model):
         transfer (module docstring; default False: both wheels at half the axle load). Adds the
         outputs ``front_left_normal_load``, ``front_right_normal_load``, ``rear_left_normal_load``
         and ``rear_right_normal_load``.
+    roll : bool
+        The roll degree of freedom (module docstring; needs ``lateral_load_transfer=True``): the
+        roll angle and rate of the body set the elastic part of the lateral load transfer. Adds the
+        states and outputs ``roll_angle`` [rad] and ``roll_rate`` [rad/s] (default False).
 
     Signals
     -------
@@ -326,7 +386,7 @@ class SingleTrack(Model):
     def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, wheel_spin: bool = False,
                  tire_lag: bool = True, longitudinal_relaxation_length=None, low_speed_damping_speed: float = 2.0,
                  brake_regularization_speed: float = 1.0, gravity: float = GRAVITY,
-                 lateral_load_transfer: bool = False):
+                 lateral_load_transfer: bool = False, roll: bool = False):
         if not isinstance(vehicle, Vehicle):
             raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
                                  value=vehicle)
@@ -345,6 +405,13 @@ class SingleTrack(Model):
         self.wheel_spin = bool(wheel_spin)
         self.tire_lag = bool(tire_lag)
         self.lateral_load_transfer = bool(lateral_load_transfer)
+        for name, value in (("lateral_load_transfer", lateral_load_transfer), ("roll", roll)):
+            if not isinstance(value, (bool, np.bool_)):
+                raise ParameterError(f"{name} must be True or False, got {value!r}", key=name, value=value)
+        if roll and not lateral_load_transfer:
+            raise ParameterError("roll=True needs lateral_load_transfer=True (the roll sets the wheels' loads)",
+                                 key="roll", value=roll)
+        self.roll = bool(roll)
         for name, value in (("low_speed_damping_speed", low_speed_damping_speed),
                             ("brake_regularization_speed", brake_regularization_speed), ("gravity", gravity)):
             if not (np.isfinite(value) and value > 0):
@@ -405,6 +472,9 @@ class SingleTrack(Model):
         if self.wheel_spin:
             states += [Signal(f"{axle}_wheel_speed", "rad/s", f"spin of the {axle} wheels (positive rolling forwards)")
                        for axle in _AXLES]
+        if self.roll:
+            states += [Signal("roll_angle", "rad", "roll angle phi of the body about the roll axis (right side down)"),
+                       Signal("roll_rate", "rad/s", "roll rate p of the body")]
         if self.tire_lag:
             states += [Signal(f"{axle}_lateral_deflection", "m",
                               f"lateral deflection of the {axle} tires' contact point (SAE y, relaxation state)")
@@ -452,6 +522,9 @@ class SingleTrack(Model):
         if self.lateral_load_transfer:
             outputs += [Signal(f"{axle}_{side}_normal_load", "N", f"normal load of the {axle} {side} wheel")
                         for axle in _AXLES for side in ("left", "right")]
+        if self.roll:
+            outputs += [Signal("roll_angle", "rad", "roll angle of the body (positive right side down, SAE)"),
+                        Signal("roll_rate", "rad/s", "roll rate of the body")]
         self.declare(states=states, inputs=inputs, outputs=outputs)
         # positions of the model's signals in the equations' fixed order (-1: not a signal of this model)
         self._state_index = np.array([self.state_names.index(n) if n in self.state_names else -1
@@ -464,6 +537,8 @@ class SingleTrack(Model):
             phenomena.add("wheel_spin")
         if self.tire_lag:
             phenomena.add("tire_lag")
+        if self.roll:
+            phenomena.add("roll")
         self.phenomena = frozenset(phenomena)
 
     def variants(self, **arrays) -> "SingleTrack":
@@ -503,16 +578,24 @@ class SingleTrack(Model):
     def _transfer_coefficients(self) -> dict:
         """The coefficients of the lateral load transfer (module docstring) [-]: geometric z_i / t_i
         and elastic h_1 K_i / ((K_f + K_r - m g h_1) t_i) of each axle (from the vehicle's tracks,
-        roll centres and roll stiffnesses and the parameters' mass, CG height, a, b and gravity)."""
+        roll centres and roll stiffnesses and the parameters' mass, CG height, a, b and gravity);
+        with roll the elastic ones are 0 and the roll's numbers (:func:`roll_parameters`) are set."""
+        out = dict.fromkeys(("front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer",
+                             "rear_elastic_transfer", "front_track", "rear_track", "roll_arm",
+                             "front_roll_transfer_stiffness", "rear_roll_transfer_stiffness",
+                             "front_roll_transfer_damping", "rear_roll_transfer_damping"), 0.0)
+        out["roll_inertia"] = 1.0  # unused without roll (its arm is 0)
         if not self.lateral_load_transfer:
-            return dict.fromkeys(("front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer",
-                                  "rear_elastic_transfer", "front_track", "rear_track"), 0.0)
+            return out
         p, v = self.parameters, self.vehicle
         transfer = lateral_load_transfer_coefficients(v, mass=p.mass, cg_height=p.cg_height, a=p.a, b=p.b,
                                                       gravity=p.gravity)
-        out = {f"{axle}_{kind}_transfer": value for axle, pair in zip(_AXLES, transfer)
-               for kind, value in zip(("geometric", "elastic"), pair)}
+        out.update({f"{axle}_{kind}_transfer": value for axle, pair in zip(_AXLES, transfer)
+                    for kind, value in zip(("geometric", "elastic"), pair)})
         out["front_track"], out["rear_track"] = v.geometry.front_track, v.geometry.rear_track
+        if self.roll:
+            out["front_elastic_transfer"] = out["rear_elastic_transfer"] = 0.0
+            out.update(roll_parameters(v, mass=p.mass, cg_height=p.cg_height, a=p.a, b=p.b))
         return out
 
     def _constants(self) -> equations.Constants:
@@ -573,19 +656,20 @@ class SingleTrack(Model):
     def wheel_pair_law_loads(self, axle, left_load, right_load, kappa, alpha, vx):
         """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N].
 
-        The right tire is the left's mirror image when the law has ply steer (see
-        :meth:`axle_law_loads`): (F_x, -F_y, M_y) of the law at -alpha."""
+        The left tire is the law's mirror image when the law has ply steer (see
+        :meth:`axle_law_loads`): (F_x, -F_y, M_y) of the law at -alpha; the right tire is the law's
+        own, as in :meth:`vehdyn.full_vehicle.FullVehicle.corner_law_loads`."""
         tire = self.front_tire if axle == 0 else self.rear_tire
         mirror = -1.0 if self._mirrored[_AXLES[axle]] else 1.0
         if all(np.ndim(v) == 0 for v in (left_load, right_load, kappa, alpha, vx)):
-            f = tire.forces(float(left_load), float(kappa), float(alpha), 0.0, float(vx))
-            g = tire.forces(float(right_load), float(kappa), mirror * float(alpha), 0.0, float(vx))
-            return f.fx, f.fy, f.my, g.fx, mirror * g.fy, g.my
+            f = tire.forces(float(left_load), float(kappa), mirror * float(alpha), 0.0, float(vx))
+            g = tire.forces(float(right_load), float(kappa), float(alpha), 0.0, float(vx))
+            return f.fx, mirror * f.fy, f.my, g.fx, g.fy, g.my
         both = tire.forces(np.stack(np.broadcast_arrays(left_load, right_load)),
                            np.stack(np.broadcast_arrays(kappa, kappa)),
-                           np.stack(np.broadcast_arrays(alpha, mirror * alpha)), 0.0,
+                           np.stack(np.broadcast_arrays(mirror * alpha, alpha)), 0.0,
                            np.stack(np.broadcast_arrays(vx, vx)))
-        return both.fx[0], both.fy[0], both.my[0], both.fx[1], mirror * both.fy[1], both.my[1]
+        return both.fx[0], mirror * both.fy[0], both.my[0], both.fx[1], both.fy[1], both.my[1]
 
     @staticmethod
     def _needs_mirror(tire, load) -> bool:
@@ -661,6 +745,8 @@ class SingleTrack(Model):
         values = equations.outputs(equations.NUMPY, states, e)
         if self.lateral_load_transfer:
             values = values + equations.wheel_load_outputs(e)
+        if self.roll:
+            values = values + (states[12], states[13])
         return _stack(values)
 
     # ------------------------------------------------------------------ operating points
@@ -739,5 +825,6 @@ class SingleTrack(Model):
     def __repr__(self) -> str:
         return (f"<SingleTrack of {self.vehicle.name!r}: tires {type(self.front_tire).__name__}/"
                 f"{type(self.rear_tire).__name__}, wheel_spin={self.wheel_spin}, tire_lag={self.tire_lag}, "
-                + ("lateral_load_transfer=True, " if self.lateral_load_transfer else "") +
+                + ("lateral_load_transfer=True, " if self.lateral_load_transfer else "")
+                + ("roll=True, " if self.roll else "") +
                 f"{self.n_states} states>")

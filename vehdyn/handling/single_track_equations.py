@@ -28,11 +28,11 @@ from .crosswind import aero_side_force
 
 __all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate",
            "derivatives", "outputs", "axle_slips", "axle_forces", "axle_loads", "wheel_pair_loads",
-           "wheel_load_outputs", "lateral_load_transfer"]
+           "wheel_load_outputs", "lateral_load_transfer", "roll_acceleration"]
 
 STATES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y", "yaw_angle", "front_wheel_speed",
           "rear_wheel_speed", "front_lateral_deflection", "rear_lateral_deflection", "front_longitudinal_deflection",
-          "rear_longitudinal_deflection")
+          "rear_longitudinal_deflection", "roll_angle", "roll_rate")
 """Every state a SingleTrack can have, in the order of :func:`evaluate` and :func:`derivatives`."""
 
 INPUTS = ("front_steer_angle", "rear_steer_angle", "front_longitudinal_force", "rear_longitudinal_force",
@@ -49,7 +49,9 @@ Constants = namedtuple("Constants", (
     "low_speed_damping_speed", "brake_regularization_speed", "front_peak_slip_ratio", "front_peak_tan_slip_angle",
     "rear_peak_slip_ratio", "rear_peak_tan_slip_angle", "wind_side_force_factor", "centre_of_pressure",
     "front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer", "rear_elastic_transfer",
-    "front_track", "rear_track", "wheel_spin", "tire_lag", "lateral_load_transfer"))
+    "front_track", "rear_track", "roll_inertia", "roll_arm", "front_roll_transfer_stiffness",
+    "rear_roll_transfer_stiffness", "front_roll_transfer_damping", "rear_roll_transfer_damping", "wheel_spin",
+    "tire_lag", "lateral_load_transfer"))
 Constants.__doc__ = """What the equations read: the fields of :class:`SingleTrackParameters` (floats, or arrays
 across batch variants on numpy), the model's options and the peak-force slips of the two laws
 (the limits of the tire deflections); ``wheel_spin``, ``tire_lag`` and ``lateral_load_transfer`` are
@@ -64,7 +66,7 @@ Evaluation = namedtuple("Evaluation", (
     "rear_slip_angle", "rear_slip_ratio", "front_normal_load", "rear_normal_load", "front_vx", "front_vy",
     "rear_vx", "rear_vy", "front_lateral_deflection_rate", "rear_lateral_deflection_rate",
     "front_longitudinal_deflection_rate", "rear_longitudinal_deflection_rate", "front_rolling_moment",
-    "rear_rolling_moment", "front_load_transfer", "rear_load_transfer"))
+    "rear_rolling_moment", "front_load_transfer", "rear_load_transfer", "roll_acceleration"))
 Evaluation.__doc__ = """Accelerations of the CG (du/dt - v r, dv/dt + u r [m/s^2], dr/dt [rad/s^2]), axle forces
 in SAE wheel axes [N], the slips acting in the laws (SAE slip angle [rad], slip ratio [-]), normal
 loads [N], the wheel-centre velocities in wheel axes [m/s], the tire deflection rates [m/s] (0 without
@@ -108,7 +110,7 @@ def named_states(x, index):
     each in ``x``, -1 where the model lacks it)."""
     return (_at(x, index[0]), _at(x, index[1]), _at(x, index[2]), _at(x, index[3]), _at(x, index[4]),
             _at(x, index[5]), _at(x, index[6]), _at(x, index[7]), _at(x, index[8]), _at(x, index[9]),
-            _at(x, index[10]), _at(x, index[11]))
+            _at(x, index[10]), _at(x, index[11]), _at(x, index[12]), _at(x, index[13]))
 
 
 def named_inputs(u, index):
@@ -233,23 +235,45 @@ def normal_loads(xp, k, x_force, front_lift, rear_lift):
     return front, xp.maximum(total - front, 0.0)
 
 
-def lateral_load_transfer(xp, k, front_lateral, rear_lateral, front_load, rear_load):
-    """Quasi-static lateral load transfer (front, rear) [N]: the load moved onto each axle's left wheel.
+def lateral_load_transfer(xp, k, front_lateral, rear_lateral, front_load, rear_load, roll_angle, roll_rate):
+    """Lateral load transfer (front, rear) [N]: the load moved onto each axle's left wheel.
 
     ``front_lateral``, ``rear_lateral`` are the axles' lateral forces in body axes [N] (SAE y,
-    positive turning right, so the load moves onto the left, outer wheels)::
+    positive turning right, so the load moves onto the left, outer wheels); ``roll_angle`` phi
+    [rad] and ``roll_rate`` p [rad/s] the body's roll (SAE: positive right side down)::
 
         dF_z,i = (z_i / t_i) F_y,i + h_1 K_i / ((K_f + K_r - m g h_1) t_i) (F_y,f + F_y,r)
+                 - (K_i phi + C_i p) / t_i
 
-    (the ``*_geometric_transfer`` and ``*_elastic_transfer`` coefficients of :class:`Constants`),
-    held within +-F_z,i / 2 (an inner wheel that would lift carries 0).
+    (the ``*_geometric_transfer``, ``*_elastic_transfer``, ``*_roll_transfer_stiffness`` and
+    ``*_roll_transfer_damping`` coefficients of :class:`Constants`): without the roll degree of
+    freedom the last term is absent (the quasi-static elastic part), with it the elastic part is
+    the suspension's roll moment; held within +-F_z,i / 2 (an inner wheel that would lift carries 0).
     """
     total = front_lateral + rear_lateral
-    front = k.front_geometric_transfer * front_lateral + k.front_elastic_transfer * total
-    rear = k.rear_geometric_transfer * rear_lateral + k.rear_elastic_transfer * total
+    front = k.front_geometric_transfer * front_lateral + k.front_elastic_transfer * total \
+        - k.front_roll_transfer_stiffness * roll_angle - k.front_roll_transfer_damping * roll_rate
+    rear = k.rear_geometric_transfer * rear_lateral + k.rear_elastic_transfer * total \
+        - k.rear_roll_transfer_stiffness * roll_angle - k.rear_roll_transfer_damping * roll_rate
     front_half, rear_half = 0.5 * xp.maximum(front_load, 0.0), 0.5 * xp.maximum(rear_load, 0.0)
     return (xp.minimum(xp.maximum(front, -front_half), front_half),
             xp.minimum(xp.maximum(rear, -rear_half), rear_half))
+
+
+def roll_acceleration(xp, k, lateral_acceleration, roll_angle, roll_rate):
+    """Roll acceleration of the body [rad/s^2] (SAE: positive right side down)::
+
+        J dp/dt = -m h_1 a_y - (K_f + K_r - m g h_1) phi - (C_f + C_r) p
+
+    with a_y the lateral acceleration of the CG [m/s^2] (all lateral forces over the mass), J the
+    effective roll inertia, h_1 the CG height above the roll axis; K_i = t_i (K_i / t_i) and
+    C_i = t_i (C_i / t_i) from :class:`Constants` (0 without roll: then h_1 = 0 and the result is 0).
+    """
+    stiffness = k.front_track * k.front_roll_transfer_stiffness + k.rear_track * k.rear_roll_transfer_stiffness
+    damping = k.front_track * k.front_roll_transfer_damping + k.rear_track * k.rear_roll_transfer_damping
+    moment = k.roll_arm * k.mass
+    return (-moment * lateral_acceleration - (stiffness - moment * k.gravity) * roll_angle
+            - damping * roll_rate) / k.roll_inertia
 
 
 def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral_deflection,
@@ -286,7 +310,8 @@ def evaluate(xp, tires, k, states, inputs):
     """Forces, loads and accelerations at ``states``, ``inputs`` (tuples in the order of
     :data:`STATES`, :data:`INPUTS`): an :class:`Evaluation`."""
     (lon, lat, yaw_rate, _x, _y, _yaw, front_wheel_speed, rear_wheel_speed, front_lateral_deflection,
-     rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection) = states
+     rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection, roll_angle,
+     roll_rate) = states
     (front_steer, rear_steer, front_force, rear_force, _fd, _rd, _fb, _rb, external_force, external_moment,
      wind) = inputs
     front_lift, rear_lift = k.front_lift_factor * lon * lon, k.rear_lift_factor * lon * lon
@@ -328,7 +353,8 @@ def evaluate(xp, tires, k, states, inputs):
         return rear_axle(fz) + (0.0 * fz,)
 
     def transfer(f, r, fz_f, fz_r):
-        return lateral_load_transfer(xp, k, f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr, fz_f, fz_r)
+        return lateral_load_transfer(xp, k, f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr, fz_f, fz_r, roll_angle,
+                                     roll_rate)
 
     # quasi-static load transfer: the forces depend on the loads and the loads on the forces.
     # Longitudinal: with force inputs the dependence is explicit, with wheel spin two fixed-point
@@ -341,7 +367,7 @@ def evaluate(xp, tires, k, states, inputs):
     if k.lateral_load_transfer:
         turn = k.mass * lon * yaw_rate / (k.a + k.b)
         fz_f, fz_r = normal_loads(xp, k, front_force * cf + rear_force * cr, front_lift, rear_lift)
-        shift_f, shift_r = lateral_load_transfer(xp, k, turn * k.b, turn * k.a, fz_f, fz_r)
+        shift_f, shift_r = lateral_load_transfer(xp, k, turn * k.b, turn * k.a, fz_f, fz_r, roll_angle, roll_rate)
     if k.wheel_spin:
         weight, wheelbase = k.mass * k.gravity, k.a + k.b
         fz_f, fz_r = weight * k.b / wheelbase - front_lift, weight * k.a / wheelbase - rear_lift
@@ -363,9 +389,11 @@ def evaluate(xp, tires, k, states, inputs):
     if k.lateral_load_transfer:  # the couple of unequal left and right longitudinal forces (SAE: left at -t/2)
         moment = moment + 0.5 * (k.front_track * f[5] * cf + k.rear_track * r[5] * cr)
     drag = k.drag_factor * lon * xp.abs(lon)
-    return Evaluation((fx_body - drag) / k.mass, (front_lateral + rear_lateral + external_force) / k.mass,
+    lateral_acceleration = (front_lateral + rear_lateral + external_force) / k.mass
+    return Evaluation((fx_body - drag) / k.mass, lateral_acceleration,
                       moment / k.yaw_inertia, f[0], f[1], f[2], f[3], r[0], r[1], r[2], r[3], fz_f, fz_r,
-                      vxf, vyf, vxr, vyr, rates[0], rates[1], rates[2], rates[3], f[4], r[4], shift_f, shift_r)
+                      vxf, vyf, vxr, vyr, rates[0], rates[1], rates[2], rates[3], f[4], r[4], shift_f, shift_r,
+                      roll_acceleration(xp, k, lateral_acceleration, roll_angle, roll_rate))
 
 
 def deflection_rates(xp, k, front_vx, front_vy, rear_vx, rear_vy, states):
@@ -375,7 +403,7 @@ def deflection_rates(xp, k, front_vx, front_vy, rear_vx, rear_vy, states):
     if not k.tire_lag:
         return zero, zero, zero, zero
     (_u, _v, _r, _x, _y, _yaw, front_wheel_speed, rear_wheel_speed, front_lateral_deflection,
-     rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection) = states
+     rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection, _phi, _p) = states
     front_lateral = deflection_rate(xp, front_vy, front_vx, front_lateral_deflection,
                                     k.front_lateral_relaxation_length, k.front_peak_tan_slip_angle)
     rear_lateral = deflection_rate(xp, rear_vy, rear_vx, rear_lateral_deflection, k.rear_lateral_relaxation_length,
@@ -393,7 +421,8 @@ def deflection_rates(xp, k, front_vx, front_vy, rear_vx, rear_vy, states):
 
 def derivatives(xp, k, e, states, inputs):
     """d/dt of every entry of :data:`STATES` (0.0 for a state the model lacks) from an :class:`Evaluation`."""
-    (lon, lat, yaw_rate, _x, _y, yaw, front_wheel_speed, rear_wheel_speed, _fld, _rld, _fxd, _rxd) = states
+    (lon, lat, yaw_rate, _x, _y, yaw, front_wheel_speed, rear_wheel_speed, _fld, _rld, _fxd, _rxd, _phi,
+     roll_rate) = states
     (_fs, _rs, _ff, _rf, front_drive, rear_drive, front_brake, rear_brake, _fe, _me, _w) = inputs
     zero = 0.0 * lon
     cpsi, spsi = xp.cos(yaw), xp.sin(yaw)
@@ -404,10 +433,12 @@ def derivatives(xp, k, e, states, inputs):
                                           e.front_longitudinal_force) + e.front_rolling_moment) / inertia
         d_rear_wheel = (net_wheel_torque(xp, k, rear_wheel_speed, rear_drive, rear_brake,
                                          e.rear_longitudinal_force) + e.rear_rolling_moment) / inertia
-    return (e.longitudinal_acceleration + lat * yaw_rate, e.lateral_acceleration - lon * yaw_rate,
+    # with roll, v is the lateral velocity of the non-rolling frame: m (dv/dt + u r) + m h_1 dp/dt = F_y
+    return (e.longitudinal_acceleration + lat * yaw_rate,
+            e.lateral_acceleration - k.roll_arm * e.roll_acceleration - lon * yaw_rate,
             e.yaw_acceleration, lon * cpsi - lat * spsi, lon * spsi + lat * cpsi, yaw_rate, d_front_wheel,
             d_rear_wheel, e.front_lateral_deflection_rate, e.rear_lateral_deflection_rate,
-            e.front_longitudinal_deflection_rate, e.rear_longitudinal_deflection_rate)
+            e.front_longitudinal_deflection_rate, e.rear_longitudinal_deflection_rate, roll_rate, e.roll_acceleration)
 
 
 def net_wheel_torque(xp, k, wheel_speed, drive, brake, longitudinal_force):

@@ -267,6 +267,14 @@ class _Context:
         return est.THRESHOLDS["load_transfer_gain"] * est.lateral_load_transfer_deficit(
             self.drive.vehicle, a_y, slips, self.scene.tire)
 
+    def _side_force_tilt(self) -> float:
+        """:func:`estimates.side_force_tilt_deficit` at the linear probe's peak lateral acceleration, times its gain."""
+        probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
+        if probe is None or "lateral_acceleration" not in probe:
+            return float("nan")
+        a_y = float(np.max(np.abs(probe["lateral_acceleration"])))
+        return est.THRESHOLDS["side_force_tilt_gain"] * est.side_force_tilt_deficit(self.drive.vehicle, a_y)
+
     def _lift(self) -> float:
         """Tire tension of the most complete linear ride probe (:func:`estimates.tire_lift`)."""
         ride = [r for n, r in self.probe_rows.items() if r.rung.ladder == "ride" and n in self.probes]
@@ -352,7 +360,13 @@ class _Context:
             # steer on a flat road: the body's pitch and heave and the wheels' motion that a planar or
             # roll model leaves out (a floor measured against the full vehicle linearized)
             k = est.THRESHOLDS["handling_reduction_floor"] if d.handling_input else 0.0
-            return k, (f"pitch, heave and wheel motion ~{k:.1e}" if k else "")
+            note = f"pitch, heave and wheel motion ~{k:.1e}" if k else ""
+            if k and not rung.rung.linear and "roll" in rung.rung.phenomena(rung.setup):
+                # a nonlinear rung with roll: the full vehicle's tire loads short by its tilted side forces
+                tilt = self._side_force_tilt()
+                k += tilt
+                note += f", tilted side forces ~{tilt:.1e}"
+            return k, note
         if p == "pitch":
             k = est.THRESHOLDS["dynamic_index_gain"] * est.dynamic_index_coupling(d.vehicle) ** 2
             return k, f"pitch coupling (1-DI)^2 ~{k:.1e}"
