@@ -36,7 +36,9 @@ def _fishhook(model, speed=22.35):
 
 
 def test_fishhook_lifts_a_wheel_and_keeps_loads_non_negative():
-    model = FullVehicle(_raised(vehdyn.load_vehicle("van"), 0.05))
+    # the van as shipped keeps its wheels down; 3 cm higher the inner front wheel lifts twice; at
+    # 5 cm it rolls over (the test below, with 10 cm)
+    model = FullVehicle(_raised(vehdyn.load_vehicle("van"), 0.03))
     result = _fishhook(model)
     assert np.all(np.isfinite(result.states))
     loads = np.array([result[f"normal_load{s}"] for s in CORNERS])
