@@ -189,7 +189,7 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
     # along the rolled/pitched body's x-y plane instead, they would lift the car by sum F_y sin(roll)
     tx, ty, tz = _road_plane_force(xp, R, cd, sd, fx, fy)
     # force the contact passes to the body (x, y) and the linkage's vertical force on the body; the
-    # body-z part tz of the road-plane force acts on the wheel with its load
+    # linkage passes the road-plane force whole (its body-z part tz too), the spring the load
     link_x, link_y = tx - load * R[2][0], ty - load * R[2][1]
     jack = corner.jacking_force(k, c, link_x, link_y)
     # the wheel's velocity-dependent x-y inertia and its gravity, at the wheel centre
@@ -199,7 +199,7 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
     cx, cy, _cz = body.cross(p, q, r, ox, oy, oz)
     wheel_x = m_u * (k.gravity * R[2][0] - cx - 2.0 * q * travel_rate)
     wheel_y = m_u * (k.gravity * R[2][1] - cy + 2.0 * p * travel_rate)
-    f_z = jack - spring
+    f_z = jack - spring + tz
     # the contact point lies on the road: its body z below the sprung CG changes as the body rolls,
     # pitches and heaves (road height i[10 + c] up, CG displacement s[11] down); the road-plane
     # forces act there, which with tz at the wheel gives their moment the CG's height over the road
@@ -208,7 +208,7 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
     mx2, my2, mz2 = body.cross(x_c, y_c, zw, wheel_x, wheel_y, 0.0 * u)
     return (load, alpha, kappa, fx, fy,
             driveline.wheel_acceleration(xp, k, omega, i[2 + c], i[6 + c], fx, rolling_moment),
-            (load - tz - spring + jack) / m_u - k.gravity, lat_rate, lon_rate,
+            (load - spring + jack) / m_u - k.gravity, lat_rate, lon_rate,
             link_x + wheel_x, link_y + wheel_y, f_z, mx1 + mx2, my1 + my2, mz1 + mz2, link_x, link_y,
             tz - load * R[2][2])
 
