@@ -97,19 +97,22 @@ def _grounded(vehicle, height):
       that roll couples with the lateral and yaw motion (the roll mode 41 % off FullCar's at 20 m/s:
       compared with LateralYawRoll instead);
     * the anti-dive and anti-squat lines (slope f h / L; 0 in the shipped files) and the drag's
-      pitch moment (drag times h_s).
+      pitch moment (drag times h_s);
+    * the drive force against the drag, whose pitch moment has the CG's height above the road as
+      its lever, which heave, pitch and the road under the wheels change (the tires' forces act at
+      the contact points on the road): without drag no drive force is needed.
 
     The roll centres stay (on the ground in the file); no roll steer, no camber gains.
     """
     m = vehicle.mass
-    return vehicle.replace(mass__sprung_cg_height=height,
+    return vehicle.replace(mass__sprung_cg_height=height, aero__drag_coefficient=0.0,
                            mass__cg_height=(m.sprung_mass * height + m.unsprung_mass * 0.5 * height) / m.mass)
 
 
 @pytest.mark.parametrize("height", [1e-4, 1e-7])
 def test_full_car_is_the_full_vehicle_with_its_cg_on_the_ground(sedan, linear_tires, height):
-    """Straight running at 20 m/s (drag, wheel spin and the drive torque that holds the speed all
-    there) linearized: with the CG heights going to zero (:func:`_grounded`) all seven FullCar
+    """Straight running at 20 m/s (wheel spin there; no drag, so no drive force: see :func:`_grounded`)
+    linearized: with the CG heights going to zero (:func:`_grounded`) all seven FullCar
     modes -- heave, pitch, roll and the four wheel hops -- and the frequency responses from each
     road input to heave acceleration, pitch, roll and suspension travel converge on FullCar's in
     proportion to the height: to 1e-6 at 0.1 um. What is left at 0.1 um is the linearization's
@@ -242,8 +245,15 @@ def test_steady_cornering_lateral_load_transfer_per_axle(sedan, linear_tires):
 
 @pytest.mark.parametrize("anti_dive", [0.0, 0.5])
 def test_straight_braking_load_transfer_and_pitch(sedan, linear_tires, anti_dive):
-    """0.5 g braking (quasi-steady, drag off): the front axle gains m a_x h / L, and the body pitches
-    by the spring and tire deflections under the load changes less the anti-dive linkage force."""
+    """0.5 g braking (quasi-steady, drag off): the front axle gains m a_x h / L plus what the pitch
+    and the wheels' spin add, the loads still carry the weight, and the body pitches by the spring
+    and tire deflections under the load changes less the anti-dive linkage force.
+
+    The two additions (each ~2 % of the transfer here): the body pitched by theta moves the sprung CG
+    fore-aft over the wheel centres, which lie z_w below it in the body (suspension travel along
+    body z), by z_w theta: the sprung weight's moment -m_s g z_w theta; the four wheels decelerate
+    at a_x / R_e, and their spin angular momentum takes the moment -4 I_w a_x / R_e (Wong, *Theory
+    of Ground Vehicles*, 4th ed., 2008, sec. 3.1.1, the rotating parts' inertia in braking)."""
     vehicle = sedan.replace(aero__drag_coefficient=0.0, suspension__front_anti_dive=anti_dive)
     model = FullVehicle(vehicle, *linear_tires(vehicle))
     ax = -0.5 * GRAVITY
@@ -252,7 +262,12 @@ def test_straight_braking_load_transfer_and_pitch(sedan, linear_tires, anti_dive
     static = model.static_loads()
     delta = {s: y[f"normal_load{s}"] - static[f"normal_load{s}"] for s in CORNERS}
     m, L, h = vehicle.mass.mass, vehicle.wheelbase, vehicle.mass.cg_height
-    assert delta["_front_left"] + delta["_front_right"] == pytest.approx(-m * ax * h / L, rel=0.01)
+    pitch, t = y["pitch_angle"], vehicle.tires
+    transfer = (-m * ax * h - vehicle.mass.sprung_mass * GRAVITY * (vehicle.mass.sprung_cg_height - model.unsprung_cg_height) * pitch
+                - 4 * t.wheel_spin_inertia * ax / t.rolling_radius) / L
+    assert delta["_front_left"] + delta["_front_right"] == pytest.approx(transfer, rel=0.01)
+    assert -(delta["_rear_left"] + delta["_rear_right"]) == pytest.approx(transfer, rel=0.015)
+    assert sum(delta.values()) == pytest.approx(0.0, abs=2e-3 * m * GRAVITY)  # no lift from the braking forces
     assert y["longitudinal_acceleration"] == pytest.approx(ax, rel=1e-9)
     # pitch from the deflections: spring force change = load change - linkage force (anti-dive, front)
     s, kt = vehicle.suspension, vehicle.tires.vertical_stiffness
@@ -352,3 +367,21 @@ def test_crosswind_gains_are_the_bicycle_s(sedan, linear_tires, speed):
     grounded = _grounded(sedan, 1e-6)
     model = FullVehicle(grounded, *linear_tires(grounded), tire_lag=False)
     np.testing.assert_allclose(_steady_wind_gains(model, speed), _bicycle_wind_gains(grounded, speed), rtol=1e-6)
+
+
+@pytest.mark.parametrize("ay", [2.0, 6.0])
+def test_tire_loads_carry_the_weight_in_a_steady_turn(sedan, ay):
+    """Magic Formula tires, 0.2 and 0.6 g at 22 m/s (body rolled 2 and 6 deg): the tires' side forces
+    lie in the road plane, so the four normal loads carry the weight less the aero lift whatever the
+    roll (applied along the rolled body's y axis they would lift the car by sum F_y sin(phi): 5.8 %
+    of the weight at 0.6 g: 10.10 kN against 10.73 kN)."""
+    model = FullVehicle(sedan)
+    x0, u0 = model.trim(22.0, lateral_acceleration=ay)
+    y = dict(zip(model.output_names, model.output(0.0, x0, u0)))
+    assert abs(y["roll_angle"]) > np.radians(1.5) * ay / 2.0
+    loads = sum(y[f"normal_load{s}"] for s in CORNERS)
+    a = sedan.aero
+    lift = 0.5 * a.air_density * a.frontal_area * (a.front_lift_coefficient + a.rear_lift_coefficient) * x0[0] ** 2
+    # to second order in the roll: the wheels travel along the body's z axis, taken as vertical
+    # (W (1 - cos phi) = 0.5 % at 0.1 rad)
+    assert loads == pytest.approx(sedan.mass.mass * GRAVITY - lift, rel=5e-3)

@@ -58,7 +58,7 @@ for _module, _names in ((body, ("cross", "_dot6", "body_accelerations")),
                         (corner, ("suspension_travel", "suspension_forces", "normal_load", "jacking_force", "camber")),
                         (steering, ("corner_steer_angles",)), (driveline, ("wheel_acceleration",)),
                         (aero, ("aero_forces",)),
-                        (assembly, ("ground_point", "_corner", "_column", "_total", "evaluate", "derivatives",
+                        (assembly, ("ground_point", "_road_plane_force", "_corner", "_column", "_total", "evaluate", "derivatives",
                                     "outputs"))):
     for _name in _names:
         register_jitable(**_JIT)(getattr(_module, _name))

@@ -184,8 +184,12 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
         xp, tires, c, k, load, vx, vy, omega, lateral_deflection, longitudinal_deflection, lat_rate, lon_rate,
         k.lateral_relaxation_length[c], k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction,
         k.peak_tan_slip_angle[c] * friction, 0.0 * u)
-    tx, ty = fx * cd - fy * sd, fx * sd + fy * cd
-    # force the contact passes to the body (x, y) and the linkage's vertical force on the body
+    # the tire's forces lie in the road plane (ISO-W): along the wheel heading projected on the road
+    # and its normal there, in body axes; n = R[2] is the earth's z (down) in body axes. Applied
+    # along the rolled/pitched body's x-y plane instead, they would lift the car by sum F_y sin(roll)
+    tx, ty, tz = _road_plane_force(xp, R, cd, sd, fx, fy)
+    # force the contact passes to the body (x, y) and the linkage's vertical force on the body; the
+    # linkage passes the road-plane force whole (its body-z part tz too), the spring the load
     link_x, link_y = tx - load * R[2][0], ty - load * R[2][1]
     jack = corner.jacking_force(k, c, link_x, link_y)
     # the wheel's velocity-dependent x-y inertia and its gravity, at the wheel centre
@@ -195,14 +199,37 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
     cx, cy, _cz = body.cross(p, q, r, ox, oy, oz)
     wheel_x = m_u * (k.gravity * R[2][0] - cx - 2.0 * q * travel_rate)
     wheel_y = m_u * (k.gravity * R[2][1] - cy + 2.0 * p * travel_rate)
-    f_z = jack - spring
-    mx1, my1, mz1 = body.cross(x_c, y_c, h, link_x, link_y, f_z)
+    f_z = jack - spring + tz
+    # the contact point lies on the road: its body z below the sprung CG changes as the body rolls,
+    # pitches and heaves (road height i[10 + c] up, CG displacement s[11] down); the road-plane
+    # forces act there, which with tz at the wheel gives their moment the CG's height over the road
+    zeta = (h - i[10 + c] - s[11] - R[2][0] * x_c - R[2][1] * y_c) / R[2][2]
+    mx1, my1, mz1 = body.cross(x_c, y_c, zeta, link_x, link_y, f_z)
     mx2, my2, mz2 = body.cross(x_c, y_c, zw, wheel_x, wheel_y, 0.0 * u)
     return (load, alpha, kappa, fx, fy,
             driveline.wheel_acceleration(xp, k, omega, i[2 + c], i[6 + c], fx, rolling_moment),
             (load - spring + jack) / m_u - k.gravity, lat_rate, lon_rate,
             link_x + wheel_x, link_y + wheel_y, f_z, mx1 + mx2, my1 + my2, mz1 + mz2, link_x, link_y,
-            -load * R[2][2])
+            tz - load * R[2][2])
+
+
+def _road_plane_force(xp, R, cd, sd, fx, fy):
+    """Body-axis components (x, y, z) [N] of a tire's longitudinal and lateral forces ``fx``, ``fy``
+    (SAE wheel axes) that lie in the road plane.
+
+    The wheel heading d = (cos delta, sin delta, 0) (body axes, steer angle delta) projected on the
+    road plane, h = (d - (d.n) n) / |d - (d.n) n|, and the road-plane lateral axis l = n x h, with
+    n = (R20, R21, R22) the earth's z axis (down) in body axes (R body-to-earth). With the body
+    level, h = d and l = (-sin delta, cos delta, 0). (Pacejka, *Tire and Vehicle Dynamics*, 3rd ed.,
+    2012, sec. 2.2: the tire's force components in the road plane, the normal load along the road
+    normal.)
+    """
+    n0, n1, n2 = R[2][0], R[2][1], R[2][2]
+    dn = cd * n0 + sd * n1
+    scale = 1.0 / xp.sqrt(1.0 - dn * dn)
+    hx, hy, hz = (cd - dn * n0) * scale, (sd - dn * n1) * scale, -dn * n2 * scale
+    lx, ly, lz = n1 * hz - n2 * hy, n2 * hx - n0 * hz, n0 * hy - n1 * hx
+    return fx * hx + fy * lx, fx * hy + fy * ly, fx * hz + fy * lz
 
 
 def _column(corners, j):

@@ -20,9 +20,13 @@ Modelling choices (where the full vehicle differs from the models below it)
   the ground makes no slip; ``wheel_speed`` is the spin relative to the carrier (the tread speed
   omega R_e), and the spin inertia's share of the body's pitch acceleration, I_w dq/dt, is
   neglected (I_w / (m_s h_s^2) ~ 0.5 %).
-* Suspension forces act along the body z axis, tire loads along the vertical; angles are small
-  in the force projections of the unsprung masses (their vertical equation uses the tire load
-  itself, not its body-z component).
+* Suspension forces act along the body z axis, tire loads along the vertical; the tires'
+  longitudinal and lateral forces lie in the road plane (ISO-W: along the wheel heading projected
+  on the road and its normal there) and reach the body through the linkage at the contact point on
+  the road, whose height below the CG changes with heave, roll, pitch and the road under the wheel.
+  So in a steady turn or in braking the four tire loads carry the weight (to second order in the
+  angles: 0.27 % at 0.1 rad of roll). Angles are small in the force projections of the unsprung
+  masses (their vertical equation uses the tire load itself, not its body-z component).
 * The roll centres and anti-pitch lines are fixed in the body (no migration with travel).
 
 What it reduces to
@@ -31,7 +35,8 @@ Every coupling the full vehicle adds to the ride model :class:`vehdyn.ride.FullC
 CG's height above the contact points as its lever: gravity's moment on the pitched or rolled body
 (m_s g h_s), the unsprung masses' fore-aft and sideways inertia (m_u (h_s - h_u)^2), the wheels'
 spin and the tires' longitudinal and lateral slip as the contact points move by h_s theta, h_s phi,
-the anti-pitch lines (slope f h / L) and the drag's pitch moment. A vehicle with its CG heights
+the anti-pitch lines (slope f h / L) and the drag's pitch moment; and the drive force against the
+drag, whose lever is the CG's height above the road (so the reduction holds without drag). A vehicle with its CG heights
 going to zero (``mass.sprung_cg_height`` and ``mass.cg_height``; roll centres on the ground, no
 roll steer or camber gains, linear tires) is FullCar in straight running: its eigenvalues and road
 responses converge on FullCar's in proportion to the height (``tests/full_vehicle``). The sizes on

@@ -267,13 +267,13 @@ class _Context:
         return est.THRESHOLDS["load_transfer_gain"] * est.lateral_load_transfer_deficit(
             self.drive.vehicle, a_y, slips, self.scene.tire)
 
-    def _side_force_tilt(self) -> float:
-        """:func:`estimates.side_force_tilt_deficit` at the linear probe's peak lateral acceleration, times its gain."""
+    def _roll_rung_share(self) -> float:
+        """``roll_rung_gain`` times :func:`estimates.lateral_acceleration_share` at the linear probe's peak a_y."""
         probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
         if probe is None or "lateral_acceleration" not in probe:
             return float("nan")
         a_y = float(np.max(np.abs(probe["lateral_acceleration"])))
-        return est.THRESHOLDS["side_force_tilt_gain"] * est.side_force_tilt_deficit(self.drive.vehicle, a_y)
+        return est.THRESHOLDS["roll_rung_gain"] * est.lateral_acceleration_share(self.drive.vehicle, a_y)
 
     def _lift(self) -> float:
         """Tire tension of the most complete linear ride probe (:func:`estimates.tire_lift`)."""
@@ -362,10 +362,10 @@ class _Context:
             k = est.THRESHOLDS["handling_reduction_floor"] if d.handling_input else 0.0
             note = f"pitch, heave and wheel motion ~{k:.1e}" if k else ""
             if k and not rung.rung.linear and "roll" in rung.rung.phenomena(rung.setup):
-                # a nonlinear rung with roll: the full vehicle's tire loads short by its tilted side forces
-                tilt = self._side_force_tilt()
-                k += tilt
-                note += f", tilted side forces ~{tilt:.1e}"
+                # a nonlinear rung with roll: what its roll degree of freedom leaves out grows with a_y
+                extra = self._roll_rung_share()
+                k += extra
+                note += f", roll beyond one degree of freedom ~{extra:.1e}"
             return k, note
         if p == "pitch":
             k = est.THRESHOLDS["dynamic_index_gain"] * est.dynamic_index_coupling(d.vehicle) ** 2
