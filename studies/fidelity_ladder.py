@@ -73,8 +73,8 @@ def run(study: Study) -> None:
                "slow circle to the limit the single track with the quasi-static lateral load transfer "
                "(SingleTrack+LLT: the tire law at each wheel's load) is, and in the lane change at 100 km/h the "
                "single track with a roll degree of freedom (SingleTrack+roll: the roll moment sets the dynamic "
-               "lateral load transfer); the transient limit manoeuvres (the full vehicle's tire loads miss "
-               "sum(F_y) sin(phi) of the weight, which a cheaper model does not share) and braking in a turn (the "
+               "lateral load transfer); the transient limit manoeuvres (the roll rung is 1.5-2.4 % off there, too "
+               "close to the tolerance for its estimate) and braking in a turn (the "
                "inner rear wheel locks: per-wheel spin) need the full vehicle; on the rough roads and in the "
                "pothole, where the wheels lift, the full car whose tires lift off, slip and spin up in the "
                "air (FullCar+lift) is within it.")

@@ -63,6 +63,22 @@ def _quick(args) -> bool:
     return bool(args.quick) or _quick_from_env()
 
 
+def _default_jobs() -> int:
+    import os
+
+    return max(1, min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1))
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"jobs must be a whole number >= 1, got {text!r}")
+    return value
+
+
 def cmd_report(args) -> int:
     from .report import build_report, discover_studies
 
@@ -87,7 +103,7 @@ def cmd_report(args) -> int:
         sys.stderr.write(_progress(i, n, name))
         sys.stderr.flush()
 
-    index, outcomes = build_report(paths, args.out, quick=quick, progress=progress)
+    index, outcomes = build_report(paths, args.out, quick=quick, progress=progress, jobs=args.jobs)
     sys.stderr.write(_progress(len(paths), len(paths), "done") + "\n")
     failed = [o for o in outcomes if o.error]
     print(f"\nvehdyn report: {len(outcomes)} studies in {time.perf_counter() - start:.1f} s -> {index}")
@@ -261,6 +277,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--full", action="store_true",
                    help="also the heavy series (complete FMVSS 126 series on the full vehicle, ...; or VEHDYN_FULL=1)")
     p.add_argument("--only", nargs="+", metavar="NAME", help="run only these studies")
+    p.add_argument("--jobs", type=_positive_int, default=_default_jobs(), metavar="N",
+                   help="studies run at the same time in N processes (default: the cores, at most 4)")
     p.add_argument("--studies", default=None, help=argparse.SUPPRESS)
     p.set_defaults(func=cmd_report)
     p = sub.add_parser("study", help="run one study")

@@ -249,8 +249,38 @@ def write_report(outcomes: list[StudyOutcome], out_dir: str | Path, *, quick: bo
     return atomic_write_text(out_dir / "index.html", "\n".join(parts) + "\n")
 
 
+def _run_studies(paths, stage: Path, quick: bool, progress, jobs: int) -> list[StudyOutcome]:
+    """The outcomes of ``paths`` in their order: one after another, or on ``jobs`` processes."""
+    if jobs <= 1 or len(paths) <= 1:
+        outcomes = []
+        for i, path in enumerate(paths):
+            if progress is not None:
+                progress(i, len(paths), Path(path).stem)
+            outcomes.append(run_study(path, stage, quick=quick))
+        return outcomes
+    import concurrent.futures
+    import multiprocessing
+
+    # spawned workers (no forked copies of the parent's state); each imports vehdyn once and runs
+    # whole studies, the page keeps the studies' order
+    pool = concurrent.futures.ProcessPoolExecutor(max_workers=min(jobs, len(paths)),
+                                                  mp_context=multiprocessing.get_context("spawn"))
+    try:
+        futures = {pool.submit(run_study, path, stage, quick): Path(path).stem for path in paths}
+        for done, future in enumerate(concurrent.futures.as_completed(futures)):
+            if progress is not None:
+                progress(done + 1, len(paths), futures[future])
+        outcomes = [future.result() for future in futures]
+    except BaseException:
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown()
+    return outcomes
+
+
 def build_report(paths, out_dir: str | Path, *, quick: bool = False,
-                 progress: Callable[[int, int, str], None] | None = None) -> tuple[Path, list[StudyOutcome]]:
+                 progress: Callable[[int, int, str], None] | None = None,
+                 jobs: int = 1) -> tuple[Path, list[StudyOutcome]]:
     """Run studies and publish their report as the folder ``out_dir``, all or nothing.
 
     The studies run into a hidden sibling folder ``.NAME.partial-*`` (same file system); when every
@@ -272,7 +302,11 @@ def build_report(paths, out_dir: str | Path, *, quick: bool = False,
     quick : bool
         Small grids.
     progress : callable, optional
-        ``progress(i, n, name)`` before study ``i`` of ``n`` starts.
+        ``progress(i, n, name)`` before study ``i`` of ``n`` starts (with ``jobs`` > 1: after the
+        ``i``-th study to finish, ``name``).
+    jobs : int
+        Processes that run studies at the same time (default 1: one after another in this
+        process). Each study runs whole in one process; the page lists them in the given order.
 
     Returns
     -------
@@ -287,6 +321,8 @@ def build_report(paths, out_dir: str | Path, *, quick: bool = False,
     VehdynError
         If the finished report cannot replace ``out_dir`` (the message says where it was kept).
     """
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise ParameterError(f"jobs must be a whole number >= 1, got {jobs!r}", key="jobs", value=jobs)
     out = _report_folder(out_dir)
     _remove_abandoned(out)
     try:
@@ -297,11 +333,7 @@ def build_report(paths, out_dir: str | Path, *, quick: bool = False,
                              value=str(out_dir)) from None
     try:
         _keep_permissions(out, stage, default=0o777)  # mkdtemp makes 0700
-        outcomes = []
-        for i, path in enumerate(paths):
-            if progress is not None:
-                progress(i, len(paths), Path(path).stem)
-            outcomes.append(run_study(path, stage, quick=quick))
+        outcomes = _run_studies(list(paths), stage, quick, progress, jobs)
         write_report(outcomes, stage, quick=quick)
     except BaseException:
         shutil.rmtree(stage, ignore_errors=True)

@@ -427,3 +427,20 @@ def test_full_flag_reaches_studies_and_quick_wins(tmp_path, monkeypatch):
     from vehdyn.cli import build_parser
 
     assert build_parser().parse_args(["report", "--full"]).full
+
+
+def test_report_on_two_processes_equals_the_sequential_report(tmp_path):
+    studies = _studies(tmp_path / "v1", "one", figure=True, extra={"gamma": "raise ValueError('bad grid')"})
+    paths = discover_studies(studies)
+    _, sequential = build_report(paths, tmp_path / "a")
+    seen = []
+    _, parallel = build_report(paths, tmp_path / "b", jobs=2, progress=lambda i, n, name: seen.append((i, n, name)))
+    assert [o.name for o in parallel] == [o.name for o in sequential] == [p.stem for p in paths]
+    assert [o.items for o in parallel] == [o.items for o in sequential]
+    assert [bool(o.error) for o in parallel] == [bool(o.error) for o in sequential] and "bad grid" in parallel[-1].error
+    assert sorted(name for _, _, name in seen) == sorted(p.stem for p in paths) and seen[-1][0] == len(paths)
+    assert sorted(f.name for f in (tmp_path / "b").rglob("*")) == sorted(f.name for f in (tmp_path / "a").rglob("*"))
+    with pytest.raises(ParameterError, match="jobs"):
+        build_report(paths, tmp_path / "c", jobs=0)
+    with pytest.raises(SystemExit):
+        main(["report", "--studies", str(studies), "--out", str(tmp_path / "d"), "--jobs", "0"])
