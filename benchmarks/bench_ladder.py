@@ -41,7 +41,7 @@ def main(vehicles, repeat: int = 3, only=None) -> None:
 
     print(f"vehdyn {vehdyn.__version__}, Python {platform.python_version()}, {platform.machine()}; "
           f"rungs: {[r.name for r in vehdyn.scene.rungs()]}")
-    start = time.perf_counter()
+    began = time.perf_counter()
     matrix, goals, calibration, costs = [], [], [], []
     for name_v in vehicles:
         for name, scene in standard_scenes(name_v).items():
@@ -55,7 +55,7 @@ def main(vehicles, repeat: int = 3, only=None) -> None:
                           "within_tolerance": bool(planned["error"] <= scene.tolerance),
                           "cost_ratio": planned["wall_time_s"] / reference["wall_time_s"],
                           "cost_goal": bool(planned["wall_time_s"] <= 0.1 * reference["wall_time_s"])})
-            print(f"{name_v} {name}: {time.perf_counter() - start:.0f} s", file=sys.stderr, flush=True)
+            print(f"{name_v} {name}: {time.perf_counter() - began:.0f} s", file=sys.stderr, flush=True)
             for _, row in frame.iterrows():
                 matrix.append({"vehicle": name_v, "scene": name, "rung": row["rung"] + (" *" if row["planned"] else ""),
                                "wall_time_s": row["wall_time_s"], "error": row["error"],
@@ -103,7 +103,7 @@ def main(vehicles, repeat: int = 3, only=None) -> None:
         fits.append({"rung": rung, "start_s": start, "per_s": rate, "scenes": duration.size})
     print("\n3c. wall time = start + rate * duration, least squares over the scenes (START_COST_S and the rate)")
     print(pd.DataFrame(fits).to_string(index=False, float_format=lambda v: f"{v:.2e}"))
-    print(f"\ntotal {time.perf_counter() - start:.1f} s")
+    print(f"\ntotal {time.perf_counter() - began:.1f} s")
 
 
 if __name__ == "__main__":
