@@ -161,7 +161,9 @@ THRESHOLDS = {
     # the sine with dwell above the tolerance (the van's is 2.4 % off) and the lane change within it
     "roll_rung_gain": 0.028,
     # the largest steady lateral acceleration of the full vehicle / (mu g): the circle to the limit,
-    # bench_ladder: 0.70 (sedan, 6.41 m/s^2); the linear probe's a_y beyond it is capped there
+    # bench_ladder: 0.70 (sedan, 6.41 m/s^2, measured before the full vehicle's tire forces went into
+    # the road plane; roll_rung_gain above is calibrated with this cap); the linear probe's a_y
+    # beyond it is capped there
     "steady_limit_fraction": 0.7,
     # floor of every estimate: integration error of the references (rtol 1e-8, exact linear)
     "numerical_error": 1e-6,

@@ -256,10 +256,15 @@ class _Context:
         sa, sb = _signals(self.probes[a], ra.outputs), _signals(self.probes[b], rb.outputs)
         return est.relative_errors(sa, sb)
 
+    @property
+    def _linear_probe(self):
+        """The linear bicycle's probe run (with tire lag where it ran), or None."""
+        return next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
+
     def _lateral_load_transfer(self) -> float:
         """Side-force deficit of the lateral load transfer (:func:`estimates.lateral_load_transfer_deficit`)
         at the linear probe's peak lateral acceleration and slip angles, times its gain."""
-        probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
+        probe = self._linear_probe
         if probe is None or "front_slip_angle" not in probe:
             return float("nan")
         slips = [np.max(np.abs(probe["front_slip_angle"])), np.max(np.abs(probe["rear_slip_angle"]))]
@@ -269,7 +274,7 @@ class _Context:
 
     def _roll_rung_share(self) -> float:
         """``roll_rung_gain`` times :func:`estimates.lateral_acceleration_share` at the linear probe's peak a_y."""
-        probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
+        probe = self._linear_probe
         if probe is None or "lateral_acceleration" not in probe:
             return float("nan")
         a_y = float(np.max(np.abs(probe["lateral_acceleration"])))
@@ -285,7 +290,7 @@ class _Context:
 
     def _saturation(self) -> float:
         vehicle = self.drive.vehicle
-        probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
+        probe = self._linear_probe
         if probe is not None and "front_slip_angle" in probe:
             slips = [np.max(np.abs(probe["front_slip_angle"])), np.max(np.abs(probe["rear_slip_angle"]))]
         elif not self.drive.handling_input:
@@ -326,7 +331,7 @@ class _Context:
         if p in ("longitudinal", "aero", "load_transfer"):
             if d.longitudinal:
                 return float("nan"), f"{p} needed"
-            probe = next((self.probes[n] for n in ("LinearBicycle+lag", "LinearBicycle") if n in self.probes), None)
+            probe = self._linear_probe
             if probe is None or "lateral_velocity" not in probe:
                 return 0.0, ""
             du = est.speed_change(probe, d.vehicle, self.scene.speed)
