@@ -349,7 +349,7 @@ def rollover(study: Study) -> None:
     markers = dict(zip(VEHICLES, "osD"))
     for i, name in enumerate(VEHICLES):
         sub = frame[frame.vehicle == name].sort_values("SSF")
-        ax.plot(sub.SSF, sub.quasi_static_threshold, ":", color=f"C{i}", lw=1.0,
+        ax.plot(sub.SSF, sub.quasi_static_threshold, ":+", color=f"C{i}", lw=1.0, ms=8,
                 label=f"{name}: quasi-static, body roll")
         lifted = sub[~sub.ay_at_lift.isna()]
         ax.plot(lifted.SSF, lifted.ay_at_lift, markers[name], color=f"C{i}", label=f"{name}: fishhook, two wheels lift")

@@ -583,11 +583,15 @@ def plot_ladder(frame, *, ax=None, title: str | None = None, error_floor: float 
         _, ax = plt.subplots(figsize=(6.0, 4.0))
     err = np.maximum(frame["error"].to_numpy(dtype=float), error_floor)
     cost = frame["wall_time_s"].to_numpy(dtype=float)
+    # named: the planned rung, the reference and the rungs no other beats in both cost and error
+    # (the speed-against-error frontier); the others are unnamed points, so names do not pile up
+    dominated = [bool(np.any((cost <= c) & (err <= e) & ((cost < c) | (err < e)))) for c, e in zip(cost, err)]
     for k, (c, e) in enumerate(zip(cost, err)):
         planned, ref = bool(frame["planned"].iloc[k]), bool(frame["reference"].iloc[k])
         ax.plot(c, e, "o", ms=9 if planned else 6, mfc="none" if ref and not planned else None,
-                color="C3" if planned else "C0")
-        ax.annotate(frame["rung"].iloc[k], (c, e), textcoords="offset points", xytext=(4, 4), fontsize=7)
+                color="C3" if planned else "C0" if not dominated[k] else "0.6")
+        if planned or ref or not dominated[k]:
+            ax.annotate(frame["rung"].iloc[k], (c, e), textcoords="offset points", xytext=(4, 4), fontsize=7)
     tol = frame.attrs.get("tolerance")
     if tol is not None:
         ax.axhline(tol, color="k", ls="--", lw=0.8, label=f"tolerance {tol:g}")
