@@ -138,9 +138,12 @@ Longitudinal input, two modes:
 The equations are written once, as pure functions over an ``xp`` namespace, in
 :mod:`~vehdyn.handling.single_track_equations`: :meth:`SingleTrack.rhs` and ``output`` run them on
 numpy arrays (with a batch axis), and :meth:`SingleTrack.compiled_rhs` compiles them with numba
-(optional: ``pip install vehdyn[fast]``) for ``simulate(model, t, inputs, method="RK45" or
-"DOP853")``, which uses the compiled backend by default (``backend="auto"``) for one vehicle
-with Magic Formula or linear tires (brush, Fiala and Dugoff laws and batch models run on numpy).
+(optional: ``pip install vehdyn[fast]``) for ``simulate(model, t, inputs, method="RK45",
+"DOP853" or "BDF")``, which uses the compiled backend by default (``backend="auto"``) for one vehicle
+with Magic Formula or linear tires (brush, Fiala and Dugoff laws run on numpy). With tire lag at
+speed the relaxation modes (-|V_x| / sigma, ~ -55 1/s at 100 km/h) hold the explicit methods at
+their stability limit; ``"BDF"`` takes the steps the tolerance asks for (fewer rhs calls at equal
+error: ``benchmarks/bench_sweep.py``).
 Give steer inputs as the closed-form signals of :mod:`~vehdyn.handling.maneuvers` to have them
 evaluated exactly inside the compiled steps (see :mod:`vehdyn._compiled_ode`).
 """
