@@ -236,9 +236,10 @@ class FullVehicle(Model):
         lateral = tuple(s if s > 0 else 1.0 for s in lateral)
         longitudinal = SingleTrack._longitudinal_lengths(vehicle, tires, longitudinal_relaxation_length, lateral,
                                                          self.gravity)
-        self._mirrored = tuple(SingleTrack._needs_mirror(tires[axle], load)
-                               for axle, load in zip(_AXLES, self.static_tire_loads[::2]))
-        peaks = [SingleTrack._peak_slips(tires[axle], load) for axle, load in zip(_AXLES, self.static_tire_loads[::2])]
+        characteristics = [SingleTrack._tire_characteristics(tires[axle], load)
+                           for axle, load in zip(_AXLES, self.static_tire_loads[::2])]
+        self._mirrored = tuple(value[0] for value in characteristics)
+        peaks = [value[1] for value in characteristics]
         self._tire_constants = dict(
             lateral_relaxation_length=(lateral[0],) * 2 + (lateral[1],) * 2,
             longitudinal_relaxation_length=(longitudinal[0],) * 2 + (longitudinal[1],) * 2,

@@ -441,8 +441,9 @@ class SingleTrack(Model):
             wind_side_force_factor=wind_side_force_factor(vehicle),
             centre_of_pressure=centre_of_pressure_ahead_of_cg(vehicle)))
         static = self.parameters.static_axle_loads()
-        self._mirrored = {axle: self._needs_mirror(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
-        self._peak_slip = {axle: self._peak_slips(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
+        characteristics = {axle: self._tire_characteristics(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
+        self._mirrored = {axle: value[0] for axle, value in characteristics.items()}
+        self._peak_slip = {axle: value[1] for axle, value in characteristics.items()}
         if self.lateral_load_transfer:
             self._transfer_coefficients()  # a vehicle whose body would roll over: error here
         self._declare_signals()
@@ -681,20 +682,29 @@ class SingleTrack(Model):
         return abs(float(f.fy)) > 1e-9 * max(float(load), 1.0)
 
     @staticmethod
-    def _peak_slips(tire, load):
-        """(slip ratio, tan slip angle) [-] at which the law's pure-slip force peaks at ``load``.
+    def _tire_characteristics(tire, load):
+        """(:meth:`_needs_mirror`, peak slips) of ``tire`` at ``load`` [N] from one call of the law
+        (its slip-ratio sweep, slip-angle sweep and zero-slip point side by side: a numpy law's
+        call costs its overhead, not its points).
 
+        The peak slips: (slip ratio, tan slip angle) [-] at which the law's pure-slip force peaks.
         The tire deflection cannot grow beyond what the peak force needs: past it the contact patch
         slides (Pacejka 2012, sec. 7.2 and 8.2; Rill, *Road Vehicle Dynamics*, 2012, sec. 3.10).
         A law without a peak (linear) gives slip ratio 1 and slip angle 80 degrees.
         """
-        kappa = np.linspace(0.0, 1.0, 401)
-        alpha = np.linspace(0.0, np.radians(80.0), 401)
-        fx = np.abs(np.asarray(tire.forces(np.full(kappa.size, float(load)), kappa, 0.0 * kappa, 0.0, 20.0).fx))
-        fy = np.abs(np.asarray(tire.forces(np.full(alpha.size, float(load)), 0.0 * alpha, alpha, 0.0, 20.0).fy))
-        kx = kappa[np.argmax(fx >= (1 - 1e-9) * fx.max())]
-        ay = alpha[np.argmax(fy >= (1 - 1e-9) * fy.max())]
-        return max(float(kx), 0.01), max(float(np.tan(ay)), 0.01)
+        grid = np.linspace(0.0, 1.0, 401)
+        angles = np.linspace(0.0, np.radians(80.0), 401)
+        zeros = np.zeros(grid.size + angles.size + 1)
+        kappa, alpha = zeros.copy(), zeros.copy()
+        kappa[:grid.size] = grid
+        alpha[grid.size:-1] = angles
+        f = tire.forces(np.full(zeros.size, float(load)), kappa, alpha, 0.0, 20.0)
+        fx = np.abs(np.asarray(f.fx)[:grid.size])
+        fy = np.abs(np.asarray(f.fy)[grid.size:-1])
+        mirrored = abs(float(np.asarray(f.fy)[-1])) > 1e-9 * max(float(load), 1.0)
+        kx = grid[np.argmax(fx >= (1 - 1e-9) * fx.max())]
+        ay = angles[np.argmax(fy >= (1 - 1e-9) * fy.max())]
+        return mirrored, (max(float(kx), 0.01), max(float(np.tan(ay)), 0.01))
 
     def compiled_rhs(self):
         """The rhs compiled by numba for ``simulate(..., backend="compiled")`` (see :meth:`vehdyn.Model.compiled_rhs`).
