@@ -168,7 +168,7 @@ def shared_step_runs(design, block=16, rtol=1e-8):
     return np.array(peaks)
 
 
-def scene_sweep(design, batched):
+def scene_sweep(design, batched, solver=None):
     """Peak yaw rates of the same variants as ``vehdyn.sweep`` of a Scene (mass by its dotted name)."""
     import pandas as pd
 
@@ -181,7 +181,7 @@ def scene_sweep(design, batched):
     table = pd.DataFrame({"vehicle.mass.mass": mass,  # the unsprung masses kept: the sprung mass takes the change
                           "vehicle.mass.sprung_mass": mass - (BASE.mass.mass - BASE.mass.sprung_mass)})
     out = run_table(scene, table, metrics=["peak_yaw_rate"], chunk_size=len(table) if batched else 1,
-                    progress=False, model="SingleTrack")
+                    progress=False, model="SingleTrack", solver=solver)
     return out["peak_yaw_rate"].to_numpy()
 
 
@@ -331,11 +331,18 @@ def main(n: int = 10_000) -> None:
     # --- vehdyn.sweep of a Scene: one variant at a time (before) and batched (after)
     scene_set = design.iloc[: max(len(ref), 40)]
     scene_sweep(scene_set.iloc[:2], batched=True)
-    for batched in (False, True):
+    scene_sweep(scene_set.iloc[:2], batched=True, solver={"method": "BDF", "rtol": 1e-5})
+    for batched, solver in ((False, None), (True, None), (True, {"method": "BDF", "rtol": 1e-5})):
         start = time.perf_counter()
-        scene_sweep(scene_set, batched=batched)
-        rows.append((f"vehdyn.sweep of a Scene, {'batched' if batched else 'one at a time'} (linear tires)",
-                     len(scene_set), len(scene_set) / (time.perf_counter() - start), np.nan))
+        peaks = scene_sweep(scene_set, batched=batched, solver=solver)
+        wall = time.perf_counter() - start
+        if solver is None:
+            tight = peaks
+        label = f"vehdyn.sweep of a Scene, {'batched' if batched else 'one at a time'} (linear tires)"
+        if solver is not None:
+            label += ", solver BDF rtol 1e-5 (diff to its RK45 1e-8)"
+        rows.append((label, len(scene_set), len(scene_set) / wall,
+                     np.nan if solver is None else np.max(np.abs(peaks / tight - 1))))
 
     # --- process pool and Dask through vehdyn.sweep, per-variant compiled runs, 125 variants per task, in turn
     pool_set = design.iloc[: max(1000, n // 10)]
