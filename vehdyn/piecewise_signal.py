@@ -15,6 +15,8 @@ formula both use (written over an ``xp`` namespace, see :mod:`vehdyn.tire._mf_op
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .errors import ParameterError
@@ -54,6 +56,21 @@ class PiecewiseSignal:
         if np.any(table[1:, 0] < table[:-1, 1]):
             raise ParameterError("pieces overlap", key="pieces", value=table)
         self.pieces = np.ascontiguousarray(table)
+        self._rows = tuple(tuple(float(v) for v in row) for row in table)  # for value_at: plain floats
+
+    def value_at(self, t: float, t_ref: float | None = None) -> float:
+        """The value at one instant ``t`` [s], a float (the numpy solvers' per-stage call, without
+        the array overhead of calling the signal).
+
+        With ``t_ref`` the piece is the one active at ``t_ref`` (zero if none), its formula evaluated
+        at ``t``: between two breakpoints the signal is one smooth formula, which a step ending on
+        the next breakpoint must see up to its end (the compiled backend's rule, too).
+        """
+        ref = t if t_ref is None else t_ref
+        for piece in self._rows:
+            if piece[0] <= ref < piece[1]:
+                return piece_value(math, piece, t)
+        return 0.0
 
     @property
     def breakpoints(self) -> np.ndarray:
