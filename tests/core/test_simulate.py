@@ -242,7 +242,7 @@ def piecewise_rate():
 def test_piecewise_signal_is_integrated_exactly_between_samples_on_numpy(method, rtol, error):
     # the numpy solvers evaluate a closed-form input at every stage and stop on its breakpoints, as
     # the compiled backend does (they used to sample it on the output grid and interpolate: an
-    # error of 0.13 here, whatever the tolerance)
+    # error of 0.09 here, whatever the tolerance)
     signal, integral = piecewise_rate()
     t = np.linspace(0.0, 3.0, 7)  # coarse grid: samples of the signal would not do
     result = simulate(INTEGRATOR, t, {"rate": signal}, method=method, rtol=rtol, atol=rtol * 1e-2, backend="numpy")
