@@ -4,14 +4,18 @@ Methods
 -------
 ``"exact"``
     For a :class:`~vehdyn.LinearModel`: the exact discretization of dx/dt = A x + B u for inputs
-    held constant (``hold="zoh"``) or linear (``hold="foh"``) between samples, through one matrix
+    held constant (``hold="zoh"``) or linear (``hold="foh"``) between samples (a
+    :class:`~vehdyn.PiecewiseSignal` too is sampled here: its sines between samples are not exact
+    unless the grid resolves them; a ``solve_ivp`` method evaluates it exactly), through one matrix
     exponential per distinct step size (Franklin, Powell & Workman, *Digital Control of Dynamic
     Systems*, 3rd ed., sec. 4.3 and 6.3.2). The recurrence x[k+1] = Ad x[k] + g[k] is evaluated as a
     parallel prefix scan: log2(N) array passes of ``c[d:] += Ad^d c[:-d]`` instead of N Python
     iterations.
 any ``scipy.integrate.solve_ivp`` method
     ``"RK45"``, ``"RK23"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"`` with ``rtol``, ``atol``
-    and ``max_step``; sampled inputs are interpolated with the same hold. The explicit ones
+    and ``max_step``; sampled inputs are interpolated with the same hold; closed-form inputs
+    (:class:`~vehdyn.PiecewiseSignal`) are evaluated exactly at every stage and the run is restarted
+    on their breakpoints, so that no step straddles a kink (as on the compiled backend). The explicit ones
     (``"RK23"``, ``"RK45"``, ``"DOP853"``) are judged for stiffness: the step their stability allows,
     :func:`stability_interval` / max |Re lambda| of the state Jacobian, gives the number of steps
     the run needs whatever the tolerance; above ``STIFF_STEPS_WARN`` (1e5) a
@@ -22,7 +26,8 @@ any ``scipy.integrate.solve_ivp`` method
     runs never pay for a Jacobian.
 ``"rk4"``
     Classical fixed-step Runge-Kutta on the time grid (optionally ``substeps`` per interval),
-    vectorized across a trailing batch axis. Before it starts it checks the step against the
+    vectorized across a trailing batch axis; a PiecewiseSignal is evaluated at every stage (a kink
+    between steps is stepped over: the fixed step sets the error there). Before it starts it checks the step against the
     model's fastest eigenvalue at the initial point and refuses a step outside RK4's stability
     region.
 ``"auto"``
@@ -716,12 +721,20 @@ def simulate(
     inputs : None, mapping, array_like or callable
         ``None`` (all inputs zero); ``{name: value}`` with each value a number, an array of shape
         (n_times,) or (n_times, n_batch) -- time first; a (n_times,) signal next to batched ones is
-        shared by every member -- or a callable ``u(t)`` returning one value (or n_batch values)
-        per instant (omitted inputs are zero); an array of shape (n_inputs, n_times) or
-        (n_inputs, n_times, n_batch); or a callable ``u(t)`` returning the input vector (n_inputs,)
-        per instant, or (n_inputs, n_times) when called with the whole grid. Every value must be a
-        finite number: other shapes, strings and non-finite samples (callables included) raise
+        shared by every member --, a :class:`~vehdyn.PiecewiseSignal` (closed form, e.g. the
+        manoeuvres of :mod:`vehdyn.handling.maneuvers`) or another callable ``u(t)`` returning one
+        value (or n_batch values) per instant (omitted inputs are zero); an array of shape
+        (n_inputs, n_times) or (n_inputs, n_times, n_batch); or a callable ``u(t)`` returning the
+        input vector (n_inputs,) per instant, or (n_inputs, n_times) when called with the whole grid
+        (a PiecewiseSignal alone for a one-input model is that input). Every value must be a finite
+        number: other shapes, strings and non-finite samples (callables included) raise
         ParameterError naming the input, the instant and, in a batch, the member.
+
+        A PiecewiseSignal is evaluated exactly at every stage of the adaptive methods and rk4, on
+        both backends (method ``"exact"`` samples it). Any other callable is *sampled on the time
+        grid* and then held between samples as ``hold`` says, like an array, on both backends (the
+        compiled loop cannot call Python): its result is as fine as the grid; give a closed-form
+        input as a PiecewiseSignal, or a grid that resolves it.
     x0 : None, mapping or array_like
         Initial state (zeros by default); shape (n_states,) or (n_states, n_batch) for a batch.
         Batch sizes of ``x0`` and ``inputs`` must agree; a batch of 1 on either side is shared.
@@ -730,8 +743,9 @@ def simulate(
     rtol, atol : float
         Tolerances of the adaptive methods.
     hold : {"foh", "zoh"}
-        How sampled inputs vary between samples: linearly (default, as ``scipy.signal.lsim`` and
-        ``control.forced_response``) or held constant.
+        How sampled inputs (arrays, and callables other than a PiecewiseSignal) vary between
+        samples: linearly (default, as ``scipy.signal.lsim`` and ``control.forced_response``) or
+        held constant.
     max_step, first_step : float, optional
         Passed to ``solve_ivp`` and the compiled backend [s]; both positive (``max_step`` may be
         ``inf``), ``first_step`` at most the span of ``time``.
