@@ -673,7 +673,21 @@ class SingleTrack(Model):
 
     @staticmethod
     def _needs_mirror(tire, load) -> bool:
-        """True when ``tire`` makes a lateral force at zero slip (at the static load, 20 m/s)."""
+        """True when ``tire`` makes a lateral force at zero slip (at the static load, 20 m/s).
+
+        Notes
+        -----
+        Which wheel then gets the mirror image is not decided here: every model mirrors the LEFT
+        wheel and takes the law as the right tire's (:meth:`wheel_pair_law_loads`,
+        ``FullVehicle.corner_law_loads``, their compiled forms, ``LateralYawRollLag``'s ply-steer
+        coefficient). That is the ``.tir`` convention only for files with ``TYRESIDE = 'RIGHT'``
+        (or none): ``TYRESIDE`` names the side the tire was mounted on when measured, and a tire
+        used on the other side is the mirror image. For a ``'LEFT'`` file (the shipped
+        mf_185_80R14.tir) the mirrored wheel should be the right one; at equal wheel loads the
+        axle force is the same either way, under a lateral load transfer the ply-steer part of
+        it changes sign (about 0.15 % of the sedan's steady yaw rate at 6 m/s^2 with
+        ``lateral_load_transfer=True``).
+        """
         f = tire.forces(float(load), 0.0, 0.0, 0.0, 20.0)
         return abs(float(f.fy)) > 1e-9 * max(float(load), 1.0)
 
