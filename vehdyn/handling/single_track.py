@@ -438,7 +438,9 @@ class SingleTrack(Model):
             wind_side_force_factor=wind_side_force_factor(vehicle),
             centre_of_pressure=centre_of_pressure_ahead_of_cg(vehicle)))
         static = self.parameters.static_axle_loads()
-        self._mirrored = {axle: self._needs_mirror(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
+        self._mirrored_wheels = {axle: self._mirrored_wheel(tires[axle], 0.5 * load)
+                                 for axle, load in zip(_AXLES, static)}
+        self._mirrored = {axle: wheel is not None for axle, wheel in self._mirrored_wheels.items()}
         self._peak_slip = {axle: self._peak_slips(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
         if self.lateral_load_transfer:
             self._transfer_coefficients()  # a vehicle whose body would roll over: error here
@@ -607,6 +609,8 @@ class SingleTrack(Model):
             brake_regularization_speed=self.brake_regularization_speed,
             front_peak_slip_ratio=self._peak_slip["front"][0], front_peak_tan_slip_angle=self._peak_slip["front"][1],
             rear_peak_slip_ratio=self._peak_slip["rear"][0], rear_peak_tan_slip_angle=self._peak_slip["rear"][1],
+            front_mirror_right=float(self._mirrored_wheels["front"] == "right"),
+            rear_mirror_right=float(self._mirrored_wheels["rear"] == "right"),
             wheel_spin=self.wheel_spin, tire_lag=self.tire_lag)
 
     def _evaluate(self, x, u):
@@ -654,11 +658,13 @@ class SingleTrack(Model):
         return 2.0 * f.fx, 2.0 * f.fy, 2.0 * f.my
 
     def wheel_pair_law_loads(self, axle, left_load, right_load, kappa, alpha, vx):
-        """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N].
+        """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N],
+        the left one the law's mirror image when the law has ply steer (see :meth:`axle_law_loads`):
+        (F_x, -F_y, M_y) of the law at -alpha; the right one the law's own.
 
-        The left tire is the law's mirror image when the law has ply steer (see
-        :meth:`axle_law_loads`): (F_x, -F_y, M_y) of the law at -alpha; the right tire is the law's
-        own, as in :meth:`vehdyn.full_vehicle.FullVehicle.corner_law_loads`."""
+        Where the law is a left tire (:meth:`_mirrored_wheel`: ``TYRESIDE = 'LEFT'``),
+        :func:`~vehdyn.handling.single_track_equations.wheel_pair_loads` passes the right wheel's
+        load first and takes its forces from the first place (the compiled form is the same)."""
         tire = self.front_tire if axle == 0 else self.rear_tire
         mirror = -1.0 if self._mirrored[_AXLES[axle]] else 1.0
         if all(np.ndim(v) == 0 for v in (left_load, right_load, kappa, alpha, vx)):
@@ -673,23 +679,31 @@ class SingleTrack(Model):
 
     @staticmethod
     def _needs_mirror(tire, load) -> bool:
-        """True when ``tire`` makes a lateral force at zero slip (at the static load, 20 m/s).
-
-        Notes
-        -----
-        Which wheel then gets the mirror image is not decided here: every model mirrors the LEFT
-        wheel and takes the law as the right tire's (:meth:`wheel_pair_law_loads`,
-        ``FullVehicle.corner_law_loads``, their compiled forms, ``LateralYawRollLag``'s ply-steer
-        coefficient). That is the ``.tir`` convention only for files with ``TYRESIDE = 'RIGHT'``
-        (or none): ``TYRESIDE`` names the side the tire was mounted on when measured, and a tire
-        used on the other side is the mirror image. For a ``'LEFT'`` file (the shipped
-        mf_185_80R14.tir) the mirrored wheel should be the right one; at equal wheel loads the
-        axle force is the same either way, under a lateral load transfer the ply-steer part of
-        it changes sign (about 0.15 % of the sedan's steady yaw rate at 6 m/s^2 with
-        ``lateral_load_transfer=True``).
-        """
+        """True when ``tire`` makes a lateral force at zero slip (at the static load, 20 m/s): one
+        wheel of an axle is then the law's mirror image (:meth:`_mirrored_wheel` says which)."""
         f = tire.forces(float(load), 0.0, 0.0, 0.0, 20.0)
         return abs(float(f.fy)) > 1e-9 * max(float(load), 1.0)
+
+    @staticmethod
+    def _mirrored_wheel(tire, load) -> str | None:
+        """The wheel of an axle that is the mirror image of ``tire``'s law: ``"left"``, ``"right"``,
+        or None when the law makes no lateral force at zero slip (:meth:`_needs_mirror`; the two
+        wheels are then the same law). Every model that tells the wheels apart decides here.
+
+        A ``.tir`` file's ``TYRESIDE`` names the side of the vehicle (or test bench) the tire was
+        mounted on when it was measured; the file's law is that wheel's, and a tire of the same
+        make on the other side is its mirror image, (F_x, -F_y, M_y) at (-alpha, -gamma) (the
+        convention of MF-Tyre and ADAMS property files; MFeval and :class:`~vehdyn.tire.MagicFormula`
+        evaluate the law as written). So a ``'LEFT'`` file (the shipped mf_185_80R14.tir) mirrors
+        the right wheel, a ``'RIGHT'`` file the left one; a law without ``TYRESIDE`` (other tire
+        laws) is taken as a right tire. At equal wheel loads the axle force is the same either way;
+        under a lateral load transfer the ply-steer part of it changes sign with the side.
+        """
+        if not SingleTrack._needs_mirror(tire, load):
+            return None
+        params = getattr(tire, "params", None)
+        side = str(params.get("TYRESIDE", "RIGHT")).strip().strip("'\"").upper() if params is not None else "RIGHT"
+        return "right" if side == "LEFT" else "left"
 
     @staticmethod
     def _peak_slips(tire, load):
