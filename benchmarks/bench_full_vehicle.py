@@ -12,7 +12,7 @@ Run: ``python benchmarks/bench_full_vehicle.py [--quick]``. Prints, from one run
 2. work-precision: wall time (best of N for the compiled runs, since the machine is shared) and max
    relative error of yaw rate, lateral velocity and roll angle (relative to their peaks) against DOP853 at rtol 1e-12,
    for the compiled backend (``simulate(..., backend="compiled")``: numba RK45/DOP853 on the
-   compiled rhs, the steer evaluated in closed form) at several tolerances, and scipy's solve_ivp
+   compiled rhs, the steer evaluated in closed form; the stiff BDF beside them) at several tolerances, and scipy's solve_ivp
    on the numpy rhs (``backend="numpy"``) beside it, with the ratio numpy/compiled at the same
    method and tolerance (measured in this run); the compiled rhs's cost per call; the goal of
    issue 12 (<= 20 ms at <= 1e-6 on one core);
@@ -188,9 +188,9 @@ def main(quick: bool = False):
           f"{grid.size} instants)")
     repeats = 5 if quick else 25
     cases = [("RK45", 1e-4, 1e-7), ("RK45", 2e-5, 5e-8), ("RK45", 1e-5, 1e-7), ("RK45", 1e-6, 1e-9),
-             ("DOP853", 1e-5, 1e-8), ("DOP853", 1e-7, 1e-10)]
+             ("DOP853", 1e-5, 1e-8), ("DOP853", 1e-7, 1e-10), ("BDF", 1e-5, 1e-8), ("BDF", 1e-6, 1e-9)]
     if quick:
-        cases = [cases[2], cases[3]]
+        cases = [cases[2], cases[3], cases[-1]]
     rows = []
     for method, rtol, atol in cases:
         best, result = float("inf"), None

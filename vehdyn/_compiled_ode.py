@@ -26,6 +26,9 @@ closed form. The step size carries over a breakpoint.
 Failures raise :class:`~vehdyn.SimulationError` with the time and the reason: a step size below
 10 ulp of t (underflow), a non-finite state or derivative, too many steps.
 
+``"BDF"``, the stiff method, is :func:`vehdyn._compiled_bdf._integrate_bdf` under the same
+contract (inputs, breakpoints, outputs, failures); :func:`integrator` picks the loop by method.
+
 The integrator is generic over the rhs: :func:`integrator` compiles one loop per compiled rhs
 (a copy of :func:`_integrate` whose global ``_rhs`` is that function), cached on disk and keyed
 on the source of every module that contributes code (editing an equation recompiles).
@@ -49,7 +52,8 @@ from .errors import ParameterError, SimulationError
 __all__ = ["METHODS", "CompiledModel", "CompiledBatch", "integrator", "input_table", "batch_input_table", "solve",
            "solve_batch", "outputs", "batch_outputs", "numba_available", "source_stamp", "compiled_copy"]
 
-METHODS = ("RK45", "DOP853")
+METHODS = ("RK45", "DOP853", "BDF")
+_METHOD_CODE = {"RK45": 0, "DOP853": 1, "BDF": 2}
 
 CompiledModel = namedtuple("CompiledModel", ("rhs", "output", "key", "args"))
 CompiledModel.__doc__ = """What :meth:`vehdyn.Model.compiled_rhs` returns: numba-compiled ``rhs(t, x, u, args, dxdt)``
@@ -189,6 +193,46 @@ def _stage_state(y, K, weights, count, h, out):
         out[j] = y[j] + h * acc
 
 
+def _initial_step_probe(y, f, rtol, atol, span, scale, probe):
+    """First half of scipy's ``select_initial_step`` (Hairer, Norsett & Wanner 1993, sec. II.4):
+    the trial step h0 (returned), the error weights into ``scale`` and the Euler probe
+    ``y + h0 f`` into ``probe``, where the caller evaluates the rhs."""
+    n = y.shape[0]
+    for j in range(n):
+        scale[j] = atol[j] + abs(y[j]) * rtol
+    d0 = 0.0
+    d1 = 0.0
+    for j in range(n):
+        d0 += (y[j] / scale[j]) ** 2
+        d1 += (f[j] / scale[j]) ** 2
+    d0 = math.sqrt(d0 / n)
+    d1 = math.sqrt(d1 / n)
+    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+    h0 = min(h0, span)
+    for j in range(n):
+        probe[j] = y[j] + h0 * f[j]
+    return h0
+
+
+def _initial_step_size(y, f, f_probe, rtol, atol, h0, order, span, max_step, scale):
+    """Second half of scipy's ``select_initial_step``: the first step from the rhs ``f_probe`` at the
+    probe of :func:`_initial_step_probe` for an error estimator of order ``order``."""
+    n = y.shape[0]
+    d1 = 0.0
+    for j in range(n):
+        d1 += (f[j] / scale[j]) ** 2
+    d1 = math.sqrt(d1 / n)
+    d2 = 0.0
+    for j in range(n):
+        d2 += ((f_probe[j] - f[j]) / scale[j]) ** 2
+    d2 = math.sqrt(d2 / n) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
+    return min(100 * h0, h1, span, max_step)
+
+
 def _rms(v):
     total = 0.0
     for x in v:
@@ -248,31 +292,11 @@ def _integrate(t_eval, y0, args, kinds, values, pieces, rows, breakpoints, metho
     if first_step > 0:
         h_abs = first_step
     else:
-        for j in range(n):
-            scale[j] = atol[j] + abs(y[j]) * rtol
-        d0 = 0.0
-        d1 = 0.0
-        for j in range(n):
-            d0 += (y[j] / scale[j]) ** 2
-            d1 += (f[j] / scale[j]) ** 2
-        d0 = math.sqrt(d0 / n)
-        d1 = math.sqrt(d1 / n)
-        h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
-        h0 = min(h0, t_final - t)
-        for j in range(n):
-            stage_y[j] = y[j] + h0 * f[j]
+        h0 = _initial_step_probe(y, f, rtol, atol, t_final - t, scale, stage_y)
         _inputs_at(t + h0, t_ref, k_ref, t_eval, kinds, values, pieces, rows, u)
         _rhs(t + h0, stage_y, u, args, f_new)
         nfev += 1
-        d2 = 0.0
-        for j in range(n):
-            d2 += ((f_new[j] - f[j]) / scale[j]) ** 2
-        d2 = math.sqrt(d2 / n) / h0
-        if d1 <= 1e-15 and d2 <= 1e-15:
-            h1 = max(1e-6, h0 * 1e-3)
-        else:
-            h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
-        h_abs = min(100 * h0, h1, t_final - t, max_step)
+        h_abs = _initial_step_size(y, f, f_new, rtol, atol, h0, order, t_final - t, max_step, scale)
     while t < t_final:
         min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
         if h_abs > max_step:
@@ -455,6 +479,8 @@ def _setup():
     for name, value in _tableaus().items():
         globals()[name.upper()] = value
     register_jitable(_rms)
+    register_jitable(_initial_step_probe)
+    register_jitable(_initial_step_size)
     register_jitable(_stage_state)
     register_jitable(_inputs_at)
     register_jitable(_sample_interval)
@@ -488,9 +514,9 @@ def compiled_copy(python, name, *, nogil=False, **functions):
 
 @functools.lru_cache(maxsize=None)
 def _stamp():
-    from . import piecewise_signal
+    from . import _compiled_bdf, piecewise_signal
 
-    return source_stamp(sys.modules[__name__], piecewise_signal)
+    return source_stamp(sys.modules[__name__], piecewise_signal, _compiled_bdf)
 
 
 def outputs(model: CompiledModel, n_outputs: int, t, x, u):
@@ -502,13 +528,20 @@ def outputs(model: CompiledModel, n_outputs: int, t, x, u):
     return y.T
 
 
-def integrator(rhs, key: str):
-    """The loop :func:`_integrate` compiled for the compiled ``rhs(t, y, u, args, dydt)``.
+def integrator(rhs, key: str, method: str = "RK45"):
+    """The loop of ``method`` compiled for the compiled ``rhs(t, y, u, args, dydt)``:
+    :func:`_integrate` (the explicit pairs) or :func:`vehdyn._compiled_bdf._integrate_bdf`, with
+    one signature.
 
     ``key`` names the rhs and the source it is compiled from (it becomes part of the cached
     function's name, so that a changed source never loads a stale cache).
     """
     _setup()
+    if method == "BDF":
+        from . import _compiled_bdf
+
+        _compiled_bdf.setup()
+        return compiled_copy(_compiled_bdf._integrate_bdf, f"_integrate_bdf_{key}_{_stamp()}", _rhs=rhs)
     return compiled_copy(_integrate, f"_integrate_{key}_{_stamp()}", _rhs=rhs)
 
 
@@ -522,12 +555,12 @@ def solve(rhs, key, args, t, y0, inputs_table, method="RK45", rtol=1e-6, atol=1e
     """
     y0 = np.ascontiguousarray(y0, dtype=float)
     rtol, atol_vec = _check_options(method, rtol, atol, y0.shape, first_step, max_step)
-    loop = integrator(rhs, key)
+    loop = integrator(rhs, key, method)
     y = np.empty((y0.size, t.size))
     kinds, values, pieces, rows, breakpoints = inputs_table
     status, t_stop, nfev, accepted, rejected = loop(
         np.ascontiguousarray(t, dtype=float), y0, args, kinds, values, pieces, rows, breakpoints,
-        1 if method == "DOP853" else 0, rtol, atol_vec, 0.0 if first_step is None else float(first_step),
+        _METHOD_CODE[method], rtol, atol_vec, 0.0 if first_step is None else float(first_step),
         np.inf if max_step is None else float(max_step), int(max_steps), y)
     if status != 0:
         error = SimulationError(status_message(method, (status, t_stop)), time=float(t_stop))
@@ -618,13 +651,14 @@ def solve_batch(model: CompiledBatch, t, y0, inputs_table, method="RK45", rtol=1
     if values.ndim == 2:  # inputs shared by every variant
         values = values[None]
     _setup()
-    one = integrator(model.rhs, model.key)
-    loop = compiled_copy(_integrate_batch, f"_integrate_batch_{model.key}_{_stamp()}", nogil=True,
+    one = integrator(model.rhs, model.key, method)
+    loop = compiled_copy(_integrate_batch, f"_integrate_batch_{'bdf_' if method == 'BDF' else ''}{model.key}_{_stamp()}",
+                         nogil=True,
                          _integrate_one=one, _pick=model.pick)
     y = np.empty((y0.shape[0], y0.shape[1], t.size))
     report = np.zeros((y0.shape[0], 5))
     _in_threads(loop, y0.shape[0], threads, np.ascontiguousarray(t, dtype=float), y0, model.batch, kinds, values,
-                pieces, rows, breakpoints, 1 if method == "DOP853" else 0, rtol, atol_vec,
+                pieces, rows, breakpoints, _METHOD_CODE[method], rtol, atol_vec,
                 0.0 if first_step is None else float(first_step), np.inf if max_step is None else float(max_step),
                 int(max_steps), y, report)
     return y, report

@@ -19,7 +19,8 @@
     Sweep a scene's parameters (:func:`vehdyn.sweep`) with a progress bar; print a summary of the
     metrics and write the table chunk by chunk. Options: ``[--grid NAME=START:STOP:COUNT ...]
     [--samples N --vary NAME=LAW:ARGS ...] [--metric NAME ...] [--out results.parquet [--resume]]
-    [--processes | --scheduler ADDRESS]``.
+    [--processes | --scheduler ADDRESS] [--method METHOD] [--rtol RTOL]`` (``--method``/``--rtol``:
+    the solver of every variant instead of the rung's own).
 
 Exit status: 0 on success; 1 if a study failed (its traceback is in the report and on stderr); 2 for
 a usage error - an unknown study, a missing or unreadable input file, an output folder that is a
@@ -250,9 +251,10 @@ def cmd_sweep(args) -> int:
     if bool(samples) != (args.samples is not None):
         raise ParameterError("--samples N and --vary NAME=LAW:ARGS go together", key="samples", value=args.samples)
     executor = args.scheduler or ("processes" if args.processes else None)
+    solver = {k: v for k, v in (("method", args.method), ("rtol", args.rtol)) if v is not None} or None
     table = sweep(Scene.from_toml(args.file), grid=grid or None, samples=samples or None, n=args.samples,
                   sampling=args.sampling, metrics=args.metric, executor=executor, out=args.out, resume=args.resume,
-                  seed=args.seed, progress=True)
+                  seed=args.seed, progress=True, solver=solver)
     failed = int(table["error"].notna().sum())
     metrics = [c for c in table.columns if c not in grid and c not in samples and c != "error"]
     print(f"vehdyn sweep: {len(table)} variants, {failed} failed" + (f" -> {args.out}" if args.out else ""))
@@ -319,6 +321,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0, help="seed of the draws (default 0)")
     p.add_argument("--processes", action="store_true", help="a process pool on every core")
     p.add_argument("--scheduler", metavar="ADDRESS", help="a Dask scheduler (tcp://host:8786)")
+    p.add_argument("--method", default=None, help="solver of every variant (e.g. BDF; default: the rung's own)")
+    p.add_argument("--rtol", type=float, default=None, help="its relative tolerance (atol = rtol / 100)")
     p.set_defaults(func=cmd_sweep)
     return parser
 

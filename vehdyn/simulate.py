@@ -36,13 +36,14 @@ any ``scipy.integrate.solve_ivp`` method
     its reason are in ``result.method`` and ``result.method_reason``.
 
 Backends (``backend=``): ``"numpy"`` runs the methods above on the model's ``rhs``;
-``"compiled"`` runs ``"RK45"`` and ``"DOP853"`` compiled (numba, optional) on the model's
-:meth:`~vehdyn.Model.compiled_rhs` for one vehicle (:mod:`vehdyn._compiled_ode`), and a batch
+``"compiled"`` runs ``"RK45"``, ``"DOP853"`` (:mod:`vehdyn._compiled_ode`) and ``"BDF"`` (the
+stiff one, :mod:`vehdyn._compiled_bdf`: scipy's BDF with a difference Jacobian of the compiled
+rhs) compiled (numba, optional) on the model's :meth:`~vehdyn.Model.compiled_rhs` for one vehicle, and a batch
 (array parameters, or a batch of initial states or inputs) of a model with a compiled batch
 (:meth:`SingleTrack.compiled_batch <vehdyn.handling.SingleTrack.compiled_batch>`): every variant
 integrated by the same loop with its own step-size control, so that it gets bitwise the states of
 its own compiled run, the variants spread over the cores; ``"auto"`` (default) takes the compiled
-one when the method is one of those two, numba is installed and the model has a compiled rhs (and,
+one when the method is one of those three, numba is installed and the model has a compiled rhs (and,
 for a batch, a compiled batch), and says so in ``result.method_reason``. :func:`simulate_many`
 runs many calls, grouping those of one model structure into compiled batches.
 """
@@ -1105,7 +1106,7 @@ def simulate_many(calls, *, threads=None) -> list:
     """Run many :func:`simulate` calls; those that can run as compiled batches do.
 
     Calls of models with a compiled batch (:meth:`SingleTrack.compiled_batch_of
-    <vehdyn.handling.SingleTrack.compiled_batch_of>`), an explicit ``"RK45"`` or ``"DOP853"``, the
+    <vehdyn.handling.SingleTrack.compiled_batch_of>`), an explicit ``"RK45"``, ``"DOP853"`` or ``"BDF"``, the
     same time grid, options and input layout (constants and sampled inputs with the same
     breakpoints, the same piecewise signals) are grouped; each group is one compiled batch
     (:func:`vehdyn._compiled_ode.solve_batch`) in which every variant keeps its own step-size

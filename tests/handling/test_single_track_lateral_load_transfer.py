@@ -206,5 +206,5 @@ def test_tyreside_names_the_unmirrored_wheel_and_the_ply_steer_sign_follows(tire
     assert ply["LEFT"][0] != 0.0
     # a law without ply steer: no wheel is mirrored
     linear = LinearTire(cornering_stiffness=50e3)
-    assert SingleTrack._mirrored_wheel(linear, 3000.0) is None
+    assert SingleTrack._mirrored_wheel(linear, SingleTrack._needs_mirror(linear, 3000.0)) is None
     assert SingleTrack(SEDAN, linear, linear)._mirrored == {"front": False, "rear": False}

@@ -48,6 +48,7 @@ def test_cli_writes_the_library_table(scene_file, tmp_path, capsys):
     (["--samples", "4"], "go together"),
     (["--samples", "4", "--vary", "speed=gauss:1:2"], "scipy.stats law"),
     (["--grid", "speed=10,20", "--metric", "peak_yaw"], "unknown metric"),
+    (["--grid", "speed=10,20", "--method", "Euler"], "solver method 'Euler'"),
 ])
 def test_cli_user_errors_are_one_line(scene_file, capsys, extra, word):
     assert main(["sweep", str(scene_file), *extra]) == 2

@@ -102,3 +102,38 @@ def test_batched_chunk_is_bitwise_the_one_at_a_time_runs(scene):
     result = vehdyn.simulate_many([simulation_call(setup.run)])[0]
     assert "batch of 1" in result.method_reason
     assert simulation_call(lambda: 1.0) is None and simulation_call(print) is None
+
+
+def test_solver_options_replace_the_rungs_own_in_every_variant(scene):
+    """``solver=`` changes the method and tolerance of each variant's simulate call (a round trip:
+    the sweep's metric = a direct simulate of the rung with those options, bitwise) and costs
+    the metric only the solver's error (against the rung's own tight RK45)."""
+    import numpy as np
+
+    from vehdyn.sweep.targets import SceneTarget, simulation_call
+
+    grid = {"vehicle.mass.mass": [1450.0, 1600.0]}
+    tight = vehdyn.sweep(scene, grid=grid, metrics=["peak_yaw_rate"], model="SingleTrack", progress=False)
+    loose = vehdyn.sweep(scene, grid=grid, metrics=["peak_yaw_rate"], model="SingleTrack", progress=False,
+                         solver={"method": "BDF", "rtol": 1e-5})
+    target = SceneTarget(scene, "SingleTrack", {"method": "BDF", "rtol": 1e-5})
+    _, setup = target._prepare({"vehicle.mass.mass": 1600.0}, [vehdyn.sweep.metrics.metric("peak_yaw_rate",
+                                                                                            target.units)])
+    args, kwargs = simulation_call(setup.run)
+    kwargs.update(method="BDF", rtol=1e-5, atol=1e-7)
+    direct = vehdyn.simulate(*args, **kwargs)
+    assert "compiled BDF" in direct.message
+    assert loose["peak_yaw_rate"].iloc[1] == np.max(np.abs(direct["yaw_rate"]))
+    assert np.allclose(loose["peak_yaw_rate"], tight["peak_yaw_rate"], rtol=1e-4)
+    assert not np.array_equal(loose["peak_yaw_rate"], tight["peak_yaw_rate"])
+
+
+@pytest.mark.parametrize("solver, match", [({"tolerance": 1e-5}, "tolerance"), ({"method": "Euler"}, "Euler"),
+                                           ({"rtol": -1.0}, "rtol"), ("BDF", "mapping")])
+def test_bad_solver_options_are_named(scene, solver, match):
+    with pytest.raises(vehdyn.ParameterError, match=match) as info:
+        vehdyn.sweep(scene, grid={"speed": [20.0]}, model="SingleTrack", progress=False, solver=solver)
+    assert info.value.key == "solver"
+    with pytest.raises(vehdyn.ParameterError, match="Scene") as info:
+        vehdyn.sweep(lambda speed: {"v": speed}, grid={"speed": [20.0]}, progress=False, solver={"rtol": 1e-5})
+    assert info.value.key == "solver"

@@ -236,10 +236,11 @@ class FullVehicle(Model):
         lateral = tuple(s if s > 0 else 1.0 for s in lateral)
         longitudinal = SingleTrack._longitudinal_lengths(vehicle, tires, longitudinal_relaxation_length, lateral,
                                                          self.gravity)
-        wheels = [SingleTrack._mirrored_wheel(tires[axle], load)
-                  for axle, load in zip(_AXLES, self.static_tire_loads[::2])]
-        self._mirrored = tuple(wheel is not None for wheel in wheels)
-        peaks = [SingleTrack._peak_slips(tires[axle], load) for axle, load in zip(_AXLES, self.static_tire_loads[::2])]
+        characteristics = [SingleTrack._tire_characteristics(tires[axle], load)
+                           for axle, load in zip(_AXLES, self.static_tire_loads[::2])]
+        self._mirrored = tuple(value[0] for value in characteristics)
+        wheels = [SingleTrack._mirrored_wheel(tires[axle], value[0]) for axle, value in zip(_AXLES, characteristics)]
+        peaks = [value[1] for value in characteristics]
         self._tire_constants = dict(
             mirror_image=tuple(float(wheel == side) for wheel in wheels for side in ("left", "right")),
             lateral_relaxation_length=(lateral[0],) * 2 + (lateral[1],) * 2,

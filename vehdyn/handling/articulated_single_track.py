@@ -198,11 +198,10 @@ class ArticulatedSingleTrack(Model):
         # the trailer's k_w with the towing vehicle's air density (vehdyn.handling.crosswind)
         self._trailer_wind_factor = trailer_wind_side_force_factor(trailer, vehicle.aero.air_density)
         half_load = 0.5 * trailer.static_axle_load(self.gravity)
-        mirrored = SingleTrack._needs_mirror(trailer_tire, half_load)
+        mirrored, self._trailer_peak = SingleTrack._tire_characteristics(trailer_tire, half_load)
         # SingleTrack.axle_law_forces applied to the trailer tire (its "front" axle)
         self._trailer_axle = types.SimpleNamespace(front_tire=trailer_tire, rear_tire=trailer_tire,
                                                    _mirrored={"front": mirrored, "rear": mirrored})
-        self._trailer_peak = SingleTrack._peak_slips(trailer_tire, half_load)
         self._declare_signals()
 
     # ------------------------------------------------------------------ signals

@@ -132,7 +132,8 @@ def _axle_law(tire, axle_load, kappa=0.0):
     stiffness = abs(fy[0] - fy[1]) / step  # two tires: 2 |dF_y/d alpha|
     # 2 dF_y0/dF_z with the left wheel mirrored (SAE: the ISO-W axle force -F_y0(F + d) + F_y0(F - d)
     # flipped); the opposite sign where the law is a left tire and the right wheel is mirrored
-    ply = {"left": 1.0, "right": -1.0, None: 0.0}[SingleTrack._mirrored_wheel(tire, load)] * (fy[2] - fy[3]) / dz
+    side = SingleTrack._mirrored_wheel(tire, SingleTrack._needs_mirror(tire, load))
+    ply = {"left": 1.0, "right": -1.0, None: 0.0}[side] * (fy[2] - fy[3]) / dz
     rolling = (my[2] - my[3]) / (2.0 * dz)  # dM_y/dF_z of one tire [m]
     return stiffness, ply, rolling
 

@@ -138,9 +138,12 @@ Longitudinal input, two modes:
 The equations are written once, as pure functions over an ``xp`` namespace, in
 :mod:`~vehdyn.handling.single_track_equations`: :meth:`SingleTrack.rhs` and ``output`` run them on
 numpy arrays (with a batch axis), and :meth:`SingleTrack.compiled_rhs` compiles them with numba
-(optional: ``pip install vehdyn[fast]``) for ``simulate(model, t, inputs, method="RK45" or
-"DOP853")``, which uses the compiled backend by default (``backend="auto"``) for one vehicle
-with Magic Formula or linear tires (brush, Fiala and Dugoff laws and batch models run on numpy).
+(optional: ``pip install vehdyn[fast]``) for ``simulate(model, t, inputs, method="RK45",
+"DOP853" or "BDF")``, which uses the compiled backend by default (``backend="auto"``) for one vehicle
+with Magic Formula or linear tires (brush, Fiala and Dugoff laws run on numpy). With tire lag at
+speed the relaxation modes (-|V_x| / sigma, ~ -55 1/s at 100 km/h) hold the explicit methods at
+their stability limit; ``"BDF"`` takes the steps the tolerance asks for (fewer rhs calls at equal
+error: ``benchmarks/bench_sweep.py``).
 Give steer inputs as the closed-form signals of :mod:`~vehdyn.handling.maneuvers` to have them
 evaluated exactly inside the compiled steps (see :mod:`vehdyn._compiled_ode`).
 """
@@ -438,10 +441,11 @@ class SingleTrack(Model):
             wind_side_force_factor=wind_side_force_factor(vehicle),
             centre_of_pressure=centre_of_pressure_ahead_of_cg(vehicle)))
         static = self.parameters.static_axle_loads()
-        self._mirrored_wheels = {axle: self._mirrored_wheel(tires[axle], 0.5 * load)
-                                 for axle, load in zip(_AXLES, static)}
-        self._mirrored = {axle: wheel is not None for axle, wheel in self._mirrored_wheels.items()}
-        self._peak_slip = {axle: self._peak_slips(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
+        characteristics = {axle: self._tire_characteristics(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
+        self._mirrored = {axle: value[0] for axle, value in characteristics.items()}
+        self._mirrored_wheels = {axle: self._mirrored_wheel(tires[axle], value[0])
+                                 for axle, value in characteristics.items()}
+        self._peak_slip = {axle: value[1] for axle, value in characteristics.items()}
         if self.lateral_load_transfer:
             self._transfer_coefficients()  # a vehicle whose body would roll over: error here
         self._declare_signals()
@@ -685,10 +689,11 @@ class SingleTrack(Model):
         return abs(float(f.fy)) > 1e-9 * max(float(load), 1.0)
 
     @staticmethod
-    def _mirrored_wheel(tire, load) -> str | None:
+    def _mirrored_wheel(tire, has_ply_steer: bool) -> str | None:
         """The wheel of an axle that is the mirror image of ``tire``'s law: ``"left"``, ``"right"``,
-        or None when the law makes no lateral force at zero slip (:meth:`_needs_mirror`; the two
-        wheels are then the same law). Every model that tells the wheels apart decides here.
+        or None when the law makes no lateral force at zero slip (``has_ply_steer`` False, from
+        :meth:`_needs_mirror` or :meth:`_tire_characteristics`: the two wheels are then the same
+        law). Every model that tells the wheels apart decides here.
 
         A ``.tir`` file's ``TYRESIDE`` names the side of the vehicle (or test bench) the tire was
         mounted on when it was measured; the file's law is that wheel's, and a tire of the same
@@ -699,27 +704,36 @@ class SingleTrack(Model):
         laws) is taken as a right tire. At equal wheel loads the axle force is the same either way;
         under a lateral load transfer the ply-steer part of it changes sign with the side.
         """
-        if not SingleTrack._needs_mirror(tire, load):
+        if not has_ply_steer:
             return None
         params = getattr(tire, "params", None)
         side = str(params.get("TYRESIDE", "RIGHT")).strip().strip("'\"").upper() if params is not None else "RIGHT"
         return "right" if side == "LEFT" else "left"
 
     @staticmethod
-    def _peak_slips(tire, load):
-        """(slip ratio, tan slip angle) [-] at which the law's pure-slip force peaks at ``load``.
+    def _tire_characteristics(tire, load):
+        """(:meth:`_needs_mirror`, peak slips) of ``tire`` at ``load`` [N] from one call of the law
+        (its slip-ratio sweep, slip-angle sweep and zero-slip point side by side: a numpy law's
+        call costs its overhead, not its points).
 
+        The peak slips: (slip ratio, tan slip angle) [-] at which the law's pure-slip force peaks.
         The tire deflection cannot grow beyond what the peak force needs: past it the contact patch
         slides (Pacejka 2012, sec. 7.2 and 8.2; Rill, *Road Vehicle Dynamics*, 2012, sec. 3.10).
         A law without a peak (linear) gives slip ratio 1 and slip angle 80 degrees.
         """
-        kappa = np.linspace(0.0, 1.0, 401)
-        alpha = np.linspace(0.0, np.radians(80.0), 401)
-        fx = np.abs(np.asarray(tire.forces(np.full(kappa.size, float(load)), kappa, 0.0 * kappa, 0.0, 20.0).fx))
-        fy = np.abs(np.asarray(tire.forces(np.full(alpha.size, float(load)), 0.0 * alpha, alpha, 0.0, 20.0).fy))
-        kx = kappa[np.argmax(fx >= (1 - 1e-9) * fx.max())]
-        ay = alpha[np.argmax(fy >= (1 - 1e-9) * fy.max())]
-        return max(float(kx), 0.01), max(float(np.tan(ay)), 0.01)
+        grid = np.linspace(0.0, 1.0, 401)
+        angles = np.linspace(0.0, np.radians(80.0), 401)
+        zeros = np.zeros(grid.size + angles.size + 1)
+        kappa, alpha = zeros.copy(), zeros.copy()
+        kappa[:grid.size] = grid
+        alpha[grid.size:-1] = angles
+        f = tire.forces(np.full(zeros.size, float(load)), kappa, alpha, 0.0, 20.0)
+        fx = np.abs(np.asarray(f.fx)[:grid.size])
+        fy = np.abs(np.asarray(f.fy)[grid.size:-1])
+        mirrored = abs(float(np.asarray(f.fy)[-1])) > 1e-9 * max(float(load), 1.0)
+        kx = grid[np.argmax(fx >= (1 - 1e-9) * fx.max())]
+        ay = angles[np.argmax(fy >= (1 - 1e-9) * fy.max())]
+        return mirrored, (max(float(kx), 0.01), max(float(np.tan(ay)), 0.01))
 
     def compiled_rhs(self):
         """The rhs compiled by numba for ``simulate(..., backend="compiled")`` (see :meth:`vehdyn.Model.compiled_rhs`).

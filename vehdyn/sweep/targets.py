@@ -71,9 +71,13 @@ class SceneTarget:
     scene : Scene
     model : str
         ``"auto"`` or a rung name (``"SingleTrack"``, ``"LinearBicycle"``, ``"QuarterCar"`` ...).
+    solver : mapping, optional
+        ``method``, ``rtol``, ``atol`` of every variant's ``simulate`` call in place of the rung's
+        (:func:`vehdyn.sweep`); ParameterError for another key, a bad value, or a rung that does
+        not integrate with a solver (an exact linear discretization).
     """
 
-    def __init__(self, scene, model: str = "auto"):
+    def __init__(self, scene, model: str = "auto", solver=None):
         from ..scene.planner import plan
 
         self.scene = scene
@@ -81,6 +85,13 @@ class SceneTarget:
         p = plan(scene)
         row = p.chosen if model == "auto" else p.row(model)
         self.rung = row.rung.name
+        self.solver = _solver_options(solver)
+        if self.solver:
+            call = simulation_call(row.setup.run)
+            method = None if call is None else call[1].get("method")
+            if call is None or method in (None, "exact"):
+                raise ParameterError(f"solver={solver!r}: the rung {self.rung!r} does not integrate with a solver "
+                                     "(its runs are exact or not one simulate call)", key="solver", value=solver)
         self.signals = dict(row.outputs)  # scene output -> model output
         model_units = {s.name: s.unit for s in getattr(row.setup.model, "outputs", ())}
         self.units = {o: model_units.get(m, "") for o, m in self.signals.items()}
@@ -156,10 +167,23 @@ class SceneTarget:
             run.result = result
         return {m.name: float(m.function(run)) for m in wanted}
 
+    def _call(self, setup):
+        """The variant's ``simulate`` call (args, kwargs) with the sweep's solver options, or None
+        (the rung's run as it is)."""
+        call = simulation_call(setup.run)
+        if call is not None and self.solver:
+            call[1].update(self.solver)
+        return call
+
     def run(self, params: Mapping[str, Any], metric_names) -> dict[str, float]:
+        from ..simulate import simulate
+
         wanted = [_metrics.metric(n, self.units) for n in metric_names]
         run, setup = self._prepare(params, wanted)
-        return self._finish(run, None if setup is None else setup.run(), wanted)
+        if setup is None:
+            return self._finish(run, None, wanted)
+        call = self._call(setup) if self.solver else None
+        return self._finish(run, setup.run() if call is None else simulate(*call[0], **call[1]), wanted)
 
     def run_many(self, rows: list[Mapping[str, Any]], metric_names, threads=None) -> list:
         """:meth:`run` of many variants, their simulations batched by
@@ -174,7 +198,7 @@ class SceneTarget:
         for i, params in enumerate(rows):
             try:
                 run, setup = self._prepare(params, wanted)
-                call = None if setup is None else simulation_call(setup.run)
+                call = None if setup is None else self._call(setup)
                 if setup is None or call is None:
                     out[i] = self._finish(run, None if setup is None else setup.run(), wanted)
                 else:
@@ -281,15 +305,53 @@ class FunctionTarget:
                 for k in self._select(out, metric_names)}
 
 
-def as_target(target, model: str = "auto"):
-    """A :class:`SceneTarget` or :class:`FunctionTarget` for ``target``."""
+_SOLVER_KEYS = ("method", "rtol", "atol")
+
+
+def _solver_options(solver) -> dict:
+    """The validated ``solver`` options of a Scene sweep ({} for None)."""
+    if solver is None:
+        return {}
+    from ..simulate import SOLVE_IVP_METHODS
+
+    if not isinstance(solver, Mapping):
+        raise ParameterError(f"solver must be a mapping of {_SOLVER_KEYS}, got {solver!r}", key="solver",
+                             value=solver)
+    unknown = [k for k in solver if k not in _SOLVER_KEYS]
+    if unknown:
+        raise ParameterError(f"solver option {unknown[0]!r} is not one of {_SOLVER_KEYS}", key="solver",
+                             value=unknown[0])
+    options = dict(solver)
+    if "method" in options and options["method"] not in SOLVE_IVP_METHODS:
+        raise ParameterError(f"solver method {options['method']!r} is not one of {SOLVE_IVP_METHODS}",
+                             key="solver", value=options["method"])
+    for key in ("rtol", "atol"):
+        if key in options:
+            value = options[key]
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (0 < value < np.inf):
+                raise ParameterError(f"solver {key} must be a positive number, got {value!r}", key="solver",
+                                     value=value)
+            options[key] = float(value)
+    if "rtol" in options and "atol" not in options:
+        options["atol"] = 1e-2 * options["rtol"]
+    return options
+
+
+def as_target(target, model: str = "auto", solver=None):
+    """A :class:`SceneTarget` or :class:`FunctionTarget` for ``target`` (``solver``: Scene targets only)."""
     from ..scene.definition import Scene
 
     if isinstance(target, (SceneTarget, FunctionTarget)):
+        if solver is not None:
+            raise ParameterError("solver= applies when the target is a Scene (give it to SceneTarget)", key="solver",
+                                 value=solver)
         return target
     if isinstance(target, Scene):
-        return SceneTarget(target, model)
+        return SceneTarget(target, model, solver)
     if callable(target):
+        if solver is not None:
+            raise ParameterError("solver= applies to a Scene target; a function runs its own simulations",
+                                 key="solver", value=solver)
         return FunctionTarget(target)
     raise ParameterError(f"sweep target must be a Scene or a function of the parameters, got "
                          f"{type(target).__name__}", key="target", value=type(target).__name__)
