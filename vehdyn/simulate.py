@@ -14,22 +14,22 @@ Methods
 any ``scipy.integrate.solve_ivp`` method
     ``"RK45"``, ``"RK23"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"`` with ``rtol``, ``atol``
     and ``max_step``; sampled inputs are interpolated with the same hold; closed-form inputs
-    (:class:`~vehdyn.PiecewiseSignal`) are evaluated exactly at every stage and the run is restarted
-    on their breakpoints, so that no step straddles a kink (as on the compiled backend). The explicit ones
-    (``"RK23"``, ``"RK45"``, ``"DOP853"``) are judged for stiffness: the step their stability allows,
-    :func:`stability_interval` / max |Re lambda| of the state Jacobian, gives the number of steps
-    the run needs whatever the tolerance; above ``STIFF_STEPS_WARN`` (1e5) a
-    :class:`~vehdyn.VehdynWarning` says so, above ``STIFF_STEPS_REFUSE`` (1e7) a ParameterError
-    names ``method`` and the implicit methods to use instead (``check_stability=False`` runs it
-    anyway). A LinearModel is judged before the run (its eigenvalues cost microseconds); any other
-    model once the solver has made 20,000 rhs calls, and again at every doubling, so that short
-    runs never pay for a Jacobian.
+    (:class:`~vehdyn.PiecewiseSignal`) are evaluated exactly at every stage and the run is
+    restarted on their breakpoints, so that no step straddles a kink (as on the compiled backend).
+    The explicit ones (``"RK23"``, ``"RK45"``, ``"DOP853"``) are judged for stiffness: the step
+    their stability allows, :func:`stability_interval` / max |Re lambda| of the state Jacobian,
+    gives the number of steps the run needs whatever the tolerance; above ``STIFF_STEPS_WARN``
+    (1e5) a :class:`~vehdyn.VehdynWarning` says so, above ``STIFF_STEPS_REFUSE`` (1e7) a
+    ParameterError names ``method`` and the implicit methods to use instead
+    (``check_stability=False`` runs it anyway). A LinearModel is judged before the run (its
+    eigenvalues cost microseconds); any other model once the solver has made 20,000 rhs calls, and
+    again at every doubling, so that short runs never pay for a Jacobian.
 ``"rk4"``
     Classical fixed-step Runge-Kutta on the time grid (optionally ``substeps`` per interval),
     vectorized across a trailing batch axis; a PiecewiseSignal is evaluated at every stage (a kink
-    between steps is stepped over: the fixed step sets the error there). Before it starts it checks the step against the
-    model's fastest eigenvalue at the initial point and refuses a step outside RK4's stability
-    region.
+    between steps is stepped over: the fixed step sets the error there). Before it starts it checks
+    the step against the model's fastest eigenvalue at the initial point and refuses a step outside
+    RK4's stability region.
 ``"auto"``
     ``"exact"`` for a linear model; otherwise ``"LSODA"`` when the linearization at the initial
     point is stiff over the run, ``"DOP853"`` when ``rtol < 1e-8``, else ``"RK45"``. The choice and
