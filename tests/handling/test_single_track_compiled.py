@@ -107,17 +107,17 @@ def test_manoeuvre_signal_in_closed_form_equals_the_steer_computed_inside_the_rh
 
 
 @pytest.mark.parametrize("steer", [step_steer(np.radians(3.0), start=0.503, rise_time=0.15),
-                                   sine_with_dwell(np.radians(3.0), frequency=1.0, dwell=0.3, start=0.105)],
+                                   sine_with_dwell(np.radians(3.0), frequency=1.5, dwell=0.2, start=0.105)],
                          ids=["step_steer", "sine_with_dwell"])
 def test_manoeuvre_signals_on_both_backends_equal_solve_ivp_with_the_exact_steer(steer):
     # kinks between the samples of a coarse grid: both backends evaluate the steer at every stage
-    # and end steps on its breakpoints (the numpy one used to sample it: 3 % off here); the reference
+    # and end steps on its breakpoints (the numpy one used to sample it: 3-5 % off here); the reference
     # is scipy's solve_ivp on the rhs with the steer computed inside, restarted at each breakpoint
     from scipy.integrate import solve_ivp
 
     model = MODELS[("magic_formula", False, True)]
     drag = float(model.parameters.drag_factor) * 20.0**2
-    t = np.linspace(0.0, 2.0, 21)
+    t = np.linspace(0.0, 1.4, 15)
 
     def rhs(tt, x, t_ref):  # the documented formula of the piece active on the segment from t_ref
         delta = 0.0
@@ -126,7 +126,7 @@ def test_manoeuvre_signals_on_both_backends_equal_solve_ivp_with_the_exact_steer
                 delta = offset + slope * (tt - start) + amplitude * np.sin(omega * (tt - start) + phase)
         return model.rhs(tt, x, model.input_vector(front_steer_angle=delta, rear_longitudinal_force=drag))
 
-    edges = np.concatenate([[0.0], steer.breakpoints[steer.breakpoints < 2.0], [2.0]])
+    edges = np.concatenate([[0.0], steer.breakpoints[steer.breakpoints < t[-1]], [t[-1]]])
     reference, x = np.empty((model.n_states, t.size)), model.straight_running(20.0)
     for a, b in zip(edges[:-1], edges[1:]):
         sol = solve_ivp(rhs, (a, b), x, method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True, args=(a,))
