@@ -7,13 +7,16 @@ A :class:`PiecewiseSignal` is a sum of pieces; piece k is active on ``start_k <=
 and zero outside. Steps, ramps, sines, dwells and their combinations (the steer inputs of
 :mod:`vehdyn.handling.maneuvers`) are such sums. The signal is a vectorized callable ``u(t)`` for
 :func:`vehdyn.simulate`; besides, its :attr:`~PiecewiseSignal.pieces` table and
-:attr:`~PiecewiseSignal.breakpoints` (where it or its derivative may jump) let the compiled
-backend (:mod:`vehdyn._compiled_ode`) evaluate it exactly at every stage of an adaptive step and
+:attr:`~PiecewiseSignal.breakpoints` (where it or its derivative may jump) let both backends --
+the compiled one (:mod:`vehdyn._compiled_ode`) and numpy's ``solve_ivp`` methods
+(:meth:`~PiecewiseSignal.value_at`) -- evaluate it exactly at every stage of an adaptive step and
 end steps on its breakpoints, instead of interpolating its samples. :func:`piece_value` is the one
-formula both use (written over an ``xp`` namespace, see :mod:`vehdyn.tire._mf_ops`).
+formula all use (written over an ``xp`` namespace, see :mod:`vehdyn.tire._mf_ops`).
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -54,6 +57,21 @@ class PiecewiseSignal:
         if np.any(table[1:, 0] < table[:-1, 1]):
             raise ParameterError("pieces overlap", key="pieces", value=table)
         self.pieces = np.ascontiguousarray(table)
+        self._rows = tuple(tuple(float(v) for v in row) for row in table)  # for value_at: plain floats
+
+    def value_at(self, t: float, t_ref: float | None = None) -> float:
+        """The value at one instant ``t`` [s], a float (the numpy solvers' per-stage call, without
+        the array overhead of calling the signal).
+
+        With ``t_ref`` the piece is the one active at ``t_ref`` (zero if none), its formula evaluated
+        at ``t``: between two breakpoints the signal is one smooth formula, which a step ending on
+        the next breakpoint must see up to its end (the compiled backend's rule, too).
+        """
+        ref = t if t_ref is None else t_ref
+        for piece in self._rows:
+            if piece[0] <= ref < piece[1]:
+                return piece_value(math, piece, t)
+        return 0.0
 
     @property
     def breakpoints(self) -> np.ndarray:

@@ -4,27 +4,32 @@ Methods
 -------
 ``"exact"``
     For a :class:`~vehdyn.LinearModel`: the exact discretization of dx/dt = A x + B u for inputs
-    held constant (``hold="zoh"``) or linear (``hold="foh"``) between samples, through one matrix
+    held constant (``hold="zoh"``) or linear (``hold="foh"``) between samples (a
+    :class:`~vehdyn.PiecewiseSignal` too is sampled here: its sines between samples are not exact
+    unless the grid resolves them; a ``solve_ivp`` method evaluates it exactly), through one matrix
     exponential per distinct step size (Franklin, Powell & Workman, *Digital Control of Dynamic
     Systems*, 3rd ed., sec. 4.3 and 6.3.2). The recurrence x[k+1] = Ad x[k] + g[k] is evaluated as a
     parallel prefix scan: log2(N) array passes of ``c[d:] += Ad^d c[:-d]`` instead of N Python
     iterations.
 any ``scipy.integrate.solve_ivp`` method
     ``"RK45"``, ``"RK23"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"`` with ``rtol``, ``atol``
-    and ``max_step``; sampled inputs are interpolated with the same hold. The explicit ones
-    (``"RK23"``, ``"RK45"``, ``"DOP853"``) are judged for stiffness: the step their stability allows,
-    :func:`stability_interval` / max |Re lambda| of the state Jacobian, gives the number of steps
-    the run needs whatever the tolerance; above ``STIFF_STEPS_WARN`` (1e5) a
-    :class:`~vehdyn.VehdynWarning` says so, above ``STIFF_STEPS_REFUSE`` (1e7) a ParameterError
-    names ``method`` and the implicit methods to use instead (``check_stability=False`` runs it
-    anyway). A LinearModel is judged before the run (its eigenvalues cost microseconds); any other
-    model once the solver has made 20,000 rhs calls, and again at every doubling, so that short
-    runs never pay for a Jacobian.
+    and ``max_step``; sampled inputs are interpolated with the same hold; closed-form inputs
+    (:class:`~vehdyn.PiecewiseSignal`) are evaluated exactly at every stage and the run is
+    restarted on their breakpoints, so that no step straddles a kink (as on the compiled backend).
+    The explicit ones (``"RK23"``, ``"RK45"``, ``"DOP853"``) are judged for stiffness: the step
+    their stability allows, :func:`stability_interval` / max |Re lambda| of the state Jacobian,
+    gives the number of steps the run needs whatever the tolerance; above ``STIFF_STEPS_WARN``
+    (1e5) a :class:`~vehdyn.VehdynWarning` says so, above ``STIFF_STEPS_REFUSE`` (1e7) a
+    ParameterError names ``method`` and the implicit methods to use instead
+    (``check_stability=False`` runs it anyway). A LinearModel is judged before the run (its
+    eigenvalues cost microseconds); any other model once the solver has made 20,000 rhs calls, and
+    again at every doubling, so that short runs never pay for a Jacobian.
 ``"rk4"``
     Classical fixed-step Runge-Kutta on the time grid (optionally ``substeps`` per interval),
-    vectorized across a trailing batch axis. Before it starts it checks the step against the
-    model's fastest eigenvalue at the initial point and refuses a step outside RK4's stability
-    region.
+    vectorized across a trailing batch axis; a PiecewiseSignal is evaluated at every stage (a kink
+    between steps is stepped over: the fixed step sets the error there). Before it starts it checks
+    the step against the model's fastest eigenvalue at the initial point and refuses a step outside
+    RK4's stability region.
 ``"auto"``
     ``"exact"`` for a linear model; otherwise ``"LSODA"`` when the linearization at the initial
     point is stiff over the run, ``"DOP853"`` when ``rtol < 1e-8``, else ``"RK45"``. The choice and
@@ -189,6 +194,54 @@ def _interpolator(t: np.ndarray, u: np.ndarray, hold: str) -> Callable[[float], 
         return (1.0 - w) * u[:, k] + w * u[:, k + 1]
 
     return u_at
+
+
+def _named_inputs(model: Model, inputs: Any) -> Any:
+    """``inputs`` with a bare :class:`~vehdyn.PiecewiseSignal` given to a one-input model named
+    (``{name: signal}``), so that both backends see it as the closed form it is."""
+    from .piecewise_signal import PiecewiseSignal
+
+    if isinstance(inputs, PiecewiseSignal) and model.n_inputs == 1:
+        return {model.input_names[0]: inputs}
+    return inputs
+
+
+def _input_function(model: Model, inputs: Any, t: np.ndarray, u: np.ndarray, hold: str):
+    """u(t) for the numpy solvers (``solve_ivp`` methods, rk4) and the breakpoints of its closed forms.
+
+    Closed-form inputs (:class:`~vehdyn.PiecewiseSignal` entries of a mapping) are evaluated exactly
+    at every stage, as the compiled backend evaluates them (:func:`vehdyn._compiled_ode.input_table`);
+    the sampled ones (arrays, numbers, other callables) between samples as ``hold`` says
+    (:func:`_interpolator`).
+
+    Returns
+    -------
+    u_at : callable
+        ``u_at(t)``; ``u_at.segment_start`` (None by default) is the start of the integration segment
+        (between two breakpoints) being integrated: a closed-form input then takes the piece active
+        there, also at the segment's end, so that no step sees the next piece.
+    breakpoints : ndarray
+        Sorted times inside (t[0], t[-1]) where a closed-form input begins a new piece [s].
+    """
+    from .piecewise_signal import PiecewiseSignal
+
+    sampled = _interpolator(t, u, hold)
+    given = inputs if isinstance(inputs, Mapping) else {}
+    exact = [(i, given[name]) for i, name in enumerate(model.input_names)
+             if isinstance(given.get(name), PiecewiseSignal)]
+    if not exact:
+        return sampled, np.zeros(0)
+
+    def u_at(tt: float) -> np.ndarray:
+        value = np.array(sampled(tt), dtype=float)  # a copy: the interpolator may return a view of u
+        tt = float(tt)
+        for i, signal in exact:
+            value[i] = signal.value_at(tt, u_at.segment_start)
+        return value
+
+    u_at.segment_start = None
+    points = np.unique(np.concatenate([signal.breakpoints for _, signal in exact]))
+    return u_at, points[(points > t[0]) & (points < t[-1])]
 
 
 # --------------------------------------------------------------------------- exact (linear)
@@ -418,9 +471,9 @@ def _state_jacobian_eigenvalues(model, t0, x0, u0) -> np.ndarray:
     return lam[0] if single else lam
 
 
-def _simulate_rk4(model, t, u, x0, hold, substeps, check_stability):
+def _simulate_rk4(model, t, u, x0, hold, substeps, check_stability, inputs=None):
     n = model.n_states
-    u_at = _interpolator(t, u, hold)
+    u_at, _ = _input_function(model, inputs, t, u, hold)  # fixed steps: a kink between samples is stepped over
     if check_stability and n > 0:
         lam = _state_jacobian_eigenvalues(model, t[0], x0, u[:, 0]).reshape(-1)
         h_max = rk4_stability_limit(lam)
@@ -517,14 +570,15 @@ def _domain_events(model, shape):
 _STIFFNESS_WATCH_CALLS = 20_000
 
 
-def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_step, watch_stiffness=False):
+def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_step, watch_stiffness=False,
+                  inputs=None):
     from scipy.integrate import solve_ivp
 
     n = model.n_states
     batch = x0.shape[1:] if x0.ndim > 1 else (u.shape[2:] if u.ndim == 3 else ())
     shape = (n,) + tuple(batch)
     x0b = np.broadcast_to(x0.reshape((n,) + x0.shape[1:] + (1,) * (len(batch) - (x0.ndim - 1))), shape)
-    u_at = _interpolator(t, u, hold)
+    u_at, breakpoints = _input_function(model, inputs, t, u, hold)
 
     def rhs(tt, y):
         return np.asarray(model.rhs(tt, y.reshape(shape), u_at(tt)), dtype=float).reshape(-1)
@@ -555,14 +609,48 @@ def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_ste
         opts["jac"] = jac
     if max_step is not None:
         opts["max_step"] = max_step
-    if first_step is not None:
-        opts["first_step"] = first_step
     events = _domain_events(model, shape)
     if events:
         opts["events"] = events
+    # one solve_ivp run per segment between the breakpoints of closed-form inputs (their kinks and
+    # jumps), as the compiled loop ends its steps on them: no step straddles a kink
+    edges = np.concatenate([[t[0]], breakpoints, [t[-1]]])
+    y = np.empty((x0b.size, t.size))
+    y_start = x0b.reshape(-1).astype(float)
+    counters = {"nfev": 0, "njev": 0, "nlu": 0, "message": ""}
+    for a, b in zip(edges[:-1], edges[1:]):
+        inside = (t >= a) & (t <= b)
+        t_eval = t[inside]
+        if t_eval.size == 0 or t_eval[-1] != b:  # the segment's end state starts the next segment
+            t_eval = np.append(t_eval, b)
+        if breakpoints.size:
+            u_at.segment_start = a
+        if a > t[0]:
+            opts.pop("first_step", None)
+        elif first_step is not None:
+            opts["first_step"] = min(first_step, b - a)
+        sol = _solve_ivp_segment(solve_ivp, fun, a, b, y_start, method, t_eval, opts, t[0])
+        if sol.status == 1:  # a terminal event: an accepted step crossed a bound of the model's domain
+            crossed = [(float(times[0]), event, values[0]) for event, times, values in
+                       zip(events, sol.t_events, sol.y_events) if len(times)]
+            t_cross, event, y_cross = min(crossed, key=lambda item: item[0])
+            name, bound = event.state
+            raise model.domain_error(name, bound, t_cross)
+        y[:, inside] = sol.y[:, :np.count_nonzero(inside)]
+        y_start = sol.y[:, -1]
+        counters.update(nfev=counters["nfev"] + int(sol.nfev), njev=counters["njev"] + int(sol.njev),
+                        nlu=counters["nlu"] + int(sol.nlu), message=str(sol.message))
+    y = y.reshape(shape + (t.size,))
+    y = np.moveaxis(y, -1, 1)
+    return y, counters
+
+
+def _solve_ivp_segment(solve_ivp, fun, a, b, y0, method, t_eval, opts, t_first):
+    """One ``solve_ivp`` run from ``a`` to ``b`` [s]; its failures as SimulationError (``t_first``:
+    the start of the whole run, for the message of a failure in the first step)."""
     try:
         with np.errstate(over="ignore", invalid="ignore"):
-            sol = solve_ivp(fun, (t[0], t[-1]), x0b.reshape(-1).astype(float), method=method, t_eval=t, **opts)
+            sol = solve_ivp(fun, (a, b), y0, method=method, t_eval=t_eval, **opts)
     except (ArithmeticError, ValueError) as exc:
         # numerical failures raised inside the solver (a LU of a non-finite Jacobian, an overflow),
         # not the user's own errors: those propagate as they are
@@ -576,17 +664,12 @@ def _simulate_ivp(model, t, u, x0, hold, method, rtol, atol, max_step, first_ste
             t_end = float(reached[-1])
             raise SimulationError(f"{method} failed after t = {t_end:.6g} s (the last output instant it reached): "
                                   f"{sol.message}", time=t_end)
-        raise SimulationError(f"{method} failed in its first step from t = {t[0]:.6g} s: {sol.message}",
-                              time=float(t[0]))
-    if sol.status == 1:  # a terminal event: an accepted step crossed a bound of the model's domain
-        crossed = [(float(times[0]), event, values[0]) for event, times, values in
-                   zip(events, sol.t_events, sol.y_events) if len(times)]
-        t_cross, event, y_cross = min(crossed, key=lambda item: item[0])
-        name, bound = event.state
-        raise model.domain_error(name, bound, t_cross)
-    y = sol.y.reshape(shape + (t.size,))
-    y = np.moveaxis(y, -1, 1)
-    return y, sol
+        if a > t_first:
+            raise SimulationError(f"{method} failed after t = {a:.6g} s (the breakpoint of an input where its "
+                                  f"segment began): {sol.message}", time=float(a))
+        raise SimulationError(f"{method} failed in its first step from t = {a:.6g} s: {sol.message}",
+                              time=float(a))
+    return sol
 
 
 # --------------------------------------------------------------------------- auto
@@ -639,12 +722,20 @@ def simulate(
     inputs : None, mapping, array_like or callable
         ``None`` (all inputs zero); ``{name: value}`` with each value a number, an array of shape
         (n_times,) or (n_times, n_batch) -- time first; a (n_times,) signal next to batched ones is
-        shared by every member -- or a callable ``u(t)`` returning one value (or n_batch values)
-        per instant (omitted inputs are zero); an array of shape (n_inputs, n_times) or
-        (n_inputs, n_times, n_batch); or a callable ``u(t)`` returning the input vector (n_inputs,)
-        per instant, or (n_inputs, n_times) when called with the whole grid. Every value must be a
-        finite number: other shapes, strings and non-finite samples (callables included) raise
+        shared by every member --, a :class:`~vehdyn.PiecewiseSignal` (closed form, e.g. the
+        manoeuvres of :mod:`vehdyn.handling.maneuvers`) or another callable ``u(t)`` returning one
+        value (or n_batch values) per instant (omitted inputs are zero); an array of shape
+        (n_inputs, n_times) or (n_inputs, n_times, n_batch); or a callable ``u(t)`` returning the
+        input vector (n_inputs,) per instant, or (n_inputs, n_times) when called with the whole grid
+        (a PiecewiseSignal alone for a one-input model is that input). Every value must be a finite
+        number: other shapes, strings and non-finite samples (callables included) raise
         ParameterError naming the input, the instant and, in a batch, the member.
+
+        A PiecewiseSignal is evaluated exactly at every stage of the adaptive methods and rk4, on
+        both backends (method ``"exact"`` samples it). Any other callable is *sampled on the time
+        grid* and then held between samples as ``hold`` says, like an array, on both backends (the
+        compiled loop cannot call Python): its result is as fine as the grid; give a closed-form
+        input as a PiecewiseSignal, or a grid that resolves it.
     x0 : None, mapping or array_like
         Initial state (zeros by default); shape (n_states,) or (n_states, n_batch) for a batch.
         Batch sizes of ``x0`` and ``inputs`` must agree; a batch of 1 on either side is shared.
@@ -653,8 +744,9 @@ def simulate(
     rtol, atol : float
         Tolerances of the adaptive methods.
     hold : {"foh", "zoh"}
-        How sampled inputs vary between samples: linearly (default, as ``scipy.signal.lsim`` and
-        ``control.forced_response``) or held constant.
+        How sampled inputs (arrays, and callables other than a PiecewiseSignal) vary between
+        samples: linearly (default, as ``scipy.signal.lsim`` and ``control.forced_response``) or
+        held constant.
     max_step, first_step : float, optional
         Passed to ``solve_ivp`` and the compiled backend [s]; both positive (``max_step`` may be
         ``inf``), ``first_step`` at most the span of ``time``.
@@ -707,6 +799,7 @@ def simulate(
         raise ParameterError(f"substeps must be a positive integer, got {substeps!r}", key="substeps", value=substeps)
     if not isinstance(method, str):
         raise ParameterError(f"method must be a string, got {method!r}", key="method", value=method)
+    inputs = _named_inputs(model, inputs)
     u = _sample_inputs(model, inputs, t)
     x0v, u = _common_batch(signal_vector(x0, model.states, "x0"), u)
     reason = ""
@@ -745,9 +838,10 @@ def simulate(
                                            _compiled_ode.input_table(model, inputs, t, u, hold), method, rtol, atol,
                                            first_step, max_step)
         except SimulationError as exc:
-            raise _domain_crossing(model, t, u, hold, method, rtol, atol, getattr(exc, "partial_states", None),
-                                   exc.time) or _stiffness_hint(exc, model, method, t, x0v, u) from None
-        crossing = _domain_crossing(model, t, u, hold, method, rtol, atol, x)
+            crossing = _domain_crossing(model, t, inputs, u, hold, method, rtol, atol,
+                                        getattr(exc, "partial_states", None), exc.time)
+            raise crossing or _stiffness_hint(exc, model, method, t, x0v, u) from None
+        crossing = _domain_crossing(model, t, inputs, u, hold, method, rtol, atol, x)
         if crossing is not None:
             raise crossing
         counters.update(stats)
@@ -755,13 +849,12 @@ def simulate(
         x, n_expm = _simulate_exact(model, t, u, x0v, hold)
         counters["message"] = f"exact {hold} discretization ({n_expm} matrix exponential{'s' if n_expm > 1 else ''})"
     elif method == "rk4":
-        x, nfev = _simulate_rk4(model, t, u, x0v, hold, int(substeps), check_stability)
+        x, nfev = _simulate_rk4(model, t, u, x0v, hold, int(substeps), check_stability, inputs)
         counters.update(nfev=nfev, n_steps=(t.size - 1) * int(substeps), message="fixed-step RK4")
     else:
-        x, sol = _simulate_ivp(model, t, u, x0v, hold, method, rtol, atol, max_step, first_step,
-                               watch_stiffness=check_stability)
-        counters.update(nfev=int(sol.nfev), njev=int(sol.njev), nlu=int(sol.nlu), message=str(sol.message),
-                        n_steps=int(sol.nfev))
+        x, stats = _simulate_ivp(model, t, u, x0v, hold, method, rtol, atol, max_step, first_step,
+                                 watch_stiffness=check_stability, inputs=inputs)
+        counters.update(stats, n_steps=stats["nfev"])
     wall = _time.perf_counter() - start
 
     if not np.all(np.isfinite(x)):
@@ -831,7 +924,7 @@ def _common_batch(x0: np.ndarray, u: np.ndarray):
     return x0, u
 
 
-def _domain_crossing(model, t, u, hold, method, rtol, atol, states, failed_at=None) -> SimulationError | None:
+def _domain_crossing(model, t, inputs, u, hold, method, rtol, atol, states, failed_at=None) -> SimulationError | None:
     """The first crossing of a bound of the model's domain by the compiled loop's run, as the model's
     :meth:`~vehdyn.Model.domain_error`, or None.
 
@@ -857,7 +950,7 @@ def _domain_crossing(model, t, u, hold, method, rtol, atol, states, failed_at=No
         return None
     try:
         _simulate_ivp(model, t[first:last + 1], u[:, first:last + 1], states[:, first], hold, method, rtol, atol,
-                      None, None)
+                      None, None, inputs=inputs)
     except SimulationError as located:
         if located.signal in model.domain:
             return located
@@ -983,6 +1076,7 @@ def _compiled_member(args, kwargs):
     if len(args) != 3 or not set(kwargs) <= _BATCH_OPTIONS:
         return None
     model, time, inputs = args
+    inputs = _named_inputs(model, inputs)
     method = kwargs.get("method", "auto")
     if (not hasattr(model, "compiled_batch_of") or method not in _compiled_ode.METHODS
             or kwargs.get("backend", "auto") not in ("auto", "compiled") or not _compiled_ode.numba_available()):

@@ -220,3 +220,63 @@ def test_plots_label_axes_with_units():
     fig = fr.plot(outputs=["position"])
     assert fig.axes[0].get_xscale() == "log" and fig.axes[1].get_ylabel() == "phase [deg]"
     assert fig.axes[1].get_xlabel() == "frequency [Hz]"
+
+
+INTEGRATOR = LinearModel([[0.0]], [[1.0]], states=["level"], inputs=["rate"])  # y' = u
+
+
+def piecewise_rate():
+    """A half-period sine on [0.3, 1.3) then a jump to 0.5 (a kink and a jump between coarse
+    samples) and y = its integral, the closed form."""
+    omega = np.pi
+    signal = vehdyn.PiecewiseSignal([[0.3, 1.3, 0.0, 0.0, 1.0, omega, 0.0], [1.3, np.inf, 0.5, 0.0, 0.0, 0.0, 0.0]])
+
+    def integral(t):
+        return (1 - np.cos(omega * np.clip(t - 0.3, 0.0, 1.0))) / omega + 0.5 * np.maximum(t - 1.3, 0.0)
+
+    return signal, integral
+
+
+@pytest.mark.parametrize("method, rtol, error", [("RK45", 1e-10, 1e-9), ("DOP853", 1e-12, 1e-12),
+                                                 ("LSODA", 1e-10, 1e-8)])
+def test_piecewise_signal_is_integrated_exactly_between_samples_on_numpy(method, rtol, error):
+    # the numpy solvers evaluate a closed-form input at every stage and stop on its breakpoints, as
+    # the compiled backend does (they used to sample it on the output grid and interpolate: an
+    # error of 0.09 here, whatever the tolerance)
+    signal, integral = piecewise_rate()
+    t = np.linspace(0.0, 3.0, 7)  # coarse grid: samples of the signal would not do
+    result = simulate(INTEGRATOR, t, {"rate": signal}, method=method, rtol=rtol, atol=rtol * 1e-2, backend="numpy")
+    assert np.max(np.abs(result["level"] - integral(t))) < error
+    bare = simulate(INTEGRATOR, t, signal, method=method, rtol=rtol, atol=rtol * 1e-2, backend="numpy")
+    assert np.array_equal(bare.states, result.states)  # a bare signal of a one-input model is the same input
+
+
+def test_rk4_evaluates_a_piecewise_signal_at_its_stages():
+    # fixed steps over a smooth piece: the error is RK4's, O(h^4), not the O(dt^2) of sampled inputs
+    omega = 2.0
+    signal = vehdyn.PiecewiseSignal([[0.0, np.inf, 0.0, 0.0, 1.0, omega, 0.0]])
+    t = np.linspace(0.0, 2.0, 5)
+    result = simulate(INTEGRATOR, t, {"rate": signal}, method="rk4", substeps=20)
+    assert np.max(np.abs(result["level"] - (1 - np.cos(omega * t)) / omega)) < 1e-7
+    sampled = simulate(INTEGRATOR, t, {"rate": signal(t)}, method="rk4", substeps=20)
+    assert np.max(np.abs(sampled["level"] - (1 - np.cos(omega * t)) / omega)) > 1e-2  # what foh would give
+
+
+def test_piecewise_signal_segments_keep_failures_and_options():
+    # first_step beyond the first segment is capped to it; a failure after a breakpoint names its time
+    signal, integral = piecewise_rate()
+    t = np.linspace(0.0, 3.0, 7)
+    result = simulate(INTEGRATOR, t, {"rate": signal}, method="RK45", rtol=1e-10, atol=1e-12, first_step=2.0,
+                      backend="numpy")
+    assert np.max(np.abs(result["level"] - integral(t))) < 1e-9
+
+    class BlowUp(Model):  # y' = y^2 + u: from y(0) = 1 singular before t = 1, after the breakpoint 0.3
+        def __init__(self):
+            self.declare(states=["level"], inputs=["rate"])
+
+        def rhs(self, t, x, u):
+            return x**2 + u
+
+    with pytest.raises(SimulationError, match=r"RK45 failed after t = 0.3 s \(the breakpoint") as info:
+        simulate(BlowUp(), [0.0, 3.0], {"rate": signal}, x0=[1.0], method="RK45", backend="numpy")
+    assert info.value.time == pytest.approx(0.3)

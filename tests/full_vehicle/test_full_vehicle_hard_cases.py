@@ -37,7 +37,8 @@ def _fishhook(model, speed=22.35):
 
 def test_fishhook_lifts_a_wheel_and_keeps_loads_non_negative():
     # the van as shipped, and 5 cm higher, keeps its wheels down; 10 cm higher the inner front wheel
-    # lifts twice; 15 cm higher it rolls over (the test below)
+    # lifts twice; 17 cm higher it rolls over (the test below; 15 cm higher it did while the left
+    # wheels carried the mirror image of the tire law, before TYRESIDE 'LEFT' was honoured)
     model = FullVehicle(_raised(vehdyn.load_vehicle("van"), 0.10))
     result = _fishhook(model)
     assert np.all(np.isfinite(result.states))
@@ -52,7 +53,7 @@ def test_fishhook_lifts_a_wheel_and_keeps_loads_non_negative():
 
 
 def test_fishhook_rollover_is_reported_with_state_and_time():
-    model = FullVehicle(_raised(vehdyn.load_vehicle("van"), 0.15))
+    model = FullVehicle(_raised(vehdyn.load_vehicle("van"), 0.17))
     with pytest.raises(vehdyn.SimulationError, match="roll_angle") as info:
         _fishhook(model)
     assert info.value.signal == "roll_angle" and 1.0 < info.value.time < 4.0
@@ -240,7 +241,7 @@ def test_class_d_road_at_40_m_s_numpy_short():
 
 
 
-def _braking_in_turn(name, deceleration, front_share=0.65, speed=22.2, ay=4.0):
+def _braking_in_turn(name, deceleration, front_share=0.65, speed=22.2, ay=4.0, duration=2.2):
     """The ladder's braking-in-a-turn scene on the full vehicle: a steady 4 m/s^2 right turn, then
     at t = 0.2 s axle brake forces share x m x deceleration (front) and the rest (rear), each as
     equal brake torques F R_e / 2 on the axle's wheels, steer held (drive torques released)."""
@@ -256,7 +257,7 @@ def _braking_in_turn(name, deceleration, front_share=0.65, speed=22.2, ay=4.0):
     for s in CORNERS:
         braked[model.index(f"drive_torque{s}", "inputs")] = 0.0
 
-    t = np.linspace(0.0, 2.2, 221)
+    t = np.linspace(0.0, duration, int(round(duration * 100)) + 1)
     inputs = np.where(t >= 0.2, braked[:, None], u0[:, None])  # sampled: the compiled backend runs it
     result = vehdyn.simulate(model, t, inputs, x0=x0, method="RK45", rtol=1e-6, atol=1e-8, max_step=0.01,
                              backend="compiled")
@@ -270,9 +271,10 @@ def test_braking_in_a_turn_locks_the_inner_rear_wheel_where_the_single_track_has
     rear wheel is down to a quarter of its static load when it locks (523 of 2305 N; 11 % later),
     while its brake torque (equal on both sides of the axle: 858 N of brake force) asks for more than
     its tire can give, so it locks, loses its side force and the car yaws
-    into the turn (sideslip to ~5 deg, then recovering). The single track has no lateral load
-    transfer and its rear axle carries the brake force easily. At 2 m/s^2 no wheel locks."""
-    model, result, torques = _braking_in_turn("compact", 4.0)
+    into the turn (sideslip to ~7 deg at 2.4 s, then recovering; run to 3.5 s here). The single
+    track has no lateral load transfer and its rear axle carries the brake force easily. At 2 m/s^2
+    no wheel locks."""
+    model, result, torques = _braking_in_turn("compact", 4.0, duration=3.5)
     inner = "_rear_right"  # turning right (SAE a_y > 0)
     kappa = result[f"slip_ratio{inner}"]
     assert np.min(kappa) < -0.9  # locked
@@ -290,7 +292,7 @@ def test_braking_in_a_turn_locks_the_inner_rear_wheel_where_the_single_track_has
     assert load < 0.3 * static
     for outer in ("_front_left", "_rear_left"):
         assert np.min(result[f"slip_ratio{outer}"]) > -0.05  # the loaded wheels keep rolling
-    assert np.max(np.abs(result["sideslip_angle"])) < np.radians(6.0)  # no spin
+    assert np.max(np.abs(result["sideslip_angle"])) < np.radians(8.0)  # no spin
     assert abs(result["sideslip_angle"][-1]) < np.max(np.abs(result["sideslip_angle"]))
 
     _, gentle, _ = _braking_in_turn("compact", 2.0)

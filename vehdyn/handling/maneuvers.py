@@ -2,8 +2,8 @@
 
 Steer inputs are road-wheel angles [rad] in SAE signs (positive turns right) and are returned as
 vectorized callables ``delta(t)`` for :func:`vehdyn.simulate`'s ``inputs``: closed-form
-:class:`~vehdyn.piecewise_signal.PiecewiseSignal` s, which the compiled backend evaluates exactly
-between samples and whose kinks it steps onto (``simulate(..., backend="compiled")``). Test procedures:
+:class:`~vehdyn.piecewise_signal.PiecewiseSignal` s, which both backends of ``simulate`` evaluate
+exactly between samples and whose kinks they step onto (``solve_ivp`` methods, compiled RK45/DOP853). Test procedures:
 
 * step steer (ISO 7401:2011, sec. 6.2: steer ramp completed within 0.15 s) and its metrics
   (:func:`vehdyn.handling.step_steer_metrics`);

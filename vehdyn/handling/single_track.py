@@ -443,6 +443,8 @@ class SingleTrack(Model):
         static = self.parameters.static_axle_loads()
         characteristics = {axle: self._tire_characteristics(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
         self._mirrored = {axle: value[0] for axle, value in characteristics.items()}
+        self._mirrored_wheels = {axle: self._mirrored_wheel(tires[axle], value[0])
+                                 for axle, value in characteristics.items()}
         self._peak_slip = {axle: value[1] for axle, value in characteristics.items()}
         if self.lateral_load_transfer:
             self._transfer_coefficients()  # a vehicle whose body would roll over: error here
@@ -611,6 +613,8 @@ class SingleTrack(Model):
             brake_regularization_speed=self.brake_regularization_speed,
             front_peak_slip_ratio=self._peak_slip["front"][0], front_peak_tan_slip_angle=self._peak_slip["front"][1],
             rear_peak_slip_ratio=self._peak_slip["rear"][0], rear_peak_tan_slip_angle=self._peak_slip["rear"][1],
+            front_mirror_right=float(self._mirrored_wheels["front"] == "right"),
+            rear_mirror_right=float(self._mirrored_wheels["rear"] == "right"),
             wheel_spin=self.wheel_spin, tire_lag=self.tire_lag)
 
     def _evaluate(self, x, u):
@@ -658,11 +662,13 @@ class SingleTrack(Model):
         return 2.0 * f.fx, 2.0 * f.fy, 2.0 * f.my
 
     def wheel_pair_law_loads(self, axle, left_load, right_load, kappa, alpha, vx):
-        """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N].
+        """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N],
+        the left one the law's mirror image when the law has ply steer (see :meth:`axle_law_loads`):
+        (F_x, -F_y, M_y) of the law at -alpha; the right one the law's own.
 
-        The left tire is the law's mirror image when the law has ply steer (see
-        :meth:`axle_law_loads`): (F_x, -F_y, M_y) of the law at -alpha; the right tire is the law's
-        own, as in :meth:`vehdyn.full_vehicle.FullVehicle.corner_law_loads`."""
+        Where the law is a left tire (:meth:`_mirrored_wheel`: ``TYRESIDE = 'LEFT'``),
+        :func:`~vehdyn.handling.single_track_equations.wheel_pair_loads` passes the right wheel's
+        load first and takes its forces from the first place (the compiled form is the same)."""
         tire = self.front_tire if axle == 0 else self.rear_tire
         mirror = -1.0 if self._mirrored[_AXLES[axle]] else 1.0
         if all(np.ndim(v) == 0 for v in (left_load, right_load, kappa, alpha, vx)):
@@ -677,9 +683,32 @@ class SingleTrack(Model):
 
     @staticmethod
     def _needs_mirror(tire, load) -> bool:
-        """True when ``tire`` makes a lateral force at zero slip (at the static load, 20 m/s)."""
+        """True when ``tire`` makes a lateral force at zero slip (at the static load, 20 m/s): one
+        wheel of an axle is then the law's mirror image (:meth:`_mirrored_wheel` says which)."""
         f = tire.forces(float(load), 0.0, 0.0, 0.0, 20.0)
         return abs(float(f.fy)) > 1e-9 * max(float(load), 1.0)
+
+    @staticmethod
+    def _mirrored_wheel(tire, has_ply_steer: bool) -> str | None:
+        """The wheel of an axle that is the mirror image of ``tire``'s law: ``"left"``, ``"right"``,
+        or None when the law makes no lateral force at zero slip (``has_ply_steer`` False, from
+        :meth:`_needs_mirror` or :meth:`_tire_characteristics`: the two wheels are then the same
+        law). Every model that tells the wheels apart decides here.
+
+        A ``.tir`` file's ``TYRESIDE`` names the side of the vehicle (or test bench) the tire was
+        mounted on when it was measured; the file's law is that wheel's, and a tire of the same
+        make on the other side is its mirror image, (F_x, -F_y, M_y) at (-alpha, -gamma) (the
+        convention of MF-Tyre and ADAMS property files; MFeval and :class:`~vehdyn.tire.MagicFormula`
+        evaluate the law as written). So a ``'LEFT'`` file (the shipped mf_185_80R14.tir) mirrors
+        the right wheel, a ``'RIGHT'`` file the left one; a law without ``TYRESIDE`` (other tire
+        laws) is taken as a right tire. At equal wheel loads the axle force is the same either way;
+        under a lateral load transfer the ply-steer part of it changes sign with the side.
+        """
+        if not has_ply_steer:
+            return None
+        params = getattr(tire, "params", None)
+        side = str(params.get("TYRESIDE", "RIGHT")).strip().strip("'\"").upper() if params is not None else "RIGHT"
+        return "right" if side == "LEFT" else "left"
 
     @staticmethod
     def _tire_characteristics(tire, load):

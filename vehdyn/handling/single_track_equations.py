@@ -50,15 +50,17 @@ Constants = namedtuple("Constants", (
     "rear_peak_slip_ratio", "rear_peak_tan_slip_angle", "wind_side_force_factor", "centre_of_pressure",
     "front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer", "rear_elastic_transfer",
     "front_track", "rear_track", "roll_inertia", "roll_arm", "front_roll_transfer_stiffness",
-    "rear_roll_transfer_stiffness", "front_roll_transfer_damping", "rear_roll_transfer_damping", "wheel_spin",
-    "tire_lag", "lateral_load_transfer"))
+    "rear_roll_transfer_stiffness", "front_roll_transfer_damping", "rear_roll_transfer_damping",
+    "front_mirror_right", "rear_mirror_right", "wheel_spin", "tire_lag", "lateral_load_transfer"))
 Constants.__doc__ = """What the equations read: the fields of :class:`SingleTrackParameters` (floats, or arrays
 across batch variants on numpy), the model's options and the peak-force slips of the two laws
 (the limits of the tire deflections); ``wheel_spin``, ``tire_lag`` and ``lateral_load_transfer`` are
 bools, the last three fields (a compiled batch appends them to a variant's floats). The four
 ``*_transfer`` coefficients [-] give the load moved onto an axle's left wheel by the axles' lateral
 forces (:func:`lateral_load_transfer`; zero without lateral load transfer), the tracks [m] the arm
-of the yaw couple of unequal left and right longitudinal forces (zero without)."""
+of the yaw couple of unequal left and right longitudinal forces (zero without). ``*_mirror_right``
+is 1.0 where the axle's right wheel is the mirror image of the law (a ``.tir`` file with
+``TYRESIDE = 'LEFT'``), else 0.0 (the left one, or none: ``SingleTrack._mirrored_wheel``)."""
 
 Evaluation = namedtuple("Evaluation", (
     "longitudinal_acceleration", "lateral_acceleration", "yaw_acceleration", "front_longitudinal_force",
@@ -290,8 +292,17 @@ def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral
         lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle)
     kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
     left_load, right_load = 0.5 * fz + shift, 0.5 * fz - shift
-    w = xp.wheel_pair_tire_loads(tires, axle, left_load, right_load, kappa_iso, alpha_iso,
+    # the law's wheel pair mirrors its first wheel: the right one where the law is a left tire (a
+    # float per model or variant; both wheels of the axle run at the same slips, so exchanging the
+    # loads in and the wheels out is the pair with the right wheel mirrored)
+    right_mirrored = (k.front_mirror_right if axle == 0 else k.rear_mirror_right) > 0.5
+    first_load, second_load = left_load, right_load
+    if right_mirrored:
+        first_load, second_load = right_load, left_load
+    w = xp.wheel_pair_tire_loads(tires, axle, first_load, second_load, kappa_iso, alpha_iso,
                                  direction * xp.maximum(speed, 1e-3))
+    if right_mirrored:
+        w = (w[3], w[4], w[5], w[0], w[1], w[2])
     fx_left, fy_left = planar_tire_forces_iso_w_to_sae(w[0], w[1])
     fx_right, fy_right = planar_tire_forces_iso_w_to_sae(w[3], w[4])
     my = w[2] + w[5]
