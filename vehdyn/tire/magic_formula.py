@@ -543,10 +543,11 @@ def _pass_inputs(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omeg
             low_speed = 1.0
         kappa_output = kappa
         phit = phit * reverse
-        speed_sum = xp.abs(vx) + xp.abs(xp.tan(alpha) * vx)
-        slow = speed_sum < vxlow
-        if xp.any(slow):
-            alpha = xp.where(slow, alpha * (speed_sum / vxlow), alpha)
+        if xp.any(xp.abs(vx) < vxlow):  # else no point is slow: |vx| + |tan(alpha) vx| >= |vx|
+            speed_sum = xp.abs(vx) + xp.abs(xp.tan(alpha) * vx)
+            slow = speed_sum < vxlow
+            if xp.any(slow):
+                alpha = xp.where(slow, alpha * (speed_sum / vxlow), alpha)
         alpha = xp.clip(alpha, c.ALPMIN, c.ALPMAX)
         gamma = xp.clip(gamma, c.CAMMIN, c.CAMMAX)
         fz = xp.minimum(fz, c.FZMAX)
