@@ -279,13 +279,17 @@ def test_rough_road_picks_the_full_car_with_lift_off_within_tolerance(scenes):
     assert not lift.admissible and "roll centres" in lift.reason
 
 
-def test_lane_change_at_100_kmh_picks_the_roll_rung_against_the_full_vehicle():
-    """At 0.2 g the single track with the roll degree of freedom (SingleTrack+roll) is within the
-    tolerance of the full vehicle (measured 1.4 %) and picked; its estimate within a factor 3."""
+def test_lane_change_at_100_kmh_leaves_the_roll_rung_when_it_may_be_beyond_the_tolerance():
+    """At 0.2 g the single track with the roll degree of freedom (SingleTrack+roll) is 2.1 % off
+    the full vehicle in the van's lane change at 100 km/h (since every model mirrors the wheel
+    opposite the .tir file's TYRESIDE): its estimate must say so (within a factor 3 of the
+    measured error, above the tolerance), so the plan does not pick it."""
     pytest.importorskip("numba")
-    scene = standard_scenes("sedan")["lane_change_100"]
-    out = vehdyn.run(scene, verify=True)
-    assert out.rung == "SingleTrack+roll" and out.reference == "FullVehicle"
+    scene = standard_scenes("van")["lane_change_100"]
+    roll = vehdyn.plan(scene).row("SingleTrack+roll")
+    assert vehdyn.plan(scene).chosen.rung.name != "SingleTrack+roll"
+    out = vehdyn.run(scene, model="SingleTrack+roll", verify=True)
+    assert out.reference == "FullVehicle"
     measured, estimated = max(out.verified_error.values()), max(out.estimated_error.values())
-    assert measured <= scene.tolerance
+    assert roll.estimated_error > scene.tolerance and measured > 0.75 * scene.tolerance
     assert 1 / 3 <= estimated / measured <= 3

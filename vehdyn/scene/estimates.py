@@ -51,9 +51,10 @@ A nonlinear rung with roll (SingleTrack+roll) against the full vehicle is charge
 floor, ``roll_rung_gain`` times the linear probe's peak lateral acceleration in units of mu g
 (capped at the full vehicle's steady limit, ``steady_limit_fraction``): what its roll degree of
 freedom leaves out (the heave and pitch under the roll, the wheels' travel along the rolled body,
-the contact points moving with the roll) grows with the lateral acceleration. bench_ladder, its
-estimated / measured error: 0.9-1.1 in the lane change at 100 km/h, 0.9-1.3 in the sine with dwell,
-1.5-1.8 in the limit step steer, 2.1-2.8 in the circle to the limit.
+the contact points moving with the roll) grows with the lateral acceleration. Its gain is set by
+the worst case, the van's lane change at 100 km/h (2.1 % off at 0.2 g since the mirror side
+follows TYRESIDE), so the estimate is conservative elsewhere (up to ~5x in the circle to the
+limit): a better estimate (or rung) would pick it again for the sedan's and compact's lane change.
 
 A phenomenon without an estimate gives NaN: such a rung is never picked. In closed loop (the
 ISO 3888-1 driver) every estimate is multiplied by ``closed_loop_factor``.
@@ -155,11 +156,14 @@ THRESHOLDS = {
     "handling_reduction_floor": 8e-3,
     # a nonlinear rung with roll (SingleTrack+roll) against the full vehicle: error beyond the floor
     # above / the linear probe's peak a_y in mu g (capped as below), bench_ladder (24 Nov 2026, after
-    # the full vehicle's tire forces went into the road plane): 0.026-0.034 in the lane change at
-    # 100 km/h (1.3-1.7 % off), 0.018-0.031 in the sine with dwell (1.7-2.4 %), 0.010-0.015 in the
-    # limit step steer (1.5-1.8 %), 0.003-0.007 in the circle to the limit (1.0-1.3 %); 0.028 keeps
-    # the sine with dwell above the tolerance (the van's is 2.4 % off) and the lane change within it
-    "roll_rung_gain": 0.028,
+    # every model mirrors the wheel opposite the .tir file's TYRESIDE): 0.036-0.071 in the lane
+    # change at 100 km/h (1.5-2.1 % off: the van's 2.1 % beyond the tolerance), 0.016-0.027 in the
+    # sine with dwell (1.7-2.2 %), 0.010-0.015 in the limit step steer (1.5-1.8 %), 0.006-0.010 in
+    # the circle to the limit (1.2-1.5 %). The lane change's error does not follow a_y (0.2 g) and
+    # the van's probe gives the smallest share of the three, so no gain of this form picks the
+    # sedan's and not the van's: 0.065 keeps every one of them above the tolerance (before the
+    # TYRESIDE fix, 0.028 picked all three at 1.3-1.7 %)
+    "roll_rung_gain": 0.065,
     # the largest steady lateral acceleration of the full vehicle / (mu g): the circle to the limit,
     # bench_ladder: 0.70 (sedan, 6.41 m/s^2, measured before the full vehicle's tire forces went into
     # the road plane; roll_rung_gain above is calibrated with this cap); the linear probe's a_y
