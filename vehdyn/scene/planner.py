@@ -273,12 +273,15 @@ class _Context:
             self.drive.vehicle, a_y, slips, self.scene.tire)
 
     def _roll_rung_share(self) -> float:
-        """``roll_rung_gain`` times :func:`estimates.lateral_acceleration_share` at the linear probe's peak a_y."""
+        """``roll_rung_gain`` times :func:`estimates.lateral_acceleration_share` at the linear probe's
+        peak a_y times (speed / ``roll_rung_reference_speed``)^2."""
         probe = self._linear_probe
         if probe is None or "lateral_acceleration" not in probe:
             return float("nan")
         a_y = float(np.max(np.abs(probe["lateral_acceleration"])))
-        return est.THRESHOLDS["roll_rung_gain"] * est.lateral_acceleration_share(self.drive.vehicle, a_y)
+        speed = float(self.scene.speed) / est.THRESHOLDS["roll_rung_reference_speed"]
+        return (est.THRESHOLDS["roll_rung_gain"] * est.lateral_acceleration_share(self.drive.vehicle, a_y)
+                * speed * speed)
 
     def _lift(self) -> float:
         """Tire tension of the most complete linear ride probe (:func:`estimates.tire_lift`)."""
