@@ -213,18 +213,27 @@ def _integrate_bdf(t_eval, y0, args, kinds, values, pieces, rows, breakpoints, m
         _rhs(t + h0, probe, u, args, f_probe)
         nfev += 1
         h_abs = _initial_step_size(y, f, f_probe, rtol, atol, h0, 1, t_final - t, max_step, scale)
+    def difference_jacobian(tt, base, f_base):
+        """Forward differences of the rhs at (tt, base) into ``lu`` (the inputs set for tt);
+        True when every entry is finite."""
+        for j in range(n):
+            probe[j] = base[j]
+        finite = True
+        for j in range(n):
+            delta = math.sqrt(EPS * max(1e-5, base[j] * base[j]))
+            probe[j] = base[j] + delta
+            delta = probe[j] - base[j]
+            _rhs(tt, probe, u, args, f_probe)
+            for i in range(n):
+                lu[i, j] = (f_probe[i] - f_base[i]) / delta
+                finite = finite and math.isfinite(lu[i, j])
+            probe[j] = base[j]
+        return finite
+
     # the Jacobian at the start (scipy evaluates it when the solver is built)
     _inputs_at(t, t_ref, k_ref, t_eval, kinds, values, pieces, rows, u)
-    for j in range(n):
-        probe[j] = y[j]
-    for j in range(n):
-        delta = math.sqrt(EPS * max(1e-5, y[j] * y[j]))
-        probe[j] = y[j] + delta
-        delta = probe[j] - y[j]
-        _rhs(t, probe, u, args, f_probe)
-        for i in range(n):
-            jac[i, j] = (f_probe[i] - f[i]) / delta
-        probe[j] = y[j]
+    difference_jacobian(t, y, f)
+    jac[:, :] = lu
     nfev += n
     for j in range(n):
         D[0, j] = y[j]
@@ -316,27 +325,14 @@ def _integrate_bdf(t_eval, y0, args, kinds, values, pieces, rows, breakpoints, m
                     # a fresh Jacobian at the prediction, then try again (kept only when finite:
                     # a step into a region where the rhs fails is shortened with the old one)
                     _rhs(t_new, y_predict, u, args, f)
-                    for j in range(n):
-                        probe[j] = y_predict[j]
-                    finite = True
-                    for j in range(n):
-                        delta = math.sqrt(EPS * max(1e-5, y_predict[j] * y_predict[j]))
-                        probe[j] = y_predict[j] + delta
-                        delta = probe[j] - y_predict[j]
-                        _rhs(t_new, probe, u, args, f_probe)
-                        for i in range(n):
-                            lu[i, j] = (f_probe[i] - f[i]) / delta
-                            finite = finite and math.isfinite(lu[i, j])
-                        probe[j] = y_predict[j]
+                    finite = difference_jacobian(t_new, y_predict, f)
                     nfev += n + 1
                     lu_valid = False
                     current_jac = True
                     if not finite:
                         nonfinite = True
                         break
-                    for i in range(n):
-                        for j in range(n):
-                            jac[i, j] = lu[i, j]
+                    jac[:, :] = lu
             if converged:
                 for j in range(n):
                     scale[j] = atol[j] + rtol * abs(y_new[j])
