@@ -10,12 +10,6 @@ force mode without lateral load transfer, where the model takes only F_y at kapp
 ``magic_formula._lateral_force_kernel``, bitwise the same F_y at a quarter of the cost), or the
 linear law. Other laws (brush, Fiala, Dugoff) have no compiled form: the model then refuses
 the compiled backend and names the law.
-
-Cost of one rhs call: every equation and tire law is inlined (LLVM ``alwaysinline``: no call
-passing the ~40 constants, and LLVM drops what the model's modes leave unused), and the library
-calls that have an exact answer on the usual path are skipped (``XP.cos`` at 0 and pi, ``sin``
-and ``tanh`` at 0, ``atan2`` at y = 0: an absent rear steer, the low-speed blend above its speed,
-no wheel spin, no crosswind), bitwise the library's results.
 """
 
 from __future__ import annotations
@@ -52,8 +46,8 @@ for _name in ("_at", "named_states", "named_inputs", "regularized_speed", "low_s
               "evaluate", "derivatives", "outputs", "net_wheel_torque", "deflection_rate", "deflection_rates",
               "lateral_load_transfer", "wheel_pair_loads", "wheel_load_outputs", "rolling_resistance_fade",
               "roll_acceleration"):
-    register_jitable(**_JIT, forceinline=True)(getattr(equations, _name))
-register_jitable(**_JIT, forceinline=True)(crosswind.aero_side_force)
+    register_jitable(**_JIT)(getattr(equations, _name))
+register_jitable(**_JIT)(crosswind.aero_side_force)
 
 TireLaw = namedtuple("TireLaw", ("kind", "mirrored", "records", "record", "linear", "lateral_only"),
                      defaults=(False,))
@@ -115,43 +109,16 @@ def _axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
     return fx, fy
 
 
-def _cos(x):
-    """cos(x), without the library call at x = 0 (an absent steer angle) and x = pi (the low-speed
-    blend above its speed): exactly 1.0 and -1.0, as the library returns."""
-    if x == 0.0:
-        return 1.0
-    if x == math.pi:
-        return -1.0
-    return math.cos(x)
-
-
-def _sin(x):
-    """sin(x), without the library call at x = +-0 (sin(+-0) = +-0)."""
-    return x if x == 0.0 else math.sin(x)
-
-
-def _tanh(x):
-    """tanh(x), without the library call at x = +-0 (a wheel that does not spin)."""
-    return x if x == 0.0 else math.tanh(x)
-
-
-def _atan2(y, x):
-    """atan2(y, x), without the library call at y = +-0, x > 0 (no crosswind): +-0."""
-    return y if y == 0.0 and x > 0.0 else math.atan2(y, x)
-
-
 XP = types.ModuleType("vehdyn.handling._single_track_numba.XP")
 XP.__doc__ = "The ``xp`` of the single-track equations in compiled code (floats; the tire laws compiled)."
-for _name in ("atan", "sqrt"):
+for _name in ("cos", "sin", "tanh", "atan", "sqrt", "atan2"):
     setattr(XP, _name, getattr(math, _name))
-for _function in (_cos, _sin, _tanh, _atan2):
-    setattr(XP, _function.__name__[1:], register_jitable(**_JIT, forceinline=True)(_function))
 for _name in ("abs", "where", "minimum", "maximum"):
     setattr(XP, _name, getattr(_mf_numba.OPS, _name))
-XP.axle_tire_loads = register_jitable(**_JIT, forceinline=True)(_axle_tire_loads)
-XP.axle_tire_forces = register_jitable(**_JIT, forceinline=True)(_axle_tire_forces)
-XP.wheel_pair_tire_loads = register_jitable(**_JIT, forceinline=True)(_wheel_pair_tire_loads)
-register_jitable(**_JIT, forceinline=True)(linear.linear_tire_law)
+XP.axle_tire_loads = numba.njit(**_JIT)(_axle_tire_loads)
+XP.axle_tire_forces = numba.njit(**_JIT)(_axle_tire_forces)
+XP.wheel_pair_tire_loads = numba.njit(**_JIT)(_wheel_pair_tire_loads)
+register_jitable(**_JIT)(linear.linear_tire_law)
 
 
 def _rhs(t, x, u, args, dxdt):
