@@ -57,7 +57,8 @@ def setup():
     """Register the loop's helpers with numba (once; :func:`vehdyn._compiled_ode.integrator` calls it)."""
     from numba.extending import register_jitable
 
-    for helper in (_compute_r, _change_differences, _lu_factor, _lu_solve, _scaled_rms, _norm_factor):
+    for helper in (_compute_r, _change_differences, _lu_factor, _lu_solve, _start_history, _scaled_rms,
+                   _norm_factor):
         register_jitable(helper)
 
 
@@ -140,6 +141,15 @@ def _lu_solve(a, piv, b):
         for j in range(i + 1, n):
             acc -= a[i, j] * b[j]
         b[i] = acc / a[i, i]
+
+
+def _start_history(D, y, f, h):
+    """The differences of a start at order 1 (at t0 and after an input breakpoint): D[0] = y,
+    D[1] = h f, the rest zero."""
+    D[:, :] = 0.0
+    for j in range(y.shape[0]):
+        D[0, j] = y[j]
+        D[1, j] = f[j] * h
 
 
 def _scaled_rms(v, weight, scale):
@@ -235,9 +245,7 @@ def _integrate_bdf(t_eval, y0, args, kinds, values, pieces, rows, breakpoints, m
     difference_jacobian(t, y, f)
     jac[:, :] = lu
     nfev += n
-    for j in range(n):
-        D[0, j] = y[j]
-        D[1, j] = f[j] * h_abs
+    _start_history(D, y, f, h_abs)
     order = 1
     n_equal_steps = 0
     lu_valid = False
@@ -410,12 +418,7 @@ def _integrate_bdf(t_eval, y0, args, kinds, values, pieces, rows, breakpoints, m
             _inputs_at(t, t_ref, k_ref, t_eval, kinds, values, pieces, rows, u)
             _rhs(t, y, u, args, f)
             nfev += 1
-            for k in range(MAX_ORDER + 3):
-                for j in range(n):
-                    D[k, j] = 0.0
-            for j in range(n):
-                D[0, j] = y[j]
-                D[1, j] = f[j] * h_abs
+            _start_history(D, y, f, h_abs)
             order = 1
             n_equal_steps = 0
             lu_valid = False
