@@ -239,3 +239,34 @@ def test_a_failing_variant_of_a_batch_is_named():
     x0[2, 1] = 1e308  # a yaw rate whose derivatives overflow at every step size
     with pytest.raises(vehdyn.SimulationError, match="variant 1 of the batch.*non-finite"):
         vehdyn.simulate(batch, np.linspace(0.0, 1.0, 11), x0=x0, method="RK45", backend="compiled")
+
+
+def test_compiled_math_functions_are_the_library_functions_bitwise():
+    """XP's cos, sin, tanh and atan2 skip the library call where its result is exact (cos at 0 and
+    pi, sin and tanh at +-0, atan2 at y = +-0, x > 0): the same bits as math's, signed zeros and
+    NaN included, at those points and around them."""
+    import math
+
+    import numba
+
+    from vehdyn.handling._single_track_numba import XP
+
+    @numba.njit
+    def evaluate(x, y, out):
+        for i in range(x.size):
+            out[0, i] = XP.cos(x[i])
+            out[1, i] = XP.sin(x[i])
+            out[2, i] = XP.tanh(x[i])
+            out[3, i] = XP.atan2(x[i], y[i])
+
+    special = [0.0, -0.0, math.pi, -math.pi, np.nextafter(math.pi, 4.0), np.nextafter(math.pi, 3.0), 5e-324,
+               -5e-324, 1e-300, 0.3, -2.0, 1e300, math.inf, -math.inf, math.nan]
+    x = np.array([v for v in special for _ in special])
+    y = np.array([w for _ in special for w in special])
+    out = np.empty((4, x.size))
+    evaluate(x, y, out)
+    expected = np.array([[math.cos(v) if math.isfinite(v) else math.nan for v in x],
+                         [math.sin(v) if math.isfinite(v) else math.nan for v in x],
+                         [math.tanh(v) for v in x], [math.atan2(v, w) for v, w in zip(x, y)]])
+    same = (out.view(np.int64) == expected.view(np.int64)) | (np.isnan(out) & np.isnan(expected))
+    assert np.all(same), (x[~np.all(same, axis=0)], y[~np.all(same, axis=0)])
