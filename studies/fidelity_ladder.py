@@ -62,6 +62,10 @@ def run(study: Study) -> None:
         study.text("numba is not installed (pip install \"vehdyn[fast]\"), so the full vehicle runs in numpy, "
                    "hundreds of times slower: only the scenes " + ", ".join(QUICK_SCENES) + " are run here, "
                    "shortened to 1.5 s.")
+    elif study.quick:
+        study.text("Quick mode: only the scenes " + ", ".join(QUICK_SCENES) + " are run, shortened to 1.5 s. A "
+                   "shortened scene is another scene (its transient weighs more), so the planner may pick another "
+                   "model than for the full one; the text below is about the full scenes (vehdyn report).")
     wrong = table[table["error"] > 0.02]
     cheap = (table["cost_ratio"] <= 0.1).sum()
     study.text(f"Planned model within the 2 % tolerance on {len(table) - len(wrong)} of {len(table)} scenes; "
@@ -71,11 +75,12 @@ def run(study: Study) -> None:
                "vehicle file is not counted. At 0.1 g the linear lateral-yaw-roll model with tire lag, its "
                "parameters from the tire law at the running loads, is within 2 % of the full vehicle; in the "
                "slow circle to the limit the single track with the quasi-static lateral load transfer "
-               "(SingleTrack+LLT: the tire law at each wheel's load) is, and in the lane change at 100 km/h the "
-               "single track with a roll degree of freedom (SingleTrack+roll: the roll moment sets the dynamic "
-               "lateral load transfer); the transient limit manoeuvres (the roll rung is 1.5-2.4 % off there, too "
-               "close to the tolerance for its estimate) and braking in a turn (the "
-               "inner rear wheel locks: per-wheel spin) need the full vehicle; on the rough roads and in the "
+               "(SingleTrack+LLT: the tire law at each wheel's load) is. The single track with a roll degree of "
+               "freedom (SingleTrack+roll: the roll moment sets the dynamic lateral load transfer) is 1.5-2.2 % "
+               "off the full vehicle in the lane change at 100 km/h and the transient limit manoeuvres (sedan, "
+               "compact, van: benchmarks/bench_ladder.py), too close to the tolerance for its estimate, which "
+               "grows with the speed squared: the planner leaves those scenes to the full vehicle, and braking "
+               "in a turn (the inner rear wheel locks: per-wheel spin) needs it; on the rough roads and in the "
                "pothole, where the wheels lift, the full car whose tires lift off, slip and spin up in the "
                "air (FullCar+lift) is within it.")
 
