@@ -235,3 +235,59 @@ def test_default_longitudinal_relaxation_lengths_belong_to_the_tire_law():
                         wheel_spin=True)
     assert fiala.parameters.front_longitudinal_relaxation_length == vehicle.tires.front_relaxation_length
     assert fiala.parameters.rear_longitudinal_relaxation_length == vehicle.tires.rear_relaxation_length
+
+
+def test_tire_characteristics_are_remembered_per_law_and_load(monkeypatch):
+    # the memo gives what the law gives evaluated afresh, evaluates each law once per load, keeps
+    # the most recent loads of a law, and a law that cannot be a weak key is evaluated every time
+    from vehdyn.handling import single_track as module
+    from vehdyn.tire.registry import tire_for_vehicle
+
+    car = vehdyn.load_vehicle("sedan")
+    tire = tire_for_vehicle(car, "front")
+    original = SingleTrack._uncached_tire_characteristics
+    calls = []
+
+    def counted(law, load):
+        calls.append(load)
+        return original(law, load)
+
+    monkeypatch.setattr(SingleTrack, "_uncached_tire_characteristics", staticmethod(counted))
+    monkeypatch.setattr(module, "_CHARACTERISTICS", module.weakref.WeakKeyDictionary())
+    loads = [3000.0, 4321.5]
+    first = [SingleTrack._tire_characteristics(tire, load) for load in loads]
+    again = [SingleTrack._tire_characteristics(tire, load) for load in loads]
+    assert calls == loads
+    assert first == again == [original(tire, load) for load in loads]
+
+    calls.clear()
+    SingleTrack(car)
+    built_once = len(calls)
+    assert 1 <= built_once <= 2  # the two axles' static loads
+    SingleTrack(car)
+    assert len(calls) == built_once
+
+    monkeypatch.setattr(module, "CHARACTERISTICS_PER_TIRE", 3)
+    module._CHARACTERISTICS.clear()
+    calls.clear()
+    for load in (1000.0, 2000.0, 3000.0, 1000.0, 4000.0):  # 1000 N used again: 2000 N is the oldest
+        SingleTrack._tire_characteristics(tire, load)
+    assert list(module._CHARACTERISTICS[tire]) == [3000.0, 1000.0, 4000.0]
+    SingleTrack._tire_characteristics(tire, 2000.0)  # evicted: evaluated again
+    SingleTrack._tire_characteristics(tire, 4000.0)  # kept
+    assert calls == [1000.0, 2000.0, 3000.0, 4000.0, 2000.0]
+
+    class Unhashable:
+        __hash__ = None
+
+        def __init__(self, law):
+            self.law = law
+
+        def forces(self, *args, **kwargs):
+            return self.law.forces(*args, **kwargs)
+
+    calls.clear()
+    linear = LinearTire(cornering_stiffness=60_000.0)
+    for _ in range(2):
+        assert SingleTrack._tire_characteristics(Unhashable(linear), 4000.0) == original(linear, 4000.0)
+    assert calls == [4000.0, 4000.0]
