@@ -197,6 +197,38 @@ def test_plot_ladder():
     plt.close(ax.figure)
     with pytest.raises(ParameterError, match="repeat"):
         vehdyn.ladder(Scene(manoeuvre="step_steer", duration=1.0), repeat=0)
+    for bad in (-0.1, float("nan"), float("inf"), "1", True):
+        with pytest.raises(ParameterError, match=f"min_time.*{bad!r}"):
+            vehdyn.ladder(Scene(manoeuvre="step_steer", duration=1.0), min_time=bad)
+
+
+def test_ladder_times_a_fast_rung_by_enough_runs(monkeypatch):
+    # each rung runs at least ``repeat`` times and, with ``min_time``, until that much time has been
+    # spent on it after its first run (at most 50 runs), a rung whose second run is long stops
+    # there; its wall time is its fastest run. A clock that advances ``tick`` per reading makes
+    # every run last one tick.
+    import types
+
+    from vehdyn.scene import planner
+
+    readings = []
+
+    def runs_per_rung(tick, **options):
+        readings.clear()
+        clock = types.SimpleNamespace(perf_counter=lambda: readings.append(None) or len(readings) * tick)
+        monkeypatch.setattr(planner, "_time", clock)
+        frame = vehdyn.ladder(scene, **options)
+        monkeypatch.undo()
+        assert np.all(frame["wall_time_s"].to_numpy() == tick)
+        return len(readings) / 2 / len(frame)
+
+    scene = Scene(manoeuvre="step_steer", duration=0.2, outputs=("yaw_rate",))
+    assert runs_per_rung(0.125) == 1
+    assert runs_per_rung(0.125, repeat=3) == 3
+    assert runs_per_rung(0.125, repeat=2, min_time=1.0) == 9  # the first, then 8 x 0.125 s
+    assert runs_per_rung(0.125, repeat=12, min_time=1.0) == 12
+    assert runs_per_rung(0.125, min_time=100.0) == planner._MAX_RUNS
+    assert runs_per_rung(2.0, repeat=5) == 2  # long runs: the best of two
 
 
 def test_braking_needs_the_longitudinal_rungs(below_full_vehicle):

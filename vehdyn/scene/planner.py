@@ -508,18 +508,24 @@ def run(scene, model: str = "auto", verify: bool = False) -> SceneResult:
 
 
 _LONG_RUN_S = 1.0  # [s] a run this long is timed well enough by the best of two
+_MAX_RUNS = 50  # runs of one rung at most, however short and however long ``min_time``
 
 
-def ladder(scene, *, repeat: int = 1):
+def ladder(scene, *, repeat: int = 1, min_time: float = 0.0):
     """Run every admissible rung of ``scene`` and measure its cost and error against the top rung.
 
     Parameters
     ----------
     scene : Scene
     repeat : int
-        Runs per rung; the wall time is the fastest (the first run of a compiled model includes
-        loading its compiled code). A rung whose second run takes longer than 1 s is not run again
-        (the machine's noise is small against it).
+        Runs per rung at least; the wall time is the fastest (the first run of a compiled model
+        includes compiling or loading its code). A rung whose second run takes longer than 1 s is
+        not run again (the machine's noise is small against it).
+    min_time : float
+        Time [s] to spend on each rung at least, counted from its second run (the first may
+        compile), at most 50 runs (timeit's autorange): a rung of a few milliseconds is timed by
+        the best of many runs, which a pause of the machine (another process, garbage collection)
+        cannot all hit. 0 (default): ``repeat`` runs.
 
     Returns
     -------
@@ -532,18 +538,22 @@ def ladder(scene, *, repeat: int = 1):
 
     if int(repeat) < 1:
         raise ParameterError(f"repeat must be >= 1, got {repeat!r}", key="repeat", value=repeat)
+    if not (isinstance(min_time, (int, float)) and not isinstance(min_time, bool) and 0.0 <= min_time < np.inf):
+        raise ParameterError(f"min_time must be a finite number of seconds >= 0, got {min_time!r}", key="min_time",
+                             value=min_time)
     p = plan(scene)
     results, times = {}, {}
     for row in p.rows:
         if not row.admissible:
             continue
-        best = np.inf
-        for k in range(int(repeat)):
+        best, spent, k = np.inf, 0.0, 0
+        while True:
             start = _time.perf_counter()
             res = row.setup.run()
             elapsed = _time.perf_counter() - start
-            best = min(best, elapsed)
-            if k >= 1 and elapsed > _LONG_RUN_S:
+            best, spent, k = min(best, elapsed), spent + (elapsed if k >= 1 else 0.0), k + 1
+            if (k >= 2 and elapsed > _LONG_RUN_S) or k >= _MAX_RUNS or (
+                    k >= int(repeat) and (min_time == 0.0 or spent >= min_time)):
                 break
         results[row.rung.name], times[row.rung.name] = res, best
     reference = _signals(results[p.top.rung.name], p.top.outputs)
