@@ -73,7 +73,9 @@ def run(study: Study) -> None:
     wrong = table[table["error"] > 0.02]
     cheap = (table["cost_ratio"] <= 0.1).sum()
     study.text(f"Planned model within the 2 % tolerance on {len(table) - len(wrong)} of {len(table)} scenes; "
-               f"costing at most 1/10 of the reference on {cheap} of {len(table)}. A model's cost is its run for "
+               f"costing at most 1/10 of the reference on {cheap} of {len(table)} (timed while the report runs other "
+               "studies beside this one: a cheap rung's few milliseconds move with that load; quiet, best of 5, "
+               "benchmarks/bench_ladder.py finds 8 of 13 for each of the three cars). A model's cost is its run for "
                "the scene: the full vehicle's trim (tens of milliseconds) and simulation, a linearization, the "
                "derivation of LateralYawRoll+lag's stiffnesses from the tire law; building a model from the "
                "vehicle file is not counted. At 0.1 g the linear lateral-yaw-roll model with tire lag, its "
