@@ -229,6 +229,7 @@ def test_ladder_times_a_fast_rung_by_enough_runs(monkeypatch):
     assert runs_per_rung(0.125, repeat=12, min_time=1.0) == 12
     assert runs_per_rung(0.125, min_time=100.0) == planner._MAX_RUNS
     assert runs_per_rung(2.0, repeat=5) == 2  # long runs: the best of two
+    assert runs_per_rung(0.125, repeat=2, min_time=np.int64(1)) == 9  # any real number
 
 
 def test_braking_needs_the_longitudinal_rungs(below_full_vehicle):

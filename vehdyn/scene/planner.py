@@ -10,6 +10,7 @@ rung), :func:`ladder` runs every admissible rung and measures its error against 
 
 from __future__ import annotations
 
+import numbers
 import time as _time
 from dataclasses import dataclass, field
 from typing import Any
@@ -538,7 +539,7 @@ def ladder(scene, *, repeat: int = 1, min_time: float = 0.0):
 
     if int(repeat) < 1:
         raise ParameterError(f"repeat must be >= 1, got {repeat!r}", key="repeat", value=repeat)
-    if not (isinstance(min_time, (int, float)) and not isinstance(min_time, bool) and 0.0 <= min_time < np.inf):
+    if not (isinstance(min_time, numbers.Real) and not isinstance(min_time, bool) and 0.0 <= min_time < np.inf):
         raise ParameterError(f"min_time must be a finite number of seconds >= 0, got {min_time!r}", key="min_time",
                              value=min_time)
     p = plan(scene)
