@@ -471,7 +471,7 @@ def _state_jacobian_eigenvalues(model, t0, x0, u0) -> np.ndarray:
             return np.linalg.eigvals(J)
     J = np.empty((X.shape[1], n, n))
     for i in range(n):
-        h = 1e-6 * np.maximum(np.abs(X[i]), 1.0)
+        h = _jacobian_steps(X[i])
         Xp, Xm = X.copy(), X.copy()
         Xp[i] += h
         Xm[i] -= h
@@ -480,12 +480,17 @@ def _state_jacobian_eigenvalues(model, t0, x0, u0) -> np.ndarray:
     return lam[0] if single else lam
 
 
+def _jacobian_steps(x):
+    """Central-difference steps [state units] of :func:`_state_jacobian_eigenvalues`."""
+    return 1e-6 * np.maximum(np.abs(x), 1.0)
+
+
 def _single_jacobian_in_one_call(model, t0, x, u):
     """df/dx (n, n) of one vehicle by central differences (steps of :func:`_state_jacobian_eigenvalues`)
     from one rhs call on the 2n perturbed states and x itself as batch columns, or None when the
     model's rhs does not take that batch or its column at x differs from its single call there."""
     n = x.size
-    h = 1e-6 * np.maximum(np.abs(x), 1.0)
+    h = _jacobian_steps(x)
     columns = np.repeat(x[:, None], 2 * n + 1, axis=1)
     index = np.arange(n)
     columns[index, index] += h
@@ -498,8 +503,7 @@ def _single_jacobian_in_one_call(model, t0, x, u):
         return None
     if f.shape != (n, 2 * n + 1) or f0.shape != (n,):
         return None
-    tolerance = 1e-12 * np.maximum(np.abs(f0), 1e-300) + 1e-300
-    if not np.all((np.abs(f[:, -1] - f0) <= tolerance) | (f[:, -1] == f0)):
+    if not np.all(np.isclose(f[:, -1], f0, rtol=1e-12, atol=0.0)):
         return None
     return (f[:, :n] - f[:, n:2 * n]) / (2 * h)
 
