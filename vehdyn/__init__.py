@@ -33,14 +33,14 @@ from __future__ import annotations
 
 import importlib
 
-from .errors import ParameterError, SimulationError, TirFileError, VehdynError, VehdynWarning
-from .linear import LinearModel, connect_in_series
-from .model import Model
-from .params import Trailer, Vehicle, data_path, load_trailer, load_vehicle, shipped_trailers, shipped_vehicles
-from .piecewise_signal import PiecewiseSignal
-from .results import FrequencyResponse, SimulationResult
-from .signals import Signal
-from .simulate import simulate, simulate_many
+from vehdyn.errors import ParameterError, SimulationError, TirFileError, VehdynError, VehdynWarning
+from vehdyn.linear import LinearModel, connect_in_series
+from vehdyn.model import Model
+from vehdyn.params import Trailer, Vehicle, data_path, load_trailer, load_vehicle, shipped_trailers, shipped_vehicles
+from vehdyn.piecewise_signal import PiecewiseSignal
+from vehdyn.results import FrequencyResponse, SimulationResult
+from vehdyn.signals import Signal
+from vehdyn.simulate import simulate, simulate_many
 
 __version__ = "0.1.0"
 
@@ -87,11 +87,11 @@ def __getattr__(name: str):
     if name in _SCENE_NAMES:
         return getattr(importlib.import_module(".scene", __name__), name)
     if name == "sensitivity":
-        from .sweep import sensitivity
+        from vehdyn.sweep import sensitivity
 
         return sensitivity
     if name == "Modes":
-        from .analysis.modal import Modes
+        from vehdyn.analysis.modal import Modes
 
         return Modes
     raise AttributeError(f"module 'vehdyn' has no attribute {name!r}")

@@ -36,7 +36,7 @@ import math
 
 import numpy as np
 
-from ._compiled_ode import _initial_step_probe, _initial_step_size, _inputs_at, _sample_interval
+from vehdyn._compiled_ode import _initial_step_probe, _initial_step_size, _inputs_at, _sample_interval
 
 __all__ = ["MAX_ORDER", "setup"]
 

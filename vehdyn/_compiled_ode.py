@@ -47,7 +47,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import ParameterError, SimulationError
+from vehdyn.errors import ParameterError, SimulationError
 
 __all__ = ["METHODS", "CompiledModel", "CompiledBatch", "integrator", "input_table", "batch_input_table", "solve",
            "solve_batch", "outputs", "batch_outputs", "numba_available", "source_stamp", "compiled_copy"]
@@ -117,7 +117,7 @@ def input_table(model, inputs, t, u, hold):
     row range, and the sorted breakpoints inside (t[0], t[-1]) (in a batch, those of every
     variant: a variant's steps also end where another's input has a kink).
     """
-    from .piecewise_signal import PiecewiseSignal
+    from vehdyn.piecewise_signal import PiecewiseSignal
 
     names = model.input_names
     given = inputs if isinstance(inputs, Mapping) else {}
@@ -469,7 +469,7 @@ def _setup():
     import numba
     from numba.extending import register_jitable
 
-    from . import piecewise_signal
+    from vehdyn import piecewise_signal
 
     global _XP, _piece_value
     xp = types.ModuleType("vehdyn._compiled_ode.XP")
@@ -514,7 +514,7 @@ def compiled_copy(python, name, *, nogil=False, **functions):
 
 @functools.lru_cache(maxsize=None)
 def _stamp():
-    from . import _compiled_bdf, piecewise_signal
+    from vehdyn import _compiled_bdf, piecewise_signal
 
     return source_stamp(sys.modules[__name__], piecewise_signal, _compiled_bdf)
 
@@ -538,7 +538,7 @@ def integrator(rhs, key: str, method: str = "RK45"):
     """
     _setup()
     if method == "BDF":
-        from . import _compiled_bdf
+        from vehdyn import _compiled_bdf
 
         _compiled_bdf.setup()
         return compiled_copy(_compiled_bdf._integrate_bdf, f"_integrate_bdf_{key}_{_stamp()}", _rhs=rhs)

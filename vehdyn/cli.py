@@ -59,7 +59,7 @@ def _progress(i: int, n: int, name: str, width: int = 24) -> str:
 
 
 def _quick(args) -> bool:
-    from .report import _quick_from_env
+    from vehdyn.report import _quick_from_env
 
     return bool(args.quick) or _quick_from_env()
 
@@ -81,7 +81,7 @@ def _positive_int(text: str) -> int:
 
 
 def cmd_report(args) -> int:
-    from .report import build_report, discover_studies
+    from vehdyn.report import build_report, discover_studies
 
     paths = discover_studies(args.studies)
     if args.only:
@@ -116,7 +116,7 @@ def cmd_report(args) -> int:
 
 
 def cmd_study(args) -> int:
-    from .report import build_report, discover_studies
+    from vehdyn.report import build_report, discover_studies
 
     paths = {p.stem: p for p in discover_studies(args.studies)}
     if args.name not in paths:
@@ -131,25 +131,25 @@ def cmd_study(args) -> int:
 
 def cmd_tire_soil(args) -> int:
     """``vehdyn tire --soil NAME``: a soil's parameters and curves (vehdyn.tire.terramechanics)."""
-    from .tire.terramechanics import load_soil
-    from .tire.terramechanics.curves import describe_soil, plot_soil_curves, soil_curves
+    from vehdyn.tire.terramechanics import load_soil
+    from vehdyn.tire.terramechanics.curves import describe_soil, plot_soil_curves, soil_curves
 
     soil = load_soil(args.soil)
     print(describe_soil(soil))
-    from .report import make_folder
+    from vehdyn.report import make_folder
 
     out = make_folder(args.out)
     import matplotlib
 
     matplotlib.use("Agg")
-    from .plotting import save_figure
+    from vehdyn.plotting import save_figure
 
     print(f"wrote {save_figure(plot_soil_curves({soil.name: soil_curves(soil)}), out / f'soil_{soil.name}.png')}")
     return 0
 
 
 def cmd_tire(args) -> int:
-    from .errors import VehdynError, VehdynWarning
+    from vehdyn.errors import VehdynError, VehdynWarning
 
     if args.soil is not None:
         if args.file is not None:
@@ -159,8 +159,8 @@ def cmd_tire(args) -> int:
         raise _UsageError("give a .tir file or --soil NAME")
 
     try:
-        from .tire import load_tire
-        from .tire.plots import plot_tire_characteristics, describe_tire
+        from vehdyn.tire import load_tire
+        from vehdyn.tire.plots import plot_tire_characteristics, describe_tire
     except ImportError as exc:  # pragma: no cover - until the tire layer is complete
         print(f"vehdyn tire: the tire layer is not available in this version ({exc})", file=sys.stderr)
         return 2
@@ -176,13 +176,13 @@ def cmd_tire(args) -> int:
     for warning in caught:  # e.g. missing sections: said, and the tire is still described
         print(f"vehdyn tire: warning: {warning.message}", file=sys.stderr)
     print(describe_tire(tire))
-    from .report import make_folder
+    from vehdyn.report import make_folder
 
     out = make_folder(args.out)
     import matplotlib
 
     matplotlib.use("Agg")
-    from .plotting import save_figure
+    from vehdyn.plotting import save_figure
 
     for name, fig in plot_tire_characteristics(tire).items():
         path = save_figure(fig, out / f"{name}.png")
@@ -198,9 +198,9 @@ def cmd_tire_fit(args) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from .errors import VehdynWarning
-    from .plotting import save_figure
-    from .tire import fit_magic_formula, read_tire_data
+    from vehdyn.errors import VehdynWarning
+    from vehdyn.plotting import save_figure
+    from vehdyn.tire import fit_magic_formula, read_tire_data
 
     data = read_tire_data(args.data, convention=args.convention)
     with warnings.catch_warnings():  # the fit's warnings are also its messages, printed with the table
@@ -216,7 +216,7 @@ def cmd_tire_fit(args) -> int:
 
 
 def cmd_vehicles(args) -> int:
-    from .params import load_vehicle, shipped_vehicles
+    from vehdyn.params import load_vehicle, shipped_vehicles
 
     print(f"{'name':<10} {'mass [kg]':>10} {'L [m]':>7} {'a [m]':>7} {'b [m]':>7} {'Izz [kg m2]':>12} "
           f"{'Cf [kN/rad]':>12} {'Cr [kN/rad]':>12}  description")
@@ -229,7 +229,7 @@ def cmd_vehicles(args) -> int:
 
 
 def cmd_scene(args) -> int:
-    from .scene import Scene, run
+    from vehdyn.scene import Scene, run
 
     # A bad scene file or field raises a VehdynError: main() reports it as one line, exit status 2.
     outcome = run(Scene.from_toml(args.file), verify=args.verify)
@@ -240,10 +240,10 @@ def cmd_scene(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from .errors import ParameterError
-    from .scene import Scene
-    from .sweep import sweep
-    from .sweep.api import distribution_from_text, grid_from_text
+    from vehdyn.errors import ParameterError
+    from vehdyn.scene import Scene
+    from vehdyn.sweep import sweep
+    from vehdyn.sweep.api import distribution_from_text, grid_from_text
 
     # bad specs, names or values raise ParameterError: main() reports it as one line, exit status 2
     grid = dict(grid_from_text(g) for g in args.grid or ())
@@ -333,7 +333,7 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "command", None):
         parser.print_help()
         return 0
-    from .errors import ParameterError, VehdynError
+    from vehdyn.errors import ParameterError, VehdynError
 
     def fail(message: str, status: int = 2) -> int:
         if getattr(args, "progress_line_open", False):

@@ -12,9 +12,9 @@ from typing import Sequence
 
 import numpy as np
 
-from .errors import ParameterError
-from .model import Model, signal_vector
-from .signals import Signal, as_signals, names_of
+from vehdyn.errors import ParameterError
+from vehdyn.model import Model, signal_vector
+from vehdyn.signals import Signal, as_signals, names_of
 
 __all__ = ["LinearModel", "connect_in_series"]
 
@@ -327,7 +327,7 @@ class LinearModel(Model):
             ``response[output, input, frequency]``; all frequencies are solved in one batched
             linear solve, without python-control.
         """
-        from .results import FrequencyResponse
+        from vehdyn.results import FrequencyResponse
 
         model = self if outputs is None and inputs is None else self.select(outputs, inputs)
         omega = np.atleast_1d(np.asarray(omega, dtype=float))
@@ -366,7 +366,7 @@ class LinearModel(Model):
             imaginary part), sorted by natural frequency; shapes are labelled by state name and
             scaled so that their largest entry is 1.
         """
-        from .analysis.modal import state_space_modes
+        from vehdyn.analysis.modal import state_space_modes
 
         return state_space_modes(self.A, self.states)
 
@@ -378,7 +378,7 @@ class LinearModel(Model):
         SecondOrderModes
             See :func:`vehdyn.analysis.modal.modal_analysis`.
         """
-        from .analysis.modal import modal_analysis
+        from vehdyn.analysis.modal import modal_analysis
 
         if self.second_order is None:
             raise ParameterError(

@@ -30,12 +30,12 @@ from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy as np
 
-from .errors import ParameterError, SimulationError
-from .signals import Signal, as_signals, names_of
+from vehdyn.errors import ParameterError, SimulationError
+from vehdyn.signals import Signal, as_signals, names_of
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .linear import LinearModel
-    from .results import SimulationResult
+    from vehdyn.linear import LinearModel
+    from vehdyn.results import SimulationResult
 
 __all__ = ["Model", "PHENOMENA", "signal_vector", "float_array"]
 
@@ -323,7 +323,7 @@ class Model:
         accurate to about 1e-12 relative to the size of f for smooth models, and to 1e-9 of it in
         the worst case of strong cancellation.
         """
-        from .linear import LinearModel
+        from vehdyn.linear import LinearModel
 
         x0 = self.state_vector(x0)
         u0 = self.input_vector(u0)
@@ -398,7 +398,7 @@ class Model:
 
     def simulate(self, time, inputs=None, x0=None, method: str = "auto", **options) -> "SimulationResult":
         """Shorthand for :func:`vehdyn.simulate` ``(self, time, inputs, x0, method, **options)``."""
-        from .simulate import simulate
+        from vehdyn.simulate import simulate
 
         return simulate(self, time, inputs=inputs, x0=x0, method=method, **options)
 

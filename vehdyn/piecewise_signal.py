@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from .errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["PiecewiseSignal", "piece_value", "PIECE_COLUMNS"]
 

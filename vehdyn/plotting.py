@@ -10,10 +10,10 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from ._atomic import atomic_write
+from vehdyn._atomic import atomic_write
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .results import FrequencyResponse, SimulationResult
+    from vehdyn.results import FrequencyResponse, SimulationResult
 
 __all__ = ["plot_time_histories", "bode_plot", "axis_label", "new_figure", "save_figure"]
 

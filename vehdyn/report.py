@@ -54,8 +54,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from ._atomic import _keep_permissions, atomic_write, atomic_write_text
-from .errors import ParameterError, VehdynError
+from vehdyn._atomic import _keep_permissions, atomic_write, atomic_write_text
+from vehdyn.errors import ParameterError, VehdynError
 
 __all__ = ["Study", "StudyOutcome", "discover_studies", "run_study", "write_report", "build_report"]
 
@@ -101,7 +101,7 @@ class Study:
 
     def figure(self, fig, name: str, caption: str = "") -> Path:
         """Save a matplotlib figure as ``NAME.png`` (atomically) and close it."""
-        from .plotting import save_figure
+        from vehdyn.plotting import save_figure
 
         path = save_figure(fig, self.out_dir / f"{name}.png", dpi=110)
         self.items.append(("figure", path.name, caption))
@@ -164,7 +164,7 @@ def find_studies_folder() -> Path:
     for cand in (here / "studies", Path.cwd() / "studies", here / "vehdyn" / "studies"):
         if cand.is_dir():
             return cand
-    from .params import data_path
+    from vehdyn.params import data_path
 
     return data_path("studies")
 

@@ -11,8 +11,8 @@ from typing import Sequence
 
 import numpy as np
 
-from .errors import ParameterError
-from .signals import Signal, names_of
+from vehdyn.errors import ParameterError
+from vehdyn.signals import Signal, names_of
 
 __all__ = ["SimulationResult", "FrequencyResponse"]
 
@@ -154,7 +154,7 @@ class SimulationResult:
         -------
         matplotlib.figure.Figure
         """
-        from .plotting import plot_time_histories
+        from vehdyn.plotting import plot_time_histories
 
         names = list(signals) if signals is not None else list(self.output_names)
         return plot_time_histories(self, names, fig=fig, batch=batch)
@@ -268,7 +268,7 @@ class FrequencyResponse:
 
     def plot(self, outputs=None, inputs=None, *, fig=None, hz: bool = True, db: bool = False):
         """Bode plot (magnitude and phase against frequency, log axes) of the chosen channels."""
-        from .plotting import bode_plot
+        from vehdyn.plotting import bode_plot
 
         return bode_plot(self, outputs=outputs, inputs=inputs, fig=fig, hz=hz, db=db)
 

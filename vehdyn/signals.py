@@ -12,7 +12,7 @@ import re
 from dataclasses import dataclass
 from typing import Iterable
 
-from .errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["Signal", "GLOSSARY", "STEER_INPUTS", "as_signals", "names_of"]
 

@@ -58,9 +58,9 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
-from .errors import ParameterError, SimulationError, VehdynWarning
-from .model import Model, float_array, signal_vector
-from .results import SimulationResult
+from vehdyn.errors import ParameterError, SimulationError, VehdynWarning
+from vehdyn.model import Model, float_array, signal_vector
+from vehdyn.results import SimulationResult
 
 __all__ = ["simulate", "simulate_many", "SOLVE_IVP_METHODS", "rk4_stability_limit", "stability_interval",
            "exact_discretization", "STIFF_STEPS_WARN", "STIFF_STEPS_REFUSE"]
@@ -199,7 +199,7 @@ def _interpolator(t: np.ndarray, u: np.ndarray, hold: str) -> Callable[[float], 
 def _named_inputs(model: Model, inputs: Any) -> Any:
     """``inputs`` with a bare :class:`~vehdyn.PiecewiseSignal` given to a one-input model named
     (``{name: signal}``), so that both backends see it as the closed form it is."""
-    from .piecewise_signal import PiecewiseSignal
+    from vehdyn.piecewise_signal import PiecewiseSignal
 
     if isinstance(inputs, PiecewiseSignal) and model.n_inputs == 1:
         return {model.input_names[0]: inputs}
@@ -223,7 +223,7 @@ def _input_function(model: Model, inputs: Any, t: np.ndarray, u: np.ndarray, hol
     breakpoints : ndarray
         Sorted times inside (t[0], t[-1]) where a closed-form input begins a new piece [s].
     """
-    from .piecewise_signal import PiecewiseSignal
+    from vehdyn.piecewise_signal import PiecewiseSignal
 
     sampled = _interpolator(t, u, hold)
     given = inputs if isinstance(inputs, Mapping) else {}
@@ -711,7 +711,7 @@ def _solve_ivp_segment(solve_ivp, fun, a, b, y0, method, t_eval, opts, t_first):
 
 # --------------------------------------------------------------------------- auto
 def _choose_method(model, t, u, x0, rtol) -> tuple[str, str]:
-    from .linear import LinearModel
+    from vehdyn.linear import LinearModel
 
     if isinstance(model, LinearModel):
         return "exact", "linear model: exact discretization through the matrix exponential"
@@ -816,7 +816,7 @@ def simulate(
     VehdynWarning
         When an explicit method's stability alone needs more than ``STIFF_STEPS_WARN`` steps.
     """
-    from .linear import LinearModel
+    from vehdyn.linear import LinearModel
 
     if not isinstance(model, Model):
         raise ParameterError(f"model must be a vehdyn Model, got {type(model).__name__}", key="model", value=model)
@@ -868,7 +868,7 @@ def simulate(
                                          max_step)
         counters.update(stats)
     elif compiled is not None:
-        from . import _compiled_ode
+        from vehdyn import _compiled_ode
 
         try:
             x, stats = _compiled_ode.solve(compiled.rhs, compiled.key, compiled.args, t, x0v,
@@ -904,7 +904,7 @@ def simulate(
             time=float(t[k]), signal=model.state_names[i],
         )
     if compiled is not None:
-        from . import _compiled_ode
+        from vehdyn import _compiled_ode
     if compiled is not None and hasattr(compiled, "pick"):
         uu = np.moveaxis(u, 2, 0) if u.ndim == 3 else u
         y = np.moveaxis(_compiled_ode.batch_outputs(compiled, model.n_outputs, t, np.moveaxis(x, 2, 0), uu), 0, 2)
@@ -1012,7 +1012,7 @@ def _stiffness_hint(exc: SimulationError, model, method, t, x0, u) -> Simulation
 
 def _compiled_backend(model, method, backend, x0, u):
     """(compiled rhs, key, args) and the reason when the compiled backend runs, else (None, "")."""
-    from . import _compiled_ode
+    from vehdyn import _compiled_ode
 
     backends = ("auto", "numpy", "compiled")
     if backend not in backends:
@@ -1053,7 +1053,7 @@ def _compiled_backend(model, method, backend, x0, u):
 def _solve_compiled_batch(model, compiled, t, inputs, u, x0, hold, method, rtol, atol, first_step, max_step):
     """States (n, n_t, n_variants) and counters of a batch on the compiled backend
     (:func:`vehdyn._compiled_ode.solve_batch`); the first failed variant raises SimulationError."""
-    from . import _compiled_ode
+    from vehdyn import _compiled_ode
 
     n = compiled.n_variants
     x0 = np.broadcast_to(x0.reshape(x0.shape[0], -1), (x0.shape[0], n))
@@ -1075,7 +1075,7 @@ def _solve_compiled_batch(model, compiled, t, inputs, u, x0, hold, method, rtol,
 
 def _outputs(model, t, x, u):
     """Outputs for every sample: one batched call when the model allows it."""
-    from .linear import LinearModel
+    from vehdyn.linear import LinearModel
 
     if isinstance(model, LinearModel):
         if x.ndim == 2:
@@ -1108,7 +1108,7 @@ def _compiled_member(args, kwargs):
     """A call of :func:`simulate` prepared for a compiled batch, or None when it must run alone:
     (group key, model, t, inputs, u, x0, options). Any doubt (a bad argument, an option a batch
     does not take) leaves the call to :func:`simulate`, which raises the proper error."""
-    from . import _compiled_ode
+    from vehdyn import _compiled_ode
 
     if len(args) != 3 or not set(kwargs) <= _BATCH_OPTIONS:
         return None
@@ -1164,7 +1164,7 @@ def simulate_many(calls, *, threads=None) -> list:
         (a :class:`~vehdyn.ParameterError` or :class:`~vehdyn.SimulationError`: one bad call
         never stops the others).
     """
-    from . import _compiled_ode
+    from vehdyn import _compiled_ode
 
     out: list = [None] * len(calls)
     groups: dict = {}

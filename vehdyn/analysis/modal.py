@@ -21,8 +21,8 @@ from typing import Sequence
 import numpy as np
 import scipy.linalg
 
-from ..errors import ParameterError
-from ..signals import Signal, names_of
+from vehdyn.errors import ParameterError
+from vehdyn.signals import Signal, names_of
 
 __all__ = ["Modes", "SecondOrderModes", "state_space_modes", "modal_analysis"]
 

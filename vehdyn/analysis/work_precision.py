@@ -13,7 +13,7 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from ..errors import ParameterError, SimulationError
+from vehdyn.errors import ParameterError, SimulationError
 
 __all__ = ["work_precision", "DEFAULT_TOLERANCES"]
 
@@ -63,7 +63,7 @@ def work_precision(
     """
     import pandas as pd
 
-    from ..simulate import SOLVE_IVP_METHODS, simulate
+    from vehdyn.simulate import SOLVE_IVP_METHODS, simulate
 
     t = np.asarray(time, dtype=float)
     reference = np.asarray(reference, dtype=float)

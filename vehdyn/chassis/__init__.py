@@ -11,10 +11,10 @@ compiles with numba for ``simulate(..., backend="compiled"/"auto")``. :func:`roa
 puts a Magic Formula tire on a road of other friction.
 """
 
-from .abs import ABS
-from .closed_loop import ChassisController, ClosedLoop
-from .esc import ESC
-from .friction import road_friction_tire
-from .traction_control import TractionControl
+from vehdyn.chassis.abs import ABS
+from vehdyn.chassis.closed_loop import ChassisController, ClosedLoop
+from vehdyn.chassis.esc import ESC
+from vehdyn.chassis.friction import road_friction_tire
+from vehdyn.chassis.traction_control import TractionControl
 
 __all__ = ["ABS", "TractionControl", "ESC", "ClosedLoop", "ChassisController", "road_friction_tire"]

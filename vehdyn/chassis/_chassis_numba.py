@@ -24,9 +24,9 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from .._compiled_ode import CompiledModel, compiled_copy, source_stamp
-from . import abs as abs_law
-from . import closed_loop, esc, traction_control
+from vehdyn._compiled_ode import CompiledModel, compiled_copy, source_stamp
+from vehdyn.chassis import abs as abs_law
+from vehdyn.chassis import closed_loop, esc, traction_control
 
 __all__ = ["compiled_abs", "compiled_traction_control", "compiled_esc", "compiled_loop"]
 

@@ -28,10 +28,10 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..params import Vehicle
-from ..signals import Signal
-from .closed_loop import ChassisController, channel_signals, check_gains, check_vehicle, sigmoid
+from vehdyn.errors import ParameterError
+from vehdyn.params import Vehicle
+from vehdyn.signals import Signal
+from vehdyn.chassis.closed_loop import ChassisController, channel_signals, check_gains, check_vehicle, sigmoid
 
 __all__ = ["ABS", "ABSGains", "braking_slip", "torque_rate"]
 
@@ -152,7 +152,7 @@ class ABS(ChassisController):
 
     def compiled_rhs(self):
         """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`."""
-        from . import _chassis_numba
+        from vehdyn.chassis import _chassis_numba
 
         return _chassis_numba.compiled_abs(self)
 

@@ -32,9 +32,9 @@ import re
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..model import Model
-from ..signals import Signal
+from vehdyn.errors import ParameterError
+from vehdyn.model import Model
+from vehdyn.signals import Signal
 
 __all__ = ["ClosedLoop", "ChassisController"]
 
@@ -60,7 +60,7 @@ def check_gains(owner: str, *, positive=(), nonnegative=(), **values) -> dict:
 
 def check_vehicle(owner: str, vehicle):
     """ParameterError unless ``vehicle`` is a :class:`~vehdyn.Vehicle`."""
-    from ..params import Vehicle
+    from vehdyn.params import Vehicle
 
     if not isinstance(vehicle, Vehicle):
         raise ParameterError(f"{owner} needs a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
@@ -222,7 +222,7 @@ class ClosedLoop(Model):
         ``backend="auto"`` runs numpy; the plant's :class:`~vehdyn.ParameterError` (a configuration
         without a compiled form) passes through.
         """
-        from . import _chassis_numba
+        from vehdyn.chassis import _chassis_numba
 
         return _chassis_numba.compiled_loop(self)
 

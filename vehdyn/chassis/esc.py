@@ -37,10 +37,10 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..params import Vehicle
-from ..signals import Signal
-from ..units import GRAVITY
-from .closed_loop import ChassisController, check_gains, check_vehicle, deadband, sigmoid
+from vehdyn.params import Vehicle
+from vehdyn.signals import Signal
+from vehdyn.units import GRAVITY
+from vehdyn.chassis.closed_loop import ChassisController, check_gains, check_vehicle, deadband, sigmoid
 
 __all__ = ["ESC", "ESCGains", "reference_yaw_rate", "yaw_moment_demand", "wheel_torque_commands", "axle_commands"]
 
@@ -158,7 +158,7 @@ class ESC(ChassisController):
                  sideslip_limit: float = 0.07, hydraulic_time_constant: float = 0.1,
                  friction_coefficient: float | None = None, minimum_speed: float = 5.0):
         check_vehicle("ESC", vehicle)
-        from ..handling import stability_factor
+        from vehdyn.handling import stability_factor
 
         mu = vehicle.tires.friction_coefficient if friction_coefficient is None else friction_coefficient
         gains = check_gains("ESC", yaw_rate_gain=yaw_rate_gain, sideslip_gain=sideslip_gain,
@@ -233,7 +233,7 @@ class ESC(ChassisController):
 
     def compiled_rhs(self):
         """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`."""
-        from . import _chassis_numba
+        from vehdyn.chassis import _chassis_numba
 
         return _chassis_numba.compiled_esc(self)
 

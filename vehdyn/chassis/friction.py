@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["road_friction_tire"]
 
@@ -36,8 +36,8 @@ def road_friction_tire(tire, friction: float, load: float):
     MagicFormula
         A new tire; ``tire`` is unchanged.
     """
-    from ..tire import MagicFormula, characteristic_values
-    from ..tire.tir import TirParameters
+    from vehdyn.tire import MagicFormula, characteristic_values
+    from vehdyn.tire.tir import TirParameters
 
     if not isinstance(tire, MagicFormula):
         raise ParameterError(f"road_friction_tire needs a MagicFormula tire, got {type(tire).__name__}", key="tire",

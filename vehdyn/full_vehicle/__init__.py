@@ -12,8 +12,8 @@ Modules: :mod:`~vehdyn.full_vehicle.body` (sprung body and the wheels' x-y inert
 :mod:`~vehdyn.full_vehicle.ladder` (its rungs on the fidelity ladder of :mod:`vehdyn.scene`).
 """
 
-from .corner import CORNERS
-from .ladder import ladder_setup
-from .model import FullVehicle
+from vehdyn.full_vehicle.corner import CORNERS
+from vehdyn.full_vehicle.ladder import ladder_setup
+from vehdyn.full_vehicle.model import FullVehicle
 
 __all__ = ["FullVehicle", "CORNERS", "ladder_setup"]

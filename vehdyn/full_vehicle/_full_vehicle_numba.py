@@ -40,13 +40,13 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from .. import conventions
-from .._compiled_ode import CompiledModel, compiled_copy, source_stamp
-from ..errors import ParameterError
-from ..handling import _single_track_numba as stn
-from ..handling import crosswind, single_track_equations
-from ..tire import _mf_numba, linear, magic_formula
-from . import aero, assembly, body, corner, driveline, steering
+from vehdyn import conventions
+from vehdyn._compiled_ode import CompiledModel, compiled_copy, source_stamp
+from vehdyn.errors import ParameterError
+from vehdyn.handling import _single_track_numba as stn
+from vehdyn.handling import crosswind, single_track_equations
+from vehdyn.tire import _mf_numba, linear, magic_formula
+from vehdyn.full_vehicle import aero, assembly, body, corner, driveline, steering
 
 __all__ = ["XP", "compiled_model", "compiled_functions"]
 
@@ -219,7 +219,7 @@ def compiled_functions():
 
 def _road(model):
     """The road argument: (on, distance, elevation, slope) of a RoadProfile, or a flat road."""
-    from ..ride.road import RoadProfile
+    from vehdyn.ride.road import RoadProfile
 
     road = model.road
     if road is None:

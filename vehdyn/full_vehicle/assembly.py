@@ -31,12 +31,12 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..errors import SimulationError
-from ..handling import single_track_equations as st
-from ..mechanics import euler_angle_rates, rotation_body_to_earth
-from ..mechanics.newton_euler import accelerations
-from . import aero, body, corner, driveline, steering
-from .corner import CORNERS
+from vehdyn.errors import SimulationError
+from vehdyn.handling import single_track_equations as st
+from vehdyn.mechanics import euler_angle_rates, rotation_body_to_earth
+from vehdyn.mechanics.newton_euler import accelerations
+from vehdyn.full_vehicle import aero, body, corner, driveline, steering
+from vehdyn.full_vehicle.corner import CORNERS
 
 __all__ = ["STATES", "INPUTS", "BODY_STATES", "CORNER_STATES", "Constants", "Evaluation", "NUMPY", "gather",
            "ground_point", "DOMAIN_STATES", "DomainError",

@@ -19,7 +19,7 @@ omega = omega_b z, z / sqrt(1 + z^2) = T_d / T_brake, instead of standing exactl
 
 from __future__ import annotations
 
-from ..handling.single_track_equations import net_wheel_torque
+from vehdyn.handling.single_track_equations import net_wheel_torque
 
 __all__ = ["wheel_acceleration", "axle_torques"]
 

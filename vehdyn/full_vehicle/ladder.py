@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["ladder_setup", "linearized_setup", "scene_inputs", "road_inputs", "corner_body_accelerations",
            "SOLVER_OPTIONS"]
@@ -74,8 +74,8 @@ def corner_body_accelerations(model, result) -> dict:
     dict
         ``{"sprung_acceleration_front_left": array, ...}`` on ``result.time``.
     """
-    from . import assembly
-    from .corner import CORNERS
+    from vehdyn.full_vehicle import assembly
+    from vehdyn.full_vehicle.corner import CORNERS
 
     states, e = model._evaluate(np.asarray(result.states, dtype=float), np.asarray(result.inputs, dtype=float))
     p, q, r = states[3], states[4], states[5]
@@ -95,7 +95,7 @@ def _with_corner_accelerations(model, result):
     """``result`` with the :func:`corner_body_accelerations` appended to its outputs."""
     import dataclasses
 
-    from ..signals import Signal
+    from vehdyn.signals import Signal
 
     extra = corner_body_accelerations(model, result)
     signals = tuple(Signal(n, "m/s^2", "vertical acceleration of the body above the wheel (up)") for n in extra)
@@ -106,7 +106,7 @@ def _with_corner_accelerations(model, result):
 def _setup_class():
     from dataclasses import dataclass
 
-    from ..scene.rungs import Setup
+    from vehdyn.scene.rungs import Setup
 
     @dataclass
     class FullVehicleSetup(Setup):
@@ -122,7 +122,7 @@ def _setup_class():
 
 
 def _not_admissible(reason):
-    from ..scene.rungs import NotAdmissible
+    from vehdyn.scene.rungs import NotAdmissible
 
     return NotAdmissible(reason)
 
@@ -133,7 +133,7 @@ def road_inputs(drive) -> dict:
     Front wheels at distance V t on their track's profile, rear wheels a wheelbase behind (V the
     scene's speed), sampled by :meth:`vehdyn.ride.RoadProfile.road_inputs` as for the ride rungs.
     """
-    from ..ride.road import RoadProfile
+    from vehdyn.ride.road import RoadProfile
 
     distance, left, right = drive.road
     wheelbase = drive.vehicle.geometry.wheelbase
@@ -174,7 +174,7 @@ def scene_inputs(drive, model, trim_inputs, road=None) -> dict:
     dict
         Input name -> number, array on ``drive.time`` or callable of t, for :func:`vehdyn.simulate`.
     """
-    from .corner import CORNERS
+    from vehdyn.full_vehicle.corner import CORNERS
 
     inputs = {n: float(v) for n, v in zip(model.input_names, trim_inputs) if v != 0.0}
     inputs.update(drive.inputs)
@@ -193,8 +193,8 @@ def scene_inputs(drive, model, trim_inputs, road=None) -> dict:
 def _model_for(drive, ladder, name):
     """The FullVehicle for ``drive`` and the corners' road inputs, or NotAdmissible (see
     :func:`ladder_setup`: which of the two ladders answers which scene)."""
-    from ..scene.rungs import tire_laws
-    from .model import FullVehicle
+    from vehdyn.scene.rungs import tire_laws
+    from vehdyn.full_vehicle.model import FullVehicle
 
     if ladder not in ("handling", "ride"):
         raise ParameterError(f"ladder must be 'handling' or 'ride', got {ladder!r}", key="ladder", value=ladder)
@@ -236,9 +236,9 @@ def ladder_setup(drive, ladder: str = "handling"):
         When the scene is not this rung's (see ``ladder``) or names an input the full vehicle does
         not have.
     """
-    from ..scene.rungs import Setup
-    from ..simulate import simulate
-    from .corner import CORNERS
+    from vehdyn.scene.rungs import Setup
+    from vehdyn.simulate import simulate
+    from vehdyn.full_vehicle.corner import CORNERS
 
     model, road = _model_for(drive, ladder, "FullVehicle")
     scene = drive.scene
@@ -251,7 +251,7 @@ def ladder_setup(drive, ladder: str = "handling"):
         return x0, scene_inputs(drive, model, u0, road)
 
     if drive.track is not None:
-        from ..scene.rungs import _with_driver
+        from vehdyn.scene.rungs import _with_driver
 
         loop = _with_driver(model, drive, speed_control=False)
 
@@ -294,8 +294,8 @@ def linearized_run(model, drive, road):
     import dataclasses
     import time as _time
 
-    from ..linear import LinearModel
-    from ..simulate import simulate
+    from vehdyn.linear import LinearModel
+    from vehdyn.simulate import simulate
 
     start = _time.perf_counter()
     x0, u0 = model.trim(drive.scene.speed, lateral_acceleration=drive.initial_turn or 0.0)
@@ -343,7 +343,7 @@ def linearized_setup(drive, ladder: str = "handling"):
         As :func:`ladder_setup`, and for braking and the ISO 3888-1 driver (large slips, the
         driver's nonlinear loop on the earth position: the nonlinear rung answers).
     """
-    from ..scene.rungs import Setup
+    from vehdyn.scene.rungs import Setup
 
     model, road = _model_for(drive, ladder, "FullVehicle(linearized)")
     if drive.braking is not None:

@@ -51,14 +51,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..handling.single_track import _stack
-from ..model import Model
-from ..params import Vehicle
-from ..signals import Signal
-from ..units import GRAVITY
-from . import assembly
-from .corner import CORNERS
+from vehdyn.errors import ParameterError
+from vehdyn.handling.single_track import _stack
+from vehdyn.model import Model
+from vehdyn.params import Vehicle
+from vehdyn.signals import Signal
+from vehdyn.units import GRAVITY
+from vehdyn.full_vehicle import assembly
+from vehdyn.full_vehicle.corner import CORNERS
 
 __all__ = ["FullVehicle"]
 
@@ -96,7 +96,7 @@ _INPUT_SIGNALS = {
 def check_combined_slip(tire, load, name):
     """Raise ParameterError unless ``tire`` takes combined slip: finite forces with F_x responding to
     kappa and F_y to alpha when both act at once (or the law declares ``combined_slip = False``)."""
-    from ..tire import TireModel
+    from vehdyn.tire import TireModel
 
     if not isinstance(tire, TireModel):
         raise ParameterError(f"{name} must be a vehdyn.tire.TireModel, got {type(tire).__name__}", key=name,
@@ -218,8 +218,8 @@ class FullVehicle(Model):
                                  f"{type(friction).__name__}", key="friction", value=friction)
         self.friction = friction
         self._geometry(vehicle)
-        from ..handling.single_track import SingleTrack
-        from ..tire import tire_for_vehicle
+        from vehdyn.handling.single_track import SingleTrack
+        from vehdyn.tire import tire_for_vehicle
 
         tires = {}
         for axle, tire, load in zip(_AXLES, (front_tire, rear_tire), self.static_tire_loads[::2]):
@@ -260,7 +260,7 @@ class FullVehicle(Model):
     def _check_road(road):
         if road is None or callable(road):
             return road
-        from ..ride.road import RoadProfile
+        from vehdyn.ride.road import RoadProfile
 
         if isinstance(road, RoadProfile):
             return road
@@ -310,7 +310,7 @@ class FullVehicle(Model):
                 raise ParameterError(f"mass.yaw_inertia = {m.yaw_inertia} kg*m^2 leaves no yaw inertia for the sprung "
                                      f"mass ({jzz:.4g} kg*m^2); give mass.sprung_yaw_inertia", key="mass.yaw_inertia",
                                      value=m.yaw_inertia)
-        from ..mechanics import InertiaTensor
+        from vehdyn.mechanics import InertiaTensor
 
         tensor = InertiaTensor(ixx=m.sprung_roll_inertia, iyy=m.sprung_pitch_inertia, izz=float(jzz),
                                ixz=m.sprung_roll_yaw_product)
@@ -318,8 +318,8 @@ class FullVehicle(Model):
 
     def constants(self) -> assembly.Constants:
         """The :class:`~vehdyn.full_vehicle.assembly.Constants` the equations read (floats and tuples)."""
-        from ..handling.crosswind import wind_side_force_factor
-        from .body import added_mass_projection
+        from vehdyn.handling.crosswind import wind_side_force_factor
+        from vehdyn.full_vehicle.body import added_mass_projection
 
         v = self.vehicle
         m, g, s, t, a = v.mass, v.geometry, v.suspension, v.tires, v.aero
@@ -496,7 +496,7 @@ class FullVehicle(Model):
         cached = self.__dict__.get("_compiled_model")
         if cached is not None and cached[0] == key:  # a changed road, friction or domain recompiles args
             return cached[1]
-        from . import _full_vehicle_numba
+        from vehdyn.full_vehicle import _full_vehicle_numba
 
         compiled = _full_vehicle_numba.compiled_model(self)
         self._compiled_model = (key, compiled)
@@ -556,7 +556,7 @@ class FullVehicle(Model):
             For a bad speed or acceleration, or when no steady state is found within ``tol`` (e.g.
             beyond the limit lateral acceleration).
         """
-        from . import operating_points
+        from vehdyn.full_vehicle import operating_points
 
         return operating_points.trim(self, speed, lateral_acceleration=lateral_acceleration, radius=radius,
                                      longitudinal_acceleration=longitudinal_acceleration, tol=tol, guess=guess)

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError
-from .corner import CORNERS
+from vehdyn.errors import ParameterError
+from vehdyn.full_vehicle.corner import CORNERS
 
 __all__ = ["trim"]
 
@@ -107,7 +107,7 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
     L = v.wheelbase
     delta0 = 0.0
     if cornering:
-        from ..handling.bicycle import BicycleParameters
+        from vehdyn.handling.bicycle import BicycleParameters
 
         t = v.tires
         bicycle = BicycleParameters(mass=v.mass.mass, yaw_inertia=v.mass.yaw_inertia, a=v.geometry.a,

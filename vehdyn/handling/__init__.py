@@ -7,8 +7,8 @@ turns right and gives a positive yaw rate and lateral acceleration. Cornering st
 AXLE (both tires).
 """
 
-from .bicycle import BicycleParameters, LinearBicycle, bicycle_parameters
-from .steady_state import (
+from vehdyn.handling.bicycle import BicycleParameters, LinearBicycle, bicycle_parameters
+from vehdyn.handling.steady_state import (
     AckermannWheelAngles,
     HandlingDiagram,
     NeutralSteerPoint,
@@ -28,16 +28,16 @@ from .steady_state import (
     understeer_gradient_rad_per_g,
     zero_sideslip_speed,
 )
-from .four_wheel_steer import (
+from vehdyn.handling.four_wheel_steer import (
     FourWheelSteerComparison,
     compare_four_wheel_steering,
     proportional_rear_steer,
     yaw_rate_feedback_rear_steer,
     zero_sideslip_rear_steer_ratio,
 )
-from .lateral_yaw_roll import LateralYawRoll, LateralYawRollParameters, lateral_yaw_roll_parameters, roll_gradient
-from .lateral_yaw_roll_lag import LateralYawRollLag
-from .transient import (
+from vehdyn.handling.lateral_yaw_roll import LateralYawRoll, LateralYawRollParameters, lateral_yaw_roll_parameters, roll_gradient
+from vehdyn.handling.lateral_yaw_roll_lag import LateralYawRollLag
+from vehdyn.handling.transient import (
     StepResponseMetrics,
     YawMode,
     lateral_acceleration_transfer_function,
@@ -91,15 +91,15 @@ __all__ = [
 ]
 
 # Nonlinear single track, its steady state, manoeuvres and the preview driver (issue 7)
-from .single_track import SingleTrack, SingleTrackParameters  # noqa: E402
-from .nonlinear_steady_state import (  # noqa: E402
+from vehdyn.handling.single_track import SingleTrack, SingleTrackParameters  # noqa: E402
+from vehdyn.handling.nonlinear_steady_state import (  # noqa: E402
     NonlinearHandlingDiagram,
     SteadyStateCornering,
     limit_lateral_acceleration,
     nonlinear_handling_diagram,
     steady_state_cornering,
 )
-from .driver import (  # noqa: E402
+from vehdyn.handling.driver import (  # noqa: E402
     CrossoverDriver,
     DriverInTheLoop,
     OptimalPreviewDriver,
@@ -112,20 +112,20 @@ from .driver import (  # noqa: E402
     preview_gains,
     slip_angle_utilization,
 )
-from .crosswind import (  # noqa: E402
+from vehdyn.handling.crosswind import (  # noqa: E402
     CrosswindSensitivity,
     crosswind_sensitivity,
     steady_state_crosswind_yaw_rate,
     wind_zone_signal,
 )
-from .steering_system import (  # noqa: E402
+from vehdyn.handling.steering_system import (  # noqa: E402
     SteeredVehicle,
     SteeringSystem,
     SteeringSystemParameters,
     steering_system_parameters,
 )
-from .on_center import WeaveTestMetrics, weave_metrics, weave_test  # noqa: E402
-from .maneuvers import (  # noqa: E402
+from vehdyn.handling.on_center import WeaveTestMetrics, weave_metrics, weave_test  # noqa: E402
+from vehdyn.handling.maneuvers import (  # noqa: E402
     BrakingInTurn,
     DoubleLaneChangeTrack,
     SineWithDwellMetrics,
@@ -193,7 +193,7 @@ __all__ += [
 ]
 
 # Articulated vehicles (issue 14)
-from .car_trailer import (  # noqa: E402
+from vehdyn.handling.car_trailer import (  # noqa: E402
     CarTrailerParameters,
     CrosswindAmplification,
     LinearCarTrailer,
@@ -201,13 +201,13 @@ from .car_trailer import (  # noqa: E402
     car_trailer_parameters,
     trailer_crosswind_amplification,
 )
-from .articulated_single_track import ArticulatedSingleTrack, ArticulationEvent  # noqa: E402
+from vehdyn.handling.articulated_single_track import ArticulatedSingleTrack, ArticulationEvent  # noqa: E402
 
 __all__ += ["CarTrailerParameters", "CrosswindAmplification", "LinearCarTrailer", "SnakingMode",
             "car_trailer_parameters", "trailer_crosswind_amplification",
             "ArticulatedSingleTrack", "ArticulationEvent"]
 
 # FMVSS 126 compliance (issue 15)
-from .fmvss126 import FMVSS126Result, fmvss126  # noqa: E402
+from vehdyn.handling.fmvss126 import FMVSS126Result, fmvss126  # noqa: E402
 
 __all__ += ["FMVSS126Result", "fmvss126"]

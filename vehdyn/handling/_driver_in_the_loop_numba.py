@@ -20,8 +20,8 @@ from collections import namedtuple
 import numpy as np
 from numba.extending import register_jitable
 
-from .._compiled_ode import CompiledModel, compiled_copy, source_stamp
-from . import driver
+from vehdyn._compiled_ode import CompiledModel, compiled_copy, source_stamp
+from vehdyn.handling import driver
 
 __all__ = ["DriverNumbers", "compiled_model"]
 

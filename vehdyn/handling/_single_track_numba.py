@@ -31,14 +31,14 @@ import numpy as np
 from numba.extending import register_jitable
 from numba.np.unsafe.ndarray import to_fixed_tuple
 
-from .. import conventions
-from .._compiled_ode import CompiledBatch, CompiledModel, compiled_copy, source_stamp
-from ..errors import ParameterError
-from ..tire import _mf_numba, linear, magic_formula
-from ..tire.linear import LinearTire
-from ..tire.magic_formula import MagicFormula
-from . import crosswind
-from . import single_track_equations as equations
+from vehdyn import conventions
+from vehdyn._compiled_ode import CompiledBatch, CompiledModel, compiled_copy, source_stamp
+from vehdyn.errors import ParameterError
+from vehdyn.tire import _mf_numba, linear, magic_formula
+from vehdyn.tire.linear import LinearTire
+from vehdyn.tire.magic_formula import MagicFormula
+from vehdyn.handling import crosswind
+from vehdyn.handling import single_track_equations as equations
 
 __all__ = ["XP", "compiled_model", "compiled_functions", "compiled_batch", "batch_structure"]
 

@@ -72,14 +72,14 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..model import Model
-from ..params import Trailer, Vehicle
-from ..signals import Signal
-from ..units import GRAVITY
-from . import single_track_equations as eq
-from .crosswind import aero_side_force, trailer_wind_side_force_factor
-from .single_track import SingleTrack, _stack
+from vehdyn.errors import ParameterError
+from vehdyn.model import Model
+from vehdyn.params import Trailer, Vehicle
+from vehdyn.signals import Signal
+from vehdyn.units import GRAVITY
+from vehdyn.handling import single_track_equations as eq
+from vehdyn.handling.crosswind import aero_side_force, trailer_wind_side_force_factor
+from vehdyn.handling.single_track import SingleTrack, _stack
 
 __all__ = ["ArticulatedSingleTrack", "ArticulationEvent", "LOCKED_SLIDING_SPEED"]
 
@@ -185,7 +185,7 @@ class ArticulatedSingleTrack(Model):
             raise ParameterError("tire_lag needs a positive trailer.relaxation_length, got "
                                  f"{trailer.relaxation_length}", key="relaxation_length",
                                  value=trailer.relaxation_length)
-        from ..tire import FialaTire, TireModel
+        from vehdyn.tire import FialaTire, TireModel
 
         if trailer_tire is None:
             trailer_tire = FialaTire(cornering_stiffness=trailer.cornering_stiffness / 2,
@@ -403,7 +403,7 @@ class ArticulatedSingleTrack(Model):
         :class:`~vehdyn.handling.LinearCarTrailer`, in its order). With linear tires and no tire
         lag its matrices are those of LinearCarTrailer (with the same ``crosswind``).
         """
-        from ..linear import LinearModel
+        from vehdyn.linear import LinearModel
 
         full = self.linearize(self.straight_running(speed), self.input_vector())
         names = ["lateral_velocity", "yaw_rate", "articulation_angle", "articulation_rate"]
@@ -412,7 +412,7 @@ class ArticulatedSingleTrack(Model):
         keep = [self.index(n) for n in names]
         inputs = [self.index(n, "inputs") for n in ("front_steer_angle",) + (("wind_velocity_lateral",)
                                                                               if crosswind else ())]
-        from .car_trailer import _OUTPUTS
+        from vehdyn.handling.car_trailer import _OUTPUTS
 
         outputs = [self.index(s.name, "outputs") for s in _OUTPUTS]
         return LinearModel(full.A[np.ix_(keep, keep)], full.B[np.ix_(keep, inputs)], full.C[np.ix_(outputs, keep)],

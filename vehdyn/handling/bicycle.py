@@ -60,13 +60,13 @@ import dataclasses
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..linear import LinearModel
-from ..model import float_array
-from ..params import ParameterSet, Vehicle
-from ..params.base import parameter
-from ..signals import STEER_INPUTS, Signal
-from .crosswind import optional_wind_input
+from vehdyn.errors import ParameterError
+from vehdyn.linear import LinearModel
+from vehdyn.model import float_array
+from vehdyn.params import ParameterSet, Vehicle
+from vehdyn.params.base import parameter
+from vehdyn.signals import STEER_INPUTS, Signal
+from vehdyn.handling.crosswind import optional_wind_input
 
 __all__ = ["BicycleParameters", "LinearBicycle", "bicycle_parameters", "LINEAR_MIN_SPEED"]
 
@@ -147,7 +147,7 @@ def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
     if isinstance(params, BicycleParameters):
         return params
     if isinstance(vehicle_or_model, Vehicle):
-        from .crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
+        from vehdyn.handling.crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
 
         v = vehicle_or_model
         return BicycleParameters(

@@ -72,13 +72,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..linear import LinearModel
-from ..params import ParameterSet, Trailer, Vehicle
-from ..params.base import parameter
-from ..signals import Signal
-from .bicycle import bicycle_parameters, check_speed
-from .crosswind import optional_wind_input
+from vehdyn.errors import ParameterError
+from vehdyn.linear import LinearModel
+from vehdyn.params import ParameterSet, Trailer, Vehicle
+from vehdyn.params.base import parameter
+from vehdyn.signals import Signal
+from vehdyn.handling.bicycle import bicycle_parameters, check_speed
+from vehdyn.handling.crosswind import optional_wind_input
 
 __all__ = ["CarTrailerParameters", "CrosswindAmplification", "EOM_TRUCK_TRAILER", "LinearCarTrailer", "SnakingMode",
            "car_trailer_parameters", "trailer_crosswind_amplification"]
@@ -207,7 +207,7 @@ def car_trailer_parameters(vehicle, trailer: Trailer | None = None) -> CarTraile
     if not isinstance(trailer, Trailer):
         raise ParameterError(f"trailer must be a vehdyn Trailer (see vehdyn.load_trailer), got "
                              f"{type(trailer).__name__}", key="trailer", value=trailer)
-    from .crosswind import trailer_wind_side_force_factor
+    from vehdyn.handling.crosswind import trailer_wind_side_force_factor
 
     car = bicycle_parameters(vehicle)
     rho = vehicle.aero.air_density if isinstance(vehicle, Vehicle) else None  # None: the standard air
@@ -544,7 +544,7 @@ def trailer_crosswind_amplification(vehicle, trailer: Trailer | None = None, spe
         small trailer side force can first cancel the car's own wind yaw (its hitch share acts
         behind the car's neutral steer point, turning the car the other way).
     """
-    from .bicycle import BicycleParameters, LinearBicycle
+    from vehdyn.handling.bicycle import BicycleParameters, LinearBicycle
 
     p = car_trailer_parameters(vehicle, trailer)
     u = float(check_speed(speed))

@@ -43,8 +43,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..params import Vehicle
+from vehdyn.errors import ParameterError
+from vehdyn.params import Vehicle
 
 __all__ = ["aero_side_force", "wind_side_force_factor", "trailer_wind_side_force_factor",
            "centre_of_pressure_ahead_of_cg", "steady_state_crosswind_yaw_rate", "wind_zone_signal",
@@ -83,7 +83,7 @@ def optional_wind_input(crosswind: bool, B, D, inputs, phenomena):
     Returns ``(B, D, inputs, phenomena)`` with ``wind_velocity_lateral`` [m/s] appended to the
     input signals and ``"aero"`` to the phenomena when ``crosswind`` is true.
     """
-    from ..signals import Signal
+    from vehdyn.signals import Signal
 
     if not crosswind:
         return B[:, :-1], D[:, :-1], tuple(inputs), set(phenomena)
@@ -116,8 +116,8 @@ def trailer_wind_side_force_factor(trailer, air_density: float | None = None) ->
     """
     import dataclasses
 
-    from ..params import Trailer
-    from ..params.vehicle import Aerodynamics
+    from vehdyn.params import Trailer
+    from vehdyn.params.vehicle import Aerodynamics
 
     if air_density is None:
         air_density = next(f.default for f in dataclasses.fields(Aerodynamics) if f.name == "air_density")
@@ -155,8 +155,8 @@ def steady_state_crosswind_yaw_rate(vehicle_or_bicycle, speed, side_force, centr
     centre_of_pressure : float
         x_p [m] ahead of the CG.
     """
-    from .bicycle import bicycle_parameters, check_speed
-    from .steady_state import neutral_steer_point
+    from vehdyn.handling.bicycle import bicycle_parameters, check_speed
+    from vehdyn.handling.steady_state import neutral_steer_point
 
     p = bicycle_parameters(vehicle_or_bicycle)
     u = check_speed(speed)
@@ -180,7 +180,7 @@ def wind_zone_signal(speed: float, wind_speed: float, wind_length: float, wheelb
     PiecewiseSignal
         ``u(t)`` for :func:`vehdyn.simulate` (evaluated exactly by the compiled backend).
     """
-    from ..piecewise_signal import PiecewiseSignal
+    from vehdyn.piecewise_signal import PiecewiseSignal
 
     rise = wheelbase / speed
     full, leave = start + rise, start + wind_length / speed
@@ -280,12 +280,12 @@ def crosswind_sensitivity(vehicle, speed: float = 100 / 3.6, *, wind_speed: floa
     -------
     CrosswindSensitivity
     """
-    from ..simulate import simulate
-    from .bicycle import check_speed
-    from .driver import DriverInTheLoop, PreviewDriver
-    from .maneuvers import _finite
-    from .single_track import SingleTrack
-    from .steady_state import neutral_steer_point
+    from vehdyn.simulate import simulate
+    from vehdyn.handling.bicycle import check_speed
+    from vehdyn.handling.driver import DriverInTheLoop, PreviewDriver
+    from vehdyn.handling.maneuvers import _finite
+    from vehdyn.handling.single_track import SingleTrack
+    from vehdyn.handling.steady_state import neutral_steer_point
 
     v = _vehicle(vehicle)
     u = float(check_speed(speed))

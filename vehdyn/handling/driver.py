@@ -40,9 +40,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..model import Model
-from ..signals import Signal
+from vehdyn.errors import ParameterError
+from vehdyn.model import Model
+from vehdyn.signals import Signal
 
 __all__ = ["PreviewDriver", "DriverInTheLoop", "CrossoverDriver", "OptimalPreviewDriver", "pade_delay",
            "preview_gains", "preview_offsets", "driver_loop", "driver_loop_response", "driver_loop_margins",
@@ -189,7 +189,7 @@ class DriverInTheLoop(Model):
     def compiled_rhs(self):
         """The loop compiled by numba (:mod:`vehdyn.handling._driver_in_the_loop_numba`) when the vehicle
         model has a compiled rhs and output, else None (see :meth:`vehdyn.Model.compiled_rhs`)."""
-        from . import _driver_in_the_loop_numba
+        from vehdyn.handling import _driver_in_the_loop_numba
 
         return _driver_in_the_loop_numba.compiled_model(self)
 
@@ -268,7 +268,7 @@ class _PathDriver(Model):
 
     def _setup(self, path_x, path_y, *, delay, neuromuscular_lag, preview_time, minimum_preview_distance,
                max_steer_angle, pade_order, **gains):
-        from ..chassis.closed_loop import check_gains
+        from vehdyn.chassis.closed_loop import check_gains
 
         self.path_x, self.path_y = _check_path(path_x, path_y)
         owner = type(self).__name__
@@ -416,7 +416,7 @@ class CrossoverDriver(_PathDriver):
         gain to the controlled element; the default 2.5 rad/s is within the 2-4 rad/s that
         McRuer et al. 1977 report for lane keeping). ``options`` are the other parameters.
         """
-        from ..chassis.closed_loop import check_gains
+        from vehdyn.chassis.closed_loop import check_gains
 
         wc = check_gains(cls.__name__, positive=("crossover_frequency",),
                          crossover_frequency=crossover_frequency)["crossover_frequency"]
@@ -523,7 +523,7 @@ class OptimalPreviewDriver(_PathDriver):
                  max_steer_angle: float = 0.6, pade_order: int = 3, n_preview: int = 10):
         from scipy.linalg import expm
 
-        from .bicycle import LinearBicycle
+        from vehdyn.handling.bicycle import LinearBicycle
 
         self._setup(path_x, path_y, delay=delay, neuromuscular_lag=neuromuscular_lag, preview_time=preview_time,
                     minimum_preview_distance=minimum_preview_distance, max_steer_angle=max_steer_angle,
@@ -675,7 +675,7 @@ def driver_loop_margins(plant: Model, driver, speed: float, *, pade_order: int =
 
 # ====================================================================== compiled driver-vehicle loop
 def _closed_loop_class():
-    from ..chassis.closed_loop import ClosedLoop
+    from vehdyn.chassis.closed_loop import ClosedLoop
 
     return ClosedLoop
 
@@ -692,12 +692,12 @@ class DrivenVehicle(_closed_loop_class()):
     """
 
     def compiled_rhs(self):
-        from .._compiled_ode import CompiledModel, compiled_copy, source_stamp
+        from vehdyn._compiled_ode import CompiledModel, compiled_copy, source_stamp
 
         plant = self.plant.compiled_rhs()
         if plant is None:
             return None
-        from . import _driver_numba
+        from vehdyn.handling import _driver_numba
 
         key = f"driven_{plant.key}_{source_stamp(_driver_numba)}"
         cached = self.__dict__.get("_compiled")
@@ -724,8 +724,8 @@ def lane_change_run(model: Model, track, driver, speed: float, *, throttle: str 
     :func:`~vehdyn.handling.lane_change_outcome` plus ``spin_out_time``; ``passed`` is False on a
     spin (|sideslip| > 45 deg).
     """
-    from ..simulate import simulate
-    from .maneuvers import lane_change_outcome, spin_out_time
+    from vehdyn.simulate import simulate
+    from vehdyn.handling.maneuvers import lane_change_outcome, spin_out_time
 
     if throttle not in ("hold", "release"):
         raise ParameterError(f"throttle must be 'hold' or 'release', got {throttle!r}", key="throttle", value=throttle)

@@ -28,8 +28,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..units import GRAVITY, kmh_to_ms
+from vehdyn.errors import ParameterError
+from vehdyn.units import GRAVITY, kmh_to_ms
 
 __all__ = ["FMVSS126Result", "fmvss126"]
 
@@ -151,11 +151,11 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
     FMVSS126Result
         ``.passed``, ``.to_frame()`` (one row per run), ``.failures()``.
     """
-    from ..params import Vehicle
-    from ..simulate import simulate
-    from .maneuvers import sine_with_dwell, sine_with_dwell_metrics
-    from .nonlinear_steady_state import steady_state_cornering
-    from .single_track import SingleTrack
+    from vehdyn.params import Vehicle
+    from vehdyn.simulate import simulate
+    from vehdyn.handling.maneuvers import sine_with_dwell, sine_with_dwell_metrics
+    from vehdyn.handling.nonlinear_steady_state import steady_state_cornering
+    from vehdyn.handling.single_track import SingleTrack
 
     if not isinstance(vehicle, Vehicle):
         raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
@@ -180,7 +180,7 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
         a = float(steady_state_cornering(model, lateral_acceleration=0.3 * GRAVITY, speed=speed).steer_angle)
         x_car = model.straight_running(speed)
     else:
-        from ..full_vehicle import FullVehicle
+        from vehdyn.full_vehicle import FullVehicle
 
         model = FullVehicle(vehicle)
         _, u_turn = model.trim(speed, lateral_acceleration=0.3 * GRAVITY)
@@ -200,7 +200,7 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
     options = dict(method="RK45", rtol=rtol, atol=atol, max_step=0.02)
     name, x0 = "none", x_car
     if controller is not None:
-        from ..chassis import ClosedLoop
+        from vehdyn.chassis import ClosedLoop
 
         loop = ClosedLoop(model, controller)
         name = type(controller).__name__
@@ -230,7 +230,7 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
 
 def _compiles(model) -> bool:
     """Whether ``simulate`` runs ``model`` on the compiled backend (numba installed, a compiled rhs)."""
-    from .._compiled_ode import numba_available
+    from vehdyn._compiled_ode import numba_available
 
     if not numba_available():
         return False

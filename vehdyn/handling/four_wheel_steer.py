@@ -25,11 +25,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..linear import LinearModel, connect_in_series
-from ..signals import STEER_INPUTS
-from .bicycle import LinearBicycle, bicycle_parameters, check_speed, speed_of
-from .steady_state import steady_state_gains
+from vehdyn.errors import ParameterError
+from vehdyn.linear import LinearModel, connect_in_series
+from vehdyn.signals import STEER_INPUTS
+from vehdyn.handling.bicycle import LinearBicycle, bicycle_parameters, check_speed, speed_of
+from vehdyn.handling.steady_state import steady_state_gains
 
 __all__ = [
     "zero_sideslip_rear_steer_ratio",

@@ -71,13 +71,13 @@ import dataclasses
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..linear import LinearModel
-from ..params import ParameterSet, Vehicle
-from ..params.base import parameter
-from ..signals import STEER_INPUTS, Signal
-from ..units import GRAVITY
-from .bicycle import BicycleParameters, LinearBicycle, linear_model_speed
+from vehdyn.errors import ParameterError
+from vehdyn.linear import LinearModel
+from vehdyn.params import ParameterSet, Vehicle
+from vehdyn.params.base import parameter
+from vehdyn.signals import STEER_INPUTS, Signal
+from vehdyn.units import GRAVITY
+from vehdyn.handling.bicycle import BicycleParameters, LinearBicycle, linear_model_speed
 
 __all__ = ["LateralYawRollParameters", "LateralYawRoll", "lateral_yaw_roll_parameters", "roll_gradient"]
 

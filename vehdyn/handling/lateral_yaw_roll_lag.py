@@ -52,13 +52,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..linear import LinearModel
-from ..params import Vehicle
-from ..signals import STEER_INPUTS, Signal
-from ..units import GRAVITY
-from .bicycle import linear_model_speed
-from .lateral_yaw_roll import _OUTPUTS as _LYR_OUTPUTS, _STATES as _LYR_STATES, lateral_yaw_roll_parameters
+from vehdyn.errors import ParameterError
+from vehdyn.linear import LinearModel
+from vehdyn.params import Vehicle
+from vehdyn.signals import STEER_INPUTS, Signal
+from vehdyn.units import GRAVITY
+from vehdyn.handling.bicycle import linear_model_speed
+from vehdyn.handling.lateral_yaw_roll import _OUTPUTS as _LYR_OUTPUTS, _STATES as _LYR_STATES, lateral_yaw_roll_parameters
 
 __all__ = ["LateralYawRollLag", "running_axle_loads", "running_slip_ratios"]
 
@@ -117,7 +117,7 @@ def _axle_law(tire, axle_load, kappa=0.0):
     load moved onto the left wheel [N/N] (ply steer of mirrored tires) and one tire's dM_y/dF_z [m]
     (rolling-resistance moment per load), from the law at half the axle load and the running slip
     ratio ``kappa`` (central differences)."""
-    from .single_track import SingleTrack
+    from vehdyn.handling.single_track import SingleTrack
 
     load = 0.5 * float(axle_load)
     if load <= 0:
@@ -164,7 +164,7 @@ class LateralYawRollLag(LinearModel):
 
     def __init__(self, vehicle: Vehicle, speed: float, *, front_tire=None, rear_tire=None,
                  gravity: float = GRAVITY):
-        from ..tire import tire_for_vehicle
+        from vehdyn.tire import tire_for_vehicle
 
         if not isinstance(vehicle, Vehicle):
             raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",

@@ -25,8 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..piecewise_signal import PiecewiseSignal
+from vehdyn.errors import ParameterError
+from vehdyn.piecewise_signal import PiecewiseSignal
 
 __all__ = ["step_steer", "ramp_steer", "sine_steer", "sine_with_dwell", "sine_with_dwell_metrics",
            "SineWithDwellMetrics", "constant_radius_test", "crosswind_gust", "braking_in_turn",
@@ -149,7 +149,7 @@ def constant_radius_test(model, radius: float, *, driven_axle: str = "rear", ste
         gradient d(delta)/d(a_y) [rad/(m/s^2)] (on a constant radius the kinematic steer L/R is
         constant, so the whole slope is understeer; ISO 4138 sec. 8).
     """
-    from .nonlinear_steady_state import nonlinear_handling_diagram
+    from vehdyn.handling.nonlinear_steady_state import nonlinear_handling_diagram
 
     diagram = nonlinear_handling_diagram(model, radius=radius, driven_axle=driven_axle, step=step)
     frame = diagram.to_frame()
@@ -209,7 +209,7 @@ def crosswind_gust(vehicle, speed: float, gust_speed: float, *, start: float = 1
         return np.where((tau >= 0) & (tau <= 1), 0.5 * gust_speed * (1 - np.cos(2 * np.pi * tau)), 0.0)
 
     def pressure_angle(t):  # 0.5 rho V_r^2 A beta_w: the side-force law of vehdyn.handling.crosswind per C_Y'
-        from .crosswind import aero_side_force
+        from vehdyn.handling.crosswind import aero_side_force
 
         return aero_side_force(np, 0.5 * rho * area, speed, wind(t))
 
@@ -249,8 +249,8 @@ def braking_in_turn(model, *, radius: float = 100.0, lateral_acceleration: float
     released and braking forces m * ``deceleration`` split ``brake_front_share`` : rest between the
     axles are applied (clipped by the tire friction in the model); the steer is held.
     """
-    from ..simulate import simulate
-    from .nonlinear_steady_state import steady_state_cornering
+    from vehdyn.simulate import simulate
+    from vehdyn.handling.nonlinear_steady_state import steady_state_cornering
 
     if model.wheel_spin:
         raise ParameterError("braking_in_turn drives a force-mode SingleTrack (wheel_spin=False)", key="model",

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ParameterError, SimulationError
+from vehdyn.errors import ParameterError, SimulationError
 
 __all__ = ["SteadyStateCornering", "steady_state_cornering", "nonlinear_handling_diagram",
            "NonlinearHandlingDiagram", "limit_lateral_acceleration"]
@@ -69,7 +69,7 @@ class SteadyStateCornering:
 
 
 def _check_model(model):
-    from .single_track import SingleTrack
+    from vehdyn.handling.single_track import SingleTrack
 
     if not isinstance(model, SingleTrack):
         raise ParameterError(f"model must be a SingleTrack, got {type(model).__name__}", key="model", value=model)
@@ -262,7 +262,7 @@ class NonlinearHandlingDiagram:
 
     def plot(self, ax=None):
         """Steer angle and sideslip [deg] against lateral acceleration [g] (the handling diagram)."""
-        from ..plotting import new_figure
+        from vehdyn.plotting import new_figure
 
         if ax is None:
             ax = new_figure()[1][0, 0]

@@ -38,10 +38,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..model import Model
-from ..signals import Signal
-from ..units import GRAVITY
+from vehdyn.errors import ParameterError
+from vehdyn.model import Model
+from vehdyn.signals import Signal
+from vehdyn.units import GRAVITY
 
 __all__ = ["WeaveTestMetrics", "weave_test", "weave_metrics"]
 
@@ -245,12 +245,12 @@ def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, freq
     -------
     WeaveTestMetrics
     """
-    from ..simulate import simulate
-    from .bicycle import LinearBicycle, check_speed
-    from .crosswind import _vehicle
-    from .maneuvers import _finite
-    from .steady_state import steady_state_gains
-    from .steering_system import SteeredVehicle, SteeringSystem
+    from vehdyn.simulate import simulate
+    from vehdyn.handling.bicycle import LinearBicycle, check_speed
+    from vehdyn.handling.crosswind import _vehicle
+    from vehdyn.handling.maneuvers import _finite
+    from vehdyn.handling.steady_state import steady_state_gains
+    from vehdyn.handling.steering_system import SteeredVehicle, SteeringSystem
 
     _vehicle(vehicle)
     u = float(check_speed(speed))

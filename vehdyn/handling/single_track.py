@@ -158,13 +158,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..model import Model
-from ..params import Vehicle
-from ..signals import STEER_INPUTS, Signal
-from ..units import GRAVITY
-from . import single_track_equations as equations
-from .crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
+from vehdyn.errors import ParameterError
+from vehdyn.model import Model
+from vehdyn.params import Vehicle
+from vehdyn.signals import STEER_INPUTS, Signal
+from vehdyn.units import GRAVITY
+from vehdyn.handling import single_track_equations as equations
+from vehdyn.handling.crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
 
 __all__ = ["SingleTrack", "SingleTrackParameters", "lateral_load_transfer_coefficients", "roll_parameters"]
 
@@ -319,7 +319,7 @@ def roll_parameters(vehicle, *, mass=None, cg_height=None, a=None, b=None) -> di
     C_i / t_i [N*s/rad] with C_i = c_i t_i^2 / 2 from the corner dampers. ``mass``, ``cg_height``, ``a``,
     ``b`` default to the vehicle's.
     """
-    from .lateral_yaw_roll import lateral_yaw_roll_parameters
+    from vehdyn.handling.lateral_yaw_roll import lateral_yaw_roll_parameters
 
     m, g, s = vehicle.mass, vehicle.geometry, vehicle.suspension
     mass = m.mass if mass is None else mass
@@ -402,7 +402,7 @@ class SingleTrack(Model):
         if not isinstance(vehicle, Vehicle):
             raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
                                  value=vehicle)
-        from ..tire import TireModel, tire_for_vehicle
+        from vehdyn.tire import TireModel, tire_for_vehicle
 
         tires = {}
         for axle, tire in zip(_AXLES, (front_tire, rear_tire)):
@@ -468,7 +468,7 @@ class SingleTrack(Model):
                 raise ParameterError(f"longitudinal_relaxation_length must be > 0 [m], got {given!r}",
                                      key="longitudinal_relaxation_length", value=given)
             return float(values[0]), float(values[1])
-        from ..tire import MagicFormula, relaxation_lengths
+        from vehdyn.tire import MagicFormula, relaxation_lengths
 
         lengths = []
         for axle, load, fallback in zip(_AXLES, vehicle.static_axle_loads(gravity), lateral):
@@ -777,7 +777,7 @@ class SingleTrack(Model):
         cached = self.__dict__.get("_compiled_model")
         if cached is not None and cached[0] is self.parameters:  # variants() get new parameters
             return cached[1]
-        from . import _single_track_numba
+        from vehdyn.handling import _single_track_numba
 
         compiled = _single_track_numba.compiled_model(self)
         self._compiled_model = (self.parameters, compiled)
@@ -789,7 +789,7 @@ class SingleTrack(Model):
         scalar parameters (a batch of initial states or inputs). ``simulate`` runs it on the compiled
         backend, each variant with its own step-size control: every variant's states are bitwise
         those of its own compiled run. Raises ParameterError as :meth:`compiled_rhs` does."""
-        from . import _single_track_numba
+        from vehdyn.handling import _single_track_numba
 
         return _single_track_numba.compiled_batch(self, n_variants)
 
@@ -797,13 +797,13 @@ class SingleTrack(Model):
     def compiled_batch_of(models):
         """The compiled batch of many models with scalar parameters and one :meth:`batch_structure`
         (their parameters and tires may differ): what :func:`vehdyn.simulate.simulate_many` runs."""
-        from . import _single_track_numba
+        from vehdyn.handling import _single_track_numba
 
         return _single_track_numba.compiled_batch(list(models))
 
     def batch_structure(self) -> tuple:
         """What models must share to run in one compiled batch (modes, tire laws, signals): a hashable key."""
-        from . import _single_track_numba
+        from vehdyn.handling import _single_track_numba
 
         return _single_track_numba.batch_structure(self)
 
@@ -867,7 +867,7 @@ class SingleTrack(Model):
         the bicycle model). In straight running these states decouple from the others exactly
         (every coupling term is proportional to v, r or the steer angle), so the block is exact.
         """
-        from ..linear import LinearModel
+        from vehdyn.linear import LinearModel
 
         full = self.linearize(speed=speed, u0=self.input_vector())
         keep = [self.index("lateral_velocity"), self.index("yaw_rate")]

@@ -25,9 +25,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..units import GRAVITY
-from .bicycle import bicycle_parameters, check_speed, speed_of
+from vehdyn.errors import ParameterError
+from vehdyn.units import GRAVITY
+from vehdyn.handling.bicycle import bicycle_parameters, check_speed, speed_of
 
 __all__ = [
     "understeer_gradient",
@@ -340,7 +340,7 @@ class HandlingDiagram:
 
     def plot(self, ax=None, label: str | None = None):
         """Steer angle [deg] against lateral acceleration [g], the textbook's handling diagram."""
-        from ..plotting import new_figure
+        from vehdyn.plotting import new_figure
 
         if ax is None:
             fig, axes = new_figure(1, 1, height_per_row=3.6)

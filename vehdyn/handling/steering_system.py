@@ -48,11 +48,11 @@ import dataclasses
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..model import Model
-from ..params import ParameterSet, Vehicle
-from ..params.base import parameter
-from ..signals import Signal
+from vehdyn.errors import ParameterError
+from vehdyn.model import Model
+from vehdyn.params import ParameterSet, Vehicle
+from vehdyn.params.base import parameter
+from vehdyn.signals import Signal
 
 __all__ = ["SteeringSystemParameters", "steering_system_parameters", "SteeringSystem", "SteeredVehicle",
            "boost_torque"]
@@ -84,7 +84,7 @@ class SteeringSystemParameters(ParameterSet):
 
 def _front_pneumatic_trail(vehicle: Vehicle) -> float:
     """-dM_z/dF_y [m] of the vehicle's front tire law at zero slip and half the static axle load."""
-    from ..tire import tire_for_vehicle
+    from vehdyn.tire import tire_for_vehicle
 
     tire = tire_for_vehicle(vehicle, "front")
     load, eps, speed = 0.5 * vehicle.static_axle_loads()[0], 1e-4, 20.0

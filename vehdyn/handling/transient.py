@@ -28,8 +28,8 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ..errors import ParameterError
-from .bicycle import LinearBicycle, bicycle_parameters, speed_of
+from vehdyn.errors import ParameterError
+from vehdyn.handling.bicycle import LinearBicycle, bicycle_parameters, speed_of
 
 __all__ = [
     "StepResponseMetrics",

@@ -20,7 +20,7 @@ Inertia (:mod:`~vehdyn.mechanics.inertia`)
     :func:`solid_sphere`, :func:`hollow_sphere`, :func:`solid_cone`, :func:`slender_rod`
 """
 
-from .inertia import (
+from vehdyn.mechanics.inertia import (
     InertiaTensor,
     MassProperties,
     composite,
@@ -34,7 +34,7 @@ from .inertia import (
     solid_cylinder,
     solid_sphere,
 )
-from .kinematics import (
+from vehdyn.mechanics.kinematics import (
     GIMBAL_LOCK_MARGIN,
     absolute_acceleration,
     body_rates,
@@ -50,8 +50,8 @@ from .kinematics import (
     rotation_body_to_earth,
     rotation_earth_to_body,
 )
-from .newton_euler import angular_momentum, kinetic_energy, newton_euler, torque_free_period
-from .rigid_body import RigidBody6DOF
+from vehdyn.mechanics.newton_euler import angular_momentum, kinetic_energy, newton_euler, torque_free_period
+from vehdyn.mechanics.rigid_body import RigidBody6DOF
 
 __all__ = [
     "newton_euler",

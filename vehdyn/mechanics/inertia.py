@@ -33,8 +33,8 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..params.base import ParameterSet, parameter
+from vehdyn.errors import ParameterError
+from vehdyn.params.base import ParameterSet, parameter
 
 __all__ = [
     "InertiaTensor",

@@ -26,9 +26,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError
-from .inertia import InertiaTensor, inertia_matrix
-from .kinematics import apply_matrix, as_vector3, as_vectors3, cross
+from vehdyn.errors import ParameterError
+from vehdyn.mechanics.inertia import InertiaTensor, inertia_matrix
+from vehdyn.mechanics.kinematics import apply_matrix, as_vector3, as_vectors3, cross
 
 __all__ = ["newton_euler", "torque_free_period", "accelerations", "angular_momentum", "kinetic_energy", "inverse_inertia", "mass_array"]
 

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError, SimulationError
-from ..model import Model
-from ..signals import Signal
-from .kinematics import GIMBAL_LOCK_MARGIN, apply_matrix, cross, euler_angle_rates, rotation_body_to_earth
-from .newton_euler import accelerations, inverse_inertia, mass_array
+from vehdyn.errors import ParameterError, SimulationError
+from vehdyn.model import Model
+from vehdyn.signals import Signal
+from vehdyn.mechanics.kinematics import GIMBAL_LOCK_MARGIN, apply_matrix, cross, euler_angle_rates, rotation_body_to_earth
+from vehdyn.mechanics.newton_euler import accelerations, inverse_inertia, mass_array
 
 __all__ = ["RigidBody6DOF"]
 

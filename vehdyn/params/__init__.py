@@ -1,7 +1,7 @@
 """Parameter sets: frozen, validated dataclasses loaded from TOML, and shipped-data lookup."""
 
-from .base import ParameterSet, dump_toml, load_toml, parameter, text
-from .vehicle import (
+from vehdyn.params.base import ParameterSet, dump_toml, load_toml, parameter, text
+from vehdyn.params.vehicle import (
     Aerodynamics,
     Geometry,
     MassProperties,
@@ -14,7 +14,7 @@ from .vehicle import (
     load_vehicle,
     shipped_vehicles,
 )
-from .trailer import Trailer, load_trailer, shipped_trailers
+from vehdyn.params.trailer import Trailer, load_trailer, shipped_trailers
 
 __all__ = [
     "ParameterSet",

@@ -19,7 +19,7 @@ import typing
 from pathlib import Path
 from typing import Any, Mapping
 
-from ..errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["ParameterSet", "parameter", "text", "read_toml", "load_toml", "dump_toml"]
 

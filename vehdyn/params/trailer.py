@@ -17,10 +17,10 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
-from ..errors import ParameterError
-from ..units import GRAVITY
-from .base import ParameterSet, parameter, text
-from .vehicle import load_shipped_or_file, shipped_names
+from vehdyn.errors import ParameterError
+from vehdyn.units import GRAVITY
+from vehdyn.params.base import ParameterSet, parameter, text
+from vehdyn.params.vehicle import load_shipped_or_file, shipped_names
 
 __all__ = ["Trailer", "load_trailer", "shipped_trailers"]
 

@@ -14,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..units import GRAVITY
-from .base import ParameterSet, load_toml, parameter, text
+from vehdyn.errors import ParameterError
+from vehdyn.units import GRAVITY
+from vehdyn.params.base import ParameterSet, load_toml, parameter, text
 
 __all__ = [
     "MassProperties",
@@ -62,7 +62,7 @@ class MassProperties(ParameterSet):
                 key="sprung_mass", value=self.sprung_mass)
         # One realizability check for every inertia tensor in the package (mechanics.inertia):
         # positive definite, principal moments obeying the triangle inequality.
-        from ..mechanics.inertia import check_realizable  # mechanics imports params.base: import here
+        from vehdyn.mechanics.inertia import check_realizable  # mechanics imports params.base: import here
 
         try:
             check_realizable(self.inertia_matrix, definite=True)

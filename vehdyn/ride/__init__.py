@@ -50,7 +50,7 @@ one profile per track: ``""`` or ``_left``/``_right``), in every model, shaping 
 and route alike. See :mod:`vehdyn.ride._ride_model`.
 """
 
-from .active import (
+from vehdyn.ride.active import (
     LQRDesign,
     SemiActiveQuarterCar,
     compare_suspensions,
@@ -59,7 +59,7 @@ from .active import (
     relative_quarter_car,
     skyhook,
 )
-from .analysis import (
+from vehdyn.ride.analysis import (
     BouncePitchCentres,
     OlleyCheck,
     RideModes,
@@ -71,12 +71,12 @@ from .analysis import (
     suspension_travel_response,
     transmissibility,
 )
-from .bounce_pitch import BouncePitch, BouncePitchParameters
-from .full_car import FullCar, FullCarParameters
-from .lift_off import LateralSlip, LiftOff, LongitudinalSlip
-from .quarter_car import QuarterCar, QuarterCarParameters
-from .wheelbase import road_frequency_response, road_inputs, wheel_delays, with_wheelbase_delay
-from .comfort import (
+from vehdyn.ride.bounce_pitch import BouncePitch, BouncePitchParameters
+from vehdyn.ride.full_car import FullCar, FullCarParameters
+from vehdyn.ride.lift_off import LateralSlip, LiftOff, LongitudinalSlip
+from vehdyn.ride.quarter_car import QuarterCar, QuarterCarParameters
+from vehdyn.ride.wheelbase import road_frequency_response, road_inputs, wheel_delays, with_wheelbase_delay
+from vehdyn.ride.comfort import (
     COMFORT_REACTIONS,
     WEIGHTINGS,
     Weighting,
@@ -92,8 +92,8 @@ from .comfort import (
     weighting,
     weighting_factor,
 )
-from .random_response import RandomResponse, random_response, stationary_covariance
-from .road import (
+from vehdyn.ride.random_response import RandomResponse, random_response, stationary_covariance
+from vehdyn.ride.road import (
     GOLDEN_CAR,
     ISO8608_CLASSES,
     RoadProfile,

@@ -33,8 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..linear import LinearModel
-from ..signals import Signal
+from vehdyn.linear import LinearModel
+from vehdyn.signals import Signal
 
 __all__ = ["RideModel", "Corner"]
 

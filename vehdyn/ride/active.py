@@ -31,13 +31,13 @@ from typing import Mapping
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..linear import LinearModel
-from ..model import Model
-from ..signals import Signal
-from .quarter_car import QuarterCar
-from .random_response import random_response
-from .road import RoadSpectrum
+from vehdyn.errors import ParameterError
+from vehdyn.linear import LinearModel
+from vehdyn.model import Model
+from vehdyn.signals import Signal
+from vehdyn.ride.quarter_car import QuarterCar
+from vehdyn.ride.random_response import random_response
+from vehdyn.ride.road import RoadSpectrum
 
 __all__ = [
     "relative_quarter_car",

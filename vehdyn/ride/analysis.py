@@ -26,10 +26,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..analysis.modal import state_space_modes
-from ..errors import ParameterError
-from ..results import FrequencyResponse
-from .wheelbase import road_frequency_response
+from vehdyn.analysis.modal import state_space_modes
+from vehdyn.errors import ParameterError
+from vehdyn.results import FrequencyResponse
+from vehdyn.ride.wheelbase import road_frequency_response
 
 __all__ = [
     "RideModes",
@@ -46,7 +46,7 @@ __all__ = [
 
 
 def _require_ride_model(model):
-    from ._ride_model import RideModel
+    from vehdyn.ride._ride_model import RideModel
 
     if not isinstance(model, RideModel):
         raise ParameterError(f"expected a vehdyn.ride model (QuarterCar, BouncePitch, FullCar), got "

@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import dataclasses
 
-from ..errors import ParameterError
-from ..params.base import ParameterSet, parameter
-from ._ride_model import Corner, RideModel
+from vehdyn.errors import ParameterError
+from vehdyn.params.base import ParameterSet, parameter
+from vehdyn.ride._ride_model import Corner, RideModel
 
 __all__ = ["BouncePitch", "BouncePitchParameters"]
 

@@ -53,7 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = [
     "Weighting",
@@ -166,7 +166,7 @@ class Weighting:
         """
         from scipy import signal
 
-        from ..linear import LinearModel
+        from vehdyn.linear import LinearModel
 
         A = np.zeros((0, 0))
         B = np.zeros((0, 1))

@@ -16,10 +16,10 @@ from __future__ import annotations
 
 import dataclasses
 
-from ..params.base import ParameterSet, parameter
-from ..errors import ParameterError
-from ..units import GRAVITY
-from ._ride_model import Corner, RideModel
+from vehdyn.params.base import ParameterSet, parameter
+from vehdyn.errors import ParameterError
+from vehdyn.units import GRAVITY
+from vehdyn.ride._ride_model import Corner, RideModel
 
 __all__ = ["FullCar", "FullCarParameters", "CORNERS"]
 

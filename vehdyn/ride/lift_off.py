@@ -112,10 +112,10 @@ import functools
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..model import Model
-from ..params.base import ParameterSet, parameter
-from ..units import GRAVITY
+from vehdyn.errors import ParameterError
+from vehdyn.model import Model
+from vehdyn.params.base import ParameterSet, parameter
+from vehdyn.units import GRAVITY
 
 __all__ = ["LiftOff", "LateralSlip", "LongitudinalSlip"]
 
@@ -237,7 +237,7 @@ class LiftOff(Model):
 
     def __init__(self, model, *, gravity: float = GRAVITY, lateral: LateralSlip | None = None,
                  longitudinal: LongitudinalSlip | None = None, name: str | None = None):
-        from ._ride_model import RideModel
+        from vehdyn.ride._ride_model import RideModel
 
         if not isinstance(model, RideModel):
             raise ParameterError(f"LiftOff needs a linear ride model (QuarterCar, BouncePitch, FullCar), got "
@@ -298,8 +298,8 @@ class LiftOff(Model):
             self._longitudinal_setup(model, longitudinal, n)
 
     def _longitudinal_setup(self, model, lon, n):
-        from ..signals import Signal
-        from .full_car import FullCar
+        from vehdyn.signals import Signal
+        from vehdyn.ride.full_car import FullCar
 
         if not isinstance(lon, LongitudinalSlip):
             raise ParameterError(f"longitudinal must be a LongitudinalSlip, got {type(lon).__name__}",
@@ -354,8 +354,8 @@ class LiftOff(Model):
                      outputs=tuple(self.outputs) + extra + spins + deflections + forces)
 
     def _lateral_setup(self, model, lateral, n, nb):
-        from ..signals import Signal
-        from .full_car import FullCar
+        from vehdyn.signals import Signal
+        from vehdyn.ride.full_car import FullCar
 
         if not isinstance(lateral, LateralSlip):
             raise ParameterError(f"lateral must be a LateralSlip, got {type(lateral).__name__}", key="lateral",
@@ -498,7 +498,7 @@ class LiftOff(Model):
     def compiled_rhs(self):
         """The rhs compiled by numba (see :meth:`vehdyn.Model.compiled_rhs`): the same law, one loop
         over the corners; the outputs come from :meth:`output` (numpy, once on the time grid)."""
-        from .._compiled_ode import CompiledModel
+        from vehdyn._compiled_ode import CompiledModel
 
         rhs, key = _compiled_rhs()
         c = np.ascontiguousarray
@@ -587,7 +587,7 @@ def _compiled_rhs():
     """(compiled rhs, cache key), compiled on first use and cached on disk per source digest."""
     import sys
 
-    from .._compiled_ode import compiled_copy, source_stamp
+    from vehdyn._compiled_ode import compiled_copy, source_stamp
 
     key = "lift_off_" + source_stamp(sys.modules[__name__])
     return compiled_copy(_rhs, f"{key}_rhs"), key

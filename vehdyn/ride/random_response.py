@@ -69,9 +69,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ParameterError
-from .road import RoadSpectrum, synthesize_parallel_profiles, synthesize_profile
-from .wheelbase import pade_delay
+from vehdyn.errors import ParameterError
+from vehdyn.ride.road import RoadSpectrum, synthesize_parallel_profiles, synthesize_profile
+from vehdyn.ride.wheelbase import pade_delay
 
 __all__ = ["RandomResponse", "random_response", "road_channels", "stationary_covariance"]
 
@@ -204,7 +204,7 @@ def random_response(
         Seconds of road [s], sampling rate [Hz], random seed, highest spatial frequency of the
         profile [cycles/m] (default: the Nyquist frequency of the time grid).
     """
-    from ..linear import LinearModel
+    from vehdyn.linear import LinearModel
 
     if not isinstance(model, LinearModel):
         raise ParameterError(f"model must be a LinearModel, got {type(model).__name__} (linearize it first)",
@@ -591,7 +591,7 @@ class _Spectra:
     """Output PSD of a model on the road, evaluated through the modal form of A (one eigendecomposition)."""
 
     def __init__(self, model, channels, spectrum, V, tau, two_tracks, coherence, track_width):
-        from .road import isotropic_coherence
+        from vehdyn.ride.road import isotropic_coherence
 
         self.spectrum, self.V, self.tau = spectrum, V, tau
         self.isotropic = isotropic_coherence
@@ -791,7 +791,7 @@ def _psd(model, channels, spectrum, V, tau, two_tracks, coherence, track_width, 
 # --------------------------------------------------------------------------- simulation route
 def _simulation(model, channels, spectrum, V, wheelbase, two_tracks, coherence, track_width, duration, sample_rate,
                 seed, n_max):
-    from ..simulate import simulate
+    from vehdyn.simulate import simulate
 
     T = float(duration)
     fs = float(sample_rate)

@@ -50,7 +50,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = [
     "ISO8608_CLASSES",
@@ -213,7 +213,7 @@ class RoadSpectrum:
         state, like the road itself); :func:`vehdyn.ride.random_response` handles that exactly.
         Only for waviness 2 (ParameterError otherwise).
         """
-        from ..linear import LinearModel
+        from vehdyn.linear import LinearModel
 
         V = _positive(speed, "speed")
         sigma = self.white_noise_gain(V)
@@ -617,7 +617,7 @@ def golden_car():
     Equations (m_s = 1): zs'' = -k2 (zs - zu) - c (zs' - zu'); mu zu'' = k2 (zs - zu) + c (zs' - zu')
     - k1 (zu - zr).
     """
-    from .quarter_car import QuarterCar
+    from vehdyn.ride.quarter_car import QuarterCar
 
     g = GOLDEN_CAR
     return QuarterCar(sprung_mass=1.0, unsprung_mass=g["mass_ratio"], spring_rate=g["spring_stiffness_ratio"],
@@ -649,7 +649,7 @@ def iri(profile: RoadProfile | np.ndarray, spacing: float | None = None, *, smoo
     discretization). Initial state: both masses at the first elevation, both velocities V times the
     mean slope of the first 11 m. IRI = mean over the samples after the first of |zs' - zu'| / V.
     """
-    from ..simulate import simulate
+    from vehdyn.simulate import simulate
 
     if isinstance(profile, RoadProfile):
         z, dx = profile.elevation, profile.spacing

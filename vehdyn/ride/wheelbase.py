@@ -36,11 +36,11 @@ from math import factorial
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..linear import LinearModel, connect_in_series
-from ..results import FrequencyResponse
-from ..signals import Signal
-from .road import RoadProfile
+from vehdyn.errors import ParameterError
+from vehdyn.linear import LinearModel, connect_in_series
+from vehdyn.results import FrequencyResponse
+from vehdyn.signals import Signal
+from vehdyn.ride.road import RoadProfile
 
 __all__ = ["wheel_offsets", "wheel_delays", "pade_coefficients", "pade_delay", "road_frequency_response",
            "road_inputs", "with_wheelbase_delay"]

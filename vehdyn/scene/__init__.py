@@ -17,11 +17,11 @@ Example::
     out = vehdyn.run(scene, verify=True)
 """
 
-from .definition import ROAD_EVENTS, STANDARD_MANOEUVRES, Scene
-from .estimates import COST_PER_SIMULATED_SECOND, THRESHOLDS, relative_error
-from .planner import Plan, RungAssessment, SceneResult, ladder, plan, plot_ladder, run
-from .rungs import RUNGS, NotAdmissible, Rung, Setup, SteadyStateAlgebra, register_rung, rungs
-from .standard import standard_scenes
+from vehdyn.scene.definition import ROAD_EVENTS, STANDARD_MANOEUVRES, Scene
+from vehdyn.scene.estimates import COST_PER_SIMULATED_SECOND, THRESHOLDS, relative_error
+from vehdyn.scene.planner import Plan, RungAssessment, SceneResult, ladder, plan, plot_ladder, run
+from vehdyn.scene.rungs import RUNGS, NotAdmissible, Rung, Setup, SteadyStateAlgebra, register_rung, rungs
+from vehdyn.scene.standard import standard_scenes
 
 __all__ = ["Scene", "STANDARD_MANOEUVRES", "ROAD_EVENTS", "Plan", "RungAssessment", "SceneResult", "plan", "run",
            "ladder", "plot_ladder", "Rung", "Setup", "NotAdmissible", "RUNGS", "register_rung", "rungs",

@@ -59,7 +59,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["Scene", "STANDARD_MANOEUVRES", "ROAD_EVENTS"]
 
@@ -147,7 +147,7 @@ class Scene:
     time_step: float | None = None
 
     def __post_init__(self):
-        from ..params import Vehicle
+        from vehdyn.params import Vehicle
 
         set_ = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731
         if not isinstance(self.vehicle, (Vehicle, str, Path)):
@@ -213,7 +213,7 @@ class Scene:
             raise _bad("manoeuvre", m, "must be a standard manoeuvre name, a steer signal or a mapping of signals")
 
     def _check_road(self):
-        from ..ride.road import RoadProfile
+        from vehdyn.ride.road import RoadProfile
 
         r = self.road
         if r is None or isinstance(r, RoadProfile):
@@ -277,7 +277,7 @@ class Scene:
 
     def load_vehicle(self):
         """The scene's :class:`~vehdyn.Vehicle`."""
-        from ..params import Vehicle, load_vehicle
+        from vehdyn.params import Vehicle, load_vehicle
 
         return self.vehicle if isinstance(self.vehicle, Vehicle) else load_vehicle(self.vehicle)
 
@@ -289,7 +289,7 @@ class Scene:
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> "Scene":
         """A scene from a mapping of its fields (as read from TOML)."""
-        from ..params import Vehicle
+        from vehdyn.params import Vehicle
 
         if not isinstance(data, Mapping):
             raise ParameterError(f"a scene must be a table, got {type(data).__name__}", key="scene", value=data)
@@ -304,7 +304,7 @@ class Scene:
         if isinstance(m, Mapping):
             data["manoeuvre"] = {k: _signal_from_data(f"manoeuvre.{k}", v) for k, v in m.items()}
         if isinstance(data.get("road"), Mapping) and "distance" in data["road"]:
-            from ..ride.road import RoadProfile
+            from vehdyn.ride.road import RoadProfile
 
             data["road"] = RoadProfile(np.asarray(data["road"]["distance"], float),
                                        np.asarray(data["road"]["elevation"], float))
@@ -315,14 +315,14 @@ class Scene:
     @classmethod
     def from_toml(cls, path: str | Path) -> "Scene":
         """Read a scene from a TOML file (fields as in :class:`Scene`; see the module docstring)."""
-        from ..params.base import load_toml
+        from vehdyn.params.base import load_toml
 
         return load_toml(cls, path)
 
     def to_dict(self) -> dict[str, Any]:
         """The fields as plain data (the inverse of :meth:`from_dict`); None fields are left out."""
-        from ..params import Vehicle
-        from ..ride.road import RoadProfile
+        from vehdyn.params import Vehicle
+        from vehdyn.ride.road import RoadProfile
 
         out: dict[str, Any] = {}
         for f in dataclasses.fields(self):
@@ -356,7 +356,7 @@ class Scene:
             text += f"\n\n[{key}]\n" + "\n".join(f"{k} = {_toml(v)}" for k, v in value.items())
         text += "\n"
         if path is not None:
-            from .._atomic import atomic_write_text
+            from vehdyn._atomic import atomic_write_text
 
             atomic_write_text(Path(path), text)
         return text
@@ -377,7 +377,7 @@ def _same(a, b) -> bool:
 
 
 def _signal_to_data(name, signal):
-    from ..piecewise_signal import PiecewiseSignal
+    from vehdyn.piecewise_signal import PiecewiseSignal
 
     if isinstance(signal, PiecewiseSignal):
         return {"pieces": signal.pieces.tolist()}
@@ -388,7 +388,7 @@ def _signal_to_data(name, signal):
 
 
 def _signal_from_data(name, value):
-    from ..piecewise_signal import PiecewiseSignal
+    from vehdyn.piecewise_signal import PiecewiseSignal
 
     if isinstance(value, Mapping) and set(value) == {"pieces"}:
         return PiecewiseSignal(np.asarray(value["pieces"], dtype=float))

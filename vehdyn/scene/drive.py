@@ -11,8 +11,8 @@ from typing import Any, Callable
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..units import GRAVITY
+from vehdyn.errors import ParameterError
+from vehdyn.units import GRAVITY
 
 __all__ = ["Drive", "drive_of"]
 
@@ -81,7 +81,7 @@ class Drive:
 
 def _steer_gain(vehicle, speed) -> float:
     """Steady-state lateral acceleration per unit front steer [m/s^2/rad] of the linear bicycle."""
-    from ..handling.steady_state import steady_state_gains
+    from vehdyn.handling.steady_state import steady_state_gains
 
     gain = float(steady_state_gains(vehicle, speed).lateral_acceleration)
     if not np.isfinite(gain) or gain <= 0:
@@ -102,7 +102,7 @@ def _constant(value) -> Callable:
 
 def drive_of(scene) -> Drive:
     """The :class:`Drive` of ``scene`` (raises ParameterError for inconsistent parameters)."""
-    from ..handling import maneuvers as mv
+    from vehdyn.handling import maneuvers as mv
 
     vehicle = scene.load_vehicle()
     drive = Drive(scene, vehicle, scene.time())
@@ -160,7 +160,7 @@ def drive_of(scene) -> Drive:
 
 def _road(scene, vehicle):
     """(distance, left, right) profiles [m] covering the scene (front axle at distance V t)."""
-    from ..ride import road as rd
+    from vehdyn.ride import road as rd
 
     wheelbase = vehicle.geometry.wheelbase
     length = scene.speed * scene.duration + wheelbase + 10.0

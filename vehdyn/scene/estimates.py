@@ -71,7 +71,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..units import GRAVITY
+from vehdyn.units import GRAVITY
 
 __all__ = ["THRESHOLDS", "COST_PER_SIMULATED_SECOND", "START_COST_S", "relative_error", "relative_errors",
            "lift_off_error"]
@@ -290,7 +290,7 @@ def _axle_tire_forces(tire, load, alpha):
 
 
 def _tires(vehicle, tire_name):
-    from ..tire import load_tire, tire_for_vehicle
+    from vehdyn.tire import load_tire, tire_for_vehicle
 
     if tire_name is not None:
         tire = load_tire(tire_name)
@@ -330,8 +330,8 @@ def lateral_load_transfer_deficit(vehicle, lateral_acceleration, slip_angles, ti
     (the axle loses force as load transfers; near the limit the full vehicle's limit lateral
     acceleration falls by about as much).
     """
-    from ..errors import ParameterError
-    from ..handling.single_track import lateral_load_transfer_coefficients
+    from vehdyn.errors import ParameterError
+    from vehdyn.handling.single_track import lateral_load_transfer_coefficients
 
     g, mass, a_y = vehicle.geometry, vehicle.mass.mass, abs(float(lateral_acceleration))
     try:
@@ -368,14 +368,14 @@ def drag_load_transfer_gain_change(vehicle, speed, tire_name=None, *, law=None) 
     eq. 2-18 and 6-15). Near neutral steer at speed this is several percent (the understeer
     gradient is a small difference of two terms). ``law="linear"``: the load-proportional linear
     tire instead of the vehicle's law."""
-    from ..handling.steady_state import steady_state_gains
-    from ..handling.bicycle import bicycle_parameters
+    from vehdyn.handling.steady_state import steady_state_gains
+    from vehdyn.handling.bicycle import bicycle_parameters
 
     aero, g = vehicle.aero, vehicle.geometry
     drag = 0.5 * aero.air_density * aero.frontal_area * aero.drag_coefficient * speed**2
     shift = vehicle.mass.cg_height * drag / g.wheelbase
     if law is not None:
-        from ..tire import tire_for_vehicle
+        from vehdyn.tire import tire_for_vehicle
 
         tires = {axle: tire_for_vehicle(vehicle, axle, law) for axle in ("front", "rear")}
     else:

@@ -17,11 +17,11 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError, SimulationError
-from ..units import GRAVITY
-from . import estimates as est
-from .drive import drive_of
-from .rungs import Rung, Setup, NotAdmissible, rungs
+from vehdyn.errors import ParameterError, SimulationError
+from vehdyn.units import GRAVITY
+from vehdyn.scene import estimates as est
+from vehdyn.scene.drive import drive_of
+from vehdyn.scene.rungs import Rung, Setup, NotAdmissible, rungs
 
 __all__ = ["Plan", "RungAssessment", "SceneResult", "plan", "run", "ladder", "plot_ladder"]
 

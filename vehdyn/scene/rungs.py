@@ -38,7 +38,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from ..errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["Rung", "Setup", "NotAdmissible", "RUNGS", "register_rung", "rungs", "SteadyStateAlgebra"]
 
@@ -164,7 +164,7 @@ def rungs(*, available_only: bool = True) -> list[Rung]:
 # ====================================================================== handling builders
 def _result(model, time, outputs, wall_time, method):
     """A SimulationResult for a model without states (the steady-state algebra)."""
-    from ..results import SimulationResult
+    from vehdyn.results import SimulationResult
 
     return SimulationResult(time=time, states=np.zeros((0, time.size)), inputs=np.zeros((0, time.size)),
                             outputs=np.asarray(outputs), state_signals=(), input_signals=(),
@@ -182,8 +182,8 @@ class SteadyStateAlgebra:
     phenomena = frozenset({"lateral", "yaw"})
 
     def __init__(self, vehicle, speed):
-        from ..handling.steady_state import steady_state_gains
-        from ..signals import Signal
+        from vehdyn.handling.steady_state import steady_state_gains
+        from vehdyn.signals import Signal
 
         self.speed = float(speed)
         g = steady_state_gains(vehicle, self.speed)
@@ -230,7 +230,7 @@ def build_steady_state(drive) -> Setup:
 
 def _with_driver(model, drive, speed_control):
     """The model in the loop with the ISO 3888-1 preview driver (states x, y, yaw_angle needed)."""
-    from ..handling.driver import DriverInTheLoop, PreviewDriver
+    from vehdyn.handling.driver import DriverInTheLoop, PreviewDriver
 
     track = drive.track
     u = drive.scene.speed
@@ -240,7 +240,7 @@ def _with_driver(model, drive, speed_control):
 
 
 def _linear_setup(model, drive) -> Setup:
-    from ..simulate import simulate
+    from vehdyn.simulate import simulate
 
     if drive.braking is not None or drive.initial_turn is not None:
         raise NotAdmissible("constant speed: no braking")
@@ -256,13 +256,13 @@ def _linear_setup(model, drive) -> Setup:
 
 
 def build_linear_bicycle(drive, tire_lag=False) -> Setup:
-    from ..handling.bicycle import LinearBicycle
+    from vehdyn.handling.bicycle import LinearBicycle
 
     return _linear_setup(LinearBicycle(drive.vehicle, drive.scene.speed, tire_lag=tire_lag), drive)
 
 
 def build_lateral_yaw_roll(drive) -> Setup:
-    from ..handling.lateral_yaw_roll import LateralYawRoll
+    from vehdyn.handling.lateral_yaw_roll import LateralYawRoll
 
     return _linear_setup(LateralYawRoll(drive.vehicle, drive.scene.speed), drive)
 
@@ -270,7 +270,7 @@ def build_lateral_yaw_roll(drive) -> Setup:
 def tire_laws(drive) -> tuple:
     """(front, rear) tire laws of the scene: its ``tire`` on both axles, else the vehicle's; read
     once per plan (:meth:`Drive.once`)."""
-    from ..tire import load_tire, tire_for_vehicle
+    from vehdyn.tire import load_tire, tire_for_vehicle
 
     def read():
         if drive.scene.tire is not None:
@@ -284,7 +284,7 @@ def build_lateral_yaw_roll_lag(drive) -> Setup:
     """LateralYawRollLag: the tires' laws are loaded here (per vehicle); the model, whose cornering
     stiffnesses and ply-steer coefficients come from the law at the running loads of the scene's
     speed, is derived again in every run (per-scene work is part of the cost)."""
-    from ..handling.lateral_yaw_roll_lag import LateralYawRollLag
+    from vehdyn.handling.lateral_yaw_roll_lag import LateralYawRollLag
 
     front, rear = tire_laws(drive)
 
@@ -293,7 +293,7 @@ def build_lateral_yaw_roll_lag(drive) -> Setup:
 
     setup = _linear_setup(make(), drive)
     if drive.track is None:
-        from ..simulate import simulate
+        from vehdyn.simulate import simulate
 
         inputs = _steer_only(drive)
         setup.run = lambda: simulate(make(), drive.time, inputs, method="exact")
@@ -302,8 +302,8 @@ def build_lateral_yaw_roll_lag(drive) -> Setup:
 
 
 def _positioned_class():
-    from ..model import Model
-    from ..signals import Signal
+    from vehdyn.model import Model
+    from vehdyn.signals import Signal
 
     class Positioned(Model):
         """A constant-speed lateral model with the earth-fixed position and heading added.
@@ -344,9 +344,9 @@ def _Positioned(model, speed):  # noqa: N802 - a class made on first use (Model 
 def build_single_track(drive, tires="vehicle", lateral_load_transfer=False, roll=False, rtol=1e-8) -> Setup:
     """SingleTrack on the scene (options: ``tires`` "vehicle" or "linear", the model's
     ``lateral_load_transfer`` and ``roll``, ``rtol`` of its RK45 run, atol = rtol / 100)."""
-    from ..handling.single_track import SingleTrack
-    from ..simulate import simulate
-    from ..tire import load_tire, tire_for_vehicle
+    from vehdyn.handling.single_track import SingleTrack
+    from vehdyn.simulate import simulate
+    from vehdyn.tire import load_tire, tire_for_vehicle
 
     vehicle, scene = drive.vehicle, drive.scene
     if tires == "linear":
@@ -369,7 +369,7 @@ def build_single_track(drive, tires="vehicle", lateral_load_transfer=False, roll
         return Setup(loop, lambda: simulate(loop, drive.time, None, x0=x0, **kw), ignores, phenomena,
                      lateral_load_transfer)
     if drive.initial_turn is not None:
-        from ..handling.nonlinear_steady_state import steady_state_cornering
+        from vehdyn.handling.nonlinear_steady_state import steady_state_cornering
 
         # the steady turn the scene starts in: checked here (no turn: not admissible), solved again
         # in every run (the start is part of what the scene costs)
@@ -399,7 +399,7 @@ def build_single_track(drive, tires="vehicle", lateral_load_transfer=False, roll
 
 # ====================================================================== ride builders
 def _ride_inputs(model, drive, average: bool):
-    from ..ride.wheelbase import road_inputs
+    from vehdyn.ride.wheelbase import road_inputs
 
     if drive.road is None:
         raise NotAdmissible("no road input")
@@ -416,9 +416,9 @@ def _ride_ignores(drive):
 def build_quarter_car(drive) -> Setup:
     """Front and rear quarter cars on the mean of the two tracks, side by side; the body heave at
     the sprung CG from the two corners' sprung motion, z = (b z_f + a z_r) / L."""
-    from ..linear import LinearModel
-    from ..ride.quarter_car import QuarterCar
-    from ..simulate import simulate
+    from vehdyn.linear import LinearModel
+    from vehdyn.ride.quarter_car import QuarterCar
+    from vehdyn.simulate import simulate
 
     v = drive.vehicle
     qf, qr = QuarterCar.from_vehicle(v, "front"), QuarterCar.from_vehicle(v, "rear")
@@ -428,7 +428,7 @@ def build_quarter_car(drive) -> Setup:
     D = np.block([[qf.D, np.zeros_like(qf.D)], [np.zeros_like(qr.D), qr.D]])
     a, b = v.geometry.sprung_cg_to_front_axle, v.geometry.sprung_cg_to_rear_axle
     L = a + b
-    from ..signals import Signal
+    from vehdyn.signals import Signal
 
     outputs = [Signal(s.name + "_front", s.unit, s.description + " (front corner)") for s in qf.output_signals]
     outputs += [Signal(s.name + "_rear", s.unit, s.description + " (rear corner)") for s in qr.output_signals]
@@ -446,7 +446,7 @@ def build_quarter_car(drive) -> Setup:
     if drive.road is None:
         raise NotAdmissible("no road input")
     distance, left, right = drive.road
-    from ..ride.road import RoadProfile
+    from vehdyn.ride.road import RoadProfile
 
     profile = RoadProfile(distance, 0.5 * (left + right))
     u = {}
@@ -459,8 +459,8 @@ def build_quarter_car(drive) -> Setup:
 def build_bounce_pitch(drive) -> Setup:
     """Bounce-pitch half car on the mean of the two tracks: for a left-right symmetric vehicle the
     heave and pitch of the full car respond to the mean track only (the roll to the difference)."""
-    from ..ride.bounce_pitch import BouncePitch
-    from ..simulate import simulate
+    from vehdyn.ride.bounce_pitch import BouncePitch
+    from vehdyn.simulate import simulate
 
     model = BouncePitch.from_vehicle(drive.vehicle)
     u = _ride_inputs(model, drive, average=True)
@@ -468,8 +468,8 @@ def build_bounce_pitch(drive) -> Setup:
 
 
 def build_full_car(drive) -> Setup:
-    from ..ride.full_car import FullCar
-    from ..simulate import simulate
+    from vehdyn.ride.full_car import FullCar
+    from vehdyn.simulate import simulate
 
     model = FullCar.from_vehicle(drive.vehicle)
     u = _ride_inputs(model, drive, average=False)
@@ -480,9 +480,9 @@ def lateral_slip(drive):
     """:class:`vehdyn.ride.LateralSlip` of the scene's vehicle and tire laws at its speed: each
     axle's tire law (antisymmetric part) at half the static axle load, its cornering stiffness
     (slip 1e-4 rad) and the stiffness's load derivative (central difference, +-10 % load)."""
-    from ..ride.lift_off import LateralSlip
-    from ..units import GRAVITY
-    from .estimates import _axle_tire_forces
+    from vehdyn.ride.lift_off import LateralSlip
+    from vehdyn.units import GRAVITY
+    from vehdyn.scene.estimates import _axle_tire_forces
 
     vehicle = drive.vehicle
     loads = vehicle.static_axle_loads(GRAVITY)
@@ -506,9 +506,9 @@ def longitudinal_slip(drive):
     F_z and the rolling resistance lever -M_y / F_z at zero slip, the longitudinal relaxation lengths of the full
     vehicle, and the drive torques that hold the speed against the drag and the rolling resistance
     (split by ``driveline.front_drive_fraction``, as the full vehicle's trim)."""
-    from ..handling.single_track import SingleTrack
-    from ..ride.lift_off import LongitudinalSlip
-    from ..units import GRAVITY
+    from vehdyn.handling.single_track import SingleTrack
+    from vehdyn.ride.lift_off import LongitudinalSlip
+    from vehdyn.units import GRAVITY
 
     vehicle, speed = drive.vehicle, drive.scene.speed
     loads = vehicle.static_axle_loads(GRAVITY)
@@ -549,10 +549,10 @@ def build_full_car_lift_off(drive) -> Setup:
     and ``max_step`` the scene's time step (compiled when numba is installed): against rtol 1e-9,
     1e-4 of the body accelerations on the sedan's rough road at 108 km/h, a 20th of the full
     vehicle's rtol-1e-6 cost there (its wheel lifts make many steps fail at tighter tolerances)."""
-    from ..full_vehicle.ladder import SOLVER_OPTIONS
-    from ..ride.full_car import FullCar
-    from ..ride.lift_off import LiftOff
-    from ..simulate import simulate
+    from vehdyn.full_vehicle.ladder import SOLVER_OPTIONS
+    from vehdyn.ride.full_car import FullCar
+    from vehdyn.ride.lift_off import LiftOff
+    from vehdyn.simulate import simulate
 
     v = drive.vehicle
     raised = {"geometry.front_roll_centre_height": v.geometry.front_roll_centre_height,

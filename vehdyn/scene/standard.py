@@ -8,7 +8,7 @@ rough road. Speeds in m/s, accelerations in m/s^2.
 
 from __future__ import annotations
 
-from .definition import Scene
+from vehdyn.scene.definition import Scene
 
 __all__ = ["standard_scenes"]
 

@@ -15,10 +15,10 @@ Pointing a study at a cluster changes only the executor::
     table = vehdyn.sweep(scene, samples=..., n=100_000, executor=client, out="mc.parquet")
 """
 
-from .api import sweep, variants
-from .metrics import Run, metric_names, register_metric
-from .sensitivity import plot_sensitivity, sensitivity  # binds the function over the submodule's name
-from .targets import vectorized
+from vehdyn.sweep.api import sweep, variants
+from vehdyn.sweep.metrics import Run, metric_names, register_metric
+from vehdyn.sweep.sensitivity import plot_sensitivity, sensitivity  # binds the function over the submodule's name
+from vehdyn.sweep.targets import vectorized
 
 __all__ = ["sweep", "variants", "vectorized", "register_metric", "metric_names", "Run", "sensitivity",
            "plot_sensitivity"]

@@ -9,9 +9,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..errors import ParameterError
-from .engines import ChunkTask, run_chunks
-from .targets import as_target
+from vehdyn.errors import ParameterError
+from vehdyn.sweep.engines import ChunkTask, run_chunks
+from vehdyn.sweep.targets import as_target
 
 __all__ = ["sweep", "variants", "run_table"]
 
@@ -225,7 +225,7 @@ def run_table(target, table, *, metrics=None, executor=None, chunk_size=None, ou
     store = None
     todo = np.arange(len(table))
     if out is not None:
-        from .storage import ChunkStore
+        from vehdyn.sweep.storage import ChunkStore
 
         store = ChunkStore(out)
         if resume:

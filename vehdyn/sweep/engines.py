@@ -26,7 +26,7 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from ..errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["ChunkTask", "run_chunks", "is_dask_client"]
 

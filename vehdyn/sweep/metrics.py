@@ -23,7 +23,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from ..errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["Run", "Metric", "register_metric", "metric", "metric_names", "FAMILIES"]
 
@@ -87,7 +87,7 @@ def register_metric(name: str, function: Callable[[Run], float], unit: str, desc
 
 
 def _step(run: Run, signal: str, attribute: str) -> float:
-    from ..handling.transient import step_response_metrics
+    from vehdyn.handling.transient import step_response_metrics
 
     if run.result is None:
         raise ParameterError(f"ISO 7401 metrics of {signal!r} need a simulation result", key="metrics", value=signal)
@@ -122,22 +122,22 @@ def _vehicle(run: Run):
 
 def _register_builtins():
     def ug(run):
-        from ..handling.steady_state import understeer_gradient
+        from vehdyn.handling.steady_state import understeer_gradient
 
         return float(understeer_gradient(_vehicle(run)))
 
     def ug_deg(run):
-        from ..handling.steady_state import understeer_gradient_deg_per_g
+        from vehdyn.handling.steady_state import understeer_gradient_deg_per_g
 
         return float(understeer_gradient_deg_per_g(_vehicle(run)))
 
     def vch(run):
-        from ..handling.steady_state import characteristic_speed
+        from vehdyn.handling.steady_state import characteristic_speed
 
         return float(characteristic_speed(_vehicle(run)))
 
     def yaw_gain(run):
-        from ..handling.steady_state import steady_state_gains
+        from vehdyn.handling.steady_state import steady_state_gains
 
         return float(steady_state_gains(_vehicle(run), run.speed).yaw_rate)
 

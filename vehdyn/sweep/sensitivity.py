@@ -21,7 +21,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..errors import ParameterError, SimulationError
+from vehdyn.errors import ParameterError, SimulationError
 
 __all__ = ["sensitivity", "plot_sensitivity"]
 
@@ -125,7 +125,7 @@ def sensitivity(target, parameters: Mapping[str, Any], metric, *, method: str = 
         u = design.sample(problem, int(n), num_levels=int(levels), seed=seed)
         # distributions at the levels' mid-quantiles (finite for unbounded laws); bounds at the levels
         u[:, laws] = (u[:, laws] * (levels - 1) + 0.5) / levels
-    from .api import run_table
+    from vehdyn.sweep.api import run_table
 
     table = pd.DataFrame({name: np.asarray(maps[name](u[:, j]), dtype=float) for j, name in enumerate(names)})
     runs = run_table(target, table, metrics=metrics, executor=executor, chunk_size=chunk_size, progress=progress,

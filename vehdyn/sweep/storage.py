@@ -15,8 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import atomic_write
-from ..errors import ParameterError
+from vehdyn._atomic import atomic_write
+from vehdyn.errors import ParameterError
 
 __all__ = ["ChunkStore"]
 

@@ -14,8 +14,8 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
-from ..errors import ParameterError
-from . import metrics as _metrics
+from vehdyn.errors import ParameterError
+from vehdyn.sweep import metrics as _metrics
 
 __all__ = ["vectorized", "SceneTarget", "FunctionTarget", "as_target", "vehicle_parameter_names", "simulation_call"]
 
@@ -44,7 +44,7 @@ def _close(name: str, known, what: str) -> ParameterError:
 
 def vehicle_parameter_names(vehicle, prefix: str = "vehicle.") -> dict[str, str]:
     """Dotted name -> unit of every numeric and text parameter of ``vehicle`` (nested groups)."""
-    from ..params.base import ParameterSet
+    from vehdyn.params.base import ParameterSet
 
     out = {}
     for f in dataclasses.fields(vehicle):
@@ -78,7 +78,7 @@ class SceneTarget:
     """
 
     def __init__(self, scene, model: str = "auto", solver=None):
-        from ..scene.planner import plan
+        from vehdyn.scene.planner import plan
 
         self.scene = scene
         self.vehicle = scene.load_vehicle()
@@ -99,7 +99,7 @@ class SceneTarget:
         for f in dataclasses.fields(scene):
             if f.name not in ("outputs", "manoeuvre_parameters"):
                 self.parameters[f.name] = _SCENE_UNITS.get(f.name, "")
-        from ..scene.definition import ROAD_EVENTS, STANDARD_MANOEUVRES
+        from vehdyn.scene.definition import ROAD_EVENTS, STANDARD_MANOEUVRES
 
         if isinstance(scene.manoeuvre, str):
             for k in STANDARD_MANOEUVRES[scene.manoeuvre]:
@@ -150,8 +150,8 @@ class SceneTarget:
     def _prepare(self, params: Mapping[str, Any], wanted):
         """(run, setup) of one variant: the metrics' :class:`~vehdyn.sweep.metrics.Run` without
         outputs and the rung built for the variant's scene (None when no metric needs a run)."""
-        from ..scene.drive import drive_of
-        from ..scene.rungs import rungs
+        from vehdyn.scene.drive import drive_of
+        from vehdyn.scene.rungs import rungs
 
         scene = self.variant(params)
         run = _metrics.Run(time=scene.time(), outputs={}, units=self.units, vehicle=scene.load_vehicle(),
@@ -176,7 +176,7 @@ class SceneTarget:
         return call
 
     def run(self, params: Mapping[str, Any], metric_names) -> dict[str, float]:
-        from ..simulate import simulate
+        from vehdyn.simulate import simulate
 
         wanted = [_metrics.metric(n, self.units) for n in metric_names]
         run, setup = self._prepare(params, wanted)
@@ -190,7 +190,7 @@ class SceneTarget:
         :func:`vehdyn.simulate.simulate_many` (compiled batches of the variants that share a
         model structure; bitwise the results of :meth:`run`). Per variant its metrics, or the
         exception it raised."""
-        from ..simulate import simulate_many
+        from vehdyn.simulate import simulate_many
 
         wanted = [_metrics.metric(n, self.units) for n in metric_names]
         out: list = [None] * len(rows)
@@ -229,7 +229,7 @@ def simulation_call(run: Callable):
     """
     import types
 
-    from ..simulate import simulate
+    from vehdyn.simulate import simulate
 
     code, cells = getattr(run, "__code__", None), getattr(run, "__closure__", None)
     if code is None or not cells or "simulate" not in code.co_freevars:
@@ -312,7 +312,7 @@ def _solver_options(solver) -> dict:
     """The validated ``solver`` options of a Scene sweep ({} for None)."""
     if solver is None:
         return {}
-    from ..simulate import SOLVE_IVP_METHODS
+    from vehdyn.simulate import SOLVE_IVP_METHODS
 
     if not isinstance(solver, Mapping):
         raise ParameterError(f"solver must be a mapping of {_SOLVER_KEYS}, got {solver!r}", key="solver",
@@ -339,7 +339,7 @@ def _solver_options(solver) -> dict:
 
 def as_target(target, model: str = "auto", solver=None):
     """A :class:`SceneTarget` or :class:`FunctionTarget` for ``target`` (``solver``: Scene targets only)."""
-    from ..scene.definition import Scene
+    from vehdyn.scene.definition import Scene
 
     if isinstance(target, (SceneTarget, FunctionTarget)):
         if solver is not None:

@@ -27,21 +27,21 @@ Plots
     (matplotlib and pandas imported on use)
 """
 
-from .base import TireForces, TireModel
-from .brush import BrushTire
-from .dugoff import DugoffTire
-from .fiala import FialaTire
-from .linear import LinearTire
-from .magic_formula import MagicFormula, MagicFormulaOutputs, load_tire
-from .plots import characteristic_values, describe_tire, plot_tire_characteristics
-from .registry import register_tire_law, tire_for_vehicle, tire_law, tire_law_names
-from .relaxation import TireRelaxation, relaxation_lengths
-from .slip import WheelSlip, regularized_speed, slip_velocities, theoretical_slip, wheel_slip
-from .tir import TirParameters, read_tir, write_tir
-from . import terramechanics
-from .terramechanics import SoftSoilTire
-from .tire_data import read_tire_data
-from .fitting import TireFit, fit_brush, fit_linear, fit_magic_formula
+from vehdyn.tire.base import TireForces, TireModel
+from vehdyn.tire.brush import BrushTire
+from vehdyn.tire.dugoff import DugoffTire
+from vehdyn.tire.fiala import FialaTire
+from vehdyn.tire.linear import LinearTire
+from vehdyn.tire.magic_formula import MagicFormula, MagicFormulaOutputs, load_tire
+from vehdyn.tire.plots import characteristic_values, describe_tire, plot_tire_characteristics
+from vehdyn.tire.registry import register_tire_law, tire_for_vehicle, tire_law, tire_law_names
+from vehdyn.tire.relaxation import TireRelaxation, relaxation_lengths
+from vehdyn.tire.slip import WheelSlip, regularized_speed, slip_velocities, theoretical_slip, wheel_slip
+from vehdyn.tire.tir import TirParameters, read_tir, write_tir
+from vehdyn.tire import terramechanics
+from vehdyn.tire.terramechanics import SoftSoilTire
+from vehdyn.tire.tire_data import read_tire_data
+from vehdyn.tire.fitting import TireFit, fit_brush, fit_linear, fit_magic_formula
 
 __all__ = [
     "TireForces",

@@ -11,8 +11,8 @@ import math
 
 import numpy as np
 
-from ..errors import ParameterError
-from .base import TireForces, TireModel
+from vehdyn.errors import ParameterError
+from vehdyn.tire.base import TireForces, TireModel
 
 _isfinite = math.isfinite
 _finite = np.isfinite

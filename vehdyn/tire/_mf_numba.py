@@ -57,9 +57,9 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from .._compiled_ode import compiled_copy, source_stamp
-from . import _fast_math, _mf_ops, magic_formula, mf_forces, mf_moments, mf_vertical
-from ._mf_ops import ScalarOps
+from vehdyn._compiled_ode import compiled_copy, source_stamp
+from vehdyn.tire import _fast_math, _mf_ops, magic_formula, mf_forces, mf_moments, mf_vertical
+from vehdyn.tire._mf_ops import ScalarOps
 
 __all__ = ["OPS", "OPS_VECTOR", "run"]
 

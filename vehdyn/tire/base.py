@@ -31,7 +31,7 @@ inputs are evaluated (the Magic Formula clamps them to the file's ranges with ``
 
 from __future__ import annotations
 
-from ..conventions import TireForces
+from vehdyn.conventions import TireForces
 
 __all__ = ["TireForces", "TireModel"]
 

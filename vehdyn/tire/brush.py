@@ -51,11 +51,11 @@ import math
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..params.base import ParameterSet, parameter
-from ._common import (VectorizedTire, broadcast_inputs, load_input, nan_at, planar_forces, rolling_direction,
+from vehdyn.errors import ParameterError
+from vehdyn.params.base import ParameterSet, parameter
+from vehdyn.tire._common import (VectorizedTire, broadcast_inputs, load_input, nan_at, planar_forces, rolling_direction,
                       scalar_rolling_direction)
-from .base import TireForces
+from vehdyn.tire.base import TireForces
 
 __all__ = ["BrushTire", "brush_force_fraction", "brush_moment_fraction"]
 
@@ -181,7 +181,7 @@ class BrushTire(ParameterSet, VectorizedTire):
         of the unloaded tire at its static deflection, ``a = sqrt(2 R delta - delta^2)`` with
         ``delta = F_z / k_z`` (R the rolling radius, k_z the vertical stiffness).
         """
-        from .registry import vehicle_tire_data
+        from vehdyn.tire.registry import vehicle_tire_data
 
         data = vehicle_tire_data(vehicle, axle)
         return cls.from_cornering_stiffness(data.cornering_stiffness, data.contact_half_length, data.mu)

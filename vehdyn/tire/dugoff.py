@@ -35,9 +35,9 @@ import math
 
 import numpy as np
 
-from ..params.base import ParameterSet, parameter
-from ._common import VectorizedTire, planar_forces, rolling_direction, scalar_rolling_direction
-from .base import TireForces
+from vehdyn.params.base import ParameterSet, parameter
+from vehdyn.tire._common import VectorizedTire, planar_forces, rolling_direction, scalar_rolling_direction
+from vehdyn.tire.base import TireForces
 
 __all__ = ["DugoffTire"]
 
@@ -78,7 +78,7 @@ class DugoffTire(ParameterSet, VectorizedTire):
     def from_vehicle(cls, vehicle, axle: str = "front") -> "DugoffTire":
         """A Dugoff tire for one wheel of ``vehicle``'s ``axle``; the slip stiffness is taken equal to
         the cornering stiffness (isotropic brush) since vehicle files carry no slip stiffness."""
-        from .registry import vehicle_tire_data
+        from vehdyn.tire.registry import vehicle_tire_data
 
         data = vehicle_tire_data(vehicle, axle)
         return cls(cornering_stiffness=data.cornering_stiffness, slip_stiffness=data.cornering_stiffness,

@@ -36,10 +36,10 @@ import math
 
 import numpy as np
 
-from ..params.base import ParameterSet, parameter
-from ._common import VectorizedTire, load_input, planar_forces, rolling_direction, scalar_rolling_direction, scalar_sign
-from .base import TireForces
-from .brush import brush_force_fraction, brush_moment_fraction
+from vehdyn.params.base import ParameterSet, parameter
+from vehdyn.tire._common import VectorizedTire, load_input, planar_forces, rolling_direction, scalar_rolling_direction, scalar_sign
+from vehdyn.tire.base import TireForces
+from vehdyn.tire.brush import brush_force_fraction, brush_moment_fraction
 
 __all__ = ["FialaTire"]
 
@@ -94,7 +94,7 @@ class FialaTire(ParameterSet, VectorizedTire):
     @classmethod
     def from_vehicle(cls, vehicle, axle: str = "front") -> "FialaTire":
         """A Fiala tire for one wheel of ``vehicle``'s ``axle`` (see :func:`vehdyn.tire.tire_for_vehicle`)."""
-        from .registry import vehicle_tire_data
+        from vehdyn.tire.registry import vehicle_tire_data
 
         data = vehicle_tire_data(vehicle, axle)
         return cls(cornering_stiffness=data.cornering_stiffness, mu=data.mu,

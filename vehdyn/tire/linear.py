@@ -24,10 +24,10 @@ from __future__ import annotations
 
 import dataclasses
 
-from ..params.base import ParameterSet, parameter
-from ._common import VectorizedTire, planar_forces
-from ._mf_ops import NumpyOps, ScalarOps
-from .base import TireForces
+from vehdyn.params.base import ParameterSet, parameter
+from vehdyn.tire._common import VectorizedTire, planar_forces
+from vehdyn.tire._mf_ops import NumpyOps, ScalarOps
+from vehdyn.tire.base import TireForces
 
 __all__ = ["LinearTire", "linear_tire_law"]
 
@@ -99,7 +99,7 @@ class LinearTire(ParameterSet, VectorizedTire):
     def from_vehicle(cls, vehicle, axle: str = "front") -> "LinearTire":
         """A linear tire for one wheel of ``vehicle``'s ``axle``: half the axle's cornering stiffness,
         scaled with load about the static wheel load (see :func:`vehdyn.tire.tire_for_vehicle`)."""
-        from .registry import vehicle_tire_data
+        from vehdyn.tire.registry import vehicle_tire_data
 
         data = vehicle_tire_data(vehicle, axle)
         return cls(cornering_stiffness=data.cornering_stiffness, nominal_load=data.static_load)

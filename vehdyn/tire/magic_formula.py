@@ -52,16 +52,16 @@ from collections import namedtuple
 
 import numpy as np
 
-from .._compiled_ode import numba_available
-from ..errors import ParameterError, TirFileError
-from ..params import data_path
-from ._common import NAN_FORCES, broadcast_shape, finite_scalars, float_input, nan_at, neutralize, nonfinite_points
-from ._mf_ops import NumpyOps, ScalarOps, sign_nonzero
-from .base import TireForces, TireModel
-from .mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure, turn_slip_spin
-from .mf_moments import aligning_moment, overturning_moment, rolling_resistance_moment
-from .mf_vertical import carcass_stiffness, contact_patch, loaded_radius_mf61, loaded_radius_mf62, rolling_radius
-from .tir import MFEVAL_DEFAULTS, TirParameters, read_tir
+from vehdyn._compiled_ode import numba_available
+from vehdyn.errors import ParameterError, TirFileError
+from vehdyn.params import data_path
+from vehdyn.tire._common import NAN_FORCES, broadcast_shape, finite_scalars, float_input, nan_at, neutralize, nonfinite_points
+from vehdyn.tire._mf_ops import NumpyOps, ScalarOps, sign_nonzero
+from vehdyn.tire.base import TireForces, TireModel
+from vehdyn.tire.mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure, turn_slip_spin
+from vehdyn.tire.mf_moments import aligning_moment, overturning_moment, rolling_resistance_moment
+from vehdyn.tire.mf_vertical import carcass_stiffness, contact_patch, loaded_radius_mf61, loaded_radius_mf62, rolling_radius
+from vehdyn.tire.tir import MFEVAL_DEFAULTS, TirParameters, read_tir
 
 __all__ = ["MagicFormula", "MagicFormulaOutputs", "load_tire"]
 
@@ -406,7 +406,7 @@ class MagicFormula(TireModel):
         if backend == "auto":
             backend = _auto_backend(n)
         if backend == "numba" and n > 0:
-            from . import _mf_numba
+            from vehdyn.tire import _mf_numba
 
             outputs = _mf_numba.run(self._c, flat, switches, full, n, parallel=NUMBA_PARALLEL)
             return tuple(row.reshape(shape) for row in outputs)
@@ -459,7 +459,7 @@ def _auto_backend(n: int) -> str:
     if n < AUTO_NUMBA_MIN_POINTS or not numba_available():
         return "numpy"
     try:
-        from . import _mf_numba  # noqa: F401
+        from vehdyn.tire import _mf_numba  # noqa: F401
     except ImportError:  # installed but broken: numpy gives the same results
         return "numpy"
     return "numba"

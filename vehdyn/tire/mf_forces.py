@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from collections import namedtuple
 
-from ._mf_ops import cos_atan, sign_nonzero
+from vehdyn.tire._mf_ops import cos_atan, sign_nonzero
 
 __all__ = [
     "longitudinal_pure",

@@ -13,8 +13,8 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
-from ._mf_ops import cos_atan, sign_nonzero
-from .mf_forces import _EPSILON, lateral_pure
+from vehdyn.tire._mf_ops import cos_atan, sign_nonzero
+from vehdyn.tire.mf_forces import _EPSILON, lateral_pure
 
 __all__ = ["overturning_moment", "rolling_resistance_moment", "aligning_moment"]
 

@@ -18,7 +18,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from .base import TireModel
+from vehdyn.tire.base import TireModel
 
 __all__ = ["plot_tire_characteristics", "characteristic_values", "cornering_stiffness", "describe_tire", "nominal_load"]
 
@@ -140,7 +140,7 @@ def plot_tire_characteristics(tire, loads=None, *, vx: float = 20.0, max_slip_an
         ``lateral_force``, ``longitudinal_force``, ``aligning_moment``, ``friction_ellipse``,
         ``cornering_stiffness``.
     """
-    from ..plotting import new_figure
+    from vehdyn.plotting import new_figure
 
     tires = _tires(tire)
     first = next(iter(tires.values()))

@@ -19,9 +19,9 @@ import math
 import os
 from typing import NamedTuple
 
-from ..errors import ParameterError
-from ..units import GRAVITY
-from .base import TireModel
+from vehdyn.errors import ParameterError
+from vehdyn.units import GRAVITY
+from vehdyn.tire.base import TireModel
 
 __all__ = ["tire_law", "tire_law_names", "register_tire_law", "tire_for_vehicle", "vehicle_tire_data",
            "VehicleTireData"]

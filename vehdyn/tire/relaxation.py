@@ -29,15 +29,15 @@ from os import PathLike
 
 import numpy as np
 
-from ..errors import ParameterError, TirFileError
-from ..model import Model
-from ..signals import Signal
+from vehdyn.errors import ParameterError, TirFileError
+from vehdyn.model import Model
+from vehdyn.signals import Signal
 
 __all__ = ["TireRelaxation", "relaxation_lengths"]
 
 def _tir_value(key, value):
     """A mapping's value as the ``.tir`` reader gives it: strings are parsed as in a file."""
-    from .tir import _parse_value
+    from vehdyn.tire.tir import _parse_value
 
     if isinstance(value, str):
         try:
@@ -51,8 +51,8 @@ def _tir_value(key, value):
 
 def _magic_formula(tire):
     """A :class:`~vehdyn.tire.MagicFormula` from a model, ``TirParameters``, a path or a mapping."""
-    from .magic_formula import MagicFormula
-    from .tir import TirParameters, read_tir
+    from vehdyn.tire.magic_formula import MagicFormula
+    from vehdyn.tire.tir import TirParameters, read_tir
 
     if isinstance(tire, MagicFormula):
         return tire

@@ -39,7 +39,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["WheelSlip", "regularized_speed", "wheel_slip", "slip_velocities", "theoretical_slip",
            "DEFAULT_REGULARIZATION_SPEED"]

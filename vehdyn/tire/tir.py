@@ -64,8 +64,8 @@ from pathlib import Path
 from types import MappingProxyType
 from collections.abc import Mapping
 
-from .._atomic import atomic_write
-from ..errors import TirFileError, VehdynWarning
+from vehdyn._atomic import atomic_write
+from vehdyn.errors import TirFileError, VehdynWarning
 
 __all__ = ["TirParameters", "read_tir", "write_tir", "check_sections", "MFEVAL_DEFAULTS", "VERSION_BY_FITTYP",
            "STANDARD_SECTIONS", "REQUIRED_SECTIONS"]

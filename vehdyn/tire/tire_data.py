@@ -43,7 +43,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ParameterError, TirFileError
+from vehdyn.errors import ParameterError, TirFileError
 
 __all__ = ["read_tire_data", "TireDataError", "CANONICAL_COLUMNS", "UNIT_FACTORS"]
 
@@ -143,7 +143,7 @@ def _to_frame(columns, sae, path):
     """Canonical SI columns (dict of arrays) -> ISO-W DataFrame, converting from SAE if ``sae``."""
     import pandas as pd
 
-    from ..conventions import tire_forces_sae_to_iso_w, tire_slips_sae_to_iso_w
+    from vehdyn.conventions import tire_forces_sae_to_iso_w, tire_slips_sae_to_iso_w
 
     if sae:
         n = len(next(iter(columns.values())))

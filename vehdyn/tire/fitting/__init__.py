@@ -5,11 +5,11 @@ which coefficient) and returns a :class:`TireFit`; :func:`fit_brush` and :func:`
 simple laws. scipy, pandas and matplotlib are imported on use.
 """
 
-from .magic_formula_fit import DEFAULT_BOUNDS, fit_magic_formula
-from .result import StageResult, TireFit
-from .simple_fits import fit_brush, fit_linear
-from .stages import STAGE_NAMES, STAGES, owned
-from .synthetic import sample_tire
+from vehdyn.tire.fitting.magic_formula_fit import DEFAULT_BOUNDS, fit_magic_formula
+from vehdyn.tire.fitting.result import StageResult, TireFit
+from vehdyn.tire.fitting.simple_fits import fit_brush, fit_linear
+from vehdyn.tire.fitting.stages import STAGE_NAMES, STAGES, owned
+from vehdyn.tire.fitting.synthetic import sample_tire
 
 __all__ = ["fit_magic_formula", "fit_brush", "fit_linear", "sample_tire", "TireFit", "StageResult", "STAGES",
            "STAGE_NAMES", "owned", "DEFAULT_BOUNDS"]

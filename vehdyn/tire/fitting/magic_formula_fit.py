@@ -32,12 +32,12 @@ import warnings
 
 import numpy as np
 
-from ...errors import ParameterError, VehdynWarning
-from .._mf_ops import NumpyOps
-from ..mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure
-from ..mf_moments import aligning_moment, overturning_moment, rolling_resistance_moment
-from .result import StageResult, TireFit
-from .stages import STAGE_NAMES, STAGES, STEP_VARIATION, owned
+from vehdyn.errors import ParameterError, VehdynWarning
+from vehdyn.tire._mf_ops import NumpyOps
+from vehdyn.tire.mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure
+from vehdyn.tire.mf_moments import aligning_moment, overturning_moment, rolling_resistance_moment
+from vehdyn.tire.fitting.result import StageResult, TireFit
+from vehdyn.tire.fitting.stages import STAGE_NAMES, STAGES, STEP_VARIATION, owned
 
 __all__ = ["fit_magic_formula", "DEFAULT_BOUNDS", "PURE_SLIP_ANGLE", "PURE_SLIP_RATIO"]
 
@@ -111,9 +111,9 @@ def _levels_vary(values, span):
 def _template(version, start, columns, messages):
     """The parameter set the fit starts from: ``start`` or MFeval's defaults in a shipped layout,
     with FNOMIN, LONGVL, NOMPRES and the ranges taken from the data."""
-    from ..magic_formula import MagicFormula, load_tire
-    from ..tir import MFEVAL_DEFAULTS, TirParameters, read_tir
-    from ...params import data_path
+    from vehdyn.tire.magic_formula import MagicFormula, load_tire
+    from vehdyn.tire.tir import MFEVAL_DEFAULTS, TirParameters, read_tir
+    from vehdyn.params import data_path
 
     fz = columns["fz"]
     if start is not None:
@@ -221,7 +221,7 @@ class _Problem:
     """
 
     def __init__(self, base, stage, rows, outputs, names, weights):
-        from ..magic_formula import _forces_pass
+        from vehdyn.tire.magic_formula import _forces_pass
 
         self.base, self.stage, self.names = base, stage, names
         self.targets = [rows[o] for o in outputs]
@@ -427,7 +427,7 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
         When coefficients are not identifiable from the data (no load, camber or pressure sweep,
         or an ill-conditioned Jacobian).
     """
-    from ..magic_formula import MagicFormula
+    from vehdyn.tire.magic_formula import MagicFormula
 
     if version not in ("5.2", "6.1", "6.2"):
         raise ParameterError(f"version must be '5.2', '6.1' or '6.2', got {version!r}", key="version", value=version)
@@ -484,7 +484,7 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
     fitted = {name: getattr(c, name) for r in results.values() for name in r.coefficients}
     sections = {s: dict(kv) for s, kv in params.sections.items()}
     _set_values(sections, params.values, fitted)
-    from ..tir import TirParameters
+    from vehdyn.tire.tir import TirParameters
 
     tire = MagicFormula(TirParameters(sections, tables=params.tables))
     return TireFit(tire=tire, stages=results, messages=messages, data=full)

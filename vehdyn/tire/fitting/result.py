@@ -140,9 +140,9 @@ class TireFit:
         import tempfile
         from pathlib import Path
 
-        from ..._atomic import atomic_write_bytes
-        from ...errors import ParameterError
-        from ..tir import write_tir
+        from vehdyn._atomic import atomic_write_bytes
+        from vehdyn.errors import ParameterError
+        from vehdyn.tire.tir import write_tir
 
         if not hasattr(self.tire, "params"):
             raise ParameterError(f"only a Magic Formula fit writes a .tir file; this fit's tire is "
@@ -162,8 +162,8 @@ class TireFit:
         """
         import matplotlib.pyplot as plt
 
-        from .magic_formula_fit import PURE_SLIP_ANGLE, PURE_SLIP_RATIO, _select
-        from .stages import STAGES
+        from vehdyn.tire.fitting.magic_formula_fit import PURE_SLIP_ANGLE, PURE_SLIP_RATIO, _select
+        from vehdyn.tire.fitting.stages import STAGES
 
         data = self.data
         model = self.tire.forces(data["fz"], data["kappa"], data["alpha"], data["gamma"], data["vx"])

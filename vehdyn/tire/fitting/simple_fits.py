@@ -13,9 +13,9 @@ import warnings
 
 import numpy as np
 
-from ...errors import ParameterError, VehdynWarning
-from .magic_formula_fit import PURE_SLIP_ANGLE, PURE_SLIP_RATIO, _as_columns, _drop_nan
-from .result import StageResult, TireFit
+from vehdyn.errors import ParameterError, VehdynWarning
+from vehdyn.tire.fitting.magic_formula_fit import PURE_SLIP_ANGLE, PURE_SLIP_RATIO, _as_columns, _drop_nan
+from vehdyn.tire.fitting.result import StageResult, TireFit
 
 __all__ = ["fit_brush", "fit_linear"]
 
@@ -69,7 +69,7 @@ def fit_linear(data, *, nominal_load=None, max_slip_angle=math.radians(2.0), max
     TireFit
         ``tire`` a :class:`~vehdyn.tire.LinearTire`; one stage ``"linear"``.
     """
-    from ..linear import LinearTire
+    from vehdyn.tire.linear import LinearTire
 
     messages = []
     columns, lateral, longitudinal = _pure_rows(data, messages)
@@ -139,7 +139,7 @@ def fit_brush(data, *, contact_half_length=None, sliding=False):
     """
     from scipy.optimize import least_squares
 
-    from ..brush import BrushTire
+    from vehdyn.tire.brush import BrushTire
 
     messages = []
     columns, lateral, longitudinal = _pure_rows(data, messages)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...errors import ParameterError
+from vehdyn.errors import ParameterError
 
 __all__ = ["sample_tire"]
 

@@ -31,12 +31,12 @@ Not yet against measured drawbar pull, sinkage or torque: no measured data set t
 soil parameters of the same test (Wong and Reece 1967; Ding et al. 2011) was at hand.
 """
 
-from .bekker import (bekker_pressure, bulldozing_resistance, compaction_resistance, parabolic_wheel_sinkage,
+from vehdyn.tire.terramechanics.bekker import (bekker_pressure, bulldozing_resistance, compaction_resistance, parabolic_wheel_sinkage,
                      plate_sinkage, rigid_wheel_sinkage)
-from .flexible import FlexibleWheel, critical_ground_pressure
-from .soft_soil_tire import SoftSoilTire, SoftSoilTireGeometry
-from .soil import Soil, load_soil, shipped_soils, soil_source
-from .wong_reece import RigidWheel, WheelSoilResult
+from vehdyn.tire.terramechanics.flexible import FlexibleWheel, critical_ground_pressure
+from vehdyn.tire.terramechanics.soft_soil_tire import SoftSoilTire, SoftSoilTireGeometry
+from vehdyn.tire.terramechanics.soil import Soil, load_soil, shipped_soils, soil_source
+from vehdyn.tire.terramechanics.wong_reece import RigidWheel, WheelSoilResult
 
 __all__ = [
     "Soil", "load_soil", "shipped_soils", "soil_source",

@@ -37,9 +37,9 @@ import math
 
 import numpy as np
 
-from ...errors import ParameterError
-from ...units import GRAVITY
-from .soil import Soil
+from vehdyn.errors import ParameterError
+from vehdyn.units import GRAVITY
+from vehdyn.tire.terramechanics.soil import Soil
 
 __all__ = ["bekker_pressure", "plate_sinkage", "rigid_wheel_sinkage", "parabolic_wheel_sinkage",
            "compaction_resistance", "bulldozing_resistance", "rankine_wall_force", "checked_array"]

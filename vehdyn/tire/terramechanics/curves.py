@@ -9,8 +9,8 @@ import math
 
 import numpy as np
 
-from .soil import Soil, load_soil, shipped_soils, soil_source
-from .wong_reece import RigidWheel, WheelSoilResult
+from vehdyn.tire.terramechanics.soil import Soil, load_soil, shipped_soils, soil_source
+from vehdyn.tire.terramechanics.wong_reece import RigidWheel, WheelSoilResult
 
 __all__ = ["soil_curves", "describe_soil", "plot_soil_curves"]
 
@@ -50,7 +50,7 @@ def describe_soil(soil: Soil | str, radius: float = DEFAULT_WHEEL[0], width: flo
 def plot_soil_curves(results: dict, *, fig=None):
     """Sinkage, drawbar pull over load, torque and tractive efficiency against slip, one line per
     entry of ``results`` (label -> :class:`WheelSoilResult`)."""
-    from ...plotting import new_figure
+    from vehdyn.plotting import new_figure
 
     if fig is None:
         fig, axes = new_figure(2, 2, width=9.0, height_per_row=2.8)

@@ -34,11 +34,11 @@ import math
 
 import numpy as np
 
-from ...params.base import ParameterSet, parameter
-from .bekker import checked_array, rigid_wheel_sinkage
-from .lateral import flat_side_force, mobilized_fraction
-from .soil import Soil
-from .wong_reece import QUADRATURE_NODES, RigidWheel, WheelSoilResult, check_slip, efficiency, travel_ratio
+from vehdyn.params.base import ParameterSet, parameter
+from vehdyn.tire.terramechanics.bekker import checked_array, rigid_wheel_sinkage
+from vehdyn.tire.terramechanics.lateral import flat_side_force, mobilized_fraction
+from vehdyn.tire.terramechanics.soil import Soil
+from vehdyn.tire.terramechanics.wong_reece import QUADRATURE_NODES, RigidWheel, WheelSoilResult, check_slip, efficiency, travel_ratio
 
 __all__ = ["SoftSoilTireGeometry", "FlexibleWheel", "critical_ground_pressure"]
 

@@ -31,8 +31,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .bekker import bulldozing_resistance, rankine_wall_force
-from .soil import Soil
+from vehdyn.tire.terramechanics.bekker import bulldozing_resistance, rankine_wall_force
+from vehdyn.tire.terramechanics.soil import Soil
 
 __all__ = ["arc_side_force", "flat_side_force", "mobilized_fraction"]
 

@@ -32,12 +32,12 @@ import math
 
 import numpy as np
 
-from ...errors import ParameterError
-from .._common import all_scalars, broadcast_inputs, rolling_direction
-from ..base import TireForces, TireModel
-from .flexible import FlexibleWheel, SoftSoilTireGeometry
-from .soil import Soil
-from .wong_reece import WheelSoilResult
+from vehdyn.errors import ParameterError
+from vehdyn.tire._common import all_scalars, broadcast_inputs, rolling_direction
+from vehdyn.tire.base import TireForces, TireModel
+from vehdyn.tire.terramechanics.flexible import FlexibleWheel, SoftSoilTireGeometry
+from vehdyn.tire.terramechanics.soil import Soil
+from vehdyn.tire.terramechanics.wong_reece import WheelSoilResult
 
 __all__ = ["SoftSoilTire", "SoftSoilTireGeometry", "slip_from_kappa"]
 

@@ -20,8 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import ParameterError
-from ...params.base import ParameterSet, parameter, read_toml, text
+from vehdyn.errors import ParameterError
+from vehdyn.params.base import ParameterSet, parameter, read_toml, text
 
 __all__ = ["Soil", "load_soil", "shipped_soils", "soil_source"]
 
@@ -100,7 +100,7 @@ class Soil(ParameterSet):
 
 
 def _soil_table() -> dict:
-    from ...params.vehicle import data_path
+    from vehdyn.params.vehicle import data_path
 
     return read_toml(data_path("soils.toml"))
 

@@ -59,11 +59,11 @@ import math
 
 import numpy as np
 
-from ...errors import ParameterError
-from ...params.base import ParameterSet, parameter
-from .bekker import checked_array
-from .lateral import arc_side_force
-from .soil import Soil
+from vehdyn.errors import ParameterError
+from vehdyn.params.base import ParameterSet, parameter
+from vehdyn.tire.terramechanics.bekker import checked_array
+from vehdyn.tire.terramechanics.lateral import arc_side_force
+from vehdyn.tire.terramechanics.soil import Soil
 
 __all__ = ["RigidWheel", "WheelSoilResult", "travel_ratio", "check_slip"]
 
