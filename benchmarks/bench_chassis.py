@@ -1,4 +1,4 @@
-"""Compiled against numpy closed loops: ABS, ESC and a driver around them (vehdyn.chassis.ClosedLoop).
+"""Compiled against numpy closed loops: ABS, ESC and a driver around them (vehdyn.interconnect.ClosedLoop).
 
 Run: ``python benchmarks/bench_chassis.py [--quick]``. Prints one table from one run on this
 machine: per case the wall time of ``simulate(..., backend="numpy")`` (scipy's solve_ivp on the
@@ -42,7 +42,8 @@ def _road(car, mu):
 
 def abs_case(car, mu, speed=100.0 / 3.6):
     import vehdyn
-    from vehdyn.chassis import ABS, ClosedLoop
+    from vehdyn.chassis import ABS
+    from vehdyn.interconnect import ClosedLoop
     from vehdyn.handling import SingleTrack
 
     plant = SingleTrack(car, *_road(car, mu), wheel_spin=True)
@@ -61,9 +62,11 @@ def abs_case(car, mu, speed=100.0 / 3.6):
 
 def esc_case(car, plant_name):
     import vehdyn
-    from vehdyn.chassis import ESC, ClosedLoop
+    from vehdyn.chassis import ESC
+    from vehdyn.interconnect import ClosedLoop
     from vehdyn.full_vehicle import FullVehicle
-    from vehdyn.handling import SingleTrack, sine_with_dwell, sine_with_dwell_metrics, steady_state_cornering
+    from vehdyn.handling import SingleTrack, steady_state_cornering
+    from vehdyn.procedures import sine_with_dwell, sine_with_dwell_metrics
 
     speed = 80.0 / 3.6
     if plant_name == "single_track":
@@ -91,8 +94,10 @@ def esc_case(car, plant_name):
 
 def driver_case(car):
     import vehdyn
-    from vehdyn.chassis import ABS, ClosedLoop
-    from vehdyn.handling import DriverInTheLoop, PreviewDriver, SingleTrack
+    from vehdyn.chassis import ABS
+    from vehdyn.interconnect import ClosedLoop
+    from vehdyn.driver import DriverInTheLoop, PreviewDriver
+    from vehdyn.handling import SingleTrack
 
     mu, speed = 0.5, 80.0 / 3.6
     plant = SingleTrack(car, *_road(car, mu), wheel_spin=True)

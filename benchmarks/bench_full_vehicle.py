@@ -4,7 +4,7 @@ Run: ``python benchmarks/bench_full_vehicle.py [--quick]``. Prints, from one run
 
 1. the manoeuvre: the shipped sedan (32 states: 6-DOF body, wheel hop, wheel spin and tire lag at
    four corners, its mf_185_80R14.tir Magic Formula tires) at 50 km/h through the ISO 3888-1
-   double lane change (:func:`vehdyn.handling.double_lane_change_track`) for 10 s, steered open
+   double lane change (:func:`vehdyn.procedures.double_lane_change_track`) for 10 s, steered open
    loop by two one-period steer sines (:func:`lane_change_steer`: each lane change a sinusoidal
    lateral acceleration whose double integral is the offset between the lane centres, sized by the
    linear steady-state steer gain), drive torques from :meth:`FullVehicle.trim` holding the speed;
@@ -66,7 +66,7 @@ def lane_change_steer(vehicle, track, speed, run_in=RUN_IN, lead=0.2):
 def setup():
     import vehdyn
     from vehdyn.full_vehicle import FullVehicle
-    from vehdyn.handling import double_lane_change_track
+    from vehdyn.procedures import double_lane_change_track
 
     vehicle = vehdyn.load_vehicle("sedan")
     model = FullVehicle(vehicle)
@@ -158,7 +158,7 @@ def commonroad_mb(vehicle, steer, reference, rtol):
 
 def main(quick: bool = False):
     vehdyn, vehicle, model, track, steer, x0, inputs, grid = setup()
-    from vehdyn.handling import lane_change_outcome
+    from vehdyn.procedures import lane_change_outcome
 
     load_before = os.getloadavg()[0]
     print(f"vehdyn {vehdyn.__version__}, Python {platform.python_version()}, numpy {np.__version__}, "

@@ -7,7 +7,7 @@ Run: ``python benchmarks/bench_handling.py [--quick]``. Prints, from one run on 
    and lateral velocity (relative to their peak) against a DOP853 run at rtol 1e-12, for
    solve_ivp methods at several tolerances and fixed-step rk4 at several steps, and the compiled
    backend (``backend="compiled"``: numba RK45/DOP853 on the compiled rhs, the steer as the
-   closed-form :func:`~vehdyn.handling.sine_steer` signal) at several tolerances, with the ratio of
+   closed-form :func:`~vehdyn.procedures.sine_steer` signal) at several tolerances, with the ratio of
    its CPU time to solve_ivp's at the same method and tolerance; its one-off compile (or cache
    load) time is printed separately and excluded from the rows (best of 15 runs);
 2. the same manoeuvre with commonroad-vehicle-models' single-track drift model (STD, vehicle 2
@@ -37,7 +37,8 @@ DURATION = 10.0
 
 def setup():
     import vehdyn
-    from vehdyn.handling import SingleTrack, sine_steer
+    from vehdyn.handling import SingleTrack
+    from vehdyn.procedures import sine_steer
 
     vehicle = vehdyn.load_vehicle("sedan")
     model = SingleTrack(vehicle)
@@ -122,7 +123,7 @@ def work_precision(vehdyn, base, steer, drag, quick):
 
 def compiled_rows(vehdyn, base, steer, drag, reference, grid, quick):
     """Compiled backend on the same ODE (steer in closed form, rear force balancing the drag)."""
-    from vehdyn._compiled_ode import numba_available
+    from vehdyn.simulation.compiled import numba_available
 
     if not numba_available():
         return None, []

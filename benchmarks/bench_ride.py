@@ -7,7 +7,7 @@ Run: ``python benchmarks/bench_ride.py``. Prints, from one run on this machine, 
 2. a 4-DOF half car (``vehdyn.ride.BouncePitch``: front and rear road inputs, wheelbase 2.7 m,
    rear = front delayed by 0.135 s) on the same road,
 
-the r.m.s. of every output by the three routes of ``vehdyn.ride.random_response``:
+the r.m.s. of every output by the three routes of ``vehdyn.ride.random_vibration``:
 ``"lyapunov"`` (exact covariance with the shaping filter appended; for the half car with the
 exact delay through lagged covariances, the default, and with ``delay="pade"``, a Pade delay of
 order 10), ``"psd"`` (frequency integral with exact delay and its stated error bound) and

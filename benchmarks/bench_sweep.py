@@ -43,7 +43,7 @@ run on this machine:
    compares across loads; 2 cores / that time is the rate of two free cores.
 2. Ride: N quarter cars (sprung mass, spring rate and damping varied) on an ISO 8608 class B road
    at 25 m/s, r.m.s. body acceleration by the Lyapunov route: a loop of
-   ``vehdyn.ride.random_response`` against ``vehdyn.sweep.vectorized`` functions: one batched
+   ``vehdyn.ride.random_vibration`` against ``vehdyn.sweep.vectorized`` functions: one batched
    Kronecker solve per chunk (numpy ``linalg.solve`` on a stack of 16x16 systems), and the
    4x4 Lyapunov equation's closed form for this input (the variance integral of a 4th-order
    transfer function).
@@ -79,7 +79,7 @@ def _model():
 
 def _inputs(model):
     """Closed-form sine steer (exact at every stage) and the drive force that holds the speed."""
-    from vehdyn.handling.maneuvers import sine_steer
+    from vehdyn.procedures import sine_steer
 
     drag = float(model.parameters.drag_factor) * SPEED**2
     return {"front_steer_angle": sine_steer(AMPLITUDE, 0.5), "rear_longitudinal_force": drag}
@@ -113,8 +113,8 @@ def many_runs(design, rtol=1e-8, threads=None):
 def batch_states(design, rtol=1e-8, threads=None, tire_lag=True, method="RK45"):
     """Peak yaw rates and rhs calls per variant of one compiled batch of a batch model
     (``SingleTrack.variants`` with array parameters; states only: the metric is a state)."""
-    from vehdyn import _compiled_ode
-    from vehdyn.simulate import _sample_inputs
+    from vehdyn.simulation import compiled as _compiled_ode
+    from vehdyn.simulation import _sample_inputs
 
     base = handling.SingleTrack(BASE, tire_lag=tire_lag)
     m = _batch_model(base, design)
@@ -152,8 +152,8 @@ def _chunk_rhs(t, x, u, args, dxdt):
 def shared_step_runs(design, block=16, rtol=1e-8):
     """Peak yaw rates with one step size per block of ``block`` variants (the compiled RK45 on the
     stacked system: its error norm is the r.m.s. over every state of the block)."""
-    from vehdyn import _compiled_ode
-    from vehdyn.simulate import _sample_inputs
+    from vehdyn.simulation import compiled as _compiled_ode
+    from vehdyn.simulation import _sample_inputs
 
     model = _model()
     u = _sample_inputs(model, _inputs(model), T)
@@ -175,7 +175,7 @@ def scene_sweep(design, batched, solver=None):
     """Peak yaw rates of the same variants as ``vehdyn.sweep`` of a Scene (mass by its dotted name)."""
     import pandas as pd
 
-    from vehdyn.handling.maneuvers import sine_steer
+    from vehdyn.procedures import sine_steer
     from vehdyn.sweep.api import run_table
 
     scene = vehdyn.Scene(vehicle=BASE, manoeuvre=sine_steer(AMPLITUDE, 0.5), speed=SPEED, duration=10.0,
@@ -209,7 +209,7 @@ def _design(n, seed=0):
 # ---------------------------------------------------------------------- ride
 def quarter_car_rms(sprung_mass, spring_rate, damping, unsprung_mass=40.0, tire_stiffness=2.0e5, road="B",
                     speed=25.0):
-    """Reference: vehdyn.ride.random_response per variant."""
+    """Reference: vehdyn.ride.random_vibration per variant."""
     from vehdyn.ride import QuarterCar, random_response
 
     qc = QuarterCar(sprung_mass=sprung_mass, unsprung_mass=unsprung_mass, spring_rate=spring_rate, damping=damping,
@@ -223,7 +223,7 @@ def quarter_car_rms_batched(sprung_mass, spring_rate, damping, unsprung_mass=40.
                             speed=25.0):
     """One Kronecker Lyapunov solve per variant, stacked: the road velocity of an ISO 8608 class B
     road (waviness 2, no cut-on) is white with intensity 2 pi Gd(n0) n0^2 V (ISO 8608)."""
-    from vehdyn.ride import iso8608_class_value
+    from vehdyn.road import iso8608_class_value
 
     ms, k, c = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (sprung_mass, spring_rate, damping))
     n = ms.size
@@ -257,7 +257,7 @@ def quarter_car_rms_closed_form(sprung_mass, spring_rate, damping, unsprung_mass
     for H = (b_2 s^2 + b_1 s) / (a_4 s^4 + ... + a_0) (the table of integrals of James, Nichols &
     Phillips, *Theory of Servomechanisms*, 1947, sec. 7.9): the 4x4 Lyapunov equation solved once
     on paper."""
-    from vehdyn.ride import iso8608_class_value
+    from vehdyn.road import iso8608_class_value
 
     ms, k, c = (np.asarray(v, dtype=float) for v in (sprung_mass, spring_rate, damping))
     mu, kt = unsprung_mass, tire_stiffness

@@ -9,12 +9,12 @@ developed deceleration (MFDD, UN ECE R13-H Annex 4: between 0.8 v0 and 0.1 v0), 
 deceleration v0 / t_stop and the friction limit's distance v0^2 / (2 mu g). The last 0.1 v0 is
 extrapolated at the MFDD (below 2 m/s the ABS hands back to the driver anyway).
 
-Steerability: on mu 0.5 the preview driver (vehdyn.handling.DriverInTheLoop) follows a 1.5 m swerve
+Steerability: on mu 0.5 the preview driver (vehdyn.driver.DriverInTheLoop) follows a 1.5 m swerve
 (a smooth step over the friction-limited stopping distance) while the car brakes fully. With ABS the wheels keep rolling near the peak slip and keep
 side force: the car follows the path. Without ABS the front wheels lock, the front axle has no
 side force left and the car slides straight on whatever the driver does.
 
-Every run is compiled (numba): the closed loop of car and ABS (vehdyn.chassis.ClosedLoop) and the
+Every run is compiled (numba): the closed loop of car and ABS (vehdyn.interconnect.ClosedLoop) and the
 driver around it (DriverInTheLoop) have compiled right-hand sides, so the stops from 100 km/h and
 the swerve from 80 km/h take about a second together (numpy: about 2 minutes; without numba the
 study brakes from 40 km/h and swerves at 50 km/h unless run with --full).
@@ -23,9 +23,11 @@ study brakes from 40 km/h and swerves at 50 km/h unless run with --full).
 import numpy as np
 
 import vehdyn
-from vehdyn._compiled_ode import numba_available
-from vehdyn.chassis import ABS, ClosedLoop, road_friction_tire
-from vehdyn.handling import DriverInTheLoop, PreviewDriver, SingleTrack
+from vehdyn.simulation.compiled import numba_available
+from vehdyn.chassis import ABS, road_friction_tire
+from vehdyn.interconnect import ClosedLoop
+from vehdyn.driver import DriverInTheLoop, PreviewDriver
+from vehdyn.handling import SingleTrack
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 from vehdyn.tire import tire_for_vehicle

@@ -5,7 +5,7 @@ whose road velocity is white with one-sided PSD (2 pi n0)^2 G_d(n0) V. Ideal sky
 hybrid dampers and an LQR controller (designed through LinearModel.to_control() and python-control's
 lqr) are compared with the passive car on comfort (r.m.s. body acceleration), suspension travel and
 road holding (r.m.s. dynamic tire load), exactly, from the Lyapunov equation with the road's
-shaping filter appended (vehdyn.ride.random_response). A clipped semi-active
+shaping filter appended (vehdyn.ride.random_vibration). A clipped semi-active
 skyhook damper, which is nonlinear, is simulated in the time domain on a road synthesized by the
 same shaping filter (synthesize_profile(..., method="white_noise")); the passive car simulated the
 same way shows the statistical error of that estimate. Last, the response to a single bump.
@@ -16,8 +16,17 @@ import numpy as np
 import vehdyn
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
-from vehdyn.ride import (QuarterCar, RoadSpectrum, SemiActiveQuarterCar, compare_suspensions, groundhook,
-                         lqr_quarter_car, random_response, relative_quarter_car, skyhook, synthesize_profile)
+from vehdyn.ride import (
+    QuarterCar,
+    SemiActiveQuarterCar,
+    compare_suspensions,
+    groundhook,
+    lqr_quarter_car,
+    random_response,
+    relative_quarter_car,
+    skyhook,
+)
+from vehdyn.road import RoadSpectrum, synthesize_profile
 
 ROAD = RoadSpectrum.from_class("C")  # Gd(n0) = 256e-6 m^3, waviness 2
 SPEED = 20.0  # m/s

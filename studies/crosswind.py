@@ -20,7 +20,7 @@ critical speed, where the lightly damped snaking mode resonates with the gust.
 import numpy as np
 
 import vehdyn
-from vehdyn import handling
+from vehdyn import handling, procedures
 from vehdyn.handling import ArticulatedSingleTrack, LinearBicycle, LinearCarTrailer, trailer_crosswind_amplification
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
@@ -42,7 +42,7 @@ def run(study: Study) -> None:
     for k, name in enumerate(VEHICLES):
         vehicle = vehdyn.load_vehicle(name)
         for driver in (False, True):
-            m = handling.crosswind_sensitivity(vehicle, speed, wind_speed=WIND, wind_length=LENGTH, driver=driver,
+            m = procedures.crosswind_sensitivity(vehicle, speed, wind_speed=WIND, wind_length=LENGTH, driver=driver,
                                                duration=duration)
             res = m.result
             style = "--" if driver else "-"
@@ -77,7 +77,7 @@ def run(study: Study) -> None:
         vehicle = vehdyn.load_vehicle(name)
         dev, yaw = [], []
         for u in speeds:
-            m = handling.crosswind_sensitivity(vehicle, float(u), wind_speed=WIND, wind_length=LENGTH,
+            m = procedures.crosswind_sensitivity(vehicle, float(u), wind_speed=WIND, wind_length=LENGTH,
                                                duration=2.0)
             dev.append(m.lateral_deviation)
             yaw.append(np.rad2deg(m.peak_yaw_rate))
@@ -148,7 +148,7 @@ def _trailer_amplification(study: Study) -> None:
     import pandas as pd
     from scipy.integrate import cumulative_trapezoid
 
-    from vehdyn.handling.crosswind import wind_zone_signal
+    from vehdyn.procedures import wind_zone_signal
 
     car, caravan = vehdyn.load_vehicle("compact"), vehdyn.load_trailer("caravan")
     vc = LinearCarTrailer(car, caravan, 20.0).critical_speed()
@@ -260,7 +260,7 @@ def _trailer_amplification(study: Study) -> None:
     for wind_speed in (10.0, 20.0):
         for label, model in (("compact", None), ("compact + caravan", ArticulatedSingleTrack(car, caravan))):
             for driver in (False, True):
-                m = handling.crosswind_sensitivity(car, 80 / 3.6, wind_speed=wind_speed, wind_length=LENGTH,
+                m = procedures.crosswind_sensitivity(car, 80 / 3.6, wind_speed=wind_speed, wind_length=LENGTH,
                                                    driver=driver, duration=3.0, model=model)
                 row = {"wind_m_s": wind_speed, "model": label, "driver": driver,
                        "peak_yaw_rate_deg_s": np.rad2deg(m.peak_yaw_rate),

@@ -1,18 +1,18 @@
 """Severe lane changes that measure the car: ISO 3888-1 double lane change and ISO 3888-2 obstacle avoidance.
 
 Each vehicle (nonlinear single-track model, its Magic Formula tires, compiled) is steered through
-the cones by MacAdam's optimal preview driver (vehdyn.handling.OptimalPreviewDriver: a linear
+the cones by MacAdam's optimal preview driver (vehdyn.driver.OptimalPreviewDriver: a linear
 bicycle of the car as internal model, a preview window after its delay, a 0.1 s neuromuscular
 lag) along one of two lines: the lanes' centre line (cosine transitions) or the least-curvature
 line through the lanes narrowed by 0.15 m (DoubleLaneChangeTrack.least_curvature_line).
-vehdyn.handling.lane_change_limit finds by bisection on the entry speed the highest speed at which
+vehdyn.procedures.lane_change_limit finds by bisection on the entry speed the highest speed at which
 ANY tuning of a sweep of driver parameters (line, preview time, gain, delay) clears the cones,
 so the speed reported is the car's limit within the drivers swept, not one tuning's. ISO 3888-1 is
 driven with the speed held (the rear axle force balances the drag), ISO 3888-2 with the throttle
 released at the entry. A run fails when the vehicle (a rectangle of width track + 0.2 m) crosses a
 cone line in a coned lane, or spins (|sideslip| > 45 deg).
 
-The cone geometry's bound (vehdyn.handling.lane_change_speed_bound) is the highest speed at which
+The cone geometry's bound (vehdyn.procedures.lane_change_speed_bound) is the highest speed at which
 a point mass at the tires' friction coefficient could clear the cones on the least-curvature
 path: a car at it is limited by the geometry and friction ("cone geometry"). Otherwise the
 limiting factor is the axle whose slip angle first passed its peak-force slip angle (tire
@@ -29,8 +29,15 @@ import itertools
 import numpy as np
 
 import vehdyn
-from vehdyn.handling import (OptimalPreviewDriver, SingleTrack, double_lane_change_track, lane_change_limit,
-                             lane_change_speed_bound, obstacle_avoidance_track, slip_angle_utilization)
+from vehdyn.driver import OptimalPreviewDriver
+from vehdyn.handling import SingleTrack
+from vehdyn.procedures import (
+    double_lane_change_track,
+    lane_change_limit,
+    lane_change_speed_bound,
+    obstacle_avoidance_track,
+    slip_angle_utilization,
+)
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 

@@ -1,14 +1,14 @@
 """Driver in the loop: McRuer's crossover model and MacAdam's optimal preview driver on the sedan.
 
 The driver-vehicle loop is cut at the road-wheel steer and analysed with python-control
-(vehdyn.handling.driver_loop_margins): the nonlinear single track linearized in straight running,
+(vehdyn.driver.driver_loop_margins): the nonlinear single track linearized in straight running,
 the driver's linear gains on the previewed path error, its delay (6th-order Pade) and its
 neuromuscular lag (0.1 s). Two drivers:
 
-* crossover (vehdyn.handling.CrossoverDriver): a gain on the lateral error 1 s ahead; in the table
+* crossover (vehdyn.driver.CrossoverDriver): a gain on the lateral error 1 s ahead; in the table
   its gain is re-adjusted at every speed for a crossover frequency of 2.5 rad/s (McRuer's
   adjustment rule), in the figure it keeps the gain tuned at 20 m/s;
-* optimal preview (vehdyn.handling.OptimalPreviewDriver, MacAdam 1981): a linear bicycle as
+* optimal preview (vehdyn.driver.OptimalPreviewDriver, MacAdam 1981): a linear bicycle as
   internal model at the speed, a 1 s preview window after its delay.
 
 The table lists the margins against speed at a delay of 0.15 s and, for the crossover driver,
@@ -21,7 +21,8 @@ figure maps the phase margin over speed and delay; the loop is stable inside the
 import numpy as np
 
 import vehdyn
-from vehdyn.handling import CrossoverDriver, OptimalPreviewDriver, SingleTrack, driver_loop_margins
+from vehdyn.driver import CrossoverDriver, OptimalPreviewDriver, driver_loop_margins
+from vehdyn.handling import SingleTrack
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 

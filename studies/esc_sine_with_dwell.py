@@ -1,13 +1,13 @@
 """FMVSS 126 compliance of the shipped passenger cars with and without ESC, on two vehicle models.
 
-vehdyn.handling.fmvss126 runs the sine-with-dwell series of 49 CFR 571.126 S7.9 on each car's
+vehdyn.procedures.fmvss126 runs the sine-with-dwell series of 49 CFR 571.126 S7.9 on each car's
 nonlinear single-track model and, with ``vehdyn report --full``, on its full vehicle model
 (vehdyn.full_vehicle.FullVehicle: roll, lateral load transfer, four wheels) at 80 km/h: amplitudes from 1.5 A in steps of 0.5 A up to the greater
 of 6.5 A and 270 degrees of hand-wheel angle, steered counter-clockwise and clockwise, and checks
 S5.2: the yaw rate 1.00 s and 1.75 s after completion of steer within 35 % and 20 % of its peak,
 and for runs of 5 A or more a lateral displacement of at least 1.83 m 1.07 s after the beginning of
 steer. Each car runs alone and with vehdyn.chassis.ESC (yaw-rate reference of the linear bicycle
-limited by mu g / u, sideslip guard) closed around the model by vehdyn.chassis.ClosedLoop: on the
+limited by mu g / u, sideslip guard) closed around the model by vehdyn.interconnect.ClosedLoop: on the
 single track one-wheel braking enters as a yaw moment and an axle force, on the full vehicle the
 ESC brakes the wheel itself (ESC(car, corners=True)). The results describe the models, not a
 certification. Every run is compiled (numba), controller included. The complete series runs on the
@@ -19,9 +19,11 @@ only the 5 A and 6.5 A runs and the full vehicle none, unless --full.)
 import numpy as np
 
 import vehdyn
-from vehdyn._compiled_ode import numba_available
-from vehdyn.chassis import ESC, ClosedLoop
-from vehdyn.handling import SingleTrack, fmvss126, sine_with_dwell, steady_state_cornering
+from vehdyn.simulation.compiled import numba_available
+from vehdyn.chassis import ESC
+from vehdyn.interconnect import ClosedLoop
+from vehdyn.handling import SingleTrack, steady_state_cornering
+from vehdyn.procedures import fmvss126, sine_with_dwell
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 

@@ -15,7 +15,7 @@ full vehicle (vehdyn.full_vehicle.FullVehicle, compiled), the top of both ladder
 import numpy as np
 
 import vehdyn
-from vehdyn._compiled_ode import numba_available
+from vehdyn.simulation.compiled import numba_available
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 from vehdyn.scene import standard_scenes

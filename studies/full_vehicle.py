@@ -501,7 +501,8 @@ def split_mu(study: Study) -> None:
 def rough_road(study: Study) -> None:
     import pandas as pd
 
-    from vehdyn.ride import FullCar, road_inputs, synthesize_parallel_profiles
+    from vehdyn.ride import FullCar, road_inputs
+    from vehdyn.road import synthesize_parallel_profiles
 
     vehicle = vehdyn.load_vehicle("sedan")
     speed, ay = 20.0, 0.6 * G

@@ -15,7 +15,7 @@ from scipy.linalg import expm
 from scipy.special import ellipj
 
 import vehdyn
-from vehdyn.analysis import work_precision
+from vehdyn.simulation import work_precision
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 

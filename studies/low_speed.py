@@ -10,7 +10,7 @@ u^2 / (2 mu g); (2) a launch from rest with more drive torque than the rear tire
 against the traction limit a_x / g = mu a / (L - mu h) of a rear-driven car; the drive torque is
 that of an engine of 100 kW (an assumed value: the vehicle files carry no engine data), at most
 the 3000 N*m demand and at most P / omega at the wheel speed omega, built up with a 0.1-s lag - a
-small controller Model in the loop (vehdyn.chassis.ClosedLoop) - so the spinning wheel's speed is
+small controller Model in the loop (vehdyn.interconnect.ClosedLoop) - so the spinning wheel's speed is
 held near P / F_x instead of running away as under a constant torque; (3) a slow turn forwards
 and in reverse, against the kinematic single track r = u tan(delta) / L, v = b r.
 """
@@ -18,7 +18,7 @@ and in reverse, against the kinematic single track r = u tan(delta) / L, v = b r
 import numpy as np
 
 import vehdyn
-from vehdyn.chassis import ClosedLoop
+from vehdyn.interconnect import ClosedLoop
 from vehdyn.handling import SingleTrack
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study

@@ -18,7 +18,7 @@ import importlib.util
 import numpy as np
 
 import vehdyn
-from vehdyn import handling
+from vehdyn import handling, procedures
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 
@@ -59,7 +59,7 @@ def numbers(mass_factor, cg_shift, front_stiffness_factor, rear_stiffness_factor
     t = np.linspace(0.0, 4.0, 801)
     steer = np.where(t >= 0.5, delta, 0.0)
     res = vehdyn.simulate(car, t, {"front_steer_angle": steer}, method="exact")
-    yaw = handling.step_response_metrics(res, "yaw_rate")
+    yaw = procedures.step_response_metrics(res, "yaw_rate")
     quarter = vehdyn.connect_in_series(QuarterCar.from_vehicle(v, "front"),
                                        weighting("Wk").to_linear_model(input_name="sprung_acceleration",
                                                                        output_name="aw"))
@@ -116,7 +116,7 @@ def run(study: Study) -> None:
         study.text("The Sobol' sensitivity indices need SALib, which is not installed here: "
                    "pip install \"vehdyn[sensitivity]\" (the README's report command installs it).")
         return
-    sobol = vehdyn.sensitivity(numbers, RANGES, indexed, method="sobol", n=16 if study.quick else 256, seed=2)
+    sobol = vehdyn.sweep.sensitivity(numbers, RANGES, indexed, method="sobol", n=16 if study.quick else 256, seed=2)
     fig, axes = new_figure(1, 3, width=12.0, height_per_row=3.4)
     for ax, name in zip(axes.ravel(), indexed):
         vehdyn.sweep.plot_sensitivity(sobol.loc[name], ax=ax, title=labels[name])

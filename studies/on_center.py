@@ -13,7 +13,7 @@ follows ISO 13674-1; friction and assist are swept to show which metric each one
 import numpy as np
 
 import vehdyn
-from vehdyn import handling
+from vehdyn import procedures
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 from vehdyn.units import GRAVITY
@@ -38,7 +38,7 @@ def run(study: Study) -> None:
 
     vehicle = vehdyn.load_vehicle("sedan")
     cycles = 2 if not study.full else 4
-    metrics = {name: handling.weave_test(vehicle, cycles=cycles, iterations=2 if not study.full else 3, **kw)
+    metrics = {name: procedures.weave_test(vehicle, cycles=cycles, iterations=2 if not study.full else 3, **kw)
                for name, kw in CASES.items()}
 
     fig, axes = new_figure(1, 3, width=13.0, height_per_row=3.6)
@@ -77,11 +77,11 @@ def run(study: Study) -> None:
                             "yaw_rate_hysteresis_deg": "deg", "torque_deadband_deg": "deg",
                             "torque_at_zero_g_Nm": "N*m", "lateral_acceleration_at_zero_torque_g": "g",
                             "torque_gradient_zero_g_Nm_per_g": "N*m/g", "torque_gradient_01g_Nm_per_g": "N*m/g"}
-    study.table(table, "weave_metrics", caption="ISO 13674-1 weave metrics (definitions in vehdyn.handling.on_center)")
+    study.table(table, "weave_metrics", caption="ISO 13674-1 weave metrics (definitions in vehdyn.procedures.iso13674)")
 
     # --- friction sweep: what the rack friction does to the on-centre feel
     frictions = np.array([0.0, 1.0, 2.0]) if not study.full else np.linspace(0.0, 3.0, 7)
-    sweep = [handling.weave_test(vehicle, cycles=cycles, iterations=1, steering_friction_torque=float(tf),
+    sweep = [procedures.weave_test(vehicle, cycles=cycles, iterations=1, steering_friction_torque=float(tf),
                                  assist_gain=3.0) for tf in frictions]
     fig, axes = new_figure(1, 2, width=10.0, height_per_row=3.2)
     axes[0, 0].plot(frictions, [m.torque_at_zero_g for m in sweep], "-o", ms=3, label="torque at 0 g [N*m]")

@@ -6,7 +6,7 @@ travel and dynamic tire load — for body damping ratios from 0.1 to 1. Then the
 r.m.s. body acceleration (comfort), r.m.s. dynamic tire load (road holding) and r.m.s. suspension
 travel on an ISO 8608 class-C road (G_d(n0) = 256e-6 m^3, waviness 2) at 20 m/s, over spring rate
 and damping, computed exactly from the Lyapunov equation of the model with the road's shaping
-filter appended (vehdyn.ride.random_response).
+filter appended (vehdyn.ride.random_vibration).
 """
 
 import numpy as np
@@ -14,8 +14,15 @@ import numpy as np
 import vehdyn
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
-from vehdyn.ride import (QuarterCar, RoadSpectrum, dynamic_tire_load_response, random_response, ride_modes,
-                         suspension_travel_response, transmissibility)
+from vehdyn.ride import (
+    QuarterCar,
+    dynamic_tire_load_response,
+    random_response,
+    ride_modes,
+    suspension_travel_response,
+    transmissibility,
+)
+from vehdyn.road import RoadSpectrum
 
 ROAD = RoadSpectrum.from_class("C")  # Gd(n0) = 256e-6 m^3 at n0 = 0.1 cycles/m, waviness 2
 MEASURES = ["sprung_acceleration", "suspension_travel", "dynamic_tire_load"]

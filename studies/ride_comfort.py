@@ -33,20 +33,22 @@ from vehdyn.ride import (
     BouncePitch,
     FullCar,
     QuarterCar,
-    RoadProfile,
-    RoadSpectrum,
     comfort_category,
     crest_factor,
-    estimate_spectrum,
-    iso8608_class_value,
     mtvv,
     random_response,
     rms,
     running_rms,
-    speed_hump,
-    synthesize_profile,
     vibration_dose_value,
     weighting,
+)
+from vehdyn.road import (
+    RoadProfile,
+    RoadSpectrum,
+    estimate_spectrum,
+    iso8608_class_value,
+    speed_hump,
+    synthesize_profile,
 )
 
 VEHICLES = ("sedan", "compact", "van")
@@ -68,7 +70,7 @@ def ride_models(vehicle) -> dict:
     """Wk-weighted body acceleration above the front and rear wheels: full car, half car, quarter cars.
 
     Outputs ``aw_front`` and ``aw_rear`` [m/s^2] (the quarter cars one each), and the keyword
-    arguments of :func:`vehdyn.ride.random_response` each needs.
+    arguments of :func:`vehdyn.ride.random_vibration` each needs.
     """
     full = FullCar.from_vehicle(vehicle)
     half = BouncePitch.from_vehicle(vehicle)

@@ -14,7 +14,8 @@ model's behaviour, not a certification.
 import numpy as np
 
 import vehdyn
-from vehdyn.handling import SingleTrack, sine_with_dwell, sine_with_dwell_metrics, steady_state_cornering
+from vehdyn.handling import SingleTrack, steady_state_cornering
+from vehdyn.procedures import sine_with_dwell, sine_with_dwell_metrics
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 

@@ -12,7 +12,7 @@ times steady-state sideslip angle) summarises the yaw transient in one number.
 import numpy as np
 
 import vehdyn
-from vehdyn import handling
+from vehdyn import handling, procedures
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
 from vehdyn.units import GRAVITY
@@ -41,7 +41,7 @@ def run(study: Study) -> None:
                 gain = float(handling.steady_state_gains(car).lateral_acceleration)
                 delta = TARGET_AY / gain
                 res = vehdyn.simulate(car, t, {"front_steer_angle": _step(t, delta)}, method="exact")
-                m = handling.step_steer_metrics(res, signals=("yaw_rate", "lateral_acceleration", "sideslip_angle"),
+                m = procedures.step_steer_metrics(res, signals=("yaw_rate", "lateral_acceleration", "sideslip_angle"),
                                                 steady_window=1.0)
                 yaw, ay, beta = m["yaw_rate"], m["lateral_acceleration"], m["sideslip_angle"]
                 rows.append({

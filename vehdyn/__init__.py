@@ -1,29 +1,32 @@
-"""vehdyn: vehicle dynamics in Python — tires, handling and ride.
+"""vehdyn: vehicle dynamics in Python -- tires, handling and ride.
 
-API index
----------
-Model contract
-    :class:`Signal`, :class:`Model`, :class:`LinearModel`, :func:`connect_in_series`
-Simulation and results
-    :func:`simulate` (backends "numpy" and "compiled"), :class:`PiecewiseSignal` (closed-form inputs),
-    :class:`SimulationResult`, :class:`FrequencyResponse`, :class:`Modes`
-Parameters
-    :func:`load_vehicle`, :func:`shipped_vehicles`, :class:`Vehicle` (and its groups in
-    :mod:`vehdyn.params`), :func:`load_trailer`, :func:`shipped_trailers`, :class:`Trailer`, :func:`data_path`
+API index (the curated entry points; every subpackage has its own index)
+------------------------------------------------------------------------
+Model contract (:mod:`vehdyn.model`)
+    :class:`Signal`, :class:`Model`, :class:`LinearModel`, :class:`Modes`
+Simulation and results (:mod:`vehdyn.simulation`)
+    :func:`simulate` (backends "numpy" and "compiled"), :func:`simulate_many`, :class:`PiecewiseSignal`
+    (closed-form inputs), :class:`SimulationResult`, :class:`FrequencyResponse`
+Interconnection (:mod:`vehdyn.interconnect`)
+    :class:`ClosedLoop` (a plant with drivers and chassis controllers in the loop), :func:`connect_in_series`
+Parameters (:mod:`vehdyn.params`)
+    :func:`load_vehicle`, :func:`shipped_vehicles`, :class:`Vehicle`, :func:`load_trailer`,
+    :func:`shipped_trailers`, :class:`Trailer`, :func:`data_path`
 Errors
     :class:`VehdynError`, :class:`ParameterError`, :class:`SimulationError`, :class:`TirFileError`,
     :class:`VehdynWarning`
-Scenes and the fidelity ladder (imported on first use)
-    :class:`Scene`, :func:`plan`, :func:`run`, :func:`ladder`, :func:`plot_ladder` (:mod:`vehdyn.scene`)
-Sweeps, Monte Carlo and sensitivity (imported on first use)
-    :func:`sweep` (grids and samples of a scene or a function; in-process, processes or Dask),
-    :func:`sensitivity` (Sobol' and Morris indices through SALib) (:mod:`vehdyn.sweep`)
-Conventions and units
-    :mod:`vehdyn.conventions` (SAE J670 / ISO 8855 / ISO-W signs), :mod:`vehdyn.units`
-Subpackages (imported on first use)
-    :mod:`vehdyn.mechanics` (rigid body), :mod:`vehdyn.tire`, :mod:`vehdyn.handling`,
-    :mod:`vehdyn.ride`, :mod:`vehdyn.full_vehicle`, :mod:`vehdyn.chassis` (ABS, traction control, ESC,
-    ``ClosedLoop``), :mod:`vehdyn.analysis`, :mod:`vehdyn.plotting`
+Scenes and the fidelity ladder (:mod:`vehdyn.scene`, imported on first use)
+    :class:`Scene`, :func:`plan`, :func:`run`, :func:`ladder`, :func:`plot_ladder`
+
+Subpackages, by layer (imported on first use)
+    foundation: :mod:`vehdyn.params`, :mod:`vehdyn.conventions`, :mod:`vehdyn.units`;
+    core: :mod:`vehdyn.model`, :mod:`vehdyn.simulation`, :mod:`vehdyn.interconnect`, :mod:`vehdyn.plotting`;
+    physics: :mod:`vehdyn.mechanics`, :mod:`vehdyn.tire`, :mod:`vehdyn.road`, :mod:`vehdyn.components`;
+    vehicles: :mod:`vehdyn.handling`, :mod:`vehdyn.ride`, :mod:`vehdyn.full_vehicle`;
+    controllers: :mod:`vehdyn.driver`, :mod:`vehdyn.chassis`;
+    procedures: :mod:`vehdyn.procedures`;
+    applications: :mod:`vehdyn.scene`, :mod:`vehdyn.sweep` (sweeps, Monte Carlo, sensitivity);
+    interfaces: :mod:`vehdyn.report`, :mod:`vehdyn.cli`.
 
 Importing vehdyn imports numpy only; scipy, pandas, matplotlib and python-control are imported
 when a function needs them.
@@ -34,13 +37,13 @@ from __future__ import annotations
 import importlib
 
 from vehdyn.errors import ParameterError, SimulationError, TirFileError, VehdynError, VehdynWarning
-from vehdyn.linear import LinearModel, connect_in_series
-from vehdyn.model import Model
+from vehdyn.interconnect import ClosedLoop, connect_in_series
+from vehdyn.model import LinearModel, Model, Modes
 from vehdyn.params import Trailer, Vehicle, data_path, load_trailer, load_vehicle, shipped_trailers, shipped_vehicles
 from vehdyn.piecewise_signal import PiecewiseSignal
 from vehdyn.results import FrequencyResponse, SimulationResult
 from vehdyn.signals import Signal
-from vehdyn.simulate import simulate, simulate_many
+from vehdyn.simulation import simulate, simulate_many
 
 __version__ = "0.1.0"
 
@@ -48,13 +51,14 @@ __all__ = [
     "Signal",
     "Model",
     "LinearModel",
-    "connect_in_series",
+    "Modes",
     "simulate",
     "simulate_many",
     "PiecewiseSignal",
     "SimulationResult",
     "FrequencyResponse",
-    "Modes",
+    "ClosedLoop",
+    "connect_in_series",
     "Vehicle",
     "load_vehicle",
     "shipped_vehicles",
@@ -72,26 +76,17 @@ __all__ = [
     "run",
     "ladder",
     "plot_ladder",
-    "sweep",
-    "sensitivity",
 ]
 
-_SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "full_vehicle", "chassis", "analysis", "plotting",
-                "conventions", "units", "params", "cli", "scene", "sweep"}
+_SUBPACKAGES = {"params", "conventions", "units", "model", "simulation", "interconnect", "plotting", "mechanics",
+                "tire", "road", "components", "handling", "ride", "full_vehicle", "driver", "chassis", "procedures",
+                "scene", "sweep", "report", "cli"}
 _SCENE_NAMES = {"Scene", "plan", "run", "ladder", "plot_ladder"}
 
 
 def __getattr__(name: str):
     if name in _SUBPACKAGES:
-        return importlib.import_module(f".{name}", __name__)
+        return importlib.import_module(f"vehdyn.{name}")
     if name in _SCENE_NAMES:
-        return getattr(importlib.import_module(".scene", __name__), name)
-    if name == "sensitivity":
-        from vehdyn.sweep import sensitivity
-
-        return sensitivity
-    if name == "Modes":
-        from vehdyn.analysis.modal import Modes
-
-        return Modes
+        return getattr(importlib.import_module("vehdyn.scene"), name)
     raise AttributeError(f"module 'vehdyn' has no attribute {name!r}")

@@ -53,7 +53,7 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
             yield handle
             handle.flush()
             os.fsync(handle.fileno())
-        _keep_permissions(path, tmp_name)
+        keep_permissions(path, tmp_name)
         os.replace(tmp_name, path)
     except BaseException:
         with contextlib.suppress(OSError):
@@ -61,7 +61,7 @@ def atomic_write(path, mode: str = "w", *, encoding: str | None = "utf-8", newli
         raise
 
 
-def _keep_permissions(path: Path, tmp_name: str, default: int = 0o666) -> None:
+def keep_permissions(path: Path, tmp_name: str, default: int = 0o666) -> None:
     """Give the new file the old one's mode, or the umask's default for a new file (mkstemp: 0600).
 
     ``default=0o777`` does the same for a folder made by :func:`tempfile.mkdtemp` (0700).

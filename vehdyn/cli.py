@@ -59,9 +59,9 @@ def _progress(i: int, n: int, name: str, width: int = 24) -> str:
 
 
 def _quick(args) -> bool:
-    from vehdyn.report import _quick_from_env
+    from vehdyn.report import quick_from_env
 
-    return bool(args.quick) or _quick_from_env()
+    return bool(args.quick) or quick_from_env()
 
 
 def _default_jobs() -> int:

@@ -5,10 +5,10 @@ A :class:`PiecewiseSignal` is a sum of pieces; piece k is active on ``start_k <=
     value_k(t) = offset_k + slope_k (t - start_k) + amplitude_k sin(omega_k (t - start_k) + phase_k)
 
 and zero outside. Steps, ramps, sines, dwells and their combinations (the steer inputs of
-:mod:`vehdyn.handling.maneuvers`) are such sums. The signal is a vectorized callable ``u(t)`` for
+:mod:`vehdyn.procedures`) are such sums. The signal is a vectorized callable ``u(t)`` for
 :func:`vehdyn.simulate`; besides, its :attr:`~PiecewiseSignal.pieces` table and
 :attr:`~PiecewiseSignal.breakpoints` (where it or its derivative may jump) let both backends --
-the compiled one (:mod:`vehdyn._compiled_ode`) and numpy's ``solve_ivp`` methods
+the compiled one (:mod:`vehdyn.simulation.compiled`) and numpy's ``solve_ivp`` methods
 (:meth:`~PiecewiseSignal.value_at`) -- evaluate it exactly at every stage of an adaptive step and
 end steps on its breakpoints, instead of interpolating its samples. :func:`piece_value` is the one
 formula all use (written over an ``xp`` namespace, see :mod:`vehdyn.tire._mf_ops`).

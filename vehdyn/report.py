@@ -54,7 +54,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from vehdyn._atomic import _keep_permissions, atomic_write, atomic_write_text
+from vehdyn._atomic import keep_permissions, atomic_write, atomic_write_text
 from vehdyn.errors import ParameterError, VehdynError
 
 __all__ = ["Study", "StudyOutcome", "discover_studies", "run_study", "write_report", "build_report"]
@@ -64,7 +64,7 @@ def _flag_from_env(name: str) -> bool:
     return os.environ.get(name, "").strip() not in ("", "0", "false", "False")
 
 
-def _quick_from_env() -> bool:
+def quick_from_env() -> bool:
     return _flag_from_env("VEHDYN_QUICK")
 
 
@@ -137,7 +137,7 @@ class Study:
         import matplotlib
 
         matplotlib.use("Agg")
-        run(Study(name, out, quick=_quick_from_env()))
+        run(Study(name, out, quick=quick_from_env()))
         print(f"wrote {out}")
 
 
@@ -332,7 +332,7 @@ def build_report(paths, out_dir: str | Path, *, quick: bool = False,
                              f"beside it in {str(out.parent)!r} ({exc.strerror or exc})", key="out_dir",
                              value=str(out_dir)) from None
     try:
-        _keep_permissions(out, stage, default=0o777)  # mkdtemp makes 0700
+        keep_permissions(out, stage, default=0o777)  # mkdtemp makes 0700
         outcomes = _run_studies(list(paths), stage, quick, progress, jobs)
         write_report(outcomes, stage, quick=quick)
     except BaseException:

@@ -25,12 +25,7 @@ from pathlib import Path
 
 # (page, title, intro, [(module, names or None for its __all__)])
 LAYERS = [
-    ("model_contract", "Model contract",
-     "Named signals, the ``Model`` base class and exact linear models.",
-     [("vehdyn", ["Signal", "Model", "LinearModel", "connect_in_series"])]),
-    ("simulation", "Simulation and results",
-     "``vehdyn.simulate`` and what it returns.",
-     [("vehdyn", ["simulate", "simulate_many", "PiecewiseSignal", "SimulationResult", "FrequencyResponse", "Modes"])]),
+    # foundation
     ("parameters", "Parameters",
      "Frozen, validated parameter sets read from TOML; the shipped vehicles and trailers.",
      [("vehdyn", ["Vehicle", "load_vehicle", "shipped_vehicles", "data_path", "Trailer", "load_trailer",
@@ -41,29 +36,52 @@ LAYERS = [
     ("conventions", "Conventions and units",
      "SAE J670 vehicle axes, ISO 8855 and ISO-W tire axes: the one place signs flip; unit helpers.",
      [("vehdyn.conventions", None), ("vehdyn.units", None)]),
+    # core
+    ("model_contract", "Model contract",
+     "Named signals, the ``Model`` base class, exact linear models and their modes.",
+     [("vehdyn", ["Signal", "Model", "LinearModel", "Modes"]), ("vehdyn.model", None)]),
+    ("simulation", "Simulation and results",
+     "``vehdyn.simulate`` and what it returns; the integrators' work-precision.",
+     [("vehdyn", ["simulate", "simulate_many", "PiecewiseSignal", "SimulationResult", "FrequencyResponse"]),
+      ("vehdyn.simulation", None)]),
+    ("interconnect", "Interconnection",
+     "Closed loops of a plant and its controllers, series connection, the Padé delay.",
+     [("vehdyn", ["ClosedLoop", "connect_in_series"]), ("vehdyn.interconnect", None)]),
+    # physics
     ("mechanics", "Mechanics", "Rigid-body mechanics in the SAE body frame.", [("vehdyn.mechanics", None)]),
     ("tire", "Tire", "Tire laws, ``.tir`` files, slip, relaxation, fitting and soft soil.",
      [("vehdyn.tire", None), ("vehdyn.tire.fitting", None), ("vehdyn.tire.terramechanics", None)]),
-    ("handling", "Handling", "Bicycle, single-track and articulated models, steady state, manoeuvres.",
+    ("road", "Road", "ISO 8608 spectra and synthesis, road profiles and events, the IRI.", [("vehdyn.road", None)]),
+    ("components", "Components", "What several vehicle models share.", [("vehdyn.components", None)]),
+    # vehicles
+    ("handling", "Handling", "Bicycle, lateral-yaw-roll, single-track and articulated models, steady state.",
      [("vehdyn.handling", None)]),
-    ("ride", "Ride", "Quarter car, bounce–pitch, full car; ISO 8608 roads; ISO 2631-1 comfort; control.",
+    ("ride", "Ride", "Quarter car, bounce–pitch, full car; ISO 2631-1 comfort; random vibration; control.",
      [("vehdyn.ride", None)]),
     ("full_vehicle", "Full vehicle", "The 6-DOF body on four corners.", [("vehdyn.full_vehicle", None)]),
-    ("chassis", "Chassis control", "ABS, traction control, ESC and closed loops.", [("vehdyn.chassis", None)]),
-    ("analysis", "Analysis", "Modal analysis and work-precision.", [("vehdyn.analysis", None)]),
+    # controllers
+    ("driver", "Drivers", "Preview, crossover and optimal-preview drivers; the driver-vehicle loop.",
+     [("vehdyn.driver", None)]),
+    ("chassis", "Chassis control", "ABS, traction control and ESC.", [("vehdyn.chassis", None)]),
+    # procedures
+    ("procedures", "Procedures", "Standard tests: ISO 7401, ISO 4138, ISO 3888, ISO 7975, ISO 13674, FMVSS 126.",
+     [("vehdyn.procedures", None)]),
+    # applications
     ("scene", "Scenes and the fidelity ladder", "The cheapest model that answers a question.",
      [("vehdyn", ["Scene", "plan", "run", "ladder", "plot_ladder"]), ("vehdyn.scene", None)]),
     ("sweep", "Sweeps and sensitivity", "Grids, samples, Monte Carlo and Sobol'/Morris indices.",
-     [("vehdyn", ["sweep", "sensitivity"]), ("vehdyn.sweep", None)]),
+     [("vehdyn.sweep", None)]),
+    # interfaces
     ("plotting", "Plotting and the command line", "Figures in the textbook's form; the ``vehdyn`` command.",
      [("vehdyn.plotting", None), ("vehdyn.cli", None)]),
 ]
 
-# the order in which a re-exported object's first public path is chosen
-_ORDER = ["vehdyn", "vehdyn.params", "vehdyn.conventions", "vehdyn.units", "vehdyn.mechanics", "vehdyn.tire",
-          "vehdyn.tire.fitting", "vehdyn.tire.terramechanics", "vehdyn.handling", "vehdyn.ride",
-          "vehdyn.full_vehicle", "vehdyn.chassis", "vehdyn.analysis", "vehdyn.scene", "vehdyn.sweep",
-          "vehdyn.plotting", "vehdyn.cli"]
+# the order in which a re-exported object's first public path is chosen (bottom up)
+_ORDER = ["vehdyn", "vehdyn.params", "vehdyn.conventions", "vehdyn.units", "vehdyn.model", "vehdyn.simulation",
+          "vehdyn.interconnect", "vehdyn.mechanics", "vehdyn.tire", "vehdyn.tire.fitting",
+          "vehdyn.tire.terramechanics", "vehdyn.road", "vehdyn.components", "vehdyn.handling", "vehdyn.ride",
+          "vehdyn.full_vehicle", "vehdyn.driver", "vehdyn.chassis", "vehdyn.procedures", "vehdyn.scene",
+          "vehdyn.sweep", "vehdyn.plotting", "vehdyn.cli"]
 
 
 def public_names() -> dict[str, list[str]]:

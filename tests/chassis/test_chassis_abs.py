@@ -6,7 +6,8 @@ import pytest
 
 import vehdyn
 from vehdyn import ParameterError
-from vehdyn.chassis import ABS, ClosedLoop, TractionControl, road_friction_tire
+from vehdyn.chassis import ABS, TractionControl, road_friction_tire
+from vehdyn.interconnect import ClosedLoop
 from vehdyn.handling import SingleTrack
 from vehdyn.tire import tire_for_vehicle
 

@@ -5,7 +5,8 @@ import pytest
 
 import vehdyn
 from vehdyn import LinearModel, ParameterError
-from vehdyn.chassis import ABS, ESC, ClosedLoop
+from vehdyn.chassis import ABS, ESC
+from vehdyn.interconnect import ClosedLoop
 from vehdyn.handling import SingleTrack
 
 

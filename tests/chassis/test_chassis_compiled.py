@@ -6,9 +6,12 @@ import pytest
 
 import vehdyn
 from vehdyn import LinearModel, ParameterError
-from vehdyn.chassis import ABS, ESC, ClosedLoop, TractionControl, road_friction_tire
+from vehdyn.chassis import ABS, ESC, TractionControl, road_friction_tire
+from vehdyn.interconnect import ClosedLoop
 from vehdyn.full_vehicle import FullVehicle
-from vehdyn.handling import DriverInTheLoop, PreviewDriver, SingleTrack, fmvss126
+from vehdyn.driver import DriverInTheLoop, PreviewDriver
+from vehdyn.handling import SingleTrack
+from vehdyn.procedures import fmvss126
 from vehdyn.tire import tire_for_vehicle
 
 pytest.importorskip("numba")

@@ -7,8 +7,9 @@ import pytest
 import vehdyn
 from vehdyn import ParameterError
 from vehdyn.chassis import ESC
-from vehdyn.handling import fmvss126, steady_state_gains
-from vehdyn.handling.fmvss126 import series_multiples
+from vehdyn.procedures import fmvss126
+from vehdyn.handling import steady_state_gains
+from vehdyn.procedures.esc_compliance import series_multiples
 
 CAR = vehdyn.load_vehicle("sedan")
 G = vehdyn.units.GRAVITY

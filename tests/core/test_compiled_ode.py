@@ -1,4 +1,4 @@
-"""The compiled integrator (vehdyn._compiled_ode) against closed forms and scipy's solve_ivp."""
+"""The compiled integrator (vehdyn.simulation.compiled) against closed forms and scipy's solve_ivp."""
 
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn import _compiled_ode
+from vehdyn.simulation import compiled as _compiled_ode
 from vehdyn.piecewise_signal import PiecewiseSignal
 
 numba = pytest.importorskip("numba")

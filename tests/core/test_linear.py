@@ -5,7 +5,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 import vehdyn
-from vehdyn import LinearModel, Model, ParameterError, connect_in_series
+from vehdyn import LinearModel, Model, ParameterError
+from vehdyn.interconnect import connect_in_series
 
 
 def random_stable_model(seed, n, m, p):
@@ -151,7 +152,7 @@ def test_modes_of_two_dof_against_closed_form():
 
 def test_non_proportional_damping_is_flagged():
     M, K, m, k = two_dof()
-    modal = vehdyn.analysis.modal_analysis(M, K, np.diag([10.0, 0.0]))
+    modal = vehdyn.model.modal_analysis(M, K, np.diag([10.0, 0.0]))
     assert not modal.proportional
 
 

@@ -28,10 +28,11 @@ for _module in ("sphinx", "numpydoc", "sphinx_gallery", "pydata_sphinx_theme"):
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs"
 GALLERY_SUBSET = ("step_steer", "quarter_car", "low_speed")
-MODULES = ["vehdyn", "vehdyn.params", "vehdyn.conventions", "vehdyn.units", "vehdyn.mechanics", "vehdyn.tire",
-           "vehdyn.tire.fitting", "vehdyn.tire.terramechanics", "vehdyn.handling", "vehdyn.ride",
-           "vehdyn.full_vehicle", "vehdyn.chassis", "vehdyn.analysis", "vehdyn.scene", "vehdyn.sweep",
-           "vehdyn.plotting", "vehdyn.cli"]
+MODULES = ["vehdyn", "vehdyn.params", "vehdyn.conventions", "vehdyn.units", "vehdyn.model", "vehdyn.simulation",
+           "vehdyn.interconnect", "vehdyn.mechanics", "vehdyn.tire", "vehdyn.tire.fitting",
+           "vehdyn.tire.terramechanics", "vehdyn.road", "vehdyn.components", "vehdyn.handling", "vehdyn.ride",
+           "vehdyn.full_vehicle", "vehdyn.driver", "vehdyn.chassis", "vehdyn.procedures", "vehdyn.scene",
+           "vehdyn.sweep", "vehdyn.plotting", "vehdyn.cli"]
 
 
 def _env(**extra):

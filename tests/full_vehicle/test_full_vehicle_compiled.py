@@ -7,8 +7,8 @@ from hypothesis import strategies as st
 
 import vehdyn
 from vehdyn.full_vehicle import FullVehicle
-from vehdyn.handling import sine_steer, step_steer
-from vehdyn.ride.road import RoadProfile
+from vehdyn.procedures import sine_steer, step_steer
+from vehdyn.road import RoadProfile
 from vehdyn.tire import FialaTire, LinearTire
 
 pytest.importorskip("numba")

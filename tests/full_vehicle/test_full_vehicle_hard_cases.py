@@ -150,7 +150,7 @@ def test_pothole_at_30_m_s_under_one_wheel():
 
 def _compiled_unavailable(model):
     """Why ``simulate(model, ..., backend="compiled")`` cannot run here, or None when it can."""
-    from vehdyn._compiled_ode import numba_available
+    from vehdyn.simulation.compiled import numba_available
 
     if not numba_available():
         return "numba is not installed (pip install vehdyn[fast])"
@@ -167,7 +167,8 @@ def _class_d_road_run(model, duration, speed=40.0, **options):
     """Straight running at ``speed`` over two parallel ISO 8608 class-D tracks (isotropic coherence,
     0.1 m spacing) given as the per-corner road inputs (front wheels at X = V t, rear ones a wheelbase
     behind; faded in over the first 0.5 s), drive torques of the flat-road trim held, no steering."""
-    from vehdyn.ride import FullCar, road_inputs, synthesize_parallel_profiles
+    from vehdyn.ride import FullCar, road_inputs
+    from vehdyn.road import synthesize_parallel_profiles
 
     vehicle = model.vehicle
     track = 0.5 * (vehicle.geometry.front_track + vehicle.geometry.rear_track)

@@ -184,7 +184,7 @@ def test_trim_converges_from_perturbed_and_neighbouring_guesses(name, lag, speed
 def test_magic_formula_step_steer_is_finite_and_sensible(sedan):
     """Step steer at 20 m/s with the file's Magic Formula tires: the response settles near the trim
     of the same steer, the body rolls out of the turn and the outer wheels carry more load."""
-    from vehdyn.handling.maneuvers import step_steer
+    from vehdyn.procedures import step_steer
 
     model = FullVehicle(sedan)
     x0, u0 = model.trim(20.0)
@@ -208,7 +208,7 @@ def test_magic_formula_step_steer_is_finite_and_sensible(sedan):
 def test_road_profile_adds_to_the_road_inputs(sedan, linear_tires):
     """A RoadProfile is sampled under each contact point: a 5 cm plateau under the front axle equals
     the same displacement given as inputs."""
-    from vehdyn.ride.road import RoadProfile
+    from vehdyn.road import RoadProfile
 
     front_x = sedan.geometry.sprung_cg_to_front_axle
     distance = np.linspace(-10.0, 10.0, 2001)

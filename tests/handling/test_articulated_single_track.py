@@ -54,7 +54,7 @@ def test_linearized_wind_equals_linear_car_trailer_wind_input():
 
 def test_nonlinear_wind_force_on_each_body_is_the_crosswind_law():
     """At rest in the wind's first instant (x'' from forces alone): the hitch carries what Newton says."""
-    from vehdyn.handling.crosswind import aero_side_force, trailer_wind_side_force_factor, wind_side_force_factor
+    from vehdyn.components.aero import aero_side_force, trailer_wind_side_force_factor, wind_side_force_factor
 
     u, w = 20.0, 15.0
     model = ArticulatedSingleTrack(COMPACT.replace(aero__drag_coefficient=0.0), CARAVAN, tire_lag=False)
@@ -74,8 +74,8 @@ def test_nonlinear_wind_force_on_each_body_is_the_crosswind_law():
 
 def test_small_wind_zone_response_equals_the_linear_combination():
     """crosswind_sensitivity drives the nonlinear combination; a 0.5 m/s zone stays in the linear range."""
-    from vehdyn.handling import crosswind_sensitivity
-    from vehdyn.handling.crosswind import wind_zone_signal
+    from vehdyn.procedures import crosswind_sensitivity
+    from vehdyn.procedures import wind_zone_signal
 
     vehicle = COMPACT.replace(aero__drag_coefficient=0.0)
     model = ArticulatedSingleTrack(vehicle, CARAVAN, *linear_tires(vehicle, CARAVAN), tire_lag=False)

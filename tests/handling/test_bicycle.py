@@ -86,7 +86,7 @@ def test_sine_steer_response_equals_its_closed_form(method):
     # coarse grid (sampled and interpolated it was 3 % off)
     from scipy.linalg import expm
 
-    from vehdyn.handling import sine_steer
+    from vehdyn.procedures import sine_steer
 
     car = LinearBicycle(vehdyn.load_vehicle("sedan"), 25.0)
     amplitude, omega = np.radians(2.0), 2 * np.pi * 0.5

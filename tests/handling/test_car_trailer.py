@@ -12,7 +12,7 @@ from vehdyn import ParameterError
 from vehdyn.handling import (CarTrailerParameters, LinearBicycle, LinearCarTrailer, car_trailer_parameters,
                              trailer_crosswind_amplification)
 from vehdyn.handling.car_trailer import EOM_TRUCK_TRAILER
-from vehdyn.handling.crosswind import trailer_wind_side_force_factor
+from vehdyn.components.aero import trailer_wind_side_force_factor
 
 # A labelled car–caravan set: the shipped "compact" towing the shipped "caravan". The caravan's
 # numbers are typical values (data/trailers/caravan.toml says so line by line): no published

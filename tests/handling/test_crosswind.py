@@ -6,9 +6,11 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn.handling import LinearBicycle, SingleTrack, crosswind_gust, neutral_steer_point
-from vehdyn.handling.crosswind import (aero_side_force, centre_of_pressure_ahead_of_cg, crosswind_sensitivity,
-                                       steady_state_crosswind_yaw_rate, wind_side_force_factor, wind_zone_signal)
+from vehdyn.handling import LinearBicycle, SingleTrack, neutral_steer_point
+from vehdyn.procedures import crosswind_gust
+from vehdyn.components.aero import aero_side_force, centre_of_pressure_ahead_of_cg, wind_side_force_factor
+from vehdyn.handling.crosswind import steady_state_crosswind_yaw_rate
+from vehdyn.procedures import crosswind_sensitivity, wind_zone_signal
 from vehdyn.tire import LinearTire
 
 SEDAN = vehdyn.load_vehicle("sedan")

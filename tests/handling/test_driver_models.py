@@ -5,10 +5,17 @@ import pytest
 
 import vehdyn
 from vehdyn import ParameterError
-from vehdyn.handling import (CrossoverDriver, OptimalPreviewDriver, SingleTrack, driver_loop, driver_loop_margins,
-                             driver_loop_response, preview_gains)
-from vehdyn.handling.driver import pade_delay
-from vehdyn.linear import LinearModel
+from vehdyn.driver import (
+    CrossoverDriver,
+    OptimalPreviewDriver,
+    driver_loop,
+    driver_loop_margins,
+    driver_loop_response,
+    preview_gains,
+)
+from vehdyn.handling import SingleTrack
+from vehdyn.driver.base import pade_delay
+from vehdyn.model import LinearModel
 
 SEDAN = vehdyn.load_vehicle("sedan")
 PATH_X = np.linspace(-100.0, 1000.0, 200)
@@ -152,7 +159,7 @@ def test_driver_on_a_model_without_its_feedback_names_the_missing_inputs():
 
 
 def test_lane_change_limit_brackets_the_speed_at_which_the_cones_are_cleared():
-    from vehdyn.handling import lane_change_limit, lane_change_run, obstacle_avoidance_track
+    from vehdyn.procedures import lane_change_limit, lane_change_run, obstacle_avoidance_track
 
     model = SingleTrack(SEDAN)
     track = obstacle_avoidance_track(SEDAN.geometry.front_track + 0.2)

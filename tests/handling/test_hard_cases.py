@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn.handling import SingleTrack, critical_speed, spin_out_time, step_steer
+from vehdyn.handling import SingleTrack, critical_speed
+from vehdyn.procedures import spin_out_time, step_steer
 from vehdyn.tire import FialaTire, LinearTire
 
 SEDAN = vehdyn.load_vehicle("sedan")

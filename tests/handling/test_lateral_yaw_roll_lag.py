@@ -80,7 +80,7 @@ def test_lateral_acceleration_is_the_axle_forces_over_the_mass():
     vehicle = vehdyn.load_vehicle("compact")
     model = LateralYawRollLag(vehicle, 20.0)
     t = np.linspace(0.0, 2.0, 401)
-    res = vehdyn.simulate(model, t, {"front_steer_angle": vehdyn.handling.maneuvers.step_steer(0.01, 0.2, 0.1)},
+    res = vehdyn.simulate(model, t, {"front_steer_angle": vehdyn.procedures.step_steer(0.01, 0.2, 0.1)},
                           method="exact")
     total = (res["front_lateral_force"] + res["rear_lateral_force"]) / vehicle.mass.mass
     assert np.max(np.abs(res["lateral_acceleration"] - total)) < 1e-9 * np.max(np.abs(total))

@@ -4,9 +4,20 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn.handling import (DriverInTheLoop, PreviewDriver, SingleTrack, braking_in_turn, crosswind_gust,
-                             double_lane_change_track, lane_change_outcome, obstacle_avoidance_track, ramp_steer,
-                             sine_steer, sine_with_dwell, sine_with_dwell_metrics, step_steer)
+from vehdyn.driver import DriverInTheLoop, PreviewDriver
+from vehdyn.handling import SingleTrack
+from vehdyn.procedures import (
+    braking_in_turn,
+    crosswind_gust,
+    double_lane_change_track,
+    lane_change_outcome,
+    obstacle_avoidance_track,
+    ramp_steer,
+    sine_steer,
+    sine_with_dwell,
+    sine_with_dwell_metrics,
+    step_steer,
+)
 from vehdyn.results import SimulationResult
 from vehdyn.tire import FialaTire
 
@@ -144,7 +155,7 @@ def test_braking_in_turn_decelerates_as_asked():
 
 
 def test_lane_change_speed_bound_closed_form_and_real_tracks():
-    from vehdyn.handling import DoubleLaneChangeTrack, lane_change_speed_bound
+    from vehdyn.procedures import DoubleLaneChangeTrack, lane_change_speed_bound
 
     # three zero-slack gates y(0) = 0, y(L) = D, y(2L) = 0: the least largest |y''| is the parabola's 2 D / L^2
     # (the second difference (y(0) - 2 y(L) + y(2L)) / L^2 = -2 D / L^2 is an average of y'')

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn.handling import (SingleTrack, constant_radius_test, nonlinear_handling_diagram,
-                             steady_state_cornering, steer_angle_for)
+from vehdyn.handling import SingleTrack, nonlinear_handling_diagram, steady_state_cornering, steer_angle_for
+from vehdyn.procedures import constant_radius_test
 from vehdyn.tire import FialaTire, LinearTire
 
 SEDAN = vehdyn.load_vehicle("sedan")

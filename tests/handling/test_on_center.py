@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn.handling import LinearBicycle, SteeredVehicle, SteeringSystem, weave_test
+from vehdyn.handling import LinearBicycle, SteeredVehicle, SteeringSystem
+from vehdyn.procedures import weave_test
 from vehdyn.handling.steering_system import boost_torque
 from vehdyn.tire import LinearTire
 from vehdyn.units import GRAVITY

@@ -6,7 +6,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import vehdyn
-from vehdyn.handling import SingleTrack, sine_steer, sine_with_dwell, step_steer
+from vehdyn.handling import SingleTrack
+from vehdyn.procedures import sine_steer, sine_with_dwell, step_steer
 from vehdyn.tire import FialaTire, LinearTire
 
 pytest.importorskip("numba")
@@ -202,7 +203,7 @@ def test_compiled_batch_equals_the_numpy_batch_under_solve_ivp(key):
 
 
 def test_compiled_batch_of_models_with_different_tires_and_its_errors():
-    from vehdyn import _compiled_ode
+    from vehdyn.simulation import compiled as _compiled_ode
     from vehdyn.handling import _single_track_numba
 
     t = np.linspace(0.0, 1.0, 51)

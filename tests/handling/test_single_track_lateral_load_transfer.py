@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn.handling import SingleTrack, step_steer
+from vehdyn.handling import SingleTrack
+from vehdyn.procedures import step_steer
 from vehdyn.handling.nonlinear_steady_state import steady_state_cornering
 from vehdyn.tire import LinearTire
 

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn.handling import SingleTrack, sine_steer
+from vehdyn.handling import SingleTrack
+from vehdyn.procedures import sine_steer
 from vehdyn.handling.lateral_yaw_roll import lateral_yaw_roll_parameters
 from vehdyn.handling.single_track import lateral_load_transfer_coefficients
 from vehdyn.handling.nonlinear_steady_state import steady_state_cornering

@@ -9,11 +9,10 @@ from vehdyn.handling import (
     LinearBicycle,
     lateral_acceleration_transfer_function,
     steering_frequency_response,
-    step_response_metrics,
-    step_steer_metrics,
     yaw_mode,
     yaw_rate_transfer_function,
 )
+from vehdyn.procedures import step_response_metrics, step_steer_metrics
 
 
 @pytest.mark.parametrize("case_id", ["A-STEP-ABE", "A-STEP-SUV"])

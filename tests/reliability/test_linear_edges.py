@@ -6,7 +6,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 import vehdyn
-from vehdyn import LinearModel, ParameterError, connect_in_series
+from vehdyn import LinearModel, ParameterError
+from vehdyn.interconnect import connect_in_series
 from vehdyn.handling import LateralYawRoll, LinearBicycle, steady_state_gains
 from vehdyn.handling.bicycle import LINEAR_MIN_SPEED, BicycleParameters
 

@@ -13,7 +13,7 @@ import vehdyn
 from vehdyn import LinearModel, Model, ParameterError, SimulationError, VehdynWarning, simulate
 from vehdyn.handling import LinearBicycle
 
-simulate_module = importlib.import_module("vehdyn.simulate")  # vehdyn.simulate is the function
+simulate_module = importlib.import_module("vehdyn.simulation._api")
 
 N_T = 101
 T = np.linspace(0.0, 1.0, N_T)
@@ -376,7 +376,7 @@ def test_compiled_backend_failing_on_a_stiff_problem_says_why():
     """The compiled loop is not judged before it runs (a Jacobian would cost more than a short
     run); its step limit stops a stiff run, and the error then carries the stiffness estimate."""
     numba = pytest.importorskip("numba")
-    from vehdyn import _compiled_ode
+    from vehdyn.simulation import compiled as _compiled_ode
 
     @numba.njit
     def decay_rhs(t, y, u, args, dydt):

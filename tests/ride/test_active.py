@@ -6,8 +6,17 @@ import scipy.integrate
 import scipy.linalg
 
 import vehdyn
-from vehdyn.ride import (QuarterCar, RoadSpectrum, SemiActiveQuarterCar, compare_suspensions, groundhook,
-                         lqr_quarter_car, random_response, relative_quarter_car, skyhook)
+from vehdyn.ride import (
+    QuarterCar,
+    SemiActiveQuarterCar,
+    compare_suspensions,
+    groundhook,
+    lqr_quarter_car,
+    random_response,
+    relative_quarter_car,
+    skyhook,
+)
+from vehdyn.road import RoadSpectrum
 
 from .conftest import check, load_case
 

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn.ride import RoadSpectrum, random_response
+from vehdyn.road import RoadSpectrum
+from vehdyn.ride import random_response
 
 OUTPUTS = {"sprung_acceleration": "rms_body_acceleration", "suspension_travel": "rms_suspension_travel",
            "tire_deflection": "rms_tyre_deflection", "dynamic_tire_load": "rms_dynamic_tyre_load"}
@@ -161,7 +162,7 @@ def test_to_frame(car):
 # --------------------------------------------------------------------------- building blocks
 def test_gauss_kronrod_constants_are_exact_on_polynomials():
     """K15 integrates x^k exactly up to degree 22, the embedded G7 up to degree 13 (on [-1, 1])."""
-    from vehdyn.ride.random_response import GAUSS_7_IN_15, GAUSS_KRONROD_15
+    from vehdyn.ride.random_vibration import GAUSS_7_IN_15, GAUSS_KRONROD_15
 
     x, wk = GAUSS_KRONROD_15
     for k in range(23):

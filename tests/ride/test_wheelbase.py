@@ -6,7 +6,7 @@ import pytest
 import vehdyn
 from vehdyn.ride import BouncePitch, FullCar, QuarterCar, road_frequency_response, road_inputs, wheel_delays, \
     with_wheelbase_delay
-from vehdyn.ride.wheelbase import pade_coefficients
+from vehdyn.interconnect import pade_coefficients
 
 
 @pytest.fixture(scope="module")
@@ -121,7 +121,8 @@ def test_pade_routes_share_one_delay(half_car):
     """random_response's Padé route and with_wheelbase_delay + the road's shaping filter + stationary_covariance
     build the same Padé-delayed car in two ways: equal variances; the exact delay (default) differs by the
     Padé error only."""
-    from vehdyn.ride import RoadSpectrum, random_response, stationary_covariance
+    from vehdyn.road import RoadSpectrum
+    from vehdyn.ride import random_response, stationary_covariance
 
     speed, outputs = 10.0, ["sprung_acceleration", "pitch_acceleration", "suspension_travel_rear"]
     spectrum = RoadSpectrum.from_class("C", cut_on=0.01)
@@ -137,7 +138,7 @@ def test_pade_routes_share_one_delay(half_car):
 def test_road_inputs_on_any_time_grid_sample_the_profile_exactly_at_the_nodes():
     """Synthesized profile: on a time grid whose positions fall on the profile's nodes the inputs are the sum of
     cosines itself (independent, direct evaluation); off the profile the elevation is held, the velocity zero."""
-    from vehdyn.ride import synthesize_profile
+    from vehdyn.road import synthesize_profile
 
     p = synthesize_profile("C", 32.0, 0.05, seed=2, n_max=4.0)
     n = np.arange(p.coefficients.size) / p.length

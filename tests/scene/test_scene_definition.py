@@ -5,8 +5,8 @@ import pytest
 
 import vehdyn
 from vehdyn import ParameterError, Scene
-from vehdyn.handling.maneuvers import sine_with_dwell, step_steer
-from vehdyn.ride.road import RoadProfile
+from vehdyn.procedures import sine_with_dwell, step_steer
+from vehdyn.road import RoadProfile
 
 
 def test_import_vehdyn_stays_light():

@@ -10,10 +10,10 @@ import pytest
 
 import vehdyn
 from vehdyn.full_vehicle import FullVehicle
-from vehdyn.full_vehicle.ladder import ladder_setup, road_inputs, scene_inputs
+from vehdyn.scene.full_vehicle_rungs import ladder_setup, road_inputs, scene_inputs
 from vehdyn.scene import relative_error
 from vehdyn.scene.drive import drive_of
-from vehdyn.scene.rungs import NotAdmissible, rungs
+from vehdyn.scene.registry import NotAdmissible, rungs
 from vehdyn.scene.standard import standard_scenes
 
 
@@ -227,7 +227,7 @@ def test_linearized_full_vehicle_stays_at_its_trim_and_follows_a_gentle_steer(sc
     """The full vehicle linearized at the trim: with zero steer its outputs stay at the trim's
     (speed, zero lateral acceleration) to round-off; in a short 0.1 g step steer it is within 1 %
     of the nonlinear full vehicle (simulated by an adaptive solver, an independent route)."""
-    from vehdyn.full_vehicle.ladder import linearized_setup
+    from vehdyn.scene.full_vehicle_rungs import linearized_setup
 
     base = scenes["gentle_step_steer"].replace(duration=1.5)
     still = drive_of(base.replace(manoeuvre={"front_steer_angle": 0.0}))

@@ -168,7 +168,7 @@ def test_registry_takes_a_new_rung_in_one_entry_and_skips_missing_modules():
     assert all(r.available for r in rungs())
     missing = [r for r in rungs(available_only=False) if not r.available]
     assert all(r.model.startswith("vehdyn.full_vehicle") for r in missing)
-    from vehdyn.scene.rungs import build_linear_bicycle
+    from vehdyn.scene.registry import build_linear_bicycle
 
     extra = Rung("BicycleTwin", "vehdyn.handling.bicycle:LinearBicycle", "handling", 15, build_linear_bicycle,
                  linear=True)
@@ -276,7 +276,7 @@ def test_a_top_rung_with_every_phenomenon_leaves_the_ride_pick_alone(below_full_
     """What wiring FullVehicle does: a top rung on the ride ladder that also has the handling
     phenomena. With no steer those are not excited, so the estimates stay those of the ride rungs."""
     from vehdyn.model import PHENOMENA
-    from vehdyn.scene.rungs import build_full_car
+    from vehdyn.scene.registry import build_full_car
 
     def build(drive):
         setup = build_full_car(drive)
@@ -299,7 +299,7 @@ def test_a_top_rung_with_every_phenomenon_leaves_the_ride_pick_alone(below_full_
 
 def test_an_input_a_rung_lacks_makes_it_inadmissible_not_blind():
     """A crosswind drives the single track; the linear rungs have no such input and say so."""
-    gust = vehdyn.handling.crosswind_gust(vehdyn.load_vehicle("sedan"), 25.0, 10.0)
+    gust = vehdyn.procedures.crosswind_gust(vehdyn.load_vehicle("sedan"), 25.0, 10.0)
     scene = Scene(manoeuvre=gust, speed=25.0, duration=2.5, outputs=("yaw_rate",))
     p = vehdyn.plan(scene)
     rows = {r.rung.name: r for r in p.rows}

@@ -29,7 +29,7 @@ def test_iso7401_metrics_match_step_response_metrics():
     table = vehdyn.sweep(scene, grid={"speed": [30.0]}, model="LinearBicycle", progress=False,
                          metrics=["overshoot_yaw_rate", "response_time_yaw_rate", "steady_state_yaw_rate"])
     res = vehdyn.run(scene, model="LinearBicycle").result
-    direct = vehdyn.handling.step_response_metrics(res, "yaw_rate")
+    direct = vehdyn.procedures.step_response_metrics(res, "yaw_rate")
     assert table["overshoot_yaw_rate"].iloc[0] == float(direct.overshoot)
     assert table["response_time_yaw_rate"].iloc[0] == float(direct.response_time)
     # the linear bicycle's steady yaw rate is the steady-state gain times the steer

@@ -15,7 +15,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from vehdyn import _compiled_ode
+from vehdyn.simulation import compiled as _compiled_ode
 from vehdyn.errors import ParameterError
 from vehdyn.tire import magic_formula as mf_module
 

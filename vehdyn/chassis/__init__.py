@@ -3,18 +3,18 @@
 :class:`ABS` (wheel-slip control by an apply/hold/release pressure modulator),
 :class:`TractionControl` (drive-torque reduction and brake intervention on a spinning axle) and
 :class:`ESC` (yaw-rate control by one-wheel braking with a sideslip guard) are :class:`~vehdyn.Model`
-objects with named states, built from a :class:`~vehdyn.Vehicle` plus keyword gains. One helper,
-:class:`ClosedLoop`, wraps a controller around a plant by signal names (it simulates, linearizes
-and nests: ESC around ABS around the car) and, when the plant and the controller have compiled
-forms (the SingleTrack and FullVehicle with their compiled tire laws; these three controllers),
-compiles with numba for ``simulate(..., backend="compiled"/"auto")``. :func:`road_friction_tire`
+objects with named states, built from a :class:`~vehdyn.Vehicle` plus keyword gains, closed around a
+plant by :class:`vehdyn.interconnect.ClosedLoop` (``controller.close(plant)``; it simulates,
+linearizes and nests: ESC around ABS around the car) and, when the plant and the controller have
+compiled forms (the SingleTrack and FullVehicle with their compiled tire laws; these three
+controllers), compiled with numba for ``simulate(..., backend="compiled"/"auto")``. :func:`road_friction_tire`
 puts a Magic Formula tire on a road of other friction.
 """
 
 from vehdyn.chassis.abs import ABS
-from vehdyn.chassis.closed_loop import ChassisController, ClosedLoop
+from vehdyn.chassis.base import ChassisController
 from vehdyn.chassis.esc import ESC
 from vehdyn.chassis.friction import road_friction_tire
 from vehdyn.chassis.traction_control import TractionControl
 
-__all__ = ["ABS", "TractionControl", "ESC", "ClosedLoop", "ChassisController", "road_friction_tire"]
+__all__ = ["ABS", "TractionControl", "ESC", "ChassisController", "road_friction_tire"]

@@ -31,7 +31,8 @@ import numpy as np
 from vehdyn.errors import ParameterError
 from vehdyn.params import Vehicle
 from vehdyn.signals import Signal
-from vehdyn.chassis.closed_loop import ChassisController, channel_signals, check_gains, check_vehicle, sigmoid
+from vehdyn.chassis.base import ChassisController, channel_signals, check_vehicle, sigmoid
+from vehdyn.params.checks import check_gains
 
 __all__ = ["ABS", "ABSGains", "braking_slip", "torque_rate"]
 
@@ -101,7 +102,8 @@ class ABS(ChassisController):
     Examples
     --------
     >>> import vehdyn
-    >>> from vehdyn.chassis import ABS, ClosedLoop
+    >>> from vehdyn import ClosedLoop
+    >>> from vehdyn.chassis import ABS
     >>> from vehdyn.handling import SingleTrack
     >>> car = vehdyn.load_vehicle("sedan")
     >>> loop = ClosedLoop(SingleTrack(car, wheel_spin=True), ABS(car))

@@ -40,7 +40,8 @@ import numpy as np
 from vehdyn.params import Vehicle
 from vehdyn.signals import Signal
 from vehdyn.units import GRAVITY
-from vehdyn.chassis.closed_loop import ChassisController, check_gains, check_vehicle, deadband, sigmoid
+from vehdyn.chassis.base import ChassisController, check_vehicle, deadband, sigmoid
+from vehdyn.params.checks import check_gains
 
 __all__ = ["ESC", "ESCGains", "reference_yaw_rate", "yaw_moment_demand", "wheel_torque_commands", "axle_commands"]
 
@@ -143,7 +144,8 @@ class ESC(ChassisController):
     Examples
     --------
     >>> import vehdyn
-    >>> from vehdyn.chassis import ESC, ClosedLoop
+    >>> from vehdyn import ClosedLoop
+    >>> from vehdyn.chassis import ESC
     >>> from vehdyn.full_vehicle import FullVehicle
     >>> from vehdyn.handling import SingleTrack
     >>> car = vehdyn.load_vehicle("sedan")

@@ -34,7 +34,8 @@ import numpy as np
 from vehdyn.errors import ParameterError
 from vehdyn.params import Vehicle
 from vehdyn.signals import Signal
-from vehdyn.chassis.closed_loop import ChassisController, channel_signals, check_gains, check_vehicle, sigmoid
+from vehdyn.chassis.base import ChassisController, channel_signals, check_vehicle, sigmoid
+from vehdyn.params.checks import check_gains
 
 __all__ = ["TractionControl", "TractionGains", "drive_slip", "reduction_rate", "brake_rate", "applied_torques"]
 

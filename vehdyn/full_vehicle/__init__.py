@@ -9,11 +9,10 @@ Modules: :mod:`~vehdyn.full_vehicle.body` (sprung body and the wheels' x-y inert
 :mod:`~vehdyn.full_vehicle.steering`, :mod:`~vehdyn.full_vehicle.driveline`,
 :mod:`~vehdyn.full_vehicle.aero`, :mod:`~vehdyn.full_vehicle.assembly` (the shared equations),
 :mod:`~vehdyn.full_vehicle.model` (the Model), :mod:`~vehdyn.full_vehicle.operating_points` (trim),
-:mod:`~vehdyn.full_vehicle.ladder` (its rungs on the fidelity ladder of :mod:`vehdyn.scene`).
+(its rungs on the fidelity ladder are in :mod:`vehdyn.scene.full_vehicle_rungs`).
 """
 
 from vehdyn.full_vehicle.corner import CORNERS
-from vehdyn.full_vehicle.ladder import ladder_setup
 from vehdyn.full_vehicle.model import FullVehicle
 
-__all__ = ["FullVehicle", "CORNERS", "ladder_setup"]
+__all__ = ["FullVehicle", "CORNERS"]

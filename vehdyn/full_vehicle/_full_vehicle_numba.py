@@ -9,7 +9,7 @@ float forms of the mechanics layer's numpy functions:
 * ``rotation_body_to_earth`` -- :func:`vehdyn.mechanics.rotation_body_to_earth` as nested tuples;
 * ``euler_angle_rates`` -- :func:`vehdyn.mechanics.euler_angle_rates` (no gimbal-lock test: the
   model's domain, |pitch| <= pi/4, is checked first);
-* ``rigid_body_accelerations`` -- :func:`vehdyn.mechanics.newton_euler.accelerations` written out
+* ``rigid_body_accelerations`` -- :func:`vehdyn.mechanics.equations_of_motion.accelerations` written out
   for 3-tuples;
 * ``axle_tire_loads`` -- one corner's tire law as :meth:`FullVehicle.corner_law_loads` evaluates
   it (friction similarity, the mirror-image tire of ``k.mirror_image``): the Magic Formula through the compiled equations of
@@ -41,10 +41,11 @@ import numpy as np
 from numba.extending import register_jitable
 
 from vehdyn import conventions
-from vehdyn._compiled_ode import CompiledModel, compiled_copy, source_stamp
+from vehdyn.simulation.compiled import CompiledModel, compiled_copy, source_stamp
 from vehdyn.errors import ParameterError
 from vehdyn.handling import _single_track_numba as stn
-from vehdyn.handling import crosswind, single_track_equations
+from vehdyn.components import aero as crosswind
+from vehdyn.handling import single_track_equations
 from vehdyn.tire import _mf_numba, linear, magic_formula
 from vehdyn.full_vehicle import aero, assembly, body, corner, driveline, steering
 
@@ -89,7 +90,7 @@ def _matrix_vector(m, a0, a1, a2):
 
 def _rigid_body_accelerations(mass, inertia, inverse, velocity, rates, force, moment):
     """dV/dt = F/m - w x V, dw/dt = J^-1 (M - w x J w) for 3-tuples
-    (:func:`vehdyn.mechanics.newton_euler.accelerations`)."""
+    (:func:`vehdyn.mechanics.equations_of_motion.accelerations`)."""
     p, q, r = rates
     cx, cy, cz = body.cross(p, q, r, velocity[0], velocity[1], velocity[2])
     h0, h1, h2 = _matrix_vector(inertia, p, q, r)
@@ -219,7 +220,7 @@ def compiled_functions():
 
 def _road(model):
     """The road argument: (on, distance, elevation, slope) of a RoadProfile, or a flat road."""
-    from vehdyn.ride.road import RoadProfile
+    from vehdyn.road import RoadProfile
 
     road = model.road
     if road is None:

@@ -24,7 +24,7 @@ Vehicles*, 4th ed., 1998, sec. 4.4; :mod:`vehdyn.handling.crosswind`).
 
 from __future__ import annotations
 
-from vehdyn.handling.crosswind import aero_side_force
+from vehdyn.components.aero import aero_side_force
 
 __all__ = ["aero_forces"]
 

@@ -12,7 +12,7 @@ functions are reused here unchanged. Besides arithmetic the equations call ``xp.
     (numpy: :func:`vehdyn.mechanics.euler_angle_rates`, which refuses gimbal lock);
 ``xp.rigid_body_accelerations(m, J, J_inv, velocity, rates, force, moment)``
     3-tuples in, (velocity rate, angular acceleration) out (numpy:
-    :func:`vehdyn.mechanics.newton_euler.accelerations`);
+    :func:`vehdyn.mechanics.equations_of_motion.accelerations`);
 ``xp.axle_tire_loads(tires, corner, fz, kappa, alpha, vx)``
     the ISO-W (fx, fy) of one corner's tire; ``tires`` is ``(laws, camber, friction, mirror_image)`` with
     the four inclination angles and road friction ratios of this evaluation and ``k.mirror_image``
@@ -34,7 +34,7 @@ import numpy as np
 from vehdyn.errors import SimulationError
 from vehdyn.handling import single_track_equations as st
 from vehdyn.mechanics import euler_angle_rates, rotation_body_to_earth
-from vehdyn.mechanics.newton_euler import accelerations
+from vehdyn.mechanics.equations_of_motion import accelerations
 from vehdyn.full_vehicle import aero, body, corner, driveline, steering
 from vehdyn.full_vehicle.corner import CORNERS
 

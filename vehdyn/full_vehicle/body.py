@@ -15,7 +15,7 @@ acceleration (body axes), the x-y part of the wheel-centre acceleration is
 
 are linear in alpha. Split into the part proportional to alpha (an added-mass matrix M_a, constant
 in body axes) and the rest, they read (M_s + M_a) alpha = M_s alpha_0, where alpha_0 is what
-:func:`vehdyn.mechanics.newton_euler.accelerations` returns for the sprung body alone under F and M
+:func:`vehdyn.mechanics.equations_of_motion.accelerations` returns for the sprung body alone under F and M
 plus the wheels' velocity-dependent x-y forces. So the body is advanced by the mechanics layer's
 Newton-Euler equations, followed by the constant projection P = (M_s + M_a)^-1 M_s
 (:func:`added_mass_projection`). The total mass then acts in the body's x and y directions, the
@@ -23,7 +23,7 @@ sprung mass alone in z; roll, pitch and yaw see the sprung inertia tensor J (wit
 wheels' m_i (y_i^2 + z_i^2), m_i (x_i^2 + z_i^2) ... of their x-y motion.
 
 References: Landau & Lifshitz, *Mechanics*, sec. 36 (Euler's equations, used through
-:mod:`vehdyn.mechanics.newton_euler`); Kane & Levinson, *Dynamics: Theory and Applications*, 1985,
+:mod:`vehdyn.mechanics.equations_of_motion`); Kane & Levinson, *Dynamics: Theory and Applications*, 1985,
 ch. 6 (generalized forces of points constrained to a body).
 """
 

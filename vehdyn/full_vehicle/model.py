@@ -260,7 +260,7 @@ class FullVehicle(Model):
     def _check_road(road):
         if road is None or callable(road):
             return road
-        from vehdyn.ride.road import RoadProfile
+        from vehdyn.road import RoadProfile
 
         if isinstance(road, RoadProfile):
             return road
@@ -318,7 +318,7 @@ class FullVehicle(Model):
 
     def constants(self) -> assembly.Constants:
         """The :class:`~vehdyn.full_vehicle.assembly.Constants` the equations read (floats and tuples)."""
-        from vehdyn.handling.crosswind import wind_side_force_factor
+        from vehdyn.components.aero import wind_side_force_factor
         from vehdyn.full_vehicle.body import added_mass_projection
 
         v = self.vehicle

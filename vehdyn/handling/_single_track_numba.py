@@ -32,12 +32,12 @@ from numba.extending import register_jitable
 from numba.np.unsafe.ndarray import to_fixed_tuple
 
 from vehdyn import conventions
-from vehdyn._compiled_ode import CompiledBatch, CompiledModel, compiled_copy, source_stamp
+from vehdyn.simulation.compiled import CompiledBatch, CompiledModel, compiled_copy, source_stamp
 from vehdyn.errors import ParameterError
 from vehdyn.tire import _mf_numba, linear, magic_formula
 from vehdyn.tire.linear import LinearTire
 from vehdyn.tire.magic_formula import MagicFormula
-from vehdyn.handling import crosswind
+from vehdyn.components import aero as crosswind
 from vehdyn.handling import single_track_equations as equations
 
 __all__ = ["XP", "compiled_model", "compiled_functions", "compiled_batch", "batch_structure"]
@@ -290,7 +290,7 @@ def _axle(tires, mirrored, axle):
 
 
 def compiled_batch(models, n_variants: int | None = None) -> CompiledBatch:
-    """The compiled rhs of many single-track vehicles for :func:`vehdyn._compiled_ode.solve_batch`.
+    """The compiled rhs of many single-track vehicles for :func:`vehdyn.simulation.compiled.solve_batch`.
 
     Parameters
     ----------

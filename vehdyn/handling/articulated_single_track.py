@@ -78,7 +78,7 @@ from vehdyn.params import Trailer, Vehicle
 from vehdyn.signals import Signal
 from vehdyn.units import GRAVITY
 from vehdyn.handling import single_track_equations as eq
-from vehdyn.handling.crosswind import aero_side_force, trailer_wind_side_force_factor
+from vehdyn.components.aero import aero_side_force, trailer_wind_side_force_factor
 from vehdyn.handling.single_track import SingleTrack, _stack
 
 __all__ = ["ArticulatedSingleTrack", "ArticulationEvent", "LOCKED_SLIDING_SPEED"]
@@ -403,7 +403,7 @@ class ArticulatedSingleTrack(Model):
         :class:`~vehdyn.handling.LinearCarTrailer`, in its order). With linear tires and no tire
         lag its matrices are those of LinearCarTrailer (with the same ``crosswind``).
         """
-        from vehdyn.linear import LinearModel
+        from vehdyn.model import LinearModel
 
         full = self.linearize(self.straight_running(speed), self.input_vector())
         names = ["lateral_velocity", "yaw_rate", "articulation_angle", "articulation_rate"]

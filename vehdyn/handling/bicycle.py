@@ -61,7 +61,7 @@ import dataclasses
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.linear import LinearModel
+from vehdyn.model import LinearModel
 from vehdyn.model import float_array
 from vehdyn.params import ParameterSet, Vehicle
 from vehdyn.params.base import parameter
@@ -147,7 +147,7 @@ def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
     if isinstance(params, BicycleParameters):
         return params
     if isinstance(vehicle_or_model, Vehicle):
-        from vehdyn.handling.crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
+        from vehdyn.components.aero import centre_of_pressure_ahead_of_cg, wind_side_force_factor
 
         v = vehicle_or_model
         return BicycleParameters(

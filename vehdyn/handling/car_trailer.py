@@ -73,7 +73,7 @@ from typing import NamedTuple
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.linear import LinearModel
+from vehdyn.model import LinearModel
 from vehdyn.params import ParameterSet, Trailer, Vehicle
 from vehdyn.params.base import parameter
 from vehdyn.signals import Signal
@@ -207,7 +207,7 @@ def car_trailer_parameters(vehicle, trailer: Trailer | None = None) -> CarTraile
     if not isinstance(trailer, Trailer):
         raise ParameterError(f"trailer must be a vehdyn Trailer (see vehdyn.load_trailer), got "
                              f"{type(trailer).__name__}", key="trailer", value=trailer)
-    from vehdyn.handling.crosswind import trailer_wind_side_force_factor
+    from vehdyn.components.aero import trailer_wind_side_force_factor
 
     car = bicycle_parameters(vehicle)
     rho = vehicle.aero.air_density if isinstance(vehicle, Vehicle) else None  # None: the standard air

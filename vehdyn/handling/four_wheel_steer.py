@@ -26,7 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.linear import LinearModel, connect_in_series
+from vehdyn.model.linear import LinearModel
+from vehdyn.interconnect import connect_in_series
 from vehdyn.signals import STEER_INPUTS
 from vehdyn.handling.bicycle import LinearBicycle, bicycle_parameters, check_speed, speed_of
 from vehdyn.handling.steady_state import steady_state_gains

@@ -72,7 +72,7 @@ import dataclasses
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.linear import LinearModel
+from vehdyn.model import LinearModel
 from vehdyn.params import ParameterSet, Vehicle
 from vehdyn.params.base import parameter
 from vehdyn.signals import STEER_INPUTS, Signal

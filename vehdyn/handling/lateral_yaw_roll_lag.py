@@ -53,7 +53,7 @@ from __future__ import annotations
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.linear import LinearModel
+from vehdyn.model import LinearModel
 from vehdyn.params import Vehicle
 from vehdyn.signals import STEER_INPUTS, Signal
 from vehdyn.units import GRAVITY

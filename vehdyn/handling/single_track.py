@@ -144,8 +144,8 @@ with Magic Formula or linear tires (brush, Fiala and Dugoff laws run on numpy). 
 speed the relaxation modes (-|V_x| / sigma, ~ -55 1/s at 100 km/h) hold the explicit methods at
 their stability limit; ``"BDF"`` takes the steps the tolerance asks for (fewer rhs calls at equal
 error: ``benchmarks/bench_sweep.py``).
-Give steer inputs as the closed-form signals of :mod:`~vehdyn.handling.maneuvers` to have them
-evaluated exactly inside the compiled steps (see :mod:`vehdyn._compiled_ode`).
+Give steer inputs as the closed-form signals of :mod:`~vehdyn.procedures` to have them
+evaluated exactly inside the compiled steps (see :mod:`vehdyn.simulation.compiled`).
 """
 
 from __future__ import annotations
@@ -164,7 +164,7 @@ from vehdyn.params import Vehicle
 from vehdyn.signals import STEER_INPUTS, Signal
 from vehdyn.units import GRAVITY
 from vehdyn.handling import single_track_equations as equations
-from vehdyn.handling.crosswind import centre_of_pressure_ahead_of_cg, wind_side_force_factor
+from vehdyn.components.aero import centre_of_pressure_ahead_of_cg, wind_side_force_factor
 
 __all__ = ["SingleTrack", "SingleTrackParameters", "lateral_load_transfer_coefficients", "roll_parameters"]
 
@@ -784,7 +784,7 @@ class SingleTrack(Model):
         return compiled
 
     def compiled_batch(self, n_variants: int | None = None):
-        """The compiled rhs of a batch (:func:`vehdyn._compiled_ode.solve_batch`): this model's
+        """The compiled rhs of a batch (:func:`vehdyn.simulation.compiled.solve_batch`): this model's
         variants (array parameters, :meth:`variants`), or ``n_variants`` copies of a model with
         scalar parameters (a batch of initial states or inputs). ``simulate`` runs it on the compiled
         backend, each variant with its own step-size control: every variant's states are bitwise
@@ -867,7 +867,7 @@ class SingleTrack(Model):
         the bicycle model). In straight running these states decouple from the others exactly
         (every coupling term is proportional to v, r or the steer angle), so the block is exact.
         """
-        from vehdyn.linear import LinearModel
+        from vehdyn.model import LinearModel
 
         full = self.linearize(speed=speed, u0=self.input_vector())
         keep = [self.index("lateral_velocity"), self.index("yaw_rate")]

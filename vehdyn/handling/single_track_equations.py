@@ -24,7 +24,7 @@ import numpy as np
 
 from vehdyn.conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slips_sae_to_iso_w
 from vehdyn.tire._mf_ops import NumpyOps
-from vehdyn.handling.crosswind import aero_side_force
+from vehdyn.components.aero import aero_side_force
 
 __all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate",
            "derivatives", "outputs", "axle_slips", "axle_forces", "axle_loads", "wheel_pair_loads",

@@ -27,7 +27,7 @@ Dynamics*, 1992, ch. 8, for the aligning moment about the steering axis)::
 * Coulomb friction of the rack and gear, T_f sign(omega_p), is regularized as
   T_f tanh(omega_p / omega_f): a smooth law that equals the Coulomb force within 1 % once
   |omega_p| > 2.7 omega_f and behaves as a viscous damper of T_f / omega_f below (stiff: the
-  default integrator of :func:`~vehdyn.handling.weave_test` is implicit). It has no stiction: at
+  default integrator of :func:`~vehdyn.procedures.weave_test` is implicit). It has no stiction: at
   rest the friction holds no torque, so the model shows the friction's hysteresis in motion, not
   a stick-slip deadband.
 

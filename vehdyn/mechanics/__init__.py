@@ -3,7 +3,7 @@
 The bottom layer of vehdyn: the Newton-Euler equations with the full inertia tensor, the 6-DOF
 rigid-body model, Euler-angle kinematics and point transfer, and mass properties.
 
-Newton-Euler (:mod:`~vehdyn.mechanics.newton_euler`)
+Newton-Euler (:mod:`~vehdyn.mechanics.equations_of_motion`)
     :func:`newton_euler`, :func:`angular_momentum`, :func:`kinetic_energy`, :func:`torque_free_period`
 Model (:mod:`~vehdyn.mechanics.rigid_body`)
     :class:`RigidBody6DOF`
@@ -50,7 +50,7 @@ from vehdyn.mechanics.kinematics import (
     rotation_body_to_earth,
     rotation_earth_to_body,
 )
-from vehdyn.mechanics.newton_euler import angular_momentum, kinetic_energy, newton_euler, torque_free_period
+from vehdyn.mechanics.equations_of_motion import angular_momentum, kinetic_energy, newton_euler, torque_free_period
 from vehdyn.mechanics.rigid_body import RigidBody6DOF
 
 __all__ = [

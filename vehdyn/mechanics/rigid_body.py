@@ -8,7 +8,7 @@ from vehdyn.errors import ParameterError, SimulationError
 from vehdyn.model import Model
 from vehdyn.signals import Signal
 from vehdyn.mechanics.kinematics import GIMBAL_LOCK_MARGIN, apply_matrix, cross, euler_angle_rates, rotation_body_to_earth
-from vehdyn.mechanics.newton_euler import accelerations, inverse_inertia, mass_array
+from vehdyn.mechanics.equations_of_motion import accelerations, inverse_inertia, mass_array
 
 __all__ = ["RigidBody6DOF"]
 
@@ -108,7 +108,7 @@ class RigidBody6DOF(Model):
 
     Notes
     -----
-    Equations (see :mod:`vehdyn.mechanics.newton_euler` and :mod:`vehdyn.mechanics.kinematics` for
+    Equations (see :mod:`vehdyn.mechanics.equations_of_motion` and :mod:`vehdyn.mechanics.kinematics` for
     the sources):
 
         dV/dt = F/m + g R^T e_Z - omega x V

@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from vehdyn.errors import ParameterError
+from vehdyn.params.inertia import check_realizable
 from vehdyn.units import GRAVITY
 from vehdyn.params.base import ParameterSet, load_toml, parameter, text
 
@@ -60,10 +61,8 @@ class MassProperties(ParameterSet):
             raise ParameterError(
                 f"sprung_mass + front_unsprung_mass + rear_unsprung_mass = {parts} kg exceeds mass = {self.mass} kg",
                 key="sprung_mass", value=self.sprung_mass)
-        # One realizability check for every inertia tensor in the package (mechanics.inertia):
+        # One realizability check for every inertia tensor in the package (params.inertia):
         # positive definite, principal moments obeying the triangle inequality.
-        from vehdyn.mechanics.inertia import check_realizable  # mechanics imports params.base: import here
-
         try:
             check_realizable(self.inertia_matrix, definite=True)
         except ParameterError as err:

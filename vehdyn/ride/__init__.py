@@ -15,21 +15,15 @@ Analysis (:mod:`~vehdyn.ride.analysis`)
     :class:`BouncePitchCentres`, :func:`olley_criteria` / :class:`OlleyCheck`,
     :func:`axle_ride_rates`, :func:`transmissibility`, :func:`suspension_travel_response`,
     :func:`dynamic_tire_load_response` (per unit road elevation; exact delay with a speed).
-Roads (:mod:`~vehdyn.ride.road`)
-    :func:`iso8608_psd`, :data:`ISO8608_CLASSES`, :func:`iso8608_class_value`,
-    :func:`iso8608_class_of`, :func:`estimate_spectrum` (Gd(n0) and class of a measured profile),
-    :class:`RoadSpectrum` (PSD, band r.m.s., shaping filter), :class:`RoadProfile` (shift, slope,
-    sampling, inputs under each wheel), :func:`synthesize_profile`,
-    :func:`synthesize_parallel_profiles`, :func:`isotropic_coherence`; events :func:`bump`,
-    :func:`pothole`, :func:`speed_hump`, :func:`step`; :func:`iri` (ASTM E1926 golden car,
-    :func:`golden_car`, :data:`GOLDEN_CAR`).
+Roads
+    In :mod:`vehdyn.road` (ISO 8608 spectra and synthesis, profiles and events, the IRI).
 Comfort (:mod:`~vehdyn.ride.comfort`)
     :func:`weighting` / :data:`WEIGHTINGS` / :class:`Weighting` (ISO 2631-1 Wk, Wd, Wf, Wc, We, Wj:
     frequency domain, digital filter, state space), :func:`weighting_factor`, :func:`weighted_rms`,
     :func:`rms`, :func:`running_rms`, :func:`mtvv`, :func:`vibration_dose_value`,
     :func:`crest_factor`, :func:`vibration_total_value`, :data:`COMFORT_REACTIONS`,
     :func:`comfort_reactions`, :func:`comfort_category`.
-Random response (:mod:`~vehdyn.ride.random_response`)
+Random response (:mod:`~vehdyn.ride.random_vibration`)
     :func:`random_response` -> :class:`RandomResponse`: r.m.s. of every output on an ISO 8608 road
     by the ``"lyapunov"`` route (exact covariance; rear wheels by the exact delay, or a Padé delay
     with ``delay="pade"``), the ``"psd"`` route (frequency integral, exact delay, stated error) or
@@ -92,26 +86,7 @@ from vehdyn.ride.comfort import (
     weighting,
     weighting_factor,
 )
-from vehdyn.ride.random_response import RandomResponse, random_response, stationary_covariance
-from vehdyn.ride.road import (
-    GOLDEN_CAR,
-    ISO8608_CLASSES,
-    RoadProfile,
-    RoadSpectrum,
-    bump,
-    golden_car,
-    iri,
-    estimate_spectrum,
-    iso8608_class_of,
-    iso8608_class_value,
-    iso8608_psd,
-    isotropic_coherence,
-    pothole,
-    speed_hump,
-    step,
-    synthesize_parallel_profiles,
-    synthesize_profile,
-)
+from vehdyn.ride.random_vibration import RandomResponse, random_response, stationary_covariance
 
 __all__ = [
     "QuarterCar",
@@ -144,11 +119,6 @@ __all__ = [
     "lqr_quarter_car",
     "relative_quarter_car",
     "compare_suspensions",
-
-    # road
-    "ISO8608_CLASSES", "iso8608_class_value", "iso8608_class_of", "iso8608_psd", "estimate_spectrum",
-    "RoadSpectrum", "RoadProfile", "synthesize_profile", "synthesize_parallel_profiles", "isotropic_coherence",
-    "bump", "pothole", "speed_hump", "step", "GOLDEN_CAR", "golden_car", "iri",
     # comfort
     "Weighting", "WEIGHTINGS", "weighting", "weighting_factor", "weighted_rms", "rms", "running_rms", "mtvv",
     "vibration_dose_value", "vibration_total_value", "crest_factor", "COMFORT_REACTIONS", "comfort_reactions",

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vehdyn.linear import LinearModel
+from vehdyn.model import LinearModel
 from vehdyn.signals import Signal
 
 __all__ = ["RideModel", "Corner"]

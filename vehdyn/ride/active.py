@@ -19,7 +19,7 @@
   road velocity seen at speed V is white with one-sided PSD (2 pi n0)^2 G_d(n0) V [(m/s)^2/Hz],
   :meth:`~vehdyn.ride.RoadSpectrum.white_noise_gain`) with exact r.m.s. values from the Lyapunov
   equation of the model with the road's shaping filter appended
-  (:func:`vehdyn.ride.random_response`, :func:`vehdyn.ride.stationary_covariance`; Newland,
+  (:func:`vehdyn.ride.random_vibration`, :func:`vehdyn.ride.stationary_covariance`; Newland,
   *Random Vibrations*, 3rd ed., 1993, ch. 7), ranked on comfort (r.m.s. sprung acceleration),
   suspension travel and road holding (r.m.s. dynamic tire load).
 """
@@ -32,12 +32,12 @@ from typing import Mapping
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.linear import LinearModel
+from vehdyn.model import LinearModel
 from vehdyn.model import Model
 from vehdyn.signals import Signal
 from vehdyn.ride.quarter_car import QuarterCar
-from vehdyn.ride.random_response import random_response
-from vehdyn.ride.road import RoadSpectrum
+from vehdyn.ride.random_vibration import random_response
+from vehdyn.road import RoadSpectrum
 
 __all__ = [
     "relative_quarter_car",
@@ -353,7 +353,7 @@ def compare_suspensions(systems: Mapping[str, LinearModel], road, speed: float, 
     -------
     pandas.DataFrame
         One row per system: r.m.s. of the three measures (and of ``actuator_force`` where present),
-        exact from :func:`vehdyn.ride.random_response` (Lyapunov route), and ratios to the
+        exact from :func:`vehdyn.ride.random_vibration` (Lyapunov route), and ratios to the
         reference; ``attrs["units"]``.
     """
     import pandas as pd

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vehdyn.analysis.modal import state_space_modes
+from vehdyn.model.modal import state_space_modes
 from vehdyn.errors import ParameterError
 from vehdyn.results import FrequencyResponse
 from vehdyn.ride.wheelbase import road_frequency_response

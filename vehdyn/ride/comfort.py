@@ -166,7 +166,7 @@ class Weighting:
         """
         from scipy import signal
 
-        from vehdyn.linear import LinearModel
+        from vehdyn.model import LinearModel
 
         A = np.zeros((0, 0))
         B = np.zeros((0, 1))

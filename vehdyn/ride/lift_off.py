@@ -498,7 +498,7 @@ class LiftOff(Model):
     def compiled_rhs(self):
         """The rhs compiled by numba (see :meth:`vehdyn.Model.compiled_rhs`): the same law, one loop
         over the corners; the outputs come from :meth:`output` (numpy, once on the time grid)."""
-        from vehdyn._compiled_ode import CompiledModel
+        from vehdyn.simulation.compiled import CompiledModel
 
         rhs, key = _compiled_rhs()
         c = np.ascontiguousarray
@@ -587,7 +587,7 @@ def _compiled_rhs():
     """(compiled rhs, cache key), compiled on first use and cached on disk per source digest."""
     import sys
 
-    from vehdyn._compiled_ode import compiled_copy, source_stamp
+    from vehdyn.simulation.compiled import compiled_copy, source_stamp
 
     key = "lift_off_" + source_stamp(sys.modules[__name__])
     return compiled_copy(_rhs, f"{key}_rhs"), key

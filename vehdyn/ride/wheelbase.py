@@ -8,15 +8,15 @@ one profile per track, and holds the one implementation of each form of the dela
   responses by exp(-j omega tau) and adds them to the front's (Gillespie, *Fundamentals of Vehicle
   Dynamics*, 1992, ch. 5, "wheelbase filtering"). Used by :mod:`vehdyn.ride.analysis`
   (transmissibility and the other frequency responses) whenever a speed is given; the ``"psd"``
-  route of :func:`vehdyn.ride.random_response` applies the same factor to the road spectra.
+  route of :func:`vehdyn.ride.random_vibration` applies the same factor to the road spectra.
 * **Time domain, exact**: :func:`road_inputs` samples a road profile under each wheel at its own
   position (front at V t, rear at V t - L) through :meth:`vehdyn.ride.RoadProfile.road_inputs`,
-  for :func:`vehdyn.simulate`; the ``"simulation"`` route of :func:`vehdyn.ride.random_response`
+  for :func:`vehdyn.simulate`; the ``"simulation"`` route of :func:`vehdyn.ride.random_vibration`
   uses the same method.
 * **State space, approximate**: :func:`pade_delay` is the [n/n] Padé approximant of e^(-s tau)
   as a state space (balanced). :func:`with_wheelbase_delay` appends it to a ride model so that
   eigenvalues, time simulations and LQR designs can see the whole car driven by one profile per
-  track; the ``delay="pade"`` option of :func:`vehdyn.ride.random_response` appends it to the road
+  track; the ``delay="pade"`` option of :func:`vehdyn.ride.random_vibration` appends it to the road
   shaping filter (its default, ``delay="exact"``, needs no approximation). Its error: the [n/n]
   Padé approximant P has |P(j omega)| = 1 exactly, and |P(j omega) - exp(-j omega tau)| < 1e-3 for
   omega tau < 1.5 n - 3.5 and < 1e-2 for omega tau < 1.6 n - 2.3 (n = 4..10, checked numerically
@@ -31,18 +31,16 @@ one profile per track, and holds the one implementation of each form of the dela
 
 from __future__ import annotations
 
-from functools import lru_cache
-from math import factorial
-
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.linear import LinearModel, connect_in_series
+from vehdyn.interconnect import connect_in_series, pade_delay
+from vehdyn.model import LinearModel
 from vehdyn.results import FrequencyResponse
 from vehdyn.signals import Signal
-from vehdyn.ride.road import RoadProfile
+from vehdyn.road import RoadProfile
 
-__all__ = ["wheel_offsets", "wheel_delays", "pade_coefficients", "pade_delay", "road_frequency_response",
+__all__ = ["wheel_offsets", "wheel_delays", "road_frequency_response",
            "road_inputs", "with_wheelbase_delay"]
 
 
@@ -77,52 +75,6 @@ def wheel_offsets(model) -> np.ndarray:
 def wheel_delays(model, speed: float) -> np.ndarray:
     """Delay of the road input at each corner behind the front axle [s]: (x_front - x_i) / V."""
     return wheel_offsets(model) / _check_speed(speed)
-
-
-def pade_coefficients(order: int) -> np.ndarray:
-    """Coefficients c_k of the [n/n] Padé approximant of exp(-p) = sum (-p)^k c_k / sum p^k c_k.
-
-    c_k = (2n - k)! n! / ((2n)! k! (n - k)!), k = 0..n (ascending powers).
-    """
-    if not (isinstance(order, (int, np.integer)) and order >= 1):
-        raise ParameterError(f"order must be a positive integer, got {order!r}", key="order", value=order)
-    n = int(order)
-    return np.array([factorial(2 * n - k) * factorial(n) / (factorial(2 * n) * factorial(k) * factorial(n - k))
-                     for k in range(n + 1)])
-
-
-def pade_delay(delay: float, order: int):
-    """State space (A, B, C, D) of the [order/order] Padé approximant of e^(-s delay) [delay in s].
-
-    Built for a unit delay from :func:`pade_coefficients`, balanced by a diagonal similarity (the
-    companion form is ill-conditioned beyond order 4) and scaled in time (A / delay, B / delay).
-    All-pass; see the module docstring for its phase error. ``order`` from 1 to 12.
-    """
-    if not (isinstance(order, (int, np.integer)) and 1 <= order <= 12):
-        raise ParameterError(f"order of the Padé delay must be an integer from 1 to 12 (higher orders lose accuracy "
-                             f"to rounding), got {order!r}", key="order", value=order)
-    if not delay > 0:
-        raise ParameterError(f"delay must be positive [s], got {delay}", key="delay", value=delay)
-    A, B, C, D = _unit_pade(int(order))
-    return A / delay, B / delay, C.copy(), D.copy()
-
-
-@lru_cache(maxsize=16)
-def _unit_pade(order: int):
-    from scipy import signal
-    from scipy.linalg import matrix_balance
-
-    c = pade_coefficients(order)
-    num = (c * (-1.0) ** np.arange(order + 1))[::-1]  # descending powers of s
-    den = c[::-1]
-    A, B, C, D = signal.tf2ss(num, den)
-    _, (scale, _) = matrix_balance(A, permute=False, separate=True)
-    A = (A / scale[:, None]) * scale[None, :]
-    B = B / scale[:, None]
-    C = C * scale[None, :]
-    for M in (A, B, C, D):
-        M.flags.writeable = False
-    return A, B, C, D
 
 
 def road_frequency_response(model, omega, speed: float | None = None, outputs=None) -> FrequencyResponse:

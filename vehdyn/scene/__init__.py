@@ -1,7 +1,7 @@
 """Scenes and the fidelity ladder: the cheapest model that answers a scene, with its error.
 
 A :class:`Scene` says what is asked (vehicle, manoeuvre and/or road, speed, duration, outputs,
-tolerance). :func:`plan` assesses every rung of the one registry (:mod:`vehdyn.scene.rungs`) and
+tolerance). :func:`plan` assesses every rung of the one registry (:mod:`vehdyn.scene.registry`) and
 picks the cheapest whose estimated error is within the tolerance, with a reason per rung;
 :func:`run` runs it (``verify=True`` also runs the reference rung and measures the error);
 :func:`ladder` runs every admissible rung and returns the speed-against-error table;
@@ -20,7 +20,7 @@ Example::
 from vehdyn.scene.definition import ROAD_EVENTS, STANDARD_MANOEUVRES, Scene
 from vehdyn.scene.estimates import COST_PER_SIMULATED_SECOND, THRESHOLDS, relative_error
 from vehdyn.scene.planner import Plan, RungAssessment, SceneResult, ladder, plan, plot_ladder, run
-from vehdyn.scene.rungs import RUNGS, NotAdmissible, Rung, Setup, SteadyStateAlgebra, register_rung, rungs
+from vehdyn.scene.registry import RUNGS, NotAdmissible, Rung, Setup, SteadyStateAlgebra, register_rung, rungs
 from vehdyn.scene.standard import standard_scenes
 
 __all__ = ["Scene", "STANDARD_MANOEUVRES", "ROAD_EVENTS", "Plan", "RungAssessment", "SceneResult", "plan", "run",

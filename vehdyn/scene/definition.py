@@ -29,7 +29,7 @@ Standard manoeuvres (names and parameters; steer in road-wheel angle [rad], SAE 
     [m/s^2] and whose frequency gives a lateral offset of ``offset`` (3.5 m) for a sinusoidal
     lateral acceleration: f = sqrt(a / (2 pi offset)).
 ``"iso3888_1"``
-    The ISO 3888-1 double lane change, steered by :class:`~vehdyn.handling.PreviewDriver`
+    The ISO 3888-1 double lane change, steered by :class:`~vehdyn.driver.PreviewDriver`
     (``preview_time`` 0.8 s, ``lag`` 0.1 s).
 ``"iso4138_circle"``
     Steady-state circular driving at constant speed with a slowly increasing steer (ISO 4138,
@@ -45,7 +45,7 @@ Standard manoeuvres (names and parameters; steer in road-wheel angle [rad], SAE 
 Roads: ``None``; an ISO 8608 class letter (``"A"`` ... ``"H"``: two parallel tracks with the
 isotropic coherence, seeded by ``seed``); a :class:`~vehdyn.ride.RoadProfile` (both tracks); or an
 event table ``{"event": "pothole" | "bump" | "speed_hump" | "step", "track": "left" | "right" |
-"both", ...}`` with the parameters of :mod:`vehdyn.ride.road`'s function of that name (positions
+"both", ...}`` with the parameters of :mod:`vehdyn.road`'s function of that name (positions
 [m] from where the front wheels start).
 """
 
@@ -75,7 +75,7 @@ STANDARD_MANOEUVRES: dict[str, tuple[str, ...]] = {
     "straight_braking": ("deceleration", "brake_front_share", "brake_start"),
 }
 
-#: Road events (functions of :mod:`vehdyn.ride.road`) and their parameters.
+#: Road events (functions of :mod:`vehdyn.road`) and their parameters.
 ROAD_EVENTS: dict[str, tuple[str, ...]] = {
     "pothole": ("position", "length", "depth", "edge_length"),
     "bump": ("position", "length", "height"),
@@ -110,7 +110,7 @@ class Scene:
     manoeuvre : None, str, callable or mapping
         The name of a standard manoeuvre (module docstring) with ``manoeuvre_parameters``; a steer
         signal ``delta(t)`` [rad] for ``front_steer_angle`` (e.g.
-        :func:`vehdyn.handling.maneuvers.step_steer`); or a mapping input name -> signal (a
+        :func:`vehdyn.procedures.step_steer`); or a mapping input name -> signal (a
         callable of t or a number). None: no manoeuvre (a ride scene).
     manoeuvre_parameters : mapping
         Parameters of a named manoeuvre (SI units).
@@ -213,7 +213,7 @@ class Scene:
             raise _bad("manoeuvre", m, "must be a standard manoeuvre name, a steer signal or a mapping of signals")
 
     def _check_road(self):
-        from vehdyn.ride.road import RoadProfile
+        from vehdyn.road import RoadProfile
 
         r = self.road
         if r is None or isinstance(r, RoadProfile):
@@ -304,7 +304,7 @@ class Scene:
         if isinstance(m, Mapping):
             data["manoeuvre"] = {k: _signal_from_data(f"manoeuvre.{k}", v) for k, v in m.items()}
         if isinstance(data.get("road"), Mapping) and "distance" in data["road"]:
-            from vehdyn.ride.road import RoadProfile
+            from vehdyn.road import RoadProfile
 
             data["road"] = RoadProfile(np.asarray(data["road"]["distance"], float),
                                        np.asarray(data["road"]["elevation"], float))
@@ -322,7 +322,7 @@ class Scene:
     def to_dict(self) -> dict[str, Any]:
         """The fields as plain data (the inverse of :meth:`from_dict`); None fields are left out."""
         from vehdyn.params import Vehicle
-        from vehdyn.ride.road import RoadProfile
+        from vehdyn.road import RoadProfile
 
         out: dict[str, Any] = {}
         for f in dataclasses.fields(self):
@@ -384,7 +384,7 @@ def _signal_to_data(name, signal):
     if isinstance(signal, (int, float)):
         return float(signal)
     raise ParameterError(f"{name}: a {type(signal).__name__} cannot be written to TOML; use a PiecewiseSignal "
-                         "(vehdyn.handling.maneuvers) or a number", key=name, value=signal)
+                         "(vehdyn.procedures) or a number", key=name, value=signal)
 
 
 def _signal_from_data(name, value):

@@ -102,7 +102,7 @@ def _constant(value) -> Callable:
 
 def drive_of(scene) -> Drive:
     """The :class:`Drive` of ``scene`` (raises ParameterError for inconsistent parameters)."""
-    from vehdyn.handling import maneuvers as mv
+    from vehdyn import procedures as mv
 
     vehicle = scene.load_vehicle()
     drive = Drive(scene, vehicle, scene.time())
@@ -160,7 +160,7 @@ def drive_of(scene) -> Drive:
 
 def _road(scene, vehicle):
     """(distance, left, right) profiles [m] covering the scene (front axle at distance V t)."""
-    from vehdyn.ride import road as rd
+    from vehdyn import road as rd
 
     wheelbase = vehicle.geometry.wheelbase
     length = scene.speed * scene.duration + wheelbase + 10.0

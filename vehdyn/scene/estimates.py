@@ -183,7 +183,7 @@ THRESHOLDS = {
 #: rung's START_COST_S. What is timed is a rung's ``Setup.run()``: its per-scene start (the full
 #: vehicle's trim, a steady turn, a linearization, a derivation from the tire law) and the
 #: simulation, every run; building a model from the vehicle and reading its files (per vehicle),
-#: importing and compiling (per process) are not (see :mod:`vehdyn.scene.rungs`).
+#: importing and compiling (per process) are not (see :mod:`vehdyn.scene.registry`).
 COST_PER_SIMULATED_SECOND = {
     "SteadyState": 1.6e-5,
     "LinearBicycle": 9.8e-5,

@@ -21,7 +21,7 @@ from vehdyn.errors import ParameterError, SimulationError
 from vehdyn.units import GRAVITY
 from vehdyn.scene import estimates as est
 from vehdyn.scene.drive import drive_of
-from vehdyn.scene.rungs import Rung, Setup, NotAdmissible, rungs
+from vehdyn.scene.registry import Rung, Setup, NotAdmissible, rungs
 
 __all__ = ["Plan", "RungAssessment", "SceneResult", "plan", "run", "ladder", "plot_ladder"]
 

@@ -87,7 +87,7 @@ def register_metric(name: str, function: Callable[[Run], float], unit: str, desc
 
 
 def _step(run: Run, signal: str, attribute: str) -> float:
-    from vehdyn.handling.transient import step_response_metrics
+    from vehdyn.procedures import step_response_metrics
 
     if run.result is None:
         raise ParameterError(f"ISO 7401 metrics of {signal!r} need a simulation result", key="metrics", value=signal)

@@ -151,7 +151,7 @@ class SceneTarget:
         """(run, setup) of one variant: the metrics' :class:`~vehdyn.sweep.metrics.Run` without
         outputs and the rung built for the variant's scene (None when no metric needs a run)."""
         from vehdyn.scene.drive import drive_of
-        from vehdyn.scene.rungs import rungs
+        from vehdyn.scene.registry import rungs
 
         scene = self.variant(params)
         run = _metrics.Run(time=scene.time(), outputs={}, units=self.units, vehicle=scene.load_vehicle(),
@@ -176,7 +176,7 @@ class SceneTarget:
         return call
 
     def run(self, params: Mapping[str, Any], metric_names) -> dict[str, float]:
-        from vehdyn.simulate import simulate
+        from vehdyn.simulation import simulate
 
         wanted = [_metrics.metric(n, self.units) for n in metric_names]
         run, setup = self._prepare(params, wanted)
@@ -190,7 +190,7 @@ class SceneTarget:
         :func:`vehdyn.simulate.simulate_many` (compiled batches of the variants that share a
         model structure; bitwise the results of :meth:`run`). Per variant its metrics, or the
         exception it raised."""
-        from vehdyn.simulate import simulate_many
+        from vehdyn.simulation import simulate_many
 
         wanted = [_metrics.metric(n, self.units) for n in metric_names]
         out: list = [None] * len(rows)
@@ -229,7 +229,7 @@ def simulation_call(run: Callable):
     """
     import types
 
-    from vehdyn.simulate import simulate
+    from vehdyn.simulation import simulate
 
     code, cells = getattr(run, "__code__", None), getattr(run, "__closure__", None)
     if code is None or not cells or "simulate" not in code.co_freevars:
@@ -312,7 +312,7 @@ def _solver_options(solver) -> dict:
     """The validated ``solver`` options of a Scene sweep ({} for None)."""
     if solver is None:
         return {}
-    from vehdyn.simulate import SOLVE_IVP_METHODS
+    from vehdyn.simulation import SOLVE_IVP_METHODS
 
     if not isinstance(solver, Mapping):
         raise ParameterError(f"solver must be a mapping of {_SOLVER_KEYS}, got {solver!r}", key="solver",

@@ -57,7 +57,7 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from vehdyn._compiled_ode import compiled_copy, source_stamp
+from vehdyn.simulation.compiled import compiled_copy, source_stamp
 from vehdyn.tire import _fast_math, _mf_ops, magic_formula, mf_forces, mf_moments, mf_vertical
 from vehdyn.tire._mf_ops import ScalarOps
 

@@ -52,7 +52,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from vehdyn._compiled_ode import numba_available
+from vehdyn.simulation.compiled import numba_available
 from vehdyn.errors import ParameterError, TirFileError
 from vehdyn.params import data_path
 from vehdyn.tire._common import NAN_FORCES, broadcast_shape, finite_scalars, float_input, nan_at, neutralize, nonfinite_points

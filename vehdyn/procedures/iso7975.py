@@ -1,0 +1,71 @@
+"""ISO 7975:2019 braking in a turn: from a steady turn, brake at a constant deceleration demand."""
+
+from __future__ import annotations
+
+from vehdyn.params.checks import finite_number
+from vehdyn.errors import ParameterError
+from dataclasses import dataclass
+import numpy as np
+
+__all__ = ["BrakingInTurn", "braking_in_turn"]
+
+
+@dataclass(frozen=True)
+class BrakingInTurn:
+    """Braking in a turn (ISO 7975): the result and the metrics 1 s after brake onset.
+
+    Attributes
+    ----------
+    result : SimulationResult
+    initial : SteadyStateCornering
+    yaw_rate_ratio : float
+        Yaw rate 1 s after brake onset over the initial yaw rate [-].
+    sideslip_change : float
+        Sideslip change over that second [rad].
+    mean_deceleration : float
+        Mean longitudinal deceleration over that second [m/s^2] (positive braking).
+    """
+
+    result: object
+    initial: object
+    yaw_rate_ratio: float
+    sideslip_change: float
+    mean_deceleration: float
+
+
+def braking_in_turn(model, *, radius: float = 100.0, lateral_acceleration: float = 5.0, deceleration: float = 4.0,
+                    brake_front_share: float = 0.65, brake_start: float = 1.0, duration: float = 4.0,
+                    method: str = "RK45", rtol: float = 1e-6):
+    """ISO 7975 braking in a turn with a force-mode SingleTrack model.
+
+    The vehicle starts in the steady turn (radius [m], a_y [m/s^2]); at ``brake_start`` the drive is
+    released and braking forces m * ``deceleration`` split ``brake_front_share`` : rest between the
+    axles are applied (clipped by the tire friction in the model); the steer is held.
+    """
+    from vehdyn.simulation import simulate
+    from vehdyn.handling.nonlinear_steady_state import steady_state_cornering
+
+    if model.wheel_spin:
+        raise ParameterError("braking_in_turn drives a force-mode SingleTrack (wheel_spin=False)", key="model",
+                             value=model)
+    share = finite_number(brake_front_share, "brake_front_share")
+    if not 0 <= share <= 1:
+        raise ParameterError(f"brake_front_share must be in [0, 1], got {share}", key="brake_front_share", value=share)
+    deceleration = finite_number(deceleration, "deceleration", positive=True)
+    brake_start, duration = finite_number(brake_start, "brake_start"), finite_number(duration, "duration", positive=True)
+    initial = steady_state_cornering(model, lateral_acceleration=lateral_acceleration, radius=radius)
+    force = float(model.parameters.mass) * deceleration
+    drive = initial.drive
+    time = np.linspace(0.0, brake_start + duration, int(round((brake_start + duration) / 0.01)) + 1)
+    braking = time >= brake_start
+    inputs = {"front_steer_angle": np.full(time.size, initial.steer_angle),
+              "front_longitudinal_force": np.where(braking, -share * force, 0.0),
+              "rear_longitudinal_force": np.where(braking, -(1 - share) * force, drive)}
+    result = simulate(model, time, inputs, x0=initial.state, method=method, rtol=rtol, hold="zoh")
+    t1 = brake_start + 1.0
+    r = result["yaw_rate"]
+    beta = result["sideslip_angle"]
+    u = result["longitudinal_velocity"]
+    return BrakingInTurn(result, initial, float(np.interp(t1, time, r) / initial.yaw_rate),
+                         float(np.interp(t1, time, beta) - np.interp(brake_start, time, beta)),
+                         float((np.interp(brake_start, time, u) - np.interp(t1, time, u)) / 1.0))

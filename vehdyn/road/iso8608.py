@@ -1,0 +1,388 @@
+"""ISO 8608 road spectra: classes, temporal spectra, the shaping filter, synthesis, parallel tracks.
+
+Spectrum (ISO 8608:2016, clause 5 and Annex C)
+    Displacement power spectral density (one-sided) against spatial frequency n [cycles/m]:
+    Gd(n) = Gd(n0) (n / n0)^-w, n0 = 0.1 cycles/m, waviness w = 2. The classes A to H are the
+    *geometric means* of the class bands: Gd(n0) = 16e-6 m^3 (A) ... 262144e-6 m^3 (H), each class
+    four times the previous one. (Public code often uses the class upper limits, 32e-6 m^3 for A, or
+    the values at Omega0 = 1 rad/m, Gd(Omega0) = 2 pi n0^2 Gd(n0) = Gd(n0) / 15.9 -- not here.)
+    :class:`RoadSpectrum` may add a cut-on spatial frequency n_c below which the spectrum levels
+    off, Gd(n) = Gd(n0) ((n^2 + n_c^2) / n0^2)^(-w/2), which makes the profile variance finite and
+    its shaping filter stable; n_c = 0 (the default) is the standard's spectrum.
+
+Temporal spectra at speed V [m/s]
+    f = n V, G_z(f) = Gd(f / V) / V [m^2/Hz]. For w = 2 the road *velocity* spectrum is white:
+    G_zdot(f) = (2 pi n0)^2 Gd(n0) V (for n_c = 0).
+
+Shaping filter (w = 2 only)
+    road_displacement = sigma / (s + a) w(t), a = 2 pi n_c V, sigma = 2 pi n0 sqrt(Gd(n0) V / 2),
+    for unit-intensity white noise w (E[w(t) w(t + tau)] = delta(tau), i.e. one-sided PSD 2 per
+    Hz); it reproduces the spectrum above exactly. See :meth:`RoadSpectrum.shaping_filter`.
+
+Synthesis
+    Sum of cosines with random phases (Shinozuka & Jan 1972; da Silva 2004):
+    z(x) = sum_i A_i cos(2 pi n_i x + phi_i), n_i = i dn, dn = 1 / L, A_i = sqrt(2 Gd(n_i) dn),
+    phi_i uniform on [0, 2 pi) from a seeded generator. Over the length L the cosines are
+    orthogonal, so the sample variance is sum_i Gd(n_i) dn exactly, whatever the phases (with a
+    coarse dn this left-endpoint sum differs from the continuous band integral by tens of percent for
+    an n^-2 spectrum). Evaluated on the grid by one inverse FFT.
+    Filtered white noise: the shaping filter sampled exactly (an Ornstein-Uhlenbeck recurrence, a
+    random walk for n_c = 0).
+
+Parallel tracks
+    Left and right profiles with the coherence of a homogeneous isotropic surface (Dodds & Robson,
+    J. Sound Vib. 31(2) 1973 175-183; Kamash & Robson, J. Sound Vib. 57(1) 1978 89-100 -- from
+    memory): a track spectrum Gd ~ n^-w comes from an isotropic 2-D spectrum ~ k^-(w+1), whose
+    cross-spectrum between tracks a distance B apart is real, Gd(n) rho(n) with
+    rho(n) = 2^(1 - nu) / Gamma(nu) z^nu K_nu(z), z = 2 pi n B, nu = w / 2 (rho = z K_1(z) for
+    w = 2). See :func:`isotropic_coherence`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from vehdyn.errors import ParameterError
+from vehdyn.params.checks import positive_number as _positive
+from vehdyn.road.profile import RoadProfile
+
+__all__ = [
+    "ISO8608_CLASSES",
+    "ISO8608_REFERENCE_FREQUENCY",
+    "iso8608_class_value",
+    "iso8608_psd",
+    "iso8608_class_of",
+    "estimate_spectrum",
+    "RoadSpectrum",
+    "synthesize_profile",
+    "synthesize_parallel_profiles",
+    "isotropic_coherence",
+]
+
+ISO8608_REFERENCE_FREQUENCY = 0.1
+"""n0 [cycles/m] of ISO 8608."""
+
+ISO8608_CLASSES: dict[str, float] = {c: 16e-6 * 4.0**k for k, c in enumerate("ABCDEFGH")}
+"""Geometric-mean displacement PSD Gd(n0) [m^3] of the ISO 8608 classes A-H (n0 = 0.1 cycles/m, w = 2)."""
+
+
+def iso8608_class_value(road_class) -> float:
+    """Gd(n0) [m^3] of an ISO 8608 class letter ``"A"`` ... ``"H"``, or a user-given value [m^3] as it is."""
+    if isinstance(road_class, str):
+        key = road_class.strip().upper()
+        if key not in ISO8608_CLASSES:
+            raise ParameterError(f"unknown ISO 8608 road class {road_class!r}; classes are A-H or a value Gd(n0) "
+                                 "in m^3", key="road_class", value=road_class)
+        return ISO8608_CLASSES[key]
+    return _positive(road_class, "road_class")
+
+
+def iso8608_psd(road_class, n, *, waviness: float = 2.0) -> np.ndarray:
+    """ISO 8608 displacement PSD Gd(n) = Gd(n0) (n / n0)^-w [m^3] at spatial frequency ``n`` [cycles/m].
+
+    Parameters
+    ----------
+    road_class : str or float
+        Class letter ``"A"`` to ``"H"`` (geometric mean of the class) or Gd(n0) [m^3].
+    n : array_like
+        Spatial frequency [cycles/m], > 0.
+    waviness : float
+        Exponent w (2 in ISO 8608).
+    """
+    return RoadSpectrum.from_class(road_class, waviness=waviness).psd(n)
+
+
+@dataclass(frozen=True)
+class RoadSpectrum:
+    """Road displacement spectrum Gd(n) = Gd(n0) ((n^2 + n_c^2) / n0^2)^(-w/2) [m^3].
+
+    Parameters
+    ----------
+    gd0 : float
+        Gd(n0) [m^3] at n0 = 0.1 cycles/m.
+    waviness : float
+        w [-] (ISO 8608: 2).
+    cut_on : float
+        n_c [cycles/m] below which the spectrum levels off (0: the ISO 8608 spectrum itself).
+    """
+
+    gd0: float
+    waviness: float = 2.0
+    cut_on: float = 0.0
+
+    def __post_init__(self):
+        _positive(self.gd0, "gd0")
+        w = _positive(self.waviness, "waviness")
+        if w > 6:
+            raise ParameterError(f"waviness = {w} is outside the plausible range (0, 6] of road spectra",
+                                 key="waviness", value=w)
+        _positive(self.cut_on, "cut_on", allow_zero=True)
+
+    @classmethod
+    def from_class(cls, road_class, *, waviness: float = 2.0, cut_on: float = 0.0) -> "RoadSpectrum":
+        """The spectrum of ISO 8608 class ``road_class`` (``"A"``...``"H"`` or Gd(n0) [m^3])."""
+        return cls(iso8608_class_value(road_class), waviness, cut_on)
+
+    @property
+    def n0(self) -> float:
+        return ISO8608_REFERENCE_FREQUENCY
+
+    def psd(self, n) -> np.ndarray:
+        """Gd(n) [m^3] at spatial frequency ``n`` [cycles/m] (one-sided)."""
+        n = np.asarray(n, dtype=float)
+        if np.any(n < 0) or (self.cut_on == 0 and np.any(n == 0)):
+            raise ParameterError("spatial frequency n must be positive [cycles/m]", key="n", value=n)
+        return self.gd0 * ((n**2 + self.cut_on**2) / self.n0**2) ** (-self.waviness / 2.0)
+
+    def temporal_psd(self, frequency_hz, speed: float) -> np.ndarray:
+        """Road displacement PSD G_z(f) = Gd(f / V) / V [m^2/Hz] seen at speed ``speed`` [m/s]."""
+        V = _positive(speed, "speed")
+        return self.psd(np.asarray(frequency_hz, dtype=float) / V) / V
+
+    def variance(self, n_low: float = 0.0, n_high: float = np.inf) -> float:
+        """Profile variance in the band [n_low, n_high] [m^2]: integral of Gd(n) dn.
+
+        Closed form for w = 2 (arctangent, or 1/n without cut-on) and for any w without cut-on;
+        otherwise adaptive quadrature.
+        """
+        lo, hi = float(n_low), float(n_high)
+        if not (0 <= lo < hi):
+            raise ParameterError(f"need 0 <= n_low < n_high, got {n_low}, {n_high}", key="n_low", value=n_low)
+        w, nc, n0, g = self.waviness, self.cut_on, self.n0, self.gd0
+        if nc == 0:
+            if lo == 0 or (w <= 1 and np.isinf(hi)):
+                return float("inf")
+            if w == 1:
+                return float(g * n0 * np.log(hi / lo))
+            hi_term = 0.0 if np.isinf(hi) else hi ** (1 - w)
+            return float(g * n0**w * (hi_term - lo ** (1 - w)) / (1 - w))
+        if w == 2:
+            return float(g * n0**2 / nc * (np.arctan(hi / nc) - np.arctan(lo / nc)))
+        from scipy.integrate import quad
+
+        return float(quad(lambda n: float(self.psd(n)), lo, hi, limit=200)[0])
+
+    def rms(self, n_low: float = 0.0, n_high: float = np.inf) -> float:
+        """Profile r.m.s. in the band [n_low, n_high] [m]."""
+        return float(np.sqrt(self.variance(n_low, n_high)))
+
+    def white_noise_gain(self, speed: float) -> float:
+        """sigma [m/s^0.5]: road_velocity = sigma w for n_c = 0, w unit-intensity white noise (w = 2 only)."""
+        self._require_rational()
+        return 2.0 * np.pi * self.n0 * np.sqrt(self.gd0 * _positive(speed, "speed") / 2.0)
+
+    def _require_rational(self):
+        if self.waviness != 2.0:
+            raise ParameterError(f"a rational shaping filter exists only for waviness 2, got {self.waviness}; use "
+                                 "the PSD route or sum-of-cosines synthesis", key="waviness", value=self.waviness)
+
+    def shaping_filter(self, speed: float, *, noise_input: str = "road_noise", suffix: str = ""):
+        """Shaping filter: a :class:`~vehdyn.LinearModel` from white noise to the road at ``speed`` [m/s].
+
+        Input ``noise_input`` is unit-intensity white noise (E[w(t) w(t + tau)] = delta(tau));
+        state and output ``road_displacement`` [m] and output ``road_velocity`` [m/s] (names with
+        ``suffix`` appended, e.g. ``"_front"``), so that ``vehdyn.connect_in_series(filter,
+        ride_model)`` drives any ride model with inputs of those names. dz/dt = -a z + sigma w,
+        a = 2 pi n_c V, sigma = 2 pi n0 sqrt(Gd(n0) V / 2): the output spectrum is
+        :meth:`temporal_psd` exactly. With n_c = 0 the filter is an integrator (a marginally stable
+        state, like the road itself); :func:`vehdyn.ride.random_vibration` handles that exactly.
+        Only for waviness 2 (ParameterError otherwise).
+        """
+        from vehdyn.model import LinearModel
+
+        V = _positive(speed, "speed")
+        sigma = self.white_noise_gain(V)
+        a = 2.0 * np.pi * self.cut_on * V
+        return LinearModel([[-a]], [[sigma]], [[1.0], [-a]], [[0.0], [sigma]],
+                           states=[f"road_displacement{suffix}"], inputs=[noise_input],
+                           outputs=[f"road_displacement{suffix}", f"road_velocity{suffix}"],
+                           name=f"ISO 8608 road Gd(n0)={self.gd0:.3g} m^3 at {V:g} m/s",
+                           phenomena={"road_input"})
+
+
+def isotropic_coherence(n, track_width: float, waviness: float = 2.0) -> np.ndarray:
+    """Left-right coherence rho(n) [-] of a homogeneous isotropic road (Dodds & Robson 1973).
+
+    rho(n) = 2^(1 - nu) / Gamma(nu) z^nu K_nu(z), z = 2 pi n B, nu = w / 2; the cross-spectral
+    density between two parallel tracks ``track_width`` B [m] apart is rho(n) Gd(n) (real). rho is
+    1 at n = 0 and falls to 0.5 near n B = 0.19 (w = 2). The magnitude-squared coherence is rho^2.
+    """
+    from scipy.special import gamma, kv
+
+    B = _positive(track_width, "track_width", allow_zero=True)
+    nu = _positive(waviness, "waviness") / 2.0
+    z = 2.0 * np.pi * np.abs(np.asarray(n, dtype=float)) * B
+    with np.errstate(invalid="ignore", over="ignore"):
+        rho = 2.0 ** (1.0 - nu) / gamma(nu) * z**nu * kv(nu, z)
+    return np.where(z == 0, 1.0, np.nan_to_num(rho, nan=0.0))
+
+
+# --------------------------------------------------------------------------- profiles
+def _rng(seed):
+    return seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+
+
+def _grid(length, spacing):
+    L = _positive(length, "length")
+    dx = _positive(spacing, "spacing")
+    N = int(round(L / dx))
+    if N < 4:
+        raise ParameterError(f"length / spacing = {L / dx:g} gives fewer than 4 samples", key="spacing", value=dx)
+    return N, dx
+
+
+def _cosine_amplitudes(spectrum: RoadSpectrum, N: int, dx: float, n_min, n_max):
+    """Component indices i (n_i = i / L) and amplitudes A_i = sqrt(2 Gd(n_i) dn) in [n_min, n_max]."""
+    L = N * dx
+    dn = 1.0 / L
+    i = np.arange(1, (N - 1) // 2 + 1)  # strictly below the Nyquist frequency
+    n = i * dn
+    keep = np.ones(i.size, dtype=bool)
+    if n_min is not None:
+        keep &= n >= float(n_min) * (1 - 1e-12)
+    if n_max is not None:
+        keep &= n <= float(n_max) * (1 + 1e-12)
+    i, n = i[keep], n[keep]
+    if i.size == 0:
+        raise ParameterError(f"no spatial frequency i/L (L = {L:g} m) lies in [{n_min}, {n_max}] below the Nyquist "
+                             f"frequency {0.5 / dx:g} cycles/m", key="n_min", value=n_min)
+    return i, np.sqrt(2.0 * spectrum.psd(n) * dn)
+
+
+def synthesize_profile(
+    spectrum: RoadSpectrum | str | float,
+    length: float,
+    spacing: float,
+    *,
+    seed=None,
+    n_min: float | None = None,
+    n_max: float | None = None,
+    method: str = "cosines",
+) -> RoadProfile:
+    """A random road profile with the displacement spectrum ``spectrum``.
+
+    Parameters
+    ----------
+    spectrum : RoadSpectrum, class letter or Gd(n0) [m^3]
+    length, spacing : float
+        Profile length and sample spacing [m].
+    seed : int or numpy Generator, optional
+        Random phases (or noise) are reproducible with a seed.
+    n_min, n_max : float, optional
+        Band of the cosine components [cycles/m]; default from 1 / length up to the Nyquist
+        frequency 1 / (2 spacing) (exclusive).
+    method : {"cosines", "white_noise"}
+        ``"cosines"``: sum of cosines with random phases at n_i = i / length (the profile is
+        periodic over ``length``; its variance is sum Gd(n_i) dn exactly). ``"white_noise"``: the
+        shaping filter driven by white noise, sampled exactly (waviness 2 only; with cut_on = 0 a
+        random walk starting at 0).
+    """
+    if not isinstance(spectrum, RoadSpectrum):
+        spectrum = RoadSpectrum.from_class(spectrum)
+    N, dx = _grid(length, spacing)
+    x = np.arange(N) * dx
+    rng = _rng(seed)
+    if method == "cosines":
+        i, A = _cosine_amplitudes(spectrum, N, dx, n_min, n_max)
+        c = np.zeros(i[-1] + 1, dtype=complex)
+        c[i] = A * np.exp(1j * rng.uniform(0.0, 2.0 * np.pi, i.size))
+        profile = RoadProfile(x, np.zeros(N), c)
+        return RoadProfile(x, profile._spectral(1.0), c)
+    if method == "white_noise":
+        from scipy.signal import lfilter
+
+        spectrum._require_rational()
+        # in distance: dz/dx = -a z + s w(x), a = 2 pi n_c, s = 2 pi n0 sqrt(Gd0 / 2) (speed 1 m/s)
+        a = 2.0 * np.pi * spectrum.cut_on
+        s = spectrum.white_noise_gain(1.0)
+        if a > 0:
+            phi = np.exp(-a * dx)
+            q = s**2 * (1.0 - phi**2) / (2.0 * a)
+            z0 = rng.normal(0.0, s / np.sqrt(2.0 * a))  # stationary start
+        else:
+            phi, q, z0 = 1.0, s**2 * dx, 0.0
+        e = rng.normal(0.0, np.sqrt(q), N)
+        e[0] = z0
+        return RoadProfile(x, lfilter([1.0], [1.0, -phi], e))
+    raise ParameterError(f"method must be 'cosines' or 'white_noise', got {method!r}", key="method", value=method)
+
+
+def synthesize_parallel_profiles(
+    spectrum: RoadSpectrum | str | float,
+    length: float,
+    spacing: float,
+    track_width: float,
+    *,
+    seed=None,
+    n_min: float | None = None,
+    n_max: float | None = None,
+) -> tuple[RoadProfile, RoadProfile]:
+    """Left and right profiles ``track_width`` [m] apart with the isotropic coherence of :func:`isotropic_coherence`.
+
+    Sum of cosines: left A_i cos(2 pi n_i x + phi_i); right
+    A_i [rho_i cos(2 pi n_i x + phi_i) + sqrt(1 - rho_i^2) cos(2 pi n_i x + psi_i)] with independent
+    phases phi, psi. Both tracks have the spectrum Gd, their cross-spectrum is rho Gd.
+    """
+    if not isinstance(spectrum, RoadSpectrum):
+        spectrum = RoadSpectrum.from_class(spectrum)
+    N, dx = _grid(length, spacing)
+    x = np.arange(N) * dx
+    rng = _rng(seed)
+    i, A = _cosine_amplitudes(spectrum, N, dx, n_min, n_max)
+    rho = isotropic_coherence(i / (N * dx), track_width, spectrum.waviness)
+    e1 = np.exp(1j * rng.uniform(0.0, 2.0 * np.pi, i.size))
+    e2 = np.exp(1j * rng.uniform(0.0, 2.0 * np.pi, i.size))
+    cl = np.zeros(i[-1] + 1, dtype=complex)
+    cr = np.zeros(i[-1] + 1, dtype=complex)
+    cl[i] = A * e1
+    cr[i] = A * (rho * e1 + np.sqrt(np.clip(1.0 - rho**2, 0.0, None)) * e2)
+    empty = RoadProfile(x, np.zeros(N), cl)
+    return RoadProfile(x, empty._spectral(1.0, cl), cl), RoadProfile(x, empty._spectral(1.0, cr), cr)
+
+
+def iso8608_class_of(gd0: float) -> str:
+    """ISO 8608 class letter of Gd(n0) [m^3]: classes are bands a factor 4 wide around the geometric means.
+
+    Lower limit of class X is its geometric mean / 2, upper limit geometric mean * 2 (A has no lower
+    limit; H no upper one).
+    """
+    g = _positive(gd0, "gd0")
+    k = int(np.floor(np.log(g / 16e-6 * 2.0) / np.log(4.0)))  # 0 for A: [8e-6, 32e-6) and below
+    return "ABCDEFGH"[min(max(k, 0), 7)]
+
+
+def estimate_spectrum(profile: "RoadProfile", n_low: float = 0.011, n_high: float = 2.83):
+    """Gd(n0) [m^3] and ISO 8608 class of a measured profile, for waviness 2.
+
+    The displacement PSD is estimated by Welch's method (Hann windows, segments of at least 1 / n_low
+    or a quarter of the profile), compensated by (n / n0)^2 and averaged first within each octave
+    band of [n_low, n_high] [cycles/m] (default: ISO 8608's range), then geometrically over the
+    octaves. Returns ``(gd0, class_letter)``.
+    """
+    from scipy.signal import welch
+
+    if not isinstance(profile, RoadProfile):
+        raise ParameterError("profile must be a RoadProfile", key="profile", value=type(profile).__name__)
+    lo, hi = _positive(n_low, "n_low"), _positive(n_high, "n_high")
+    nyq = 0.5 / profile.spacing
+    hi = min(hi, 0.8 * nyq)
+    if lo >= hi:
+        raise ParameterError(f"no band left between n_low = {lo} and min(n_high, 0.8 Nyquist) = {hi} cycles/m",
+                             key="n_low", value=lo)
+    N = profile.elevation.size
+    nperseg = int(min(N, max(N // 4, 2 ** np.ceil(np.log2(4.0 / (lo * profile.spacing))))))
+    n, G = welch(profile.elevation - profile.elevation.mean(), fs=1.0 / profile.spacing, nperseg=nperseg)
+    r = G * (n / ISO8608_REFERENCE_FREQUENCY) ** 2
+    edges = lo * 2.0 ** np.arange(0, np.log2(hi / lo) + 1e-9)
+    edges = np.append(edges, hi) if edges[-1] < hi else edges
+    means = [r[(n >= a) & (n < b)].mean() for a, b in zip(edges[:-1], edges[1:]) if np.any((n >= a) & (n < b))]
+    if not means:
+        raise ParameterError("the profile is too short for its band: no PSD estimate falls in it", key="profile",
+                             value=N * profile.spacing)
+    gd0 = float(np.exp(np.mean(np.log(means))))
+    return gd0, iso8608_class_of(gd0)
+
+
+# --------------------------------------------------------------------------- discrete events
