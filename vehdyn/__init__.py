@@ -16,8 +16,9 @@ Errors
 Scenes and the fidelity ladder (imported on first use)
     :class:`Scene`, :func:`plan`, :func:`run`, :func:`ladder`, :func:`plot_ladder` (:mod:`vehdyn.scene`)
 Sweeps, Monte Carlo and sensitivity (imported on first use)
-    :func:`sweep` (grids and samples of a scene or a function; in-process, processes or Dask),
-    :func:`sensitivity` (Sobol' and Morris indices through SALib) (:mod:`vehdyn.sweep`)
+    :mod:`vehdyn.sweep`: :func:`vehdyn.sweep.run` (grids and samples of a scene or a function;
+    in-process, processes or Dask), :func:`vehdyn.sweep.sensitivity` (Sobol' and Morris indices
+    through SALib)
 Conventions and units
     :mod:`vehdyn.conventions` (SAE J670 / ISO 8855 / ISO-W signs), :mod:`vehdyn.units`
 Subpackages (imported on first use)
@@ -72,8 +73,6 @@ __all__ = [
     "run",
     "ladder",
     "plot_ladder",
-    "sweep",
-    "sensitivity",
 ]
 
 _SUBPACKAGES = {"mechanics", "tire", "handling", "ride", "full_vehicle", "chassis", "analysis", "plotting",
@@ -86,10 +85,6 @@ def __getattr__(name: str):
         return importlib.import_module(f".{name}", __name__)
     if name in _SCENE_NAMES:
         return getattr(importlib.import_module(".scene", __name__), name)
-    if name == "sensitivity":
-        from .sweep import sensitivity
-
-        return sensitivity
     if name == "Modes":
         from .analysis.modal import Modes
 

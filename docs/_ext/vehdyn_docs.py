@@ -54,7 +54,7 @@ LAYERS = [
     ("scene", "Scenes and the fidelity ladder", "The cheapest model that answers a question.",
      [("vehdyn", ["Scene", "plan", "run", "ladder", "plot_ladder"]), ("vehdyn.scene", None)]),
     ("sweep", "Sweeps and sensitivity", "Grids, samples, Monte Carlo and Sobol'/Morris indices.",
-     [("vehdyn", ["sweep", "sensitivity"]), ("vehdyn.sweep", None)]),
+     [("vehdyn.sweep", None)]),
     ("plotting", "Plotting and the command line", "Figures in the textbook's form; the ``vehdyn`` command.",
      [("vehdyn.plotting", None), ("vehdyn.cli", None)]),
 ]

@@ -26,7 +26,7 @@ def _ishigami_indices(a=7.0, b=0.1):
 
 
 def test_sobol_indices_of_ishigami_match_the_closed_form():
-    frame = vehdyn.sensitivity(ishigami, {"x1": B, "x2": B, "x3": B}, "y", n=1024, seed=1)
+    frame = vehdyn.sweep.sensitivity(ishigami, {"x1": B, "x2": B, "x3": B}, "y", n=1024, seed=1)
     s1, st_ = _ishigami_indices()
     assert list(frame.index) == ["x1", "x2", "x3"]
     # within the bootstrap intervals (x2.5 for the 95 % interval's own sampling error)
@@ -44,7 +44,7 @@ def test_morris_of_a_linear_function_gives_its_slopes():
     def linear(a, b, c):
         return {"y": 3.0 * a - 2.0 * b + 0.0 * c, "z": a}
 
-    frame = vehdyn.sensitivity(linear, {"a": (0.0, 1.0), "b": (10.0, 12.0), "c": st.norm(0, 1)}, ["y", "z"],
+    frame = vehdyn.sweep.sensitivity(linear, {"a": (0.0, 1.0), "b": (10.0, 12.0), "c": st.norm(0, 1)}, ["y", "z"],
                                method="morris", n=10, seed=0)
     # elementary effect = slope x range (SALib scales the step by the range): 3 x 1, 2 x 2, 0
     np.testing.assert_allclose(frame.loc["y", "mu_star"], [3.0, 4.0, 0.0], atol=1e-12)
@@ -64,7 +64,7 @@ def test_bad_sensitivity_arguments(kwargs, word):
     args = dict(parameters={"x1": B, "x2": B, "x3": B}, n=64)
     args.update(kwargs)
     with pytest.raises(vehdyn.ParameterError, match=word):
-        vehdyn.sensitivity(ishigami, args.pop("parameters"), "y", **args)
+        vehdyn.sweep.sensitivity(ishigami, args.pop("parameters"), "y", **args)
 
 
 def test_failed_runs_are_reported():
@@ -74,4 +74,4 @@ def test_failed_runs_are_reported():
         return {"y": x}
 
     with pytest.raises(vehdyn.SimulationError, match="x too large"):
-        vehdyn.sensitivity(fragile, {"x": (0.0, 1.0)}, "y", n=8)
+        vehdyn.sweep.sensitivity(fragile, {"x": (0.0, 1.0)}, "y", n=8)
