@@ -54,7 +54,7 @@ LAYERS = [
     ("scene", "Scenes and the fidelity ladder", "The cheapest model that answers a question.",
      [("vehdyn", ["Scene", "plan", "run", "ladder", "plot_ladder"]), ("vehdyn.scene", None)]),
     ("sweep", "Sweeps and sensitivity", "Grids, samples, Monte Carlo and Sobol'/Morris indices.",
-     [("vehdyn.sweep", None)]),
+     [("vehdyn.sweep", None), ("vehdyn.sweep.metrics", None)]),
     ("plotting", "Plotting and the command line", "Figures in the textbook's form; the ``vehdyn`` command.",
      [("vehdyn.plotting", None), ("vehdyn.cli", None)]),
 ]
@@ -63,7 +63,7 @@ LAYERS = [
 _ORDER = ["vehdyn", "vehdyn.params", "vehdyn.conventions", "vehdyn.units", "vehdyn.mechanics", "vehdyn.tire",
           "vehdyn.tire.fitting", "vehdyn.tire.terramechanics", "vehdyn.handling", "vehdyn.ride",
           "vehdyn.full_vehicle", "vehdyn.chassis", "vehdyn.analysis", "vehdyn.scene", "vehdyn.sweep",
-          "vehdyn.plotting", "vehdyn.cli"]
+          "vehdyn.sweep.metrics", "vehdyn.plotting", "vehdyn.cli"]
 
 
 def public_names() -> dict[str, list[str]]:

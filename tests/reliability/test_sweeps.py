@@ -391,6 +391,13 @@ def test_non_finite_text_specs_are_refused(tmp_path, capsys):
     assert len(err) == 1 and "finite" in err[0]
 
 
+@pytest.mark.parametrize("spec", ["speed=0:1:1e10", "speed=0:1:0", "speed=0:1:2.5"])
+def test_a_grid_count_that_cannot_be_a_sweep_is_refused(spec):
+    with pytest.raises(ParameterError, match="COUNT from 1 to 10,000,000") as info:
+        grid_from_text(spec)  # 1e10 was a MemoryError (an 80 GB linspace)
+    assert info.value.key == "grid"
+
+
 class Gappy:
     """A law whose quantile function is NaN below its first quartile."""
 

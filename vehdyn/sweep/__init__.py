@@ -2,7 +2,8 @@
 
 :func:`run` runs every variant of a :class:`~vehdyn.Scene` or of a function of named parameters
 (a full-factorial ``grid`` and/or ``samples`` drawn from distributions), reduces each run to named
-metrics (:mod:`vehdyn.sweep.metrics`) and returns one row per variant; an invalid variant keeps
+metrics (:mod:`vehdyn.sweep.metrics`: the registry, the :class:`~vehdyn.sweep.metrics.Run` a
+metric reduces) and returns one row per variant; an invalid variant keeps
 its row with the message in ``error``. Engines (:mod:`vehdyn.sweep.engines`): in-process, a
 process pool or any :class:`concurrent.futures.Executor`, or a Dask cluster. ``out=`` writes
 Parquet chunks atomically beside a manifest of what produced them, and ``resume=True`` finishes
@@ -19,8 +20,7 @@ Pointing a study at a cluster changes only the executor::
 
 from .api import run, variants
 from .indices import plot_sensitivity, sensitivity
-from .metrics import Run, metric_names, register_metric
+from .metrics import metric_names, register_metric
 from .targets import vectorized
 
-__all__ = ["run", "variants", "vectorized", "register_metric", "metric_names", "Run", "sensitivity",
-           "plot_sensitivity"]
+__all__ = ["run", "variants", "vectorized", "register_metric", "metric_names", "sensitivity", "plot_sensitivity"]

@@ -16,6 +16,7 @@ from .targets import as_target
 __all__ = ["run", "variants", "run_table", "grid_from_text", "distribution_from_text"]
 
 _SAMPLING = ("lhs", "sobol", "random")
+_MAX_COUNT = 10_000_000  # values of one grid dimension written as START:STOP:COUNT
 
 
 def _check_name(name, what: str) -> None:
@@ -57,7 +58,7 @@ def _grid_values(name, values) -> list:
     if not values:
         raise ParameterError(f"grid[{name!r}] is empty", key=name, value=values)
     for k, v in enumerate(values):
-        if _is_real(v) and not math.isfinite(v):
+        if (_is_real(v) or isinstance(v, (complex, np.complexfloating))) and not np.isfinite(v):
             raise ParameterError(f"grid[{name!r}][{k}] = {v!r}: grid values must be finite numbers", key=name,
                                  value=v)
     return values
@@ -433,9 +434,9 @@ def grid_from_text(spec: str) -> tuple[str, list]:
         raise ParameterError(f"grid {spec!r}: write NAME=START:STOP:COUNT or NAME=V1,V2,...", key="grid", value=spec)
     if ":" in text:
         parts = _numbers(text, "grid", spec)
-        if len(parts) != 3 or parts[2] < 1 or parts[2] != int(parts[2]):
-            raise ParameterError(f"grid {spec!r}: START:STOP:COUNT with an integer COUNT >= 1", key="grid",
-                                 value=spec)
+        if len(parts) != 3 or not 1 <= parts[2] <= _MAX_COUNT or parts[2] != int(parts[2]):
+            raise ParameterError(f"grid {spec!r}: START:STOP:COUNT with an integer COUNT from 1 to {_MAX_COUNT:,}",
+                                 key="grid", value=spec)
         return name.strip(), np.linspace(parts[0], parts[1], int(parts[2])).tolist()
     return name.strip(), _numbers(text, "grid", spec)
 

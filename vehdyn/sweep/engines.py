@@ -51,16 +51,20 @@ def _not_finite(names, rows) -> dict[int, str]:
     bad: dict[int, str] = {}
     for j, name in enumerate(names):
         column = [r[j] for r in rows]
-        values = np.asarray(column)
-        if values.dtype.kind in "fc":
+        try:
+            values = np.asarray(column)
+        except ValueError:  # ragged values (sequences of different lengths): none is a number
+            continue
+        if values.ndim == 1 and values.dtype.kind in "fc":
             flags = ~np.isfinite(values)
-        elif values.dtype.kind == "O":
+        elif values.dtype.kind in "fcO":
             flags = np.array([_is_real(v) and not math.isfinite(v) for v in column], dtype=bool)
         else:
             continue
         for k in np.flatnonzero(flags):
-            bad.setdefault(int(k), f"ParameterError: parameter {name!r} = {column[k]!r} is not a finite number "
-                                   "(a draw of its distribution?); the variant was not run")
+            value = column[k].item() if isinstance(column[k], np.generic) else column[k]
+            bad.setdefault(int(k), f"ParameterError: parameter {name!r} = {value!r} is not a finite number (a draw of "
+                                   "its distribution?); the variant was not run")
     return bad
 
 

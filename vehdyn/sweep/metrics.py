@@ -6,7 +6,7 @@ of one variant, its vehicle and speed) registered under a name with a unit. Two 
 * fixed names: ``understeer_gradient`` [rad/(m/s^2)], ``understeer_gradient_deg_per_g`` [deg/g],
   ``characteristic_speed`` [m/s] (Gillespie 1992, ch. 6; from the variant's vehicle, no run
   needed), ``yaw_rate_gain`` [1/s] (steady-state yaw rate per road-wheel steer at the speed);
-* families over any output signal ``<family>_<signal>``: ``peak_`` (max |x|), ``max_``, ``min_``,
+* families over any output signal ``<family>_<signal>``: ``peak_`` (max ``|x|``), ``max_``, ``min_``,
   ``rms_`` (r.m.s. over the run), ``final_`` (last value), ``mean_``, and the ISO 7401 step
   metrics ``overshoot_`` [-], ``response_time_`` [s], ``rise_time_`` [s], ``steady_state_``
   (:func:`vehdyn.handling.transient.step_response_metrics`).
