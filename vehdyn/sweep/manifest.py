@@ -125,6 +125,9 @@ def canonical(obj, depth: int = 0, seen: set | None = None):
         return [deeper(v) for v in obj]
     if isinstance(obj, (set, frozenset)):
         return sorted((deeper(v) for v in obj), key=lambda v: json.dumps(v, sort_keys=True))
+    if type(obj).__module__.startswith("pandas") and (hasattr(obj, "columns") or hasattr(obj, "to_frame")):
+        frame = obj if hasattr(obj, "columns") else obj.to_frame()  # a DataFrame, Series or Index: its values
+        return {"type": _qualname(type(obj)), "sha256": table_digest(frame.reset_index(drop=not hasattr(obj, "index")))}
     if hasattr(obj, "dist") and hasattr(obj, "ppf") and hasattr(obj, "args"):  # a frozen scipy.stats law
         return {"law": getattr(obj.dist, "name", _qualname(type(obj.dist))), "args": deeper(list(obj.args)),
                 "kwds": deeper(dict(obj.kwds))}
