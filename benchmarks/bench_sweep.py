@@ -27,10 +27,10 @@ run on this machine:
      variant; and the same batch through ``vehdyn.simulate`` (outputs included);
    - shared step: blocks of 16 variants integrated as one system by the same compiled RK45 (one
      step size per block, chosen on the r.m.s. error of all its states);
-   - ``vehdyn.sweep`` of a ``Scene`` (the same steer, mass varied, ``model="SingleTrack"``: the
+   - ``vehdyn.sweep.run`` of a ``Scene`` (the same steer, mass varied, ``model="SingleTrack"``: the
      planner resolves that name to its first admissible match, the rung "SingleTrack(linear
      tires)"): one variant at a time (chunks of 1, as before batching) and batched;
-   - ``vehdyn.sweep`` with ``executor="processes"`` (2 workers) and on a Dask ``LocalCluster``
+   - ``vehdyn.sweep.run`` with ``executor="processes"`` (2 workers) and on a Dask ``LocalCluster``
      (2 workers, 1 thread each), per-variant compiled runs, 125 variants per task, 8 tasks or
      more, each engine timed twice in turn (pool, Dask, pool, Dask; the best of each).
 
@@ -114,7 +114,7 @@ def batch_states(design, rtol=1e-8, threads=None, tire_lag=True, method="RK45"):
     """Peak yaw rates and rhs calls per variant of one compiled batch of a batch model
     (``SingleTrack.variants`` with array parameters; states only: the metric is a state)."""
     from vehdyn.simulation import compiled as _compiled_ode
-    from vehdyn.simulation import _sample_inputs
+    from vehdyn.simulation._api import _sample_inputs
 
     base = handling.SingleTrack(BASE, tire_lag=tire_lag)
     m = _batch_model(base, design)
@@ -153,7 +153,7 @@ def shared_step_runs(design, block=16, rtol=1e-8):
     """Peak yaw rates with one step size per block of ``block`` variants (the compiled RK45 on the
     stacked system: its error norm is the r.m.s. over every state of the block)."""
     from vehdyn.simulation import compiled as _compiled_ode
-    from vehdyn.simulation import _sample_inputs
+    from vehdyn.simulation._api import _sample_inputs
 
     model = _model()
     u = _sample_inputs(model, _inputs(model), T)
@@ -172,7 +172,7 @@ def shared_step_runs(design, block=16, rtol=1e-8):
 
 
 def scene_sweep(design, batched, solver=None):
-    """Peak yaw rates of the same variants as ``vehdyn.sweep`` of a Scene (mass by its dotted name)."""
+    """Peak yaw rates of the same variants as ``vehdyn.sweep.run`` of a Scene (mass by its dotted name)."""
     import pandas as pd
 
     from vehdyn.procedures import sine_steer
@@ -337,7 +337,7 @@ def main(n: int = 10_000) -> None:
     rows.append(("shared step (16/block) RK45 rtol 1e-08, 1 thread", len(shared_set),
                  len(shared_set) / (time.perf_counter() - start), np.max(np.abs(peaks[: len(ref)] / ref - 1))))
 
-    # --- vehdyn.sweep of a Scene: one variant at a time (before) and batched (after)
+    # --- vehdyn.sweep.run of a Scene: one variant at a time (before) and batched (after)
     scene_set = design.iloc[: max(len(ref), 40)]
     scene_sweep(scene_set.iloc[:2], batched=True)
     scene_sweep(scene_set.iloc[:2], batched=True, solver={"method": "BDF", "rtol": 1e-5})
@@ -347,13 +347,13 @@ def main(n: int = 10_000) -> None:
         wall = time.perf_counter() - start
         if solver is None:
             tight = peaks
-        label = f"vehdyn.sweep of a Scene, {'batched' if batched else 'one at a time'} (linear tires)"
+        label = f"vehdyn.sweep.run of a Scene, {'batched' if batched else 'one at a time'} (linear tires)"
         if solver is not None:
             label += ", solver BDF rtol 1e-5 (diff to its RK45 1e-8)"
         rows.append((label, len(scene_set), len(scene_set) / wall,
                      np.nan if solver is None else np.max(np.abs(peaks / tight - 1))))
 
-    # --- process pool and Dask through vehdyn.sweep, per-variant compiled runs, 125 variants per task, in turn
+    # --- process pool and Dask through vehdyn.sweep.run, per-variant compiled runs, 125 variants per task, in turn
     pool_set = design.iloc[: max(1000, n // 10)]
     from vehdyn.sweep.api import run_table
 
@@ -368,18 +368,18 @@ def main(n: int = 10_000) -> None:
         Client = None
     if Client is None:
         pool_rate, pool = timed("processes")
-        rows.append(("vehdyn.sweep processes (2 workers)", len(pool_set), pool_rate,
+        rows.append(("vehdyn.sweep.run processes (2 workers)", len(pool_set), pool_rate,
                      np.max(np.abs(pool["peak_yaw_rate"].to_numpy()[: len(ref)] / ref - 1))))
-        rows.append(("vehdyn.sweep Dask LocalCluster (not installed)", 0, np.nan, np.nan))
+        rows.append(("vehdyn.sweep.run Dask LocalCluster (not installed)", 0, np.nan, np.nan))
     else:
         with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None, silence_logs=40) as cluster, \
                 Client(cluster) as client:
             run_table(one_run, pool_set.iloc[:4], executor=client, chunk_size=2, progress=False)  # warm workers
             (pool_rate, pool), (dask_rate, dask) = timed("processes"), timed(client)
             pool_rate, dask_rate = max(pool_rate, timed("processes")[0]), max(dask_rate, timed(client)[0])
-        rows.append(("vehdyn.sweep processes (2 workers)", len(pool_set), pool_rate,
+        rows.append(("vehdyn.sweep.run processes (2 workers)", len(pool_set), pool_rate,
                      np.max(np.abs(pool["peak_yaw_rate"].to_numpy()[: len(ref)] / ref - 1))))
-        rows.append(("vehdyn.sweep Dask LocalCluster (2 workers)", len(pool_set), dask_rate,
+        rows.append(("vehdyn.sweep.run Dask LocalCluster (2 workers)", len(pool_set), dask_rate,
                      np.max(np.abs(dask["peak_yaw_rate"].to_numpy()[: len(ref)] / ref - 1))))
     frame = pd.DataFrame(rows, columns=["engine", "variants run", "variants/s", "max diff to single runs"])
     frame["x loop"] = frame["variants/s"] / loop_rate

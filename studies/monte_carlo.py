@@ -9,8 +9,8 @@ checks would reject most such combinations). Per variant: the linear understeer 
 characteristic speed (Gillespie 1992, ch. 6), the ISO 7401 yaw-rate overshoot of a 0.3 g step steer
 at 100 km/h (linear single-track model, exact discretization), and ride comfort: the ISO 2631-1
 Wk-weighted r.m.s. body acceleration of the front quarter car on an ISO 8608 class B road at
-25 m/s (Lyapunov route). ``vehdyn.sweep`` draws a Latin hypercube; ``vehdyn.sensitivity`` gives
-the Sobol' indices (SALib, Saltelli design) of each number to each factor.
+25 m/s (Lyapunov route). ``vehdyn.sweep.run`` draws a Latin hypercube; ``vehdyn.sweep.sensitivity``
+gives the Sobol' indices (SALib, Saltelli design) of each number to each factor.
 """
 
 import importlib.util
@@ -78,7 +78,7 @@ def run(study: Study) -> None:
 
     n = 64 if study.quick else 1000
     laws = {k: st.uniform(lo, hi - lo) for k, (lo, hi) in RANGES.items()}
-    table = vehdyn.sweep(numbers, samples=laws, n=n, seed=1, progress=False)
+    table = vehdyn.sweep.run(numbers, samples=laws, n=n, seed=1, progress=False)
     failed = int(table["error"].notna().sum())
     nominal = numbers(1.0, 0.0, 1.0, 1.0)
 
@@ -110,7 +110,8 @@ def run(study: Study) -> None:
                         "their characteristic speed is infinite, left out of its statistics)")
 
     # Sobol' indices need finite numbers: the characteristic speed sqrt(L/K) is infinite for the
-    # oversteering variants, and its indices are those of K (a monotone function of it)
+    # oversteering variants, so it has no variance over the box (sensitivity() would drop the Saltelli
+    # blocks holding those runs, with a warning); the understeer gradient K carries its information
     indexed = [k for k in METRICS if k != "characteristic_speed"]
     if importlib.util.find_spec("SALib") is None:
         study.text("The Sobol' sensitivity indices need SALib, which is not installed here: "
@@ -132,8 +133,8 @@ def run(study: Study) -> None:
         f" to {summary.loc['understeer_gradient_deg_per_g', 'p95']:.2f} deg/g (5-95 %), nominal "
         f"{nominal['understeer_gradient_deg_per_g']:.2f} deg/g; the largest total-order index of each number: "
         + ", ".join(f"{k} <- {v}" for k, v in top.items())
-        + f". {oversteer} of {len(table)} variants oversteer (K <= 0: no characteristic speed; the sensitivity "
-          "of the characteristic speed is that of K). The cornering-stiffness balance and the CG position dominate the steady-state handling numbers; "
+        + f". {oversteer} of {len(table)} variants oversteer (K <= 0: no characteristic speed, which therefore "
+          "has no Sobol' indices over the box; those of K stand for it). The cornering-stiffness balance and the CG position dominate the steady-state handling numbers; "
           "the body's weighted acceleration depends on the mass and, through the front axle's share of the "
           "sprung mass, on the CG position, but not on the cornering stiffnesses, whose indices are zero.")
 

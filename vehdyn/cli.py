@@ -16,7 +16,7 @@
 ``vehdyn scene FILE.toml [--verify]``
     Plan a scene (the fidelity ladder), run the chosen model and print the headline numbers.
 ``vehdyn sweep FILE.toml [OPTIONS]``
-    Sweep a scene's parameters (:func:`vehdyn.sweep`) with a progress bar; print a summary of the
+    Sweep a scene's parameters (:func:`vehdyn.sweep.run`) with a progress bar; print a summary of the
     metrics and write the table chunk by chunk. Options: ``[--grid NAME=START:STOP:COUNT ...]
     [--samples N --vary NAME=LAW:ARGS ...] [--metric NAME ...] [--out results.parquet [--resume]]
     [--processes | --scheduler ADDRESS] [--method METHOD] [--rtol RTOL]`` (``--method``/``--rtol``:
@@ -242,7 +242,7 @@ def cmd_scene(args) -> int:
 def cmd_sweep(args) -> int:
     from vehdyn.errors import ParameterError
     from vehdyn.scene import Scene
-    from vehdyn.sweep import sweep
+    from vehdyn.sweep import run
     from vehdyn.sweep.api import distribution_from_text, grid_from_text
 
     # bad specs, names or values raise ParameterError: main() reports it as one line, exit status 2
@@ -252,9 +252,9 @@ def cmd_sweep(args) -> int:
         raise ParameterError("--samples N and --vary NAME=LAW:ARGS go together", key="samples", value=args.samples)
     executor = args.scheduler or ("processes" if args.processes else None)
     solver = {k: v for k, v in (("method", args.method), ("rtol", args.rtol)) if v is not None} or None
-    table = sweep(Scene.from_toml(args.file), grid=grid or None, samples=samples or None, n=args.samples,
-                  sampling=args.sampling, metrics=args.metric, executor=executor, out=args.out, resume=args.resume,
-                  seed=args.seed, progress=True, solver=solver)
+    table = run(Scene.from_toml(args.file), grid=grid or None, samples=samples or None, n=args.samples,
+                sampling=args.sampling, metrics=args.metric, executor=executor, out=args.out, resume=args.resume,
+                seed=args.seed, progress=True, solver=solver)
     failed = int(table["error"].notna().sum())
     metrics = [c for c in table.columns if c not in grid and c not in samples and c != "error"]
     print(f"vehdyn sweep: {len(table)} variants, {failed} failed" + (f" -> {args.out}" if args.out else ""))

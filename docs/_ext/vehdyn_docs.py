@@ -70,7 +70,7 @@ LAYERS = [
     ("scene", "Scenes and the fidelity ladder", "The cheapest model that answers a question.",
      [("vehdyn", ["Scene", "plan", "run", "ladder", "plot_ladder"]), ("vehdyn.scene", None)]),
     ("sweep", "Sweeps and sensitivity", "Grids, samples, Monte Carlo and Sobol'/Morris indices.",
-     [("vehdyn.sweep", None)]),
+     [("vehdyn.sweep", None), ("vehdyn.sweep.metrics", None)]),
     # interfaces
     ("plotting", "Plotting and the command line", "Figures in the textbook's form; the ``vehdyn`` command.",
      [("vehdyn.plotting", None), ("vehdyn.cli", None)]),
@@ -81,7 +81,7 @@ _ORDER = ["vehdyn", "vehdyn.params", "vehdyn.conventions", "vehdyn.units", "vehd
           "vehdyn.interconnect", "vehdyn.mechanics", "vehdyn.tire", "vehdyn.tire.fitting",
           "vehdyn.tire.terramechanics", "vehdyn.road", "vehdyn.components", "vehdyn.handling", "vehdyn.ride",
           "vehdyn.full_vehicle", "vehdyn.driver", "vehdyn.chassis", "vehdyn.procedures", "vehdyn.scene",
-          "vehdyn.sweep", "vehdyn.plotting", "vehdyn.cli"]
+          "vehdyn.sweep", "vehdyn.sweep.metrics", "vehdyn.plotting", "vehdyn.cli"]
 
 
 def public_names() -> dict[str, list[str]]:

@@ -7,7 +7,7 @@ import pytest
 import scipy.stats as st
 
 import vehdyn
-from vehdyn.sweep import sweep, variants, vectorized
+from vehdyn.sweep import run, variants, vectorized
 
 
 def _sum_product(a, b):
@@ -22,7 +22,7 @@ def scene():
 
 def test_grid_is_full_factorial_in_product_order():
     grid = {"a": [1.0, 2.0, 3.0], "b": [10.0, 20.0]}
-    table = sweep(_sum_product, grid=grid, progress=False)
+    table = run(_sum_product, grid=grid, progress=False)
     expected = list(itertools.product(grid["a"], grid["b"]))
     assert list(zip(table["a"], table["b"])) == expected
     np.testing.assert_array_equal(table["total"], [a + b for a, b in expected])
@@ -56,7 +56,7 @@ def test_grid_times_samples():
 
 
 def test_scene_metrics_equal_direct_runs(scene):
-    table = sweep(scene, grid={"speed": [20.0, 30.0], "vehicle.mass.mass": [1400.0, 1700.0]},
+    table = run(scene, grid={"speed": [20.0, 30.0], "vehicle.mass.mass": [1400.0, 1700.0]},
                   metrics=["peak_yaw_rate", "understeer_gradient", "final_yaw_rate"], model="SingleTrack",
                   progress=False)
     assert table.attrs["units"]["peak_yaw_rate"] == "rad/s"
@@ -74,16 +74,16 @@ def test_scene_metrics_equal_direct_runs(scene):
 
 def test_unknown_parameter_lists_close_matches(scene):
     with pytest.raises(vehdyn.ParameterError, match=r"vehicle\.mass\.mass"):
-        sweep(scene, grid={"vehicle.mass.mas": [1.0]}, progress=False)
+        run(scene, grid={"vehicle.mass.mas": [1.0]}, progress=False)
     with pytest.raises(vehdyn.ParameterError, match="'speed'"):
-        sweep(scene, grid={"sped": [1.0]}, progress=False)
+        run(scene, grid={"sped": [1.0]}, progress=False)
     with pytest.raises(vehdyn.ParameterError, match="'a'"):
-        sweep(_sum_product, grid={"aa": [1.0], "b": [1.0]}, progress=False)
+        run(_sum_product, grid={"aa": [1.0], "b": [1.0]}, progress=False)
 
 
 def test_unknown_metric_lists_close_matches(scene):
     with pytest.raises(vehdyn.ParameterError, match="peak_yaw_rate"):
-        sweep(scene, grid={"speed": [20.0]}, metrics=["peak_yaw_rat"], progress=False)
+        run(scene, grid={"speed": [20.0]}, metrics=["peak_yaw_rat"], progress=False)
 
 
 @pytest.mark.parametrize("kwargs, word", [
@@ -100,12 +100,12 @@ def test_unknown_metric_lists_close_matches(scene):
 ])
 def test_bad_sweep_arguments(kwargs, word):
     with pytest.raises(vehdyn.ParameterError, match=word):
-        sweep(_sum_product, progress=False, **kwargs)
+        run(_sum_product, progress=False, **kwargs)
 
 
 def test_invalid_variants_fail_in_their_row_the_rest_complete(scene):
     # a wide mass distribution draws negative masses: those rows carry the ParameterError
-    table = sweep(scene, samples={"vehicle.mass.mass": st.norm(1500.0, 1500.0)}, n=12, seed=2,
+    table = run(scene, samples={"vehicle.mass.mass": st.norm(1500.0, 1500.0)}, n=12, seed=2,
                   metrics=["understeer_gradient"], progress=False)
     base = scene.load_vehicle()
     expected, messages = [], []
@@ -132,24 +132,38 @@ def _batched(a, b):
 
 def test_vectorized_function_matches_scalar_calls_and_isolates_bad_variants():
     grid = {"a": [4.0, -1.0, 0.25, 9.0], "b": [1.5, 3.0]}
-    table = sweep(_batched, grid=grid, chunk_size=8, progress=False)
+    table = run(_batched, grid=grid, chunk_size=8, progress=False)
     ok = table["a"] >= 0
     assert table.loc[~ok, "error"].str.contains("a must be >= 0").all()
     for _, row in table[ok].iterrows():
         assert row["root"] == np.sqrt(row["a"]) * row["b"]
         assert row["ratio"] == row["b"] / (1.0 + row["a"])
     # no bad variant: one batched call gives the same bits as the scalar calls
-    good = sweep(_batched, grid={"a": [4.0, 0.25, 9.0, 2.0], "b": [1.5, 3.0]}, chunk_size=8, progress=False)
-    single = sweep(_batched, grid={"a": [4.0, 0.25, 9.0, 2.0], "b": [1.5, 3.0]}, chunk_size=1, progress=False)
+    good = run(_batched, grid={"a": [4.0, 0.25, 9.0, 2.0], "b": [1.5, 3.0]}, chunk_size=8, progress=False)
+    single = run(_batched, grid={"a": [4.0, 0.25, 9.0, 2.0], "b": [1.5, 3.0]}, chunk_size=1, progress=False)
     assert good.equals(single)
 
 
 def test_function_returning_a_non_mapping_fails_in_the_error_column():
-    table = sweep(lambda a: a, grid={"a": [1.0]}, progress=False)
+    table = run(lambda a: a, grid={"a": [1.0]}, progress=False)
     assert "must return a mapping" in table["error"].iloc[0]
 
 
-def test_top_level_names():
-    assert callable(vehdyn.sweep) and vehdyn.sweep.sweep is sweep
-    table = vehdyn.sweep(_sum_product, grid={"a": [1.0], "b": [2.0]}, progress=False)
+def test_sweep_is_a_plain_module_whose_names_shadow_no_submodule():
+    import importlib
+    import pkgutil
+    import types
+
+    assert type(vehdyn.sweep) is types.ModuleType and not callable(vehdyn.sweep)
+    assert vehdyn.sweep.run is run
+    submodules = {m.name for m in pkgutil.iter_modules(vehdyn.sweep.__path__)}
+    assert {"api", "indices", "engines", "metrics", "storage", "targets", "manifest"} <= submodules
+    for name in submodules:  # importing each submodule leaves every public name as it was
+        importlib.import_module(f"vehdyn.sweep.{name}")
+    for name in vehdyn.sweep.__all__:
+        assert name not in submodules, name
+        assert not isinstance(getattr(vehdyn.sweep, name), types.ModuleType), name
+    assert callable(vehdyn.sweep.sensitivity) and vehdyn.sweep.sensitivity is vehdyn.sweep.indices.sensitivity
+    assert not hasattr(vehdyn, "sensitivity") and "sweep" not in vehdyn.__all__
+    table = vehdyn.sweep.run(_sum_product, grid={"a": [1.0], "b": [2.0]}, progress=False)
     assert table["total"].iloc[0] == 3.0

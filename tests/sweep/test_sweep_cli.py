@@ -34,7 +34,7 @@ def test_cli_writes_the_library_table(scene_file, tmp_path, capsys):
     assert status == 0
     assert "6 variants, 0 failed" in capsys.readouterr().out
     written = pd.read_parquet(out).sort_values("variant")
-    expected = vehdyn.sweep(vehdyn.Scene.from_toml(scene_file), grid={"speed": [20.0, 25.0, 30.0]},
+    expected = vehdyn.sweep.run(vehdyn.Scene.from_toml(scene_file), grid={"speed": [20.0, 25.0, 30.0]},
                             samples={"vehicle.mass.mass": st.norm(1500, 50)}, n=2, seed=0,
                             metrics=["understeer_gradient"], progress=False)
     np.testing.assert_array_equal(written["understeer_gradient"], expected["understeer_gradient"])

@@ -7,7 +7,7 @@ import pytest
 import scipy.stats as st
 
 import vehdyn
-from vehdyn.sweep import sweep
+from vehdyn.sweep import run
 
 
 @pytest.fixture(scope="module")
@@ -27,7 +27,7 @@ def _args(scene):
 
 @pytest.fixture(scope="module")
 def reference(scene):
-    return sweep(scene, **_args(scene))
+    return run(scene, **_args(scene))
 
 
 def _same(a, b):
@@ -49,9 +49,9 @@ def test_reference_is_consistent(reference):
 def test_pool_engines_are_bitwise_identical(scene, reference, engine):
     if engine == "executor":
         with cf.ThreadPoolExecutor(max_workers=2) as pool:
-            table = sweep(scene, executor=pool, **_args(scene))
+            table = run(scene, executor=pool, **_args(scene))
     else:
-        table = sweep(scene, executor=engine, **_args(scene))
+        table = run(scene, executor=engine, **_args(scene))
     _same(table, reference)
 
 
@@ -59,7 +59,7 @@ def test_dask_local_cluster_is_bitwise_identical(scene, reference):
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
                                   silence_logs=40) as cluster, distributed.Client(cluster) as client:
-        table = sweep(scene, executor=client, **_args(scene))
+        table = run(scene, executor=client, **_args(scene))
         # the chunks ran on the workers, not here
         assert len(client.scheduler_info()["workers"]) == 2
     _same(table, reference)
@@ -67,14 +67,14 @@ def test_dask_local_cluster_is_bitwise_identical(scene, reference):
 
 def test_not_an_executor_is_refused(scene):
     with pytest.raises(vehdyn.ParameterError, match="executor"):
-        sweep(scene, grid={"speed": [20.0]}, executor=object(), progress=False)
+        run(scene, grid={"speed": [20.0]}, executor=object(), progress=False)
 
 
 def test_samples_identical_across_engines(scene):
     args = dict(samples={"speed": st.uniform(15.0, 15.0)}, n=4, seed=7, metrics=["peak_yaw_rate"],
                 chunk_size=1, progress=False, model="SingleTrack")
-    a = sweep(scene, **args)
-    b = sweep(scene, executor="processes", **args)
+    a = run(scene, **args)
+    b = run(scene, executor="processes", **args)
     _same(a, b)
     assert np.all(np.diff(a["speed"].to_numpy()) != 0)
 
@@ -89,7 +89,7 @@ def test_batched_chunk_is_bitwise_the_one_at_a_time_runs(scene):
     rows = [(22.0, 1500.0, 1900.0), (28.0, 1650.0, 2050.0), (25.0, -5.0, 2000.0), (25.0, 1450.0, 1950.0)]
     metrics = ["peak_yaw_rate", "rms_lateral_acceleration", "final_yaw_rate"]
     params = dict(zip(names, rows[0]))
-    _, setup = target._prepare(params, [vehdyn.sweep.metrics.metric(m, target.units) for m in metrics])
+    setup = target.setup(params)
     args, kwargs = simulation_call(setup.run)  # the ladder's SingleTrack runs through simulate
     assert kwargs["method"] == "RK45" and args[0] is setup.model
     batched = ChunkTask(target, names, metrics)(list(range(4)), rows)
@@ -113,13 +113,13 @@ def test_solver_options_replace_the_rungs_own_in_every_variant(scene):
     from vehdyn.sweep.targets import SceneTarget, simulation_call
 
     grid = {"vehicle.mass.mass": [1450.0, 1600.0]}
-    tight = vehdyn.sweep(scene, grid=grid, metrics=["peak_yaw_rate"], model="SingleTrack", progress=False)
-    loose = vehdyn.sweep(scene, grid=grid, metrics=["peak_yaw_rate"], model="SingleTrack", progress=False,
+    tight = vehdyn.sweep.run(scene, grid=grid, metrics=["peak_yaw_rate"], model="SingleTrack", progress=False)
+    loose = vehdyn.sweep.run(scene, grid=grid, metrics=["peak_yaw_rate"], model="SingleTrack", progress=False,
                          solver={"method": "BDF", "rtol": 1e-5})
     target = SceneTarget(scene, "SingleTrack", {"method": "BDF", "rtol": 1e-5})
-    _, setup = target._prepare({"vehicle.mass.mass": 1600.0}, [vehdyn.sweep.metrics.metric("peak_yaw_rate",
-                                                                                            target.units)])
+    setup = target.setup({"vehicle.mass.mass": 1600.0})
     args, kwargs = simulation_call(setup.run)
+    assert target.call(setup)[1]["rtol"] == 1e-5 and target.call(setup)[1]["method"] == "BDF"
     kwargs.update(method="BDF", rtol=1e-5, atol=1e-7)
     direct = vehdyn.simulate(*args, **kwargs)
     assert "compiled BDF" in direct.message
@@ -132,8 +132,8 @@ def test_solver_options_replace_the_rungs_own_in_every_variant(scene):
                                            ({"rtol": -1.0}, "rtol"), ("BDF", "mapping")])
 def test_bad_solver_options_are_named(scene, solver, match):
     with pytest.raises(vehdyn.ParameterError, match=match) as info:
-        vehdyn.sweep(scene, grid={"speed": [20.0]}, model="SingleTrack", progress=False, solver=solver)
+        vehdyn.sweep.run(scene, grid={"speed": [20.0]}, model="SingleTrack", progress=False, solver=solver)
     assert info.value.key == "solver"
     with pytest.raises(vehdyn.ParameterError, match="Scene") as info:
-        vehdyn.sweep(lambda speed: {"v": speed}, grid={"speed": [20.0]}, progress=False, solver={"rtol": 1e-5})
+        vehdyn.sweep.run(lambda speed: {"v": speed}, grid={"speed": [20.0]}, progress=False, solver={"rtol": 1e-5})
     assert info.value.key == "solver"

@@ -26,7 +26,7 @@ def test_families_against_closed_forms():
 def test_iso7401_metrics_match_step_response_metrics():
     scene = vehdyn.Scene(vehicle="sedan", manoeuvre="step_steer", speed=30.0, duration=3.0,
                          manoeuvre_parameters={"lateral_acceleration": 2.0}, outputs=("yaw_rate",))
-    table = vehdyn.sweep(scene, grid={"speed": [30.0]}, model="LinearBicycle", progress=False,
+    table = vehdyn.sweep.run(scene, grid={"speed": [30.0]}, model="LinearBicycle", progress=False,
                          metrics=["overshoot_yaw_rate", "response_time_yaw_rate", "steady_state_yaw_rate"])
     res = vehdyn.run(scene, model="LinearBicycle").result
     direct = vehdyn.procedures.step_response_metrics(res, "yaw_rate")
@@ -49,7 +49,8 @@ def test_vehicle_metrics_and_registration():
         assert m.metric("wheelbase_test").function(run) == sedan.wheelbase
         assert "wheelbase_test" in m.metric_names() and "rms_<signal>" in m.metric_names()
     finally:
-        m._REGISTRY.pop("wheelbase_test")
+        m.remove_metric("wheelbase_test")
+    assert "wheelbase_test" not in m.metric_names()
 
 
 def test_metric_errors():

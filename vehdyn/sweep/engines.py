@@ -21,6 +21,7 @@ a ``dask.distributed.Client`` (or a scheduler address ``"tcp://host:8786"``)
 from __future__ import annotations
 
 import concurrent.futures as cf
+import math
 import os
 from typing import Any, Callable, Sequence
 
@@ -28,15 +29,61 @@ import numpy as np
 
 from vehdyn.errors import ParameterError
 
-__all__ = ["ChunkTask", "run_chunks", "is_dask_client"]
+__all__ = ["ChunkTask", "run_chunks", "is_dask_client", "chunk_frame", "RESERVED_COLUMNS"]
+
+#: The sweep table's own columns (the index ``variant`` and ``error``): no parameter or metric may
+#: take their names.
+RESERVED_COLUMNS = ("variant", "error")
+
+
+def _is_real(value) -> bool:
+    """True for a real number of any kind (Python or numpy, float32 included), False for a bool."""
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
 
 
 def _message(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {exc}"
 
 
+def _not_finite(names, rows) -> dict[int, str]:
+    """Row position -> why, for the rows holding a parameter value that is a non-finite number
+    (a NaN or an infinite draw of a distribution): those variants fail in their row, unrun."""
+    bad: dict[int, str] = {}
+    for j, name in enumerate(names):
+        column = [r[j] for r in rows]
+        try:
+            values = np.asarray(column)
+        except ValueError:  # ragged values (sequences of different lengths): none is a number
+            continue
+        if values.ndim == 1 and values.dtype.kind in "fc":
+            flags = ~np.isfinite(values)
+        elif values.dtype.kind in "fcO":
+            flags = np.array([_is_real(v) and not math.isfinite(v) for v in column], dtype=bool)
+        else:
+            continue
+        for k in np.flatnonzero(flags):
+            value = column[k].item() if isinstance(column[k], np.generic) else column[k]
+            bad.setdefault(int(k), f"ParameterError: parameter {name!r} = {value!r} is not a finite number (a draw of "
+                                   "its distribution?); the variant was not run")
+    return bad
+
+
 def chunk_frame(columns: dict, names, metric_names):
-    """A chunk's DataFrame: ``variant``, the parameters, the metrics (float), ``error`` (None or text)."""
+    """A chunk's DataFrame: ``variant``, the parameters, the metrics (float), ``error`` (None or text).
+
+    Parameters
+    ----------
+    columns : dict
+        Column name -> values: ``variant``, the parameters, the metrics and ``error``.
+    names : sequence of str
+        Parameter names.
+    metric_names : sequence of str or None
+        Metric names (None: every other column).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     import pandas as pd
 
     frame = pd.DataFrame(columns)
@@ -51,9 +98,12 @@ def chunk_frame(columns: dict, names, metric_names):
 class ChunkTask:
     """Run one chunk of variants: ``task(ids, rows) -> DataFrame`` (:func:`chunk_frame`).
 
+    A variant whose parameters hold a non-finite number is not run: its row carries the reason.
+
     Parameters
     ----------
     target : SceneTarget or FunctionTarget
+        What each variant runs.
     names : sequence of str
         Parameter names (the order of each row's values).
     metrics : sequence of str or None
@@ -90,6 +140,33 @@ class ChunkTask:
         return records
 
     def __call__(self, ids: Sequence[int], rows: Sequence[tuple]):
+        """The chunk's frame (:func:`chunk_frame`), one row per variant in the order given.
+
+        Parameters
+        ----------
+        ids : sequence of int
+            Variant numbers.
+        rows : sequence of tuple
+            Each variant's parameter values, in the order of ``names``.
+
+        Returns
+        -------
+        pandas.DataFrame
+        """
+        import pandas as pd
+
+        bad = _not_finite(self.names, rows)
+        if bad:
+            keep = [k for k in range(len(rows)) if k not in bad]
+            records = pd.DataFrame.from_records([{"variant": int(ids[k]), **dict(zip(self.names, rows[k])),
+                                                  "error": why} for k, why in bad.items()])
+            frames = [self._run([ids[k] for k in keep], [rows[k] for k in keep])] if keep else []
+            frames.append(chunk_frame({c: records[c] for c in records.columns}, self.names, self.metrics))
+            frame = pd.concat(frames, ignore_index=True).sort_values("variant", kind="stable")
+            return frame[[c for c in frame.columns if c != "error"] + ["error"]].reset_index(drop=True)
+        return self._run(ids, rows)
+
+    def _run(self, ids, rows):
         import pandas as pd
 
         if getattr(self.target, "vectorized", False) and len(rows) > 1:
@@ -114,7 +191,16 @@ def _run_task(task: ChunkTask, ids, rows):
 
 
 def is_dask_client(executor) -> bool:
-    """True for a ``dask.distributed.Client`` (checked without importing dask)."""
+    """True for a ``dask.distributed.Client`` (checked without importing dask).
+
+    Parameters
+    ----------
+    executor : object
+
+    Returns
+    -------
+    bool
+    """
     return type(executor).__module__.startswith("distributed") and hasattr(executor, "scheduler_info")
 
 
@@ -133,6 +219,21 @@ def run_chunks(task: ChunkTask, chunks: list[tuple[list[int], list[tuple]]], exe
 
     Finished chunks are handed over in completion order (the caller writes them); an engine failure
     (a worker lost) raises after the chunks finished before it were handed over.
+
+    Parameters
+    ----------
+    task : ChunkTask
+        What each chunk runs.
+    chunks : list of (list of int, list of tuple)
+        Each chunk's variant numbers and parameter rows.
+    executor : None, str, Executor or dask.distributed.Client
+        The engine (module docstring).
+    on_done : callable
+        ``on_done(frame)`` with each finished chunk's frame.
+
+    Returns
+    -------
+    None
     """
     if not chunks:
         return

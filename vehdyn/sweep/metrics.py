@@ -6,13 +6,19 @@ of one variant, its vehicle and speed) registered under a name with a unit. Two 
 * fixed names: ``understeer_gradient`` [rad/(m/s^2)], ``understeer_gradient_deg_per_g`` [deg/g],
   ``characteristic_speed`` [m/s] (Gillespie 1992, ch. 6; from the variant's vehicle, no run
   needed), ``yaw_rate_gain`` [1/s] (steady-state yaw rate per road-wheel steer at the speed);
-* families over any output signal ``<family>_<signal>``: ``peak_`` (max |x|), ``max_``, ``min_``,
+* families over any output signal ``<family>_<signal>``: ``peak_`` (max ``|x|``), ``max_``, ``min_``,
   ``rms_`` (r.m.s. over the run), ``final_`` (last value), ``mean_``, and the ISO 7401 step
   metrics ``overshoot_`` [-], ``response_time_`` [s], ``rise_time_`` [s], ``steady_state_``
   (:func:`vehdyn.handling.transient.step_response_metrics`).
 
 A user names metrics (``metrics=["peak_yaw_rate", "understeer_gradient"]``) instead of writing
-code; :func:`register_metric` adds one.
+code; :func:`register_metric` adds one, :func:`remove_metric` removes it.
+
+References
+----------
+Gillespie, T. D. (1992). Fundamentals of Vehicle Dynamics. SAE, ch. 6 (understeer gradient,
+characteristic speed).
+ISO 7401:2011. Road vehicles - Lateral transient response test methods - Open-loop test methods.
 """
 
 from __future__ import annotations
@@ -24,8 +30,9 @@ from typing import Any, Callable
 import numpy as np
 
 from vehdyn.errors import ParameterError
+from vehdyn.sweep.engines import RESERVED_COLUMNS
 
-__all__ = ["Run", "Metric", "register_metric", "metric", "metric_names", "FAMILIES"]
+__all__ = ["Run", "Metric", "register_metric", "remove_metric", "metric", "metric_names", "FAMILIES"]
 
 
 @dataclass
@@ -41,6 +48,7 @@ class Run:
     units : dict
         Signal name -> unit.
     vehicle : Vehicle or None
+        The variant's vehicle (Scene targets).
     speed : float or None
         Forward speed [m/s].
     result : SimulationResult or None
@@ -55,6 +63,18 @@ class Run:
     result: Any = None
 
     def signal(self, name: str) -> np.ndarray:
+        """One output signal as floats.
+
+        Parameters
+        ----------
+        name : str
+            Signal name (a scene output).
+
+        Returns
+        -------
+        ndarray
+            Its values on :attr:`time` (in the signal's unit, :attr:`units`).
+        """
         if name not in self.outputs:
             raise ParameterError(f"the run has no output {name!r}; it has {sorted(self.outputs)}", key="metrics",
                                  value=name)
@@ -63,8 +83,21 @@ class Run:
 
 @dataclass(frozen=True)
 class Metric:
-    """A registered metric: ``name``, ``function(run) -> float``, ``unit``, ``description``,
-    ``needs_run`` (False: computed from the vehicle alone)."""
+    """A registered metric.
+
+    Parameters
+    ----------
+    name : str
+        The name a sweep's ``metrics`` list gives.
+    function : callable
+        ``function(run) -> float`` of a :class:`Run`.
+    unit : str
+        Unit of the value.
+    description : str
+        One line for listings.
+    needs_run : bool
+        False: computed from the variant's vehicle and speed alone (no simulation).
+    """
 
     name: str
     function: Callable[[Run], float]
@@ -78,16 +111,63 @@ _REGISTRY: dict[str, Metric] = {}
 
 def register_metric(name: str, function: Callable[[Run], float], unit: str, description: str = "", *,
                     needs_run: bool = True) -> Metric:
-    """Add (or replace) a metric named ``name``."""
+    """Add (or replace) a metric named ``name``.
+
+    Parameters
+    ----------
+    name : str
+        An identifier, not one of the sweep table's own columns (``variant``, ``error``).
+    function : callable
+        ``function(run) -> float`` of a :class:`Run`.
+    unit : str
+        Unit of the value.
+    description : str
+        One line for listings.
+    needs_run : bool
+        False: computed from the variant's vehicle and speed alone (no simulation).
+
+    Returns
+    -------
+    Metric
+        The registered metric.
+    """
     if not isinstance(name, str) or not name.isidentifier():
         raise ParameterError(f"a metric name must be an identifier, got {name!r}", key="name", value=name)
+    if name in RESERVED_COLUMNS:
+        raise ParameterError(f"metric name {name!r} is one of the sweep table's own columns", key="name", value=name)
+    if not callable(function):
+        raise ParameterError(f"metric {name!r}: function must be callable, got {function!r}", key="function",
+                             value=function)
     m = Metric(name, function, unit, description, needs_run)
     _REGISTRY[name] = m
     return m
 
 
+def remove_metric(name: str) -> Metric:
+    """Remove the metric ``name`` added by :func:`register_metric`.
+
+    Parameters
+    ----------
+    name : str
+        A registered metric's name.
+
+    Returns
+    -------
+    Metric
+        The removed metric.
+
+    Raises
+    ------
+    ParameterError
+        When no metric of that name is registered.
+    """
+    if name not in _REGISTRY:
+        raise ParameterError(f"no registered metric {name!r}; registered: {sorted(_REGISTRY)}", key="name", value=name)
+    return _REGISTRY.pop(name)
+
+
 def _step(run: Run, signal: str, attribute: str) -> float:
-    from vehdyn.procedures import step_response_metrics
+    from vehdyn.procedures.iso7401 import step_response_metrics
 
     if run.result is None:
         raise ParameterError(f"ISO 7401 metrics of {signal!r} need a simulation result", key="metrics", value=signal)
@@ -145,7 +225,7 @@ def _register_builtins():
                     needs_run=False)
     register_metric("understeer_gradient_deg_per_g", ug_deg, "deg/g", "understeer gradient in deg/g",
                     needs_run=False)
-    register_metric("characteristic_speed", vch, "m/s", "sqrt(L/K) (NaN for an oversteering car)",
+    register_metric("characteristic_speed", vch, "m/s", "sqrt(L/K) (inf for a neutral or oversteering car)",
                     needs_run=False)
     register_metric("yaw_rate_gain", yaw_gain, "1/s", "steady-state yaw rate per front steer at the speed",
                     needs_run=False)
@@ -155,7 +235,12 @@ _register_builtins()
 
 
 def metric_names() -> list[str]:
-    """The fixed metric names and the family patterns (``peak_<signal>``, ...)."""
+    """The fixed metric names and the family patterns (``peak_<signal>``, ...).
+
+    Returns
+    -------
+    list of str
+    """
     return sorted(_REGISTRY) + [f"{p}_<signal>" for p in FAMILIES]
 
 
@@ -165,8 +250,13 @@ def metric(name: str, signals: dict | None = None) -> Metric:
     Parameters
     ----------
     name : str
+        A fixed name or ``<family>_<signal>``.
     signals : dict, optional
         Output signal -> unit of the target; a family metric must name one of them.
+
+    Returns
+    -------
+    Metric
 
     Raises
     ------

@@ -16,6 +16,7 @@ import numpy as np
 
 from vehdyn.errors import ParameterError
 from vehdyn.sweep import metrics as _metrics
+from vehdyn.sweep.engines import RESERVED_COLUMNS, _is_real
 
 __all__ = ["vectorized", "SceneTarget", "FunctionTarget", "as_target", "vehicle_parameter_names", "simulation_call"]
 
@@ -26,14 +27,27 @@ def vectorized(function: Callable) -> Callable:
 
     The in-process engine then calls it once per chunk; a chunk whose batched call raises is run
     again variant by variant, so that only the bad variants fail.
+
+    Parameters
+    ----------
+    function : callable
+        ``function(**params) -> mapping`` of metric name -> array (one value per variant, or a
+        scalar broadcast to all).
+
+    Returns
+    -------
+    callable
+        ``function`` itself, marked (used as a decorator: ``@vehdyn.sweep.vectorized``).
     """
     function.__vehdyn_vectorized__ = True
     return function
 
 
 def _python(value):
-    """numpy scalars -> Python scalars (parameter validation accepts int and float only)."""
-    return value.item() if isinstance(value, np.generic) else value
+    """numpy scalars and 0-d arrays -> Python scalars (parameter validation accepts int and float)."""
+    if isinstance(value, np.generic) or (isinstance(value, np.ndarray) and value.ndim == 0):
+        return value.item()
+    return value
 
 
 def _close(name: str, known, what: str) -> ParameterError:
@@ -43,7 +57,20 @@ def _close(name: str, known, what: str) -> ParameterError:
 
 
 def vehicle_parameter_names(vehicle, prefix: str = "vehicle.") -> dict[str, str]:
-    """Dotted name -> unit of every numeric and text parameter of ``vehicle`` (nested groups)."""
+    """Dotted name -> unit of every numeric and text parameter of ``vehicle`` (nested groups).
+
+    Parameters
+    ----------
+    vehicle : Vehicle or ParameterSet
+        A vehicle (or one of its parameter groups).
+    prefix : str
+        Prepended to every name (``"vehicle."``: the names a Scene sweep varies).
+
+    Returns
+    -------
+    dict
+        E.g. ``{"vehicle.mass.mass": "kg", "vehicle.tires.front_cornering_stiffness": "N/rad", ...}``.
+    """
     from vehdyn.params.base import ParameterSet
 
     out = {}
@@ -69,12 +96,13 @@ class SceneTarget:
     Parameters
     ----------
     scene : Scene
+        The base scene; each variant is this scene with some of its values replaced.
     model : str
         ``"auto"`` or a rung name (``"SingleTrack"``, ``"LinearBicycle"``, ``"QuarterCar"`` ...).
     solver : mapping, optional
-        ``method``, ``rtol``, ``atol`` of every variant's ``simulate`` call in place of the rung's
-        (:func:`vehdyn.sweep`); ParameterError for another key, a bad value, or a rung that does
-        not integrate with a solver (an exact linear discretization).
+        ``method``, ``rtol`` [-], ``atol`` of every variant's ``simulate`` call in place of the
+        rung's (:func:`vehdyn.sweep.run`); ParameterError for another key, a bad value, or a rung
+        that does not integrate with a solver (an exact linear discretization).
     """
 
     def __init__(self, scene, model: str = "auto", solver=None):
@@ -108,21 +136,84 @@ class SceneTarget:
             for k in ROAD_EVENTS[scene.road["event"]]:
                 self.parameters[f"road.{k}"] = ""
 
+    def identity(self) -> dict:
+        """What the variants' results depend on, for the sweep's manifest.
+
+        Returns
+        -------
+        dict
+            ``kind`` ("scene"), ``scene`` (the base scene), ``vehicle`` (its loaded parameters),
+            ``tires`` (the tire laws its ``.tir`` files and the scene's ``tire`` hold, so that a
+            file edited between two runs shows), ``rung`` (the model every variant runs) and
+            ``solver`` (the options replacing the rung's).
+        """
+        from vehdyn.tire import load_tire, tire_for_vehicle
+
+        tires = {}
+        try:
+            if self.scene.tire is not None:
+                tires["scene"] = load_tire(self.scene.tire)
+            if getattr(self.vehicle.tires, "tir_file", None):
+                tires.update({axle: tire_for_vehicle(self.vehicle, axle) for axle in ("front", "rear")})
+        except Exception:  # a tire that does not load fails in the variants' rows; its name is in the scene
+            pass
+        return {"kind": "scene", "scene": self.scene, "vehicle": self.vehicle, "tires": tires, "rung": self.rung,
+                "solver": self.solver}
+
     def check_names(self, names) -> dict[str, str]:
-        """Units of ``names``; ParameterError with the close matches for an unknown one."""
+        """Units of ``names``; ParameterError with the close matches for an unknown one.
+
+        Parameters
+        ----------
+        names : sequence of str
+            Dotted parameter names.
+
+        Returns
+        -------
+        dict
+            Name -> unit.
+        """
         for name in names:
             if name not in self.parameters:
                 raise _close(name, self.parameters, "parameters")
         return {n: self.parameters[n] for n in names}
 
     def default_metrics(self) -> list[str]:
+        """``peak_<output>`` of each of the scene's outputs.
+
+        Returns
+        -------
+        list of str
+        """
         return [f"peak_{o}" for o in self.scene.outputs]
 
     def resolve_metrics(self, names) -> dict[str, str]:
+        """Units of the metrics ``names`` (ParameterError for an unknown one).
+
+        Parameters
+        ----------
+        names : sequence of str
+            Metric names (:mod:`vehdyn.sweep.metrics`).
+
+        Returns
+        -------
+        dict
+            Name -> unit.
+        """
         return {n: _metrics.metric(n, self.units).unit for n in names}
 
     def variant(self, params: Mapping[str, Any]):
-        """The scene of one variant (ParameterError for invalid values)."""
+        """The scene of one variant (ParameterError for invalid values).
+
+        Parameters
+        ----------
+        params : mapping
+            Dotted name -> value (units as the scene's and vehicle's fields).
+
+        Returns
+        -------
+        Scene
+        """
         vehicle_changes, fields, manoeuvre, road = {}, {}, {}, {}
         for name, value in params.items():
             value = _python(value)
@@ -147,19 +238,37 @@ class SceneTarget:
             fields["road"] = {**self.scene.road, **road}
         return self.scene.replace(**fields)
 
-    def _prepare(self, params: Mapping[str, Any], wanted):
-        """(run, setup) of one variant: the metrics' :class:`~vehdyn.sweep.metrics.Run` without
-        outputs and the rung built for the variant's scene (None when no metric needs a run)."""
+    def _build(self, scene):
         from vehdyn.scene.drive import drive_of
         from vehdyn.scene.registry import rungs
 
+        rung = next(r for r in rungs() if r.name == self.rung)
+        return rung.setup(drive_of(scene))
+
+    def setup(self, params: Mapping[str, Any]):
+        """The sweep's rung built for one variant: its model and its run (the rung's own
+        solver; :meth:`call` gives the call with the sweep's ``solver`` options).
+
+        Parameters
+        ----------
+        params : mapping
+            Dotted name -> value.
+
+        Returns
+        -------
+        vehdyn.scene.registry.Setup
+        """
+        return self._build(self.variant(params))
+
+    def _prepare(self, params: Mapping[str, Any], wanted):
+        """(run, setup) of one variant: the metrics' :class:`~vehdyn.sweep.metrics.Run` without
+        outputs and the rung built for the variant's scene (None when no metric needs a run)."""
         scene = self.variant(params)
         run = _metrics.Run(time=scene.time(), outputs={}, units=self.units, vehicle=scene.load_vehicle(),
                            speed=scene.speed)
         if not any(m.needs_run for m in wanted):
             return run, None
-        rung = next(r for r in rungs() if r.name == self.rung)
-        return run, rung.setup(drive_of(scene))
+        return run, self._build(scene)
 
     def _finish(self, run, result, wanted) -> dict[str, float]:
         if result is not None:
@@ -167,29 +276,68 @@ class SceneTarget:
             run.result = result
         return {m.name: float(m.function(run)) for m in wanted}
 
-    def _call(self, setup):
-        """The variant's ``simulate`` call (args, kwargs) with the sweep's solver options, or None
-        (the rung's run as it is)."""
+    def call(self, setup):
+        """The ``simulate`` call of a variant's rung, with the sweep's solver options.
+
+        Parameters
+        ----------
+        setup : vehdyn.scene.registry.Setup
+            The rung built for the variant (:meth:`setup`).
+
+        Returns
+        -------
+        tuple or None
+            ``(args, kwargs)`` of :func:`vehdyn.simulate`, or None when the rung's run is not one
+            ``simulate`` call (it then runs as it is).
+        """
         call = simulation_call(setup.run)
         if call is not None and self.solver:
             call[1].update(self.solver)
         return call
 
     def run(self, params: Mapping[str, Any], metric_names) -> dict[str, float]:
+        """The metrics of one variant.
+
+        Parameters
+        ----------
+        params : mapping
+            Dotted name -> value.
+        metric_names : sequence of str
+            Metric names.
+
+        Returns
+        -------
+        dict
+            Metric name -> value (unit of the metric).
+        """
         from vehdyn.simulation import simulate
 
         wanted = [_metrics.metric(n, self.units) for n in metric_names]
         run, setup = self._prepare(params, wanted)
         if setup is None:
             return self._finish(run, None, wanted)
-        call = self._call(setup) if self.solver else None
+        call = self.call(setup) if self.solver else None
         return self._finish(run, setup.run() if call is None else simulate(*call[0], **call[1]), wanted)
 
     def run_many(self, rows: list[Mapping[str, Any]], metric_names, threads=None) -> list:
         """:meth:`run` of many variants, their simulations batched by
-        :func:`vehdyn.simulate.simulate_many` (compiled batches of the variants that share a
-        model structure; bitwise the results of :meth:`run`). Per variant its metrics, or the
-        exception it raised."""
+        :func:`vehdyn.simulate_many` (compiled batches of the variants that share a model
+        structure; bitwise the results of :meth:`run`).
+
+        Parameters
+        ----------
+        rows : list of mapping
+            One mapping dotted name -> value per variant.
+        metric_names : sequence of str
+            Metric names.
+        threads : int, optional
+            Threads of the compiled batches (:func:`vehdyn.simulate_many`).
+
+        Returns
+        -------
+        list
+            Per variant its metrics (a dict) or the exception it raised.
+        """
         from vehdyn.simulation import simulate_many
 
         wanted = [_metrics.metric(n, self.units) for n in metric_names]
@@ -198,7 +346,7 @@ class SceneTarget:
         for i, params in enumerate(rows):
             try:
                 run, setup = self._prepare(params, wanted)
-                call = None if setup is None else self._call(setup)
+                call = None if setup is None else self.call(setup)
                 if setup is None or call is None:
                     out[i] = self._finish(run, None if setup is None else setup.run(), wanted)
                 else:
@@ -221,11 +369,21 @@ class _Recorded(Exception):
 
 
 def simulation_call(run: Callable):
-    """The ``simulate`` call a rung's ``Setup.run`` makes, as ``(args, kwargs)``, without running it;
-    None when ``run`` is not a closure that calls :func:`vehdyn.simulate` (it then runs as is).
+    """The ``simulate`` call a rung's ``Setup.run`` makes, as ``(args, kwargs)``, without running it.
 
     The ladder's builders return ``lambda: simulate(model, time, inputs, x0=..., **options)``: the
     closure is called once with its ``simulate`` cell replaced by a recorder.
+
+    Parameters
+    ----------
+    run : callable
+        A rung's ``Setup.run``.
+
+    Returns
+    -------
+    tuple or None
+        ``(args, kwargs)``; None when ``run`` is not a closure that calls :func:`vehdyn.simulate`
+        (it then runs as is).
     """
     import types
 
@@ -255,7 +413,14 @@ def simulation_call(run: Callable):
 
 
 class FunctionTarget:
-    """A function ``f(**params) -> mapping of scalars`` (or arrays, if :func:`vectorized`)."""
+    """A function ``f(**params) -> mapping of scalars`` (or arrays, if :func:`vectorized`).
+
+    Parameters
+    ----------
+    function : callable
+        Called with the parameters by name; returns metric name -> value. Its attribute
+        ``units`` (a mapping name -> unit), if any, gives the units of the table's columns.
+    """
 
     def __init__(self, function: Callable):
         self.function = function
@@ -269,25 +434,80 @@ class FunctionTarget:
         self.any_name = sig is None or any(p.kind is p.VAR_KEYWORD for p in params)
         self.parameters = [p.name for p in params if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
 
+    def identity(self) -> dict:
+        """What the variants' results depend on, for the sweep's manifest.
+
+        Returns
+        -------
+        dict
+            ``kind`` ("function"), ``function`` (described by
+            :func:`vehdyn.sweep.manifest.canonical`: qualified name, source hash, defaults and
+            closure) and ``vectorized``.
+        """
+        return {"kind": "function", "function": self.function, "vectorized": self.vectorized}
+
     def check_names(self, names) -> dict[str, str]:
+        """Units of ``names``; ParameterError with the close matches for a name the function
+        does not take.
+
+        Parameters
+        ----------
+        names : sequence of str
+            Parameter names.
+
+        Returns
+        -------
+        dict
+            Name -> unit (from the function's ``units``; "" when it has none).
+        """
         if not self.any_name:
             for name in names:
                 if name not in self.parameters:
                     raise _close(name, self.parameters, "parameters")
         return {n: self.units.get(n, "") for n in names}
 
-    def default_metrics(self) -> list[str] | None:
-        return None  # every key the function returns
+    def default_metrics(self) -> None:
+        """None: every key the function returns is a metric.
+
+        Returns
+        -------
+        None
+        """
+        return None
 
     def resolve_metrics(self, names) -> dict[str, str]:
+        """Units of the metrics ``names`` (from the function's ``units``).
+
+        Parameters
+        ----------
+        names : sequence of str
+            Metric names (keys of the function's result).
+
+        Returns
+        -------
+        dict
+            Name -> unit.
+        """
         return {n: self.units.get(n, "") for n in names}
 
     @staticmethod
-    def _select(out, metric_names) -> list[str]:
+    def _select(out, metric_names, params) -> list[str]:
         if not isinstance(out, Mapping):
             raise ParameterError(f"the sweep function must return a mapping of metrics, got {type(out).__name__}",
                                  key="target", value=type(out).__name__)
-        keys = list(out) if metric_names is None else list(metric_names)
+        if metric_names is not None:
+            keys = list(metric_names)
+        else:  # every key: none may take a column of the table's own
+            keys = list(out)
+            for k in keys:
+                if not isinstance(k, str) or not k:
+                    raise ParameterError(f"the sweep function returned a metric named {k!r}; metric names are "
+                                         "non-empty text", key="metrics", value=k)
+                if k in RESERVED_COLUMNS or k in params:
+                    what = "the table's own column" if k in RESERVED_COLUMNS else "a parameter's column"
+                    raise ParameterError(f"the sweep function returned a metric named {k!r}, which is {what}; "
+                                         "rename it, or name the metrics wanted with metrics=[...]", key="metrics",
+                                         value=k)
         missing = [k for k in keys if k not in out]
         if missing:
             raise ParameterError(f"the sweep function returned no metric {missing[0]!r}; it returned {sorted(out)}",
@@ -295,14 +515,43 @@ class FunctionTarget:
         return keys
 
     def run(self, params: Mapping[str, Any], metric_names) -> dict[str, float]:
+        """The metrics of one variant.
+
+        Parameters
+        ----------
+        params : mapping
+            Parameter name -> value (numpy scalars passed as Python numbers).
+        metric_names : sequence of str or None
+            The metrics to keep (None: every key returned).
+
+        Returns
+        -------
+        dict
+            Metric name -> float.
+        """
         out = self.function(**{k: _python(v) for k, v in params.items()})
-        return {k: float(out[k]) for k in self._select(out, metric_names)}
+        return {k: float(out[k]) for k in self._select(out, metric_names, params)}
 
     def run_batch(self, columns: Mapping[str, np.ndarray], count: int, metric_names) -> dict[str, np.ndarray]:
-        """Metric name -> array of ``count`` values from one call with array parameters."""
+        """The metrics of ``count`` variants from one call with array parameters.
+
+        Parameters
+        ----------
+        columns : mapping
+            Parameter name -> array of ``count`` values.
+        count : int
+            Number of variants.
+        metric_names : sequence of str or None
+            The metrics to keep (None: every key returned).
+
+        Returns
+        -------
+        dict
+            Metric name -> array of ``count`` floats.
+        """
         out = self.function(**columns)
         return {k: np.array(np.broadcast_to(np.asarray(out[k], dtype=float), (count,)))
-                for k in self._select(out, metric_names)}
+                for k in self._select(out, metric_names, columns)}
 
 
 _SOLVER_KEYS = ("method", "rtol", "atol")
@@ -328,7 +577,7 @@ def _solver_options(solver) -> dict:
     for key in ("rtol", "atol"):
         if key in options:
             value = options[key]
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (0 < value < np.inf):
+            if not _is_real(value) or not (0 < value < np.inf):
                 raise ParameterError(f"solver {key} must be a positive number, got {value!r}", key="solver",
                                      value=value)
             options[key] = float(value)
@@ -338,7 +587,21 @@ def _solver_options(solver) -> dict:
 
 
 def as_target(target, model: str = "auto", solver=None):
-    """A :class:`SceneTarget` or :class:`FunctionTarget` for ``target`` (``solver``: Scene targets only)."""
+    """A :class:`SceneTarget` or :class:`FunctionTarget` for ``target``.
+
+    Parameters
+    ----------
+    target : Scene, callable, SceneTarget or FunctionTarget
+        What a sweep runs (a target is returned as it is).
+    model : str
+        Scene targets: ``"auto"`` or a rung name.
+    solver : mapping, optional
+        Scene targets only: options of every variant's ``simulate`` call.
+
+    Returns
+    -------
+    SceneTarget or FunctionTarget
+    """
     from vehdyn.scene.definition import Scene
 
     if isinstance(target, (SceneTarget, FunctionTarget)):
