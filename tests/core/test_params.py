@@ -59,8 +59,6 @@ def test_replace_validates_and_nests():
 
 
 def _load(tmp_path, data):
-    import re
-
     lines = []
     tables = {k: val for k, val in data.items() if isinstance(val, dict)}
     for k, val in data.items():
@@ -148,3 +146,27 @@ def test_shipped_vehicles_unknown_category_is_named():
     with pytest.raises(ParameterError, match="category = 'bus'") as err:
         vehdyn.shipped_vehicles("bus")
     assert err.value.key == "category"
+
+
+def test_the_mass_group_is_mass_and_inertia_and_its_table_stays_mass(tmp_path):
+    """One ``MassProperties`` (a rigid part's, in vehdyn.mechanics); the vehicle's group is
+    ``MassAndInertia``, still the ``[mass]`` table of the files, and a rigid part's mass
+    properties given in its place are refused by name."""
+    from vehdyn.mechanics import InertiaTensor, MassProperties
+    from vehdyn.params import MassAndInertia
+
+    sedan = load_vehicle("sedan")
+    assert type(sedan.mass) is MassAndInertia
+    assert not hasattr(vehdyn.params, "MassProperties")
+    text = dump_toml(sedan)
+    assert "[mass]" in text.splitlines()
+    path = tmp_path / "sedan.toml"
+    path.write_text(text)
+    assert load_toml(Vehicle, path) == sedan  # a file with a [mass] table loads as before
+    part = MassProperties(sedan.mass.mass, (0.0, 0.0, -sedan.mass.cg_height),
+                          InertiaTensor.from_matrix(sedan.mass.inertia_matrix))
+    with pytest.raises(ParameterError, match=r"^mass must be a MassAndInertia, got MassProperties") as info:
+        dataclasses.replace(sedan, mass=part)
+    assert info.value.key == "mass"
+    with pytest.raises(ParameterError, match=r"unknown parameter 'mass.wheels' \(value 4\); MassAndInertia takes"):
+        sedan.replace(mass__wheels=4)

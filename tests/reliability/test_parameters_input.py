@@ -98,7 +98,7 @@ def test_replace_nested_equals_dataclasses_replace(sedan):
 @pytest.mark.parametrize(
     "changes, key, match",
     [
-        ({"mass__unknown": 1.0}, "mass.unknown", r"unknown parameter 'mass.unknown' \(value 1.0\); MassProperties"),
+        ({"mass__unknown": 1.0}, "mass.unknown", r"unknown parameter 'mass.unknown' \(value 1.0\); MassAndInertia takes"),
         ({"colour": "red"}, "colour", r"unknown parameter 'colour' \(value 'red'\); Vehicle takes"),
         ({"engine__power": 1e5}, "engine", r"unknown parameter group 'engine' \(in engine__power=100000.0\)"),
         ({"name__first": "x"}, "name", r"'name' is a parameter, not a group"),

@@ -15,8 +15,9 @@ Kinematics (:mod:`~vehdyn.mechanics.kinematics`)
     :func:`absolute_acceleration`, :data:`GIMBAL_LOCK_MARGIN`
 Inertia (:mod:`~vehdyn.mechanics.inertia`)
     :class:`InertiaTensor` (products of inertia Ixz = integral x z dm; the matrix carries -Ixz),
-    :class:`MassProperties`, :func:`composite`, :func:`parallel_axis_shift`, :func:`inertia_matrix`,
-    primitives :func:`solid_box`, :func:`solid_cylinder`, :func:`hollow_cylinder`,
+    :class:`MassProperties` (of one rigid part; the vehicle's mass group is
+    :class:`vehdyn.params.MassAndInertia`), :func:`composite`, :func:`parallel_axis_shift`,
+    :func:`inertia_matrix`, primitives :func:`solid_box`, :func:`solid_cylinder`, :func:`hollow_cylinder`,
     :func:`solid_sphere`, :func:`hollow_sphere`, :func:`solid_cone`, :func:`slender_rod`
 """
 

@@ -34,7 +34,23 @@ __all__ = ["newton_euler", "torque_free_period", "accelerations", "angular_momen
 
 
 def mass_array(mass) -> np.ndarray:
-    """``mass`` [kg] as a float array (scalar or one value per batch member), checked > 0 and finite."""
+    """A mass as a float array, checked.
+
+    Parameters
+    ----------
+    mass : float or array_like, shape (n,)
+        Mass [kg] (one value per batch member for an array).
+
+    Returns
+    -------
+    ndarray
+        ``mass`` as floats (0-d or 1-D) [kg].
+
+    Raises
+    ------
+    ParameterError
+        If a value is not finite or not > 0, or the array has more than one axis.
+    """
     m = np.asarray(mass, dtype=float)
     if m.ndim > 1 or not np.all(np.isfinite(m)) or not np.all(m > 0):
         raise ParameterError(f"mass must be a finite number > 0 [kg] (or a 1-D array of them), got {mass!r}",
@@ -43,7 +59,18 @@ def mass_array(mass) -> np.ndarray:
 
 
 def inverse_inertia(inertia) -> tuple[np.ndarray, np.ndarray]:
-    """The validated inertia matrix and its inverse, each (3, 3) or (3, 3, n)."""
+    """The validated inertia matrix and its inverse.
+
+    Parameters
+    ----------
+    inertia : InertiaTensor or array_like, shape (3, 3) or (3, 3, n)
+        Inertia tensor [kg m^2] (see :func:`~vehdyn.mechanics.inertia_matrix`).
+
+    Returns
+    -------
+    matrix, inverse : ndarray, shape (3, 3) or (3, 3, n)
+        I [kg m^2] and I^-1 [1/(kg m^2)], batch axis last.
+    """
     mat = inertia_matrix(inertia)
     if mat.ndim == 2:
         return mat, np.linalg.inv(mat)
@@ -51,18 +78,57 @@ def inverse_inertia(inertia) -> tuple[np.ndarray, np.ndarray]:
 
 
 def angular_momentum(inertia, angular_velocity) -> np.ndarray:
-    """Angular momentum about the centre of mass in body axes, H = I omega [kg m^2/s]."""
+    """Angular momentum about the centre of mass in body axes.
+
+    Parameters
+    ----------
+    inertia : InertiaTensor or array_like, shape (3, 3) or (3, 3, n)
+        Inertia tensor about the centre of mass [kg m^2].
+    angular_velocity : array_like, shape (3,) or (3, n)
+        Body rates (p, q, r) [rad/s].
+
+    Returns
+    -------
+    ndarray, shape (3,) or (3, n)
+        H = I omega [kg m^2/s].
+    """
     return apply_matrix(inertia_matrix(inertia), as_vector3(angular_velocity, "angular_velocity"))
 
 
 def kinetic_energy(mass, inertia, velocity, angular_velocity) -> np.ndarray:
-    """Kinetic energy T = m V.V / 2 + omega . I omega / 2 [J] of a body moving with V, omega (body axes)."""
+    """Kinetic energy of a rigid body.
+
+    Parameters
+    ----------
+    mass : float or array_like, shape (n,)
+        Mass m [kg].
+    inertia : InertiaTensor or array_like, shape (3, 3) or (3, 3, n)
+        Inertia tensor about the centre of mass, in body axes [kg m^2].
+    velocity : array_like, shape (3,) or (3, n)
+        Velocity of the centre of mass V [m/s] (any axes).
+    angular_velocity : array_like, shape (3,) or (3, n)
+        Body rates omega (p, q, r) [rad/s].
+
+    Returns
+    -------
+    ndarray
+        T = m V.V / 2 + omega . I omega / 2 [J] (0-d, or one value per batch member).
+    """
     v, w = as_vectors3(velocity=velocity, angular_velocity=angular_velocity)
     return 0.5 * mass_array(mass) * np.sum(v * v, axis=0) + 0.5 * np.sum(w * angular_momentum(inertia, w), axis=0)
 
 
 def newton_euler(mass, inertia, velocity, angular_velocity, force, moment):
-    """Translational and angular acceleration of a rigid body from the Newton-Euler equations.
+    r"""Translational and angular acceleration of a rigid body from the Newton-Euler equations.
+
+    .. math::
+
+        \dot{\mathbf V} = \frac{\mathbf F}{m} - \boldsymbol\omega \times \mathbf V, \qquad
+        \dot{\boldsymbol\omega} = \mathbf I^{-1} \left(\mathbf M - \boldsymbol\omega \times
+        \mathbf I \boldsymbol\omega\right)
+
+    in body axes fixed at the centre of mass (Newton's law for the centre of mass, Euler's
+    equations for the rotation, with the full tensor; term by term in the module docstring).
 
     Parameters
     ----------
@@ -96,7 +162,23 @@ def newton_euler(mass, inertia, velocity, angular_velocity, force, moment):
     Notes
     -----
     SAE vehicle axes, x forward, y right, z down; see the module docstring for the equations
-    written term by term and their sources.
+    written term by term.
+
+    References
+    ----------
+    .. [1] L. D. Landau and E. M. Lifshitz, *Mechanics*, 3rd ed., Pergamon, 1976, sec. 36 (Euler's
+       equations).
+    .. [2] H. Goldstein, C. Poole and J. Safko, *Classical Mechanics*, 3rd ed., 2002, sec. 5.5.
+    .. [3] SAE J670, *Vehicle Dynamics Terminology*, 2008 (vehicle axes and the symbols u, v, w,
+       p, q, r, X, Y, Z, L, M, N).
+
+    Examples
+    --------
+    >>> from vehdyn.mechanics import InertiaTensor, newton_euler
+    >>> dv, dw = newton_euler(1500.0, InertiaTensor(500.0, 2000.0, 2200.0), velocity=[20.0, 0.0, 0.0],
+    ...                       angular_velocity=[0.0, 0.0, 0.5], force=[0.0, 15000.0, 0.0], moment=[0.0, 0.0, 0.0])
+    >>> dv.tolist()      # a steady turn: F_y / m = r u, so dv/dt = 0 [m/s^2]
+    [0.0, 0.0, 0.0]
     """
     matrix, inverse = inverse_inertia(inertia)
     m = mass_array(mass)
@@ -106,7 +188,22 @@ def newton_euler(mass, inertia, velocity, angular_velocity, force, moment):
 
 
 def accelerations(mass, inertia, inverse, velocity, angular_velocity, force, moment):
-    """:func:`newton_euler` on validated arrays (``inverse`` = inertia^-1), for models' inner loops."""
+    """:func:`newton_euler` on validated arrays, for models' inner loops (no checks, no copies).
+
+    Parameters
+    ----------
+    mass : ndarray
+        Mass [kg] from :func:`mass_array`.
+    inertia, inverse : ndarray, shape (3, 3) or (3, 3, n)
+        I [kg m^2] and I^-1 [1/(kg m^2)] from :func:`inverse_inertia`.
+    velocity, angular_velocity, force, moment : ndarray, shape (3,) or (3, n)
+        V [m/s], omega [rad/s], F [N] and M [N m] in body axes, broadcast-compatible.
+
+    Returns
+    -------
+    velocity_rate, angular_acceleration : ndarray
+        dV/dt [m/s^2] and domega/dt [rad/s^2], as :func:`newton_euler`.
+    """
     velocity_rate = force / mass - cross(angular_velocity, velocity)
     angular_acceleration = apply_matrix(inverse, moment - cross(angular_velocity, apply_matrix(inertia, angular_velocity)))
     return velocity_rate, angular_acceleration

@@ -57,7 +57,7 @@ _AXES = ("x", "y", "z")
 
 @dataclasses.dataclass(frozen=True)
 class InertiaTensor(ParameterSet):
-    """Inertia tensor of a rigid body about a point, in a set of body axes.
+    r"""Inertia tensor of a rigid body about a point, in a set of body axes.
 
     Parameters
     ----------
@@ -76,18 +76,42 @@ class InertiaTensor(ParameterSet):
 
     Notes
     -----
-    A tensor is realizable by a mass distribution exactly when its principal moments are
-    non-negative and satisfy the triangle inequalities; the checks here test the principal moments
-    (which implies the same for the moments about the given axes). A singular tensor (a point mass
-    or a slender rod, which has no moment about its own axis) is accepted as a part of a composite;
-    the dynamics (:func:`vehdyn.mechanics.equations_of_motion`, :class:`vehdyn.mechanics.RigidBody6DOF`)
-    need a positive-definite one and check it (:attr:`is_positive_definite`).
+    With the moments and products as integrals over the body (position r = (x, y, z) from the
+    reference point), the tensor that maps the angular velocity to the angular momentum,
+    :math:`\mathbf H = \mathbf I \boldsymbol\omega`, is
+
+    .. math::
+
+        \mathbf I = \int (|\mathbf r|^2 \mathbf E - \mathbf r \mathbf r^T) \, dm
+        = \begin{bmatrix} I_{xx} & -I_{xy} & -I_{xz} \\ -I_{xy} & I_{yy} & -I_{yz} \\
+          -I_{xz} & -I_{yz} & I_{zz} \end{bmatrix},
+        \qquad I_{xx} = \int (y^2 + z^2) \, dm, \quad I_{xz} = \int x z \, dm, \ \dots
+
+    (the sign convention of the flight- and vehicle-dynamics literature and of SAE J670; see the
+    module docstring). A tensor is realizable by a mass distribution exactly when its principal
+    moments are non-negative and satisfy the triangle inequalities; the checks here test the
+    principal moments (which implies the same for the moments about the given axes). A singular
+    tensor (a point mass or a slender rod, which has no moment about its own axis) is accepted as
+    a part of a composite; the dynamics (:func:`vehdyn.mechanics.newton_euler`,
+    :class:`vehdyn.mechanics.RigidBody6DOF`) need a positive-definite one and check it
+    (:attr:`is_positive_definite`).
+
+    References
+    ----------
+    .. [1] H. Goldstein, C. Poole and J. Safko, *Classical Mechanics*, 3rd ed., Addison-Wesley,
+       2002, sec. 5.3-5.4 (the inertia tensor, principal axes).
+    .. [2] SAE J670, *Vehicle Dynamics Terminology*, 2008 (vehicle axes).
 
     Examples
     --------
     >>> from vehdyn.mechanics import InertiaTensor
-    >>> float(InertiaTensor(500.0, 2000.0, 2200.0, ixz=40.0).matrix[0, 2])   # products enter with a minus sign
+    >>> tensor = InertiaTensor(500.0, 2000.0, 2200.0, ixz=40.0)    # a car's body about its CG [kg m^2]
+    >>> float(tensor.matrix[0, 2])                                  # products enter with a minus sign
     -40.0
+    >>> [round(float(m), 3) for m in tensor.principal_moments]     # ascending [kg m^2]
+    [499.059, 2000.0, 2200.941]
+    >>> round(tensor.moment_about([1.0, 0.0, 1.0]), 1)              # about a 45-degree axis [kg m^2]
+    1310.0
     """
 
     ixx: float = parameter("kg*m^2", "moment of inertia about x, integral (y^2 + z^2) dm", ge=0.0)
@@ -103,7 +127,24 @@ class InertiaTensor(ParameterSet):
     # ------------------------------------------------------------------ construction
     @classmethod
     def from_matrix(cls, matrix) -> "InertiaTensor":
-        """The tensor whose :attr:`matrix` is ``matrix`` (3x3, symmetric) [kg m^2]."""
+        """The tensor whose :attr:`matrix` is ``matrix``.
+
+        Parameters
+        ----------
+        matrix : array_like, shape (3, 3)
+            Symmetric inertia matrix [kg m^2], off-diagonal entries -Ixy, -Ixz, -Iyz.
+
+        Returns
+        -------
+        InertiaTensor
+            With ``ixy = -matrix[0, 1]``, ``ixz = -matrix[0, 2]``, ``iyz = -matrix[1, 2]``.
+
+        Raises
+        ------
+        ParameterError
+            If the shape is not (3, 3), an entry is not finite, the matrix is not symmetric (to
+            1e-9 of its largest entry) or not realizable (key ``inertia`` or the entry).
+        """
         m = np.asarray(matrix, dtype=float)
         if m.shape != (3, 3):
             raise ParameterError(f"inertia matrix must be 3x3, got shape {m.shape}", key="inertia", value=m.shape)
@@ -119,10 +160,20 @@ class InertiaTensor(ParameterSet):
 
     @classmethod
     def from_principal(cls, moments: Sequence[float], axes=None) -> "InertiaTensor":
-        """The tensor with principal ``moments`` (I1, I2, I3) [kg m^2] along the columns of ``axes``.
+        """The tensor with given principal moments along given principal directions.
 
-        ``axes`` is a rotation matrix whose columns are the principal directions expressed in the
-        target axes (identity by default): I = axes @ diag(moments) @ axes.T.
+        Parameters
+        ----------
+        moments : sequence of float
+            Principal moments (I1, I2, I3) [kg m^2].
+        axes : array_like, shape (3, 3), optional
+            Proper rotation matrix [-] whose columns are the principal directions expressed in the
+            target axes (identity by default).
+
+        Returns
+        -------
+        InertiaTensor
+            I = axes @ diag(moments) @ axes.T.
         """
         moments = np.asarray(moments, dtype=float)
         if moments.shape != (3,):
@@ -134,7 +185,22 @@ class InertiaTensor(ParameterSet):
     @classmethod
     def from_radii_of_gyration(cls, mass: float, kx: float, ky: float, kz: float, *, ixy: float = 0.0,
                                ixz: float = 0.0, iyz: float = 0.0) -> "InertiaTensor":
-        """Moments m k^2 from the radii of gyration ``kx``, ``ky``, ``kz`` [m] of a body of ``mass`` [kg]."""
+        """The tensor of a body of known mass and radii of gyration.
+
+        Parameters
+        ----------
+        mass : float
+            Mass m [kg], > 0.
+        kx, ky, kz : float
+            Radii of gyration about the x, y and z axes [m], >= 0.
+        ixy, ixz, iyz : float, optional
+            Products of inertia [kg m^2] (integrals, as in the class), default 0.
+
+        Returns
+        -------
+        InertiaTensor
+            Moments Ixx = m kx^2, Iyy = m ky^2, Izz = m kz^2 and the given products.
+        """
         mass = _positive(mass, "mass", "kg")
         return cls(mass * _nonnegative(kx, "kx", "m") ** 2, mass * _nonnegative(ky, "ky", "m") ** 2,
                    mass * _nonnegative(kz, "kz", "m") ** 2, ixy=ixy, ixz=ixz, iyz=iyz)
@@ -182,9 +248,17 @@ class InertiaTensor(ParameterSet):
         return np.linalg.eigvalsh(self.matrix)
 
     def moment_about(self, direction) -> float:
-        """Moment of inertia about the axis through the reference point along ``direction`` [kg m^2].
+        """Moment of inertia about an axis through the reference point.
 
-        ``direction`` need not be unit length; the moment is n^T I n with n = direction / |direction|.
+        Parameters
+        ----------
+        direction : array_like, shape (3,)
+            Direction of the axis in the tensor's axes [-]; need not be unit length.
+
+        Returns
+        -------
+        float
+            n^T I n [kg m^2] with n = direction / |direction|.
         """
         n = np.asarray(direction, dtype=float)
         norm = float(np.linalg.norm(n))
@@ -195,7 +269,18 @@ class InertiaTensor(ParameterSet):
         return float(n @ self.matrix @ n)
 
     def radius_of_gyration(self, mass: float) -> np.ndarray:
-        """Radii of gyration k = sqrt(I / m) about the x, y and z axes [m] for a body of ``mass`` [kg]."""
+        """Radii of gyration about the x, y and z axes.
+
+        Parameters
+        ----------
+        mass : float
+            Mass m of the body [kg], > 0.
+
+        Returns
+        -------
+        ndarray, shape (3,)
+            k = sqrt(I / m) about x, y and z [m].
+        """
         mass = _positive(mass, "mass", "kg")
         return np.sqrt(np.array([self.ixx, self.iyy, self.izz]) / mass)
 
@@ -206,8 +291,8 @@ class InertiaTensor(ParameterSet):
         Parameters
         ----------
         rotation : array_like, shape (3, 3)
-            Proper rotation matrix whose columns are this tensor's axes expressed in the new axes
-            (so a vector's components transform as v_new = rotation @ v_old).
+            Proper rotation matrix [-] whose columns are this tensor's axes expressed in the new
+            axes (so a vector's components transform as v_new = rotation @ v_old).
 
         Returns
         -------
@@ -244,7 +329,17 @@ class InertiaTensor(ParameterSet):
     def to_centre_of_mass(self, mass: float, offset) -> "InertiaTensor":
         """The reverse of :meth:`shifted`: from a point P to the centre of mass G.
 
-        ``offset`` is the position of G relative to P [m]; I_G = I_P - m (|d|^2 E - d d^T).
+        Parameters
+        ----------
+        mass : float
+            Mass of the body [kg].
+        offset : array_like, shape (3,)
+            Position d of G relative to P [m], in this tensor's axes.
+
+        Returns
+        -------
+        InertiaTensor
+            I_G = I_P - m (|d|^2 E - d d^T).
         """
         return InertiaTensor.from_matrix(self.matrix - parallel_axis_shift(mass, offset))
 
@@ -256,11 +351,30 @@ class InertiaTensor(ParameterSet):
 
 
 def parallel_axis_shift(mass, offset) -> np.ndarray:
-    """The parallel-axis term m (|d|^2 E - d d^T) [kg m^2] for a mass ``mass`` at ``offset`` d [m].
+    r"""The parallel-axis (Steiner) term of a mass at an offset.
 
-    It is the inertia tensor, in the sign convention of this module, of a point mass at d.
-    ``mass`` may be an array and ``offset`` of shape (3,) or (3, n) for a batch; the result has
-    shape (3, 3) or (3, 3, n).
+    .. math::
+
+        \Delta \mathbf I = m \, (|\mathbf d|^2 \mathbf E - \mathbf d \mathbf d^T)
+
+    It is the inertia tensor, in the sign convention of this module, of a point mass at d; added
+    to a tensor about the centre of mass it gives the tensor about the point -d from it.
+
+    Parameters
+    ----------
+    mass : float or array_like, shape (n,)
+        Mass m [kg], >= 0 (an array for a batch).
+    offset : array_like, shape (3,) or (3, n)
+        Offset d [m].
+
+    Returns
+    -------
+    ndarray, shape (3, 3) or (3, 3, n)
+        The term [kg m^2].
+
+    References
+    ----------
+    .. [1] H. Goldstein, C. Poole and J. Safko, *Classical Mechanics*, 3rd ed., 2002, sec. 5.3.
     """
     d = np.asarray(offset, dtype=float)
     if d.shape[:1] != (3,):
@@ -280,8 +394,13 @@ def inertia_matrix(inertia) -> np.ndarray:
     Parameters
     ----------
     inertia : InertiaTensor or array_like, shape (3, 3) or (3, 3, n)
-        An :class:`InertiaTensor` or the tensor's matrix (off-diagonal entries -Ixy, -Ixz, -Iyz),
-        optionally with a trailing batch axis of n variants.
+        An :class:`InertiaTensor` or the tensor's matrix [kg m^2] (off-diagonal entries -Ixy,
+        -Ixz, -Iyz), optionally with a trailing batch axis of n variants.
+
+    Returns
+    -------
+    ndarray, shape (3, 3) or (3, 3, n)
+        The matrix [kg m^2] (a fresh array for a tensor; the array as given, as floats, otherwise).
 
     Raises
     ------
@@ -312,14 +431,35 @@ def inertia_matrix(inertia) -> np.ndarray:
 class MassProperties:
     """Mass, centre of mass and inertia tensor (about the centre of mass) of a rigid body or part.
 
+    The building block of :func:`composite`: describe each part (a primitive such as
+    :func:`solid_box`, or measured values) in one set of reference axes and combine them. Not the
+    vehicle's parameter group, which is :class:`vehdyn.params.MassAndInertia` (``Vehicle.mass``).
+
     Parameters
     ----------
     mass : float
         Mass [kg], > 0.
     centre_of_mass : array_like, shape (3,)
         Position of the centre of mass in the reference axes [m] (default the origin).
-    inertia : InertiaTensor
-        Tensor about the centre of mass, in axes parallel to the reference axes.
+    inertia : InertiaTensor or array_like, shape (3, 3)
+        Tensor about the centre of mass, in axes parallel to the reference axes [kg m^2] (a
+        matrix is converted by :meth:`InertiaTensor.from_matrix`); default zero (a point mass).
+
+    Raises
+    ------
+    ParameterError
+        If the mass is not a finite number > 0, the centre of mass not three finite numbers, or
+        the tensor not realizable.
+
+    Examples
+    --------
+    >>> from vehdyn.mechanics import MassProperties, composite, solid_sphere
+    >>> ball = MassProperties(2.0, (1.0, 0.0, 0.0), solid_sphere(2.0, 0.1))
+    >>> body = composite([ball, ball.moved([-2.0, 0.0, 0.0])])      # two balls 2 m apart
+    >>> body.mass, body.centre_of_mass
+    (4.0, (0.0, 0.0, 0.0))
+    >>> round(body.inertia.izz, 4)                                   # 2 (2/5 m r^2 + m d^2) [kg m^2]
+    4.016
     """
 
     mass: float
@@ -337,21 +477,60 @@ class MassProperties:
             object.__setattr__(self, "inertia", InertiaTensor.from_matrix(self.inertia))
 
     def inertia_about(self, point=(0.0, 0.0, 0.0)) -> InertiaTensor:
-        """Tensor about ``point`` [m] (reference axes) by the parallel-axis shift."""
+        """The part's tensor about another point, by the parallel-axis shift.
+
+        Parameters
+        ----------
+        point : array_like, shape (3,)
+            The point in the reference axes [m] (default the origin).
+
+        Returns
+        -------
+        InertiaTensor
+            I_P = I_G + m (|d|^2 E - d d^T), d the centre of mass relative to the point [kg m^2].
+        """
         return self.inertia.shifted(self.mass, np.subtract(self.centre_of_mass, np.asarray(point, dtype=float)))
 
     def rotated(self, rotation) -> "MassProperties":
-        """The same part expressed in rotated reference axes (v_new = rotation @ v_old)."""
+        """The same part expressed in rotated reference axes.
+
+        Parameters
+        ----------
+        rotation : array_like, shape (3, 3)
+            Proper rotation matrix [-] with v_new = rotation @ v_old.
+
+        Returns
+        -------
+        MassProperties
+            Centre of mass rotation @ r_G, tensor rotation @ I @ rotation.T.
+        """
         rot = _rotation(rotation, "rotation")
         return MassProperties(self.mass, rot @ np.asarray(self.centre_of_mass), self.inertia.rotated(rot))
 
     def moved(self, offset) -> "MassProperties":
-        """The same part translated by ``offset`` [m]."""
+        """The same part translated.
+
+        Parameters
+        ----------
+        offset : array_like, shape (3,)
+            Translation [m] in the reference axes.
+
+        Returns
+        -------
+        MassProperties
+            Centre of mass moved by ``offset``; mass and tensor (about the centre of mass) unchanged.
+        """
         return MassProperties(self.mass, np.add(self.centre_of_mass, offset), self.inertia)
 
 
 def composite(parts: Iterable[MassProperties]) -> MassProperties:
-    """Combine parts into one body: total mass, centre of mass and tensor about that centre.
+    r"""Combine parts into one body: total mass, centre of mass and tensor about that centre.
+
+    .. math::
+
+        m = \sum_i m_i, \qquad \mathbf r_G = \frac{1}{m} \sum_i m_i \mathbf r_i, \qquad
+        \mathbf I_G = \sum_i \left[\mathbf I_i + m_i (|\mathbf d_i|^2 \mathbf E
+        - \mathbf d_i \mathbf d_i^T)\right], \quad \mathbf d_i = \mathbf r_i - \mathbf r_G
 
     Parameters
     ----------
@@ -362,12 +541,21 @@ def composite(parts: Iterable[MassProperties]) -> MassProperties:
     Returns
     -------
     MassProperties
-        m = sum m_i; r_G = sum m_i r_i / m; I_G = sum [I_i + m_i (|d_i|^2 E - d_i d_i^T)] with
-        d_i = r_i - r_G.
+        The body: its mass [kg], centre of mass [m] and tensor about it [kg m^2].
+
+    Raises
+    ------
+    ParameterError
+        If ``parts`` is empty or holds anything but :class:`vehdyn.mechanics.MassProperties`.
+
+    References
+    ----------
+    .. [1] H. Goldstein, C. Poole and J. Safko, *Classical Mechanics*, 3rd ed., 2002, sec. 5.3.
     """
     parts = list(parts)
     if not parts or not all(isinstance(p, MassProperties) for p in parts):
-        raise ParameterError("composite needs one or more MassProperties parts", key="parts", value=parts)
+        raise ParameterError("composite needs one or more vehdyn.mechanics.MassProperties parts", key="parts",
+                             value=parts)
     masses = np.array([p.mass for p in parts])
     centres = np.array([p.centre_of_mass for p in parts]).T  # (3, n)
     total = float(masses.sum())
@@ -388,9 +576,25 @@ def _axial(mass_axial: float, mass_transverse: float, axis: str) -> InertiaTenso
 
 
 def solid_box(mass: float, length_x: float, width_y: float, height_z: float) -> InertiaTensor:
-    """Homogeneous cuboid about its centre, edges along the axes: Ixx = m (b^2 + c^2) / 12 etc.
+    """Homogeneous cuboid about its centre, edges along the axes.
 
-    ``length_x``, ``width_y``, ``height_z`` [m] are the full edge lengths along x, y, z.
+    Parameters
+    ----------
+    mass : float
+        Mass m [kg], > 0.
+    length_x, width_y, height_z : float
+        Full edge lengths a, b, c along x, y and z [m], > 0.
+
+    Returns
+    -------
+    InertiaTensor
+        Ixx = m (b^2 + c^2) / 12, Iyy = m (c^2 + a^2) / 12, Izz = m (a^2 + b^2) / 12 [kg m^2];
+        no products.
+
+    References
+    ----------
+    .. [1] J. L. Meriam and L. G. Kraige, *Engineering Mechanics: Dynamics*, Wiley, the appendix
+       table of the mass moments of inertia of homogeneous solids.
     """
     mass = _positive(mass, "mass", "kg")
     a, b, c = (_positive(v, n, "m") for v, n in ((length_x, "length_x"), (width_y, "width_y"), (height_z, "height_z")))
@@ -398,7 +602,29 @@ def solid_box(mass: float, length_x: float, width_y: float, height_z: float) -> 
 
 
 def solid_cylinder(mass: float, radius: float, length: float, axis: str = "z") -> InertiaTensor:
-    """Homogeneous solid cylinder about its centre: m r^2 / 2 about ``axis``, m (3 r^2 + L^2) / 12 across."""
+    """Homogeneous solid cylinder about its centre.
+
+    Parameters
+    ----------
+    mass : float
+        Mass m [kg], > 0.
+    radius : float
+        Radius r [m], > 0.
+    length : float
+        Length L along the cylinder's axis [m], >= 0 (0: a thin disc).
+    axis : {"x", "y", "z"}
+        The body axis along which the cylinder's axis lies.
+
+    Returns
+    -------
+    InertiaTensor
+        m r^2 / 2 about ``axis``, m (3 r^2 + L^2) / 12 about the transverse axes [kg m^2].
+
+    References
+    ----------
+    .. [1] J. L. Meriam and L. G. Kraige, *Engineering Mechanics: Dynamics*, Wiley, the appendix
+       table of the mass moments of inertia of homogeneous solids.
+    """
     return hollow_cylinder(mass, radius, 0.0, length, axis)
 
 
@@ -406,8 +632,30 @@ def hollow_cylinder(mass: float, outer_radius: float, inner_radius: float, lengt
                     axis: str = "z") -> InertiaTensor:
     """Homogeneous thick-walled tube about its centre.
 
-    m (ro^2 + ri^2) / 2 about ``axis`` and m (3 (ro^2 + ri^2) + L^2) / 12 about the transverse
-    axes; ``inner_radius = outer_radius`` is a thin-walled tube (m r^2 about its axis).
+    Parameters
+    ----------
+    mass : float
+        Mass m [kg], > 0.
+    outer_radius : float
+        Outer radius r_o [m], > 0.
+    inner_radius : float
+        Inner radius r_i [m], 0 <= r_i <= r_o (``inner_radius = outer_radius``: a thin-walled
+        tube, m r^2 about its axis).
+    length : float
+        Length L along the tube's axis [m], >= 0.
+    axis : {"x", "y", "z"}
+        The body axis along which the tube's axis lies.
+
+    Returns
+    -------
+    InertiaTensor
+        m (r_o^2 + r_i^2) / 2 about ``axis``, m (3 (r_o^2 + r_i^2) + L^2) / 12 about the
+        transverse axes [kg m^2].
+
+    References
+    ----------
+    .. [1] J. L. Meriam and L. G. Kraige, *Engineering Mechanics: Dynamics*, Wiley, the appendix
+       table of the mass moments of inertia of homogeneous solids.
     """
     mass = _positive(mass, "mass", "kg")
     ro = _positive(outer_radius, "outer_radius", "m")
@@ -421,14 +669,40 @@ def hollow_cylinder(mass: float, outer_radius: float, inner_radius: float, lengt
 
 
 def solid_sphere(mass: float, radius: float) -> InertiaTensor:
-    """Homogeneous solid sphere about its centre: 2 m r^2 / 5 about every axis."""
+    """Homogeneous solid sphere about its centre.
+
+    Parameters
+    ----------
+    mass : float
+        Mass m [kg], > 0.
+    radius : float
+        Radius r [m], > 0.
+
+    Returns
+    -------
+    InertiaTensor
+        2 m r^2 / 5 about every axis [kg m^2].
+    """
     mass = _positive(mass, "mass", "kg")
     r = _positive(radius, "radius", "m")
     return _axial(0.4 * mass * r * r, 0.4 * mass * r * r, "z")
 
 
 def hollow_sphere(mass: float, radius: float) -> InertiaTensor:
-    """Thin spherical shell about its centre: 2 m r^2 / 3 about every axis."""
+    """Thin spherical shell about its centre.
+
+    Parameters
+    ----------
+    mass : float
+        Mass m [kg], > 0.
+    radius : float
+        Radius r [m], > 0.
+
+    Returns
+    -------
+    InertiaTensor
+        2 m r^2 / 3 about every axis [kg m^2].
+    """
     mass = _positive(mass, "mass", "kg")
     r = _positive(radius, "radius", "m")
     return _axial(2.0 * mass * r * r / 3, 2.0 * mass * r * r / 3, "z")
@@ -437,8 +711,27 @@ def hollow_sphere(mass: float, radius: float) -> InertiaTensor:
 def solid_cone(mass: float, radius: float, height: float, axis: str = "z") -> InertiaTensor:
     """Homogeneous right circular cone about its centre of mass (on the axis, h/4 above the base).
 
-    3 m r^2 / 10 about ``axis``; 3 m (r^2 / 20 + h^2 / 80) about transverse axes through the
-    centre of mass.
+    Parameters
+    ----------
+    mass : float
+        Mass m [kg], > 0.
+    radius : float
+        Base radius r [m], > 0.
+    height : float
+        Height h [m], > 0.
+    axis : {"x", "y", "z"}
+        The body axis along which the cone's axis lies.
+
+    Returns
+    -------
+    InertiaTensor
+        3 m r^2 / 10 about ``axis``; 3 m (r^2 / 20 + h^2 / 80) about the transverse axes through
+        the centre of mass [kg m^2].
+
+    References
+    ----------
+    .. [1] J. L. Meriam and L. G. Kraige, *Engineering Mechanics: Dynamics*, Wiley, the appendix
+       table of the mass moments of inertia of homogeneous solids.
     """
     mass = _positive(mass, "mass", "kg")
     r = _positive(radius, "radius", "m")
@@ -447,9 +740,22 @@ def solid_cone(mass: float, radius: float, height: float, axis: str = "z") -> In
 
 
 def slender_rod(mass: float, length: float, axis: str = "x") -> InertiaTensor:
-    """Thin rod along ``axis`` about its centre: m L^2 / 12 about transverse axes, 0 about its own.
+    """Thin rod along ``axis`` about its centre.
 
-    The tensor is singular (a line mass); use it as a part of a :func:`composite`.
+    Parameters
+    ----------
+    mass : float
+        Mass m [kg], > 0.
+    length : float
+        Length L [m], > 0.
+    axis : {"x", "y", "z"}
+        The body axis along which the rod lies.
+
+    Returns
+    -------
+    InertiaTensor
+        m L^2 / 12 about the transverse axes, 0 about its own [kg m^2]. The tensor is singular
+        (a line mass): use it as a part of a :func:`composite`.
     """
     mass = _positive(mass, "mass", "kg")
     length = _positive(length, "length", "m")

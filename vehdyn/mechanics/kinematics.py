@@ -92,7 +92,16 @@ def apply_matrix(matrix: np.ndarray, vector: np.ndarray) -> np.ndarray:
 
 # ---------------------------------------------------------------------------- rotations
 def rotation_body_to_earth(roll, pitch, yaw) -> np.ndarray:
-    """Body-to-earth rotation matrix R = Rz(yaw) Ry(pitch) Rx(roll).
+    r"""Body-to-earth rotation matrix R = Rz(yaw) Ry(pitch) Rx(roll).
+
+    .. math::
+
+        R = \begin{bmatrix}
+        c_\theta c_\psi & s_\phi s_\theta c_\psi - c_\phi s_\psi & c_\phi s_\theta c_\psi + s_\phi s_\psi \\
+        c_\theta s_\psi & s_\phi s_\theta s_\psi + c_\phi c_\psi & c_\phi s_\theta s_\psi - s_\phi c_\psi \\
+        -s_\theta & s_\phi c_\theta & c_\phi c_\theta \end{bmatrix}
+
+    (c, s: cosine and sine of the subscripted angle).
 
     Parameters
     ----------
@@ -102,7 +111,20 @@ def rotation_body_to_earth(roll, pitch, yaw) -> np.ndarray:
     Returns
     -------
     ndarray, shape (3, 3) or (3, 3, n)
-        v_earth = R v_body. Its columns are the body axes expressed in earth axes.
+        v_earth = R v_body [-]. Its columns are the body axes expressed in earth axes.
+
+    References
+    ----------
+    .. [1] SAE J670, *Vehicle Dynamics Terminology*, 2008 (earth and vehicle axes, Euler angles).
+    .. [2] B. Etkin, *Dynamics of Atmospheric Flight*, Wiley, 1972, ch. 4.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from vehdyn.mechanics import rotation_body_to_earth
+    >>> R = rotation_body_to_earth(0.0, 0.0, np.pi / 2)     # heading 90 deg: nose along earth Y
+    >>> np.round(R @ [1.0, 0.0, 0.0], 12).tolist()
+    [0.0, 1.0, 0.0]
     """
     phi, theta, psi = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (roll, pitch, yaw)))
     sf, cf = np.sin(phi), np.cos(phi)
@@ -116,26 +138,74 @@ def rotation_body_to_earth(roll, pitch, yaw) -> np.ndarray:
 
 
 def rotation_earth_to_body(roll, pitch, yaw) -> np.ndarray:
-    """Earth-to-body rotation matrix R^T (see :func:`rotation_body_to_earth`)."""
+    """Earth-to-body rotation matrix R^T (see :func:`rotation_body_to_earth`).
+
+    Parameters
+    ----------
+    roll, pitch, yaw : float or array_like
+        Euler angles phi, theta, psi [rad] (yaw-pitch-roll order), broadcast together.
+
+    Returns
+    -------
+    ndarray, shape (3, 3) or (3, 3, n)
+        R^T [-]: v_body = R^T v_earth.
+    """
     return np.swapaxes(rotation_body_to_earth(roll, pitch, yaw), 0, 1)
 
 
 def body_to_earth(vector, roll, pitch, yaw) -> np.ndarray:
-    """Earth-axis components of a vector given in body axes: R v."""
+    """Earth-axis components of a vector given in body axes.
+
+    Parameters
+    ----------
+    vector : array_like, shape (3,) or (3, n)
+        Body-axis components [any unit: that of the result].
+    roll, pitch, yaw : float or array_like
+        Euler angles phi, theta, psi [rad] (yaw-pitch-roll order), broadcast together.
+
+    Returns
+    -------
+    ndarray
+        R v, in the unit of ``vector``.
+    """
     return apply_matrix(rotation_body_to_earth(roll, pitch, yaw), as_vector3(vector, "vector"))
 
 
 def earth_to_body(vector, roll, pitch, yaw) -> np.ndarray:
-    """Body-axis components of a vector given in earth axes: R^T v."""
+    """Body-axis components of a vector given in earth axes.
+
+    Parameters
+    ----------
+    vector : array_like, shape (3,) or (3, n)
+        Earth-axis components [any unit: that of the result].
+    roll, pitch, yaw : float or array_like
+        Euler angles phi, theta, psi [rad] (yaw-pitch-roll order), broadcast together.
+
+    Returns
+    -------
+    ndarray
+        R^T v, in the unit of ``vector``.
+    """
     return apply_matrix(rotation_earth_to_body(roll, pitch, yaw), as_vector3(vector, "vector"))
 
 
 def euler_angles_from_rotation(rotation) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Roll, pitch and yaw [rad] of a body-to-earth rotation matrix (inverse of :func:`rotation_body_to_earth`).
+    """Roll, pitch and yaw of a body-to-earth rotation matrix (inverse of :func:`rotation_body_to_earth`).
 
-    Returns angles with pitch in [-pi/2, pi/2] and roll, yaw in (-pi, pi]. At pitch = +-90 deg
-    only roll -+ yaw is defined; :class:`~vehdyn.ParameterError` is raised there (within
-    :data:`GIMBAL_LOCK_MARGIN`).
+    Parameters
+    ----------
+    rotation : array_like, shape (3, 3) or (3, 3, n)
+        Body-to-earth rotation matrix R [-].
+
+    Returns
+    -------
+    roll, pitch, yaw : ndarray
+        phi, theta, psi [rad], with pitch in [-pi/2, pi/2] and roll, yaw in (-pi, pi].
+
+    Raises
+    ------
+    ParameterError
+        At pitch = +-90 deg (within :data:`GIMBAL_LOCK_MARGIN`), where only roll -+ yaw is defined.
     """
     rot = np.asarray(rotation, dtype=float)
     if rot.shape[:2] != (3, 3):
@@ -149,10 +219,22 @@ def euler_angles_from_rotation(rotation) -> tuple[np.ndarray, np.ndarray, np.nda
 
 
 def check_gimbal_lock(pitch, margin: float = GIMBAL_LOCK_MARGIN) -> None:
-    """Raise :class:`~vehdyn.ParameterError` if a pitch angle is within ``margin`` [rad] of +-90 deg.
+    """Raise :class:`~vehdyn.ParameterError` if a pitch angle is within ``margin`` of +-90 deg.
 
     The test is cos(pitch) < sin(margin), so it holds for pitch angles beyond +-90 deg (which
     occur when the angles are integrated) as well.
+
+    Parameters
+    ----------
+    pitch : float or array_like
+        Pitch angle(s) theta [rad].
+    margin : float
+        Distance from +-90 deg [rad] inside which the angles are refused.
+
+    Raises
+    ------
+    ParameterError
+        Naming the first offending pitch angle (key ``pitch_angle``) and its batch member.
     """
     pitch = np.asarray(pitch, dtype=float)
     locked = ~(np.abs(np.cos(pitch)) >= np.sin(margin))  # also catches NaN
@@ -168,10 +250,36 @@ def check_gimbal_lock(pitch, margin: float = GIMBAL_LOCK_MARGIN) -> None:
 
 
 def euler_angle_rates(roll, pitch, roll_rate, pitch_rate, yaw_rate, *, margin: float = GIMBAL_LOCK_MARGIN):
-    """Euler-angle rates (dphi/dt, dtheta/dt, dpsi/dt) [rad/s] from the body rates p, q, r [rad/s].
+    r"""Euler-angle rates from the body rates.
 
-    See the module docstring for the equations. Raises :class:`~vehdyn.ParameterError` when
-    ``pitch`` is within ``margin`` [rad] of +-90 deg (gimbal lock).
+    .. math::
+
+        \dot\phi = p + (q \sin\phi + r \cos\phi) \tan\theta, \qquad
+        \dot\theta = q \cos\phi - r \sin\phi, \qquad
+        \dot\psi = \frac{q \sin\phi + r \cos\phi}{\cos\theta}
+
+    Parameters
+    ----------
+    roll, pitch : float or array_like
+        Roll and pitch angles phi, theta [rad].
+    roll_rate, pitch_rate, yaw_rate : float or array_like
+        Body rates p, q, r [rad/s].
+    margin : float
+        Distance from pitch = +-90 deg [rad] inside which the rates are refused.
+
+    Returns
+    -------
+    tuple of ndarray
+        (dphi/dt, dtheta/dt, dpsi/dt) [rad/s].
+
+    Raises
+    ------
+    ParameterError
+        When ``pitch`` is within ``margin`` of +-90 deg (gimbal lock).
+
+    References
+    ----------
+    .. [1] B. Etkin, *Dynamics of Atmospheric Flight*, Wiley, 1972, ch. 4.
     """
     check_gimbal_lock(pitch, margin)
     phi = np.asarray(roll, dtype=float)
@@ -183,10 +291,31 @@ def euler_angle_rates(roll, pitch, roll_rate, pitch_rate, yaw_rate, *, margin: f
 
 
 def body_rates(roll, pitch, roll_angle_rate, pitch_angle_rate, yaw_angle_rate):
-    """Body rates (p, q, r) [rad/s] from the Euler-angle rates (the inverse of :func:`euler_angle_rates`).
+    r"""Body rates from the Euler-angle rates (the inverse of :func:`euler_angle_rates`).
 
-    p = dphi - dpsi sin theta, q = dtheta cos phi + dpsi cos theta sin phi,
-    r = -dtheta sin phi + dpsi cos theta cos phi; regular at every attitude.
+    .. math::
+
+        p = \dot\phi - \dot\psi \sin\theta, \qquad
+        q = \dot\theta \cos\phi + \dot\psi \cos\theta \sin\phi, \qquad
+        r = -\dot\theta \sin\phi + \dot\psi \cos\theta \cos\phi
+
+    regular at every attitude.
+
+    Parameters
+    ----------
+    roll, pitch : float or array_like
+        Roll and pitch angles phi, theta [rad].
+    roll_angle_rate, pitch_angle_rate, yaw_angle_rate : float or array_like
+        Euler-angle rates dphi/dt, dtheta/dt, dpsi/dt [rad/s].
+
+    Returns
+    -------
+    tuple
+        Body rates (p, q, r) [rad/s].
+
+    References
+    ----------
+    .. [1] B. Etkin, *Dynamics of Atmospheric Flight*, Wiley, 1972, ch. 4.
     """
     sf, cf = np.sin(roll), np.cos(roll)
     st, ct = np.sin(pitch), np.cos(pitch)
@@ -230,38 +359,102 @@ def point_velocity(v_o, omega, r) -> np.ndarray:
         Body angular velocity (p, q, r) [rad/s].
     r : array_like
         Position of P relative to O in body axes [m].
+
+    Returns
+    -------
+    ndarray, shape (3,) or (3, n)
+        V_P in body axes [m/s].
     """
     v_o, omega, r = as_vectors3(v_o=v_o, omega=omega, r=r)
     return v_o + cross(omega, r)
 
 
 def point_acceleration(a_o, omega, omega_dot, r) -> np.ndarray:
-    """Absolute acceleration of a point P fixed on the body, in body axes [m/s^2].
+    r"""Absolute acceleration of a point P fixed on the body, in body axes.
 
-    a_P = a_O + omega_dot x r + omega x (omega x r), where ``a_o`` is the absolute acceleration of
-    the origin O in body axes (dV/dt + omega x V, see :func:`absolute_acceleration`), ``omega_dot``
-    the angular acceleration [rad/s^2] and ``r`` the position of P relative to O [m].
+    .. math::
+
+        \mathbf a_P = \mathbf a_O + \dot{\boldsymbol\omega} \times \mathbf r
+        + \boldsymbol\omega \times (\boldsymbol\omega \times \mathbf r)
+
+    Parameters
+    ----------
+    a_o : array_like, shape (3,) or (3, n)
+        Absolute acceleration of the body origin O in body axes [m/s^2] (dV/dt + omega x V, see
+        :func:`absolute_acceleration`).
+    omega : array_like
+        Body angular velocity (p, q, r) [rad/s].
+    omega_dot : array_like
+        Angular acceleration [rad/s^2].
+    r : array_like
+        Position of P relative to O in body axes [m].
+
+    Returns
+    -------
+    ndarray, shape (3,) or (3, n)
+        a_P in body axes [m/s^2].
     """
     a_o, w, w_dot, r = as_vectors3(a_o=a_o, omega=omega, omega_dot=omega_dot, r=r)
     return a_o + cross(w_dot, r) + cross(w, cross(w, r))
 
 
 def moving_point_velocity(v_o, omega, r, r_dot) -> np.ndarray:
-    """Velocity of a point P moving on the body: V_P = V_O + omega x r + r_dot [m/s].
+    """Velocity of a point P moving on the body: V_P = V_O + omega x r + r_dot.
 
-    ``r_dot`` is the velocity of P relative to the body, in body axes [m/s] (e.g. a wheel centre's
-    suspension travel rate).
+    Parameters
+    ----------
+    v_o : array_like, shape (3,) or (3, n)
+        Velocity of the body origin O in body axes [m/s].
+    omega : array_like
+        Body angular velocity (p, q, r) [rad/s].
+    r : array_like
+        Position of P relative to O in body axes [m].
+    r_dot : array_like
+        Velocity of P relative to the body, in body axes [m/s] (e.g. a wheel centre's suspension
+        travel rate).
+
+    Returns
+    -------
+    ndarray, shape (3,) or (3, n)
+        V_P in body axes [m/s].
     """
     v_o, omega, r, r_dot = as_vectors3(v_o=v_o, omega=omega, r=r, r_dot=r_dot)
     return point_velocity(v_o, omega, r) + r_dot
 
 
 def moving_point_acceleration(a_o, omega, omega_dot, r, r_dot, r_ddot) -> np.ndarray:
-    """Absolute acceleration of a point P moving on the body, in body axes [m/s^2] (five-term formula).
+    r"""Absolute acceleration of a point P moving on the body, in body axes (five-term formula).
 
-    a_P = a_O + omega_dot x r + omega x (omega x r) + 2 omega x r_dot + r_ddot, with ``r_dot``,
-    ``r_ddot`` the velocity [m/s] and acceleration [m/s^2] of P relative to the body (Coriolis term
-    2 omega x r_dot). See :func:`point_acceleration` for the other arguments.
+    .. math::
+
+        \mathbf a_P = \mathbf a_O + \dot{\boldsymbol\omega} \times \mathbf r
+        + \boldsymbol\omega \times (\boldsymbol\omega \times \mathbf r)
+        + 2 \boldsymbol\omega \times \dot{\mathbf r} + \ddot{\mathbf r}
+
+    (2 omega x r_dot: the Coriolis term).
+
+    Parameters
+    ----------
+    a_o : array_like, shape (3,) or (3, n)
+        Absolute acceleration of the body origin O in body axes [m/s^2].
+    omega : array_like
+        Body angular velocity (p, q, r) [rad/s].
+    omega_dot : array_like
+        Angular acceleration [rad/s^2].
+    r : array_like
+        Position of P relative to O in body axes [m].
+    r_dot, r_ddot : array_like
+        Velocity [m/s] and acceleration [m/s^2] of P relative to the body, in body axes.
+
+    Returns
+    -------
+    ndarray, shape (3,) or (3, n)
+        a_P in body axes [m/s^2].
+
+    References
+    ----------
+    .. [1] H. Goldstein, C. Poole and J. Safko, *Classical Mechanics*, 3rd ed., 2002, sec. 4.9-4.10
+       (rates of change in rotating axes, the Coriolis term).
     """
     a_o, omega, omega_dot, r, r_dot, r_ddot = as_vectors3(a_o=a_o, omega=omega, omega_dot=omega_dot, r=r,
                                                           r_dot=r_dot, r_ddot=r_ddot)

@@ -53,7 +53,7 @@ def _skew(vector) -> np.ndarray:
 
 
 class RigidBody6DOF(Model):
-    """A rigid body with six degrees of freedom in SAE vehicle axes (x forward, y right, z down).
+    r"""A rigid body with six degrees of freedom in SAE vehicle axes (x forward, y right, z down).
 
     Parameters
     ----------
@@ -108,16 +108,49 @@ class RigidBody6DOF(Model):
 
     Notes
     -----
-    Equations (see :mod:`vehdyn.mechanics.equations_of_motion` and :mod:`vehdyn.mechanics.kinematics` for
-    the sources):
+    Newton's and Euler's laws in body axes fixed at the centre of mass, the position in earth
+    axes and the yaw-pitch-roll Euler-angle kinematics:
 
-        dV/dt = F/m + g R^T e_Z - omega x V
-        domega/dt = I^-1 (M - omega x I omega)
-        d(x, y, z)/dt = R V, R = Rz(psi) Ry(theta) Rx(phi)
-        d(phi, theta, psi)/dt from (p, q, r) by :func:`~vehdyn.mechanics.kinematics.euler_angle_rates`.
+    .. math::
 
+        \dot{\mathbf V} &= \frac{\mathbf F}{m} + g R^T \mathbf e_Z - \boldsymbol\omega \times \mathbf V \\
+        \dot{\boldsymbol\omega} &= \mathbf I^{-1} (\mathbf M - \boldsymbol\omega \times \mathbf I \boldsymbol\omega) \\
+        (\dot x, \dot y, \dot z)^T &= R \mathbf V, \qquad R = R_z(\psi) R_y(\theta) R_x(\phi) \\
+        \dot\phi &= p + (q \sin\phi + r \cos\phi) \tan\theta, \quad
+        \dot\theta = q \cos\phi - r \sin\phi, \quad
+        \dot\psi = \frac{q \sin\phi + r \cos\phi}{\cos\theta}
+
+    with V = (u, v, w), omega = (p, q, r) (:func:`~vehdyn.mechanics.newton_euler`,
+    :func:`~vehdyn.mechanics.rotation_body_to_earth`, :func:`~vehdyn.mechanics.euler_angle_rates`).
     Every array may carry a trailing batch axis. :meth:`jacobian` gives the exact derivatives, so
     :meth:`linearize` returns exact matrices (structural zeros are exact zeros).
+
+    References
+    ----------
+    .. [1] H. Goldstein, C. Poole and J. Safko, *Classical Mechanics*, 3rd ed., Addison-Wesley,
+       2002, ch. 4-5 (rotations, Euler angles, Euler's equations).
+    .. [2] D. T. Greenwood, *Principles of Dynamics*, 2nd ed., Prentice-Hall, 1988, ch. 7-8
+       (rigid-body kinematics and dynamics in three dimensions).
+    .. [3] B. Etkin, *Dynamics of Atmospheric Flight*, Wiley, 1972, ch. 4 (the equations in
+       vehicle body axes).
+    .. [4] SAE J670, *Vehicle Dynamics Terminology*, 2008 (axes, states and signs).
+
+    Examples
+    --------
+    A body driven round a steady turn by the side force m r u closes the circle of radius u / r
+    after one period 2 pi / r:
+
+    >>> import numpy as np
+    >>> import vehdyn
+    >>> from vehdyn.mechanics import InertiaTensor, RigidBody6DOF
+    >>> body = RigidBody6DOF(mass=1500.0, inertia=InertiaTensor(500.0, 2000.0, 2200.0))
+    >>> t = np.linspace(0.0, 4 * np.pi, 401)                              # one period at r = 0.5 rad/s
+    >>> result = vehdyn.simulate(body, t, {"lateral_force": 1500.0 * 0.5 * 20.0},
+    ...                          x0={"longitudinal_velocity": 20.0, "yaw_rate": 0.5}, rtol=1e-10, atol=1e-10)
+    >>> round(float(result["y"].max()), 6), round(abs(float(result["x"][-1])), 6)   # diameter 80 m, back at 0
+    (80.0, 0.0)
+    >>> float(result["lateral_acceleration"][0])                         # r u [m/s^2]
+    10.0
     """
 
     states = _STATES

@@ -4,7 +4,7 @@ from vehdyn.params.base import ParameterSet, dump_toml, load_toml, parameter, te
 from vehdyn.params.vehicle import (
     Aerodynamics,
     Geometry,
-    MassProperties,
+    MassAndInertia,
     Steering,
     Driveline,
     Suspension,
@@ -23,7 +23,7 @@ __all__ = [
     "load_toml",
     "dump_toml",
     "Vehicle",
-    "MassProperties",
+    "MassAndInertia",
     "Geometry",
     "Suspension",
     "Tires",

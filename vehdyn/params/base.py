@@ -36,16 +36,47 @@ def parameter(
     lt: float | None = None,
     le: float | None = None,
 ):
-    """A numeric field with its unit, description and bounds (``gt``, ``ge``, ``lt``, ``le``).
+    """A numeric field with its unit, description and bounds, for a :class:`ParameterSet`.
 
-    ``default=None`` makes the parameter optional: ``None`` is then accepted and means "not given".
+    Parameters
+    ----------
+    unit : str
+        The unit, as written in messages and TOML comments (``"kg"``, ``"N/m"``, ``"-"`` for a
+        ratio).
+    description : str
+        What the parameter is (shown in the API documentation and in "missing parameter" errors).
+    default : float or None, optional
+        Default value [``unit``]; none: the parameter is required. ``default=None`` makes it
+        optional: ``None`` is then accepted and means "not given".
+    gt, ge, lt, le : float, optional
+        Strict and non-strict lower and upper bounds [``unit``], checked on construction.
+
+    Returns
+    -------
+    dataclasses.Field
+        A field whose ``metadata`` holds the unit, description and bounds.
     """
     meta = {"unit": unit, "description": description, "gt": gt, "ge": ge, "lt": lt, "le": le}
     return dataclasses.field(default=default, metadata=meta)
 
 
 def text(description: str, *, default: Any = _MISSING, choices: tuple[str, ...] | None = None):
-    """A string field (a name, a file name, a model name) with optional allowed values."""
+    """A string field (a name, a file name, a model name) with optional allowed values.
+
+    Parameters
+    ----------
+    description : str
+        What the field is.
+    default : str or None, optional
+        Default value; none: the field is required (``None``: optional, "not given").
+    choices : tuple of str, optional
+        The allowed values (a ParameterError lists them for any other).
+
+    Returns
+    -------
+    dataclasses.Field
+        A field marked as text in its ``metadata``.
+    """
     return dataclasses.field(default=default, metadata={"unit": "", "description": description,
                                                          "choices": choices, "text": True})
 
@@ -122,7 +153,23 @@ class ParameterSet:
     def from_dict(cls, data: Mapping[str, Any], *, path: str = ""):
         """Build from a (nested) mapping, checking for missing and unknown keys.
 
-        Errors name the dotted path of the key (``suspension.front_spring_rate``).
+        Parameters
+        ----------
+        data : Mapping
+            ``{field: value}``, with a nested mapping for each nested group (a TOML table).
+        path : str, optional
+            Dotted prefix of this group in the errors (``"suspension."``); empty at the top.
+
+        Returns
+        -------
+        ParameterSet
+            An instance of ``cls``, validated.
+
+        Raises
+        ------
+        ParameterError
+            For a missing, unknown, ill-typed or out-of-range parameter, naming the dotted path of
+            its key (``suspension.front_spring_rate``).
         """
         if not isinstance(data, Mapping):
             where = path.rstrip(".")
@@ -151,7 +198,14 @@ class ParameterSet:
             raise _with_prefix(exc, path) from None
 
     def to_dict(self) -> dict[str, Any]:
-        """A nested dict of plain values (the inverse of :meth:`from_dict`)."""
+        """A nested dict of plain values (the inverse of :meth:`from_dict`).
+
+        Returns
+        -------
+        dict
+            ``{field: value}`` with a nested dict per group; optional fields left at ``None`` are
+            omitted.
+        """
         out: dict[str, Any] = {}
         for f in dataclasses.fields(self):
             value = getattr(self, f.name)
@@ -163,7 +217,13 @@ class ParameterSet:
 
     @classmethod
     def units(cls) -> dict[str, str]:
-        """``{field: unit}`` of this group's numeric fields."""
+        """The units of this group's numeric fields.
+
+        Returns
+        -------
+        dict of str to str
+            ``{field: unit}`` (``""`` for text fields).
+        """
         return {f.name: f.metadata["unit"] for f in dataclasses.fields(cls) if "unit" in f.metadata}
 
     @classmethod
@@ -254,6 +314,22 @@ def read_toml(path: str | Path) -> dict[str, Any]:
 
     A UTF-8 byte-order mark (as some Windows editors write) is accepted; UTF-16/32 files, binary
     files, folders and unreadable files are reported as such.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The TOML file.
+
+    Returns
+    -------
+    dict
+        The parsed top-level table.
+
+    Raises
+    ------
+    ParameterError
+        If the file is missing, a folder, unreadable, not UTF-8 text or not valid TOML
+        (key ``"path"``).
     """
     if not isinstance(path, (str, os.PathLike)):
         raise ParameterError(f"a parameter file must be given as a path (str or os.PathLike), got "
@@ -289,7 +365,20 @@ def read_toml(path: str | Path) -> dict[str, Any]:
 
 
 def load_toml(cls: type[ParameterSet], path: str | Path) -> ParameterSet:
-    """Load a parameter set of type ``cls`` from a TOML file (see :func:`read_toml` for the file checks)."""
+    """Load a parameter set of type ``cls`` from a TOML file.
+
+    Parameters
+    ----------
+    cls : type
+        A :class:`ParameterSet` subclass (:class:`~vehdyn.params.Vehicle`, ...).
+    path : str or os.PathLike
+        The TOML file (see :func:`read_toml` for the file checks).
+
+    Returns
+    -------
+    ParameterSet
+        ``cls.from_dict`` of the file's table.
+    """
     return cls.from_dict(read_toml(path))
 
 
@@ -302,7 +391,18 @@ def _toml_value(value: Any) -> str:
 
 
 def dump_toml(params: ParameterSet) -> str:
-    """TOML text of a parameter set; ``load_toml`` reads it back to an equal object."""
+    """TOML text of a parameter set; :func:`load_toml` reads it back to an equal object.
+
+    Parameters
+    ----------
+    params : ParameterSet
+        The parameters (top-level values, then one ``[table]`` per nested group).
+
+    Returns
+    -------
+    str
+        The TOML text, each number written exactly (``repr``) with its unit as a comment.
+    """
     lines: list[str] = []
     tables: list[tuple[str, ParameterSet]] = []
     for f in dataclasses.fields(params):

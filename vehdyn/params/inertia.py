@@ -20,7 +20,18 @@ __all__ = ["check_realizable", "relative_tolerance"]
 
 
 def relative_tolerance(scale):
-    """Slack for equalities that hold exactly only in exact arithmetic (thin plate: Izz = Ixx + Iyy)."""
+    """Slack for equalities that hold exactly only in exact arithmetic (thin plate: Izz = Ixx + Iyy).
+
+    Parameters
+    ----------
+    scale : float or ndarray
+        Size of the quantities compared, e.g. the trace of the tensor [kg m^2].
+
+    Returns
+    -------
+    float or ndarray
+        1e-12 times ``scale`` (at least the smallest normal float) [kg m^2].
+    """
     return 1e-12 * np.maximum(scale, np.finfo(float).tiny)
 
 
@@ -32,8 +43,10 @@ def check_realizable(matrix, *, definite: bool = False, key: str | None = None) 
     """Raise :class:`ParameterError` unless ``matrix`` is the inertia tensor of some mass distribution.
 
     The one check of every inertia tensor in the package: the vehicle's mass group
-    (:class:`vehdyn.params.MassProperties`) and :mod:`vehdyn.mechanics` (its :class:`InertiaTensor`,
-    :func:`inertia_matrix`, :class:`RigidBody6DOF` and :func:`newton_euler`). A symmetric
+    (:class:`vehdyn.params.MassAndInertia`, the ``[mass]`` table of a vehicle file) and
+    :mod:`vehdyn.mechanics` (its :class:`~vehdyn.mechanics.InertiaTensor`,
+    :class:`~vehdyn.mechanics.MassProperties`, :func:`~vehdyn.mechanics.inertia_matrix`,
+    :class:`~vehdyn.mechanics.RigidBody6DOF` and :func:`~vehdyn.mechanics.newton_euler`). A symmetric
     tensor is realizable exactly when its principal moments are non-negative and satisfy the
     triangle inequalities (each <= the sum of the other two); then so do the moments about any
     axes. Checked in order: the moments about the given axes (the clearest message), positive

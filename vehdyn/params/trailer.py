@@ -74,26 +74,72 @@ class Trailer(ParameterSet):
         return self.hitch_to_cg + self.cg_to_axle
 
     def tongue_load(self, gravity: float = GRAVITY) -> float:
-        """Static vertical load on the hitch, m_t g f / (e + f) [N] (negative: the hitch is lifted)."""
+        """Static vertical load on the hitch.
+
+        Parameters
+        ----------
+        gravity : float, optional
+            Gravitational acceleration g [m/s^2].
+
+        Returns
+        -------
+        float
+            m_t g f / (e + f) [N] (negative: the hitch is lifted).
+        """
         return self.mass * gravity * self.cg_to_axle / self.hitch_to_axle
 
     def static_axle_load(self, gravity: float = GRAVITY) -> float:
-        """Static load of the trailer axle, m_t g e / (e + f) [N]."""
+        """Static load of the trailer axle.
+
+        Parameters
+        ----------
+        gravity : float, optional
+            Gravitational acceleration g [m/s^2].
+
+        Returns
+        -------
+        float
+            m_t g e / (e + f) [N].
+        """
         return self.mass * gravity * self.hitch_to_cg / self.hitch_to_axle
 
 
 def shipped_trailers() -> list[str]:
-    """Names of the trailers shipped in ``data/trailers``."""
+    """Names of the trailers shipped in ``data/trailers``.
+
+    Returns
+    -------
+    list of str
+        Sorted names, each loadable with :func:`load_trailer`.
+    """
     return shipped_names("trailers")
 
 
 def load_trailer(name_or_path: str | Path) -> Trailer:
     """Load a shipped trailer by name (``"caravan"``, ``"semitrailer"``) or a user's TOML file by path.
 
+    Parameters
+    ----------
+    name_or_path : str or os.PathLike
+        The name of a shipped trailer (see :func:`shipped_trailers`) or a path to a TOML file with
+        the fields of :class:`Trailer` (SI units).
+
+    Returns
+    -------
+    Trailer
+        The validated, frozen parameter set.
+
     Raises
     ------
     ParameterError
         As :func:`~vehdyn.load_vehicle`: unknown name, missing or unreadable file, invalid TOML, or a
         parameter missing, unknown, of the wrong type or out of range (the message names the key).
+
+    Examples
+    --------
+    >>> from vehdyn.params import load_trailer
+    >>> caravan = load_trailer("caravan")
+    >>> round(caravan.tongue_load()), round(caravan.static_axle_load())   # [N]
+    (751, 10040)
     """
     return load_shipped_or_file(Trailer, name_or_path, "trailer")

@@ -20,7 +20,7 @@ from vehdyn.units import GRAVITY
 from vehdyn.params.base import ParameterSet, load_toml, parameter, text
 
 __all__ = [
-    "MassProperties",
+    "MassAndInertia",
     "Geometry",
     "Suspension",
     "Tires",
@@ -35,8 +35,37 @@ __all__ = [
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
-class MassProperties(ParameterSet):
-    """Masses, inertias and centre-of-gravity heights."""
+class MassAndInertia(ParameterSet):
+    r"""The vehicle's masses, moments of inertia and centre-of-gravity heights: ``Vehicle.mass``.
+
+    The ``[mass]`` table of a vehicle file. Whole-vehicle values (``mass``, ``roll_inertia``,
+    ``pitch_inertia``, ``yaw_inertia``, ``roll_yaw_product``, ``cg_height``) are about the total
+    centre of gravity; the ``sprung_*`` values are about the sprung mass's own centre of gravity.
+    The longitudinal position of either centre of gravity is in :class:`Geometry`.
+
+    Not to be confused with :class:`vehdyn.mechanics.MassProperties`, the mass, centre of mass and
+    inertia tensor of one rigid part (for composing bodies from parts).
+
+    Notes
+    -----
+    The products of inertia are the integrals ``I_xz = int x z dm`` in SAE body axes (x forward,
+    z down), so the inertia matrix (:attr:`inertia_matrix`) carries ``-I_xz`` off its diagonal:
+
+    .. math::
+
+        \mathbf I = \begin{bmatrix} I_{xx} & 0 & -I_{xz} \\ 0 & I_{yy} & 0 \\
+        -I_{xz} & 0 & I_{zz} \end{bmatrix}
+
+    Checks beyond the fields' bounds: the sprung and unsprung masses add up to at most ``mass``,
+    and the whole vehicle's tensor is a rigid body's (positive definite, principal moments obeying
+    the triangle inequality; :func:`vehdyn.params.inertia.check_realizable`). A failure raises
+    :class:`~vehdyn.ParameterError` naming the field (``mass.yaw_inertia`` when read from a file).
+
+    References
+    ----------
+    .. [1] SAE J670, *Vehicle Dynamics Terminology*, 2008 (vehicle axes; moments and products of
+       inertia).
+    """
 
     mass: float = parameter("kg", "total vehicle mass", gt=0)
     sprung_mass: float = parameter("kg", "sprung mass", gt=0)
@@ -123,6 +152,7 @@ class Geometry(ParameterSet):
 
     @property
     def sprung_cg_to_rear_axle(self) -> float:
+        """Horizontal distance from the sprung-mass CG to the rear axle [m]: L - sprung_cg_to_front_axle."""
         return self.wheelbase - self.sprung_cg_to_front_axle
 
 
@@ -234,7 +264,32 @@ class Aerodynamics(ParameterSet):
         "wheelbase (typical car 0.3; negative: ahead of the front axle)", gt=-1.0, lt=2.0, default=0.3)
 
     def drag_force(self, speed):
-        """Drag force 0.5 rho c_x A V|V| [N] at air speed ``speed`` [m/s] (sign follows the speed)."""
+        r"""Aerodynamic drag force at an air speed.
+
+        .. math::
+
+            F_D = \tfrac12 \rho \, c_x A \, V |V|
+
+        Parameters
+        ----------
+        speed : float or array_like
+            Air speed V along the vehicle's x axis [m/s]; negative for air from behind.
+
+        Returns
+        -------
+        ndarray
+            Drag force F_D [N], of the sign of ``speed`` (it opposes the motion through the air).
+
+        References
+        ----------
+        .. [1] W.-H. Hucho, *Aerodynamics of Road Vehicles*, 4th ed., SAE, 1998, ch. 4.
+
+        Examples
+        --------
+        >>> import vehdyn
+        >>> round(float(vehdyn.load_vehicle("sedan").aero.drag_force(30.0)), 1)
+        420.2
+        """
         speed = np.asarray(speed, dtype=float)
         return 0.5 * self.air_density * self.drag_coefficient * self.frontal_area * speed * np.abs(speed)
 
@@ -254,10 +309,49 @@ class Driveline(ParameterSet):
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class Vehicle(ParameterSet):
-    """A complete vehicle parameter set.
+    """A complete vehicle parameter set: one frozen, validated group per TOML table.
 
-    Load shipped vehicles with :func:`load_vehicle` (``"sedan"``, ``"compact"``, ``"van"``) and make
-    variants with :meth:`replace` (``sedan.replace(mass__mass=1500.0)`` reaches into a group).
+    Load shipped vehicles with :func:`load_vehicle` (``"sedan"``, ``"compact"``, ``"van"``,
+    ``"tractor"``) and make variants with :meth:`replace` (``sedan.replace(mass__mass=1500.0)``
+    reaches into a group).
+
+    Parameters
+    ----------
+    name, description, source, category : str
+        Short name, what the vehicle is, where its numbers come from, and its kind
+        (``"passenger_car"`` or ``"truck_tractor"``).
+    mass : MassAndInertia
+        Masses, moments of inertia and centre-of-gravity heights (the ``[mass]`` table).
+    geometry : Geometry
+        Axle positions from the centre of gravity, tracks, roll-centre heights (``[geometry]``).
+    suspension : Suspension
+        Corner springs and dampers, anti-roll bars, roll steer, camber gain, anti-dive/squat
+        (``[suspension]``).
+    tires : Tires
+        Axle cornering stiffnesses, vertical tire stiffness, rolling radius, friction, relaxation
+        lengths and the ``.tir`` file (``[tires]``).
+    steering : Steering
+        Steering ratio, steer limits, Ackermann share and the steering system (``[steering]``).
+    aero : Aerodynamics
+        Drag, lift and side-force coefficients (``[aero]``).
+    driveline : Driveline, optional
+        Drive and brake torque split between the axles (``[driveline]``; defaults when absent).
+
+    Raises
+    ------
+    ParameterError
+        If a group fails its checks, or the sprung-mass CG position of ``geometry`` contradicts
+        the masses and the total CG (more than 1 % of the wheelbase apart).
+
+    Notes
+    -----
+    SI units throughout; SAE vehicle axes (x forward, y right, z down) for the products of
+    inertia. The consistency check places the sprung-mass CG where the total CG and the unsprung
+    masses, lumped at the axles, put it:
+
+    .. math::
+
+        m_s x_s + m_{uf} a - m_{ur} b = 0
     """
 
     name: str = text("short name")
@@ -265,7 +359,7 @@ class Vehicle(ParameterSet):
     source: str = text("where the numbers come from", default="")
     category: str = text("kind of vehicle: studies that compare cars take the passenger cars only",
                          default="passenger_car", choices=("passenger_car", "truck_tractor"))
-    mass: MassProperties
+    mass: MassAndInertia
     geometry: Geometry
     suspension: Suspension
     tires: Tires
@@ -293,7 +387,18 @@ class Vehicle(ParameterSet):
         return self.geometry.wheelbase
 
     def static_axle_loads(self, gravity: float = GRAVITY) -> tuple[float, float]:
-        """Static (front, rear) axle loads [N]: m g b / L and m g a / L."""
+        """Static axle loads of the vehicle standing on level ground.
+
+        Parameters
+        ----------
+        gravity : float, optional
+            Gravitational acceleration g [m/s^2] (default :data:`vehdyn.units.GRAVITY`).
+
+        Returns
+        -------
+        front, rear : float
+            Axle loads m g b / L and m g a / L [N] (both wheels of the axle).
+        """
         g = self.geometry
         w = self.mass.mass * gravity
         return w * g.b / g.wheelbase, w * g.a / g.wheelbase
@@ -311,7 +416,19 @@ class Vehicle(ParameterSet):
             self.suspension.rear_antiroll_stiffness
 
     def tir_path(self) -> Path:
-        """Path of the vehicle's ``.tir`` file (a shipped name or a path)."""
+        """Path of the vehicle's ``.tir`` file.
+
+        Returns
+        -------
+        pathlib.Path
+            ``tires.tir_file`` if it names an existing file, else the shipped tire of that name in
+            ``data/tires``.
+
+        Raises
+        ------
+        ParameterError
+            If ``tires.tir_file`` is neither a file nor a shipped tire (key ``tires.tir_file``).
+        """
         p = Path(self.tires.tir_file)
         if p.is_file():
             return p
@@ -323,7 +440,23 @@ class Vehicle(ParameterSet):
 
 
 def data_path(*parts: str) -> Path:
-    """Path of a shipped data file: ``vehdyn/data`` in a wheel, ``data/`` beside the package in a checkout."""
+    """Path of a shipped data file: ``vehdyn/data`` in a wheel, ``data/`` beside the package in a checkout.
+
+    Parameters
+    ----------
+    *parts : str
+        Path components below the data folder (``"tires", "mf_185_80R14.tir"``).
+
+    Returns
+    -------
+    pathlib.Path
+        The path (not checked to exist; the folder itself is).
+
+    Raises
+    ------
+    ParameterError
+        If the installation has no data folder.
+    """
     here = Path(__file__).resolve().parent.parent
     for root in (here / "data", here.parent / "data"):
         if root.is_dir():
@@ -339,6 +472,22 @@ def shipped_vehicles(category: str | None = None) -> list[str]:
     category : {"passenger_car", "truck_tractor"}, optional
         Only the vehicles of this ``category`` (the vehicle file's field; default of a file:
         ``"passenger_car"``). None: every shipped vehicle.
+
+    Returns
+    -------
+    list of str
+        Sorted names, each loadable with :func:`load_vehicle`.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown ``category``.
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> vehdyn.shipped_vehicles("passenger_car")
+    ['compact', 'sedan', 'van']
     """
     names = shipped_names("vehicles")
     if category is None:
@@ -358,6 +507,18 @@ def shipped_names(folder: str) -> list[str]:
 def load_vehicle(name_or_path: str | Path) -> Vehicle:
     """Load a shipped vehicle by name (``"sedan"``) or a user's TOML file by path.
 
+    Parameters
+    ----------
+    name_or_path : str or os.PathLike
+        The name of a shipped vehicle (see :func:`shipped_vehicles`), or a path to a TOML file
+        with the tables ``[mass]``, ``[geometry]``, ``[suspension]``, ``[tires]``, ``[steering]``,
+        ``[aero]`` and optionally ``[driveline]`` (SI units).
+
+    Returns
+    -------
+    Vehicle
+        The validated, frozen parameter set.
+
     Raises
     ------
     ParameterError
@@ -365,6 +526,15 @@ def load_vehicle(name_or_path: str | Path) -> Vehicle:
         folder, unreadable, not UTF-8 text or not valid TOML (a UTF-8 byte-order mark is accepted),
         or a parameter is missing, unknown, of the wrong type, non-finite or out of range (the
         message names the key and the value).
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> sedan = vehdyn.load_vehicle("sedan")
+    >>> type(sedan.mass).__name__, round(sedan.mass.mass, 1), round(sedan.wheelbase, 3)
+    ('MassAndInertia', 1093.3, 2.579)
+    >>> [round(load) for load in sedan.static_axle_loads()]   # front, rear [N]
+    [5852, 4873]
     """
     return load_shipped_or_file(Vehicle, name_or_path, "vehicle")
 

@@ -69,7 +69,35 @@ ISO8608_CLASSES: dict[str, float] = {c: 16e-6 * 4.0**k for k, c in enumerate("AB
 
 
 def iso8608_class_value(road_class) -> float:
-    """Gd(n0) [m^3] of an ISO 8608 class letter ``"A"`` ... ``"H"``, or a user-given value [m^3] as it is."""
+    """Gd(n0) of an ISO 8608 class: the geometric mean of the class band.
+
+    Parameters
+    ----------
+    road_class : str or float
+        A class letter ``"A"`` ... ``"H"`` (case and surrounding blanks ignored), or a value
+        Gd(n0) [m^3], > 0, returned as it is.
+
+    Returns
+    -------
+    float
+        Gd(n0) [m^3] at n0 = 0.1 cycles/m: 16e-6 m^3 for A, four times more per class.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown letter or a value that is not a finite number > 0 (key ``road_class``).
+
+    References
+    ----------
+    .. [1] ISO 8608:2016, *Mechanical vibration -- Road surface profiles -- Reporting of measured
+       data*, clause 5 and annex C.
+
+    Examples
+    --------
+    >>> from vehdyn.road import iso8608_class_value
+    >>> iso8608_class_value("C")
+    0.000256
+    """
     if isinstance(road_class, str):
         key = road_class.strip().upper()
         if key not in ISO8608_CLASSES:
@@ -89,23 +117,69 @@ def iso8608_psd(road_class, n, *, waviness: float = 2.0) -> np.ndarray:
     n : array_like
         Spatial frequency [cycles/m], > 0.
     waviness : float
-        Exponent w (2 in ISO 8608).
+        Exponent w [-] (2 in ISO 8608).
+
+    Returns
+    -------
+    ndarray
+        Gd(n) [m^3] (one-sided, of the shape of ``n``).
+
+    References
+    ----------
+    .. [1] ISO 8608:2016, *Mechanical vibration -- Road surface profiles -- Reporting of measured
+       data*, clause 5 and annex C.
     """
     return RoadSpectrum.from_class(road_class, waviness=waviness).psd(n)
 
 
 @dataclass(frozen=True)
 class RoadSpectrum:
-    """Road displacement spectrum Gd(n) = Gd(n0) ((n^2 + n_c^2) / n0^2)^(-w/2) [m^3].
+    r"""Road displacement spectrum of ISO 8608, with an optional cut-on frequency.
+
+    .. math::
+
+        G_d(n) = G_d(n_0) \left(\frac{n^2 + n_c^2}{n_0^2}\right)^{-w/2}, \qquad
+        n_0 = 0.1 \ \text{cycles/m}
+
+    one-sided, against the spatial frequency n [cycles/m]; at the speed V the road seen by a wheel
+    has the temporal spectrum :math:`G_z(f) = G_d(f / V) / V` [m^2/Hz], f = n V.
 
     Parameters
     ----------
     gd0 : float
-        Gd(n0) [m^3] at n0 = 0.1 cycles/m.
+        Gd(n0) [m^3] at n0 = 0.1 cycles/m (see :func:`iso8608_class_value` for the classes).
     waviness : float
-        w [-] (ISO 8608: 2).
+        w [-] (ISO 8608: 2), in (0, 6].
     cut_on : float
         n_c [cycles/m] below which the spectrum levels off (0: the ISO 8608 spectrum itself).
+
+    Raises
+    ------
+    ParameterError
+        If ``gd0`` or ``waviness`` is not a finite number > 0, ``waviness`` exceeds 6 or
+        ``cut_on`` is negative.
+
+    Notes
+    -----
+    With n_c > 0 the profile variance is finite and the shaping filter (:meth:`shaping_filter`,
+    waviness 2 only) is stable; n_c = 0 is the standard's spectrum, whose variance diverges at
+    low frequencies (integrate over a band: :meth:`variance`).
+
+    References
+    ----------
+    .. [1] ISO 8608:2016, *Mechanical vibration -- Road surface profiles -- Reporting of measured
+       data*, clause 5 and annex C.
+    .. [2] C. J. Dodds and J. D. Robson, "The description of road surface roughness", J. Sound
+       Vib. 31(2), 175-183, 1973.
+
+    Examples
+    --------
+    >>> from vehdyn.road import RoadSpectrum
+    >>> road = RoadSpectrum.from_class("C")
+    >>> road.gd0, float(road.psd(0.2))                    # [m^3]: Gd falls as n^-2
+    (0.000256, 6.4e-05)
+    >>> round(road.rms(0.011, 2.83) * 1e3, 2)              # r.m.s. over ISO 8608's band [mm]
+    15.23
     """
 
     gd0: float
@@ -122,30 +196,80 @@ class RoadSpectrum:
 
     @classmethod
     def from_class(cls, road_class, *, waviness: float = 2.0, cut_on: float = 0.0) -> "RoadSpectrum":
-        """The spectrum of ISO 8608 class ``road_class`` (``"A"``...``"H"`` or Gd(n0) [m^3])."""
+        """The spectrum of an ISO 8608 class.
+
+        Parameters
+        ----------
+        road_class : str or float
+            Class letter ``"A"`` ... ``"H"`` or Gd(n0) [m^3] (see :func:`iso8608_class_value`).
+        waviness : float
+            w [-].
+        cut_on : float
+            n_c [cycles/m].
+
+        Returns
+        -------
+        RoadSpectrum
+        """
         return cls(iso8608_class_value(road_class), waviness, cut_on)
 
     @property
     def n0(self) -> float:
+        """The reference spatial frequency n0 = 0.1 cycles/m of ISO 8608 [cycles/m]."""
         return ISO8608_REFERENCE_FREQUENCY
 
     def psd(self, n) -> np.ndarray:
-        """Gd(n) [m^3] at spatial frequency ``n`` [cycles/m] (one-sided)."""
+        """The displacement spectrum at given spatial frequencies.
+
+        Parameters
+        ----------
+        n : array_like
+            Spatial frequency [cycles/m], > 0 (>= 0 with a cut-on).
+
+        Returns
+        -------
+        ndarray
+            Gd(n) [m^3], one-sided.
+        """
         n = np.asarray(n, dtype=float)
         if np.any(n < 0) or (self.cut_on == 0 and np.any(n == 0)):
             raise ParameterError("spatial frequency n must be positive [cycles/m]", key="n", value=n)
         return self.gd0 * ((n**2 + self.cut_on**2) / self.n0**2) ** (-self.waviness / 2.0)
 
     def temporal_psd(self, frequency_hz, speed: float) -> np.ndarray:
-        """Road displacement PSD G_z(f) = Gd(f / V) / V [m^2/Hz] seen at speed ``speed`` [m/s]."""
+        """Road displacement spectrum seen in time by a wheel at a constant speed.
+
+        Parameters
+        ----------
+        frequency_hz : array_like
+            Temporal frequency f [Hz].
+        speed : float
+            V [m/s], > 0.
+
+        Returns
+        -------
+        ndarray
+            G_z(f) = Gd(f / V) / V [m^2/Hz], one-sided.
+        """
         V = _positive(speed, "speed")
         return self.psd(np.asarray(frequency_hz, dtype=float) / V) / V
 
     def variance(self, n_low: float = 0.0, n_high: float = np.inf) -> float:
-        """Profile variance in the band [n_low, n_high] [m^2]: integral of Gd(n) dn.
+        """Profile variance in a band of spatial frequencies.
 
         Closed form for w = 2 (arctangent, or 1/n without cut-on) and for any w without cut-on;
         otherwise adaptive quadrature.
+
+        Parameters
+        ----------
+        n_low, n_high : float
+            Band [n_low, n_high] [cycles/m], 0 <= n_low < n_high (n_high may be ``inf``).
+
+        Returns
+        -------
+        float
+            The integral of Gd(n) dn over the band [m^2] (``inf`` where it diverges: n_low = 0
+            without cut-on, or w <= 1 up to infinity).
         """
         lo, hi = float(n_low), float(n_high)
         if not (0 <= lo < hi):
@@ -165,11 +289,38 @@ class RoadSpectrum:
         return float(quad(lambda n: float(self.psd(n)), lo, hi, limit=200)[0])
 
     def rms(self, n_low: float = 0.0, n_high: float = np.inf) -> float:
-        """Profile r.m.s. in the band [n_low, n_high] [m]."""
+        """Profile r.m.s. in a band of spatial frequencies.
+
+        Parameters
+        ----------
+        n_low, n_high : float
+            Band [n_low, n_high] [cycles/m] (see :meth:`variance`).
+
+        Returns
+        -------
+        float
+            sqrt of :meth:`variance` [m].
+        """
         return float(np.sqrt(self.variance(n_low, n_high)))
 
     def white_noise_gain(self, speed: float) -> float:
-        """sigma [m/s^0.5]: road_velocity = sigma w for n_c = 0, w unit-intensity white noise (w = 2 only)."""
+        """Gain from unit-intensity white noise to the road velocity (waviness 2 only).
+
+        Parameters
+        ----------
+        speed : float
+            V [m/s], > 0.
+
+        Returns
+        -------
+        float
+            sigma = 2 pi n0 sqrt(Gd(n0) V / 2) [m/s^0.5]: road_velocity = sigma w for n_c = 0.
+
+        Raises
+        ------
+        ParameterError
+            If the waviness is not 2.
+        """
         self._require_rational()
         return 2.0 * np.pi * self.n0 * np.sqrt(self.gd0 * _positive(speed, "speed") / 2.0)
 
@@ -179,16 +330,48 @@ class RoadSpectrum:
                                  "the PSD route or sum-of-cosines synthesis", key="waviness", value=self.waviness)
 
     def shaping_filter(self, speed: float, *, noise_input: str = "road_noise", suffix: str = ""):
-        """Shaping filter: a :class:`~vehdyn.LinearModel` from white noise to the road at ``speed`` [m/s].
+        r"""Shaping filter: a :class:`~vehdyn.LinearModel` from white noise to the road at a speed.
 
-        Input ``noise_input`` is unit-intensity white noise (E[w(t) w(t + tau)] = delta(tau));
-        state and output ``road_displacement`` [m] and output ``road_velocity`` [m/s] (names with
-        ``suffix`` appended, e.g. ``"_front"``), so that ``vehdyn.connect_in_series(filter,
-        ride_model)`` drives any ride model with inputs of those names. dz/dt = -a z + sigma w,
-        a = 2 pi n_c V, sigma = 2 pi n0 sqrt(Gd(n0) V / 2): the output spectrum is
-        :meth:`temporal_psd` exactly. With n_c = 0 the filter is an integrator (a marginally stable
-        state, like the road itself); :func:`vehdyn.ride.random_vibration` handles that exactly.
-        Only for waviness 2 (ParameterError otherwise).
+        .. math::
+
+            \dot z = -a z + \sigma w, \qquad a = 2 \pi n_c V, \qquad
+            \sigma = 2 \pi n_0 \sqrt{G_d(n_0) V / 2}
+
+        for unit-intensity white noise w (E[w(t) w(t + tau)] = delta(tau), one-sided PSD 2 per
+        Hz): the output spectrum is :meth:`temporal_psd` exactly. With n_c = 0 the filter is an
+        integrator (a marginally stable state, like the road itself);
+        :func:`vehdyn.ride.random_vibration` handles that exactly.
+
+        Parameters
+        ----------
+        speed : float
+            V [m/s], > 0.
+        noise_input : str
+            Name of the white-noise input.
+        suffix : str
+            Appended to the signal names (``"_front"``), so that
+            ``vehdyn.connect_in_series(filter, ride_model)`` drives any ride model with inputs of
+            those names.
+
+        Returns
+        -------
+        LinearModel
+            State and output ``road_displacement`` [m], output ``road_velocity`` [m/s].
+
+        Raises
+        ------
+        ParameterError
+            If the waviness is not 2.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from vehdyn.road import RoadSpectrum
+        >>> road = RoadSpectrum.from_class("C", cut_on=0.01)
+        >>> f = np.array([0.5, 2.0])                                   # [Hz]
+        >>> H = road.shaping_filter(20.0).frequency_response(2 * np.pi * f).response[0, 0]
+        >>> bool(np.allclose(2 * np.abs(H) ** 2, road.temporal_psd(f, 20.0), rtol=1e-12))
+        True
         """
         from vehdyn.model import LinearModel
 
@@ -203,11 +386,37 @@ class RoadSpectrum:
 
 
 def isotropic_coherence(n, track_width: float, waviness: float = 2.0) -> np.ndarray:
-    """Left-right coherence rho(n) [-] of a homogeneous isotropic road (Dodds & Robson 1973).
+    r"""Left-right coherence of a homogeneous isotropic road.
 
-    rho(n) = 2^(1 - nu) / Gamma(nu) z^nu K_nu(z), z = 2 pi n B, nu = w / 2; the cross-spectral
-    density between two parallel tracks ``track_width`` B [m] apart is rho(n) Gd(n) (real). rho is
-    1 at n = 0 and falls to 0.5 near n B = 0.19 (w = 2). The magnitude-squared coherence is rho^2.
+    .. math::
+
+        \rho(n) = \frac{2^{1 - \nu}}{\Gamma(\nu)} z^\nu K_\nu(z), \qquad
+        z = 2 \pi n B, \quad \nu = w / 2
+
+    (K_nu the modified Bessel function of the second kind); the cross-spectral density between
+    two parallel tracks B apart is rho(n) Gd(n) (real). rho is 1 at n = 0 and falls to 0.5 near
+    n B = 0.19 (w = 2). The magnitude-squared coherence is rho^2.
+
+    Parameters
+    ----------
+    n : array_like
+        Spatial frequency [cycles/m].
+    track_width : float
+        Distance B between the tracks [m], >= 0.
+    waviness : float
+        w [-] of the track spectrum.
+
+    Returns
+    -------
+    ndarray
+        rho(n) [-].
+
+    References
+    ----------
+    .. [1] C. J. Dodds and J. D. Robson, "The description of road surface roughness", J. Sound
+       Vib. 31(2), 175-183, 1973.
+    .. [2] M. K. M. Kamash and J. D. Robson, "The application of isotropy in road surface
+       modelling", J. Sound Vib. 57(1), 89-100, 1978.
     """
     from scipy.special import gamma, kv
 
@@ -261,11 +470,24 @@ def synthesize_profile(
     n_max: float | None = None,
     method: str = "cosines",
 ) -> RoadProfile:
-    """A random road profile with the displacement spectrum ``spectrum``.
+    r"""A random road profile with the displacement spectrum ``spectrum``.
+
+    Sum of cosines with random phases, evaluated on the grid by one inverse FFT:
+
+    .. math::
+
+        z(x) = \sum_i A_i \cos(2 \pi n_i x + \varphi_i), \qquad n_i = i \, \Delta n, \quad
+        \Delta n = 1 / L, \quad A_i = \sqrt{2 G_d(n_i) \Delta n}
+
+    with phases uniform on [0, 2 pi) from a seeded generator. Over the length L the cosines are
+    orthogonal, so the sample variance is :math:`\sum_i G_d(n_i) \Delta n` exactly, whatever the
+    phases. Or, for waviness 2, the shaping filter (:meth:`RoadSpectrum.shaping_filter`) driven by
+    white noise and sampled exactly.
 
     Parameters
     ----------
-    spectrum : RoadSpectrum, class letter or Gd(n0) [m^3]
+    spectrum : RoadSpectrum, str or float
+        The spectrum, an ISO 8608 class letter or Gd(n0) [m^3].
     length, spacing : float
         Profile length and sample spacing [m].
     seed : int or numpy Generator, optional
@@ -278,6 +500,37 @@ def synthesize_profile(
         periodic over ``length``; its variance is sum Gd(n_i) dn exactly). ``"white_noise"``: the
         shaping filter driven by white noise, sampled exactly (waviness 2 only; with cut_on = 0 a
         random walk starting at 0).
+
+    Returns
+    -------
+    RoadProfile
+        round(length / spacing) samples from x = 0; a ``"cosines"`` profile carries its Fourier
+        coefficients (exact shifts and slopes).
+
+    Raises
+    ------
+    ParameterError
+        For a bad spectrum, length or spacing (fewer than 4 samples), an empty band, or an
+        unknown ``method``.
+
+    References
+    ----------
+    .. [1] M. Shinozuka and C.-M. Jan, "Digital simulation of random processes and its
+       applications", J. Sound Vib. 25(1), 111-128, 1972.
+    .. [2] ISO 8608:2016, *Mechanical vibration -- Road surface profiles -- Reporting of measured
+       data*, clause 5 and annex C.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from vehdyn.road import RoadSpectrum, synthesize_profile
+    >>> profile = synthesize_profile("C", length=200.0, spacing=0.05, seed=1)
+    >>> profile.distance.size, profile.length
+    (4000, 200.0)
+    >>> n = np.arange(1, 2000) / profile.length                  # the components, below Nyquist
+    >>> exact = np.sum(RoadSpectrum.from_class("C").psd(n)) / profile.length
+    >>> bool(np.isclose(profile.elevation.var(), exact, rtol=1e-12))   # sum Gd(n_i) dn [m^2]
+    True
     """
     if not isinstance(spectrum, RoadSpectrum):
         spectrum = RoadSpectrum.from_class(spectrum)
@@ -319,11 +572,38 @@ def synthesize_parallel_profiles(
     n_min: float | None = None,
     n_max: float | None = None,
 ) -> tuple[RoadProfile, RoadProfile]:
-    """Left and right profiles ``track_width`` [m] apart with the isotropic coherence of :func:`isotropic_coherence`.
+    r"""Left and right profiles a track apart with the isotropic coherence of :func:`isotropic_coherence`.
 
-    Sum of cosines: left A_i cos(2 pi n_i x + phi_i); right
-    A_i [rho_i cos(2 pi n_i x + phi_i) + sqrt(1 - rho_i^2) cos(2 pi n_i x + psi_i)] with independent
-    phases phi, psi. Both tracks have the spectrum Gd, their cross-spectrum is rho Gd.
+    .. math::
+
+        z_l(x) = \sum_i A_i \cos(2 \pi n_i x + \varphi_i), \qquad
+        z_r(x) = \sum_i A_i \left[\rho_i \cos(2 \pi n_i x + \varphi_i)
+        + \sqrt{1 - \rho_i^2} \cos(2 \pi n_i x + \psi_i)\right]
+
+    with independent phases phi, psi: both tracks have the spectrum Gd, their cross-spectrum is
+    rho Gd.
+
+    Parameters
+    ----------
+    spectrum : RoadSpectrum, str or float
+        The spectrum, an ISO 8608 class letter or Gd(n0) [m^3].
+    length, spacing : float
+        Profile length and sample spacing [m].
+    track_width : float
+        Distance between the tracks [m].
+    seed : int or numpy Generator, optional
+        Makes the phases reproducible.
+    n_min, n_max : float, optional
+        Band of the components [cycles/m] (see :func:`synthesize_profile`).
+
+    Returns
+    -------
+    left, right : RoadProfile
+
+    References
+    ----------
+    .. [1] C. J. Dodds and J. D. Robson, "The description of road surface roughness", J. Sound
+       Vib. 31(2), 175-183, 1973.
     """
     if not isinstance(spectrum, RoadSpectrum):
         spectrum = RoadSpectrum.from_class(spectrum)
@@ -343,10 +623,23 @@ def synthesize_parallel_profiles(
 
 
 def iso8608_class_of(gd0: float) -> str:
-    """ISO 8608 class letter of Gd(n0) [m^3]: classes are bands a factor 4 wide around the geometric means.
+    """ISO 8608 class letter of a spectrum level: classes are bands a factor 4 wide around the geometric means.
 
-    Lower limit of class X is its geometric mean / 2, upper limit geometric mean * 2 (A has no lower
-    limit; H no upper one).
+    Parameters
+    ----------
+    gd0 : float
+        Gd(n0) [m^3], > 0.
+
+    Returns
+    -------
+    str
+        ``"A"`` ... ``"H"``: the lower limit of a class is its geometric mean / 2, the upper limit
+        its geometric mean * 2 (A has no lower limit, H no upper one).
+
+    References
+    ----------
+    .. [1] ISO 8608:2016, *Mechanical vibration -- Road surface profiles -- Reporting of measured
+       data*, clause 5 and annex C.
     """
     g = _positive(gd0, "gd0")
     k = int(np.floor(np.log(g / 16e-6 * 2.0) / np.log(4.0)))  # 0 for A: [8e-6, 32e-6) and below
@@ -354,12 +647,33 @@ def iso8608_class_of(gd0: float) -> str:
 
 
 def estimate_spectrum(profile: "RoadProfile", n_low: float = 0.011, n_high: float = 2.83):
-    """Gd(n0) [m^3] and ISO 8608 class of a measured profile, for waviness 2.
+    """Gd(n0) and ISO 8608 class of a measured profile, for waviness 2.
 
     The displacement PSD is estimated by Welch's method (Hann windows, segments of at least 1 / n_low
     or a quarter of the profile), compensated by (n / n0)^2 and averaged first within each octave
-    band of [n_low, n_high] [cycles/m] (default: ISO 8608's range), then geometrically over the
-    octaves. Returns ``(gd0, class_letter)``.
+    band of [n_low, n_high], then geometrically over the octaves.
+
+    Parameters
+    ----------
+    profile : RoadProfile
+        The measured profile.
+    n_low, n_high : float
+        Band [cycles/m] (default: ISO 8608's range, 0.011 to 2.83 cycles/m); ``n_high`` is
+        limited to 0.8 times the Nyquist frequency.
+
+    Returns
+    -------
+    gd0 : float
+        Estimated Gd(n0) [m^3].
+    class_letter : str
+        Its ISO 8608 class (:func:`iso8608_class_of`).
+
+    References
+    ----------
+    .. [1] ISO 8608:2016, *Mechanical vibration -- Road surface profiles -- Reporting of measured
+       data*, clause 5 and annex C.
+    .. [2] P. D. Welch, "The use of fast Fourier transform for the estimation of power spectra",
+       IEEE Trans. Audio Electroacoust. 15(2), 70-73, 1967.
     """
     from scipy.signal import welch
 

@@ -24,8 +24,25 @@ class RoadProfile:
     elevation : ndarray
         Road elevation z(x) [m] (positive up).
     coefficients : ndarray or None
-        For synthesized profiles: the complex Fourier coefficients c_i of z(x) = Re sum c_i
-        e^(j 2 pi n_i x), n_i = i / length, so that shifts and slopes are exact (spectral).
+        For synthesized profiles: the complex Fourier coefficients c_i [m] of
+        z(x) = Re sum c_i e^(j 2 pi n_i x), n_i = i / length, so that shifts and slopes are exact
+        (spectral).
+
+    Raises
+    ------
+    ParameterError
+        If the arrays are not 1-D of equal length >= 2, the distance is not uniformly spaced and
+        increasing, or an elevation is not finite.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from vehdyn.road import RoadProfile, bump
+    >>> x = np.arange(0.0, 20.0, 0.01)
+    >>> road = RoadProfile(x, bump(x, position=5.0, length=2.0, height=0.05))
+    >>> z, slope = road.sample([6.0, 7.5])            # at the crest, and beyond the bump
+    >>> z.tolist(), slope.tolist()
+    ([0.05, 0.0], [0.0, 0.0])
     """
 
     distance: np.ndarray
@@ -61,16 +78,31 @@ class RoadProfile:
         return RoadProfile(self.distance, self.elevation + z)
 
     def slope(self) -> np.ndarray:
-        """dz/dx [-] on the grid: spectral (exact) for synthesized profiles, else central differences."""
+        """The profile's slope on its grid.
+
+        Returns
+        -------
+        ndarray
+            dz/dx [-]: spectral (exact) for synthesized profiles, else central differences.
+        """
         if self.coefficients is not None:
             return self._spectral(1j * 2.0 * np.pi * self._frequencies())
         return np.gradient(self.elevation, self.spacing)
 
     def shifted(self, offset: float) -> "RoadProfile":
-        """The profile seen by a wheel ``offset`` [m] behind the reference: z(x - offset).
+        """The profile seen by a wheel behind the reference point.
 
-        Exact for synthesized profiles (the sum of cosines is evaluated shifted); linear
-        interpolation otherwise, holding the first value before the start.
+        Parameters
+        ----------
+        offset : float
+            Distance behind the reference [m].
+
+        Returns
+        -------
+        RoadProfile
+            z(x - offset) on the same grid: exact for synthesized profiles (the sum of cosines is
+            evaluated shifted), linear interpolation otherwise, holding the first value before
+            the start.
         """
         if self.coefficients is not None:
             c = self.coefficients * np.exp(-2j * np.pi * self._frequencies() * offset)
@@ -79,11 +111,21 @@ class RoadProfile:
         return RoadProfile(self.distance, z)
 
     def sample(self, position):
-        """Elevation z [m] and slope dz/dx [-] at any positions ``position`` [m] (array).
+        """Elevation and slope at any positions.
 
-        Linear interpolation of the grid values (the slope from :meth:`slope`: spectral for
-        synthesized profiles, central differences otherwise); before the start and after the end
-        the elevation is held and the slope is zero.
+        Parameters
+        ----------
+        position : array_like
+            Positions x [m].
+
+        Returns
+        -------
+        elevation : ndarray
+            z [m], linearly interpolated between the grid values, held before the start and
+            after the end.
+        slope : ndarray
+            dz/dx [-], interpolated from :meth:`slope` (spectral for synthesized profiles,
+            central differences otherwise); zero outside the profile.
         """
         pos = np.asarray(position, dtype=float)
         z = np.interp(pos, self.distance, self.elevation)
@@ -152,18 +194,54 @@ def _window(x, position, length):
 
 
 def bump(x, position: float, length: float, height: float) -> np.ndarray:
-    """Haversine (1 - cos) bump [m]: z = h/2 (1 - cos(2 pi (x - x0)/L)) on [x0, x0 + L], else 0.
+    r"""Haversine (1 - cos) bump.
 
-    ``height`` h [m] (negative for a dip), ``length`` L [m], ``position`` x0 [m] of its start.
+    .. math::
+
+        z(x) = \frac{h}{2} \left(1 - \cos \frac{2 \pi (x - x_0)}{L}\right)
+        \quad \text{on } [x_0, x_0 + L], \quad 0 \text{ elsewhere}
+
+    Parameters
+    ----------
+    x : array_like
+        Positions [m].
+    position : float
+        Start x0 of the bump [m].
+    length : float
+        Length L [m], > 0.
+    height : float
+        Height h [m] (negative for a dip).
+
+    Returns
+    -------
+    ndarray
+        Elevation z [m] at ``x``.
     """
     x, u, _ = _window(x, position, length)
     return np.where((u >= 0) & (u <= 1), 0.5 * float(height) * (1.0 - np.cos(2.0 * np.pi * u)), 0.0)
 
 
 def pothole(x, position: float, length: float, depth: float, *, edge_length: float = 0.0) -> np.ndarray:
-    """Pothole [m]: a flat-bottomed depression of ``depth`` [m] (positive) over ``length`` [m] from ``position``.
+    """Pothole: a flat-bottomed depression.
 
-    ``edge_length`` [m] ramps each edge with a half cosine (0: vertical edges, a step down and up).
+    Parameters
+    ----------
+    x : array_like
+        Positions [m].
+    position : float
+        Start of the pothole [m].
+    length : float
+        Length at the road surface [m], > 0.
+    depth : float
+        Depth [m], > 0.
+    edge_length : float
+        Length of each edge's half-cosine ramp [m], at most half the length (0: vertical edges,
+        a step down and up).
+
+    Returns
+    -------
+    ndarray
+        Elevation z [m] at ``x`` (-depth at the bottom).
     """
     x, u, L = _window(x, position, length)
     d = _positive(depth, "depth")
@@ -180,10 +258,32 @@ def pothole(x, position: float, length: float, depth: float, *, edge_length: flo
 
 
 def speed_hump(x, position: float, length: float = 3.7, height: float = 0.1, *, shape: str = "circular") -> np.ndarray:
-    """Road hump [m]: a circular-arc (default; the 3.7 m x 100 mm round-top hump) or sinusoidal profile.
+    """Road hump: a circular arc (default; the 3.7 m x 100 mm round-top hump) or a sinusoid.
 
-    ``circular``: the arc of a circle through both ends and the crest, radius
-    R = (L^2/4 + h^2) / (2 h). ``sinusoidal``: the (1 - cos) bump of the same length and height.
+    Parameters
+    ----------
+    x : array_like
+        Positions [m].
+    position : float
+        Start of the hump [m].
+    length : float
+        Length L [m] (default 3.7).
+    height : float
+        Height h [m] (default 0.1), > 0.
+    shape : {"circular", "sinusoidal"}
+        ``"circular"``: the arc of a circle through both ends and the crest, radius
+        R = (L^2/4 + h^2) / (2 h). ``"sinusoidal"``: the (1 - cos) :func:`bump` of the same
+        length and height.
+
+    Returns
+    -------
+    ndarray
+        Elevation z [m] at ``x``.
+
+    References
+    ----------
+    .. [1] G. R. Watts, *Road humps for the control of vehicle speeds*, TRRL Laboratory Report
+       597, Transport and Road Research Laboratory, 1973 (the 3.7 m round-top hump).
     """
     if shape == "sinusoidal":
         return bump(x, position, length, height)
@@ -198,7 +298,22 @@ def speed_hump(x, position: float, length: float = 3.7, height: float = 0.1, *, 
 
 
 def step(x, position: float, height: float) -> np.ndarray:
-    """Step [m]: 0 before ``position`` [m], ``height`` [m] from it on (negative for a step down)."""
+    """Step in the road.
+
+    Parameters
+    ----------
+    x : array_like
+        Positions [m].
+    position : float
+        Where the step is [m].
+    height : float
+        Height [m] (negative for a step down).
+
+    Returns
+    -------
+    ndarray
+        Elevation z [m] at ``x``: 0 before ``position``, ``height`` from it on.
+    """
     x = np.asarray(x, dtype=float)
     return np.where(x >= float(position), float(height), 0.0)
 

@@ -78,7 +78,7 @@ def golden_car():
 
 
 def iri(profile: RoadProfile | np.ndarray, spacing: float | None = None, *, smoothing: bool = True) -> float:
-    """International Roughness Index [m/km] of a longitudinal profile (ASTM E1926).
+    r"""International Roughness Index [m/km] of a longitudinal profile (ASTM E1926).
 
     Parameters
     ----------
@@ -100,7 +100,29 @@ def iri(profile: RoadProfile | np.ndarray, spacing: float | None = None, *, smoo
     The golden car (:func:`golden_car`) runs at 80 km/h over the smoothed profile, which is taken
     as linear between samples (the standard's constant-slope assumption; exact first-order-hold
     discretization). Initial state: both masses at the first elevation, both velocities V times the
-    mean slope of the first 11 m. IRI = mean over the samples after the first of |zs' - zu'| / V.
+    mean slope of the first 11 m. IRI = mean over the samples after the first of |zs' - zu'| / V:
+
+    .. math::
+
+        \mathrm{IRI} = \frac{1000}{N V} \sum_{k=1}^{N} |\dot z_s(t_k) - \dot z_u(t_k)| \quad [\text{m/km}]
+
+    References
+    ----------
+    .. [1] ASTM E1926-08, *Standard Practice for Computing International Roughness Index of Roads
+       from Longitudinal Profile Measurements*, ASTM International.
+    .. [2] M. W. Sayers, T. D. Gillespie and W. D. O. Paterson, *Guidelines for Conducting and
+       Calibrating Road Roughness Measurements*, World Bank Technical Paper 46, 1986.
+
+    Examples
+    --------
+    The golden car is linear, so the IRI grows as the square root of Gd(n0): the profiles of
+    classes A and C with the same phases differ by a factor sqrt(16) = 4.
+
+    >>> from vehdyn.road import iri, synthesize_profile
+    >>> smooth = iri(synthesize_profile("A", length=1000.0, spacing=0.25, seed=1))
+    >>> rough = iri(synthesize_profile("C", length=1000.0, spacing=0.25, seed=1))
+    >>> round(smooth, 2), round(rough / smooth, 9)                  # [m/km], [-]
+    (2.16, 4.0)
     """
     from vehdyn.simulation import simulate
 

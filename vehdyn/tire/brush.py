@@ -91,6 +91,18 @@ def brush_moment_fraction(lam, sliding_ratio=1.0):
     ``lam - 6 lam^2 + 9 lam^3 - 4 lam^4 + 3 r lam^2 (1 - lam)^2 = lam (1 - lam)^2 [1 - lam + 3 (r - 1) lam]``.
     With ``r = 1`` it is ``lam (1 - lam)^3``: trail ``a/3`` at zero slip, zero at full sliding
     (Pacejka 2012, sec. 3.2.1).
+
+    Parameters
+    ----------
+    lam : float or ndarray
+        ``theta sigma`` clipped to [0, 1] [-] (1: full sliding).
+    sliding_ratio : float
+        ``r = mu_s / mu_0`` [-].
+
+    Returns
+    -------
+    float or ndarray
+        ``lam (1 - lam)^2 [1 - lam + 3 (r - 1) lam]`` [-].
     """
     rest = 1.0 - lam
     if sliding_ratio == 1.0:
@@ -100,7 +112,30 @@ def brush_moment_fraction(lam, sliding_ratio=1.0):
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class BrushTire(ParameterSet, VectorizedTire):
-    """Brush tire with parabolic pressure, combined slip through the theoretical slip.
+    r"""Brush tire with parabolic pressure, combined slip through the theoretical slip.
+
+    Elastic bristles of stiffness c_p per unit length on a rigid carcass, parabolic pressure over
+    the contact patch -a <= x <= a, adhesion up to the static friction mu_0 q_z and sliding at
+    mu_s q_z behind. The deflections follow the theoretical slip, so the combined-slip force is
+    the pure-slip characteristic of its magnitude sigma projected on the slip direction:
+
+    .. math::
+
+        \sigma_x = \frac{\kappa}{1 + \kappa}, \quad \sigma_y = \frac{\tan\alpha}{1 + \kappa},
+        \quad \sigma = \sqrt{\sigma_x^2 + \sigma_y^2}, \quad
+        \lambda = \min\left(\frac{2 c_p a^2 \sigma}{3 \mu_0 F_z}, 1\right)
+
+        F = \mu_0 F_z \left[3 \lambda (1 - \lambda)^2 + r (3 \lambda^2 - 2 \lambda^3)\right],
+        \qquad r = \mu_s / \mu_0
+
+        M_z = \mu_0 F_z a \, \lambda (1 - \lambda)^2 \left[1 - \lambda + 3 (r - 1) \lambda\right]
+        \frac{\sigma_y}{\sigma} \operatorname{sgn} V_x
+
+        F_x = F \frac{\sigma_x}{\sigma} \operatorname{sgn} V_x, \qquad F_y = -F \frac{\sigma_y}{\sigma}
+
+    (ISO-W). With r = 1, F = mu F_z (3 lambda - 3 lambda^2 + lambda^3) and M_z =
+    mu F_z a lambda (1 - lambda)^3: cornering and slip stiffness 2 c_p a^2, pneumatic trail a/3 at
+    zero slip. A wheel that does not roll in its direction of travel (1 + kappa <= 0) slides fully.
 
     Parameters
     ----------
@@ -117,13 +152,27 @@ class BrushTire(ParameterSet, VectorizedTire):
     -----
     The carcass is rigid (no carcass compliance, sec. 3.3 of the reference), the model has no
     camber or turn slip, and the moment of the longitudinal force about the laterally deflected
-    tread is neglected; ``M_x = M_y = 0``. See the module docstring for the equations.
+    tread is neglected; ``M_x = M_y = 0``. The module docstring derives the integrals.
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, ch. 3:
+       sec. 3.2.1 (pure side slip, parabolic pressure), 3.2.2 (pure longitudinal slip), 3.2.3
+       (interaction: theoretical slip, combined slip; different static and sliding friction).
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from vehdyn.tire import BrushTire
     >>> tire = BrushTire(contact_half_length=0.08, tread_stiffness=5e6, mu=1.0)
-    >>> tire.cornering_stiffness           # 2 c_p a^2 [N/rad]
+    >>> tire.cornering_stiffness                        # 2 c_p a^2 [N/rad]
     64000.0
+    >>> lam = tire.cornering_stiffness * np.tan(0.01) / (3 * 1.0 * 4000.0)
+    >>> fy = tire.forces(fz=4000.0, kappa=0.0, alpha=0.01).fy
+    >>> bool(np.isclose(fy, -4000.0 * (3 * lam - 3 * lam**2 + lam**3), rtol=1e-14))   # Pacejka sec. 3.2.1
+    True
+    >>> tire.forces(fz=4000.0, kappa=0.0, alpha=np.arctan(tire.full_sliding_slip(4000.0))).fy   # -mu F_z
+    -4000.0
     """
 
     contact_half_length: float = parameter("m", "half length a of the contact patch", gt=0)
@@ -156,16 +205,42 @@ class BrushTire(ParameterSet, VectorizedTire):
         return 1.0 if self.mu_sliding is None else self.mu_sliding / self.mu
 
     def full_sliding_slip(self, fz):
-        """Theoretical slip ``sigma_sl = 3 mu_0 F_z / (2 c_p a^2)`` [-] where the whole patch slides.
+        """Theoretical slip at which the whole patch slides.
 
-        In pure side slip full sliding starts at ``tan(alpha) = sigma_sl``.
+        Parameters
+        ----------
+        fz : float or array_like
+            Normal load [N] (negative counts as 0).
+
+        Returns
+        -------
+        float or ndarray
+            ``sigma_sl = 3 mu_0 F_z / (2 c_p a^2)`` [-]; in pure side slip full sliding starts at
+            ``tan(alpha) = sigma_sl``.
         """
         return 3.0 * self.mu * load_input(fz) / self.cornering_stiffness
 
     @classmethod
     def from_cornering_stiffness(cls, cornering_stiffness: float, contact_half_length: float, mu: float,
                                  mu_sliding: float | None = None) -> "BrushTire":
-        """The brush whose ``2 c_p a^2`` equals ``cornering_stiffness`` [N/rad]."""
+        """The brush of a given cornering stiffness and contact length.
+
+        Parameters
+        ----------
+        cornering_stiffness : float
+            ``C_alpha = 2 c_p a^2`` [N/rad], > 0.
+        contact_half_length : float
+            ``a`` [m].
+        mu : float
+            Peak (static) friction coefficient [-].
+        mu_sliding : float, optional
+            Sliding friction coefficient [-] (None: ``mu``).
+
+        Returns
+        -------
+        BrushTire
+            With ``tread_stiffness = cornering_stiffness / (2 a^2)``.
+        """
         if not cornering_stiffness > 0:
             raise ParameterError(f"cornering_stiffness must be > 0 [N/rad], got {cornering_stiffness!r}",
                                  key="cornering_stiffness", value=cornering_stiffness)
@@ -175,11 +250,22 @@ class BrushTire(ParameterSet, VectorizedTire):
 
     @classmethod
     def from_vehicle(cls, vehicle, axle: str = "front") -> "BrushTire":
-        """A brush tire for one wheel of ``vehicle``'s ``axle`` (see :func:`vehdyn.tire.tire_for_vehicle`).
+        """A brush tire for one wheel of a vehicle's axle (see :func:`vehdyn.tire.tire_for_vehicle`).
 
-        The per-tire cornering stiffness is half the axle's; the contact half length is the chord
-        of the unloaded tire at its static deflection, ``a = sqrt(2 R delta - delta^2)`` with
-        ``delta = F_z / k_z`` (R the rolling radius, k_z the vertical stiffness).
+        Parameters
+        ----------
+        vehicle : vehdyn.Vehicle
+            The vehicle.
+        axle : {"front", "rear"}
+            The axle.
+
+        Returns
+        -------
+        BrushTire
+            Per-tire cornering stiffness half the axle's, the vehicle's friction coefficient, and
+            the contact half length of the chord of the unloaded tire at its static deflection,
+            ``a = sqrt(2 R delta - delta^2)`` with ``delta = F_z / k_z`` (R the rolling radius,
+            k_z the vertical stiffness).
         """
         from vehdyn.tire.registry import vehicle_tire_data
 
@@ -236,10 +322,27 @@ class BrushTire(ParameterSet, VectorizedTire):
         return planar_forces(force * kappa / slip * direction, -force * ey, fz, moment * ey)
 
     def pneumatic_trail(self, fz, kappa, alpha, vx=10.0):
-        """Pneumatic trail ``t = -M_z / F_y`` [m]; its limit ``a/3`` (sign of ``vx``) where F_y = 0.
+        """Pneumatic trail of the brush.
 
         Defined through the resultant force, so it is also the trail of the combined-slip force;
         zero at full sliding (Pacejka 2012, sec. 3.2.1).
+
+        Parameters
+        ----------
+        fz : array_like
+            Normal load [N].
+        kappa : array_like
+            Slip ratio [-] (ISO-W).
+        alpha : array_like
+            Slip angle [rad] (ISO-W).
+        vx : array_like
+            Forward speed [m/s] (its sign only).
+
+        Returns
+        -------
+        ndarray
+            ``t = -M_z / F_y`` [m]; its limit ``a/3`` (with the sign of ``vx``) where F_y = 0;
+            NaN where an input is not finite.
         """
         (fz, kappa, alpha, _, vx), bad = broadcast_inputs(fz, kappa, alpha, 0.0, vx)
         direction = rolling_direction(vx)

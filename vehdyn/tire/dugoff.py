@@ -44,7 +44,22 @@ __all__ = ["DugoffTire"]
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class DugoffTire(ParameterSet, VectorizedTire):
-    """Dugoff tire.
+    r"""Dugoff tire: linear stiffnesses with a friction-circle saturation (uniform pressure).
+
+    .. math::
+
+        S = \sqrt{(C_\kappa \kappa)^2 + (C_\alpha \tan\alpha)^2}, \qquad
+        \rho = 1 + \kappa, \qquad \lambda = \frac{\mu F_z \rho}{2 S}, \qquad
+        f(\lambda) = \begin{cases} \lambda (2 - \lambda) & \lambda < 1 \\ 1 & \lambda \ge 1 \end{cases}
+
+        F_x = \frac{C_\kappa \kappa}{\rho} f(\lambda) \operatorname{sgn} V_x, \qquad
+        F_y = -\frac{C_\alpha \tan\alpha}{\rho} f(\lambda), \qquad
+        M_z = -t F_y \operatorname{sgn} V_x
+
+        \mu = \mu_0 \max\left(1 - A_s |V_x| \sqrt{\kappa^2 + \tan^2\alpha}, 0\right)
+
+    (ISO-W). The resultant is S / rho while adhering and mu F_z (1 - lambda/2) < mu F_z once
+    sliding has started; a locked or backwards-spinning wheel (rho <= 0) slides fully.
 
     Parameters
     ----------
@@ -63,6 +78,24 @@ class DugoffTire(ParameterSet, VectorizedTire):
     -----
     No camber (``gamma`` has no effect); ``vx`` enters through its sign and, with
     ``speed_friction_reduction``, through the sliding speed. ``M_x = M_y = 0``.
+
+    References
+    ----------
+    .. [1] H. Dugoff, P. S. Fancher and L. Segel, "An analysis of tire traction properties and
+       their influence on vehicle dynamic performance", SAE Technical Paper 700377, 1970.
+    .. [2] R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., Springer, 2012, ch. 13 (Dugoff's
+       tire model).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from vehdyn.tire import DugoffTire
+    >>> tire = DugoffTire(cornering_stiffness=64000.0, slip_stiffness=64000.0, mu=1.0)
+    >>> round(tire.forces(fz=4000.0, kappa=0.0, alpha=0.01).fy, 4)      # adhering: -C_alpha tan(alpha) [N]
+    -640.0213
+    >>> out = tire.forces(fz=4000.0, kappa=0.1, alpha=0.1)               # sliding: inside mu F_z
+    >>> bool(np.hypot(out.fx, out.fy) < 4000.0)
+    True
     """
 
     cornering_stiffness: float = parameter("N/rad", "C_alpha: cornering stiffness", gt=0)
@@ -76,8 +109,21 @@ class DugoffTire(ParameterSet, VectorizedTire):
 
     @classmethod
     def from_vehicle(cls, vehicle, axle: str = "front") -> "DugoffTire":
-        """A Dugoff tire for one wheel of ``vehicle``'s ``axle``; the slip stiffness is taken equal to
-        the cornering stiffness (isotropic brush) since vehicle files carry no slip stiffness."""
+        """A Dugoff tire for one wheel of a vehicle's axle (see :func:`vehdyn.tire.tire_for_vehicle`).
+
+        Parameters
+        ----------
+        vehicle : vehdyn.Vehicle
+            The vehicle.
+        axle : {"front", "rear"}
+            The axle.
+
+        Returns
+        -------
+        DugoffTire
+            Half the axle's cornering stiffness, the slip stiffness taken equal to it (isotropic
+            brush: vehicle files carry no slip stiffness) and the vehicle's friction coefficient.
+        """
         from vehdyn.tire.registry import vehicle_tire_data
 
         data = vehicle_tire_data(vehicle, axle)

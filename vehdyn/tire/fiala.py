@@ -53,7 +53,27 @@ def _saturation(stiffness, slip_magnitude, limit):
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class FialaTire(ParameterSet, VectorizedTire):
-    """Fiala tire: closed-form brush side force and aligning moment, friction-circle coupling.
+    r"""Fiala tire: closed-form brush side force and aligning moment, friction-circle coupling.
+
+    The brush with parabolic pressure in practical slip, the longitudinal force first and the side
+    force on the friction left on the friction circle:
+
+    .. math::
+
+        \lambda_x = \min\left(\frac{C_\kappa |\kappa|}{3 \mu F_z}, 1\right), \qquad
+        F_x = \mu F_z \left(3 \lambda_x - 3 \lambda_x^2 + \lambda_x^3\right)
+        \operatorname{sgn}\kappa \operatorname{sgn} V_x
+
+        F_{y,\max} = \sqrt{(\mu F_z)^2 - F_x^2}, \qquad
+        \lambda_y = \min\left(\frac{C_\alpha |\tan\alpha|}{3 F_{y,\max}}, 1\right)
+
+        F_y = -F_{y,\max} \left(3 \lambda_y - 3 \lambda_y^2 + \lambda_y^3\right) \operatorname{sgn}\alpha,
+        \qquad M_z = F_{y,\max} \, a \, \lambda_y (1 - \lambda_y)^3 \operatorname{sgn}\alpha
+        \operatorname{sgn} V_x
+
+    (ISO-W). In pure side slip 3 lambda - 3 lambda^2 + lambda^3 = 1 - (1 - lambda)^3: Fiala's
+    side force, full sliding from tan(alpha_sl) = 3 mu F_z / C_alpha; so that
+    sqrt(F_x^2 + F_y^2) <= mu F_z.
 
     Parameters
     ----------
@@ -71,6 +91,25 @@ class FialaTire(ParameterSet, VectorizedTire):
     Notes
     -----
     No camber, no load dependence of the stiffnesses; ``M_x = M_y = 0``.
+
+    References
+    ----------
+    .. [1] E. Fiala, "Seitenkräfte am rollenden Luftreifen", VDI-Zeitschrift 96 (1954) 973-979.
+    .. [2] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 3.2.1 (the brush with
+       parabolic pressure, C_alpha = 2 c_p a^2).
+    .. [3] R. Y. Hindiyeh and J. C. Gerdes, "A controller framework for autonomous drifting",
+       ASME J. Dyn. Sys., Meas., Control 136(5), 2014 (the coupled Fiala model with
+       friction-circle derating).
+
+    Examples
+    --------
+    >>> from vehdyn.tire import BrushTire, FialaTire
+    >>> fiala = FialaTire(cornering_stiffness=64000.0, mu=1.0, contact_half_length=0.08)
+    >>> brush = BrushTire(contact_half_length=0.08, tread_stiffness=5e6, mu=1.0)   # 2 c_p a^2 = 64000
+    >>> fiala.forces(4000.0, 0.0, 0.01) == brush.forces(4000.0, 0.0, 0.01)          # pure side slip
+    True
+    >>> round(float(fiala.sliding_slip_angle(4000.0)), 6)                          # atan(3 mu F_z / C) [rad]
+    0.185348
     """
 
     cornering_stiffness: float = parameter("N/rad", "C_alpha: cornering stiffness", gt=0)
@@ -88,12 +127,37 @@ class FialaTire(ParameterSet, VectorizedTire):
         return self.cornering_stiffness if self.slip_stiffness is None else self.slip_stiffness
 
     def sliding_slip_angle(self, fz):
-        """Slip angle [rad] where the whole patch slides in pure side slip: ``atan(3 mu F_z / C_alpha)``."""
+        """Slip angle at which the whole patch slides in pure side slip.
+
+        Parameters
+        ----------
+        fz : float or array_like
+            Normal load [N] (negative counts as 0).
+
+        Returns
+        -------
+        float or ndarray
+            ``atan(3 mu F_z / C_alpha)`` [rad].
+        """
         return np.arctan(3.0 * self.mu * load_input(fz) / self.cornering_stiffness)
 
     @classmethod
     def from_vehicle(cls, vehicle, axle: str = "front") -> "FialaTire":
-        """A Fiala tire for one wheel of ``vehicle``'s ``axle`` (see :func:`vehdyn.tire.tire_for_vehicle`)."""
+        """A Fiala tire for one wheel of a vehicle's axle (see :func:`vehdyn.tire.tire_for_vehicle`).
+
+        Parameters
+        ----------
+        vehicle : vehdyn.Vehicle
+            The vehicle.
+        axle : {"front", "rear"}
+            The axle.
+
+        Returns
+        -------
+        FialaTire
+            Half the axle's cornering stiffness, the vehicle's friction coefficient and the contact
+            half length of :meth:`BrushTire.from_vehicle`.
+        """
         from vehdyn.tire.registry import vehicle_tire_data
 
         data = vehicle_tire_data(vehicle, axle)

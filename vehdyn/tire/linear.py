@@ -64,7 +64,20 @@ def linear_tire_law(xp, coefficients, fz, kappa, alpha, gamma, vx):
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class LinearTire(ParameterSet, VectorizedTire):
-    """Linear tire.
+    r"""Linear tire: forces proportional to slip, optionally to load.
+
+    .. math::
+
+        F_x = C_\kappa \kappa f_z \operatorname{sgn} V_x, \qquad
+        F_y = (-C_\alpha \alpha + C_\gamma \gamma) f_z, \qquad
+        M_z = -t F_y \operatorname{sgn} V_x
+
+    with :math:`f_z = F_z / F_{z0}` when a nominal load is given (constant cornering and slip
+    *coefficients*), else 1 for a loaded tire; :math:`f_z = 0` for :math:`F_z \le 0` (lift-off);
+    sgn V_x = +1 at standstill. ISO-W axes and inputs (``forces(fz, kappa, alpha, gamma, vx)``,
+    :meth:`vehdyn.tire.TireModel.forces`): a positive slip angle makes a negative side force.
+    No friction limit: valid for small slips, roughly while the lateral acceleration stays below
+    about half the friction limit.
 
     Parameters
     ----------
@@ -78,6 +91,23 @@ class LinearTire(ParameterSet, VectorizedTire):
         ``t`` [m]: ``M_z = -t F_y`` when rolling forwards; default 0.
     nominal_load : float, optional
         ``F_z0`` [N]: when given the stiffnesses scale with ``F_z / F_z0``.
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       ch. 1 (cornering stiffness, longitudinal slip stiffness, pneumatic trail).
+    .. [2] R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., Springer, 2012, ch. 2 (the linear
+       lateral tire model).
+
+    Examples
+    --------
+    >>> from vehdyn.tire import LinearTire
+    >>> tire = LinearTire(cornering_stiffness=60000.0, pneumatic_trail=0.03, nominal_load=4000.0)
+    >>> out = tire.forces(fz=4000.0, kappa=0.0, alpha=0.02)        # [N], [-], [rad]
+    >>> out.fy, out.mz                                             # -C_alpha alpha [N], -t F_y [N m]
+    (-1200.0, 36.0)
+    >>> tire.forces(fz=2000.0, kappa=0.05, alpha=0.0).fx            # C_kappa kappa F_z / F_z0 [N]
+    1500.0
     """
 
     cornering_stiffness: float = parameter("N/rad", "C_alpha: cornering stiffness", gt=0)
@@ -97,8 +127,21 @@ class LinearTire(ParameterSet, VectorizedTire):
 
     @classmethod
     def from_vehicle(cls, vehicle, axle: str = "front") -> "LinearTire":
-        """A linear tire for one wheel of ``vehicle``'s ``axle``: half the axle's cornering stiffness,
-        scaled with load about the static wheel load (see :func:`vehdyn.tire.tire_for_vehicle`)."""
+        """A linear tire for one wheel of a vehicle's axle (see :func:`vehdyn.tire.tire_for_vehicle`).
+
+        Parameters
+        ----------
+        vehicle : vehdyn.Vehicle
+            The vehicle.
+        axle : {"front", "rear"}
+            The axle.
+
+        Returns
+        -------
+        LinearTire
+            Half the axle's cornering stiffness, scaled with load about the static wheel load
+            (``nominal_load``); slip stiffness equal to it, no camber stiffness, no trail.
+        """
         from vehdyn.tire.registry import vehicle_tire_data
 
         data = vehicle_tire_data(vehicle, axle)

@@ -123,7 +123,69 @@ class MagicFormulaOutputs:
     """Everything :meth:`MagicFormula.evaluate` returns (MFeval's outputs 1–30 except instKya).
 
     Each field is a numpy array of the broadcast input shape (SI units, ISO-W axes); ``units``
-    maps each name to its unit. ``to_frame()`` gives a pandas DataFrame.
+    maps each name to its unit and ``descriptions`` to its meaning; ``out["fy"]`` is ``out.fy``.
+    ``to_frame()`` gives a pandas DataFrame.
+
+    Attributes
+    ----------
+    fx : ndarray
+        Longitudinal force [N].
+    fy : ndarray
+        Lateral force [N].
+    fz : ndarray
+        Vertical load as given (negative set to 0, not clamped) [N].
+    mx : ndarray
+        Overturning moment [N*m].
+    my : ndarray
+        Rolling resistance moment [N*m].
+    mz : ndarray
+        Self-aligning moment [N*m].
+    kappa : ndarray
+        Slip ratio after the low-speed reduction (not clamped) [-].
+    alpha : ndarray
+        Slip angle as given (0 where vx = 0) [rad].
+    gamma : ndarray
+        Inclination angle as given [rad].
+    phit : ndarray
+        Turn slip after post-processing (limit mode: phit*cos(alpha), low-speed, reverse) [1/m].
+    vx : ndarray
+        Longitudinal speed [m/s].
+    pressure : ndarray
+        Inflation pressure used (clamped to PRESMIN..PRESMAX in limit mode) [Pa].
+    effective_radius : ndarray
+        Effective rolling radius Re [m].
+    deflection : ndarray
+        Vertical deflection rho [m].
+    contact_length : ndarray
+        Contact patch length 2a [m].
+    trail : ndarray
+        Pneumatic trail t [m].
+    mux : ndarray
+        Longitudinal friction coefficient [-].
+    muy : ndarray
+        Lateral friction coefficient (|muy| in limit mode) [-].
+    omega : ndarray
+        Wheel spin (given, or (1 + kappa)*vx/Re) [rad/s].
+    loaded_radius : ndarray
+        Loaded radius Rl [m].
+    contact_width : ndarray
+        Contact patch width 2b [m].
+    residual_torque : ndarray
+        Residual aligning torque Mzr [N*m].
+    cx : ndarray
+        Longitudinal carcass stiffness [N/m].
+    cy : ndarray
+        Lateral carcass stiffness [N/m].
+    cz : ndarray
+        Vertical stiffness Fz/rho [N/m].
+    kya : ndarray
+        Cornering stiffness of the pure-slip lateral force [N/rad].
+    sigma_x : ndarray
+        Longitudinal relaxation length [m].
+    sigma_y : ndarray
+        Lateral relaxation length [m].
+    kxk : ndarray
+        Longitudinal slip stiffness [N].
     """
 
     fx: np.ndarray
@@ -165,6 +227,12 @@ class MagicFormulaOutputs:
         return getattr(self, name)
 
     def keys(self):
+        """The output names, in MFeval's order.
+
+        Returns
+        -------
+        tuple of str
+        """
         return tuple(self.units)
 
     @property
@@ -173,7 +241,13 @@ class MagicFormulaOutputs:
         return TireForces(self.fx, self.fy, self.fz, self.mx, self.my, self.mz)
 
     def to_frame(self):
-        """All outputs as a pandas DataFrame (one row per point, ``attrs["units"]``)."""
+        """All outputs as a pandas DataFrame.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per point (inputs flattened), one column per output, ``attrs["units"]``.
+        """
         import pandas as pd
 
         frame = pd.DataFrame({name: np.ravel(getattr(self, name)) for name in self.units})
@@ -182,7 +256,59 @@ class MagicFormulaOutputs:
 
 
 class MagicFormula(TireModel):
-    """Magic Formula tire (MF 5.2, 6.1, 6.2) defined by a ``.tir`` parameter set.
+    r"""Magic Formula tire (MF 5.2, 6.1, 6.2) defined by a ``.tir`` parameter set.
+
+    Steady-state forces and moments in ISO-W (TYDEX) axes, as MFeval 4.3.1 computes them. Pure
+    slip (Pacejka 2012, sec. 4.3.2):
+
+    .. math::
+
+        F_{x0} = D_x \sin\left[C_x \arctan\left\{B_x \kappa_x - E_x \left(B_x \kappa_x
+        - \arctan B_x \kappa_x\right)\right\}\right] + S_{Vx}, \quad
+        \kappa_x = \kappa + S_{Hx} \qquad \text{(4.E9, 4.E10)}
+
+        F_{y0} = D_y \sin\left[C_y \arctan\left\{B_y \alpha_y - E_y \left(B_y \alpha_y
+        - \arctan B_y \alpha_y\right)\right\}\right] + S_{Vy}, \quad
+        \alpha_y = \alpha^* + S_{Hy} \qquad \text{(4.E19, 4.E20)}
+
+        D_x = \mu_x F_z \zeta_1, \quad B_x = \frac{K_{x\kappa}}{C_x D_x + \varepsilon_x},
+        \quad D_y = \mu_y F_z \zeta_2, \quad B_y = \frac{K_{y\alpha}}{C_y D_y + \varepsilon_y}
+        \qquad \text{(4.E12, 4.E16, 4.E22, 4.E26)}
+
+    with the load and pressure increments :math:`df_z = (F_z - F_{z0}')/F_{z0}'`,
+    :math:`F_{z0}' = \lambda_{Fz0} F_{z0}` and :math:`dp_i = (p_i - p_{i0})/p_{i0}` (4.E1, 4.E2a,
+    4.E2b; the pressure terms from Besselink et al. 2010) in every coefficient, e.g.
+    :math:`\mu_x = (p_{Dx1} + p_{Dx2} df_z)(1 + p_{px3} dp_i + p_{px4} dp_i^2)(1 - p_{Dx3}
+    \gamma^2) \lambda_{\mu x}` (4.E13) and :math:`K_{y\alpha} = p_{Ky1} F_{z0}' (1 + p_{py1}
+    dp_i)(1 - p_{Ky3} |\gamma^*|) \sin[p_{Ky4} \arctan\{(F_z/F_{z0}') / ((p_{Ky2} + p_{Ky5}
+    \gamma^{*2})(1 + p_{py2} dp_i))\}] \zeta_3 \lambda_{Ky\alpha}` (4.E25); the zeta factors
+    are 1 without turn slip. Combined slip weights the pure-slip forces:
+
+    .. math::
+
+        F_x = G_{x\alpha} F_{x0}, \quad
+        G_{x\alpha} = \frac{\cos[C_{x\alpha} \arctan\{B_{x\alpha} \alpha_S
+        - E_{x\alpha} (B_{x\alpha} \alpha_S - \arctan B_{x\alpha} \alpha_S)\}]}{G_{x\alpha 0}}
+        \qquad \text{(4.E50, 4.E51)}
+
+        F_y = G_{y\kappa} F_{y0} + S_{Vy\kappa} \qquad \text{(4.E58, 4.E59)}
+
+    and the aligning moment is the moment of the side force about the pneumatic trail, the
+    residual torque and the moment of the longitudinal force:
+
+    .. math::
+
+        M_z = -t \, F_y' + M_{zr} + s F_x, \quad
+        t = D_t \cos[C_t \arctan\{B_t \alpha_{t,eq} - E_t (B_t \alpha_{t,eq}
+        - \arctan B_t \alpha_{t,eq})\}] \cos\alpha', \quad
+        M_{zr} = D_r \cos[C_r \arctan B_r \alpha_{r,eq}] \qquad \text{(4.E71--4.E75)}
+
+    (MF 6.x: :math:`F_y' = G_{y\kappa} F_{y0}(\gamma = 0)`; MF 5.2: :math:`F_y - S_{Vy\kappa}`).
+    The overturning and rolling-resistance moments, the effective and loaded radii, the contact
+    patch, the carcass stiffnesses and the relaxation lengths follow the TNO forms MFeval uses;
+    every equation, with its number, is in :mod:`~vehdyn.tire.mf_forces`,
+    :mod:`~vehdyn.tire.mf_moments` and :mod:`~vehdyn.tire.mf_vertical`. Turn slip (the zeta
+    factors, ``turn_slip=True``): eqs. 4.75-4.106.
 
     Parameters
     ----------
@@ -203,6 +329,20 @@ class MagicFormula(TireModel):
     ParameterError
         If a coefficient the model uses is not a number, or FNOMIN, UNLOADED_RADIUS, LONGVL,
         NOMPRES, VXLOW or VERTICAL_STIFFNESS is not positive.
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       ch. 4: sec. 4.3.2 (the Magic Formula, eqs. 4.E1-4.E78) and sec. 4.3.3 (turn slip,
+       eqs. 4.75-4.106); appendix 3 (MF-Tyre parameters, eq. A3.3).
+    .. [2] I. J. M. Besselink, A. J. C. Schmeitz and H. B. Pacejka, "An improved Magic
+       Formula/Swift tyre model that can handle inflation pressure changes", Vehicle System
+       Dynamics 48 (sup1), 337-352, 2010 (MF 6.1: pressure terms, rolling radius, vertical
+       stiffness, contact patch, relaxation lengths).
+    .. [3] TNO Automotive, *MF-Tyre/MF-Swift 6.2 Equation Manual* (MF 6.2: the loaded radius).
+    .. [4] TNO Automotive, *MF-Tyre User Manual*, version 5.2, 2001 (MF 5.2 / PAC2002).
+    .. [5] M. Furlan, *MFeval* 4.3.1, MATLAB File Exchange #63618 (the reference implementation
+       vehdyn is validated against).
 
     Examples
     --------
@@ -233,8 +373,32 @@ class MagicFormula(TireModel):
     def from_tir(cls, path, *, strict: bool = False) -> MagicFormula:
         """Read a ``.tir`` file and build the model (see :func:`vehdyn.tire.read_tir`).
 
-        A file that lacks whole sections of its version (e.g. truncated) gives a
-        :class:`~vehdyn.VehdynWarning` naming them; ``strict=True`` raises :class:`~vehdyn.TirFileError`.
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The ``.tir`` file (units as its ``[UNITS]`` section says; converted to SI once).
+        strict : bool
+            A file that lacks whole sections of its version (e.g. truncated) gives a
+            :class:`~vehdyn.VehdynWarning` naming them; ``strict=True`` raises
+            :class:`~vehdyn.TirFileError` instead.
+
+        Returns
+        -------
+        MagicFormula
+
+        Raises
+        ------
+        TirFileError
+            If the file cannot be read, is malformed, breaks a rule of :mod:`vehdyn.tire.tir`, or
+            names no supported version.
+
+        Examples
+        --------
+        >>> import vehdyn
+        >>> from vehdyn.tire import MagicFormula
+        >>> tire = MagicFormula.from_tir(vehdyn.data_path("tires", "MagicFormula61_Parameters.tir"))
+        >>> tire.version, tire.nominal_load, tire.unloaded_radius     # MF version, FNOMIN [N], R0 [m]
+        ('6.1', 6752.0, 0.3943)
         """
         return cls(read_tir(path, strict=strict))
 
@@ -302,6 +466,20 @@ class MagicFormula(TireModel):
         ParameterError
             If an input is a bool or not numeric, the shapes do not broadcast, or the backend is
             unknown or unavailable.
+
+        Examples
+        --------
+        One operating point of MFeval's reference set (``useMode`` 111), and MFeval 4.3.1's
+        outputs there, -2657.2063246679 N and 1845.0603422270 N:
+
+        >>> import vehdyn
+        >>> from vehdyn.tire import MagicFormula
+        >>> tire = MagicFormula.from_tir(vehdyn.data_path("tires", "MagicFormula61_Parameters.tir"))
+        >>> out = tire.evaluate(fz=3376.0, kappa=-0.4, alpha=-0.3, vx=16.7, pressure=2.6e5)
+        >>> round(float(out.fx), 6), round(float(out.fy), 6)           # [N]
+        (-2657.206325, 1845.060342)
+        >>> out.units["mz"], out.units["sigma_y"]
+        ('N*m', 'm')
         """
         c = self._c
         point = (fz, kappa, alpha, gamma, c.LONGVL if vx is None else vx, c.INFLPRES if pressure is None else pressure,
@@ -475,6 +653,16 @@ def load_tire(path, *, strict: bool = False) -> MagicFormula:
         ``"MagicFormula62_Parameters"``, ``"MagicFormula52_Parameters"``, ``"mf_185_80R14"``).
     strict : bool
         Raise instead of warning when the file lacks whole sections (see :meth:`MagicFormula.from_tir`).
+
+    Returns
+    -------
+    MagicFormula
+
+    Examples
+    --------
+    >>> from vehdyn.tire import load_tire
+    >>> load_tire("mf_185_80R14").version
+    '5.2'
     """
     candidate = Path(path)
     if not candidate.exists() and candidate.suffix == "" and len(candidate.parts) == 1:

@@ -33,12 +33,40 @@ _EPSILON = 1e-6  # MFeval's singularity guard (book eq. 4.E6a, epsilon_x = epsil
 
 
 def turn_slip_spin(xp, c, alpha, vx, phit, gamma, dfz, omega):
-    """Spin phi [1/m] of the turn-slip model and the camber reduction eps_gamma (book 4.75, 4.76, 4.90).
+    """Spin phi of the turn-slip model and the camber reduction eps_gamma (book 4.75, 4.76, 4.90).
 
     MFeval's sign: phi = -phit' - (1 - eps_g)*omega*sin(gamma)/Vc' (book eq. 4.76 without its
     leading minus, for z-up road axes), Vc' = |V| replaced by VXLOW*sign(Vx) below VXLOW.
-    Inputs after the limits and low-speed rules: alpha, gamma [rad], vx [m/s], phit [1/m],
-    dfz [-] (eq. 4.E2a), omega [rad/s].
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    alpha, gamma : float or ndarray
+        Slip and inclination angles after the limits and low-speed rules [rad].
+    vx : float or ndarray
+        Forward speed [m/s].
+    phit : float or ndarray
+        Turn slip [1/m].
+    dfz : float or ndarray
+        Normalized load increment [-] (eq. 4.E2a).
+    omega : float or ndarray
+        Wheel spin [rad/s].
+
+    Returns
+    -------
+    phi : float or ndarray
+        Spin [1/m].
+    eps_gamma : float or ndarray
+        Camber reduction factor [-] (eq. 4.90).
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 4.3.2.3 (eqs. 4.75, 4.76, 4.90).
     """
     v_sy = -xp.tan(alpha) * xp.abs(vx)
     speed = xp.sqrt(vx**2 + v_sy**2)
@@ -51,13 +79,33 @@ def turn_slip_spin(xp, c, alpha, vx, phit, gamma, dfz, omega):
 
 
 def longitudinal_pure(xp, c, s):
-    """Pure longitudinal slip force Fx0 [N] (book eqs. 4.E9–4.E18, turn slip 4.105–4.106).
+    r"""Pure longitudinal slip force Fx0 (book eqs. 4.E9–4.E18, turn slip 4.105–4.106).
+
+    .. math::
+
+        F_{x0} = D_x \sin[C_x \arctan\{B_x \kappa_x - E_x (B_x \kappa_x - \arctan B_x \kappa_x)\}]
+        + S_{Vx}, \qquad \kappa_x = \kappa + S_{Hx}
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    s : MFState
+        The state of the evaluation (module docstring; :class:`vehdyn.tire.magic_formula.MFState`).
 
     Returns
     -------
     fx0, mux, kxk
         Force [N] (sign flipped for vx < 0), friction coefficient [-] (0 at fz = 0) and slip
         stiffness Kxk = Bx*Cx*Dx [N].
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 4.3.2 (eqs. 4.E9-4.E18) and 4.3.3 (turn slip, eqs. 4.105, 4.106).
     """
     dfz, dpi = s.dfz, s.dpi
     if s.turn_slip:
@@ -91,18 +139,44 @@ LateralPure.__doc__ = "Intermediate results of :func:`lateral_pure` needed by th
 
 
 def lateral_pure(xp, c, s, gamma_star, turn_slip):
-    """Pure lateral slip force Fy0 [N] (book eqs. 4.E19–4.E30; turn slip 4.77–4.89).
+    r"""Pure lateral slip force Fy0 (book eqs. 4.E19–4.E30; turn slip 4.77–4.89).
+
+    .. math::
+
+        F_{y0} = D_y \sin[C_y \arctan\{B_y \alpha_y - E_y (B_y \alpha_y - \arctan B_y \alpha_y)\}]
+        + S_{Vy}, \qquad \alpha_y = \alpha^* + S_{Hy}
 
     Parameters
     ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    s : MFState
+        The state of the evaluation (module docstring; :class:`vehdyn.tire.magic_formula.MFState`).
     gamma_star : float or array
         Inclination used in the force equations [rad] (``s.gamma_star``, or 0 for the
         camber-free force the aligning moment needs, book eq. 4.E74).
     turn_slip : bool
         Whether the turn-slip factors apply.
 
+    Returns
+    -------
+    LateralPure
+        ``fy0`` [N], ``muy`` [-], ``kya`` [N/rad], ``shy`` [rad], ``svy`` [N], ``by`` [1/rad],
+        ``cy`` [-] and ``zeta2`` [-]: the force and the intermediate results the aligning moment
+        needs.
+
+    Notes
+    -----
     MF 5.2 uses SHy = (PHY1 + PHY2*dfz)*LHY + PHY3*gamma*LKYC (MF-Tyre 5.2 manual) and keeps it in
     turn-slip mode; MF 6.x uses eq. 4.E27 (with zeta0 = 0 and zeta4 of eq. 4.84 under turn slip).
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 4.3.2 (eqs. 4.E19-4.E30) and 4.3.3 (turn slip, eqs. 4.77-4.89).
     """
     dfz, dpi, fz, fz0p = s.dfz, s.dpi, s.fz, c.Fz0_prime
     r0 = c.UNLOADED_RADIUS
@@ -164,7 +238,36 @@ def lateral_pure(xp, c, s, gamma_star, turn_slip):
 
 
 def longitudinal_combined(xp, c, s, fx0):
-    """Combined-slip Fx = Gxa*Fx0 [N] (book eqs. 4.E50–4.E57)."""
+    r"""Combined-slip longitudinal force (book eqs. 4.E50–4.E57).
+
+    .. math::
+
+        F_x = G_{x\alpha} F_{x0}, \qquad
+        G_{x\alpha} = \frac{\cos[C_{x\alpha} \arctan\{B_{x\alpha} \alpha_S
+        - E_{x\alpha} (B_{x\alpha} \alpha_S - \arctan B_{x\alpha} \alpha_S)\}]}{G_{x\alpha 0}}
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    s : MFState
+        The state of the evaluation (module docstring; :class:`vehdyn.tire.magic_formula.MFState`).
+    fx0 : float or ndarray
+        Pure-slip force Fx0 [N] (:func:`longitudinal_pure`).
+
+    Returns
+    -------
+    float or ndarray
+        Fx [N].
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 4.3.2 (eqs. 4.E50-4.E57).
+    """
     cxa = c.RCX1  # 4.E55
     exa = c.REX1 + c.REX2 * s.dfz  # 4.E56
     if s.limits:
@@ -180,7 +283,28 @@ def longitudinal_combined(xp, c, s, fx0):
 
 
 def lateral_combined_factor(xp, c, s):
-    """Weighting function Gyk [-] of combined slip (book eqs. 4.E59–4.E65)."""
+    """Weighting function Gyk of combined slip (book eqs. 4.E59–4.E65).
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    s : MFState
+        The state of the evaluation (module docstring; :class:`vehdyn.tire.magic_formula.MFState`).
+
+    Returns
+    -------
+    float or ndarray
+        Gyk [-].
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 4.3.2 (eqs. 4.E59-4.E65).
+    """
     shyk = c.RHY1 + c.RHY2 * s.dfz  # 4.E65
     eyk = c.REY1 + c.REY2 * s.dfz  # 4.E64
     if s.limits:
@@ -195,13 +319,30 @@ def lateral_combined_factor(xp, c, s):
 
 
 def lateral_combined(xp, c, s, pure: LateralPure):
-    """Combined-slip Fy = Gyk*Fy0 + SVyk [N] (book eqs. 4.E58–4.E67).
+    """Combined-slip Fy = Gyk*Fy0 + SVyk (book eqs. 4.E58–4.E67).
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    s : MFState
+        The state of the evaluation (module docstring; :class:`vehdyn.tire.magic_formula.MFState`).
+    pure : LateralPure
+        Pure lateral slip results (:func:`lateral_pure`).
 
     Returns
     -------
     fy, gyk, svyk
         Force [N], weighting function [-] and the kappa-induced side force SVyk [N] (after the
         low-speed reduction).
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 4.3.2 (eqs. 4.E58-4.E67).
     """
     dvyk = pure.muy * s.fz * (c.RVY1 + c.RVY2 * s.dfz + c.RVY3 * s.gamma_star) \
         * cos_atan(xp, c.RVY4 * s.alpha_star) * pure.zeta2  # 4.E67

@@ -22,10 +22,32 @@ _TWO_OVER_PI = 2.0 / math.pi
 
 
 def overturning_moment(xp, c, s, fy):
-    """Overturning moment Mx [N*m] (TNO MF-Tyre equation manual form of book eq. 4.E69).
+    """Overturning moment Mx (TNO MF-Tyre equation manual form of book eq. 4.E69).
 
     Below FZMIN the load is replaced by Fz*(Fz/FZMIN)^2 (MFeval). When both QSX1–QSX11 and
     QSX12–QSX14 are non-zero, MFeval uses eq. 49 of Besselink's draft paper, as here.
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    s : MFState
+        The state of the evaluation (module docstring; :class:`vehdyn.tire.magic_formula.MFState`).
+    fy : float or ndarray
+        Combined-slip lateral force [N].
+
+    Returns
+    -------
+    float or ndarray
+        Mx [N*m].
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, eq. 4.E69.
+    .. [2] TNO Automotive, *MF-Tyre/MF-Swift 6.2 Equation Manual*.
     """
     fz = s.fz
     if c.FZMIN > 0 and xp.any(fz < c.FZMIN):
@@ -48,13 +70,37 @@ def overturning_moment(xp, c, s, fy):
 
 
 def rolling_resistance_moment(xp, c, s, fx):
-    """Rolling resistance moment My [N*m] (MF 6.x: Besselink 2010 eq. A48; MF 5.2: MF-Tyre manual).
+    """Rolling resistance moment My (MF 6.x: Besselink 2010 eq. A48; MF 5.2: MF-Tyre manual).
 
     Negative when rolling forwards (ISO-W). Uses the unclamped load (``s.fz_input``) reduced to
     Fz^2/FZMIN below FZMIN, the input speed and the input slip ratio. Near zero wheel speed
     (MFeval's empirical rule), with h = VXLOW/|vx| - 1 and l = -1 - VXLOW - h, My is multiplied
     by sin(pi/2*(kappa + 1)/(h + 1)) for l <= kappa <= h, flips sign for kappa < l, and is 0 at
     vx = 0; it flips sign for vx < 0.
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    s : MFState
+        The state of the evaluation (module docstring; :class:`vehdyn.tire.magic_formula.MFState`).
+    fx : float or ndarray
+        Combined-slip longitudinal force [N].
+
+    Returns
+    -------
+    float or ndarray
+        My [N*m].
+
+    References
+    ----------
+    .. [1] I. J. M. Besselink, A. J. C. Schmeitz and H. B. Pacejka, "An improved Magic
+       Formula/Swift tyre model that can handle inflation pressure changes", Vehicle System
+       Dynamics 48 (sup1), 337-352, 2010, eq. A48.
+    .. [2] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, eq. 4.E70 (MF 5.2 form).
     """
     fz = s.fz_input
     if c.FZMIN > 0 and xp.any(fz < c.FZMIN):
@@ -84,13 +130,39 @@ AligningMoment.__doc__ = "Aligning moment Mz [N*m], pneumatic trail t [m] and re
 
 
 def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
-    """Aligning moment of combined slip (book eqs. 4.E31–4.E49, 4.E71–4.E78; MFeval's forms).
+    r"""Aligning moment of combined slip (book eqs. 4.E31–4.E49, 4.E71–4.E78; MFeval's forms).
+
+    .. math::
+
+        M_z = -t F_y' + M_{zr} + s F_x, \qquad
+        t = D_t \cos[C_t \arctan\{B_t \alpha_{t,eq} - E_t (B_t \alpha_{t,eq}
+        - \arctan B_t \alpha_{t,eq})\}] \cos\alpha', \qquad
+        M_{zr} = D_r \cos[C_r \arctan B_r \alpha_{r,eq}]
 
     Parameters
     ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    s : MFState
+        The state of the evaluation (module docstring; :class:`vehdyn.tire.magic_formula.MFState`).
     pure : LateralPure
         Pure lateral slip results at the actual camber.
-    fy, fx : combined-slip forces [N]; kxk : slip stiffness [N]; gyk : Gyk [-]; svyk : SVyk [N].
+    fy, fx : float or ndarray
+        Combined-slip forces [N].
+    kxk : float or ndarray
+        Longitudinal slip stiffness [N].
+    gyk : float or ndarray
+        Combined-slip weighting Gyk [-].
+    svyk : float or ndarray
+        kappa-induced side force SVyk [N].
+
+    Returns
+    -------
+    AligningMoment
+        ``mz`` [N*m], ``trail`` t [m] and ``residual`` Mzr [N*m].
 
     Notes
     -----
@@ -105,6 +177,14 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
       Cr = 2 where Gyk < 0), so Mz stays finite and continuous; wherever MFeval's value is finite
       and real, the two agree. Where the turn-slip factors DHyp or DDrp are 0 (vx = 0, no load)
       vehdyn uses their limits SHyp = 0 and Drp = 0, where MFeval's 0*Inf gives NaN.
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 4.3.2 (eqs. 4.E31-4.E49,
+       4.E71-4.E78) and 4.3.3 (turn slip, eqs. 4.91-4.104).
+    .. [2] I. J. M. Besselink, A. J. C. Schmeitz and H. B. Pacejka, "An improved Magic
+       Formula/Swift tyre model that can handle inflation pressure changes", Vehicle System
+       Dynamics 48 (sup1), 337-352, 2010, eqs. A54-A60.
     """
     r0, fz0p = c.UNLOADED_RADIUS, c.Fz0_prime
     dfz, gamma, gamma_star, alpha_star = s.dfz, s.gamma, s.gamma_star, s.alpha_star

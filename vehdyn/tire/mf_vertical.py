@@ -33,7 +33,13 @@ def _free_radius(c, omega):
 
 
 def rolling_radius(xp, c, fz, kappa, vx, dpi, omega, omega_given):
-    """Effective rolling radius Re [m], free radius R_omega [m] and wheel spin omega [rad/s].
+    r"""Effective rolling radius Re, free radius R_omega and wheel spin omega.
+
+    .. math::
+
+        R_e = R_\Omega - \frac{F_{z0}}{C_z} \left(D_{reff} \arctan\left(B_{reff}
+        \frac{F_z}{F_{z0}}\right) + F_{reff} \frac{F_z}{F_{z0}}\right), \qquad
+        R_\Omega = R_0 \left(q_{re0} + q_{V1} \left(\frac{\Omega R_0}{V_0}\right)^2\right)
 
     Re = R_omega - Fz0/Cz*(DREFF*atan(BREFF*Fz/Fz0) + FREFF*Fz/Fz0) (Besselink 2010 eq. 7),
     Cz = VERTICAL_STIFFNESS*(1 + PFZ1*dpi). Without a measured spin, omega = (1 + kappa)*vx/Re
@@ -44,9 +50,36 @@ def rolling_radius(xp, c, fz, kappa, vx, dpi, omega, omega_given):
 
     Parameters
     ----------
-    fz : load [N] (negative already set to 0, not clamped); kappa : input slip ratio [-];
-    vx : speed [m/s]; dpi : relative pressure change [-]; omega : wheel spin [rad/s], used if
-    ``omega_given`` (a bool for the whole call), else estimated.
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    fz : float or ndarray
+        Load [N] (negative already set to 0, not clamped).
+    kappa : float or ndarray
+        Input slip ratio [-].
+    vx : float or ndarray
+        Forward speed [m/s].
+    dpi : float or ndarray
+        Relative pressure change [-] (eq. 4.E2b).
+    omega : float or ndarray
+        Wheel spin [rad/s], used if ``omega_given``, else estimated.
+    omega_given : bool
+        Whether ``omega`` is measured (one flag for the whole call).
+
+    Returns
+    -------
+    re, r_omega, omega : float or ndarray
+        Effective rolling radius [m], free rolling radius [m], wheel spin [rad/s]; ``re`` is NaN
+        at points a compiled loop has not converged (its caller finishes them).
+
+    References
+    ----------
+    .. [1] I. J. M. Besselink, A. J. C. Schmeitz and H. B. Pacejka, "An improved Magic
+       Formula/Swift tyre model that can handle inflation pressure changes", Vehicle System
+       Dynamics 48 (sup1), 337-352, 2010, eqs. 1 and 7.
+    .. [2] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, eq. 2.5.
     """
     cz = c.VERTICAL_STIFFNESS * (1 + c.PFZ1 * dpi)
     deflection_term = (c.FNOMIN / cz) * (c.DREFF * xp.atan(c.BREFF * (fz / c.FNOMIN))
@@ -83,13 +116,40 @@ def rolling_radius(xp, c, fz, kappa, vx, dpi, omega, omega_given):
 
 
 def loaded_radius_mf61(xp, c, fz, fx, fy, dpi, omega, r_omega):
-    """Deflection rho [m], loaded radius Rl [m] and vertical stiffness Fz/rho [N/m], MF 6.1 / 5.2.
+    """Deflection rho, loaded radius Rl and vertical stiffness Fz/rho, MF 6.1 / 5.2.
 
     Solves Fz = (Q_FZ1*rho/R0 + Q_FZ2*(rho/R0)^2)*(1 + Q_V2*R0/V0*|omega| - (Q_FCX*Fx/Fz0)^2
     - (Q_FCY*Fy/Fz0)^2)*(1 + PFZ1*dpi)*Fz0 (Pacejka 2012 eq. A3.3) for rho, with
     Q_FZ1 = sqrt((Cz0*R0/Fz0)^2 - 4*Q_FZ2); Rl = R_omega - rho. ``fz`` is the load raised to FZMIN
     (limit mode). At fz = 0 rho is reported as 1e-6 m (MFeval's guard against 0/0 in Fz/rho);
     where a positive load is so small that rho underflows to 0, Cz is the slope at rho = 0.
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    fz : float or ndarray
+        Load [N] (raised to FZMIN in limit mode).
+    fx, fy : float or ndarray
+        Combined-slip forces [N].
+    dpi : float or ndarray
+        Relative pressure change [-].
+    omega : float or ndarray
+        Wheel spin [rad/s].
+    r_omega : float or ndarray
+        Free rolling radius [m] (:func:`rolling_radius`).
+
+    Returns
+    -------
+    rho, loaded_radius, stiffness : float or ndarray
+        Deflection [m], loaded radius [m], vertical stiffness Fz/rho [N/m].
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, eq. A3.3.
     """
     r0, fz0 = c.UNLOADED_RADIUS, c.FNOMIN
     q_fz1 = math.sqrt((c.VERTICAL_STIFFNESS * r0 / fz0) ** 2 - 4 * c.Q_FZ2)
@@ -133,6 +193,38 @@ def loaded_radius_mf62(xp, c, fz, fz_clamped, gamma, fx, fy, dpi, omega, r_omega
     iteration (start 0.95*R0 and R0, at most 18 updates, tolerance FNOMIN*1e-6 N per point).
     Where the equation has no root (MFeval returns Rl = NaN, rho = 1e-12 m, Cz = 1e16 N/m), the
     three outputs are NaN here. The stiffness is fz_clamped/rho (MFeval: the FZMAX-clamped load).
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    fz : float or ndarray
+        Load [N] to match.
+    fz_clamped : float or ndarray
+        The FZMAX-clamped load [N].
+    gamma : float or ndarray
+        Inclination angle [rad].
+    fx, fy : float or ndarray
+        Combined-slip forces [N].
+    dpi : float or ndarray
+        Relative pressure change [-].
+    omega : float or ndarray
+        Wheel spin [rad/s].
+    r_omega : float or ndarray
+        Free rolling radius [m].
+
+    Returns
+    -------
+    rho, loaded_radius, stiffness : float or ndarray
+        Deflection [m], loaded radius [m], vertical stiffness [N/m]; NaN without a root (and
+        from a compiled vectorized loop, whose caller iterates the point).
+
+    References
+    ----------
+    .. [1] TNO Automotive, *MF-Tyre/MF-Swift 6.2 Equation Manual* (the loaded radius).
     """
     if not xp.iterate_to_convergence:  # a compiled vectorized loop: the caller iterates the point (NaN)
         return math.nan, math.nan, math.nan
@@ -173,6 +265,30 @@ def contact_patch(xp, c, fz, dpi):
     Q_RB1*(Fz/(Cz*R0))^(1/3)) (Besselink 2010 eqs. 9, 10); MF 5.2: a = R0*(Q_A2*Fz/Fz0 +
     Q_A1*sqrt(Fz/Fz0)), b = W/2, with MFeval's empirical Q_A1, Q_A2 when both are 0. The load is
     limited to the bottoming load (R0 - RIM_RADIUS - BOTTOM_OFFST)*Cz (MFeval).
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    fz : float or ndarray
+        Load [N].
+    dpi : float or ndarray
+        Relative pressure change [-].
+
+    Returns
+    -------
+    a, b : float or ndarray
+        Half length and half width of the contact patch [m].
+
+    References
+    ----------
+    .. [1] I. J. M. Besselink, A. J. C. Schmeitz and H. B. Pacejka, "An improved Magic
+       Formula/Swift tyre model that can handle inflation pressure changes", Vehicle System
+       Dynamics 48 (sup1), 337-352, 2010, eqs. 9, 10.
+    .. [2] TNO Automotive, *MF-Tyre User Manual*, version 5.2, 2001.
     """
     r0, width, fz0 = c.UNLOADED_RADIUS, c.WIDTH, c.FNOMIN
     cz = c.VERTICAL_STIFFNESS * (1 + c.PFZ1 * dpi)
@@ -200,6 +316,36 @@ def carcass_stiffness(xp, c, fz, gamma, dpi, kxk, kya):
     18); MF 6.x: sigma = |K/C| (eq. 19); MF 5.2: sigma_x = (PTX1 + PTX2*dfz)*exp(-PTX3*dfz)*
     LSGKP*R0*Fz/Fz0, sigma_y = PTY1*sin(2*atan(Fz/(PTY2*Fz0')))*(1 - PKY3*|gamma|)*R0*LFZO*LSGAL
     (MF-Tyre 5.2 manual).
+
+    Parameters
+    ----------
+    xp : namespace
+        Array operations: :class:`vehdyn.tire._mf_ops.NumpyOps`, ``ScalarOps`` or a compiled
+        equivalent.
+    c : MFCoefficients
+        The ``.tir`` coefficients in SI (:class:`vehdyn.tire.magic_formula.MFCoefficients`).
+    fz : float or ndarray
+        Load [N].
+    gamma : float or ndarray
+        Inclination angle [rad].
+    dpi : float or ndarray
+        Relative pressure change [-].
+    kxk : float or ndarray
+        Longitudinal slip stiffness [N].
+    kya : float or ndarray
+        Cornering stiffness [N/rad].
+
+    Returns
+    -------
+    cx, cy, sigma_x, sigma_y : float or ndarray
+        Longitudinal and lateral carcass stiffness [N/m], relaxation lengths [m].
+
+    References
+    ----------
+    .. [1] I. J. M. Besselink, A. J. C. Schmeitz and H. B. Pacejka, "An improved Magic
+       Formula/Swift tyre model that can handle inflation pressure changes", Vehicle System
+       Dynamics 48 (sup1), 337-352, 2010, eqs. 17-19.
+    .. [2] TNO Automotive, *MF-Tyre User Manual*, version 5.2, 2001.
     """
     dfz = (fz - c.Fz0_prime) / c.Fz0_prime
     cx = c.LONGITUDINAL_STIFFNESS * (1 + c.PCFX1 * dfz + c.PCFX2 * dfz**2) * (1 + c.PCFX3 * dpi)

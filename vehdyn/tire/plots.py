@@ -33,7 +33,19 @@ def _tir_parameters(tire) -> Mapping:
 
 
 def nominal_load(tire) -> float:
-    """A representative load [N] of ``tire``: its ``nominal_load`` (``FNOMIN`` of a ``.tir``), else 4000 N."""
+    """A representative load of a tire.
+
+    Parameters
+    ----------
+    tire : TireModel
+        Any tire law.
+
+    Returns
+    -------
+    float
+        Its ``nominal_load`` (``FNOMIN`` of a ``.tir``) if it has a finite positive one, else
+        4000 [N].
+    """
     value = getattr(tire, "nominal_load", None)
     try:
         value = float(value)
@@ -49,20 +61,55 @@ def _tires(tire) -> dict:
 
 
 def cornering_stiffness(tire: TireModel, loads, *, vx: float = 20.0) -> np.ndarray:
-    """``-dF_y/dalpha`` at zero slip [N/rad] for each load, by a central difference."""
+    """Cornering stiffness of a tire at zero slip, for each load.
+
+    Parameters
+    ----------
+    tire : TireModel
+        Any tire law.
+    loads : array_like
+        Normal loads [N].
+    vx : float
+        Forward speed [m/s] passed to the law.
+
+    Returns
+    -------
+    ndarray
+        ``-dF_y/dalpha`` at zero slip [N/rad] (ISO-W), by a central difference of step 1e-7 rad.
+    """
     h = _STIFFNESS_STEP
     lateral = tire.forces(np.asarray(loads, dtype=float)[..., None], 0.0, np.array([-h, h]), 0.0, vx)
     return -(lateral.fy[..., 1] - lateral.fy[..., 0]) / (2 * h)
 
 
 def characteristic_values(tire: TireModel, loads=None, *, vx: float = 20.0):
-    """Key numbers of ``tire`` at each load, as a pandas DataFrame indexed by load [N].
+    """Key numbers of a tire at each load.
 
-    Columns: ``cornering_stiffness`` [N/rad] (``-dF_y/dalpha`` at zero slip, central difference),
+    Parameters
+    ----------
+    tire : TireModel
+        Any tire law.
+    loads : array_like, optional
+        Normal loads [N] (default the tire's :func:`nominal_load`).
+    vx : float
+        Forward speed [m/s] passed to the law.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by ``normal_load`` [N], with ``attrs["units"]``. Columns: ``cornering_stiffness`` [N/rad] (``-dF_y/dalpha`` at zero slip, central difference),
     ``slip_stiffness`` [N] (``dF_x/dkappa``), ``peak_lateral_friction`` and
     ``peak_longitudinal_friction`` [-] (``max |F|/F_z`` over |alpha| <= 30 deg, |kappa| <= 1; for a
     law without friction limit, such as the linear tire, the value at the end of the sweep),
     ``trail_at_zero_slip`` [m] (``-dM_z/dF_y`` at zero slip).
+
+    Examples
+    --------
+    >>> from vehdyn.tire import BrushTire, characteristic_values
+    >>> brush = BrushTire(contact_half_length=0.08, tread_stiffness=5e6, mu=1.0)
+    >>> row = characteristic_values(brush, [4000.0]).iloc[0]
+    >>> round(float(row["cornering_stiffness"])), round(float(row["trail_at_zero_slip"]), 5)   # 2 c_p a^2, a / 3
+    (64000, 0.02667)
     """
     import pandas as pd
 
@@ -89,8 +136,23 @@ def characteristic_values(tire: TireModel, loads=None, *, vx: float = 20.0):
 
 
 def describe_tire(tire: TireModel, loads=None, *, vx: float = 20.0) -> str:
-    """A text summary: law and parameters (for a Magic Formula: version and key ``.tir`` values)
-    and the :func:`characteristic_values` at the given loads (default: 0.5, 1, 1.5 x nominal)."""
+    """A text summary of a tire.
+
+    Parameters
+    ----------
+    tire : TireModel
+        Any tire law.
+    loads : array_like, optional
+        Normal loads [N] (default 0.5, 1 and 1.5 times the :func:`nominal_load`).
+    vx : float
+        Forward speed [m/s] passed to the law.
+
+    Returns
+    -------
+    str
+        The law and its parameters (for a Magic Formula: version and key ``.tir`` values) and
+        the :func:`characteristic_values` at the loads.
+    """
     lines = [f"tire law: {getattr(tire, 'name', '') or type(tire).__name__} ({type(tire).__name__})"]
     version = getattr(tire, "version", None)
     params = _tir_parameters(tire)

@@ -37,12 +37,34 @@ _LAWS: dict[str, object] = {
 
 
 def tire_law_names() -> tuple[str, ...]:
-    """The registered law names, sorted."""
+    """The registered law names.
+
+    Returns
+    -------
+    tuple of str
+        Sorted: ``"brush"``, ``"dugoff"``, ``"fiala"``, ``"linear"``, ``"magic_formula"`` and
+        the names given to :func:`register_tire_law`.
+
+    Examples
+    --------
+    >>> from vehdyn.tire import tire_law_names
+    >>> tire_law_names()
+    ('brush', 'dugoff', 'fiala', 'linear', 'magic_formula')
+    """
     return tuple(sorted(_LAWS))
 
 
 def register_tire_law(name: str, law) -> None:
-    """Register ``law`` (a :class:`TireModel` subclass or a ``"module:Class"`` string) as ``name``.
+    """Register a tire law under a name, so that a vehicle file's ``tires.model`` can name it.
+
+    Parameters
+    ----------
+    name : str
+        The name, snake_case (``"my_brush"``).
+    law : type or str
+        A :class:`TireModel` subclass, or a ``"module:Class"`` string imported on first use. The
+        class should have ``from_vehicle(vehicle, axle)`` or ``from_tir(path)`` for
+        :func:`tire_for_vehicle`.
 
     Raises
     ------
@@ -60,8 +82,18 @@ def register_tire_law(name: str, law) -> None:
 
 
 def tire_law(name: str) -> type:
-    """The class of the tire law called ``name`` (``"linear"``, ``"brush"``, ``"fiala"``, ``"dugoff"``,
-    ``"magic_formula"`` or a registered name).
+    """The class of a tire law by name.
+
+    Parameters
+    ----------
+    name : str
+        ``"linear"``, ``"brush"``, ``"fiala"``, ``"dugoff"``, ``"magic_formula"`` or a registered
+        name.
+
+    Returns
+    -------
+    type
+        The :class:`TireModel` subclass.
 
     Raises
     ------
@@ -110,7 +142,26 @@ class VehicleTireData(NamedTuple):
 
 
 def vehicle_tire_data(vehicle, axle: str = "front") -> VehicleTireData:
-    """Per-tire data of ``vehicle``'s ``axle`` (``"front"`` or ``"rear"``) for building a tire law."""
+    """Per-tire data of a vehicle's axle, for building a tire law.
+
+    Parameters
+    ----------
+    vehicle : vehdyn.Vehicle
+        The vehicle.
+    axle : {"front", "rear"}
+        The axle.
+
+    Returns
+    -------
+    VehicleTireData
+        Per-tire cornering stiffness, static load, friction, contact half length, relaxation
+        length.
+
+    Raises
+    ------
+    ParameterError
+        For an axle other than ``"front"`` or ``"rear"``.
+    """
     if axle not in ("front", "rear"):
         raise ParameterError(f"axle must be 'front' or 'rear', got {axle!r}", key="axle", value=axle)
     tires = vehicle.tires
@@ -139,6 +190,7 @@ def tire_for_vehicle(vehicle, axle: str = "front", model: str | None = None) -> 
     vehicle : vehdyn.Vehicle
         The vehicle; its ``tires.model`` names the law unless ``model`` is given.
     axle : {"front", "rear"}
+        The axle.
     model : str, optional
         A law name overriding ``vehicle.tires.model``.
 
@@ -146,7 +198,16 @@ def tire_for_vehicle(vehicle, axle: str = "front", model: str | None = None) -> 
     -------
     TireModel
         Built by the law's ``from_vehicle(vehicle, axle)`` where it has one, else (the Magic
-        Formula) from the vehicle's ``.tir`` file with ``from_tir``.
+        Formula) from the vehicle's ``.tir`` file with ``from_tir`` (read once per version of
+        the file).
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> from vehdyn.tire import tire_for_vehicle
+    >>> sedan = vehdyn.load_vehicle("sedan")
+    >>> type(tire_for_vehicle(sedan, "front", model="fiala")).__name__
+    'FialaTire'
     """
     law = tire_law(model if model is not None else vehicle.tires.model)
     if hasattr(law, "from_vehicle"):

@@ -52,7 +52,7 @@ def _tir_value(key, value):
 def _magic_formula(tire):
     """A :class:`~vehdyn.tire.MagicFormula` from a model, ``TirParameters``, a path or a mapping."""
     from vehdyn.tire.magic_formula import MagicFormula
-    from vehdyn.tire.tir import TirParameters, read_tir
+    from vehdyn.tire.tir import TirParameters
 
     if isinstance(tire, MagicFormula):
         return tire
@@ -110,7 +110,24 @@ def _positive_length(name: str, value) -> float:
 
 
 class TireRelaxation(Model):
-    """First-order longitudinal and lateral relaxation of one tire (see the module docstring).
+    r"""First-order longitudinal and lateral relaxation of one tire.
+
+    The single-contact-point transient model: the slips that drive the steady-state law lag the
+    kinematic slips by a relaxation length,
+
+    .. math::
+
+        \sigma_\kappa \frac{d\kappa'}{dt} + |V_x| \kappa' = -V_{sx} \operatorname{sgn} V_x,
+        \qquad
+        \sigma_\alpha \frac{dq'}{dt} + |V_x| q' = V_{sy}, \qquad q' = \tan\alpha'
+
+    (ISO-W; V_sx = V_x - omega R_e, V_sy the slip velocities of :func:`vehdyn.tire.slip_velocities`).
+    In steady state kappa' = -V_sx / V_x and tan(alpha') = V_sy / |V_x|, the slips of
+    :func:`vehdyn.tire.wheel_slip`; no speed is divided by, so the equations hold through
+    standstill, where sigma q' is the lateral deflection of a tire acting as a spring. The forces
+    follow from ``law.forces(fz, kappa', alpha')``. From a ``.tir`` file the lengths follow the
+    load: MF 6.x :math:`\sigma_\kappa = K_{x\kappa} / C_x`, :math:`\sigma_\alpha = |K_{y\alpha} / C_y|`
+    (Besselink et al. 2010), MF 5.2 the PTX/PTY formulas (:func:`relaxation_lengths`).
 
     Parameters
     ----------
@@ -131,11 +148,24 @@ class TireRelaxation(Model):
     outputs
         ``transient_slip_ratio`` kappa' [-], ``transient_slip_angle`` alpha' [rad].
 
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, ch. 7
+       (single-contact-point transient tire models) and ch. 8 (their applications); the
+       string-model basis in ch. 5.
+    .. [2] I. J. M. Besselink, A. J. C. Schmeitz and H. B. Pacejka, "An improved Magic
+       Formula/Swift tyre model that can handle inflation pressure changes", Vehicle System
+       Dynamics 48 (sup1), 337-352, 2010 (relaxation lengths from slip and carcass stiffness).
+
     Examples
     --------
+    >>> import numpy as np
+    >>> from vehdyn.tire import TireRelaxation
     >>> lag = TireRelaxation(longitudinal_relaxation_length=0.3, lateral_relaxation_length=0.5)
     >>> lag.state_names
     ('transient_slip_ratio', 'transient_lateral_slip')
+    >>> np.sort(lag.linearize(u0=[20.0, 0.0, 0.0]).modes().eigenvalues.real).tolist()   # -V_x / sigma [1/s]
+    [-66.66666666666667, -40.0]
     """
 
     phenomena = frozenset({"tire_lag"})
@@ -157,11 +187,26 @@ class TireRelaxation(Model):
         ----------
         tir : MagicFormula, TirParameters, path or mapping
             The tire (see :func:`relaxation_lengths`).
-        gamma, pressure
-            Inclination [rad] and inflation pressure [Pa] at which the lengths are evaluated.
+        gamma : float
+            Inclination at which the lengths are evaluated [rad].
+        pressure : float, optional
+            Inflation pressure at which the lengths are evaluated [Pa] (default the file's
+            INFLPRES).
         minimum_length : float
             Floor [m] on the lengths (they vanish with the load), keeping the equations finite
             when a wheel lifts off.
+        prefix : str
+            Put before every signal name (see the class).
+
+        Returns
+        -------
+        TireRelaxation
+            With the extra input ``normal_load`` [N].
+
+        Raises
+        ------
+        ParameterError
+            If the tire cannot be built or ``minimum_length`` is not > 0.
         """
         model = cls.__new__(cls)
         tire = _magic_formula(tir)
@@ -187,7 +232,20 @@ class TireRelaxation(Model):
         )
 
     def lengths(self, u):
-        """``(sigma_kappa, sigma_alpha)`` [m] for the inputs ``u`` (constant unless built from a .tir)."""
+        """The relaxation lengths at given inputs.
+
+        Parameters
+        ----------
+        u : sequence of array_like
+            The inputs in the model's order (forward speed [m/s], slip velocities [m/s] and, for
+            a model from a ``.tir`` file, the normal load [N]; only the load is read).
+
+        Returns
+        -------
+        sigma_kappa, sigma_alpha : float or ndarray
+            [m]: constant unless built by :meth:`from_tir`, then at the load, floored at
+            ``minimum_length``.
+        """
         if self._tir is None:
             return self.longitudinal_relaxation_length, self.lateral_relaxation_length
         params, gamma, pressure, floor = self._tir
@@ -224,9 +282,24 @@ class TireRelaxation(Model):
         return A, B, C, D
 
     def time_constants(self, forward_speed, normal_load=None):
-        """``(sigma_kappa / |V_x|, sigma_alpha / |V_x|)`` [s] (``inf`` at standstill).
+        """Time constants of the relaxation at a forward speed.
 
-        ``normal_load`` [N] is needed (and only used) for a model built by :meth:`from_tir`.
+        Parameters
+        ----------
+        forward_speed : float or array_like
+            V_x [m/s].
+        normal_load : float or array_like, optional
+            F_z [N]; needed (and only used) for a model built by :meth:`from_tir`.
+
+        Returns
+        -------
+        tuple of float or ndarray
+            ``(sigma_kappa / |V_x|, sigma_alpha / |V_x|)`` [s] (``inf`` at standstill).
+
+        Raises
+        ------
+        ParameterError
+            For a model from a ``.tir`` file without ``normal_load``.
         """
         speed = np.abs(np.asarray(forward_speed, dtype=float))
         if self._tir is not None and normal_load is None:

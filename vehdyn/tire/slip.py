@@ -79,7 +79,14 @@ def _check_speed(regularization_speed: float) -> float:
 
 
 def regularized_speed(vx, regularization_speed: float = DEFAULT_REGULARIZATION_SPEED):
-    """The denominator ``D(V_x)`` [m/s]: ``|V_x|`` above ``v_0``, ``(V_x^2 + v_0^2) / (2 v_0)`` below.
+    r"""The denominator of the slips, regularized at low speed.
+
+    .. math::
+
+        D(V_x) = \begin{cases} |V_x| & |V_x| \ge v_0 \\
+        (V_x^2 + v_0^2) / (2 v_0) & |V_x| < v_0 \end{cases}
+
+    exact above v_0, continuous with a continuous derivative at v_0, at least v_0 / 2 everywhere.
 
     Parameters
     ----------
@@ -87,6 +94,16 @@ def regularized_speed(vx, regularization_speed: float = DEFAULT_REGULARIZATION_S
         Forward speed of the wheel centre [m/s].
     regularization_speed : float
         ``v_0`` [m/s], > 0.
+
+    Returns
+    -------
+    ndarray
+        D(V_x) [m/s].
+
+    Raises
+    ------
+    ParameterError
+        If ``regularization_speed`` is not a finite number > 0.
     """
     v0 = _check_speed(regularization_speed)
     vx = np.asarray(vx, dtype=float)
@@ -95,7 +112,27 @@ def regularized_speed(vx, regularization_speed: float = DEFAULT_REGULARIZATION_S
 
 
 def slip_velocities(vx, vy, omega, effective_radius):
-    """``(V_sx, V_sy)`` [m/s] = ``(V_x - omega R_e, V_y)`` of the contact point (ISO-W)."""
+    """Slip velocities of the contact point (ISO-W).
+
+    Parameters
+    ----------
+    vx, vy : array_like
+        Wheel-centre velocity in the ISO-W wheel axes [m/s].
+    omega : array_like
+        Wheel spin [rad/s], positive rolling forwards.
+    effective_radius : array_like
+        Effective rolling radius R_e [m].
+
+    Returns
+    -------
+    V_sx, V_sy : ndarray
+        ``V_x - omega R_e`` and ``V_y`` [m/s], broadcast together.
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, ch. 1 and 4 (slip
+       definitions, as MFeval uses them).
+    """
     vx, vy, omega, radius = np.broadcast_arrays(*(np.asarray(v, dtype=float)
                                                   for v in (vx, vy, omega, effective_radius)))
     return vx - omega * radius, vy.copy()
@@ -103,7 +140,16 @@ def slip_velocities(vx, vy, omega, effective_radius):
 
 def wheel_slip(vx, vy, omega, effective_radius, *,
                regularization_speed: float = DEFAULT_REGULARIZATION_SPEED) -> WheelSlip:
-    """Slip ratio and slip angle of a wheel from its motion (see the module docstring).
+    r"""Slip ratio and slip angle of a wheel from its motion.
+
+    .. math::
+
+        \kappa = -\frac{V_{sx}}{\operatorname{sgn}(V_x) D(V_x)}, \qquad
+        \tan\alpha = \frac{V_{sy}}{D(V_x)}, \qquad
+        V_{sx} = V_x - \omega R_e, \quad V_{sy} = V_y
+
+    with :math:`D(V_x)` = :func:`regularized_speed` (|V_x| above the regularization speed) and
+    sgn 0 = +1: MFeval's definitions (kappa divides by the signed speed, alpha by its magnitude).
 
     Parameters
     ----------
@@ -120,6 +166,11 @@ def wheel_slip(vx, vy, omega, effective_radius, *,
     -------
     WheelSlip
         Arrays of the broadcast shape.
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, ch. 1 and 4 (slip
+       definitions).
 
     Examples
     --------
@@ -142,11 +193,25 @@ def wheel_slip(vx, vy, omega, effective_radius, *,
 
 
 def theoretical_slip(kappa, alpha):
-    """Pacejka's theoretical slip ``(sigma_x, sigma_y) = (kappa, tan alpha) / (1 + kappa)`` [-].
+    """Pacejka's theoretical slip: the slip velocity over the rolling speed.
 
-    The slip velocity over the rolling speed (Pacejka 2012, sec. 3.2.3), which drives the brush
-    model; infinite (full sliding) where the wheel does not roll in its direction of travel
-    (``1 + kappa <= 0``).
+    Parameters
+    ----------
+    kappa : array_like
+        Slip ratio [-] (ISO-W).
+    alpha : array_like
+        Slip angle [rad] (ISO-W).
+
+    Returns
+    -------
+    sigma_x, sigma_y : ndarray
+        ``(kappa, tan alpha) / (1 + kappa)`` [-], which drive the brush model; infinite (full
+        sliding, with the sign of the slip) where the wheel does not roll in its direction of
+        travel (``1 + kappa <= 0``).
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 3.2.3.
     """
     kappa = np.asarray(kappa, dtype=float)
     tan_alpha = np.tan(np.asarray(alpha, dtype=float))

@@ -338,7 +338,13 @@ class TirParameters(Mapping):
         return len(self.values)
 
     def to_dict(self) -> dict:
-        """The flat SI values (with defaults) as a plain dict."""
+        """The flat SI values (with defaults) as a plain dict.
+
+        Returns
+        -------
+        dict
+            ``{KEY: value}``, as :attr:`values`.
+        """
         return dict(self.values)
 
     def __eq__(self, other) -> bool:
@@ -563,6 +569,27 @@ def read_tir(path, *, strict: bool = False) -> TirParameters:
     VehdynWarning
         If the file lacks whole sections of its version (:attr:`TirParameters.missing_sections`):
         their coefficients take MFeval's defaults.
+
+    Notes
+    -----
+    The values of :attr:`TirParameters.values` are in SI (N, m, rad, Pa, kg, s) and the ISO-W
+    (TYDEX W) axes of the file: coefficients are used as written (``TYRESIDE`` is not mirrored).
+
+    References
+    ----------
+    .. [1] TNO Automotive, *MF-Tyre/MF-Swift 6.2 Equation Manual* and *MF-Tyre User Manual* 5.2
+       (the TeimOrbit ``.tir`` format and its keys).
+    .. [2] M. Furlan, *MFeval* 4.3.1, MATLAB File Exchange #63618 (the defaults of missing keys).
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> from vehdyn.tire import read_tir
+    >>> params = read_tir(vehdyn.data_path("tires", "MagicFormula61_Parameters.tir"))
+    >>> params.version, params["FNOMIN"], params["UNLOADED_RADIUS"]    # SI: [N], [m]
+    ('6.1', 6752, 0.3943)
+    >>> params.units["LENGTH"], len(params.defaulted)
+    ('meter', 0)
     """
     path = Path(path)
     try:
@@ -594,6 +621,23 @@ def check_sections(params: TirParameters, strict: bool = False) -> None:
 
     The message names the missing sections and counts the coefficients that take MFeval's
     defaults because of them.
+
+    Parameters
+    ----------
+    params : TirParameters
+        Parameters read from a file (:attr:`TirParameters.missing_sections`).
+    strict : bool
+        Raise instead of warning.
+
+    Raises
+    ------
+    TirFileError
+        With ``strict=True``, if sections are missing.
+
+    Warns
+    -----
+    VehdynWarning
+        Without ``strict``, if sections are missing.
     """
     missing = params.missing_sections
     if not missing:

@@ -47,9 +47,26 @@ __all__ = ["bekker_pressure", "plate_sinkage", "rigid_wheel_sinkage", "parabolic
 
 
 def checked_array(name: str, value, *, ge: float | None = None, gt: float | None = None):
-    """``value`` as a float array (0-d for scalars), checked finite and against a bound once.
+    """A value as a float array (0-d for scalars), checked finite and against a bound once.
 
-    Raises ParameterError naming ``name`` and the first bad value.
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the error.
+    value : array_like
+        The value [any unit].
+    ge, gt : float, optional
+        Lower bound, inclusive or strict [the value's unit].
+
+    Returns
+    -------
+    ndarray
+        ``value`` as floats.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name`` and the first bad value.
     """
     a = np.asarray(value, dtype=float)
     ok = np.isfinite(a)
@@ -70,38 +87,98 @@ def _out(a):
 
 
 def bekker_pressure(soil: Soil, sinkage, width):
-    """Bekker's plate pressure ``p = (k_c / b + k_phi) z^n`` [Pa].
+    r"""Bekker's pressure-sinkage law of a plate.
+
+    .. math::
+
+        p = \left(\frac{k_c}{b} + k_\phi\right) z^n
 
     Parameters
     ----------
     soil : Soil
+        The soil (Bekker and Mohr-Coulomb parameters).
     sinkage : array_like
         z [m], >= 0.
     width : array_like
         b [m]: the smaller dimension of the plate (the wheel width), > 0.
+
+    Returns
+    -------
+    float or ndarray
+        Pressure p [Pa].
+
+    References
+    ----------
+    .. [1] M. G. Bekker, *Introduction to Terrain-Vehicle Systems*, University of Michigan Press,
+       1969.
+    .. [2] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 2.2.
+
+    Examples
+    --------
+    >>> from vehdyn.tire.terramechanics import bekker_pressure, load_soil, plate_sinkage
+    >>> sand = load_soil("dry_sand")
+    >>> p = bekker_pressure(sand, sinkage=0.02, width=0.2)              # [Pa]
+    >>> round(p), round(plate_sinkage(sand, p, 0.2), 12)                # and back [m]
+    (20739, 0.02)
     """
     z = checked_array("sinkage", sinkage, ge=0.0)
     return _out(soil.modulus(width) * z**soil.n)
 
 
 def plate_sinkage(soil: Soil, pressure, width):
-    """Sinkage [m] of a plate of width ``b`` [m] under the pressure ``p`` [Pa]: ``(p / k)^(1/n)``."""
+    """Sinkage of a plate under a pressure: the inverse of :func:`bekker_pressure`.
+
+    Parameters
+    ----------
+    soil : Soil
+        The soil (Bekker and Mohr-Coulomb parameters).
+    pressure : array_like
+        p [Pa], >= 0.
+    width : array_like
+        b [m], > 0.
+
+    Returns
+    -------
+    float or ndarray
+        z = (p / k)^(1/n) [m], k = k_c / b + k_phi.
+    """
     p = checked_array("pressure", pressure, ge=0.0)
     return _out((p / soil.modulus(width)) ** (1.0 / soil.n))
 
 
 def rigid_wheel_sinkage(soil: Soil, load, diameter, width):
-    """Bekker's static sinkage z0 [m] of a towed rigid wheel (module docstring; valid for z0/D small).
+    r"""Bekker's static sinkage of a towed rigid wheel (valid for z0/D small).
+
+    .. math::
+
+        z_0 = \left[\frac{3 W}{(3 - n)(k_c + b k_\phi) \sqrt D}\right]^{2 / (2n + 1)}
 
     Parameters
     ----------
     soil : Soil
+        The soil (Bekker and Mohr-Coulomb parameters).
     load : array_like
         Normal load W [N], >= 0.
     diameter : array_like
         D [m], > 0.
     width : array_like
         b [m], > 0.
+
+    Returns
+    -------
+    float or ndarray
+        z0 [m].
+
+    Raises
+    ------
+    ParameterError
+        For n >= 3, or a bad load, diameter or width.
+
+    References
+    ----------
+    .. [1] M. G. Bekker, *Introduction to Terrain-Vehicle Systems*, University of Michigan Press,
+       1969.
+    .. [2] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 2.5.
     """
     w = checked_array("load", load, ge=0.0)
     d = checked_array("diameter", diameter, gt=0.0)
@@ -114,10 +191,36 @@ def rigid_wheel_sinkage(soil: Soil, load, diameter, width):
 
 
 def parabolic_wheel_sinkage(soil: Soil, load, diameter, width):
-    """Static sinkage [m] of a rigid wheel with the arc taken as a parabola, integrated exactly.
+    r"""Static sinkage of a rigid wheel with the arc taken as a parabola, integrated exactly.
 
-    ``W = b k sqrt(D) z0^(n + 1/2) B(n + 1, 1/2) / 2``; Bekker's :func:`rigid_wheel_sinkage`
-    replaces ``B(n + 1, 1/2) / 2`` by ``(3 - n) / 3``. Same limits otherwise (z0/D small).
+    .. math::
+
+        W = b k \sqrt D \, z_0^{n + 1/2} \, \frac{B(n + 1, 1/2)}{2}
+
+    solved for z0 (B the Beta function); Bekker's :func:`rigid_wheel_sinkage` replaces
+    B(n + 1, 1/2) / 2 by (3 - n) / 3. Same limits otherwise (z0/D small).
+
+    Parameters
+    ----------
+    soil : Soil
+        The soil (Bekker and Mohr-Coulomb parameters).
+    load : array_like
+        Normal load W [N], >= 0.
+    diameter : array_like
+        D [m], > 0.
+    width : array_like
+        b [m], > 0.
+
+    Returns
+    -------
+    float or ndarray
+        z0 [m].
+
+    References
+    ----------
+    .. [1] M. G. Bekker, *Introduction to Terrain-Vehicle Systems*, University of Michigan Press,
+       1969.
+    .. [2] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 2.5.
     """
     w = checked_array("load", load, ge=0.0)
     d = checked_array("diameter", diameter, gt=0.0)
@@ -128,24 +231,92 @@ def parabolic_wheel_sinkage(soil: Soil, load, diameter, width):
 
 
 def compaction_resistance(soil: Soil, load, diameter, width):
-    """Bekker's compaction resistance [N] of a towed rigid wheel: ``b k z0^(n+1) / (n+1)`` with z0 of
-    :func:`rigid_wheel_sinkage` (same arguments; valid for z0/D small)."""
+    r"""Bekker's compaction resistance of a towed rigid wheel (valid for z0/D small).
+
+    .. math::
+
+        R_c = \frac{b k z_0^{n+1}}{n + 1}
+
+    the work of making a rut of depth z0 (:func:`rigid_wheel_sinkage`) per unit length.
+
+    Parameters
+    ----------
+    soil : Soil
+        The soil (Bekker and Mohr-Coulomb parameters).
+    load : array_like
+        Normal load W [N], >= 0.
+    diameter : array_like
+        D [m], > 0.
+    width : array_like
+        b [m], > 0.
+
+    Returns
+    -------
+    float or ndarray
+        R_c [N].
+
+    References
+    ----------
+    .. [1] M. G. Bekker, *Introduction to Terrain-Vehicle Systems*, University of Michigan Press,
+       1969.
+    .. [2] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 2.5.
+    """
     z0 = np.asarray(rigid_wheel_sinkage(soil, load, diameter, width))
     b = np.asarray(width, dtype=float)
     return _out(b * soil.modulus(b) * z0 ** (soil.n + 1.0) / (soil.n + 1.0))
 
 
 def rankine_wall_force(soil: Soil, depth):
-    """Rankine passive force per unit width [N/m] on a vertical wall to the depth z [m] (no checks):
-    ``gamma z^2 N_phi / 2 + 2 c z sqrt(N_phi)``, ``N_phi = tan^2(45 deg + phi/2)``, ``gamma = density g``."""
+    r"""Rankine passive force per unit width on a smooth vertical wall (no checks).
+
+    .. math::
+
+        F = \frac{\gamma_s z^2 N_\phi}{2} + 2 c z \sqrt{N_\phi}, \qquad
+        N_\phi = \tan^2\left(45^\circ + \frac{\phi}{2}\right), \quad \gamma_s = \rho g
+
+    Parameters
+    ----------
+    soil : Soil
+        The soil (Bekker and Mohr-Coulomb parameters).
+    depth : float or ndarray
+        Depth z of the wall [m].
+
+    Returns
+    -------
+    float or ndarray
+        F [N/m].
+
+    References
+    ----------
+    .. [1] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 2.2 (passive
+       earth pressure).
+    """
     n_phi = math.tan(math.pi / 4 + soil.friction_angle / 2) ** 2
     gamma = soil.density * GRAVITY
     return depth * (0.5 * gamma * n_phi * depth + 2.0 * soil.cohesion * math.sqrt(n_phi))
 
 
 def bulldozing_resistance(soil: Soil, sinkage, width):
-    """Bulldozing resistance [N] of a vertical wall of width ``b`` [m] at the depth ``z`` [m]:
-    ``b`` times :func:`rankine_wall_force` (module docstring)."""
+    """Bulldozing resistance of a vertical wall: ``b`` times :func:`rankine_wall_force`.
+
+    Parameters
+    ----------
+    soil : Soil
+        The soil (Bekker and Mohr-Coulomb parameters).
+    sinkage : array_like
+        Depth z [m], >= 0.
+    width : array_like
+        Wall width b [m], > 0.
+
+    Returns
+    -------
+    float or ndarray
+        R_b = b (gamma z^2 N_phi / 2 + 2 c z sqrt(N_phi)) [N].
+
+    References
+    ----------
+    .. [1] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 2.2.
+    """
     z = checked_array("sinkage", sinkage, ge=0.0)
     b = checked_array("width", width, gt=0.0)
     return _out(b * rankine_wall_force(soil, z))

@@ -20,7 +20,25 @@ DEFAULT_WHEEL = (0.3, 0.2, 1500.0)
 
 def soil_curves(soil: Soil | str, radius: float = DEFAULT_WHEEL[0], width: float = DEFAULT_WHEEL[1],
                 load: float = DEFAULT_WHEEL[2], slips=None) -> WheelSoilResult:
-    """The rigid wheel's steady state over ``slips`` (default 101 slips in [-1, 1]) on ``soil``."""
+    """The rigid wheel's steady state over a range of slips.
+
+    Parameters
+    ----------
+    soil : Soil or str
+        The soil, or a name for :func:`~vehdyn.tire.terramechanics.load_soil`.
+    radius : float
+        Wheel radius [m] (default 0.3).
+    width : float
+        Wheel width [m] (default 0.2).
+    load : float
+        Vertical load [N] (default 1500).
+    slips : array_like, optional
+        Slips [-] (default 101 slips in [-1, 1]).
+
+    Returns
+    -------
+    WheelSoilResult
+    """
     soil = load_soil(soil) if isinstance(soil, str) else soil
     slips = np.linspace(-1.0, 1.0, 101) if slips is None else slips
     return RigidWheel(radius=radius, width=width, soil=soil).solve(load, slips)
@@ -28,7 +46,25 @@ def soil_curves(soil: Soil | str, radius: float = DEFAULT_WHEEL[0], width: float
 
 def describe_soil(soil: Soil | str, radius: float = DEFAULT_WHEEL[0], width: float = DEFAULT_WHEEL[1],
                   load: float = DEFAULT_WHEEL[2]) -> str:
-    """A text page: the soil's parameters (SI) and its curves at a few slips for the given wheel."""
+    """A text page: the soil's parameters (SI) and its curves at a few slips for a wheel.
+
+    Parameters
+    ----------
+    soil : Soil or str
+        The soil, or a shipped name.
+    radius : float
+        Wheel radius [m].
+    width : float
+        Wheel width [m].
+    load : float
+        Vertical load [N].
+
+    Returns
+    -------
+    str
+        The parameters, the source of a shipped soil, and sinkage, drawbar pull, torque, motion
+        resistance and efficiency at ten slips from -1 to 1.
+    """
     soil = load_soil(soil) if isinstance(soil, str) else soil
     lines = [f"soil {soil.name}"]
     if soil.name in shipped_soils() and load_soil(soil.name) == soil:
@@ -48,8 +84,19 @@ def describe_soil(soil: Soil | str, radius: float = DEFAULT_WHEEL[0], width: flo
 
 
 def plot_soil_curves(results: dict, *, fig=None):
-    """Sinkage, drawbar pull over load, torque and tractive efficiency against slip, one line per
-    entry of ``results`` (label -> :class:`WheelSoilResult`)."""
+    """Sinkage, drawbar pull over load, torque and tractive efficiency against slip.
+
+    Parameters
+    ----------
+    results : dict of str to WheelSoilResult
+        One line per entry (label -> result); stuck points are left out.
+    fig : matplotlib Figure, optional
+        A 2 x 2 figure to draw into (default a new one).
+
+    Returns
+    -------
+    matplotlib Figure
+    """
     from vehdyn.plotting import new_figure
 
     if fig is None:

@@ -44,7 +44,35 @@ __all__ = ["SoftSoilTireGeometry", "FlexibleWheel", "critical_ground_pressure"]
 
 
 def critical_ground_pressure(soil: Soil, load, diameter, width):
-    """Ground pressure [Pa] under a rigid wheel at Bekker's static sinkage: ``k z0^n`` (module docstring)."""
+    r"""Ground pressure under a rigid wheel at Bekker's static sinkage.
+
+    .. math::
+
+        p_{gcr} = \left(\frac{k_c}{b} + k_\phi\right) z_0^n
+
+    with z0 of :func:`~vehdyn.tire.terramechanics.rigid_wheel_sinkage`. A tire whose inflation
+    plus carcass pressure exceeds it runs as a rigid wheel.
+
+    Parameters
+    ----------
+    soil : Soil
+        The soil.
+    load : array_like
+        Normal load W [N].
+    diameter : array_like
+        Wheel diameter D [m].
+    width : array_like
+        Wheel width b [m].
+
+    Returns
+    -------
+    float or ndarray
+        p_gcr [Pa].
+
+    References
+    ----------
+    .. [1] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 2.7.
+    """
     z0 = np.asarray(rigid_wheel_sinkage(soil, load, diameter, width))
     out = soil.modulus(width) * z0**soil.n
     return float(out) if np.ndim(out) == 0 else out
@@ -79,14 +107,57 @@ class SoftSoilTireGeometry(ParameterSet):
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class FlexibleWheel(ParameterSet):
-    """A pneumatic tire on soil in the rigid or elastic mode (module docstring).
+    r"""A pneumatic tire on soil in the rigid or elastic mode.
+
+    The tire runs as a rigid wheel (:class:`~vehdyn.tire.terramechanics.RigidWheel`) while its
+    inflation plus carcass pressure p = p_i + p_c stays at least the critical ground pressure
+    (:func:`critical_ground_pressure`), else it flattens on the soil and carries the load on a
+    flat section at the uniform pressure p:
+
+    .. math::
+
+        z = (p / k)^{1/n}, \qquad l = \frac{W}{b p}, \qquad
+        R_c = \frac{b k z^{n+1}}{n + 1}
+
+        H = \operatorname{sgn}(s) (A c + W \tan\phi)
+        \left[1 - \frac{K}{|s| l} \left(1 - e^{-|s| l / K}\right)\right], \quad A = b l,
+        \qquad DP = H - R_c, \qquad T = H r
+
+    (k = k_c / b + k_phi; the torque arm taken as the unloaded radius r; stuck if z >= r). The
+    side force in the elastic mode is that of the same uniform contact
+    (:func:`~vehdyn.tire.terramechanics.lateral.flat_side_force`).
 
     Parameters
     ----------
     geometry : SoftSoilTireGeometry
+        Radius, width, inflation and carcass pressures.
     soil : Soil
-    c1, c2, rebound : float
-        The rigid mode's Wong-Reece coefficients (see :class:`RigidWheel`).
+        The soil.
+    c1, c2 : float
+        The rigid mode's maximum-stress angle coefficients [-] (see
+        :class:`~vehdyn.tire.terramechanics.RigidWheel`).
+    rebound : float
+        The rigid mode's exit over entry angle [-].
+
+    References
+    ----------
+    .. [1] M. G. Bekker, *Introduction to Terrain-Vehicle Systems*, University of Michigan Press,
+       1969.
+    .. [2] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 2.4 (thrust of a
+       uniform contact) and 2.7 (rigid and elastic modes of a tire).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from vehdyn.tire.terramechanics import FlexibleWheel, SoftSoilTireGeometry, load_soil, plate_sinkage
+    >>> loam = load_soil("sandy_loam")
+    >>> tire = FlexibleWheel(geometry=SoftSoilTireGeometry(radius=0.32, width=0.205, inflation_pressure=1e5),
+    ...                      soil=loam)
+    >>> r = tire.solve([1000.0, 4000.0], 0.2)                  # loads [N], slip [-]
+    >>> r.mode.tolist()
+    ['rigid', 'elastic']
+    >>> bool(np.isclose(r.sinkage[1], plate_sinkage(loam, 1e5, 0.205), rtol=1e-12))   # z = (p / k)^(1/n)
+    True
     """
 
     geometry: SoftSoilTireGeometry
@@ -106,7 +177,19 @@ class FlexibleWheel(ParameterSet):
         return cached
 
     def elastic(self, load) -> np.ndarray:
-        """True where the tire runs in the elastic (flattened) mode at the load W [N]."""
+        """Where the tire runs in the elastic (flattened) mode.
+
+        Parameters
+        ----------
+        load : array_like
+            Normal load W [N], >= 0.
+
+        Returns
+        -------
+        ndarray of bool
+            True where p_i + p_c < the critical ground pressure at the load (never for a rigid
+            wheel, ``inflation_pressure=None``).
+        """
         w = checked_array("load", load, ge=0.0)
         g = self.geometry
         if g.inflation_pressure is None:
@@ -115,8 +198,24 @@ class FlexibleWheel(ParameterSet):
                                                                g.width)
 
     def solve(self, load, slip, slip_angle=None, *, nodes: int = QUADRATURE_NODES) -> WheelSoilResult:
-        """Steady state at the loads W [N], slips s in [-1, 1] and slip angles alpha [rad] (optional);
-        see :meth:`RigidWheel.solve`. ``mode`` says which mode each point ran in."""
+        """Steady state at given loads, slips and slip angles (see :meth:`RigidWheel.solve`).
+
+        Parameters
+        ----------
+        load : array_like
+            Normal load W [N], >= 0.
+        slip : array_like
+            s [-] in [-1, 1].
+        slip_angle : array_like, optional
+            alpha [rad] (ISO-W) for the side force.
+        nodes : int
+            Gauss-Legendre nodes per sub-interval of the rigid mode's arc.
+
+        Returns
+        -------
+        WheelSoilResult
+            Of the broadcast shape; ``mode`` says which mode each point ran in.
+        """
         w = checked_array("load", load, ge=0.0)
         s = check_slip(slip)
         a = None if slip_angle is None else checked_array("slip_angle", slip_angle)

@@ -41,8 +41,18 @@ _MAX_TRAVEL = 1e12
 
 
 def mobilized_fraction(length_over_k):
-    """``1 - (1 - exp(-x)) / x`` [-]: the mean of ``1 - exp(-j/K)`` over a uniform contact with
-    ``j`` growing linearly to ``x K`` (Janosi-Hanamoto integrated; x/2 near 0)."""
+    """The mean of ``1 - exp(-j/K)`` over a uniform contact with ``j`` growing linearly to ``x K``.
+
+    Parameters
+    ----------
+    length_over_k : array_like
+        x = (shear displacement at the trailing edge) / K [-].
+
+    Returns
+    -------
+    ndarray
+        ``1 - (1 - exp(-x)) / x`` [-] (Janosi-Hanamoto integrated; x/2 near 0).
+    """
     x = np.asarray(length_over_k, dtype=float)
     small = x < 1e-6
     safe = np.where(small, 1.0, x)
@@ -55,18 +65,35 @@ def arc_side_force(soil: Soil, radius: float, width: float, theta, weight, stren
 
     Parameters
     ----------
+    soil : Soil
+        The soil.
+    radius : float
+        Wheel radius r [m].
+    width : float
+        Wheel width b [m].
     theta, weight : ndarray (n_points, n_nodes)
         Quadrature nodes [rad] and weights on the arc.
     strength : ndarray (n_points, n_nodes)
         ``c + sigma tan phi`` [Pa] at the nodes.
     cos_theta : ndarray (n_points, n_nodes)
-        cos(theta).
+        cos(theta) [-].
     theta1 : ndarray (n_points, 1)
         Entry angle [rad].
     travel : ndarray (n_points, 1)
         ``V / (r omega)`` [-].
     tan_alpha : ndarray (n_points,)
-        tan of the slip angle.
+        tan of the slip angle [-].
+
+    Returns
+    -------
+    ndarray (n_points,)
+        F_y [N], ISO-W: ``-sgn(alpha) (side shear + |sin alpha| int F_wall(h) dx)``.
+
+    References
+    ----------
+    .. [1] G. Ishigami, A. Miwa, K. Nagatani and K. Yoshida, "Terramechanics-based model for
+       steering maneuver of planetary exploration rovers on loose soil", J. Field Robotics 24(3),
+       233-250, 2007.
     """
     abs_tan = np.abs(tan_alpha)[:, None]
     jy = radius * (theta1 - theta) * np.minimum(travel, _MAX_TRAVEL) * abs_tan
@@ -78,8 +105,38 @@ def arc_side_force(soil: Soil, radius: float, width: float, theta, weight, stren
 
 
 def flat_side_force(soil: Soil, width: float, load, length, sinkage, travel, slip_angle):
-    """Side force [N] (ISO-W) of a flat contact of width b [m] and length l [m] carrying the load
-    W [N] at a uniform pressure, in a rut of depth z [m]; ``travel`` is ``V / (r omega)``."""
+    """Side force (ISO-W) of a flat contact carrying a load at a uniform pressure, in a rut.
+
+    Parameters
+    ----------
+    soil : Soil
+        The soil.
+    width : float
+        Contact width b [m].
+    load : array_like
+        Normal load W [N].
+    length : array_like
+        Contact length l [m].
+    sinkage : array_like
+        Rut depth z [m].
+    travel : array_like
+        ``V / (r omega)`` [-] (:func:`~vehdyn.tire.terramechanics.wong_reece.travel_ratio`).
+    slip_angle : array_like
+        alpha [rad].
+
+    Returns
+    -------
+    ndarray
+        F_y [N]: ``-sgn(alpha) [(A c + W tan phi) (1 - K_y / L (1 - exp(-L / K_y)))
+        + |sin alpha| R_b]``, L = l f(s) |tan alpha|, R_b the bulldozing resistance of the rut
+        wall over the contact length.
+
+    References
+    ----------
+    .. [1] G. Ishigami, A. Miwa, K. Nagatani and K. Yoshida, "Terramechanics-based model for
+       steering maneuver of planetary exploration rovers on loose soil", J. Field Robotics 24(3),
+       233-250, 2007.
+    """
     tan_alpha = np.tan(slip_angle)
     limit = width * length * soil.cohesion + load * np.tan(soil.friction_angle)  # A c + W tan(phi)
     reach = length * np.minimum(travel, _MAX_TRAVEL) * np.abs(tan_alpha)

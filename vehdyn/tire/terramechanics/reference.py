@@ -17,9 +17,25 @@ __all__ = ["stress_functions", "adaptive_integrals", "adaptive_solve"]
 
 
 def stress_functions(wheel, theta1: float, slip: float):
-    """``(sigma, tau, integral)``: the normal and shear stress [Pa] at the angle theta [rad] for the
-    entry angle ``theta1`` and slip ``slip`` of ``wheel`` (a RigidWheel), and ``integral(f,
-    epsrel=1e-12)`` over the contact arc (split at theta_m)."""
+    """The Wong-Reece stresses of a wheel as scalar functions of the angle, and their integral.
+
+    Parameters
+    ----------
+    wheel : RigidWheel
+        The wheel and its soil.
+    theta1 : float
+        Entry angle [rad].
+    slip : float
+        s [-] in [-1, 1].
+
+    Returns
+    -------
+    sigma, tau : callable
+        Normal and shear stress [Pa] at an angle theta [rad].
+    integral : callable
+        ``integral(f, epsrel=1e-12)``: the adaptive quadrature of f over the contact arc (split
+        at theta_m).
+    """
     from scipy.integrate import quad
 
     soil, r, b = wheel.soil, wheel.radius, wheel.width
@@ -47,7 +63,24 @@ def stress_functions(wheel, theta1: float, slip: float):
 
 
 def adaptive_integrals(wheel, theta1: float, slip: float, epsrel: float = 1e-12):
-    """``(W, H, R, T)``: vertical load, thrust, motion resistance [N] and torque [N*m]."""
+    """The stress integrals of a wheel at one entry angle, by adaptive quadrature.
+
+    Parameters
+    ----------
+    wheel : RigidWheel
+        The wheel and its soil.
+    theta1 : float
+        Entry angle [rad].
+    slip : float
+        s [-].
+    epsrel : float
+        Relative tolerance of ``scipy.integrate.quad`` [-].
+
+    Returns
+    -------
+    tuple of float
+        ``(W, H, R, T)``: vertical load, thrust, motion resistance [N] and torque [N*m].
+    """
     r, b = wheel.radius, wheel.width
     sigma, tau, integral = stress_functions(wheel, theta1, slip)
     return (r * b * integral(lambda t: sigma(t) * math.cos(t) + tau(t) * math.sin(t), epsrel),
@@ -57,7 +90,24 @@ def adaptive_integrals(wheel, theta1: float, slip: float, epsrel: float = 1e-12)
 
 
 def adaptive_solve(wheel, load: float, slip: float, epsrel: float = 1e-10):
-    """``(sinkage [m], drawbar pull [N])`` of one (load, slip) by brentq on the entry angle."""
+    """Steady state of one (load, slip) by brentq on the entry angle: the slow reference.
+
+    Parameters
+    ----------
+    wheel : RigidWheel
+        The wheel and its soil.
+    load : float
+        Vertical load W [N].
+    slip : float
+        s [-].
+    epsrel : float
+        Relative tolerance of the quadrature [-].
+
+    Returns
+    -------
+    tuple of float
+        ``(sinkage [m], drawbar pull [N])``.
+    """
     from scipy.optimize import brentq
 
     with warnings.catch_warnings():  # quad's round-off notice near 1e-10 on the kinked integrands

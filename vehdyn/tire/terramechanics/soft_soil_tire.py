@@ -45,28 +45,80 @@ _MAX_SLIP_ANGLE = 0.5 * math.pi - 1e-6
 
 
 def slip_from_kappa(kappa):
-    """Terramechanics slip s in [-1, 1] from the ISO-W slip ratio (module docstring)."""
+    """Terramechanics slip from the ISO-W slip ratio.
+
+    Parameters
+    ----------
+    kappa : array_like
+        Slip ratio kappa = (omega r - V) / V [-] (ISO-W, MFeval's).
+
+    Returns
+    -------
+    ndarray
+        s [-] in [-1, 1]: ``kappa / (1 + kappa)`` driven (kappa >= 0, s = 1 - V / (r omega)),
+        ``max(kappa, -1)`` braked (s = r omega / V - 1).
+    """
     k = np.asarray(kappa, dtype=float)
     return np.where(k >= 0.0, k / (1.0 + np.abs(k)), np.maximum(k, -1.0))
 
 
 class SoftSoilTire(TireModel):
-    """A tire on deformable soil with the :class:`~vehdyn.tire.TireModel` interface.
+    r"""A tire on deformable soil with the :class:`~vehdyn.tire.TireModel` interface.
+
+    A :class:`~vehdyn.tire.terramechanics.FlexibleWheel` (rigid mode: Wong-Reece; elastic mode:
+    flat-section contact) behind the interface of the road tire laws, so that the vehicle models
+    run on sand, loam, clay or snow. With the terramechanics slip s of the ISO-W slip ratio and
+    the wheel's drawbar pull DP, torque T and side force:
+
+    .. math::
+
+        s = \begin{cases} \kappa / (1 + \kappa) & \kappa \ge 0 \\
+        \max(\kappa, -1) & \kappa < 0 \end{cases}, \qquad
+        F_x = DP \operatorname{sgn} V_x, \qquad
+        M_y = (r \, DP - T) \operatorname{sgn} V_x, \qquad M_x = M_z = 0
+
+    and F_y the flexible wheel's side force (ISO-W: negative for a positive slip angle). M_y
+    carries the part of the soil torque that r F_x does not, so that a model closing the wheel
+    spin balance with ``-R_e F_x + M_y`` lets a free-rolling wheel settle at zero soil torque (the
+    towed wheel, which feels its motion resistance). Camber has no effect.
 
     Parameters
     ----------
     tire_geometry : SoftSoilTireGeometry
         Radius, width, inflation and carcass pressures.
     soil : Soil
+        The soil.
     **wheel_options
         ``c1``, ``c2``, ``rebound`` of :class:`FlexibleWheel`.
+
+    Raises
+    ------
+    ParameterError
+        If ``tire_geometry`` or ``soil`` is of the wrong type, or a wheel option is out of range.
+
+    References
+    ----------
+    .. [1] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, ch. 2 (sec. 2.4, 2.7).
+    .. [2] J. Y. Wong and A. R. Reece, "Prediction of rigid wheel performance based on the
+       analysis of soil-wheel stresses", parts I and II, J. Terramechanics 4(1), 81-98, and 4(2),
+       7-25, 1967.
+    .. [3] M. G. Bekker, *Introduction to Terrain-Vehicle Systems*, University of Michigan Press,
+       1969.
+    .. [4] G. Ishigami, A. Miwa, K. Nagatani and K. Yoshida, "Terramechanics-based model for
+       steering maneuver of planetary exploration rovers on loose soil", J. Field Robotics 24(3),
+       233-250, 2007 (the side force).
 
     Examples
     --------
     >>> from vehdyn.tire.terramechanics import SoftSoilTire, SoftSoilTireGeometry, load_soil
     >>> tire = SoftSoilTire(SoftSoilTireGeometry(radius=0.32, width=0.205, inflation_pressure=2.2e5),
     ...                     load_soil("dry_sand"))
-    >>> f = tire.forces(4000.0, 0.2, 0.0)
+    >>> f = tire.forces(4000.0, 0.2, 0.0)                  # load [N], slip ratio [-], slip angle [rad]
+    >>> state = tire.evaluate(4000.0, 0.2)
+    >>> str(state.mode), f.fx == float(state.drawbar_pull)   # F_x is the drawbar pull
+    ('rigid', True)
+    >>> bool(abs(f.my - (0.32 * f.fx - float(state.torque))) < 1e-9)   # M_y = r DP - T [N m]
+    True
     """
 
     name = "soft_soil"
@@ -85,9 +137,26 @@ class SoftSoilTire(TireModel):
         return f"SoftSoilTire({self.tire_geometry!r}, soil={self.soil.name!r})"
 
     def evaluate(self, fz, kappa, alpha=0.0, vx=10.0) -> WheelSoilResult:
-        """The wheel's steady state (sinkage, drawbar pull, motion resistance, torque, mode, stuck)
-        at the load fz [N], ISO-W slip ratio kappa and slip angle alpha [rad]; ``vx`` [m/s] only
-        through its sign (the forces of the result are for rolling forwards)."""
+        """The wheel's steady state: sinkage, drawbar pull, motion resistance, torque, mode, stuck.
+
+        Parameters
+        ----------
+        fz : array_like
+            Normal load [N].
+        kappa : array_like
+            ISO-W slip ratio [-].
+        alpha : array_like
+            Slip angle [rad] (ISO-W), clipped just inside +-pi/2.
+        vx : array_like
+            Forward speed [m/s]: only its sign, and only for the input check (the forces of the
+            result are for rolling forwards).
+
+        Returns
+        -------
+        WheelSoilResult
+            Of the broadcast shape; NaN (``stuck`` False, ``mode`` ``"invalid"``) where an input
+            is not finite.
+        """
         return self._evaluate(fz, kappa, alpha, 0.0, vx)
 
     def _evaluate(self, fz, kappa, alpha, gamma, vx) -> WheelSoilResult:

@@ -42,7 +42,15 @@ _SOIL_FILE = ("soils.toml",)
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class Soil(ParameterSet):
-    """A deformable soil (SI units).
+    r"""A deformable soil (SI units): Bekker's pressure-sinkage law and Mohr-Coulomb shear strength.
+
+    .. math::
+
+        p = \left(\frac{k_c}{b} + k_\phi\right) z^n, \qquad
+        \tau = (c + \sigma \tan\phi) \left(1 - e^{-j / K}\right)
+
+    (b the smaller dimension of the loading area, z the sinkage, sigma the normal stress, j the
+    shear displacement: the Janosi-Hanamoto law).
 
     Parameters
     ----------
@@ -69,6 +77,16 @@ class Soil(ParameterSet):
     -----
     ``k_c / b + k_phi`` must be positive for the widths used; the functions that take a width
     check it.
+
+    References
+    ----------
+    .. [1] M. G. Bekker, *Introduction to Terrain-Vehicle Systems*, University of Michigan Press,
+       1969.
+    .. [2] Z. Janosi and B. Hanamoto, "The analytical determination of drawbar pull as a function
+       of slip for tracked vehicles in deformable soils", 1st Int. Conf. Terrain-Vehicle Systems,
+       Turin, 1961.
+    .. [3] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, ch. 2 (sec. 2.2-2.4;
+       table 2.3 holds the values of most shipped soils, see :func:`soil_source`).
     """
 
     n: float = parameter("-", "exponent of deformation of the pressure-sinkage law", gt=0)
@@ -87,7 +105,23 @@ class Soil(ParameterSet):
         return self.shear_modulus if self.lateral_shear_modulus is None else self.lateral_shear_modulus
 
     def modulus(self, width):
-        """``k_c / b + k_phi`` [N/m^(n+2)] for the width ``b`` [m] (scalar or array), checked > 0."""
+        """Bekker's modulus for a loading width.
+
+        Parameters
+        ----------
+        width : float or array_like
+            b [m], > 0.
+
+        Returns
+        -------
+        float or ndarray
+            k = k_c / b + k_phi [N/m^(n+2)].
+
+        Raises
+        ------
+        ParameterError
+            If a width is not finite and > 0, or k is not > 0 for it.
+        """
         b = np.asarray(width, dtype=float)
         if not np.all(np.isfinite(b) & (b > 0)):
             bad = b[~(np.isfinite(b) & (b > 0))].flat[0] if b.ndim else b
@@ -106,12 +140,40 @@ def _soil_table() -> dict:
 
 
 def shipped_soils() -> list[str]:
-    """Names of the soils in the shipped table ``data/soils.toml``."""
+    """Names of the soils in the shipped table ``data/soils.toml``.
+
+    Returns
+    -------
+    list of str
+        Sorted names, each loadable with :func:`load_soil`.
+
+    Examples
+    --------
+    >>> from vehdyn.tire.terramechanics import shipped_soils
+    >>> shipped_soils()
+    ['clayey_soil', 'dry_sand', 'heavy_clay', 'lete_sand', 'lunar_soil', 'sandy_loam', 'snow']
+    """
     return sorted(_soil_table())
 
 
 def soil_source(name: str) -> str:
-    """The published source of a shipped soil (its ``source`` entry in ``data/soils.toml``)."""
+    """The published source of a shipped soil.
+
+    Parameters
+    ----------
+    name : str
+        A shipped soil (:func:`shipped_soils`).
+
+    Returns
+    -------
+    str
+        Its ``source`` entry in ``data/soils.toml``.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown name.
+    """
     table = _soil_table()
     if name not in table:
         raise ParameterError(f"no shipped soil {name!r}; soils are {sorted(table)}", key="soil", value=name)
@@ -149,6 +211,29 @@ def load_soil(name_or_path: str | Path) -> Soil:
 
     Values are converted from the units the table gives (``kN/m^(n+1)``, ``kPa``, ``deg``, ``cm`` ...)
     to SI.
+
+    Parameters
+    ----------
+    name_or_path : str or os.PathLike
+        A shipped name, a TOML file with one soil, or ``"file.toml:NAME"``.
+
+    Returns
+    -------
+    Soil
+
+    Raises
+    ------
+    ParameterError
+        For an unknown name, a file that holds several soils without a name given, a missing or
+        invalid file, a unit the table may not use, or a value out of range.
+
+    Examples
+    --------
+    >>> import math
+    >>> from vehdyn.tire.terramechanics import load_soil
+    >>> sand = load_soil("dry_sand")
+    >>> sand.n, sand.k_phi, sand.cohesion, round(math.degrees(sand.friction_angle), 6)   # SI, phi in deg
+    (1.1, 1528430.0, 1040.0, 28.0)
     """
     text_name = str(name_or_path)
     path, _, key = text_name.partition(".toml:")

@@ -73,7 +73,23 @@ _STUCK_ANGLE = 0.5 * math.pi
 
 
 def check_slip(slip):
-    """``slip`` as a float array checked in [-1, 1] (ParameterError naming it otherwise)."""
+    """A slip as a float array, checked.
+
+    Parameters
+    ----------
+    slip : array_like
+        s [-]: ``1 - V/(r omega)`` driven (>= 0), ``r omega/V - 1`` braked (< 0).
+
+    Returns
+    -------
+    ndarray
+        ``slip`` as floats.
+
+    Raises
+    ------
+    ParameterError
+        If a value is not finite or outside [-1, 1] (key ``slip``).
+    """
     s = checked_array("slip", slip)
     bad = np.abs(s) > 1.0
     if np.any(bad):
@@ -84,7 +100,19 @@ def check_slip(slip):
 
 
 def travel_ratio(slip):
-    """``V / (r omega)`` [-] for the slip s: ``1 - s`` driven (s >= 0), ``1 / (1 + s)`` braked (inf at s = -1)."""
+    """The travel ratio of a wheel at a slip.
+
+    Parameters
+    ----------
+    slip : array_like
+        s [-] in [-1, 1].
+
+    Returns
+    -------
+    ndarray
+        ``V / (r omega)`` [-]: ``1 - s`` driven (s >= 0), ``1 / (1 + s)`` braked (inf at s = -1,
+        the locked wheel).
+    """
     s = np.asarray(slip, dtype=float)
     with np.errstate(divide="ignore"):
         return np.where(s >= 0.0, 1.0 - s, 1.0 / np.maximum(1.0 + s, 0.0))
@@ -113,7 +141,8 @@ class WheelSoilResult:
     stuck : ndarray of bool
         The soil cannot carry the load before the sinkage reaches the radius.
     mode : ndarray of str
-        ``"rigid"``, or ``"elastic"`` for a flexible tire in its flat-contact mode.
+        ``"rigid"``, or ``"elastic"`` for a flexible tire in its flat-contact mode [text, no
+        unit]; ``"invalid"`` where :class:`SoftSoilTire` got a non-finite input.
     """
 
     load: np.ndarray
@@ -146,7 +175,35 @@ def efficiency(drawbar_pull, torque, radius, slip):
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class RigidWheel(ParameterSet):
-    """A rigid wheel on soil (Wong-Reece; equations in the module docstring).
+    r"""A rigid wheel on soil: the Wong-Reece stress distribution around the contact arc.
+
+    The wheel touches the soil from the entry angle theta_1 (sinkage z = r (1 - cos theta_1))
+    back to the exit angle theta_2 = -rebound theta_1. The normal stress follows Bekker's law
+    ahead of the angle of maximum stress theta_m = (c1 + c2 s) theta_1 and a mirrored copy behind
+    it; the shear stress follows Janosi and Hanamoto with the shear displacement j of the soil
+    element that entered at theta_1:
+
+    .. math::
+
+        \sigma(\theta) = k r^n (\cos\theta - \cos\theta_1)^n \quad (\theta_m \le \theta
+        \le \theta_1), \qquad
+        \sigma(\theta) = k r^n (\cos\theta^* - \cos\theta_1)^n, \quad
+        \theta^* = \theta_1 - \frac{\theta - \theta_2}{\theta_m - \theta_2} (\theta_1 - \theta_m)
+        \quad (\theta_2 \le \theta < \theta_m)
+
+        \tau = (c + \sigma \tan\phi) \left(1 - e^{-|j| / K}\right) \operatorname{sgn} j,
+        \qquad j = r \left[(\theta_1 - \theta) - (1 - s)(\sin\theta_1 - \sin\theta)\right]
+        \ \ (s \ge 0), \qquad
+        j = r \left[(1 + s)(\theta_1 - \theta) - (\sin\theta_1 - \sin\theta)\right] \ \ (s < 0)
+
+        W = r b \int_{\theta_2}^{\theta_1} (\sigma \cos\theta + \tau \sin\theta) \, d\theta,
+        \quad H = r b \int \tau \cos\theta \, d\theta, \quad
+        R = r b \int \sigma \sin\theta \, d\theta, \quad DP = H - R, \quad
+        T = r^2 b \int \tau \, d\theta
+
+    with k = k_c / b + k_phi; :meth:`solve` finds theta_1 from the vertical equilibrium W = load.
+    Tractive efficiency eta = DP V / (T omega). The side force at a slip angle is that of
+    :mod:`~vehdyn.tire.terramechanics.lateral` (Ishigami et al. 2007).
 
     Parameters
     ----------
@@ -162,14 +219,41 @@ class RigidWheel(ParameterSet):
     rebound : float
         Exit angle over entry angle, ``-theta_2 / theta_1`` [-] (0: no rebound, the default).
 
+    Notes
+    -----
+    Gauss-Legendre quadrature with fixed nodes on each side of theta_m, vectorized over every
+    (load, slip) pair; the module docstring gives its accuracy against adaptive quadrature
+    (:mod:`~vehdyn.tire.terramechanics.reference`) and the root finder.
+
+    References
+    ----------
+    .. [1] J. Y. Wong and A. R. Reece, "Prediction of rigid wheel performance based on the
+       analysis of soil-wheel stresses, part I: performance of driven rigid wheels",
+       J. Terramechanics 4(1), 81-98, 1967; "part II: performance of towed rigid wheels",
+       J. Terramechanics 4(2), 7-25, 1967.
+    .. [2] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, ch. 2 (sec. 2.7).
+    .. [3] Z. Janosi and B. Hanamoto, "The analytical determination of drawbar pull as a function
+       of slip for tracked vehicles in deformable soils", 1st Int. Conf. Terrain-Vehicle Systems,
+       Turin, 1961.
+
     Examples
     --------
     >>> import numpy as np
-    >>> from vehdyn.tire.terramechanics import RigidWheel, load_soil
-    >>> wheel = RigidWheel(radius=0.3, width=0.2, soil=load_soil("dry_sand"))
-    >>> r = wheel.solve(1500.0, np.linspace(0, 0.8, 100))
-    >>> r.drawbar_pull.shape
-    (100,)
+    >>> from vehdyn.tire.terramechanics import RigidWheel, load_soil, parabolic_wheel_sinkage
+    >>> sand = load_soil("dry_sand")
+    >>> wheel = RigidWheel(radius=0.3, width=0.2, soil=sand)
+    >>> r = wheel.solve(1500.0, [0.0, 0.2, 0.5])                          # load [N], slips [-]
+    >>> np.round(r.drawbar_pull, 1).tolist()                              # towed wheel: resistance [N]
+    [-154.1, 36.2, 87.1]
+    >>> bool(np.allclose(wheel.supported_load(r.sinkage, r.slip), 1500.0, rtol=1e-9))   # equilibrium
+    True
+
+    With the maximum stress at the bottom (c1 = c2 = 0) and no slip, the sinkage is close to that
+    of the parabolic-arc closed form (z0 / D = 9 % here):
+
+    >>> bottom = RigidWheel(radius=0.3, width=0.2, soil=sand, c1=0.0, c2=0.0).solve(1500.0, 0.0)
+    >>> round(float(bottom.sinkage) * 1e3, 1), round(parabolic_wheel_sinkage(sand, 1500.0, 0.6, 0.2) * 1e3, 1)  # [mm]
+    (54.9, 55.3)
     """
 
     radius: float = parameter("m", "wheel radius r", gt=0)
@@ -239,7 +323,20 @@ class RigidWheel(ParameterSet):
         return np.arccos(1.0 - z_over_r)
 
     def supported_load(self, sinkage, slip=0.0):
-        """Vertical load W [N] the soil carries at the sinkage z [m] (< radius) and slip s (no root find)."""
+        """Vertical load the soil carries at a given sinkage and slip (no root find).
+
+        Parameters
+        ----------
+        sinkage : array_like
+            z [m], >= 0 (values above the radius count as the radius).
+        slip : array_like
+            s [-] in [-1, 1].
+
+        Returns
+        -------
+        float or ndarray
+            W [N], of the broadcast shape.
+        """
         z = checked_array("sinkage", sinkage, ge=0.0)
         s = check_slip(slip)
         z, s = np.broadcast_arrays(z, s)
@@ -263,11 +360,21 @@ class RigidWheel(ParameterSet):
         nodes : int
             Gauss-Legendre nodes per sub-interval of the arc.
         rtol : float
-            Relative tolerance of the vertical equilibrium.
+            Relative tolerance of the vertical equilibrium [-].
+        max_iterations : int
+            Most iterations of the root finder (about ten are needed for rtol = 1e-10).
 
         Returns
         -------
         WheelSoilResult
+            Of the broadcast shape; ``stuck`` where the soil cannot carry the load before the
+            sinkage reaches the radius (the forces are then those at z = r).
+
+        Raises
+        ------
+        ParameterError
+            For a negative or non-finite load, a slip outside [-1, 1], or a slip angle outside
+            (-pi/2, pi/2).
         """
         w = checked_array("load", load, ge=0.0)
         s = check_slip(slip)
