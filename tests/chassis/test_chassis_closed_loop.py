@@ -87,7 +87,7 @@ def test_nested_loops_keep_every_name():
 
 @pytest.mark.parametrize("controller", [ABS, ESC])
 def test_controllers_need_a_vehicle(controller):
-    with pytest.raises(ParameterError, match="needs a vehdyn Vehicle"):
+    with pytest.raises(ParameterError, match="vehicle must be a vehdyn Vehicle"):
         controller("sedan")
 
 
