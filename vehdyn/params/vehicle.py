@@ -358,6 +358,18 @@ def shipped_names(folder: str) -> list[str]:
 def load_vehicle(name_or_path: str | Path) -> Vehicle:
     """Load a shipped vehicle by name (``"sedan"``) or a user's TOML file by path.
 
+    Parameters
+    ----------
+    name_or_path : str or os.PathLike
+        A shipped vehicle's name (:func:`shipped_vehicles`: ``"sedan"``, ``"compact"``,
+        ``"van"``, ``"tractor"``) or the path of a TOML file in the same layout.
+
+    Returns
+    -------
+    Vehicle
+        The frozen, validated parameter set (SI units); ``Vehicle.replace(group__field=value)``
+        makes a variant.
+
     Raises
     ------
     ParameterError
@@ -365,6 +377,16 @@ def load_vehicle(name_or_path: str | Path) -> Vehicle:
         folder, unreadable, not UTF-8 text or not valid TOML (a UTF-8 byte-order mark is accepted),
         or a parameter is missing, unknown, of the wrong type, non-finite or out of range (the
         message names the key and the value).
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> sedan = vehdyn.load_vehicle("sedan")
+    >>> round(sedan.mass.mass, 1), round(sedan.geometry.cg_to_front_axle + sedan.geometry.cg_to_rear_axle, 4)
+    (1093.3, 2.5789)
+    >>> heavier = sedan.replace(mass__mass=1300.0)        # a variant; sedan itself is unchanged
+    >>> heavier.mass.mass, round(sedan.mass.mass, 1)
+    (1300.0, 1093.3)
     """
     return load_shipped_or_file(Vehicle, name_or_path, "vehicle")
 
