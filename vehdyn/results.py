@@ -241,14 +241,16 @@ class FrequencyResponse:
 
     Examples
     --------
-    A first-order lag 2 / (s + 2) at its corner frequency: magnitude 1/sqrt(2), phase -45 deg.
+    A first-order lag 2 / (s + 2) from 0.2 to 20 rad/s: -3 dB and -45 deg at its corner, 2 rad/s.
 
     >>> import numpy as np
     >>> import vehdyn
     >>> lag = vehdyn.LinearModel([[-2.0]], [[2.0]], states=["yaw_rate"], inputs=["front_steer_angle"])
-    >>> fr = lag.frequency_response(np.array([2.0]))
-    >>> round(float(fr.magnitude[0, 0, 0]), 6), round(float(np.rad2deg(fr.phase[0, 0, 0])), 6)
-    (0.707107, -45.0)
+    >>> fr = lag.frequency_response(np.array([0.2, 2.0, 20.0]))
+    >>> fr.magnitude_db[0, 0].round(2)
+    array([ -0.04,  -3.01, -20.04])
+    >>> fr.to_frame()["yaw_rate", "front_steer_angle", "phase_deg"].round(2).tolist()
+    [-5.71, -45.0, -84.29]
     >>> fr.unit("yaw_rate", "front_steer_angle")
     '(rad/s)/(rad)'
     """
