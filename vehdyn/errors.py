@@ -16,6 +16,9 @@ class VehdynError(Exception):
 class ParameterError(VehdynError, ValueError):
     """A parameter is missing, unknown, of the wrong type, non-finite or out of range.
 
+    Raise it through the shared checks of :mod:`vehdyn.params.checks` where one fits, so that
+    every message reads alike.
+
     Parameters
     ----------
     message : str
@@ -24,6 +27,15 @@ class ParameterError(VehdynError, ValueError):
         Dotted path of the offending parameter (``"suspension.front_spring_rate"``).
     value : object, optional
         The offending value.
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> try:
+    ...     vehdyn.load_vehicle("sedan").replace(mass__mass=-1.0)
+    ... except vehdyn.ParameterError as error:
+    ...     print(error.key, error.value)
+    mass.mass -1.0
     """
 
     def __init__(self, message: str, *, key: str | None = None, value: object = None):
@@ -34,6 +46,15 @@ class ParameterError(VehdynError, ValueError):
 
 class SimulationError(VehdynError, RuntimeError):
     """An integration failed or produced a non-finite state.
+
+    Parameters
+    ----------
+    message : str
+        What failed, with the solver's own message where there is one.
+    time : float, optional
+        Simulation time [s] at which the failure was detected.
+    signal : str, optional
+        Name of the state at fault (non-finite, or out of the model's domain), where there is one.
 
     Attributes
     ----------
@@ -51,6 +72,15 @@ class SimulationError(VehdynError, RuntimeError):
 
 class TirFileError(VehdynError, ValueError):
     """A ``.tir`` tire property file cannot be read.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong: the key, its value and the rule it breaks.
+    path : str, optional
+        The file; prefixed to the message with the line.
+    line : int, optional
+        1-based line number of the offending line.
 
     Attributes
     ----------

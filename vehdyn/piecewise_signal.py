@@ -30,18 +30,79 @@ amplitude [unit], omega [rad/s], phase [rad]."""
 
 
 def piece_value(xp, piece, t):
-    """Value of one piece (a row of :data:`PIECE_COLUMNS`) at ``t``, ignoring its time window."""
+    r"""Value of one piece (a row of :data:`PIECE_COLUMNS`) at ``t``, ignoring its time window.
+
+    The one formula every backend evaluates (numpy, plain floats through :mod:`math`, numba):
+
+    .. math::
+
+        v(t) = c + s\,\tau + A \sin(\omega \tau + \varphi), \qquad \tau = t - t_0.
+
+    Parameters
+    ----------
+    xp : module
+        The namespace whose ``sin`` is used: :mod:`numpy` for arrays, :mod:`math` for floats (and
+        in compiled code).
+    piece : sequence of float
+        One row ``(start, end, offset, slope, amplitude, omega, phase)``: start :math:`t_0` and end
+        [s], offset :math:`c` [unit], slope :math:`s` [unit/s], amplitude :math:`A` [unit],
+        :math:`\omega` [rad/s], :math:`\varphi` [rad].
+    t : float or ndarray
+        Time [s].
+
+    Returns
+    -------
+    float or ndarray
+        The piece's value at ``t`` [the signal's unit].
+    """
     tau = t - piece[0]
     return piece[2] + piece[3] * tau + piece[4] * xp.sin(piece[5] * tau + piece[6])
 
 
 class PiecewiseSignal:
-    """A sum of closed-form pieces (see the module docstring), callable as ``u(t)`` on arrays.
+    r"""A sum of closed-form pieces, callable as ``u(t)`` on arrays.
+
+    Piece k is active on :math:`t_{0,k} \le t < t_{1,k}` and zero outside:
+
+    .. math::
+
+        u(t) = \sum_k \mathbb{1}_{[t_{0,k},\, t_{1,k})}(t)\,
+        \left(c_k + s_k (t - t_{0,k}) + A_k \sin\left(\omega_k (t - t_{0,k}) + \varphi_k\right)\right).
+
+    :func:`vehdyn.simulate` evaluates it exactly at every stage of an adaptive step and ends steps
+    on its :attr:`breakpoints`, on numpy's ``solve_ivp`` methods and on the compiled backend alike.
 
     Parameters
     ----------
     pieces : array_like, shape (n_pieces, 7)
-        Rows of :data:`PIECE_COLUMNS`; ``end`` may be ``inf``; pieces must not overlap.
+        Rows of :data:`PIECE_COLUMNS` [s, s, unit, unit/s, unit, rad/s, rad]: start, end (may be
+        ``inf``), offset, slope, amplitude, angular frequency, phase; pieces must not overlap.
+
+    Attributes
+    ----------
+    pieces : ndarray
+        The rows, sorted by start [the units of :data:`PIECE_COLUMNS`].
+
+    See Also
+    --------
+    vehdyn.procedures.step_steer, vehdyn.procedures.sine_with_dwell : the standard steer inputs,
+        built as PiecewiseSignals.
+
+    Examples
+    --------
+    A step of 0.02 rad reached by a ramp from 0.5 s to 0.65 s (ISO 7401's step steer): the ramp
+    is one piece, the held value another.
+
+    >>> import numpy as np
+    >>> from vehdyn import PiecewiseSignal
+    >>> steer = PiecewiseSignal([[0.5, 0.65, 0.0, 0.02 / 0.15, 0.0, 0.0, 0.0],
+    ...                          [0.65, np.inf, 0.02, 0.0, 0.0, 0.0, 0.0]])
+    >>> steer(np.array([0.0, 0.575, 1.0])).round(6)
+    array([0.  , 0.01, 0.02])
+    >>> steer.breakpoints
+    array([0.5 , 0.65])
+    >>> round(steer.value_at(0.6), 12)
+    0.013333333333
     """
 
     def __init__(self, pieces):
@@ -60,12 +121,24 @@ class PiecewiseSignal:
         self._rows = tuple(tuple(float(v) for v in row) for row in table)  # for value_at: plain floats
 
     def value_at(self, t: float, t_ref: float | None = None) -> float:
-        """The value at one instant ``t`` [s], a float (the numpy solvers' per-stage call, without
-        the array overhead of calling the signal).
+        """The value at one instant, a float (the numpy solvers' per-stage call, without the array
+        overhead of calling the signal).
 
         With ``t_ref`` the piece is the one active at ``t_ref`` (zero if none), its formula evaluated
         at ``t``: between two breakpoints the signal is one smooth formula, which a step ending on
         the next breakpoint must see up to its end (the compiled backend's rule, too).
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        t_ref : float, optional
+            Time [s] whose active piece gives the formula (default: ``t``).
+
+        Returns
+        -------
+        float
+            The value [the signal's unit].
         """
         ref = t if t_ref is None else t_ref
         for piece in self._rows:

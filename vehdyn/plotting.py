@@ -19,13 +19,51 @@ __all__ = ["plot_time_histories", "bode_plot", "axis_label", "new_figure", "save
 
 
 def axis_label(name: str, unit: str | None) -> str:
-    """``"yaw rate [rad/s]"`` from a signal name and unit."""
+    """An axis label from a signal name and unit.
+
+    Parameters
+    ----------
+    name : str
+        Signal name (snake_case; underscores become spaces).
+    unit : str or None
+        Its unit; none (or ``""``) leaves the brackets out.
+
+    Returns
+    -------
+    str
+        E.g. ``"yaw rate [rad/s]"``.
+
+    Examples
+    --------
+    >>> from vehdyn.plotting import axis_label
+    >>> axis_label("yaw_rate", "rad/s")
+    'yaw rate [rad/s]'
+    """
     text = name.replace("_", " ")
     return f"{text} [{unit}]" if unit else text
 
 
 def new_figure(nrows: int = 1, ncols: int = 1, *, width: float = 6.4, height_per_row: float = 2.4, **kwargs):
-    """A figure with a grid of axes sized for a report page."""
+    """A figure with a grid of axes sized for a report page.
+
+    Parameters
+    ----------
+    nrows, ncols : int
+        Rows and columns of axes.
+    width : float
+        Figure width [in].
+    height_per_row : float
+        Height of each row of axes [in]; the figure is at least 2.6 in high.
+    **kwargs
+        Passed to ``matplotlib.pyplot.subplots`` (``sharex=True``, ...).
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+        The figure.
+    axes : ndarray of matplotlib.axes.Axes
+        Its axes, shape (nrows, ncols) always.
+    """
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(nrows, ncols, figsize=(width, max(2.6, height_per_row * nrows)), squeeze=False, **kwargs)
@@ -42,6 +80,7 @@ def save_figure(fig, path, *, dpi: float = 110, close: bool = True) -> Path:
     Parameters
     ----------
     fig : matplotlib.figure.Figure
+        The figure to save.
     path : str or os.PathLike
         Destination; its folder must exist. The suffix (``.png``, ``.svg``, ``.pdf``) sets the format.
     dpi : float
@@ -68,7 +107,24 @@ def save_figure(fig, path, *, dpi: float = 110, close: bool = True) -> Path:
 
 
 def plot_time_histories(result: "SimulationResult", names: Sequence[str], *, fig=None, batch=None):
-    """One axis per signal against time [s]."""
+    """One axis per signal against time [s], each labelled with its unit.
+
+    Parameters
+    ----------
+    result : SimulationResult
+        The run.
+    names : sequence of str
+        Signals to plot (outputs, states or inputs), one axis each.
+    fig : matplotlib.figure.Figure, optional
+        An empty figure to draw into (default: a new one, :func:`new_figure`).
+    batch : int, optional
+        For a batched run, the variant to plot (default: every variant, one line each).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+    """
     import matplotlib.pyplot as plt
 
     if fig is None:
@@ -89,7 +145,29 @@ def plot_time_histories(result: "SimulationResult", names: Sequence[str], *, fig
 
 
 def bode_plot(fr: "FrequencyResponse", outputs=None, inputs=None, *, fig=None, hz=True, db=False, label=None):
-    """Bode plot: magnitude (log-log, or dB) and phase [deg] against frequency (log axis)."""
+    """Bode plot: magnitude (log-log, or dB) and phase [deg] against frequency (log axis).
+
+    Parameters
+    ----------
+    fr : FrequencyResponse
+        The response.
+    outputs, inputs : sequence of str, optional
+        The channels (every output and every input by default); one line per pair.
+    fig : matplotlib.figure.Figure, optional
+        A figure to draw into: its first two axes if it has them (so that responses overlay),
+        else two new ones (default: a new figure).
+    hz : bool
+        Frequency axis in Hz (default) or in rad/s.
+    db : bool
+        Magnitude in dB (20 log10) instead of a log axis.
+    label : str, optional
+        Legend label of every line (default: ``"output / input"``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+    """
     outputs = list(outputs) if outputs is not None else list(fr.output_names)
     inputs = list(inputs) if inputs is not None else list(fr.input_names)
     if fig is None:

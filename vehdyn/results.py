@@ -26,7 +26,7 @@ class SimulationResult:
     time : ndarray, shape (n_times,)
         Time [s].
     states, inputs, outputs : ndarray, shape (n_signals, n_times) or (n_signals, n_times, n_batch)
-        Signal histories.
+        Signal histories [each signal's unit: :meth:`unit`].
     state_signals, input_signals, output_signals : tuple of Signal
         Names and units.
     method : str
@@ -39,6 +39,20 @@ class SimulationResult:
         Wall-clock time of the integration [s].
     message : str
         The solver's message.
+    options : dict
+        The options the run used: ``rtol`` [-], ``atol`` [the states' units], ``hold``,
+        ``substeps``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import vehdyn
+    >>> lag = vehdyn.LinearModel([[-2.0]], [[2.0]], states=["yaw_rate"], inputs=["front_steer_angle"])
+    >>> result = vehdyn.simulate(lag, np.linspace(0.0, 1.0, 11), {"front_steer_angle": 0.01})
+    >>> result["yaw_rate"].shape, result.unit("yaw_rate")
+    ((11,), 'rad/s')
+    >>> round(float(result.final_state["yaw_rate"]), 6)     # 0.01 (1 - e^(-2))
+    0.008647
     """
 
     time: np.ndarray
@@ -109,7 +123,18 @@ class SimulationResult:
         return True
 
     def unit(self, name: str) -> str:
-        """Unit of signal ``name``."""
+        """Unit of a signal.
+
+        Parameters
+        ----------
+        name : str
+            An output, state or input (or ``"time"``).
+
+        Returns
+        -------
+        str
+            Its SI unit (``""`` when it has none).
+        """
         return self._lookup(name)[1].unit
 
     @property
@@ -126,10 +151,35 @@ class SimulationResult:
         return {n: self.states[k, -1] for k, n in enumerate(self.state_names)}
 
     def to_frame(self, batch: int | None = None):
-        """A pandas DataFrame indexed by time [s], one column per signal, ``attrs["units"]``.
+        """The run as a pandas DataFrame: one column per signal, indexed by time [s].
 
-        For a batched run, ``batch`` selects one variant; without it the frame has a
-        (batch, time) MultiIndex.
+        Parameters
+        ----------
+        batch : int, optional
+            For a batched run, the variant to return; without it the frame has a (batch, time)
+            MultiIndex.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Columns: every output, then the states and inputs that are not outputs
+            (:attr:`signal_names`); ``attrs["units"]`` maps each column to its unit and
+            ``attrs["method"]`` names the method.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import vehdyn
+        >>> lag = vehdyn.LinearModel([[-2.0]], [[2.0]], states=["yaw_rate"], inputs=["front_steer_angle"])
+        >>> frame = vehdyn.simulate(lag, np.linspace(0.0, 1.0, 3), {"front_steer_angle": 0.01}).to_frame()
+        >>> frame.round(6)  # doctest: +NORMALIZE_WHITESPACE
+              yaw_rate  front_steer_angle
+        time
+        0.0   0.000000               0.01
+        0.5   0.006321               0.01
+        1.0   0.008647               0.01
+        >>> frame.attrs["units"]
+        {'yaw_rate': 'rad/s', 'front_steer_angle': 'rad'}
         """
         import pandas as pd
 
@@ -150,9 +200,19 @@ class SimulationResult:
     def plot(self, signals: Sequence[str] | None = None, *, fig=None, batch: int | None = None):
         """Plot signals against time, one axis per signal, labelled with units.
 
+        Parameters
+        ----------
+        signals : sequence of str, optional
+            The signals (default: every output).
+        fig : matplotlib.figure.Figure, optional
+            An empty figure to draw into (default: a new one).
+        batch : int, optional
+            For a batched run, the variant to plot (default: every variant).
+
         Returns
         -------
         matplotlib.figure.Figure
+            The figure (:func:`vehdyn.plotting.plot_time_histories`).
         """
         from vehdyn.plotting import plot_time_histories
 
@@ -175,8 +235,24 @@ class FrequencyResponse:
     omega : ndarray
         Angular frequency [rad/s].
     response : ndarray of complex, shape (n_outputs, n_inputs, n_frequencies)
-        Output per unit input.
+        Output per unit input [output unit / input unit: :meth:`unit`].
     outputs, inputs : tuple of Signal
+        The named channels.
+
+    Examples
+    --------
+    A first-order lag 2 / (s + 2) from 0.2 to 20 rad/s: -3 dB and -45 deg at its corner, 2 rad/s.
+
+    >>> import numpy as np
+    >>> import vehdyn
+    >>> lag = vehdyn.LinearModel([[-2.0]], [[2.0]], states=["yaw_rate"], inputs=["front_steer_angle"])
+    >>> fr = lag.frequency_response(np.array([0.2, 2.0, 20.0]))
+    >>> fr.magnitude_db[0, 0].round(2)
+    array([ -0.04,  -3.01, -20.04])
+    >>> fr.to_frame()["yaw_rate", "front_steer_angle", "phase_deg"].round(2).tolist()
+    [-5.71, -45.0, -84.29]
+    >>> fr.unit("yaw_rate", "front_steer_angle")
+    '(rad/s)/(rad)'
     """
 
     omega: np.ndarray
@@ -238,16 +314,33 @@ class FrequencyResponse:
         return self.response[i, j]
 
     def unit(self, output: str, input: str) -> str:
-        """Unit of the ratio output/input."""
+        """Unit of the ratio output/input.
+
+        Parameters
+        ----------
+        output : str
+            An output name.
+        input : str
+            An input name.
+
+        Returns
+        -------
+        str
+            ``"(output unit)/(input unit)"`` (``1`` for a signal without a unit).
+        """
         uo = self.outputs[self.output_names.index(output)].unit or "1"
         ui = self.inputs[self.input_names.index(input)].unit or "1"
         return f"({uo})/({ui})"
 
     def to_frame(self):
-        """A DataFrame indexed by omega [rad/s] with columns (output, input, quantity).
+        """The response as a pandas DataFrame indexed by omega [rad/s].
 
-        Quantities: ``magnitude``, ``phase_deg``, ``real``, ``imag``; ``attrs["units"]`` gives the
-        unit of each (output, input) ratio.
+        Returns
+        -------
+        pandas.DataFrame
+            Columns (output, input, quantity) with quantities ``magnitude`` [output unit / input
+            unit], ``phase_deg`` [deg, unwrapped], ``real`` and ``imag``; ``attrs["units"]`` gives
+            the unit of each ``"output/input"`` ratio.
         """
         import pandas as pd
 
@@ -267,7 +360,24 @@ class FrequencyResponse:
         return df
 
     def plot(self, outputs=None, inputs=None, *, fig=None, hz: bool = True, db: bool = False):
-        """Bode plot (magnitude and phase against frequency, log axes) of the chosen channels."""
+        """Bode plot (magnitude and phase against frequency, log axes) of the chosen channels.
+
+        Parameters
+        ----------
+        outputs, inputs : sequence of str, optional
+            The channels (every output and every input by default).
+        fig : matplotlib.figure.Figure, optional
+            A figure to draw into (its first two axes, so that responses overlay).
+        hz : bool
+            Frequency axis in Hz (default) or in rad/s.
+        db : bool
+            Magnitude in dB instead of a log axis.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure (:func:`vehdyn.plotting.bode_plot`).
+        """
         from vehdyn.plotting import bode_plot
 
         return bode_plot(self, outputs=outputs, inputs=inputs, fig=fig, hz=hz, db=db)

@@ -64,7 +64,18 @@ _SUFFIX_UNITS = (
 
 
 def default_unit(name: str) -> str:
-    """Default unit of a signal name: from :data:`GLOSSARY`, else from its suffix, else ``""``."""
+    """Default unit of a signal name: from :data:`GLOSSARY`, else from its suffix, else ``""``.
+
+    Parameters
+    ----------
+    name : str
+        A snake_case signal name.
+
+    Returns
+    -------
+    str
+        The SI unit (``"rad/s"`` for ``"yaw_rate"``, ``"N"`` for any ``"..._force"``), or ``""``.
+    """
     if name in GLOSSARY:
         return GLOSSARY[name][0]
     for suffix, unit in _SUFFIX_UNITS:
@@ -84,7 +95,17 @@ class Signal:
     unit : str, optional
         SI unit (``"rad/s"``). Defaults to the glossary's unit for known names.
     description : str, optional
-        One line of text.
+        One line of text. Defaults to the glossary's description for known names.
+
+    Examples
+    --------
+    >>> from vehdyn import Signal
+    >>> Signal("yaw_rate").unit                  # from the glossary
+    'rad/s'
+    >>> Signal("front_axle_load").unit           # from the suffix
+    'N'
+    >>> Signal("throttle", unit="-", description="pedal position, 0 to 1")
+    Signal(name='throttle', unit='-', description='pedal position, 0 to 1')
     """
 
     name: str
@@ -111,6 +132,19 @@ class Signal:
 def as_signals(items: Iterable[str | Signal] | None, kind: str = "signals") -> tuple[Signal, ...]:
     """Turn names or :class:`Signal` objects into a tuple of unique signals.
 
+    Parameters
+    ----------
+    items : None, str, Signal or iterable of str and Signal
+        The signals, by name (a unit from :func:`default_unit`) or as Signal objects; ``None`` is
+        no signal.
+    kind : str
+        What the signals are (``"states"``, ``"inputs"``, ``"outputs"``), for error messages.
+
+    Returns
+    -------
+    tuple of Signal
+        The signals, in the given order.
+
     Raises
     ------
     ParameterError
@@ -130,7 +164,18 @@ def as_signals(items: Iterable[str | Signal] | None, kind: str = "signals") -> t
 
 
 def names_of(signals: Iterable[Signal]) -> tuple[str, ...]:
-    """The names of ``signals`` as a tuple of strings."""
+    """The names of ``signals`` as a tuple of strings.
+
+    Parameters
+    ----------
+    signals : iterable of Signal
+        The signals.
+
+    Returns
+    -------
+    tuple of str
+        Their names, in order.
+    """
     return tuple(s.name for s in signals)
 
 

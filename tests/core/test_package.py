@@ -86,4 +86,6 @@ def test_readme_quick_start_runs(capsys):
     readme = (ROOT / "README.md").read_text()
     code = re.findall(r"```python\n(.*?)```", readme, re.S)[0]
     exec(compile(code, "README.md quick start", "exec"), {})
-    assert "rad/s" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "rad/s" in out  # the yaw rate with its unit
+    assert "choice: " in out and "estimated error" in out  # the ladder's plan and the headline of its run

@@ -178,7 +178,7 @@ def test_the_method_choice_linearizes_in_one_batched_call_where_the_model_allows
     # auto's eigenvalues of df/dx against the closed-form Jacobian; the one-call path is taken only
     # where the batch evaluates as single calls do (a rhs with scalar logic or a wrong batch falls
     # back to one call per perturbation, with the same eigenvalues)
-    from vehdyn.simulation._api import _single_jacobian_in_one_call, _state_jacobian_eigenvalues
+    from vehdyn.simulation._stiffness import _single_jacobian_in_one_call, _state_jacobian_eigenvalues
 
     x = np.array([0.7, -1.3])
     expected = np.sort_complex(np.linalg.eigvals(_van_der_pol_jacobian(3.0, x)))
@@ -194,7 +194,7 @@ def test_the_method_choice_of_the_full_vehicle_takes_one_rhs_call_for_its_jacobi
     # the 32-state full vehicle: one batched numpy call instead of 64 (140 ms -> ~10 ms here), the
     # same Jacobian as one perturbation per call to rounding
     from vehdyn.full_vehicle import FullVehicle
-    from vehdyn.simulation._api import _single_jacobian_in_one_call
+    from vehdyn.simulation._stiffness import _single_jacobian_in_one_call
 
     model = FullVehicle(vehdyn.load_vehicle("sedan"))
     x0, u0 = (np.asarray(v, dtype=float) for v in model.trim(20.0))

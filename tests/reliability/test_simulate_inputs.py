@@ -13,7 +13,8 @@ import vehdyn
 from vehdyn import LinearModel, Model, ParameterError, SimulationError, VehdynWarning, simulate
 from vehdyn.handling import LinearBicycle
 
-simulate_module = importlib.import_module("vehdyn.simulation._api")
+stiffness_module = importlib.import_module("vehdyn.simulation._stiffness")  # STIFF_STEPS_* as simulate reads them
+ivp_module = importlib.import_module("vehdyn.simulation._ivp")
 
 N_T = 101
 T = np.linspace(0.0, 1.0, N_T)
@@ -236,8 +237,8 @@ def test_issue_case_is_refused_before_it_runs_naming_method_and_implicit_methods
 
 
 def test_stiff_run_warns_or_is_refused_by_step_estimate_and_check_stability_false_runs_it(monkeypatch):
-    monkeypatch.setattr(simulate_module, "STIFF_STEPS_WARN", 100.0)
-    monkeypatch.setattr(simulate_module, "STIFF_STEPS_REFUSE", 10_000.0)
+    monkeypatch.setattr(stiffness_module, "STIFF_STEPS_WARN", 100.0)
+    monkeypatch.setattr(stiffness_module, "STIFF_STEPS_REFUSE", 10_000.0)
     t = np.linspace(0.0, 1.0, 11)
     # 1e3 1/s over 1 s: 1e3 / 3.31 = 302 steps -> warned, runs, and is right
     with pytest.warns(VehdynWarning, match="about 3e\\+02 steps"):
@@ -257,12 +258,12 @@ def test_stiff_run_warns_or_is_refused_by_step_estimate_and_check_stability_fals
 
 
 def test_nonlinear_stiff_run_is_judged_by_the_solver_loop(monkeypatch):
-    monkeypatch.setattr(simulate_module, "_STIFFNESS_WATCH_CALLS", 200)
+    monkeypatch.setattr(ivp_module, "_STIFFNESS_WATCH_CALLS", 200)
     t = np.linspace(0.0, 100.0, 11)
     with pytest.raises(ParameterError, match=r"at t = .* \(after 200 rhs calls\)") as info:
         simulate(StiffNonlinear(1e6), t, x0=[1.0, 1.0], method="RK45")
     assert info.value.key == "method"
-    monkeypatch.setattr(simulate_module, "STIFF_STEPS_WARN", 10.0)
+    monkeypatch.setattr(stiffness_module, "STIFF_STEPS_WARN", 10.0)
     with pytest.warns(VehdynWarning, match="after 200 rhs calls"):
         r = simulate(StiffNonlinear(1e3), np.linspace(0, 1, 11), x0=[1.0, 1.0], method="RK45")
     np.testing.assert_allclose(r["slow"], np.exp(-r.time), rtol=1e-4)
@@ -271,7 +272,7 @@ def test_nonlinear_stiff_run_is_judged_by_the_solver_loop(monkeypatch):
 @pytest.mark.parametrize("method, reference", [("rk4", 2.785293563), ("RK45", 3.306567892)])
 def test_stability_intervals_equal_published_values(method, reference):
     """RK4 2.7853 and Dormand-Prince 5(4) 3.3066 on the negative real axis (Hairer & Wanner II, IV.2)."""
-    assert simulate_module.stability_interval(method) == pytest.approx(reference, rel=1e-8)
+    assert vehdyn.simulation.stability_interval(method) == pytest.approx(reference, rel=1e-8)
 
 
 @pytest.mark.parametrize("method", ["RK23", "RK45", "DOP853"])
@@ -279,7 +280,7 @@ def test_stability_interval_is_where_scipys_own_steps_stop_decaying(method):
     """Fixed steps of scipy's stepper on y' = -y: |y| decays just inside the interval, grows just outside."""
     from scipy import integrate
 
-    interval = simulate_module.stability_interval(method)
+    interval = vehdyn.simulation.stability_interval(method)
 
     def growth(h):
         solver = getattr(integrate, method)(lambda t, y: -y, 0.0, np.array([1.0]), t_bound=400 * h, first_step=h,

@@ -68,6 +68,33 @@ def float_array(value: Any, key: str) -> np.ndarray:
     Numbers, booleans and arrays of them convert; strings (even numeric ones such as ``"1.5"``, the
     sign of a text column read by mistake), complex numbers, dates, ragged sequences and objects
     without a float value are refused. Finiteness is left to the caller, which knows what to name.
+
+    Parameters
+    ----------
+    value : object
+        A number, or a (nested) sequence or array of numbers [any unit].
+    key : str
+        The argument's name, for the error message and ``ParameterError.key``.
+
+    Returns
+    -------
+    ndarray
+        ``value`` as float (not copied when it already is a float array).
+
+    Raises
+    ------
+    ParameterError
+        When ``value`` is not numeric.
+
+    Examples
+    --------
+    >>> from vehdyn.model import float_array
+    >>> float_array([1, 2], "x0")
+    array([1., 2.])
+    >>> float_array("1.5", "rtol")
+    Traceback (most recent call last):
+    ...
+    vehdyn.errors.ParameterError: rtol must be numeric, got <U3 '1.5'
     """
     try:
         arr = np.asarray(value)
@@ -93,12 +120,15 @@ def signal_vector(values: Any, signals: Sequence[Signal], kind: str, *, default:
     Parameters
     ----------
     values : None, mapping, scalar or array_like
-        ``None`` gives ``default`` everywhere; a mapping ``{name: value}`` sets the named entries
-        (the others take ``default``); an array must have ``len(signals)`` rows.
+        The entries [each in its signal's unit]: ``None`` gives ``default`` everywhere; a mapping
+        ``{name: value}`` sets the named entries (the others take ``default``); an array must have
+        ``len(signals)`` rows.
     signals : sequence of Signal
         The signals the vector runs over.
     kind : str
         Used in error messages (``"x0"``, ``"u0"``).
+    default : float
+        The value of entries not given [each in its signal's unit].
 
     Returns
     -------
@@ -150,7 +180,7 @@ def signal_vector(values: Any, signals: Sequence[Signal], kind: str, *, default:
 
 
 class Model:
-    """Base class of every vehdyn model.
+    r"""Base class of every vehdyn model.
 
     Subclasses declare ``states``, ``inputs`` and ``outputs`` (names or :class:`~vehdyn.Signal`
     objects, as class attributes or set in ``__init__`` through :meth:`declare`) and implement
@@ -169,6 +199,46 @@ class Model:
         and raises :meth:`domain_error` at the first crossing; an adaptive solver's rejected trial
         stage may lie outside (``rhs`` returns NaN there, so that the step is rejected). Empty by
         default.
+
+    Notes
+    -----
+    A model is the initial-value problem
+
+    .. math::
+
+        \dot x = f(t, x, u), \qquad y = g(t, x, u),
+
+    with :meth:`rhs` = f and :meth:`output` = g, pure functions of numpy arrays that accept a
+    trailing batch axis. The model contract is DESIGN section 3; its signal names come from one
+    glossary (:data:`vehdyn.signals.GLOSSARY`).
+
+    Examples
+    --------
+    A 1500 kg car coasting against aerodynamic drag, dv/dt = (F - c v|v|) / m: declare the
+    signals, write the equation, and the model simulates, linearizes and exports.
+
+    >>> import numpy as np
+    >>> import vehdyn
+    >>> class CoastDown(vehdyn.Model):
+    ...     states = ("longitudinal_velocity",)
+    ...     inputs = ("drive_force",)
+    ...     phenomena = frozenset({"longitudinal", "aero"})
+    ...
+    ...     def __init__(self, mass=1500.0, drag=0.4):
+    ...         self.mass, self.drag = mass, drag
+    ...
+    ...     def rhs(self, t, x, u):
+    ...         (v,), (force,) = x, u
+    ...         return np.stack([(force - self.drag * v * np.abs(v)) / self.mass])
+    >>> car = CoastDown()
+    >>> car.state_names, car.inputs[0].unit
+    (('longitudinal_velocity',), 'N')
+    >>> linear = car.linearize(x0={"longitudinal_velocity": 30.0})   # about 30 m/s
+    >>> round(float(linear.A[0, 0]), 6), round(float(linear.B[0, 0]), 9)   # -2 c v / m, 1 / m
+    (-0.016, 0.000666667)
+    >>> result = vehdyn.simulate(car, np.linspace(0.0, 10.0, 11), x0=[30.0], method="RK45")
+    >>> round(float(result["longitudinal_velocity"][-1]), 3)            # 30 / (1 + c 30 t / m)
+    27.778
     """
 
     states: tuple[Signal, ...] = ()
@@ -193,7 +263,13 @@ class Model:
 
     # ------------------------------------------------------------------ declaration helpers
     def declare(self, *, states=None, inputs=None, outputs=None) -> None:
-        """Set the instance's signals (for models whose signals depend on their options)."""
+        """Set the instance's signals (for models whose signals depend on their options).
+
+        Parameters
+        ----------
+        states, inputs, outputs : sequence of str or Signal, optional
+            The signals to set (names get the glossary's units); ``None`` leaves a kind as it is.
+        """
         if states is not None:
             self.states = as_signals(states, "states")
         if inputs is not None:
@@ -235,7 +311,25 @@ class Model:
         return len(self.output_signals)
 
     def index(self, name: str, kind: str = "states") -> int:
-        """Position of signal ``name`` among the model's ``kind`` (states, inputs or outputs)."""
+        """Position of a signal among the model's states, inputs or outputs.
+
+        Parameters
+        ----------
+        name : str
+            The signal's name.
+        kind : {"states", "inputs", "outputs"}
+            Where to look.
+
+        Returns
+        -------
+        int
+            The row of the signal in ``x``, ``u`` or ``y``.
+
+        Raises
+        ------
+        ParameterError
+            When the model has no such signal (the message lists those it has).
+        """
         names = {"states": self.state_names, "inputs": self.input_names, "outputs": self.output_names}[kind]
         try:
             return names.index(name)
@@ -248,11 +342,43 @@ class Model:
 
     # ------------------------------------------------------------------ the contract
     def rhs(self, t, x, u):
-        """State derivative dx/dt at time ``t`` [s] for states ``x`` and inputs ``u``."""
+        """State derivative dx/dt: the model's equations of motion.
+
+        Parameters
+        ----------
+        t : float or ndarray
+            Time [s] (an array of the batch's length where outputs are computed for many instants
+            at once).
+        x : ndarray
+            States, shape (n_states,) or (n_states, n_batch) [each state's unit].
+        u : ndarray
+            Inputs, shape (n_inputs,) or (n_inputs, n_batch) [each input's unit].
+
+        Returns
+        -------
+        ndarray
+            dx/dt with the shape of ``x`` [each state's unit per second].
+        """
         raise NotImplementedError(f"{type(self).__name__} must implement rhs(t, x, u)")
 
     def output(self, t, x, u):
-        """Outputs at time ``t``; the default returns the states (for models without outputs)."""
+        """Outputs y = g(t, x, u); the default returns the states (for models without outputs).
+
+        Parameters
+        ----------
+        t : float or ndarray
+            Time [s] (an array of the batch's length when simulate computes every instant in one
+            call).
+        x : ndarray
+            States, shape (n_states,) or (n_states, n_batch) [each state's unit].
+        u : ndarray
+            Inputs, shape (n_inputs,) or (n_inputs, n_batch) [each input's unit].
+
+        Returns
+        -------
+        ndarray
+            Outputs, shape (n_outputs,) or (n_outputs, n_batch) [each output's unit].
+        """
         if self.outputs:
             raise NotImplementedError(
                 f"{type(self).__name__} declares outputs and must implement output(t, x, u)"
@@ -260,16 +386,48 @@ class Model:
         return np.asarray(x, dtype=float)
 
     def domain_error(self, name: str, value: float, time: float) -> SimulationError:
-        """The error :func:`vehdyn.simulate` raises when state ``name`` leaves :attr:`domain`."""
+        """The error :func:`vehdyn.simulate` raises when a state leaves :attr:`domain`.
+
+        Override it to say what the crossing means for the model (a vehicle rolled over, a wheel
+        lifted off for good).
+
+        Parameters
+        ----------
+        name : str
+            The state that left the domain.
+        value : float
+            Its value (or the bound it crossed) [the state's unit].
+        time : float
+            When [s].
+
+        Returns
+        -------
+        SimulationError
+            With ``time`` and ``signal`` set.
+        """
         low, high = self.domain[name]
         return SimulationError(f"{name} = {value:.4g} at t = {time:.6g} s leaves {type(self).__name__}'s domain "
                                f"[{low:.4g}, {high:.4g}]", time=float(time), signal=name)
 
     def jacobian(self, t, x, u):
-        """Analytic Jacobians ``(A, B, C, D)`` at ``(t, x, u)``, or ``None`` (the default).
+        """Analytic Jacobians at a point, or ``None`` (the default).
 
-        Override to give :meth:`linearize` exact derivatives; the default makes it use finite
-        differences.
+        Override to give :meth:`linearize` exact derivatives (and the implicit ``solve_ivp``
+        methods their Jacobian); the default makes it use finite differences.
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        x : ndarray
+            States (n_states,) [each state's unit].
+        u : ndarray
+            Inputs (n_inputs,) [each input's unit].
+
+        Returns
+        -------
+        tuple of ndarray or None
+            ``(A, B, C, D)`` = (df/dx, df/du, dg/dx, dg/du) at ``(t, x, u)``, or None.
         """
         return None
 
@@ -286,24 +444,50 @@ class Model:
 
     # ------------------------------------------------------------------ services
     def state_vector(self, values=None, **named) -> np.ndarray:
-        """A state vector from a mapping or array (``None`` is zeros); keywords set named states."""
+        """A state vector from a mapping or array (``None`` is zeros); keywords set named states.
+
+        Parameters
+        ----------
+        values : None, mapping or array_like
+            The states [each in its signal's unit] (see :func:`signal_vector`).
+        **named
+            States by name, e.g. ``longitudinal_velocity=20.0``.
+
+        Returns
+        -------
+        ndarray
+            Shape (n_states,) or (n_states, n_batch).
+        """
         if named:
             values = {**(values or {}), **named}
         return signal_vector(values, self.states, "x0")
 
     def input_vector(self, values=None, **named) -> np.ndarray:
-        """An input vector from a mapping or array (``None`` is zeros); keywords set named inputs."""
+        """An input vector from a mapping or array (``None`` is zeros); keywords set named inputs.
+
+        Parameters
+        ----------
+        values : None, mapping or array_like
+            The inputs [each in its signal's unit] (see :func:`signal_vector`).
+        **named
+            Inputs by name, e.g. ``front_steer_angle=0.01``.
+
+        Returns
+        -------
+        ndarray
+            Shape (n_inputs,) or (n_inputs, n_batch).
+        """
         if named:
             values = {**(values or {}), **named}
         return signal_vector(values, self.inputs, "u0")
 
     def linearize(self, x0=None, u0=None, t: float = 0.0) -> "LinearModel":
-        """Linearize about the operating point ``(x0, u0)`` at time ``t``.
+        r"""Linearize about the operating point ``(x0, u0)`` at time ``t``.
 
         Parameters
         ----------
         x0, u0 : mapping, array_like or None
-            Operating point (by name or as arrays); ``None`` is zeros.
+            Operating point (by name or as arrays) [each signal's unit]; ``None`` is zeros.
         t : float
             Time [s].
 
@@ -315,12 +499,31 @@ class Model:
 
         Notes
         -----
+        The deviation system is the first-order Taylor expansion about the operating point,
+
+        .. math::
+
+            A = \frac{\partial f}{\partial x}, \quad B = \frac{\partial f}{\partial u}, \quad
+            C = \frac{\partial g}{\partial x}, \quad D = \frac{\partial g}{\partial u}
+            \quad \text{at } (t, x_0, u_0).
+
         The Jacobians come from :meth:`jacobian` where a model provides them, else from a
-        fourth-order central difference, all perturbed points evaluated in one batched call. The
+        fourth-order central difference, all perturbed points evaluated in one batched call,
+
+        .. math::
+
+            f'(z) \approx \frac{f(z - 2h) - 8 f(z - h) + 8 f(z + h) - f(z + 2h)}{12 h}
+
+        (Fornberg 1988). The
         step of each variable z_i is h_i = eps**(1/5) * max(|z_i|, 1), which balances truncation
         (O(h^4)) against rounding (O(eps |f| / h)) for well-scaled variables: the Jacobian is then
         accurate to about 1e-12 relative to the size of f for smooth models, and to 1e-9 of it in
         the worst case of strong cancellation.
+
+        References
+        ----------
+        .. [1] B. Fornberg, "Generation of finite difference formulas on arbitrarily spaced grids",
+           *Mathematics of Computation* 51(184), 699-706, 1988.
         """
         from vehdyn.model import LinearModel
 
@@ -382,6 +585,19 @@ class Model:
         """This model as a ``control.NonlinearIOSystem`` with every signal name.
 
         python-control is imported here, not when vehdyn is imported.
+
+        Parameters
+        ----------
+        name : str, optional
+            The system's name (default: the class name).
+        **kwargs
+            Passed to ``control.NonlinearIOSystem`` (e.g. ``dt``).
+
+        Returns
+        -------
+        control.NonlinearIOSystem
+            Its update function is :meth:`rhs`, its output function :meth:`output`; states,
+            inputs and outputs carry the model's names.
         """
         import control as ct
 

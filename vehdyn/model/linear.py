@@ -45,29 +45,57 @@ def _velocity_name(dof: str) -> str:
 
 
 class LinearModel(Model):
-    """Linear time-invariant state-space model with named signals.
+    r"""Linear time-invariant state-space model with named signals.
+
+    .. math::
+
+        \dot x = A x + B u, \qquad y = C x + D u.
 
     Parameters
     ----------
     A, B, C, D : array_like
-        State, input, output and feedthrough matrices. ``C`` defaults to the identity (the outputs
+        State (n, n), input (n, m), output (p, n) and feedthrough (p, m) matrices [in the units of
+        the signals: A in 1/s, B in state unit per input unit and second, C in output unit per
+        state unit, D in output unit per input unit]. ``C`` defaults to the identity (the outputs
         are the states) and ``D`` to zeros.
     states, inputs, outputs : sequence of str or Signal
         Signal names; ``outputs`` defaults to the states.
     x_op, u_op, y_op : array_like, optional
-        Operating point of a linearized model (its signals are deviations from it).
+        Operating point of a linearized model (its signals are deviations from it) [each
+        signal's unit].
     name : str, optional
         Label used in exports.
     phenomena : iterable of str, optional
         What the model represents (see :data:`vehdyn.model.PHENOMENA`).
 
+    See Also
+    --------
+    vehdyn.simulate : ``method="exact"`` integrates a LinearModel through the matrix exponential.
+
+    References
+    ----------
+    .. [1] G. F. Franklin, J. D. Powell and A. Emami-Naeini, *Feedback Control of Dynamic
+       Systems*, 7th ed., Pearson, 2015, ch. 7 (state-space design).
+
     Examples
     --------
+    A 1 kg mass on a 4 N/m spring and a 0.4 N*s/m damper, driven by a force: the modes, the
+    frequency response at resonance (1 / (c omega) = 1.25 m/N) and the python-control system,
+    every signal named.
+
+    >>> import numpy as np
     >>> import vehdyn
-    >>> m = vehdyn.LinearModel([[0, 1], [-4, -0.4]], [[0], [1]], states=["position", "position_velocity"],
-    ...                        inputs=["force"])
-    >>> round(float(m.modes().natural_frequency_hz[0]), 4)   # sqrt(4) / (2 pi)
-    0.3183
+    >>> m = vehdyn.LinearModel([[0, 1], [-4, -0.4]], [[0], [1]], states=["sprung_displacement", "sprung_velocity"],
+    ...                        inputs=["actuator_force"], outputs=["sprung_displacement"], C=[[1, 0]])
+    >>> modes = m.modes()
+    >>> round(float(modes.natural_frequency_hz[0]), 4), round(float(modes.damping_ratio[0]), 4)  # sqrt(4) / 2 pi
+    (0.3183, 0.1)
+    >>> fr = m.frequency_response(np.array([0.0, 2.0]))
+    >>> np.abs(fr["sprung_displacement"]).round(4), fr.unit("sprung_displacement", "actuator_force")
+    (array([0.25, 1.25]), '(m)/(N)')
+    >>> sys = m.to_control()                               # a control.StateSpace
+    >>> sys.state_labels, sys.input_labels
+    (['sprung_displacement', 'sprung_velocity'], ['actuator_force'])
     """
 
     def __init__(
@@ -127,7 +155,7 @@ class LinearModel(Model):
         name: str | None = None,
         phenomena=frozenset(),
     ) -> "LinearModel":
-        """State-space model of the mass-damper-spring system M q'' + C q' + K q = F u.
+        r"""State-space model of the mass-damper-spring system M q'' + C q' + K q = F u.
 
         Parameters
         ----------
@@ -135,7 +163,7 @@ class LinearModel(Model):
             Mass [kg or kg*m^2], damping [N*s/m ...] and stiffness [N/m ...] matrices. M must be
             symmetric positive definite.
         F : array_like, shape (n, m), optional
-            Input matrix (generalized force per unit input).
+            Input matrix [generalized force per unit input: N per input unit, or N*m for an angle].
         dof : sequence of str
             Names of the coordinates q (``"sprung_displacement"``, ``"pitch_angle"``).
         inputs : sequence of str
@@ -144,14 +172,40 @@ class LinearModel(Model):
             Names of q'. By default ``*_displacement`` becomes ``*_velocity``, ``*_angle``
             becomes ``*_rate`` and any other name gets ``_velocity`` appended.
         outputs, output_matrix, feedthrough : optional
-            Outputs and their ``C``, ``D`` matrices over the state ``[q, q']``; by default the
-            outputs are the states.
+            Outputs and their ``C``, ``D`` matrices over the state ``[q, q']`` [output unit per
+            state or input unit]; by default the outputs are the states.
+        name : str, optional
+            Label used in exports.
+        phenomena : iterable of str, optional
+            What the model represents (see :data:`vehdyn.model.PHENOMENA`).
 
         Returns
         -------
         LinearModel
             States ``[q, q']`` with ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` and ``B = [[0], [M^-1 F]]``;
             ``model.second_order`` keeps ``(M, C, K, F)`` for :meth:`modal_analysis`.
+
+        Notes
+        -----
+        With the state :math:`x = [q, \dot q]`,
+
+        .. math::
+
+            \dot x = \begin{bmatrix} 0 & I \\ -M^{-1} K & -M^{-1} C \end{bmatrix} x
+            + \begin{bmatrix} 0 \\ M^{-1} F \end{bmatrix} u.
+
+        Examples
+        --------
+        A quarter car's body on its suspension (body mass 400 kg, spring 20 kN/m, damper
+        1.5 kN*s/m) over a rigid wheel: body bounce at sqrt(k/m) / (2 pi) = 1.13 Hz.
+
+        >>> from vehdyn import LinearModel
+        >>> car = LinearModel.from_second_order([[400.0]], [[1500.0]], [[20e3]], [[1.0]],
+        ...                                     dof=["sprung_displacement"], inputs=["actuator_force"])
+        >>> car.state_names
+        ('sprung_displacement', 'sprung_velocity')
+        >>> round(float(car.modal_analysis().natural_frequency_hz[0]), 3)
+        1.125
         """
         dof_signals = as_signals(dof, "dof")
         n = len(dof_signals)
@@ -219,7 +273,20 @@ class LinearModel(Model):
 
     # ------------------------------------------------------------------ selection and composition
     def select(self, outputs=None, inputs=None) -> "LinearModel":
-        """The sub-model from ``inputs`` to ``outputs`` (names; ``None`` keeps all)."""
+        """The sub-model from some inputs to some outputs (the same states).
+
+        Parameters
+        ----------
+        outputs : sequence of str, optional
+            Output names to keep, in this order (``None`` keeps all).
+        inputs : sequence of str, optional
+            Input names to keep, in this order (``None`` keeps all).
+
+        Returns
+        -------
+        LinearModel
+            The rows of C and D and the columns of B and D of the chosen signals.
+        """
         out_idx = [self.index(o, "outputs") for o in (outputs or self.output_names)]
         in_idx = [self.index(i, "inputs") for i in (inputs or self.input_names)]
         return LinearModel(
@@ -236,7 +303,32 @@ class LinearModel(Model):
 
     # ------------------------------------------------------------------ exports
     def to_control(self, name: str | None = None, **kwargs):
-        """This model as a ``control.StateSpace`` with every signal name (imports python-control)."""
+        """This model as a ``control.StateSpace`` with every signal name (imports python-control).
+
+        Parameters
+        ----------
+        name : str, optional
+            The system's name (default: the model's, with spaces and dots as underscores, which
+            python-control would read as subsystem separators).
+        **kwargs
+            Passed to ``control.ss``.
+
+        Returns
+        -------
+        control.StateSpace
+            A, B, C, D with the state, input and output labels of the model; connect it by name
+            with ``control.interconnect``.
+
+        Examples
+        --------
+        >>> import vehdyn
+        >>> lag = vehdyn.LinearModel([[-2.0]], [[2.0]], states=["yaw_rate"], inputs=["front_steer_angle"])
+        >>> sys = lag.to_control()
+        >>> sys.state_labels, sys.input_labels, sys.output_labels
+        (['yaw_rate'], ['front_steer_angle'], ['yaw_rate'])
+        >>> vehdyn.LinearModel.from_control(sys).state_names       # and back
+        ('yaw_rate',)
+        """
         import control as ct
 
         return ct.ss(
@@ -253,7 +345,21 @@ class LinearModel(Model):
 
     @classmethod
     def from_control(cls, sys, **kwargs) -> "LinearModel":
-        """A :class:`LinearModel` from a ``control.StateSpace``, keeping its signal names."""
+        """A :class:`LinearModel` from a ``control.StateSpace``, keeping its signal names.
+
+        Parameters
+        ----------
+        sys : control.StateSpace
+            A continuous-time state-space system.
+        **kwargs
+            Keyword arguments of :class:`LinearModel` (``states``, ``inputs``, ``outputs`` override
+            the system's labels; ``name``, ``phenomena``, ...).
+
+        Returns
+        -------
+        LinearModel
+            The same matrices and names.
+        """
         return cls(
             sys.A,
             sys.B,
@@ -266,22 +372,40 @@ class LinearModel(Model):
         )
 
     def to_scipy(self):
-        """This model as a ``scipy.signal.StateSpace`` (scipy keeps no names)."""
+        """This model as a ``scipy.signal.StateSpace`` (scipy keeps no names).
+
+        Returns
+        -------
+        scipy.signal.StateSpace
+            The continuous-time system (A, B, C, D).
+        """
         from scipy import signal
 
         return signal.StateSpace(self.A, self.B, self.C, self.D)
 
     # ------------------------------------------------------------------ analysis
     def poles(self) -> np.ndarray:
-        """Eigenvalues of A [1/s]."""
+        """The poles: eigenvalues of A.
+
+        Returns
+        -------
+        ndarray of complex
+            Eigenvalues [1/s], unsorted (see :meth:`modes` for sorted, named ones).
+        """
         return np.linalg.eigvals(self.A)
 
     def is_stable(self) -> bool:
-        """True when every eigenvalue of A has a negative real part."""
+        """Whether the model is asymptotically stable.
+
+        Returns
+        -------
+        bool
+            True when every eigenvalue of A has a negative real part.
+        """
         return bool(np.all(self.poles().real < 0))
 
     def dc_gain(self) -> np.ndarray:
-        """Steady-state gain H(0) = D - C A^-1 B, shape (n_outputs, n_inputs).
+        """Steady-state gain H(0) = D - C A^-1 B.
 
         With integrators -- eigenvalues of A at 0, such as a yaw angle or a position among the
         states -- an output that an input drives through them has no steady state: its entry is
@@ -290,6 +414,12 @@ class LinearModel(Model):
         finite gain. (``control.StateSpace.dcgain`` returns ``inf`` for every entry of such a
         system, ``nan`` where 0 is also a transmission zero.) Eigenvalues with
         |lambda| <= sqrt(eps) ||A||_1 count as integrators.
+
+        Returns
+        -------
+        ndarray
+            Shape (n_outputs, n_inputs) [output unit per input unit]; ``+inf`` or ``-inf`` where an
+            integrator is reached.
 
         Notes
         -----
@@ -312,7 +442,11 @@ class LinearModel(Model):
         return _dc_gain_with_integrators(A, B, C, D, tol)
 
     def frequency_response(self, omega, outputs=None, inputs=None):
-        """Complex frequency response C (j omega I - A)^-1 B + D.
+        r"""Complex frequency response.
+
+        .. math::
+
+            H(j\omega) = C\,(j\omega I - A)^{-1} B + D.
 
         Parameters
         ----------
@@ -324,8 +458,20 @@ class LinearModel(Model):
         Returns
         -------
         FrequencyResponse
-            ``response[output, input, frequency]``; all frequencies are solved in one batched
-            linear solve, without python-control.
+            ``response[output, input, frequency]`` [output unit per input unit]; all frequencies
+            are solved in one batched linear solve, without python-control.
+
+        Examples
+        --------
+        A first-order lag 2 / (s + 2) at its corner frequency: magnitude 1/sqrt(2), phase -45 deg.
+
+        >>> import numpy as np
+        >>> import vehdyn
+        >>> lag = vehdyn.LinearModel([[-2.0]], [[2.0]], states=["yaw_rate"], inputs=["front_steer_angle"])
+        >>> fr = lag.frequency_response(np.array([2.0]))
+        >>> h = fr["yaw_rate", "front_steer_angle"][0]
+        >>> round(float(abs(h)), 6), round(float(np.degrees(np.angle(h))), 6)
+        (0.707107, -45.0)
         """
         from vehdyn.results import FrequencyResponse
 
@@ -364,7 +510,18 @@ class LinearModel(Model):
         Modes
             One entry per real eigenvalue and per complex-conjugate pair (the member with positive
             imaginary part), sorted by natural frequency; shapes are labelled by state name and
-            scaled so that their largest entry is 1.
+            scaled so that their largest entry is 1 (see :func:`vehdyn.model.state_space_modes`).
+
+        Examples
+        --------
+        >>> import vehdyn
+        >>> m = vehdyn.LinearModel([[0, 1], [-4, -0.4]], [[0], [1]], states=["pitch_angle", "pitch_rate"],
+        ...                        inputs=["pitch_moment"])
+        >>> modes = m.modes()
+        >>> round(float(modes.natural_frequency[0]), 6), round(float(modes.damping_ratio[0]), 6)
+        (2.0, 0.1)
+        >>> modes.dominant_state(0)
+        'pitch_rate'
         """
         from vehdyn.model.modal import state_space_modes
 

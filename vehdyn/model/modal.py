@@ -44,8 +44,10 @@ class Modes:
         zeta = -Re(lambda) / |lambda| [-] (1 for a stable real eigenvalue, -1 for an unstable one,
         NaN for a zero eigenvalue, which has no frequency scale).
     shapes : ndarray of complex, shape (n_states, n_modes)
-        Eigenvectors scaled so the entry of largest magnitude is 1.
+        Eigenvectors scaled so the entry of largest magnitude is 1 [each state's unit, relative to
+        the largest entry's].
     state_names : tuple of str
+        The states the shapes run over.
     """
 
     eigenvalues: np.ndarray
@@ -66,15 +68,45 @@ class Modes:
             return -1.0 / self.eigenvalues.real
 
     def shape(self, mode: int) -> dict[str, complex]:
-        """Mode shape ``mode`` as ``{state name: complex amplitude}``."""
+        """One mode shape by state name.
+
+        Parameters
+        ----------
+        mode : int
+            The mode's index (modes are sorted by natural frequency).
+
+        Returns
+        -------
+        dict of str to complex
+            ``{state name: complex amplitude}``, the largest of magnitude 1.
+        """
         return dict(zip(self.state_names, self.shapes[:, mode]))
 
     def dominant_state(self, mode: int) -> str:
-        """The state with the largest amplitude in mode ``mode``."""
+        """The state with the largest amplitude in a mode.
+
+        Parameters
+        ----------
+        mode : int
+            The mode's index.
+
+        Returns
+        -------
+        str
+            The state's name.
+        """
         return self.state_names[int(np.argmax(np.abs(self.shapes[:, mode])))]
 
     def to_frame(self):
-        """A pandas DataFrame, one row per mode, with ``attrs["units"]``."""
+        """The modes as a pandas DataFrame.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per mode: eigenvalue (real [1/s], imaginary [rad/s]), natural frequency
+            [rad/s] and [Hz], damped frequency [Hz], damping ratio [-] and the dominant state;
+            ``attrs["units"]`` maps each column to its unit.
+        """
         import pandas as pd
 
         df = pd.DataFrame(
@@ -109,16 +141,43 @@ def _normalize_columns(vectors: np.ndarray) -> np.ndarray:
 
 
 def state_space_modes(A, states: Sequence[Signal | str]) -> Modes:
-    """Modes of the state matrix ``A`` with states named ``states``.
+    r"""Modes of a state matrix with named states.
 
     Parameters
     ----------
     A : array_like, shape (n, n)
+        State matrix [1/s].
     states : sequence of Signal or str
+        The states (their names label the mode shapes).
 
     Returns
     -------
     Modes
+        One entry per real eigenvalue and per complex-conjugate pair (the member with positive
+        imaginary part), sorted by natural frequency.
+
+    Notes
+    -----
+    For an eigenvalue :math:`\lambda = \sigma + j\omega_d` of A,
+
+    .. math::
+
+        \omega_n = |\lambda|, \qquad \zeta = -\frac{\sigma}{|\lambda|}, \qquad
+        \omega_d = \omega_n \sqrt{1 - \zeta^2}
+
+    (Ogata, sec. 5-3; Meirovitch, sec. 2.5).
+
+    References
+    ----------
+    .. [1] K. Ogata, *Modern Control Engineering*, 5th ed., Prentice Hall, 2010, sec. 5-3.
+    .. [2] L. Meirovitch, *Fundamentals of Vibrations*, McGraw-Hill, 2001, sec. 2.5.
+
+    Examples
+    --------
+    >>> from vehdyn.model import state_space_modes
+    >>> modes = state_space_modes([[0.0, 1.0], [-4.0, -0.4]], ["roll_angle", "roll_rate"])
+    >>> round(float(modes.natural_frequency[0]), 6), round(float(modes.damping_ratio[0]), 6)
+    (2.0, 0.1)
     """
     A = np.asarray(A, dtype=float)
     names = tuple(s.name if isinstance(s, Signal) else str(s) for s in states)
@@ -156,14 +215,16 @@ class SecondOrderModes:
     natural_frequency_hz : ndarray
         omega_i / (2 pi) [Hz].
     shapes : ndarray, shape (n_dof, n_modes)
-        Mass-normalized mode shapes Phi (Phi^T M Phi = I).
+        Mass-normalized mode shapes Phi (Phi^T M Phi = I) [1/sqrt(kg) for displacements,
+        1/sqrt(kg m^2) for angles].
     damping_ratio : ndarray
-        (Phi^T C Phi)_ii / (2 omega_i); exact for proportional damping.
+        (Phi^T C Phi)_ii / (2 omega_i) [-]; exact for proportional damping.
     modal_damping : ndarray
-        Phi^T C Phi.
+        Phi^T C Phi [1/s].
     proportional : bool
         True when Phi^T C Phi is diagonal to 1e-9 relative (the modes stay uncoupled).
     dof : tuple of str
+        The coordinates the shapes run over.
     """
 
     natural_frequency: np.ndarray
@@ -175,13 +236,34 @@ class SecondOrderModes:
     dof: tuple[str, ...]
 
     def shape(self, mode: int, normalize: str = "mass") -> dict[str, float]:
-        """Mode shape by coordinate name; ``normalize="max"`` scales the largest entry to 1."""
+        """One mode shape by coordinate name.
+
+        Parameters
+        ----------
+        mode : int
+            The mode's index (ascending natural frequency).
+        normalize : {"mass", "max"}
+            Mass-normalized (Phi^T M Phi = I, as stored) or scaled so that the largest entry is 1.
+
+        Returns
+        -------
+        dict of str to float
+            ``{coordinate name: amplitude}``.
+        """
         phi = self.shapes[:, mode]
         if normalize == "max":
             phi = phi / phi[np.argmax(np.abs(phi))]
         return dict(zip(self.dof, phi))
 
     def to_frame(self):
+        """The modes as a pandas DataFrame.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per mode: natural frequency [rad/s] and [Hz], damping ratio [-] and one
+            ``shape_<dof>`` column per coordinate (mass-normalized); ``attrs["units"]``.
+        """
         import pandas as pd
 
         df = pd.DataFrame(
@@ -198,22 +280,58 @@ class SecondOrderModes:
 
 
 def modal_analysis(M, K, C=None, dof: Sequence[str] | None = None) -> SecondOrderModes:
-    """Undamped modal analysis of M q'' + C q' + K q = 0 in mass-normalized coordinates.
+    r"""Undamped modal analysis of M q'' + C q' + K q = 0 in mass-normalized coordinates.
 
     Parameters
     ----------
     M : array_like, shape (n, n)
-        Symmetric positive-definite mass matrix.
+        Symmetric positive-definite mass matrix [kg, kg*m^2 for angles].
     K : array_like, shape (n, n)
-        Symmetric stiffness matrix.
+        Symmetric stiffness matrix [N/m, N*m/rad for angles].
     C : array_like, shape (n, n), optional
-        Damping matrix (zeros if omitted).
+        Damping matrix [N*s/m, N*m*s/rad for angles] (zeros if omitted).
     dof : sequence of str, optional
-        Coordinate names.
+        Coordinate names (default ``q0``, ``q1``, ...).
 
     Returns
     -------
     SecondOrderModes
+        Natural frequencies (ascending), mass-normalized shapes and modal damping ratios.
+
+    Notes
+    -----
+    The generalized eigenproblem and its mass normalization,
+
+    .. math::
+
+        K \varphi_i = \omega_i^2 M \varphi_i, \qquad
+        \Phi^T M \Phi = I, \qquad \Phi^T K \Phi = \operatorname{diag}(\omega_i^2),
+
+    give the modal damping ratios
+
+    .. math::
+
+        \zeta_i = \frac{(\Phi^T C \Phi)_{ii}}{2 \omega_i},
+
+    exact when C is proportional (:math:`\Phi^T C \Phi` diagonal) and a first-order estimate
+    otherwise (Meirovitch, sec. 7.4 and 7.12; Inman, sec. 4.5).
+
+    References
+    ----------
+    .. [1] L. Meirovitch, *Fundamentals of Vibrations*, McGraw-Hill, 2001, sec. 7.4 and 7.12.
+    .. [2] D. J. Inman, *Engineering Vibration*, 4th ed., Pearson, 2014, sec. 4.5.
+
+    Examples
+    --------
+    Two equal masses (1 kg) between three equal springs (100 N/m): the in-phase mode at
+    sqrt(k/m) = 10 rad/s, the out-of-phase one at sqrt(3k/m) = 17.32 rad/s.
+
+    >>> from vehdyn.model import modal_analysis
+    >>> modes = modal_analysis([[1.0, 0.0], [0.0, 1.0]], [[200.0, -100.0], [-100.0, 200.0]], dof=["left", "right"])
+    >>> modes.natural_frequency.round(4)
+    array([10.    , 17.3205])
+    >>> {k: round(float(v), 6) for k, v in modes.shape(1, normalize="max").items()}
+    {'left': 1.0, 'right': -1.0}
     """
     M = np.asarray(M, dtype=float)
     K = np.asarray(K, dtype=float)

@@ -517,7 +517,8 @@ def load_vehicle(name_or_path: str | Path) -> Vehicle:
     Returns
     -------
     Vehicle
-        The validated, frozen parameter set.
+        The frozen, validated parameter set (SI units); ``Vehicle.replace(group__field=value)``
+        makes a variant.
 
     Raises
     ------
@@ -535,6 +536,9 @@ def load_vehicle(name_or_path: str | Path) -> Vehicle:
     ('MassAndInertia', 1093.3, 2.579)
     >>> [round(load) for load in sedan.static_axle_loads()]   # front, rear [N]
     [5852, 4873]
+    >>> heavier = sedan.replace(mass__mass=1300.0)        # a variant; sedan itself is unchanged
+    >>> heavier.mass.mass, round(sedan.mass.mass, 1)
+    (1300.0, 1093.3)
     """
     return load_shipped_or_file(Vehicle, name_or_path, "vehicle")
 

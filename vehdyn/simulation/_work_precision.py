@@ -33,17 +33,19 @@ def work_precision(
     repeats: int = 3,
     signals: Sequence[str] | None = None,
 ):
-    """Run ``model`` with each method and tolerance; time it and measure its error.
+    r"""Run ``model`` with each method and tolerance; time it and measure its error.
 
     Parameters
     ----------
     model : Model
+        The model to integrate.
     time : array_like
         Output grid [s]; errors are measured on it.
     reference : ndarray, shape (n_signals, n_times)
-        Reference histories of ``signals`` (by default the states) on ``time``.
-    inputs, x0 :
-        As for :func:`vehdyn.simulate`.
+        Reference histories of ``signals`` (by default the states) on ``time`` [each signal's
+        unit]: a closed form, or a run at a much tighter tolerance.
+    inputs, x0 : optional
+        As for :func:`vehdyn.simulate` [each signal's unit].
     methods : mapping of str to sequence of float
         ``{method: [rtol, ...]}``; ``"exact"`` takes ``[0]`` (no tolerance). Defaults to every
         ``solve_ivp`` method at :data:`DEFAULT_TOLERANCES`.
@@ -60,6 +62,40 @@ def work_precision(
     pandas.DataFrame
         Columns ``method``, ``rtol``, ``step``, ``cpu_time`` [s], ``max_error``, ``nfev``,
         ``status`` (``"ok"`` or the error message for a run that failed or was refused).
+
+    Notes
+    -----
+    The error of a run is the largest absolute difference over every compared signal and
+    instant,
+
+    .. math::
+
+        e = \max_{i,k} \left| y_i(t_k) - y_i^{\mathrm{ref}}(t_k) \right|,
+
+    and its cost the best wall-clock time of ``repeats`` runs (``cpu_time``): the two axes of a
+    work-precision diagram (Hairer, Nørsett & Wanner, sec. II.10).
+
+    References
+    ----------
+    .. [1] E. Hairer, S. P. Nørsett and G. Wanner, *Solving Ordinary Differential Equations I:
+       Nonstiff Problems*, 2nd ed., Springer, 1993, sec. II.10.
+
+    Examples
+    --------
+    A first-order lag against its closed form: ``"exact"`` is at rounding level, RK45 at its
+    tolerance.
+
+    >>> import numpy as np
+    >>> import vehdyn
+    >>> from vehdyn.simulation import work_precision
+    >>> lag = vehdyn.LinearModel([[-2.0]], [[2.0]], states=["yaw_rate"], inputs=["front_steer_angle"])
+    >>> t = np.linspace(0.0, 2.0, 21)
+    >>> table = work_precision(lag, t, [1.0 - np.exp(-2.0 * t)], inputs={"front_steer_angle": 1.0},
+    ...                        methods={"exact": [0], "RK45": [1e-6]}, repeats=1)
+    >>> table["method"].tolist(), table["status"].tolist()
+    (['exact', 'RK45'], ['ok', 'ok'])
+    >>> bool(table["max_error"].iloc[0] < 1e-14), bool(table["max_error"].iloc[1] < 1e-5)
+    (True, True)
     """
     import pandas as pd
 

@@ -32,6 +32,40 @@ contract (inputs, breakpoints, outputs, failures); :func:`integrator` picks the 
 The integrator is generic over the rhs: :func:`integrator` compiles one loop per compiled rhs
 (a copy of :func:`_integrate` whose global ``_rhs`` is that function), cached on disk and keyed
 on the source of every module that contributes code (editing an equation recompiles).
+
+The model author's contract
+---------------------------
+A model opts in by overriding :meth:`vehdyn.Model.compiled_rhs` to return a
+:class:`CompiledModel`: a function ``rhs(t, x, u, args, dxdt)`` that writes dx/dt of one vehicle
+(1-D ``x`` and ``u``) into ``dxdt``, written in the subset of Python numba compiles (loops and
+scalar arithmetic over arrays; the model's equations over an ``xp`` namespace where they are
+shared with numpy), compiled by :func:`compiled_copy` under a name that carries a
+:func:`source_stamp` of every module it draws code from; optionally ``output(t, x, u, args, y)``;
+and ``args``, a tuple of the numbers and contiguous arrays the functions read (nested tuples
+allowed). For example (a sketch; the compilation takes seconds, once per installation)::
+
+    def _rhs(t, x, u, args, dxdt):
+        mass, drag = args
+        dxdt[0] = (u[0] - drag * x[0] * abs(x[0])) / mass
+
+    class CoastDown(vehdyn.Model):
+        ...
+        def compiled_rhs(self):
+            key = "coast_down_" + source_stamp(sys.modules[__name__])
+            return CompiledModel(compiled_copy(_rhs, f"{key}_rhs"), None, key, (self.mass, self.drag))
+
+A model that also runs batches of variants (arrays of parameters, one loop per variant with its
+own step-size control) returns a :class:`CompiledBatch` from ``compiled_batch(n_variants)``, with
+a compiled ``pick(batch, i)`` that returns variant ``i``'s ``args``. The compiled and the numpy
+``rhs`` must agree to rounding: each model's tests compare them.
+
+References
+----------
+.. [1] E. Hairer, S. P. Nørsett and G. Wanner, *Solving Ordinary Differential Equations I:
+   Nonstiff Problems*, 2nd ed., Springer, 1993, sec. II.4 (step-size control and the initial
+   step), II.5 (Dormand-Prince pairs), II.6 (dense output).
+.. [2] J. R. Dormand and P. J. Prince, "A family of embedded Runge-Kutta formulae", *Journal of
+   Computational and Applied Mathematics* 6(1), 19-26, 1980.
 """
 
 from __future__ import annotations
@@ -56,16 +90,40 @@ METHODS = ("RK45", "DOP853", "BDF")
 _METHOD_CODE = {"RK45": 0, "DOP853": 1, "BDF": 2}
 
 CompiledModel = namedtuple("CompiledModel", ("rhs", "output", "key", "args"))
-CompiledModel.__doc__ = """What :meth:`vehdyn.Model.compiled_rhs` returns: numba-compiled ``rhs(t, x, u, args, dxdt)``
-(dx/dt of one vehicle into ``dxdt``) and ``output(t, x, u, args, y)`` (or None: the numpy
-``output`` is used), a short name of their source (part of the cached code's name, so a changed
-source is recompiled) and the tuple ``args`` of numbers they read."""
+CompiledModel.__doc__ = """What :meth:`vehdyn.Model.compiled_rhs` returns (the model author's contract, module docstring).
+
+Parameters
+----------
+rhs : numba dispatcher
+    Compiled ``rhs(t, x, u, args, dxdt)``: t [s], the states x (n,) [each state's unit] and inputs
+    u (m,) [each input's unit] of one vehicle; writes dx/dt into ``dxdt`` (n,).
+output : numba dispatcher or None
+    Compiled ``output(t, x, u, args, y)`` writing the outputs into ``y`` (p,), or None: the
+    numpy ``output`` is used (once, on the time grid).
+key : str
+    A short name of their source (part of the cached code's name, so that a changed source is
+    recompiled; include a :func:`source_stamp`).
+args : tuple
+    The numbers and contiguous arrays ``rhs`` and ``output`` read [the model's units].
+"""
 
 CompiledBatch = namedtuple("CompiledBatch", ("rhs", "output", "key", "pick", "batch", "n_variants"))
-CompiledBatch.__doc__ = """A batch of variants of one model structure for :func:`solve_batch`: the compiled ``rhs`` and
-``output`` of one vehicle (as in :class:`CompiledModel`), ``key`` naming their source and ``pick``'s,
-the compiled ``pick(batch, i) -> args`` that returns variant ``i``'s ``args`` from ``batch`` (the
-parameters as arrays, one row per variant) and the number of variants."""
+CompiledBatch.__doc__ = """A batch of variants of one model structure for :func:`solve_batch`.
+
+Parameters
+----------
+rhs, output : numba dispatcher
+    The compiled ``rhs`` and ``output`` of one vehicle, as in :class:`CompiledModel` (``output``
+    may not be None here).
+key : str
+    A name of their source and ``pick``'s (with a :func:`source_stamp`).
+pick : numba dispatcher
+    Compiled ``pick(batch, i) -> args``: variant ``i``'s ``args`` from ``batch``.
+batch : tuple
+    The parameters as arrays, one row per variant [the model's units].
+n_variants : int
+    The number of variants.
+"""
 
 _STATUS = {-1: "step size underflow (the step fell below 10 ulp of t: the problem may be stiff or singular)",
            -2: "non-finite state or derivative at every step size down to the underflow limit", -3: "too many steps"}
@@ -76,7 +134,13 @@ _NUMBA_AVAILABLE = None
 
 def numba_available() -> bool:
     """Whether numba (the optional dependency of every compiled backend: this integrator, the Magic
-    Formula's loops) is installed; looked up once, imported only on first use."""
+    Formula's loops) is installed; looked up once, imported only on first use.
+
+    Returns
+    -------
+    bool
+        True when ``import numba`` would succeed (``pip install "vehdyn[fast]"``).
+    """
     global _NUMBA_AVAILABLE
     if _NUMBA_AVAILABLE is None:
         import importlib.util
@@ -86,7 +150,18 @@ def numba_available() -> bool:
 
 
 def source_stamp(*modules) -> str:
-    """A short digest of the source files of ``modules`` (for names of cached compiled code)."""
+    """A short digest of the source files of ``modules`` (for names of cached compiled code).
+
+    Parameters
+    ----------
+    *modules : module
+        Every module whose code a compiled function draws on.
+
+    Returns
+    -------
+    str
+        The first 16 hex digits of the SHA-256 of their files: any edit changes it.
+    """
     digest = hashlib.sha256()
     for module in modules:
         digest.update(Path(module.__file__).read_bytes())
@@ -111,11 +186,29 @@ _CONSTANT, _ZOH, _FOH, _PIECEWISE = 0, 1, 2, 3
 def input_table(model, inputs, t, u, hold):
     """The inputs as the compiled loop reads them.
 
-    Returns ``(kinds, values, pieces, piece_rows, breakpoints)``: per input its kind (constant,
-    zoh, foh, piecewise), the sampled values (n_inputs, n_t) -- (n_variants, n_inputs, n_t) for
-    inputs ``u`` of shape (n_inputs, n_t, n_variants) --, all pieces stacked with each input's
-    row range, and the sorted breakpoints inside (t[0], t[-1]) (in a batch, those of every
-    variant: a variant's steps also end where another's input has a kink).
+    Parameters
+    ----------
+    model : Model
+        The model (its input names).
+    inputs : mapping or other
+        The ``inputs`` argument of :func:`vehdyn.simulate`: its PiecewiseSignal entries are
+        taken in closed form; anything else through its samples ``u``.
+    t : ndarray
+        Time grid (n_t,) [s].
+    u : ndarray
+        The inputs sampled on the grid, (n_inputs, n_t) or (n_inputs, n_t, n_variants) [each
+        input's unit].
+    hold : {"zoh", "foh"}
+        How sampled inputs vary between samples.
+
+    Returns
+    -------
+    tuple
+        ``(kinds, values, pieces, piece_rows, breakpoints)``: per input its kind (constant, zoh,
+        foh, piecewise), the sampled values (n_inputs, n_t) -- (n_variants, n_inputs, n_t) for
+        inputs ``u`` of shape (n_inputs, n_t, n_variants) --, all pieces stacked with each input's
+        row range, and the sorted breakpoints inside (t[0], t[-1]) [s] (in a batch, those of
+        every variant: a variant's steps also end where another's input has a kink).
     """
     from vehdyn.piecewise_signal import PiecewiseSignal
 
@@ -521,7 +614,26 @@ def _stamp():
 
 
 def outputs(model: CompiledModel, n_outputs: int, t, x, u):
-    """Outputs (n_outputs, n_t) of a compiled model at states x (n, n_t) and inputs u (m, n_t)."""
+    """Outputs of a compiled model along a run, by its compiled ``output``.
+
+    Parameters
+    ----------
+    model : CompiledModel
+        With a compiled ``output``.
+    n_outputs : int
+        The number of outputs p.
+    t : ndarray
+        Time (n_t,) [s].
+    x : ndarray
+        States (n, n_t) [each state's unit].
+    u : ndarray
+        Inputs (m, n_t) [each input's unit].
+
+    Returns
+    -------
+    ndarray
+        Outputs (p, n_t) [each output's unit].
+    """
     _setup()
     loop = compiled_copy(_output_loop, f"_output_loop_{model.key}_{_stamp()}", _output=model.output)
     y = np.empty((t.size, n_outputs))
@@ -530,12 +642,23 @@ def outputs(model: CompiledModel, n_outputs: int, t, x, u):
 
 
 def integrator(rhs, key: str, method: str = "RK45"):
-    """The loop of ``method`` compiled for the compiled ``rhs(t, y, u, args, dydt)``:
-    :func:`_integrate` (the explicit pairs) or :func:`vehdyn.simulation._bdf._integrate_bdf`, with
-    one signature.
+    """The loop of ``method`` compiled for a compiled rhs.
 
-    ``key`` names the rhs and the source it is compiled from (it becomes part of the cached
-    function's name, so that a changed source never loads a stale cache).
+    Parameters
+    ----------
+    rhs : numba dispatcher
+        Compiled ``rhs(t, y, u, args, dydt)`` (:class:`CompiledModel`).
+    key : str
+        Names the rhs and the source it is compiled from (it becomes part of the cached
+        function's name, so that a changed source never loads a stale cache).
+    method : {"RK45", "DOP853", "BDF"}
+        The method.
+
+    Returns
+    -------
+    numba dispatcher
+        :func:`_integrate` (the explicit pairs) or :func:`vehdyn.simulation._bdf._integrate_bdf`
+        bound to ``rhs``, with one signature (that of :func:`_integrate`).
     """
     _setup()
     if method == "BDF":
@@ -548,11 +671,47 @@ def integrator(rhs, key: str, method: str = "RK45"):
 
 def solve(rhs, key, args, t, y0, inputs_table, method="RK45", rtol=1e-6, atol=1e-9, first_step=None,
           max_step=None, max_steps=10_000_000):
-    """Integrate the compiled ``rhs`` over the grid ``t`` from ``y0``.
+    """Integrate a compiled rhs over a time grid.
 
-    Returns ``(y, counters)``: states (n, n_t) and a dict of nfev, n_steps, n_rejected, message.
-    Raises :class:`~vehdyn.SimulationError` on failure and :class:`~vehdyn.ParameterError` on bad
-    options (naming the option and its value).
+    Parameters
+    ----------
+    rhs : numba dispatcher
+        Compiled ``rhs(t, y, u, args, dydt)`` (:class:`CompiledModel`).
+    key : str
+        Its source's name (see :func:`integrator`).
+    args : tuple
+        The arguments ``rhs`` reads.
+    t : ndarray
+        Output grid (n_t,) [s]; the run starts at ``t[0]``.
+    y0 : array_like
+        Initial state (n,) [each state's unit].
+    inputs_table : tuple
+        :func:`input_table` of the inputs.
+    method : {"RK45", "DOP853", "BDF"}
+        The method.
+    rtol : float
+        Relative tolerance [-], at least 100 machine epsilons.
+    atol : float or array_like
+        Absolute tolerance, a number or one per state [each state's unit].
+    first_step, max_step : float, optional
+        First and largest step [s] (default: chosen as ``solve_ivp`` chooses it; unbounded).
+    max_steps : int
+        Accepted steps after which the run fails (a bound on a stiff run's cost).
+
+    Returns
+    -------
+    y : ndarray
+        States (n, n_t) [each state's unit].
+    counters : dict
+        ``nfev``, ``n_steps`` (accepted steps) and ``message``.
+
+    Raises
+    ------
+    SimulationError
+        On failure (step underflow, a non-finite state, too many steps), with the time; its
+        ``partial_states`` are the output instants reached.
+    ParameterError
+        On bad options, naming the option and its value.
     """
     y0 = np.ascontiguousarray(y0, dtype=float)
     rtol, atol_vec = _check_options(method, rtol, atol, y0.shape, first_step, max_step)
@@ -626,14 +785,15 @@ def solve_batch(model: CompiledBatch, t, y0, inputs_table, method="RK45", rtol=1
     Parameters
     ----------
     model : CompiledBatch
+        The batch.
     t : ndarray
         Output grid (n_t,) [s], shared.
     y0 : ndarray
-        Initial states (n, n_variants).
+        Initial states (n, n_variants) [each state's unit].
     inputs_table : tuple
         :func:`input_table` of inputs of shape (n_inputs, n_t, n_variants).
-    method, rtol, atol, first_step, max_step, max_steps
-        As :func:`solve`; ``atol`` a number or (n,).
+    method, rtol, atol, first_step, max_step, max_steps : optional
+        As :func:`solve` [-, the states' units, s]; ``atol`` a number or (n,).
     threads : int, optional
         Threads to run on (default: every core).
 
@@ -672,8 +832,28 @@ def status_message(method: str, report_row) -> str:
 
 
 def batch_outputs(model: CompiledBatch, n_outputs: int, t, x, u, threads=None):
-    """Outputs (n_variants, p, n_t) of a :class:`CompiledBatch` at states x (n_variants, n, n_t)
-    and inputs u (m, n_t) shared or (n_variants, m, n_t), on ``threads`` threads."""
+    """Outputs of every variant of a :class:`CompiledBatch` along their runs, in parallel.
+
+    Parameters
+    ----------
+    model : CompiledBatch
+        The batch.
+    n_outputs : int
+        The number of outputs p.
+    t : ndarray
+        Time (n_t,) [s].
+    x : ndarray
+        States (n_variants, n, n_t) [each state's unit].
+    u : ndarray
+        Inputs (m, n_t), shared, or (n_variants, m, n_t) [each input's unit].
+    threads : int, optional
+        Threads to run on (default: every core).
+
+    Returns
+    -------
+    ndarray
+        Outputs (n_variants, p, n_t) [each output's unit].
+    """
     _setup()
     loop = compiled_copy(_output_batch, f"_output_batch_{model.key}_{_stamp()}", nogil=True,
                          _output=model.output, _pick=model.pick)
