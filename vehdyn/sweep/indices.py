@@ -184,7 +184,7 @@ def sensitivity(target, parameters: Mapping[str, Any], metric, *, method: str = 
         Morris grid levels (an even integer >= 2), from low to high of bounds; distributions are
         evaluated at the levels' mid-quantiles (k + 1/2) / levels.
     confidence : float
-        Level of the bootstrap confidence intervals, in (0, 1).
+        Level of the bootstrap confidence intervals, in (0, 1) [-].
     seed : int, optional
         Seed of the design and of the bootstrap (an integer >= 0, or None for fresh entropy).
     executor : None, str, Executor or dask.distributed.Client
