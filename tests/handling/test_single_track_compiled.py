@@ -250,7 +250,7 @@ def test_compiled_math_functions_are_the_library_functions_bitwise():
 
     import numba
 
-    from vehdyn.handling._single_track_numba import XP
+    from vehdyn.components.compiled import XP
 
     @numba.njit
     def evaluate(x, y, out):

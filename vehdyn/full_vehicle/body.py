@@ -31,12 +31,10 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["added_mass_projection", "cross", "body_accelerations"]
+from vehdyn.mechanics.equations_of_motion import rigid_body_accelerations
+from vehdyn.mechanics.kinematics import cross_components as cross
 
-
-def cross(a0, a1, a2, b0, b1, b2):
-    """Components of a x b (plain arithmetic: floats, arrays, compiled code)."""
-    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+__all__ = ["added_mass_projection", "body_accelerations"]
 
 
 def added_mass_projection(sprung_mass, inertia, masses, points) -> np.ndarray:
@@ -76,13 +74,14 @@ def body_accelerations(xp, k, velocity, rates, force, moment):
 
     ``force`` and ``moment`` (3-tuples, body axes, about the sprung CG) include everything but the
     wheels' x-y inertia proportional to the accelerations (see the module docstring); the sprung
-    body goes through ``xp.rigid_body_accelerations`` (the mechanics layer's Newton-Euler) and the
+    body goes through :func:`~vehdyn.mechanics.equations_of_motion.rigid_body_accelerations` (the mechanics
+    layer's Newton-Euler) and the
     result through the projection ``k.projection``.
     """
     u, v, w = velocity
     p, q, r = rates
-    velocity_rate, angular = xp.rigid_body_accelerations(k.sprung_mass, k.inertia, k.inverse_inertia, velocity,
-                                                         rates, force, moment)
+    velocity_rate, angular = rigid_body_accelerations(k.sprung_mass, k.inertia, k.inverse_inertia, velocity, rates,
+                                                      force, moment)
     # absolute acceleration of the sprung CG: dV/dt + omega x V
     cx, cy, cz = cross(p, q, r, u, v, w)
     alpha0 = (velocity_rate[0] + cx, velocity_rate[1] + cy, velocity_rate[2] + cz, angular[0], angular[1],
