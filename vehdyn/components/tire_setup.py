@@ -13,7 +13,8 @@ equations themselves are in :mod:`~vehdyn.components.tire_forces` and
 * :func:`longitudinal_relaxation_lengths` -- sigma_x of each axle's tire;
 * :func:`road_friction` and :func:`friction_at` -- the one way to put a model on a road of another
   friction: a constant ratio or a callable of the earth position, applied by similarity in the
-  tire step (:mod:`~vehdyn.components.tire_forces`).
+  tire step (:mod:`~vehdyn.components.tire_forces`); :func:`friction_ratio` gives the ratio of a
+  road whose peak friction coefficient is known.
 
 References
 ----------
@@ -33,7 +34,7 @@ import numpy as np
 from vehdyn.errors import ParameterError
 
 __all__ = ["CHARACTERISTICS_PER_TIRE", "tire_characteristics", "evaluate_characteristics", "mirrored_wheel",
-           "longitudinal_relaxation_lengths", "road_friction", "friction_at"]
+           "longitudinal_relaxation_lengths", "road_friction", "friction_at", "friction_ratio"]
 
 # tire_characteristics per tire law and load: tire -> OrderedDict(load -> result), the most recent
 # CHARACTERISTICS_PER_TIRE loads of each law (a law is shared by the models built from one vehicle
@@ -254,3 +255,47 @@ def friction_at(friction, X, Y):
         raise ParameterError(f"friction(X, Y) must be > 0 under every wheel, got {float(np.min(value))!r}",
                              key="friction", value=float(np.min(value)))
     return value
+
+
+def friction_ratio(tire, friction: float, load: float, direction: str = "longitudinal") -> float:
+    """The road friction ratio at which ``tire``'s peak friction at ``load`` is ``friction``.
+
+    The models' ``friction`` argument is relative to the tire law's own friction; a road is often
+    known by its peak friction coefficient mu instead (0.9 dry asphalt, 0.5 wet, 0.2 snow). The
+    ratio is mu over the law's peak friction coefficient F_peak / F_z at ``load``
+    (:func:`vehdyn.tire.characteristic_values`): by similarity every peak scales by the ratio, so
+    the law's peak at ``load`` becomes mu exactly, at other loads its load sensitivity stays.
+
+    Parameters
+    ----------
+    tire : TireModel
+        The law.
+    friction : float
+        The road's peak friction coefficient mu [-] (> 0).
+    load : float
+        The normal load of one tire [N] at which the peak is ``friction`` (> 0), e.g. half the
+        static axle load.
+    direction : str
+        ``"longitudinal"`` (braking and driving, the default) or ``"lateral"``: which peak.
+
+    Returns
+    -------
+    float
+        The ratio [-].
+
+    Raises
+    ------
+    ParameterError
+        For a friction or load that is not a finite number > 0, or another direction.
+    """
+    from vehdyn.tire import characteristic_values
+
+    for name, value in (("friction", friction), ("load", load)):
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)) \
+                or not (np.isfinite(value) and value > 0):
+            raise ParameterError(f"{name} must be a finite number > 0, got {value!r}", key=name, value=value)
+    if direction not in ("longitudinal", "lateral"):
+        raise ParameterError(f"direction must be 'longitudinal' or 'lateral', got {direction!r}", key="direction",
+                             value=direction)
+    peak = float(characteristic_values(tire, [float(load)]).iloc[0][f"peak_{direction}_friction"])
+    return float(friction) / peak

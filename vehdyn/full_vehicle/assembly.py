@@ -69,25 +69,125 @@ Constants = namedtuple("Constants", (
     "brake_regularization_speed", "mirror_image", "road_friction", "wheel_spin", "tire_lag", "friction_scaled",
     # aero
     "drag_factor", "wind_side_force_factor", "centre_of_pressure", "front_lift_factor", "rear_lift_factor"))
-Constants.__doc__ = """The numbers the equations read (floats; 4-tuples per corner; ``inertia``, ``inverse_inertia``
-3x3 and ``projection`` 6x6 nested tuples). ``spring_z``, ``wheel_z``, ``contact_z`` are the body-z
-coordinates (from the sprung CG, down +) of the spring seats, wheel centres and contact points;
-``anti_pitch`` is e_i f h / L per corner; ``mirror_image`` 1.0 at the corners whose tire is the mirror image of its
-axle's law (``SingleTrack._mirrored_wheel``), else 0.0; ``centre_of_pressure`` the crosswind's centre of pressure
-ahead of the sprung CG [m] (:mod:`~vehdyn.full_vehicle.aero`); ``camber_on`` 1.0 or 0.0; ``wheel_spin`` is always True
-(the slip functions of the single track read it), ``tire_lag`` a bool. :meth:`FullVehicle.constants`
-builds them; a compiled version takes the same tuple."""
+Constants.__doc__ = """The numbers the equations read (floats; 4-tuples per corner in corner order; nested tuples).
+
+:meth:`FullVehicle.constants <vehdyn.full_vehicle.FullVehicle.constants>` builds them; a compiled
+version takes the same tuple.
+
+Parameters
+----------
+gravity : float
+    g [m/s^2].
+mass, sprung_mass : float
+    Total and sprung mass [kg].
+inertia, inverse_inertia : tuple
+    Sprung inertia J about the sprung CG and its inverse, 3x3 nested tuples [kg*m^2], [1/(kg*m^2)].
+projection : tuple
+    The added-mass projection P (6x6, :func:`~vehdyn.full_vehicle.body.added_mass_projection`) [-].
+cg_height : float
+    Total CG height [m].
+wheelbase, front_track : float
+    [m].
+corner_x, corner_y : tuple
+    Corner positions from the sprung CG, body axes [m].
+spring_z, wheel_z, contact_z : float
+    Body-z coordinates (from the sprung CG, down +) of the spring seats, wheel centres and contact
+    points [m].
+unsprung_mass : tuple
+    [kg] per corner.
+spring_rate, damping : tuple
+    Wheel rates [N/m] and damping [N*s/m] per corner.
+spring_preload : tuple
+    Static spring forces [N].
+antiroll_rate : tuple
+    (front, rear) anti-roll bar rate at the wheels [N/m].
+tire_stiffness, tire_damping : tuple
+    Vertical tire stiffness [N/m] and damping [N*s/m].
+static_tire_deflection : tuple
+    [m].
+roll_centre_height : tuple
+    [m].
+anti_pitch : tuple
+    e_i f h / L per corner [-].
+camber_on : float
+    1.0 with camber gains, else 0.0 [-].
+camber_gain : tuple
+    [rad/m].
+roll_steer : tuple
+    [rad/rad].
+ackermann_fraction : float
+    [-].
+rolling_radius : float
+    R_e [m].
+wheel_spin_inertia : float
+    I_w [kg*m^2].
+friction_coefficient : float
+    The laws' own mu [-].
+lateral_relaxation_length, longitudinal_relaxation_length : tuple
+    sigma_y, sigma_x per corner [m].
+peak_slip_ratio, peak_tan_slip_angle : tuple
+    The slips of the laws' peak forces [-].
+low_speed_damping_speed : float
+    v_l [m/s].
+brake_regularization_speed : float
+    omega_b [rad/s].
+mirror_image : tuple
+    1.0 at the corners whose tire is the mirror image of its axle's law
+    (:func:`vehdyn.components.tire_setup.mirrored_wheel`), else 0.0 [-].
+road_friction : float
+    The road's friction relative to the laws' own, a constant ratio [-] (1.0 without).
+wheel_spin : bool
+    Always True (the shared tire step reads it).
+tire_lag : bool
+    The relaxation states.
+friction_scaled : bool
+    The road's friction applies.
+drag_factor : float
+    0.5 rho c_x A [kg/m].
+wind_side_force_factor : float
+    k_w [kg/m].
+centre_of_pressure : float
+    The crosswind's centre of pressure ahead of the sprung CG [m] (:mod:`~vehdyn.full_vehicle.aero`).
+front_lift_factor, rear_lift_factor : float
+    0.5 rho c_l A [kg/m]."""
 
 Evaluation = namedtuple("Evaluation", (
     "velocity_rate", "angular_acceleration", "cg_acceleration", "euler_rates", "position_rates",
     "wheel_acceleration", "unsprung_acceleration", "lateral_deflection_rate", "longitudinal_deflection_rate",
     "normal_load", "slip_angle", "slip_ratio", "longitudinal_force", "lateral_force", "suspension_travel",
     "camber", "steer", "horizontal_acceleration", "sprung_acceleration"))
-Evaluation.__doc__ = """Everything one evaluation yields: body rates (3-tuples; ``cg_acceleration`` the absolute
-acceleration of the sprung CG in body axes), Euler-angle and position rates, per-corner 4-tuples
-(wheel spin and unsprung accelerations, deflection rates, tire load, SAE slips and wheel-axis
-forces, travel, camber, steer), the horizontal acceleration of the total CG in the intermediate
-(yaw-only) axes (x, y; gravity excluded) and the vertical acceleration of the sprung CG (up)."""
+Evaluation.__doc__ = """Everything one evaluation yields.
+
+Parameters
+----------
+velocity_rate : tuple
+    (du, dv, dw) [m/s^2].
+angular_acceleration : tuple
+    (dp, dq, dr) [rad/s^2].
+cg_acceleration : tuple
+    The absolute acceleration of the sprung CG in body axes [m/s^2].
+euler_rates : tuple
+    (dphi, dtheta, dpsi) [rad/s].
+position_rates : tuple
+    (dX, dY, dZ) [m/s].
+wheel_acceleration, unsprung_acceleration : tuple
+    Per corner [rad/s^2], [m/s^2].
+lateral_deflection_rate, longitudinal_deflection_rate : tuple
+    Per corner [m/s].
+normal_load : tuple
+    Tire loads [N].
+slip_angle, slip_ratio : tuple
+    SAE slips acting in the laws [rad], [-].
+longitudinal_force, lateral_force : tuple
+    Wheel-axis tire forces (SAE) [N].
+suspension_travel : tuple
+    [m].
+camber, steer : tuple
+    [rad].
+horizontal_acceleration : tuple
+    The total CG's horizontal acceleration in the intermediate (yaw-only) axes, gravity excluded [m/s^2].
+sprung_acceleration : float or ndarray
+    The sprung CG's vertical acceleration (up) [m/s^2]."""
 
 
 DOMAIN_STATES = ("roll_angle", "pitch_angle")
@@ -163,13 +263,42 @@ class NUMPY(components_xp.NUMPY):
 
 
 def gather(values, index):
-    """``values[i]`` for each i of ``index``, or zeros (of values[0]'s shape) where i = -1."""
+    """The entries of a model's vector in the order of :data:`STATES`.
+
+    Parameters
+    ----------
+    values : ndarray
+        The model's vector [SI units].
+    index : sequence of int
+        Position of each entry in ``values``, -1 where the model lacks it.
+
+    Returns
+    -------
+    list
+        ``values[i]`` for each i, zeros (of values[0]'s shape) where i = -1.
+    """
     return [values[i] if i >= 0 else 0.0 * values[0] for i in index]
 
 
 def ground_point(R, k, s, c):
-    """Earth (X, Y) of corner ``c``'s contact point (body point (x_c, y_c, h_s)) and its earth
-    velocity (V_X, V_Y); ``R`` the body-to-earth rotation, ``s`` the states (order of :data:`STATES`)."""
+    """Earth position and velocity of corner ``c``'s contact point (body point (x_c, y_c, h_s)).
+
+    Parameters
+    ----------
+    R : sequence
+        The body-to-earth rotation [-].
+    k : Constants
+        The model's constants (:class:`vehdyn.full_vehicle.assembly.Constants`).
+    s : sequence
+        The states in the order of :data:`STATES`.
+    c : int
+        The corner.
+
+    Returns
+    -------
+    tuple
+        (X [m], Y [m], V_X [m/s], V_Y [m/s]).
+    """
     xc, yc, zc = k.corner_x[c], k.corner_y[c], k.contact_z
     X = s[9] + R[0][0] * xc + R[0][1] * yc + R[0][2] * zc
     Y = s[10] + R[1][0] * xc + R[1][1] * yc + R[1][2] * zc
@@ -331,7 +460,20 @@ def evaluate(xp, laws, k, s, i, friction):
 
 
 def derivatives(s, e):
-    """d/dt of every entry of :data:`STATES` (a tuple) from an :class:`Evaluation` (``s`` the states)."""
+    """d/dt of every entry of :data:`STATES` from an :class:`Evaluation`.
+
+    Parameters
+    ----------
+    s : sequence
+        The states in the order of :data:`STATES`.
+    e : Evaluation
+        :func:`evaluate` at them.
+
+    Returns
+    -------
+    tuple
+        32 rates [SI units per second].
+    """
     return (e.velocity_rate + e.angular_acceleration + e.euler_rates + e.position_rates + e.wheel_acceleration
             + (s[20], s[21], s[22], s[23]) + e.unsprung_acceleration + e.lateral_deflection_rate
             + e.longitudinal_deflection_rate)
@@ -364,7 +506,22 @@ CORNER_OUTPUTS = (("normal_load", "N", "tire normal load (>= 0)"),
 
 
 def outputs(xp, s, e):
-    """The outputs in the order of :data:`OUTPUTS` then :data:`CORNER_OUTPUTS` (each over the corners)."""
+    """The outputs in the order of :data:`OUTPUTS` then :data:`CORNER_OUTPUTS` (each over the corners).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace (:mod:`vehdyn.components.xp`).
+    s : sequence
+        The states in the order of :data:`STATES`.
+    e : Evaluation
+        :func:`evaluate` at them.
+
+    Returns
+    -------
+    tuple
+        The outputs [SI units of :data:`OUTPUTS`].
+    """
     u, v = s[0], s[1]
     speed_squared = u * u + v * v
     ax, ay = e.horizontal_acceleration

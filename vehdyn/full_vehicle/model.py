@@ -125,7 +125,7 @@ def check_combined_slip(tire, load, name):
 
 
 class FullVehicle(Model):
-    """Full vehicle: 6-DOF sprung body, four corners with wheel hop and wheel spin, any tire law.
+    r"""Full vehicle: 6-DOF sprung body, four corners with wheel hop and wheel spin, any tire law.
 
     Parameters
     ----------
@@ -154,7 +154,8 @@ class FullVehicle(Model):
         :class:`~vehdyn.handling.SingleTrack` (:mod:`vehdyn.components.tire_forces`). Default: the
         law as it is.
     longitudinal_relaxation_length : float or (float, float), optional
-        As :class:`~vehdyn.handling.SingleTrack` (default from the Magic Formula, else the lateral).
+        sigma_x [m] of the front and rear tires, as :class:`~vehdyn.handling.SingleTrack` (default
+        from the Magic Formula, else the lateral).
     low_speed_damping_speed, brake_regularization_speed : float
         v_l [m/s] and omega_b [rad/s] as in :class:`~vehdyn.handling.SingleTrack` (2 m/s, 1 rad/s).
     gravity : float
@@ -192,6 +193,29 @@ class FullVehicle(Model):
     :meth:`compiled_rhs`), two orders of magnitude faster than the numpy rhs under ``solve_ivp``
     (``benchmarks/bench_full_vehicle.py``); the first call compiles it (about a minute, then cached
     on disk).
+
+    The sprung body's Newton-Euler equations in body axes with the wheels' x-y inertia projected
+    (:mod:`~vehdyn.full_vehicle.body`), each corner's wheel hop, spin and tire relaxation
+    (:mod:`~vehdyn.full_vehicle.corner`, :mod:`vehdyn.components`):
+
+    .. math::
+
+        m_s (\dot V + \omega \times V) &= \sum_i F_i + F_{aero} + m_s g,\qquad
+        J \dot\omega + \omega \times J \omega = \sum_i r_i \times F_i + M_{aero}\\
+        m_{u,i} \ddot z_{u,i} &= F_{z,i} - F_{susp,i} - m_{u,i} g,\qquad
+        F_{z,i} = \max(F_{s,i} + k_t (z_r - z_{u,i}) + c_t (\dot z_r - \dot z_{u,i}), 0)\\
+        I_w \dot\omega_i &= T_{drive,i} - T_{brake,i}\,\mathrm{sat}(\omega_i / \omega_b) - R_e F_{x,i} + M_{y,i},
+        \qquad \dot\rho_{y,i} = V_{sy,i} - |V_{x,i}| \rho_{y,i} / \sigma_y
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, sec. 2.2
+       (the tire forces in the road plane), 4.3.2 (similarity), 7.2 and 8.7 (relaxation, low-speed damping).
+    .. [2] L. D. Landau, E. M. Lifshitz, *Mechanics*, 3rd ed., 1976, sec. 36 (Euler's equations).
+    .. [3] T. R. Kane, D. A. Levinson, *Dynamics: Theory and Applications*, McGraw-Hill, 1985, ch. 6.
+    .. [4] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 5 and 6 (ride, roll
+       centres, anti-pitch geometry).
+    .. [5] W. F. Milliken, D. L. Milliken, *Race Car Vehicle Dynamics*, SAE, 1995, ch. 17-18.
     """
 
     #: Where the equations hold: the body's force projections are those of small roll and pitch angles
@@ -318,7 +342,13 @@ class FullVehicle(Model):
         self.sprung_inertia = tensor.matrix
 
     def constants(self) -> assembly.Constants:
-        """The :class:`~vehdyn.full_vehicle.assembly.Constants` the equations read (floats and tuples)."""
+        """The numbers the equations read.
+
+        Returns
+        -------
+        Constants
+            :class:`~vehdyn.full_vehicle.assembly.Constants` (floats and tuples).
+        """
         from vehdyn.components.aero import wind_side_force_factor
         from vehdyn.full_vehicle.body import added_mass_projection
 
@@ -547,6 +577,11 @@ class FullVehicle(Model):
 
         Evaluated by the model's equations at its rest state (which they hold in equilibrium:
         :meth:`rhs` is zero there).
+
+        Returns
+        -------
+        dict
+            ``{"normal_load_front_left": ..., ...}`` [N].
         """
         x0, u0 = self.state_vector(), self.input_vector()
         y = self.output(0.0, x0, u0)
@@ -571,7 +606,7 @@ class FullVehicle(Model):
             heights, slips and deflections steady, the velocities decreasing in proportion, the
             torques split by the vehicle's ``driveline`` fractions (brake torques when braking).
         tol : float
-            Largest derivative allowed, relative to g for accelerations and to the speed for
+            Largest derivative allowed [-], relative to g for accelerations and to the speed for
             velocities (every derivative except of x, y and yaw angle).
         guess : (x, u), optional
             A nearby operating point to start from (continuation towards the limit), instead of the
@@ -597,11 +632,18 @@ class FullVehicle(Model):
 
     @staticmethod
     def wheel_lift(result) -> dict[str, list[tuple[float, float]]]:
-        """The intervals [s] during which each wheel carried no load in a simulation ``result``.
+        """The intervals during which each wheel carried no load in a simulation ``result``.
 
-        Returns ``{"front_left": [(t_start, t_end), ...], ...}`` from the ``normal_load_*`` outputs
-        (a wheel is off the ground where its load is exactly 0, the model's lift-off); empty lists
-        for wheels that never lifted.
+        Parameters
+        ----------
+        result : SimulationResult
+            A run of this model (its ``normal_load_*`` outputs; a wheel is off the ground where its
+            load is exactly 0, the model's lift-off).
+
+        Returns
+        -------
+        dict
+            ``{"front_left": [(t_start, t_end), ...], ...}`` [s]; empty lists for wheels that never lifted.
         """
         time = np.asarray(result.time)
         out = {}

@@ -89,7 +89,21 @@ __all__ = ["ArticulatedSingleTrack", "ArticulationEvent", "LOCKED_SLIDING_SPEED"
 
 
 class ArticulationEvent(NamedTuple):
-    """The first moment the articulation angle leaves its safe range in a simulation."""
+    """The first moment the articulation angle leaves its safe range in a simulation.
+
+    Parameters
+    ----------
+    kind : str
+        ``"jackknife"`` (the towing vehicle yaws faster than the trailer) or ``"trailer_swing"``.
+    time : float
+        [s].
+    articulation_angle : float
+        [rad] at that time.
+    yaw_rate : float
+        The towing vehicle's [rad/s].
+    trailer_yaw_rate : float
+        [rad/s].
+    """
 
     kind: str
     """``"jackknife"`` (the towing vehicle yaws faster than the trailer) or ``"trailer_swing"``"""
@@ -126,7 +140,7 @@ def _lock(forces, demand, limit, vx, vy):
 
 
 class ArticulatedSingleTrack(Model):
-    """Towing vehicle and trailer in the road plane, nonlinear tires (equations in the module docstring).
+    r"""Towing vehicle and trailer in the road plane, nonlinear tires (equations in the module docstring).
 
     Parameters
     ----------
@@ -167,6 +181,25 @@ class ArticulatedSingleTrack(Model):
         See :attr:`outputs`: accelerations, yaw rates, slips, axle forces and loads of both
         bodies, the hitch force (``hitch_longitudinal_force``, ``hitch_lateral_force``: of the
         trailer on the towing vehicle, towing vehicle's axes) and the positions.
+
+    Notes
+    -----
+    The two bodies coupled by the hitch force H (module docstring; SAE axes):
+
+    .. math::
+
+        m a_1 = F_1 + H,\qquad I \dot r = M_1 - h H_y,\qquad
+        m_t a_t = F_t - H,\qquad I_t \dot r_t = -e (H \cdot n) - f Y_t + M_{t,ext}
+
+    with each axle's forces from the shared tire step of :mod:`vehdyn.components` (two tires at
+    half the axle load, the single track's force mode and relaxation).
+
+    References
+    ----------
+    .. [1] J. R. Ellis, *Vehicle Dynamics*, Business Books, 1969, ch. 10.
+    .. [2] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, sec. 1.3.3.
+    .. [3] D. Karnopp, *Vehicle Dynamics, Stability, and Control*, 2nd ed., CRC Press, 2013, ch. 9.
+    .. [4] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 1.4 (a locked tire).
     """
 
     def __init__(self, vehicle: Vehicle, trailer: Trailer, front_tire=None, rear_tire=None, trailer_tire=None, *,
@@ -415,7 +448,20 @@ class ArticulatedSingleTrack(Model):
 
     # ------------------------------------------------------------------ operating points and analysis
     def straight_running(self, speed: float, **states) -> np.ndarray:
-        """State vector of straight running at ``speed`` [m/s], trailer in line, tires relaxed."""
+        """State vector of straight running at ``speed``, trailer in line, tires relaxed.
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed [m/s].
+        **states
+            Other states by name [their units].
+
+        Returns
+        -------
+        ndarray
+            The state vector [SI units].
+        """
         return self.state_vector({"longitudinal_velocity": speed, **states})
 
     def lateral_yaw(self, speed: float, *, crosswind: bool = False):
@@ -426,6 +472,17 @@ class ArticulatedSingleTrack(Model):
         ``wind_velocity_lateral`` with ``crosswind=True``), the first fifteen outputs (those of
         :class:`~vehdyn.handling.LinearCarTrailer`, in its order). With linear tires and no tire
         lag its matrices are those of LinearCarTrailer (with the same ``crosswind``).
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed [m/s].
+        crosswind : bool
+            Keep the input ``wind_velocity_lateral``.
+
+        Returns
+        -------
+        LinearModel
         """
         from vehdyn.model import LinearModel
 
@@ -451,7 +508,19 @@ class ArticulatedSingleTrack(Model):
         Classified by which body turns faster at that moment: ``"jackknife"`` when the towing
         vehicle's yaw rate is the larger (it swings round towards the trailer, as after a locked
         drive axle), ``"trailer_swing"`` when the trailer's is (it swings out, as after a locked
-        trailer axle). None if the threshold is never reached.
+        trailer axle).
+
+        Parameters
+        ----------
+        result : SimulationResult
+            A run of this model.
+        threshold : float
+            |articulation angle| [rad].
+
+        Returns
+        -------
+        ArticulationEvent or None
+            None if the threshold is never reached.
         """
         theta = np.asarray(result["articulation_angle"])
         beyond = np.flatnonzero(np.abs(theta) > threshold)

@@ -135,8 +135,16 @@ Longitudinal input, two modes:
   sec. 4.3.5; Wong 2008, sec. 2.7 for a towed wheel on soil). The brake torque opposes the spin; sat(z) = z / sqrt(1 + z^2) regularizes its sign
   within ``brake_regularization_speed`` omega_b so that a locked wheel stops without chatter.
 
+Road friction (``friction``, a constant ratio or a callable of the earth position under each
+axle's centre): every tire's law on the road is the similar one, F(kappa, tan alpha) ->
+mu F(kappa / mu, tan(alpha) / mu) (Pacejka 2012, sec. 4.3.2), so the peak forces and the slips at
+which they occur scale by mu and the slip stiffnesses stay; the deflections' limits (the peak
+slips) and the force mode's friction ellipse scale with it. The same step as the full vehicle's
+(:mod:`vehdyn.components.tire_forces`).
+
 The equations are written once, as pure functions over an ``xp`` namespace, in
-:mod:`~vehdyn.handling.single_track_equations`: :meth:`SingleTrack.rhs` and ``output`` run them on
+:mod:`~vehdyn.handling.single_track_equations` (with the components the full vehicle shares,
+:mod:`vehdyn.components`): :meth:`SingleTrack.rhs` and ``output`` run them on
 numpy arrays (with a batch axis), and :meth:`SingleTrack.compiled_rhs` compiles them with numba
 (optional: ``pip install vehdyn[fast]``) for ``simulate(model, t, inputs, method="RK45",
 "DOP853" or "BDF")``, which uses the compiled backend by default (``backend="auto"``) for one vehicle
@@ -227,7 +235,13 @@ class SingleTrackParameters:
         return self.a + self.b
 
     def static_axle_loads(self):
-        """(front, rear) static axle loads [N]."""
+        """The static axle loads.
+
+        Returns
+        -------
+        tuple
+            (front, rear) [N].
+        """
         w = self.mass * self.gravity
         return w * self.b / self.wheelbase, w * self.a / self.wheelbase
 
@@ -274,8 +288,28 @@ def lateral_load_transfer_coefficients(vehicle, *, mass=None, cg_height=None, a=
     F_y,f + F_y,r = m a_y and F_y,i = m a_y l_j / L, which gives the textbook
     dF_z,i = m a_y / t_i (h_1 K_i / (K_f + K_r - m g h_1) + z_i l_j / L).
 
-    ``mass``, ``cg_height``, ``a``, ``b`` default to the vehicle's (floats or arrays across
-    variants). Raises ParameterError when K_f + K_r <= m g h_1 (the body would roll over).
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Tracks, roll centres and roll stiffnesses.
+    mass : float or ndarray, optional
+        m [kg] (default the vehicle's; arrays across variants).
+    cg_height : float or ndarray, optional
+        h [m].
+    a, b : float or ndarray, optional
+        CG to the front and rear axle [m].
+    gravity : float
+        [m/s^2].
+
+    Returns
+    -------
+    tuple
+        ((front geometric, front elastic), (rear geometric, rear elastic)) [-].
+
+    Raises
+    ------
+    ParameterError
+        When K_f + K_r <= m g h_1 (the body would roll over).
     """
     m, g = vehicle.mass, vehicle.geometry
     mass = m.mass if mass is None else mass
@@ -304,8 +338,23 @@ def roll_parameters(vehicle, *, mass=None, cg_height=None, a=None, b=None) -> di
     less (m_s h_s)^2 / m, eliminating dv/dt from Segel's lateral and roll equations (positive, as
     m_s < m); ``{axle}_roll_transfer_stiffness`` K_i / t_i [N/rad] with K_i the suspension roll
     stiffness (springs and anti-roll bar, tires excluded), and ``{axle}_roll_transfer_damping``
-    C_i / t_i [N*s/rad] with C_i = c_i t_i^2 / 2 from the corner dampers. ``mass``, ``cg_height``, ``a``,
-    ``b`` default to the vehicle's.
+    C_i / t_i [N*s/rad] with C_i = c_i t_i^2 / 2 from the corner dampers.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle.
+    mass : float, optional
+        m [kg] (default the vehicle's).
+    cg_height : float, optional
+        h [m].
+    a, b : float, optional
+        CG to the front and rear axle [m].
+
+    Returns
+    -------
+    dict
+        The numbers above [their units].
     """
     from vehdyn.handling.lateral_yaw_roll import lateral_yaw_roll_parameters
 
@@ -325,7 +374,7 @@ def roll_parameters(vehicle, *, mass=None, cg_height=None, a=None, b=None) -> di
 
 
 class SingleTrack(Model):
-    """Nonlinear planar single-track model with any tire law (equations in the module docstring).
+    r"""Nonlinear planar single-track model with any tire law (equations in the module docstring).
 
     Parameters
     ----------
@@ -359,6 +408,15 @@ class SingleTrack(Model):
         The roll degree of freedom (module docstring; needs ``lateral_load_transfer=True``): the
         roll angle and rate of the body set the elastic part of the lateral load transfer. Adds the
         states and outputs ``roll_angle`` [rad] and ``roll_rate`` [rad/s] (default False).
+    friction : float or callable, optional
+        The road's friction relative to the tire laws' own [-]: a constant ratio (e.g. 0.5; it
+        compiles), or a callable ``friction(X, Y) -> ratio`` of earth positions [m] (arrays),
+        evaluated under each axle's centre (numpy backend only; the single track lumps an axle's
+        wheels on the centre line, so a split-mu road needs :class:`~vehdyn.full_vehicle.FullVehicle`).
+        Applied to every tire by similarity (Pacejka 2012, sec. 4.3.2): the peak forces and their
+        slips scale by the ratio, the slip stiffnesses stay (:mod:`vehdyn.components.tire_forces`);
+        the force mode's friction ellipse takes the same ratio. Default: the laws as they are.
+        :func:`vehdyn.components.tire_setup.friction_ratio` gives the ratio of a road of known peak mu.
 
     Signals
     -------
@@ -378,9 +436,41 @@ class SingleTrack(Model):
 
     Notes
     -----
+    The planar equations (module docstring; SAE axes, axle forces resolved through the steer
+    angles):
+
+    .. math::
+
+        m (\dot u - v r) &= F_{xf} \cos\delta_f - F_{yf} \sin\delta_f + F_{xr} \cos\delta_r
+        - F_{yr} \sin\delta_r - F_{drag}\\
+        m (\dot v + u r) &= F_{xf} \sin\delta_f + F_{yf} \cos\delta_f + F_{xr} \sin\delta_r
+        + F_{yr} \cos\delta_r + F_{ext}\\
+        I_z \dot r &= a (F_{xf} \sin\delta_f + F_{yf} \cos\delta_f) - b (F_{xr} \sin\delta_r
+        + F_{yr} \cos\delta_r) + M_{ext}\\
+        \dot\rho_y &= V_{sy} - |V_x| \rho_y / \sigma_y,\qquad \tan\alpha' = \rho_y / \sigma_y\\
+        2 I_w \dot\omega &= T_{drive} - T_{brake}\,\mathrm{sat}(\omega / \omega_b) - R_e F_x + M_y
+
+    with the axle loads F_zf = m g b / L - h X / L - L_f (quasi-static longitudinal transfer) and
+    each axle's forces from its tire law at the transient slips (two tires at half the axle load, or
+    each wheel at its own load under the lateral load transfer).
+
     Parameters may vary across a batch: :meth:`variants` returns a model whose mass, inertia,
     axle positions, CG height or relaxation lengths are arrays, and one ``simulate`` call with
     ``x0`` of shape (n_states, n_variants) runs them all.
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, sec. 1.3
+       (eq. 1.43, the single-track equations), 4.3.2 (similarity), 7.2.1 (eq. 7.9-7.12, the tire
+       deflections), 8.7 (eq. 8.125-8.126, the low-speed damping).
+    .. [2] R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., Springer, 2012, sec. 2.3, 2.5 and
+       13.7 (the friction ellipse).
+    .. [3] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, eq. 2-18 and ch. 6.
+    .. [4] W. F. Milliken, D. L. Milliken, *Race Car Vehicle Dynamics*, SAE, 1995, ch. 18 (lateral
+       load transfer).
+    .. [5] L. Segel, "Theoretical prediction and experimental substantiation of the response of the
+       automobile to steering control", *Proc. IMechE Automobile Division*, 1956 (the roll degree
+       of freedom).
     """
 
     def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, wheel_spin: bool = False,
@@ -543,6 +633,16 @@ class SingleTrack(Model):
 
         Arrays (1-D, one entry per variant) make a batch model: simulate it with ``x0`` of shape
         (n_states, n_variants). Example: ``model.variants(mass=np.linspace(1000, 1600, 1000))``.
+
+        Parameters
+        ----------
+        **arrays
+            Fields of :class:`SingleTrackParameters` and their values [the fields' units].
+
+        Returns
+        -------
+        SingleTrack
+            The copy.
 
         Raises
         ------
@@ -734,7 +834,17 @@ class SingleTrack(Model):
         variants (array parameters, :meth:`variants`), or ``n_variants`` copies of a model with
         scalar parameters (a batch of initial states or inputs). ``simulate`` runs it on the compiled
         backend, each variant with its own step-size control: every variant's states are bitwise
-        those of its own compiled run. Raises ParameterError as :meth:`compiled_rhs` does."""
+        those of its own compiled run. Raises ParameterError as :meth:`compiled_rhs` does.
+
+        Parameters
+        ----------
+        n_variants : int, optional
+            The number of copies of a model with scalar parameters (default: the variants).
+
+        Returns
+        -------
+        CompiledBatch
+        """
         from vehdyn.handling import _single_track_numba
 
         return _single_track_numba.compiled_batch(self, n_variants)
@@ -742,13 +852,29 @@ class SingleTrack(Model):
     @staticmethod
     def compiled_batch_of(models):
         """The compiled batch of many models with scalar parameters and one :meth:`batch_structure`
-        (their parameters and tires may differ): what :func:`vehdyn.simulate.simulate_many` runs."""
+        (their parameters and tires may differ): what :func:`vehdyn.simulate.simulate_many` runs.
+
+        Parameters
+        ----------
+        models : sequence of SingleTrack
+            The models.
+
+        Returns
+        -------
+        CompiledBatch
+        """
         from vehdyn.handling import _single_track_numba
 
         return _single_track_numba.compiled_batch(list(models))
 
     def batch_structure(self) -> tuple:
-        """What models must share to run in one compiled batch (modes, tire laws, signals): a hashable key."""
+        """What models must share to run in one compiled batch (modes, tire laws, friction mode, signals).
+
+        Returns
+        -------
+        tuple
+            A hashable key.
+        """
         from vehdyn.handling import _single_track_numba
 
         return _single_track_numba.batch_structure(self)
@@ -771,9 +897,19 @@ class SingleTrack(Model):
 
     # ------------------------------------------------------------------ operating points
     def straight_running(self, speed: float, **states) -> np.ndarray:
-        """State vector of straight running at ``speed`` [m/s] (wheels rolling freely, tires relaxed).
+        """State vector of straight running at ``speed`` (wheels rolling freely, tires relaxed).
 
-        Keyword arguments set other states by name (``x=..., yaw_angle=...``).
+        Parameters
+        ----------
+        speed : float
+            Forward speed [m/s].
+        **states
+            Other states by name (``x=..., yaw_angle=...``) [their units].
+
+        Returns
+        -------
+        ndarray
+            The state vector [SI units].
         """
         values = {"longitudinal_velocity": speed}
         if self.wheel_spin:
@@ -812,6 +948,17 @@ class SingleTrack(Model):
         the bicycle model's (evaluated at zero longitudinal force, the constant-speed assumption of
         the bicycle model). In straight running these states decouple from the others exactly
         (every coupling term is proportional to v, r or the steer angle), so the block is exact.
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed [m/s].
+        crosswind : bool
+            Keep the input ``wind_velocity_lateral``.
+
+        Returns
+        -------
+        LinearModel
         """
         from vehdyn.model import LinearModel
 
@@ -832,6 +979,18 @@ class SingleTrack(Model):
 
         -dF_y/d(alpha) at zero slip of two tires, each at half the axle load, by a central
         difference of the tire law (SAE sign: positive).
+
+        Parameters
+        ----------
+        fz : (float, float), optional
+            Axle loads [N] (default: static).
+        eps : float
+            Slip-angle step of the difference [rad].
+
+        Returns
+        -------
+        tuple
+            (front, rear) [N/rad].
         """
         loads = self.parameters.static_axle_loads() if fz is None else fz
         out = []

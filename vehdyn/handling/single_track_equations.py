@@ -259,8 +259,30 @@ def axle_loads(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection, 
 
 
 def normal_loads(xp, k, x_force, front_lift, rear_lift):
-    """Axle loads (front, rear) [N] with quasi-static load transfer by the body-x tire force
-    ``x_force`` [N]; an axle that would lift off carries 0 and the other the whole weight."""
+    r"""Axle loads with quasi-static longitudinal load transfer (Gillespie 1992, eq. 2-18) and lift.
+
+    .. math::
+
+        F_{zf} = m g b / L - h X / L - L_f,\qquad F_{zr} = m g - L_f - L_r - F_{zf}
+
+    An axle that would lift off carries 0 and the other the whole weight.
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    k : Constants
+        The model's constants.
+    x_force : float or ndarray
+        The body-x tire force X [N].
+    front_lift, rear_lift : float or ndarray
+        Aerodynamic lift at the axles [N].
+
+    Returns
+    -------
+    tuple
+        (front, rear) [N].
+    """
     wheelbase = k.a + k.b
     weight = k.mass * k.gravity
     front = weight * k.b / wheelbase - k.cg_height * x_force / wheelbase - front_lift
@@ -270,19 +292,39 @@ def normal_loads(xp, k, x_force, front_lift, rear_lift):
 
 
 def lateral_load_transfer(xp, k, front_lateral, rear_lateral, front_load, rear_load, roll_angle, roll_rate):
-    """Lateral load transfer (front, rear) [N]: the load moved onto each axle's left wheel.
+    r"""Lateral load transfer (front, rear) [N]: the load moved onto each axle's left wheel.
 
-    ``front_lateral``, ``rear_lateral`` are the axles' lateral forces in body axes [N] (SAE y,
-    positive turning right, so the load moves onto the left, outer wheels); ``roll_angle`` phi
-    [rad] and ``roll_rate`` p [rad/s] the body's roll (SAE: positive right side down)::
+    .. math::
 
-        dF_z,i = (z_i / t_i) F_y,i + h_1 K_i / ((K_f + K_r - m g h_1) t_i) (F_y,f + F_y,r)
-                 - (K_i phi + C_i p) / t_i
+        \Delta F_{z,i} = \frac{z_i}{t_i} F_{y,i} + \frac{h_1 K_i}{(K_f + K_r - m g h_1) t_i}
+        (F_{y,f} + F_{y,r}) - \frac{K_i \phi + C_i p}{t_i}
 
-    (the ``*_geometric_transfer``, ``*_elastic_transfer``, ``*_roll_transfer_stiffness`` and
-    ``*_roll_transfer_damping`` coefficients of :class:`Constants`): without the roll degree of
-    freedom the last term is absent (the quasi-static elastic part), with it the elastic part is
-    the suspension's roll moment; held within +-F_z,i / 2 (an inner wheel that would lift carries 0).
+    (Milliken & Milliken 1995, ch. 18; the ``*_geometric_transfer``, ``*_elastic_transfer``,
+    ``*_roll_transfer_stiffness`` and ``*_roll_transfer_damping`` coefficients of
+    :class:`Constants`): without the roll degree of freedom the last term is absent (the
+    quasi-static elastic part), with it the elastic part is the suspension's roll moment; held
+    within +-F_z,i / 2 (an inner wheel that would lift carries 0).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    k : Constants
+        The model's constants.
+    front_lateral, rear_lateral : float or ndarray
+        The axles' lateral forces in body axes [N] (SAE y, positive turning right, so the load
+        moves onto the left, outer wheels).
+    front_load, rear_load : float or ndarray
+        Axle loads [N].
+    roll_angle : float or ndarray
+        phi [rad] (SAE: positive right side down).
+    roll_rate : float or ndarray
+        p [rad/s].
+
+    Returns
+    -------
+    tuple
+        (front, rear) [N].
     """
     total = front_lateral + rear_lateral
     front = k.front_geometric_transfer * front_lateral + k.front_elastic_transfer * total \
@@ -295,13 +337,33 @@ def lateral_load_transfer(xp, k, front_lateral, rear_lateral, front_load, rear_l
 
 
 def roll_acceleration(xp, k, lateral_acceleration, roll_angle, roll_rate):
-    """Roll acceleration of the body [rad/s^2] (SAE: positive right side down)::
+    r"""Roll acceleration of the body (SAE: positive right side down; Segel 1956).
 
-        J dp/dt = -m h_1 a_y - (K_f + K_r - m g h_1) phi - (C_f + C_r) p
+    .. math::
 
-    with a_y the lateral acceleration of the CG [m/s^2] (all lateral forces over the mass), J the
-    effective roll inertia, h_1 the CG height above the roll axis; K_i = t_i (K_i / t_i) and
-    C_i = t_i (C_i / t_i) from :class:`Constants` (0 without roll: then h_1 = 0 and the result is 0).
+        J \dot p = -m h_1 a_y - (K_f + K_r - m g h_1) \phi - (C_f + C_r) p
+
+    with J the effective roll inertia, h_1 the CG height above the roll axis; K_i = t_i (K_i / t_i)
+    and C_i = t_i (C_i / t_i) from :class:`Constants` (0 without roll: then h_1 = 0 and the result
+    is 0).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    k : Constants
+        The model's constants.
+    lateral_acceleration : float or ndarray
+        a_y of the CG [m/s^2] (all lateral forces over the mass).
+    roll_angle : float or ndarray
+        phi [rad].
+    roll_rate : float or ndarray
+        p [rad/s].
+
+    Returns
+    -------
+    float or ndarray
+        dp/dt [rad/s^2].
     """
     stiffness = k.front_track * k.front_roll_transfer_stiffness + k.rear_track * k.rear_roll_transfer_stiffness
     damping = k.front_track * k.front_roll_transfer_damping + k.rear_track * k.rear_roll_transfer_damping

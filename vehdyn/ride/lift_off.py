@@ -227,7 +227,7 @@ def _degressive(static_load, stiffness, sensitivity):
 
 
 class LiftOff(Model):
-    """A linear ride model with unilateral tire contact (the wheels lift off and land again).
+    r"""A linear ride model with unilateral tire contact (the wheels lift off and land again).
 
     Parameters
     ----------
@@ -265,7 +265,27 @@ class LiftOff(Model):
     ``wheel_lift`` (and ``lateral``, ``yaw``; ``longitudinal``, ``wheel_spin``). On a road that
     never unloads a wheel the result equals the
     linear model's. ``simulate(model, ..., method="RK45")`` runs a compiled right-hand side when
-    numba is installed (:meth:`compiled_rhs`), else the numpy one.
+    numba is installed (:meth:`compiled_rhs`), else the numpy one: both run the same per-corner
+    equations (the contact law, the tires' relaxation and the coupled body equations are written
+    once, over an ``xp`` namespace).
+
+    .. math::
+
+        \dot x = A x + B u + \sum_i e_i f_{c,i} / m_{u,i},\qquad
+        f_{c,i} = F_i - (F_{s,i} + k_t (z_r - z_u) + c_t (\dot z_r - \dot z_u)),\\
+        F_i = \max(F_{s,i} + \Delta F_{lin}, 0) \text{ where } \delta_i > 0,\ 0 \text{ elsewhere};\quad
+        \dot y_i = V_i - u\, y_i / \sigma_i,\quad F_{y,i} = -C_i(F_i)\, y_i / \sigma_i
+
+    References
+    ----------
+    .. [1] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 5 (ride; wheel hop and
+       the tire's vertical load).
+    .. [2] R. N. Jazar, *Vehicle Dynamics: Theory and Application*, Springer, 2008, ch. 14 and 15
+       (the full car, sec. 15.5).
+    .. [3] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 7.2 (tire lift-off on
+       rough roads).
+    .. [4] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 7.2 (relaxation) and eq.
+       4.E25 (the load dependence of the cornering stiffness).
 
     Examples
     --------
@@ -444,8 +464,20 @@ class LiftOff(Model):
                               u[self._road] - x[self._wheel], u[self._road_rate] - x[self._wheel_rate])
 
     def correction(self, x, u):
-        """f_c [N] per corner (rows; columns along any batch axis of ``x``, ``u``): the unilateral
-        contact force minus the linear tire's (0 while the tire is compressed and pushing)."""
+        """The unilateral contact force minus the linear tire's (0 while the tire is compressed and pushing).
+
+        Parameters
+        ----------
+        x : array_like
+            States [SI units] (optional batch axis).
+        u : array_like
+            Inputs [SI units].
+
+        Returns
+        -------
+        ndarray
+            f_c [N] per corner (rows; columns along any batch axis of ``x``, ``u``).
+        """
         force, linear = self._contact(np.asarray(x, dtype=float), np.asarray(u, dtype=float))
         return force - linear
 

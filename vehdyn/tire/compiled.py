@@ -48,7 +48,7 @@ Parameters
 kind : int
     :data:`MAGIC_FORMULA` or :data:`LINEAR`.
 records : ndarray
-    Magic Formula coefficient records (:func:`coefficient_records`; one record of zeros for another
+    Magic Formula coefficient records [the .tir units, SI] (:func:`coefficient_records`; one record of zeros for another
     law): an array, not a record, so that a batch can pick a variant's record inside compiled code.
 record : int
     Which of ``records`` is this law's.

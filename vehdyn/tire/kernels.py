@@ -35,7 +35,9 @@ from vehdyn.tire._mf_ops import NumpyOps, ScalarOps
 from vehdyn.tire.linear import linear_tire_law
 from vehdyn.tire.magic_formula import forces_kernel, lateral_force_kernel
 
-__all__ = ["NUMPY", "SCALAR", "compiled_xp", "forces_kernel", "lateral_force_kernel", "linear_tire_law"]
+# NUMPY and SCALAR are namespaces (numpy's and math's functions under the interface's names), public
+# here but not callables to document one by one: the interface is the list in the module docstring
+__all__ = ["compiled_xp", "forces_kernel", "lateral_force_kernel", "linear_tire_law"]
 
 NUMPY = NumpyOps
 """``xp`` of the kernels on numpy arrays (any shape; the arguments broadcast together)."""
