@@ -193,3 +193,17 @@ def test_tire_characteristics_are_remembered_per_law_and_load(monkeypatch):
     for _ in range(2):
         assert module.tire_characteristics(Unhashable(linear), 4000.0) == original(linear, 4000.0)
     assert calls == [4000.0, 4000.0]
+
+
+def test_the_full_vehicle_takes_the_same_friction_argument():
+    """A constant ratio and a callable that returns it: the same numbers (the callable evaluated under each contact
+    point); the similarity law makes the split-mu and uniform cases one mechanism with the single track's."""
+    from vehdyn.full_vehicle import FullVehicle
+
+    constant, varying = FullVehicle(SEDAN, friction=0.5), FullVehicle(SEDAN, friction=lambda X, Y: 0.5 + 0.0 * X)
+    x0, u0 = FullVehicle(SEDAN).trim(15.0, lateral_acceleration=2.0)
+    x = x0[:, None] * (1.0 + 0.02 * RNG.uniform(-1.0, 1.0, (x0.size, 5)))
+    u = np.repeat(u0[:, None], 5, axis=1)
+    assert np.array_equal(constant.rhs(0.0, x, u), varying.rhs(0.0, x, u))
+    assert np.array_equal(constant.output(0.0, x, u), varying.output(0.0, x, u))
+    assert not np.allclose(constant.rhs(0.0, x, u), FullVehicle(SEDAN).rhs(0.0, x, u))

@@ -75,7 +75,7 @@ under its drive torque and lands with slip; the full car alone rolls its wheels 
 option adds the body's fore-aft velocity change du (from the constant speed u), each wheel's spin
 change w_i (from its steady spin) and each tire's longitudinal deflection rho_i (from its steady
 value rho_0,i), with the same tire law as the full vehicle's relaxation
-(:func:`vehdyn.handling.single_track_equations.deflection_rate`, here about the steady state):
+(:func:`vehdyn.components.tire_slip.deflection_rate`, here about the steady state):
 
     V_i = du + h q - R_e w_i                        (contact point's slip velocity change)
     rho_i' = -V_i - u rho_i / sigma_i,   F_x,i = C_i(F_z,i) (rho_0,i + rho_i) / sigma_i + e_i F_z,i
