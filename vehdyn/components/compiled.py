@@ -26,9 +26,9 @@ from numba.extending import register_jitable
 from vehdyn import conventions
 from vehdyn.components import aero, planar, tire_forces, tire_slip, wheel
 from vehdyn.tire import compiled as tire_compiled
-from vehdyn.tire.compiled import tire_law_loads
+from vehdyn.tire.compiled import lateral_or_full_loads, tire_law_loads
 
-__all__ = ["XP", "namespace", "SOURCE_MODULES", "JIT_OPTIONS"]
+__all__ = ["XP", "FULL_FORCES", "namespace", "SOURCE_MODULES", "JIT_OPTIONS"]
 
 JIT_OPTIONS = {"error_model": "numpy"}
 """numba options of the equations: x/0 = inf and 0/0 = nan as numpy, no exceptions."""
@@ -65,6 +65,13 @@ def _atan2(y, x):
 
 
 def _tire_law_pair(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx):
+    """Two tires: two calls of :func:`~vehdyn.tire.compiled.lateral_or_full_loads` (a 6-tuple)."""
+    fx1, fy1, my1 = lateral_or_full_loads(law, fz_1, kappa, alpha_1, gamma_1, vx)
+    fx2, fy2, my2 = lateral_or_full_loads(law, fz_2, kappa, alpha_2, gamma_2, vx)
+    return fx1, fy1, my1, fx2, fy2, my2
+
+
+def _tire_law_pair_full(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx):
     """Two tires: two calls of :func:`~vehdyn.tire.compiled.tire_law_loads` (a 6-tuple)."""
     fx1, fy1, my1 = tire_law_loads(law, fz_1, kappa, alpha_1, gamma_1, vx)
     fx2, fy2, my2 = tire_law_loads(law, fz_2, kappa, alpha_2, gamma_2, vx)
@@ -102,8 +109,13 @@ for _function in (_cos, _sin, _tanh, _atan2):
     setattr(XP, _function.__name__[1:], register_jitable(**JIT_OPTIONS, forceinline=True)(_function))
 for _name in ("abs", "where", "minimum", "maximum"):
     setattr(XP, _name, getattr(tire_compiled.XP, _name))
-XP.tire_law = tire_law_loads
+XP.tire_law = lateral_or_full_loads
 XP.tire_law_pair = register_jitable(**JIT_OPTIONS)(_tire_law_pair)
+
+FULL_FORCES = {"tire_law": tire_law_loads, "tire_law_pair": register_jitable(**JIT_OPTIONS)(_tire_law_pair_full),
+               "cos": math.cos, "sin": math.sin, "tanh": math.tanh, "atan2": math.atan2}
+"""Hooks for :func:`namespace` of a model that always takes a law's full forces (no ``lateral_only``)
+and the library's math functions as they are (no short cuts: less code to compile)."""
 
 SOURCE_MODULES = (*tire_compiled.SOURCE_MODULES, conventions, tire_slip, tire_forces, wheel, planar, aero,
                   sys.modules[__name__])

@@ -32,7 +32,7 @@ import numpy as np
 from numba.extending import register_jitable
 
 from vehdyn.components.compiled import JIT_OPTIONS as _JIT
-from vehdyn.components.compiled import SOURCE_MODULES, namespace
+from vehdyn.components.compiled import FULL_FORCES, SOURCE_MODULES, namespace
 from vehdyn.errors import ParameterError
 from vehdyn.full_vehicle import aero, assembly, body, corner, driveline, steering
 from vehdyn.mechanics import equations_of_motion, kinematics
@@ -63,7 +63,7 @@ def _euler_angle_rates(roll, pitch, p, q, r):
     return kinematics.euler_rates(XP, roll, pitch, p, q, r)
 
 
-XP = namespace("vehdyn.full_vehicle._full_vehicle_numba.XP",
+XP = namespace("vehdyn.full_vehicle._full_vehicle_numba.XP", **FULL_FORCES,
                rotation_body_to_earth=register_jitable(**_JIT)(_rotation_body_to_earth),
                euler_angle_rates=register_jitable(**_JIT)(_euler_angle_rates))
 

@@ -27,7 +27,7 @@ from vehdyn.tire.linear import LinearTire, linear_tire_law
 from vehdyn.tire.magic_formula import MagicFormula, MFCoefficients, forces_kernel, lateral_force_kernel
 
 __all__ = ["XP", "MAGIC_FORMULA", "LINEAR", "TireLaw", "tire_law", "coefficient_records", "tire_law_loads",
-           "SOURCE_MODULES"]
+           "lateral_or_full_loads", "SOURCE_MODULES"]
 
 _JIT = {"error_model": "numpy"}
 
@@ -122,7 +122,7 @@ def tire_law_loads(law, fz, kappa, alpha, gamma, vx):
     alpha : float
         Slip angle [rad] (ISO-W).
     gamma : float
-        Inclination angle [rad] (ISO-W; 0 with ``law.lateral_only``).
+        Inclination angle [rad] (ISO-W).
     vx : float
         Forward speed of the wheel centre [m/s].
 
@@ -130,20 +130,51 @@ def tire_law_loads(law, fz, kappa, alpha, gamma, vx):
     -------
     tuple of float
         (F_x [N], F_y [N], M_y [N*m]): the Magic Formula's rolling-resistance moment, 0 for the
-        linear law (which has none) and with ``law.lateral_only``.
+        linear law (which has none). ``law.lateral_only`` is not read (see :func:`lateral_or_full_loads`).
     """
     if law.kind == MAGIC_FORMULA:
         c = law.records[law.record]
-        if law.lateral_only:
-            return 0.0, lateral_force_kernel(XP, c, fz, alpha, vx, c.INFLPRES), 0.0
         f = forces_kernel(XP, c, fz, kappa, alpha, gamma, vx, c.INFLPRES, True, False)
         return f[0], f[1], f[4]
     fx, fy, _ = linear_tire_law(XP, law.linear, fz, kappa, alpha, gamma, vx)
     return fx, fy, 0.0
 
 
+def lateral_or_full_loads(law, fz, kappa, alpha, gamma, vx):
+    """:func:`tire_law_loads`, or with ``law.lateral_only`` a Magic Formula's F_y alone (F_x = M_y = 0).
+
+    The tire hook of a model that can take F_y alone (the single track in force mode): a separate
+    function, so that a model that never does (the full vehicle) does not compile the lean kernel.
+
+    Parameters
+    ----------
+    law : TireLaw
+        The law.
+    fz : float
+        Normal load [N].
+    kappa : float
+        Slip ratio [-] (ISO-W; 0 with ``law.lateral_only``).
+    alpha : float
+        Slip angle [rad] (ISO-W).
+    gamma : float
+        Inclination angle [rad] (ISO-W; 0 with ``law.lateral_only``).
+    vx : float
+        Forward speed of the wheel centre [m/s].
+
+    Returns
+    -------
+    tuple of float
+        (F_x [N], F_y [N], M_y [N*m]).
+    """
+    if law.lateral_only and law.kind == MAGIC_FORMULA:
+        c = law.records[law.record]
+        return 0.0, lateral_force_kernel(XP, c, fz, alpha, vx, c.INFLPRES), 0.0
+    return tire_law_loads(law, fz, kappa, alpha, gamma, vx)
+
+
 register_jitable(**_JIT)(linear_tire_law)
 register_jitable(**_JIT)(tire_law_loads)
+register_jitable(**_JIT)(lateral_or_full_loads)
 
 SOURCE_MODULES = (*_mf_numba.SOURCE_MODULES, linear, sys.modules[__name__])
 """The modules whose source a compiled caller's disk cache is keyed on (editing one recompiles)."""
