@@ -9,7 +9,7 @@ rejected by the other, the trajectories part by the local error, which the ABS's
 switching amplifies). Cases:
 
 1. ABS panic stop of the sedan's wheel-spin single track from 100 km/h on mu 0.9, 0.5 and 0.2
-   (Magic Formula tires scaled with road_friction_tire; 1.2 g of brake-torque demand, 70/30),
+   (friction=mu / the tire's own peak, by similarity; 1.2 g of brake-torque demand, 70/30),
    for 0.8 v0 / (mu g): metric the distance travelled;
 2. ESC around the force-mode single track, FMVSS 126 sine with dwell at 6.5 A, 80 km/h: metric the
    yaw-rate ratio 1.00 s after completion of steer;
@@ -33,11 +33,11 @@ G = 9.80665
 
 
 def _road(car, mu):
-    from vehdyn.chassis import road_friction_tire
+    """The ``friction`` ratio of a road of peak friction ``mu`` (the front tire at its static load)."""
+    from vehdyn.components.tire_setup import friction_ratio
     from vehdyn.tire import tire_for_vehicle
 
-    loads = car.static_axle_loads()
-    return [road_friction_tire(tire_for_vehicle(car, a), mu, 0.5 * w) for a, w in zip(("front", "rear"), loads)]
+    return friction_ratio(tire_for_vehicle(car, "front"), mu, 0.5 * car.static_axle_loads()[0])
 
 
 def abs_case(car, mu, speed=100.0 / 3.6):
@@ -46,7 +46,7 @@ def abs_case(car, mu, speed=100.0 / 3.6):
     from vehdyn.interconnect import ClosedLoop
     from vehdyn.handling import SingleTrack
 
-    plant = SingleTrack(car, *_road(car, mu), wheel_spin=True)
+    plant = SingleTrack(car, wheel_spin=True, friction=_road(car, mu))
     loop = ClosedLoop(plant, ABS(car))
     torque = 1.2 * car.mass.mass * G * car.tires.rolling_radius
     x0 = loop.state_vector(dict(zip(plant.state_names, plant.straight_running(speed))))
@@ -100,7 +100,7 @@ def driver_case(car):
     from vehdyn.handling import SingleTrack
 
     mu, speed = 0.5, 80.0 / 3.6
-    plant = SingleTrack(car, *_road(car, mu), wheel_spin=True)
+    plant = SingleTrack(car, wheel_spin=True, friction=_road(car, mu))
     path_x = np.linspace(-10.0, 200.0, 421)
     length = speed**2 / (2 * mu * G)
     ramp = np.clip((path_x - 2.0) / length, 0.0, 1.0)

@@ -56,7 +56,7 @@ def function_counts(tire):
             return staticmethod(wrapper)
 
         ops = type("CountingOps", (ScalarOps,), {name: counted(name, getattr(ScalarOps, name)) for name in FUNCTIONS})
-        magic_formula._forces_kernel(ops, tire._c, fz, kappa, alpha, 0.0, vx, tire._c.NOMPRES, True, False)
+        magic_formula.forces_kernel(ops, tire._c, fz, kappa, alpha, 0.0, vx, tire._c.NOMPRES, True, False)
         return calls
 
     vxlow = tire._c.VXLOW

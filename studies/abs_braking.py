@@ -1,7 +1,8 @@
 """ABS braking: stopping distance and deceleration on three roads, and steering while braking.
 
-The sedan's wheel-spin single-track model (vehdyn.handling.SingleTrack with wheel_spin=True, Magic
-Formula tires scaled to the road's peak friction mu with vehdyn.chassis.road_friction_tire) brakes
+The sedan's wheel-spin single-track model (vehdyn.handling.SingleTrack with wheel_spin=True, on a
+road of peak friction mu: friction=mu / the Magic Formula's own peak longitudinal friction at the
+front tire's static load, applied to every tire by similarity) brakes
 in a panic stop -- a brake-torque demand of 1.2 g, 70/30 front/rear, more than any of the roads can
 take -- with the ABS of vehdyn.chassis (apply/hold/release pressure modulator with a hydraulic lag)
 and without it. Reported per road (mu 0.9, 0.5, 0.2): the stopping distance, the mean fully
@@ -24,7 +25,8 @@ import numpy as np
 
 import vehdyn
 from vehdyn.simulation.compiled import numba_available
-from vehdyn.chassis import ABS, road_friction_tire
+from vehdyn.chassis import ABS
+from vehdyn.components.tire_setup import friction_ratio
 from vehdyn.interconnect import ClosedLoop
 from vehdyn.driver import DriverInTheLoop, PreviewDriver
 from vehdyn.handling import SingleTrack
@@ -37,9 +39,8 @@ OFFSET = 1.5  # [m] lateral offset of the swerve while braking
 
 
 def plant_on(car, mu):
-    loads = car.static_axle_loads()
-    tires = [road_friction_tire(tire_for_vehicle(car, a), mu, 0.5 * w) for a, w in zip(("front", "rear"), loads)]
-    return SingleTrack(car, *tires, wheel_spin=True)
+    ratio = friction_ratio(tire_for_vehicle(car, "front"), mu, 0.5 * car.static_axle_loads()[0])
+    return SingleTrack(car, wheel_spin=True, friction=ratio)
 
 
 def panic_demand(car):

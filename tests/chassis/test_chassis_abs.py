@@ -1,12 +1,13 @@
 """ABS and traction control on the wheel-spin single track: slip held near target on every road, friction-limited
-deceleration; locked wheels without ABS; road friction scaling; gain errors."""
+deceleration; locked wheels without ABS; gain errors (the road's friction: tests/components)."""
 
 import numpy as np
 import pytest
 
 import vehdyn
 from vehdyn import ParameterError
-from vehdyn.chassis import ABS, TractionControl, road_friction_tire
+from vehdyn.chassis import ABS, TractionControl
+from vehdyn.components.tire_setup import friction_ratio
 from vehdyn.interconnect import ClosedLoop
 from vehdyn.handling import SingleTrack
 from vehdyn.tire import tire_for_vehicle
@@ -16,9 +17,8 @@ G = vehdyn.units.GRAVITY
 
 
 def _plant(mu):
-    loads = CAR.static_axle_loads()
-    tires = [road_friction_tire(tire_for_vehicle(CAR, a), mu, 0.5 * w) for a, w in zip(("front", "rear"), loads)]
-    return SingleTrack(CAR, *tires, wheel_spin=True)
+    ratio = friction_ratio(tire_for_vehicle(CAR, "front"), mu, 0.5 * CAR.static_axle_loads()[0])
+    return SingleTrack(CAR, wheel_spin=True, friction=ratio)
 
 
 def _brake(model, plant, speed, duration):
@@ -67,23 +67,6 @@ def test_traction_control_limits_spin_on_low_friction():
     assert spin["open"] > 1.0 and 0.0 < spin["tc"] < tc.brake_slip + 0.05
     # more acceleration with the slip held near the peak than with the wheel spinning
     assert runs["tc"]["longitudinal_velocity"][-1] > runs["open"]["longitudinal_velocity"][-1]
-
-
-def test_road_friction_tire_scales_peak_not_stiffness():
-    tire = tire_for_vehicle(CAR, "front")
-    load = 3500.0
-    low = road_friction_tire(tire, 0.3, load)
-    kappa = np.linspace(-1, 1, 2001)
-    peak = np.max(np.abs(low.forces(np.full(kappa.size, load), kappa, 0.0 * kappa, 0.0, 20.0).fx)) / load
-    assert peak == pytest.approx(0.3, rel=2e-3)
-    h = 1e-5
-    stiff = [(t.forces(load, h, 0.0, 0.0, 20.0).fx - t.forces(load, -h, 0.0, 0.0, 20.0).fx) / (2 * h)
-             for t in (tire, low)]
-    # Pacejka 2012 eq. 4.E17-4.E22: K_xkappa has no lambda_mu; only the small vertical shift S_Vx (which scales
-    # with LMUX') changes the slope at zero slip: within 2 %
-    assert stiff[1] == pytest.approx(stiff[0], rel=0.02)
-    with pytest.raises(ParameterError, match="friction"):
-        road_friction_tire(tire, -0.2, load)
 
 
 @pytest.mark.parametrize("kwargs, key", [

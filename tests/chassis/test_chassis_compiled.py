@@ -6,7 +6,8 @@ import pytest
 
 import vehdyn
 from vehdyn import LinearModel, ParameterError
-from vehdyn.chassis import ABS, ESC, TractionControl, road_friction_tire
+from vehdyn.chassis import ABS, ESC, TractionControl
+from vehdyn.components.tire_setup import friction_ratio
 from vehdyn.interconnect import ClosedLoop
 from vehdyn.full_vehicle import FullVehicle
 from vehdyn.driver import DriverInTheLoop, PreviewDriver
@@ -21,9 +22,9 @@ G = vehdyn.units.GRAVITY
 WHEELS = ("front_left", "front_right", "rear_left", "rear_right")
 
 
-def _tires(mu):
-    loads = CAR.static_axle_loads()
-    return [road_friction_tire(tire_for_vehicle(CAR, a), mu, 0.5 * w) for a, w in zip(("front", "rear"), loads)]
+def _friction(mu):
+    """The road friction ratio of a road of peak friction ``mu`` (the front tire at its static load)."""
+    return friction_ratio(tire_for_vehicle(CAR, "front"), mu, 0.5 * CAR.static_axle_loads()[0])
 
 
 def _loops():
@@ -76,7 +77,7 @@ def test_compiled_rhs_and_outputs_equal_the_numpy_ones(name):
 
 
 def _panic(speed, mu, backend, rtol, duration=1.0):
-    plant = SingleTrack(CAR, *_tires(mu), wheel_spin=True)
+    plant = SingleTrack(CAR, wheel_spin=True, friction=_friction(mu))
     loop = ClosedLoop(plant, ABS(CAR))
     torque = 1.2 * CAR.mass.mass * G * CAR.tires.rolling_radius
     x0 = loop.state_vector(dict(zip(plant.state_names, plant.straight_running(speed))))
@@ -113,7 +114,7 @@ def test_compiled_abs_stopping_distance_equals_numpy():
 
 
 def test_compiled_driver_around_abs_equals_numpy():
-    plant = SingleTrack(CAR, *_tires(0.5), wheel_spin=True)
+    plant = SingleTrack(CAR, wheel_spin=True, friction=_friction(0.5))
     path_x = np.linspace(-10.0, 100.0, 221)
     path_y = -1.5 * np.clip(path_x / 40.0, 0.0, 1.0) ** 2
     loop = DriverInTheLoop(ClosedLoop(plant, ABS(CAR)), PreviewDriver(path_x, path_y, preview_time=0.6, lag=0.1),
@@ -200,7 +201,7 @@ def test_esc_on_the_full_vehicle_brakes_the_outer_front_wheel_when_oversteering(
 
 @pytest.mark.parametrize("mu", [0.9, 0.5, 0.2])
 def test_abs_on_the_compiled_full_vehicle_holds_slip_on_every_road(mu):
-    plant = FullVehicle(CAR, *_tires(mu))
+    plant = FullVehicle(CAR, friction=_friction(mu))
     abs_ = ABS(CAR, corners=True)
     loop = ClosedLoop(plant, abs_)
     x0 = plant.trim(20.0)[0]

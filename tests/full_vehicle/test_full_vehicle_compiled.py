@@ -24,6 +24,7 @@ MODELS = {
     "linear": FullVehicle(SEDAN, *LINEAR),
     "camber_magic_formula_front_linear_rear": FullVehicle(CAMBERED, None, LINEAR[1]),
     "road_profile": FullVehicle(SEDAN, road=BUMPY),
+    "friction": FullVehicle(SEDAN, friction=0.6),  # a constant road friction ratio compiles
 }
 
 

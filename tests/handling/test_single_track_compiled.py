@@ -29,7 +29,11 @@ ROLL_MODELS = ({(law, spin, True, "roll"): SingleTrack(
     SEDAN.replace(geometry__front_roll_centre_height=0.05, geometry__rear_roll_centre_height=0.1),
     *(LINEAR if law == "linear" else (None, None)), wheel_spin=spin, lateral_load_transfer=True, roll=True)
     for law in ("magic_formula", "linear") for spin in (False, True)})
-RHS_MODELS = {**MODELS, **ROLL_MODELS}
+# on a road of 0.6 times the laws' friction (similarity in the shared tire step), with and without the transfer
+FRICTION_MODELS = {("magic_formula", spin, True, "friction", transfer): SingleTrack(
+    SEDAN.replace(geometry__front_roll_centre_height=0.05, geometry__rear_roll_centre_height=0.1), wheel_spin=spin,
+    lateral_load_transfer=bool(transfer), friction=0.6) for spin in (False, True) for transfer in ("", "llt")}
+RHS_MODELS = {**MODELS, **ROLL_MODELS, **FRICTION_MODELS}
 
 
 @settings(max_examples=90, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -152,6 +156,15 @@ def test_unsupported_tire_law_is_named_and_auto_falls_back():
     assert "compiled" not in result.method_reason and np.all(np.isfinite(result.states))
 
 
+def test_a_friction_callable_has_no_compiled_form_and_auto_falls_back():
+    model = SingleTrack(SEDAN, friction=lambda X, Y: np.where(np.asarray(Y) > 0.0, 0.3, 1.0))
+    with pytest.raises(vehdyn.ParameterError, match="friction is a Python callable") as info:
+        sine_run("compiled", "RK45", 1e-6, sampled=False, model=model)
+    assert info.value.key == "friction"
+    result = sine_run("auto", "RK45", 1e-4, sampled=False, model=model)
+    assert "compiled" not in result.method_reason and np.all(np.isfinite(result.states))
+
+
 def _sine_batch(model, n, speed=20.0):
     """A batch of ``n`` variants of ``model`` (mass, yaw inertia, CG and, when it has them, the
     relaxation lengths varied) and its straight-running initial states."""
@@ -250,7 +263,7 @@ def test_compiled_math_functions_are_the_library_functions_bitwise():
 
     import numba
 
-    from vehdyn.handling._single_track_numba import XP
+    from vehdyn.components.compiled import XP
 
     @numba.njit
     def evaluate(x, y, out):

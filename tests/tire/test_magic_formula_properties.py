@@ -251,7 +251,7 @@ def test_lateral_force_kernel_is_the_combined_fy_at_zero_longitudinal_slip(name)
         np.linspace(0.0, 1.5 * c.FZMAX, 7), np.linspace(-1.5, 1.5, 13),
         [-30.0, -c.VXLOW, -0.3 * c.VXLOW, 0.0, 0.3 * c.VXLOW, 2 * c.VXLOW, 30.0], indexing="ij"))
     with np.errstate(all="ignore"):
-        full = mf_module._forces_kernel(NumpyOps, c, fz, 0.0 * fz, alpha, 0.0, vx, c.INFLPRES, True, False)[1]
-        lean = mf_module._lateral_force_kernel(NumpyOps, c, fz, alpha, vx, c.INFLPRES)
+        full = mf_module.forces_kernel(NumpyOps, c, fz, 0.0 * fz, alpha, 0.0, vx, c.INFLPRES, True, False)[1]
+        lean = mf_module.lateral_force_kernel(NumpyOps, c, fz, alpha, vx, c.INFLPRES)
     assert np.all(np.isfinite(full)) and np.any(full != 0)
     np.testing.assert_array_equal(lean, full)

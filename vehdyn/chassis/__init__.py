@@ -7,14 +7,13 @@ objects with named states, built from a :class:`~vehdyn.Vehicle` plus keyword ga
 plant by :class:`vehdyn.interconnect.ClosedLoop` (``controller.close(plant)``; it simulates,
 linearizes and nests: ESC around ABS around the car) and, when the plant and the controller have
 compiled forms (the SingleTrack and FullVehicle with their compiled tire laws; these three
-controllers), compiled with numba for ``simulate(..., backend="compiled"/"auto")``. :func:`road_friction_tire`
-puts a Magic Formula tire on a road of other friction.
+controllers), compiled with numba for ``simulate(..., backend="compiled"/"auto")``. A road of other
+friction is the models' ``friction`` argument (:mod:`vehdyn.components.tire_setup`).
 """
 
 from vehdyn.chassis.abs import ABS
 from vehdyn.chassis.base import ChassisController
 from vehdyn.chassis.esc import ESC
-from vehdyn.chassis.friction import road_friction_tire
 from vehdyn.chassis.traction_control import TractionControl
 
-__all__ = ["ABS", "TractionControl", "ESC", "ChassisController", "road_friction_tire"]
+__all__ = ["ABS", "TractionControl", "ESC", "ChassisController"]

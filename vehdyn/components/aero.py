@@ -57,6 +57,11 @@ def aero_side_force(xp, side_force_factor, speed, wind_velocity_lateral):
         Forward speed u of the vehicle [m/s].
     wind_velocity_lateral : float or ndarray
         w [m/s], the air's velocity along the vehicle's y axis (positive toward the right).
+
+    Returns
+    -------
+    float or ndarray
+        F_w [N] (SAE y).
     """
     return side_force_factor * (speed * speed + wind_velocity_lateral * wind_velocity_lateral) * \
         xp.atan2(wind_velocity_lateral, xp.abs(speed))
@@ -68,7 +73,18 @@ def _side_force_factor(air_density: float, area: float, slope: float) -> float:
 
 
 def wind_side_force_factor(vehicle: Vehicle) -> float:
-    """k_w = 0.5 rho A C_Y' [kg/m] of ``vehicle`` (its ``aero`` group)."""
+    """k_w = 0.5 rho A C_Y' of ``vehicle`` (its ``aero`` group).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle.
+
+    Returns
+    -------
+    float
+        k_w [kg/m].
+    """
     aero = check_vehicle("wind_side_force_factor", vehicle).aero
     return _side_force_factor(aero.air_density, aero.frontal_area, aero.side_force_coefficient_slope)
 
@@ -83,6 +99,11 @@ def trailer_wind_side_force_factor(trailer, air_density: float | None = None) ->
     air_density : float, optional
         rho [kg/m^3]; :func:`~vehdyn.handling.car_trailer_parameters` passes the towing vehicle's.
         Default: the vehicle files' standard air (``Aerodynamics.air_density``'s default, 20 degC).
+
+    Returns
+    -------
+    float
+        k_w,t [kg/m].
     """
     import dataclasses
 
@@ -103,6 +124,17 @@ def trailer_wind_side_force_factor(trailer, air_density: float | None = None) ->
 
 
 def centre_of_pressure_ahead_of_cg(vehicle: Vehicle) -> float:
-    """x_p = a - f_p L [m]: the aerodynamic centre of pressure ahead of the CG (negative: behind)."""
+    """x_p = a - f_p L: the aerodynamic centre of pressure ahead of the CG.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle.
+
+    Returns
+    -------
+    float
+        x_p [m] (negative: behind the CG).
+    """
     v = check_vehicle("centre_of_pressure_ahead_of_cg", vehicle)
     return v.geometry.cg_to_front_axle - v.aero.centre_of_pressure_from_front_axle * v.geometry.wheelbase

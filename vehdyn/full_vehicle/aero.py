@@ -30,7 +30,24 @@ __all__ = ["aero_forces"]
 
 
 def aero_forces(xp, k, u, wind):
-    """(X, Y, yaw moment about the sprung CG, front lift, rear lift) [N, N, N*m, N, N] (module docstring)."""
+    """The aerodynamic forces on the sprung body (module docstring).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace (:mod:`vehdyn.components.xp`).
+    k : Constants
+        The model's constants (:class:`vehdyn.full_vehicle.assembly.Constants`).
+    u : float or ndarray
+        Forward velocity of the sprung CG [m/s].
+    wind : float or ndarray
+        Lateral wind velocity [m/s] (toward +y).
+
+    Returns
+    -------
+    tuple
+        (X [N], Y [N], yaw moment about the sprung CG [N*m], front lift [N], rear lift [N]).
+    """
     side = aero_side_force(xp, k.wind_side_force_factor, u, wind)
     return (-k.drag_factor * u * xp.abs(u), side, k.centre_of_pressure * side, k.front_lift_factor * u * u,
             k.rear_lift_factor * u * u)

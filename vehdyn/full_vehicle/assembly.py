@@ -1,27 +1,28 @@
 """The equations of :class:`~vehdyn.full_vehicle.FullVehicle` as pure functions over an ``xp`` namespace.
 
 One source for numpy (with a trailing batch axis) and numba-compiled code
-(:mod:`~vehdyn.full_vehicle._full_vehicle_numba`) -- the pattern of
-:mod:`vehdyn.handling.single_track_equations`, whose tire-slip, relaxation and wheel-torque
-functions are reused here unchanged. Besides arithmetic the equations call ``xp.cos``, ``sin``,
-``tan``, ``atan``, ``atan2``, ``sqrt``, ``abs``, ``where``, ``minimum``, ``maximum`` and four hooks:
+(:mod:`~vehdyn.full_vehicle._full_vehicle_numba`), with the components the single track uses too
+(:mod:`vehdyn.components`: the tire step with its slip, relaxation, mirror-image and friction
+rules, the wheel torques) and the rigid body of :mod:`vehdyn.mechanics`, unchanged. Besides
+arithmetic the equations use the interface of :mod:`vehdyn.components.xp` (``xp.cos``, ``sin``,
+``tan``, ``tanh``, ``atan``, ``atan2``, ``sqrt``, ``abs``, ``where``, ``minimum``, ``maximum``,
+the tire hooks ``xp.tire_law``, ``xp.tire_law_pair``) and two hooks of their own:
 
 ``xp.rotation_body_to_earth(roll, pitch, yaw)``
-    R with R[i][j] indexable (numpy: :func:`vehdyn.mechanics.rotation_body_to_earth`);
+    R with R[i][j] indexable (numpy: :func:`vehdyn.mechanics.rotation_body_to_earth`; compiled:
+    :func:`vehdyn.mechanics.kinematics.rotation_matrix`, the same source as nested tuples);
 ``xp.euler_angle_rates(roll, pitch, p, q, r)``
-    (numpy: :func:`vehdyn.mechanics.euler_angle_rates`, which refuses gimbal lock);
-``xp.rigid_body_accelerations(m, J, J_inv, velocity, rates, force, moment)``
-    3-tuples in, (velocity rate, angular acceleration) out (numpy:
-    :func:`vehdyn.mechanics.equations_of_motion.accelerations`);
-``xp.axle_tire_loads(tires, corner, fz, kappa, alpha, vx)``
-    the ISO-W (fx, fy) of one corner's tire; ``tires`` is ``(laws, camber, friction, mirror_image)`` with
-    the four inclination angles and road friction ratios of this evaluation and ``k.mirror_image``
-    (numpy: ``laws.corner_law_loads``).
+    (numpy: :func:`vehdyn.mechanics.euler_angle_rates`, which refuses gimbal lock; compiled:
+    :func:`vehdyn.mechanics.kinematics.euler_rates`, its source without the check: the domain,
+    |pitch| <= pi/4, is checked first).
+
+The sprung body's Newton-Euler equations are
+:func:`vehdyn.mechanics.equations_of_motion.rigid_body_accelerations` on every backend.
 
 Signals travel in the fixed orders :data:`STATES` and :data:`INPUTS`; a model's vectors hold a
 subset (without tire lag, no deflection states), mapped through an index (-1: absent, 0.0).
 Everything is in SAE vehicle axes at the sprung CG; signs flip between SAE and ISO-W only inside
-the reused :func:`~vehdyn.handling.single_track_equations.axle_loads` (through
+the shared tire step :func:`~vehdyn.components.tire_forces.contact_loads` (through
 :mod:`vehdyn.conventions`).
 """
 
@@ -29,12 +30,12 @@ from __future__ import annotations
 
 from collections import namedtuple
 
-import numpy as np
-
+from vehdyn.components import xp as components_xp
+from vehdyn.components.tire_forces import contact_loads
+from vehdyn.components.tire_slip import deflection_rate
 from vehdyn.errors import SimulationError
-from vehdyn.handling import single_track_equations as st
 from vehdyn.mechanics import euler_angle_rates, rotation_body_to_earth
-from vehdyn.mechanics.equations_of_motion import accelerations
+from vehdyn.mechanics.kinematics import cross_components
 from vehdyn.full_vehicle import aero, body, corner, driveline, steering
 from vehdyn.full_vehicle.corner import CORNERS
 
@@ -65,28 +66,128 @@ Constants = namedtuple("Constants", (
     # wheels and tires
     "rolling_radius", "wheel_spin_inertia", "friction_coefficient", "lateral_relaxation_length",
     "longitudinal_relaxation_length", "peak_slip_ratio", "peak_tan_slip_angle", "low_speed_damping_speed",
-    "brake_regularization_speed", "mirror_image", "wheel_spin", "tire_lag",
+    "brake_regularization_speed", "mirror_image", "road_friction", "wheel_spin", "tire_lag", "friction_scaled",
     # aero
     "drag_factor", "wind_side_force_factor", "centre_of_pressure", "front_lift_factor", "rear_lift_factor"))
-Constants.__doc__ = """The numbers the equations read (floats; 4-tuples per corner; ``inertia``, ``inverse_inertia``
-3x3 and ``projection`` 6x6 nested tuples). ``spring_z``, ``wheel_z``, ``contact_z`` are the body-z
-coordinates (from the sprung CG, down +) of the spring seats, wheel centres and contact points;
-``anti_pitch`` is e_i f h / L per corner; ``mirror_image`` 1.0 at the corners whose tire is the mirror image of its
-axle's law (``SingleTrack._mirrored_wheel``), else 0.0; ``centre_of_pressure`` the crosswind's centre of pressure
-ahead of the sprung CG [m] (:mod:`~vehdyn.full_vehicle.aero`); ``camber_on`` 1.0 or 0.0; ``wheel_spin`` is always True
-(the slip functions of the single track read it), ``tire_lag`` a bool. :meth:`FullVehicle.constants`
-builds them; a compiled version takes the same tuple."""
+Constants.__doc__ = """The numbers the equations read (floats; 4-tuples per corner in corner order; nested tuples).
+
+:meth:`FullVehicle.constants <vehdyn.full_vehicle.FullVehicle.constants>` builds them; a compiled
+version takes the same tuple.
+
+Parameters
+----------
+gravity : float
+    g [m/s^2].
+mass, sprung_mass : float
+    Total and sprung mass [kg].
+inertia, inverse_inertia : tuple
+    Sprung inertia J about the sprung CG and its inverse, 3x3 nested tuples [kg*m^2], [1/(kg*m^2)].
+projection : tuple
+    The added-mass projection P (6x6, :func:`~vehdyn.full_vehicle.body.added_mass_projection`) [-].
+cg_height : float
+    Total CG height [m].
+wheelbase, front_track : float
+    [m].
+corner_x, corner_y : tuple
+    Corner positions from the sprung CG, body axes [m].
+spring_z, wheel_z, contact_z : float
+    Body-z coordinates (from the sprung CG, down +) of the spring seats, wheel centres and contact
+    points [m].
+unsprung_mass : tuple
+    [kg] per corner.
+spring_rate, damping : tuple
+    Wheel rates [N/m] and damping [N*s/m] per corner.
+spring_preload : tuple
+    Static spring forces [N].
+antiroll_rate : tuple
+    (front, rear) anti-roll bar rate at the wheels [N/m].
+tire_stiffness, tire_damping : tuple
+    Vertical tire stiffness [N/m] and damping [N*s/m].
+static_tire_deflection : tuple
+    [m].
+roll_centre_height : tuple
+    [m].
+anti_pitch : tuple
+    e_i f h / L per corner [-].
+camber_on : float
+    1.0 with camber gains, else 0.0 [-].
+camber_gain : tuple
+    [rad/m].
+roll_steer : tuple
+    [rad/rad].
+ackermann_fraction : float
+    [-].
+rolling_radius : float
+    R_e [m].
+wheel_spin_inertia : float
+    I_w [kg*m^2].
+friction_coefficient : float
+    The laws' own mu [-].
+lateral_relaxation_length, longitudinal_relaxation_length : tuple
+    sigma_y, sigma_x per corner [m].
+peak_slip_ratio, peak_tan_slip_angle : tuple
+    The slips of the laws' peak forces [-].
+low_speed_damping_speed : float
+    v_l [m/s].
+brake_regularization_speed : float
+    omega_b [rad/s].
+mirror_image : tuple
+    1.0 at the corners whose tire is the mirror image of its axle's law
+    (:func:`vehdyn.components.tire_setup.mirrored_wheel`), else 0.0 [-].
+road_friction : float
+    The road's friction relative to the laws' own, a constant ratio [-] (1.0 without).
+wheel_spin : bool
+    Always True (the shared tire step reads it).
+tire_lag : bool
+    The relaxation states.
+friction_scaled : bool
+    The road's friction applies.
+drag_factor : float
+    0.5 rho c_x A [kg/m].
+wind_side_force_factor : float
+    k_w [kg/m].
+centre_of_pressure : float
+    The crosswind's centre of pressure ahead of the sprung CG [m] (:mod:`~vehdyn.full_vehicle.aero`).
+front_lift_factor, rear_lift_factor : float
+    0.5 rho c_l A [kg/m]."""
 
 Evaluation = namedtuple("Evaluation", (
     "velocity_rate", "angular_acceleration", "cg_acceleration", "euler_rates", "position_rates",
     "wheel_acceleration", "unsprung_acceleration", "lateral_deflection_rate", "longitudinal_deflection_rate",
     "normal_load", "slip_angle", "slip_ratio", "longitudinal_force", "lateral_force", "suspension_travel",
     "camber", "steer", "horizontal_acceleration", "sprung_acceleration"))
-Evaluation.__doc__ = """Everything one evaluation yields: body rates (3-tuples; ``cg_acceleration`` the absolute
-acceleration of the sprung CG in body axes), Euler-angle and position rates, per-corner 4-tuples
-(wheel spin and unsprung accelerations, deflection rates, tire load, SAE slips and wheel-axis
-forces, travel, camber, steer), the horizontal acceleration of the total CG in the intermediate
-(yaw-only) axes (x, y; gravity excluded) and the vertical acceleration of the sprung CG (up)."""
+Evaluation.__doc__ = """Everything one evaluation yields.
+
+Parameters
+----------
+velocity_rate : tuple
+    (du, dv, dw) [m/s^2].
+angular_acceleration : tuple
+    (dp, dq, dr) [rad/s^2].
+cg_acceleration : tuple
+    The absolute acceleration of the sprung CG in body axes [m/s^2].
+euler_rates : tuple
+    (dphi, dtheta, dpsi) [rad/s].
+position_rates : tuple
+    (dX, dY, dZ) [m/s].
+wheel_acceleration, unsprung_acceleration : tuple
+    Per corner [rad/s^2], [m/s^2].
+lateral_deflection_rate, longitudinal_deflection_rate : tuple
+    Per corner [m/s].
+normal_load : tuple
+    Tire loads [N].
+slip_angle, slip_ratio : tuple
+    SAE slips acting in the laws [rad], [-].
+longitudinal_force, lateral_force : tuple
+    Wheel-axis tire forces (SAE) [N].
+suspension_travel : tuple
+    [m].
+camber, steer : tuple
+    [rad].
+horizontal_acceleration : tuple
+    The total CG's horizontal acceleration in the intermediate (yaw-only) axes, gravity excluded [m/s^2].
+sprung_acceleration : float or ndarray
+    The sprung CG's vertical acceleration (up) [m/s^2]."""
 
 
 DOMAIN_STATES = ("roll_angle", "pitch_angle")
@@ -123,38 +224,81 @@ class DomainError(SimulationError):
                          time=float(time), signal=name)
 
 
-class NUMPY(st.NUMPY):
-    """``xp`` of the equations on numpy arrays (trailing batch axis): the single track's plus the hooks."""
-
-    tan = staticmethod(np.tan)
+class NUMPY(components_xp.NUMPY):
+    """``xp`` of the equations on numpy arrays (trailing batch axis): the components' plus the hooks."""
 
     @staticmethod
     def rotation_body_to_earth(roll, pitch, yaw):
+        """:func:`vehdyn.mechanics.rotation_body_to_earth`.
+
+        Parameters
+        ----------
+        roll, pitch, yaw : float or ndarray
+            Euler angles [rad].
+
+        Returns
+        -------
+        ndarray
+            R, shape (3, 3) or (3, 3, n) [-].
+        """
         return rotation_body_to_earth(roll, pitch, yaw)
 
     @staticmethod
     def euler_angle_rates(roll, pitch, p, q, r):
+        """:func:`vehdyn.mechanics.euler_angle_rates`.
+
+        Parameters
+        ----------
+        roll, pitch : float or ndarray
+            phi, theta [rad].
+        p, q, r : float or ndarray
+            Body rates [rad/s].
+
+        Returns
+        -------
+        tuple
+            (dphi/dt, dtheta/dt, dpsi/dt) [rad/s].
+        """
         return euler_angle_rates(roll, pitch, p, q, r)
-
-    @staticmethod
-    def rigid_body_accelerations(mass, inertia, inverse, velocity, rates, force, moment):
-        vectors = [np.array(np.broadcast_arrays(*vector), dtype=float) for vector in (velocity, rates, force, moment)]
-        return accelerations(mass, np.asarray(inertia), np.asarray(inverse), *vectors)
-
-    @staticmethod
-    def axle_tire_loads(tires, corner, fz, kappa, alpha, vx):
-        laws, camber, friction, _mirror_image = tires  # the model's own k.mirror_image
-        return laws.corner_law_loads(corner, fz, kappa, alpha, camber[corner], vx, friction[corner])
 
 
 def gather(values, index):
-    """``values[i]`` for each i of ``index``, or zeros (of values[0]'s shape) where i = -1."""
+    """The entries of a model's vector in the order of :data:`STATES`.
+
+    Parameters
+    ----------
+    values : ndarray
+        The model's vector [SI units].
+    index : sequence of int
+        Position of each entry in ``values``, -1 where the model lacks it.
+
+    Returns
+    -------
+    list
+        ``values[i]`` for each i, zeros (of values[0]'s shape) where i = -1.
+    """
     return [values[i] if i >= 0 else 0.0 * values[0] for i in index]
 
 
 def ground_point(R, k, s, c):
-    """Earth (X, Y) of corner ``c``'s contact point (body point (x_c, y_c, h_s)) and its earth
-    velocity (V_X, V_Y); ``R`` the body-to-earth rotation, ``s`` the states (order of :data:`STATES`)."""
+    """Earth position and velocity of corner ``c``'s contact point (body point (x_c, y_c, h_s)).
+
+    Parameters
+    ----------
+    R : sequence
+        The body-to-earth rotation [-].
+    k : Constants
+        The model's constants (:class:`vehdyn.full_vehicle.assembly.Constants`).
+    s : sequence
+        The states in the order of :data:`STATES`.
+    c : int
+        The corner.
+
+    Returns
+    -------
+    tuple
+        (X [m], Y [m], V_X [m/s], V_Y [m/s]).
+    """
     xc, yc, zc = k.corner_x[c], k.corner_y[c], k.contact_z
     X = s[9] + R[0][0] * xc + R[0][1] * yc + R[0][2] * zc
     Y = s[10] + R[1][0] * xc + R[1][1] * yc + R[1][2] * zc
@@ -162,12 +306,11 @@ def ground_point(R, k, s, c):
     return X, Y, R[0][0] * vx + R[0][1] * vy + R[0][2] * vz, R[1][0] * vx + R[1][1] * vy + R[1][2] * vz
 
 
-def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
+def _corner(xp, laws, k, c, s, i, R, travel_rate, spring, steer, camber, friction):
     """One corner's share of an evaluation (a tuple of numbers, see :func:`evaluate`)."""
     u, v, p, q, r = s[0], s[1], s[3], s[4], s[5]
     omega, wheel, wheel_rate = s[12 + c], s[16 + c], s[20 + c]
     lateral_deflection, longitudinal_deflection = s[24 + c], s[28 + c]
-    friction = tires[2][c]
     x_c, y_c = k.corner_x[c], k.corner_y[c]
     load = corner.normal_load(xp, k, c, wheel, wheel_rate, i[10 + c], i[14 + c])
     # contact-point velocity in body axes (the wheel carrier keeps the body's orientation), then in
@@ -178,14 +321,15 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
     vx, vy = vcx * cd + vcy * sd, -vcx * sd + vcy * cd
     lat_rate, lon_rate = 0.0 * u, 0.0 * u
     if k.tire_lag:  # the deflection rates: state derivatives and the low-speed damping's input
-        lat_rate = st.deflection_rate(xp, vy, vx, lateral_deflection, k.lateral_relaxation_length[c],
-                                      k.peak_tan_slip_angle[c] * friction)
-        lon_rate = st.deflection_rate(xp, -(vx - omega * k.rolling_radius), vx, longitudinal_deflection,
-                                      k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction)
-    fx, fy, alpha, kappa, rolling_moment = st.axle_loads(
-        xp, tires, c, k, load, vx, vy, omega, lateral_deflection, longitudinal_deflection, lat_rate, lon_rate,
+        lat_rate = deflection_rate(xp, vy, vx, lateral_deflection, k.lateral_relaxation_length[c],
+                                   k.peak_tan_slip_angle[c] * friction)
+        lon_rate = deflection_rate(xp, -(vx - omega * k.rolling_radius), vx, longitudinal_deflection,
+                                   k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction)
+    # the tire step of one wheel (the mirror image of its axle's law where k.mirror_image says so)
+    fx, fy, alpha, kappa, rolling_moment = contact_loads(
+        xp, k, laws[c // 2], load, vx, vy, omega, lateral_deflection, longitudinal_deflection, lat_rate, lon_rate,
         k.lateral_relaxation_length[c], k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction,
-        k.peak_tan_slip_angle[c] * friction, 0.0 * u)
+        k.peak_tan_slip_angle[c] * friction, 0.0 * u, camber, False, k.mirror_image[c] > 0.5, friction)
     # the tire's forces lie in the road plane (ISO-W): along the wheel heading projected on the road
     # and its normal there, in body axes; n = R[2] is the earth's z (down) in body axes. Applied
     # along the rolled/pitched body's x-y plane instead, they would lift the car by sum F_y sin(roll)
@@ -197,8 +341,8 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
     # the wheel's velocity-dependent x-y inertia and its gravity, at the wheel centre
     zw = k.wheel_z
     m_u = k.unsprung_mass[c]
-    ox, oy, oz = body.cross(p, q, r, x_c, y_c, zw)
-    cx, cy, _cz = body.cross(p, q, r, ox, oy, oz)
+    ox, oy, oz = cross_components(p, q, r, x_c, y_c, zw)
+    cx, cy, _cz = cross_components(p, q, r, ox, oy, oz)
     wheel_x = m_u * (k.gravity * R[2][0] - cx - 2.0 * q * travel_rate)
     wheel_y = m_u * (k.gravity * R[2][1] - cy + 2.0 * p * travel_rate)
     f_z = jack - spring + tz
@@ -206,8 +350,8 @@ def _corner(xp, tires, k, c, s, i, R, travel_rate, spring, steer):
     # pitches and heaves (road height i[10 + c] up, CG displacement s[11] down); the road-plane
     # forces act there, which with tz at the wheel gives their moment the CG's height over the road
     zeta = (h - i[10 + c] - s[11] - R[2][0] * x_c - R[2][1] * y_c) / R[2][2]
-    mx1, my1, mz1 = body.cross(x_c, y_c, zeta, link_x, link_y, f_z)
-    mx2, my2, mz2 = body.cross(x_c, y_c, zw, wheel_x, wheel_y, 0.0 * u)
+    mx1, my1, mz1 = cross_components(x_c, y_c, zeta, link_x, link_y, f_z)
+    mx2, my2, mz2 = cross_components(x_c, y_c, zw, wheel_x, wheel_y, 0.0 * u)
     return (load, alpha, kappa, fx, fy,
             driveline.wheel_acceleration(xp, k, omega, i[2 + c], i[6 + c], fx, rolling_moment),
             (load - spring + jack) / m_u - k.gravity, lat_rate, lon_rate,
@@ -244,13 +388,31 @@ def _total(corners, j):
     return corners[0][j] + corners[1][j] + corners[2][j] + corners[3][j]
 
 
-def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
-    """An :class:`Evaluation` at states ``s`` and inputs ``i`` (sequences in the orders of :data:`STATES`,
-    :data:`INPUTS`); ``laws`` the tire laws (see ``xp.axle_tire_loads``), ``friction`` the road's
-    friction under each corner relative to the tire law's own (1: the law as it is).
+def evaluate(xp, laws, k, s, i, friction):
+    """An :class:`Evaluation` at states ``s`` and inputs ``i``.
 
     Per-corner values are tuples built from one function per corner (:func:`_corner`): no lists,
     so that the same source compiles to allocation-free code.
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace (module docstring).
+    laws : tuple
+        The (front, rear) tire laws (``TireModel`` on numpy, ``TireLaw`` compiled).
+    k : Constants
+        The model's constants.
+    s : sequence
+        The states in the order of :data:`STATES` [SI units].
+    i : sequence
+        The inputs in the order of :data:`INPUTS` [SI units].
+    friction : tuple
+        The road's friction under each corner relative to the tire law's own [-] (FL, FR, RL, RR;
+        read where ``k.friction_scaled``, else 1.0).
+
+    Returns
+    -------
+    Evaluation
     """
     u, v, w, p, q, r, roll, pitch, yaw, z = s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[11]
     R = xp.rotation_body_to_earth(roll, pitch, yaw)
@@ -266,11 +428,10 @@ def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
     steer = steering.corner_steer_angles(xp, k, i[0], i[1], roll)
     camber = (corner.camber(k, 0, roll, travel[0]), corner.camber(k, 1, roll, travel[1]),
               corner.camber(k, 2, roll, travel[2]), corner.camber(k, 3, roll, travel[3]))
-    tires = (laws, camber, friction, k.mirror_image)
-    corners = (_corner(xp, tires, k, 0, s, i, R, travel_rate[0], spring[0], steer[0]),
-               _corner(xp, tires, k, 1, s, i, R, travel_rate[1], spring[1], steer[1]),
-               _corner(xp, tires, k, 2, s, i, R, travel_rate[2], spring[2], steer[2]),
-               _corner(xp, tires, k, 3, s, i, R, travel_rate[3], spring[3], steer[3]))
+    corners = (_corner(xp, laws, k, 0, s, i, R, travel_rate[0], spring[0], steer[0], camber[0], friction[0]),
+               _corner(xp, laws, k, 1, s, i, R, travel_rate[1], spring[1], steer[1], camber[1], friction[1]),
+               _corner(xp, laws, k, 2, s, i, R, travel_rate[2], spring[2], steer[2], camber[2], friction[2]),
+               _corner(xp, laws, k, 3, s, i, R, travel_rate[3], spring[3], steer[3], camber[3], friction[3]))
 
     drag, side, wind_moment, front_lift, rear_lift = aero.aero_forces(xp, k, u, i[18])
     weight = k.sprung_mass * k.gravity
@@ -299,7 +460,20 @@ def evaluate(xp, laws, k, s, i, friction=(1.0, 1.0, 1.0, 1.0)):
 
 
 def derivatives(s, e):
-    """d/dt of every entry of :data:`STATES` (a tuple) from an :class:`Evaluation` (``s`` the states)."""
+    """d/dt of every entry of :data:`STATES` from an :class:`Evaluation`.
+
+    Parameters
+    ----------
+    s : sequence
+        The states in the order of :data:`STATES`.
+    e : Evaluation
+        :func:`evaluate` at them.
+
+    Returns
+    -------
+    tuple
+        32 rates [SI units per second].
+    """
     return (e.velocity_rate + e.angular_acceleration + e.euler_rates + e.position_rates + e.wheel_acceleration
             + (s[20], s[21], s[22], s[23]) + e.unsprung_acceleration + e.lateral_deflection_rate
             + e.longitudinal_deflection_rate)
@@ -332,7 +506,22 @@ CORNER_OUTPUTS = (("normal_load", "N", "tire normal load (>= 0)"),
 
 
 def outputs(xp, s, e):
-    """The outputs in the order of :data:`OUTPUTS` then :data:`CORNER_OUTPUTS` (each over the corners)."""
+    """The outputs in the order of :data:`OUTPUTS` then :data:`CORNER_OUTPUTS` (each over the corners).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace (:mod:`vehdyn.components.xp`).
+    s : sequence
+        The states in the order of :data:`STATES`.
+    e : Evaluation
+        :func:`evaluate` at them.
+
+    Returns
+    -------
+    tuple
+        The outputs [SI units of :data:`OUTPUTS`].
+    """
     u, v = s[0], s[1]
     speed_squared = u * u + v * v
     ax, ay = e.horizontal_acceleration

@@ -31,12 +31,10 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["added_mass_projection", "cross", "body_accelerations"]
+from vehdyn.mechanics.equations_of_motion import rigid_body_accelerations
+from vehdyn.mechanics.kinematics import cross_components as cross
 
-
-def cross(a0, a1, a2, b0, b1, b2):
-    """Components of a x b (plain arithmetic: floats, arrays, compiled code)."""
-    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+__all__ = ["added_mass_projection", "body_accelerations"]
 
 
 def added_mass_projection(sprung_mass, inertia, masses, points) -> np.ndarray:
@@ -52,6 +50,11 @@ def added_mass_projection(sprung_mass, inertia, masses, points) -> np.ndarray:
         Unsprung mass of each corner [kg].
     points : sequence of (x, y, z)
         Wheel centres from the sprung CG, body axes [m].
+
+    Returns
+    -------
+    ndarray
+        P, shape (6, 6) [-].
     """
     body = np.zeros((6, 6))
     body[:3, :3] = sprung_mass * np.eye(3)
@@ -72,17 +75,36 @@ def _dot6(row, a):
 
 
 def body_accelerations(xp, k, velocity, rates, force, moment):
-    """Body-axis velocity rates (du, dv, dw) and angular accelerations (dp, dq, dr).
+    """Body-axis velocity rates and angular accelerations of the sprung body with the wheels' x-y inertia.
 
-    ``force`` and ``moment`` (3-tuples, body axes, about the sprung CG) include everything but the
-    wheels' x-y inertia proportional to the accelerations (see the module docstring); the sprung
-    body goes through ``xp.rigid_body_accelerations`` (the mechanics layer's Newton-Euler) and the
-    result through the projection ``k.projection``.
+    The sprung body goes through :func:`~vehdyn.mechanics.equations_of_motion.rigid_body_accelerations`
+    (the mechanics layer's Newton-Euler) and the result through the projection ``k.projection``.
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace (:mod:`vehdyn.components.xp`).
+    k : Constants
+        The model's constants (:class:`vehdyn.full_vehicle.assembly.Constants`).
+    velocity : tuple
+        (u, v, w) [m/s].
+    rates : tuple
+        (p, q, r) [rad/s].
+    force : tuple
+        Body-axis force at the sprung CG [N]: everything but the wheels' x-y inertia proportional
+        to the accelerations (module docstring).
+    moment : tuple
+        Moment about the sprung CG [N*m].
+
+    Returns
+    -------
+    tuple
+        ((du, dv, dw) [m/s^2], (dp, dq, dr) [rad/s^2], the sprung CG's absolute acceleration [m/s^2]).
     """
     u, v, w = velocity
     p, q, r = rates
-    velocity_rate, angular = xp.rigid_body_accelerations(k.sprung_mass, k.inertia, k.inverse_inertia, velocity,
-                                                         rates, force, moment)
+    velocity_rate, angular = rigid_body_accelerations(k.sprung_mass, k.inertia, k.inverse_inertia, velocity, rates,
+                                                      force, moment)
     # absolute acceleration of the sprung CG: dV/dt + omega x V
     cx, cy, cz = cross(p, q, r, u, v, w)
     alpha0 = (velocity_rate[0] + cx, velocity_rate[1] + cy, velocity_rate[2] + cz, angular[0], angular[1],

@@ -51,10 +51,30 @@ SIDES = (-1.0, 1.0, -1.0, 1.0)
 
 
 def suspension_travel(R, z, u, v, w, p, q, r, x_i, y_i, z_i, wheel, wheel_rate):
-    """Travel s = z_body - z_wheel [m] and its rate [m/s] of a corner whose spring sits at body point
-    (x_i, y_i, z_i) (from the sprung CG, body axes); ``R`` the body-to-earth rotation (R[2] its
-    third row), ``z`` the sprung CG's earth z (down) from static, ``wheel`` the wheel's vertical
-    displacement (up)."""
+    """Travel s = z_body - z_wheel and its rate of a corner whose spring sits at body point (x_i, y_i, z_i).
+
+    Parameters
+    ----------
+    R : sequence
+        The body-to-earth rotation (R[2] its third row) [-].
+    z : float or ndarray
+        The sprung CG's earth z (down) from static [m].
+    u, v, w : float or ndarray
+        Body velocities of the sprung CG [m/s].
+    p, q, r : float or ndarray
+        Body rates [rad/s].
+    x_i, y_i, z_i : float
+        The spring's body point from the sprung CG [m].
+    wheel : float or ndarray
+        The wheel's vertical displacement (up) [m].
+    wheel_rate : float or ndarray
+        Its rate [m/s].
+
+    Returns
+    -------
+    tuple
+        (travel [m], travel rate [m/s]), rebound positive.
+    """
     R20, R21, R22 = R[2][0], R[2][1], R[2][2]
     body_up = -(z + R20 * x_i + R21 * y_i + R22 * z_i - z_i)
     vx, vy, vz = u + q * z_i - r * y_i, v + r * x_i - p * z_i, w + p * y_i - q * x_i
@@ -63,7 +83,22 @@ def suspension_travel(R, z, u, v, w, p, q, r, x_i, y_i, z_i, wheel, wheel_rate):
 
 
 def suspension_forces(k, travel, travel_rate):
-    """Compressive suspension forces F_s [N] of the four corners (a tuple in corner order)."""
+    """Compressive suspension forces F_s of the four corners: springs, dampers and anti-roll bars.
+
+    Parameters
+    ----------
+    k : Constants
+        The model's constants (:class:`vehdyn.full_vehicle.assembly.Constants`).
+    travel : tuple
+        The four travels [m].
+    travel_rate : tuple
+        Their rates [m/s].
+
+    Returns
+    -------
+    tuple
+        F_s [N] in corner order.
+    """
     f = (k.spring_preload[0] - k.spring_rate[0] * travel[0] - k.damping[0] * travel_rate[0],
          k.spring_preload[1] - k.spring_rate[1] * travel[1] - k.damping[1] * travel_rate[1],
          k.spring_preload[2] - k.spring_rate[2] * travel[2] - k.damping[2] * travel_rate[2],
@@ -74,17 +109,72 @@ def suspension_forces(k, travel, travel_rate):
 
 
 def normal_load(xp, k, c, wheel, wheel_rate, road, road_rate):
-    """Tire normal load [N] of corner ``c`` (>= 0; 0 when the wheel is off the ground)."""
+    """Tire normal load of corner ``c`` (>= 0; 0 when the wheel is off the ground).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace (:mod:`vehdyn.components.xp`).
+    k : Constants
+        The model's constants (:class:`vehdyn.full_vehicle.assembly.Constants`).
+    c : int
+        The corner (0 FL, 1 FR, 2 RL, 3 RR).
+    wheel : float or ndarray
+        The wheel's vertical displacement (up) [m].
+    wheel_rate : float or ndarray
+        Its rate [m/s].
+    road : float or ndarray
+        The road's elevation under the wheel [m].
+    road_rate : float or ndarray
+        Its rate [m/s].
+
+    Returns
+    -------
+    float or ndarray
+        F_z [N].
+    """
     deflection = k.static_tire_deflection[c] + road - wheel
     force = k.tire_stiffness[c] * deflection + k.tire_damping[c] * (road_rate - wheel_rate)
     return xp.where(deflection > 0.0, xp.maximum(force, 0.0), 0.0)
 
 
 def jacking_force(k, c, link_x, link_y):
-    """Linkage force F_J [N] on the body (SAE z, down +) of corner ``c`` (module docstring)."""
+    """Linkage (jacking) force F_J on the body of corner ``c`` (module docstring).
+
+    Parameters
+    ----------
+    k : Constants
+        The model's constants (:class:`vehdyn.full_vehicle.assembly.Constants`).
+    c : int
+        The corner.
+    link_x, link_y : float or ndarray
+        The force the contact passes to the body in body x and y [N].
+
+    Returns
+    -------
+    float or ndarray
+        F_J [N] (SAE z, down +).
+    """
     return k.roll_centre_height[c] / k.corner_y[c] * link_y + k.anti_pitch[c] * link_x
 
 
 def camber(k, c, roll, travel):
-    """Inclination angle [rad] (rotation about x, SAE = ISO-W) of corner ``c``'s wheel."""
+    """Inclination angle of corner ``c``'s wheel: the body's roll less the camber gain on the travel.
+
+    Parameters
+    ----------
+    k : Constants
+        The model's constants (:class:`vehdyn.full_vehicle.assembly.Constants`).
+    c : int
+        The corner.
+    roll : float or ndarray
+        Roll angle [rad].
+    travel : float or ndarray
+        The corner's travel [m].
+
+    Returns
+    -------
+    float or ndarray
+        gamma [rad] (rotation about x, SAE = ISO-W).
+    """
     return k.camber_on * (roll - SIDES[c] * k.camber_gain[c] * travel)

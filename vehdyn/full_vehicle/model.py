@@ -3,8 +3,9 @@
 Layers used (nothing restated): the sprung body's Newton-Euler equations and Euler-angle
 kinematics from :mod:`vehdyn.mechanics`; the tire laws of :mod:`vehdyn.tire` (any
 :class:`~vehdyn.tire.TireModel` that takes combined slip); the slip, relaxation, low-speed and
-wheel-torque functions of :mod:`vehdyn.handling.single_track_equations`; the corner layout and
-signal names of :class:`vehdyn.ride.FullCar`. The equations are in
+wheel-torque functions and the tire step of :mod:`vehdyn.components` (shared with
+:class:`~vehdyn.handling.SingleTrack`); the corner layout and signal names of
+:class:`vehdyn.ride.FullCar`. The equations are in
 :mod:`~vehdyn.full_vehicle.assembly` and the modules it calls (:mod:`~vehdyn.full_vehicle.body`,
 :mod:`~vehdyn.full_vehicle.corner`, :mod:`~vehdyn.full_vehicle.steering`,
 :mod:`~vehdyn.full_vehicle.driveline`, :mod:`~vehdyn.full_vehicle.aero`).
@@ -51,8 +52,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from vehdyn.components.tire_forces import tire_loads
+from vehdyn.components.tire_setup import (friction_at, longitudinal_relaxation_lengths, mirrored_wheel, road_friction,
+                                          tire_characteristics)
+from vehdyn.components.xp import stack as _stack
 from vehdyn.errors import ParameterError
-from vehdyn.handling.single_track import _stack
 from vehdyn.model import Model
 from vehdyn.params import Vehicle
 from vehdyn.signals import Signal
@@ -121,7 +125,7 @@ def check_combined_slip(tire, load, name):
 
 
 class FullVehicle(Model):
-    """Full vehicle: 6-DOF sprung body, four corners with wheel hop and wheel spin, any tire law.
+    r"""Full vehicle: 6-DOF sprung body, four corners with wheel hop and wheel spin, any tire law.
 
     Parameters
     ----------
@@ -142,13 +146,16 @@ class FullVehicle(Model):
         same for both tracks) or a callable ``road(X, Y) -> (elevation, slope_X, slope_Y)`` of
         arrays [m, -, -]. Its elevation and rate are added to the ``road_displacement_*``,
         ``road_velocity_*`` inputs. Default: flat.
-    friction : callable, optional
-        ``friction(X, Y) -> ratio`` [-]: the road's friction at earth positions (arrays) relative to
-        the tire law's own (1 everywhere by default; e.g. 0.2 / 0.9 on the right half of a split-mu
-        road for a law with mu = 0.9), applied to each tire by similarity (see
-        :meth:`corner_law_forces`).
+    friction : float or callable, optional
+        The road's friction relative to the tire law's own [-]: a constant ratio (e.g. 0.5), or a
+        callable ``friction(X, Y) -> ratio`` of earth positions [m] (arrays), evaluated at each
+        contact point (e.g. 0.2 / 0.9 on the right half of a split-mu road for a law with mu = 0.9;
+        numpy backend only). Applied to each tire by similarity, as in
+        :class:`~vehdyn.handling.SingleTrack` (:mod:`vehdyn.components.tire_forces`). Default: the
+        law as it is.
     longitudinal_relaxation_length : float or (float, float), optional
-        As :class:`~vehdyn.handling.SingleTrack` (default from the Magic Formula, else the lateral).
+        sigma_x [m] of the front and rear tires, as :class:`~vehdyn.handling.SingleTrack` (default
+        from the Magic Formula, else the lateral).
     low_speed_damping_speed, brake_regularization_speed : float
         v_l [m/s] and omega_b [rad/s] as in :class:`~vehdyn.handling.SingleTrack` (2 m/s, 1 rad/s).
     gravity : float
@@ -186,6 +193,29 @@ class FullVehicle(Model):
     :meth:`compiled_rhs`), two orders of magnitude faster than the numpy rhs under ``solve_ivp``
     (``benchmarks/bench_full_vehicle.py``); the first call compiles it (about a minute, then cached
     on disk).
+
+    The sprung body's Newton-Euler equations in body axes with the wheels' x-y inertia projected
+    (:mod:`~vehdyn.full_vehicle.body`), each corner's wheel hop, spin and tire relaxation
+    (:mod:`~vehdyn.full_vehicle.corner`, :mod:`vehdyn.components`):
+
+    .. math::
+
+        m_s (\dot V + \omega \times V) &= \sum_i F_i + F_{aero} + m_s g,\qquad
+        J \dot\omega + \omega \times J \omega = \sum_i r_i \times F_i + M_{aero}\\
+        m_{u,i} \ddot z_{u,i} &= F_{z,i} - F_{susp,i} - m_{u,i} g,\qquad
+        F_{z,i} = \max(F_{s,i} + k_t (z_r - z_{u,i}) + c_t (\dot z_r - \dot z_{u,i}), 0)\\
+        I_w \dot\omega_i &= T_{drive,i} - T_{brake,i}\,\mathrm{sat}(\omega_i / \omega_b) - R_e F_{x,i} + M_{y,i},
+        \qquad \dot\rho_{y,i} = V_{sy,i} - |V_{x,i}| \rho_{y,i} / \sigma_y
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, sec. 2.2
+       (the tire forces in the road plane), 4.3.2 (similarity), 7.2 and 8.7 (relaxation, low-speed damping).
+    .. [2] L. D. Landau, E. M. Lifshitz, *Mechanics*, 3rd ed., 1976, sec. 36 (Euler's equations).
+    .. [3] T. R. Kane, D. A. Levinson, *Dynamics: Theory and Applications*, McGraw-Hill, 1985, ch. 6.
+    .. [4] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 5 and 6 (ride, roll
+       centres, anti-pitch geometry).
+    .. [5] W. F. Milliken, D. L. Milliken, *Race Car Vehicle Dynamics*, SAE, 1995, ch. 17-18.
     """
 
     #: Where the equations hold: the body's force projections are those of small roll and pitch angles
@@ -213,12 +243,8 @@ class FullVehicle(Model):
         self.low_speed_damping_speed = float(low_speed_damping_speed)
         self.brake_regularization_speed = float(brake_regularization_speed)
         self.road = self._check_road(road)
-        if friction is not None and not callable(friction):
-            raise ParameterError(f"friction must be None or a callable friction(X, Y) -> ratio, got "
-                                 f"{type(friction).__name__}", key="friction", value=friction)
-        self.friction = friction
+        self.friction = road_friction(friction)
         self._geometry(vehicle)
-        from vehdyn.handling.single_track import SingleTrack
         from vehdyn.tire import tire_for_vehicle
 
         tires = {}
@@ -234,12 +260,11 @@ class FullVehicle(Model):
                                  f"tires.rear_relaxation_length, got {lateral}", key="tires.front_relaxation_length",
                                  value=lateral)
         lateral = tuple(s if s > 0 else 1.0 for s in lateral)
-        longitudinal = SingleTrack._longitudinal_lengths(vehicle, tires, longitudinal_relaxation_length, lateral,
-                                                         self.gravity)
-        characteristics = [SingleTrack._tire_characteristics(tires[axle], load)
-                           for axle, load in zip(_AXLES, self.static_tire_loads[::2])]
+        longitudinal = longitudinal_relaxation_lengths(vehicle, tires, longitudinal_relaxation_length, lateral,
+                                                       self.gravity)
+        characteristics = [tire_characteristics(tires[axle], load) for axle, load in zip(_AXLES, self.static_tire_loads[::2])]
         self._mirrored = tuple(value[0] for value in characteristics)
-        wheels = [SingleTrack._mirrored_wheel(tires[axle], value[0]) for axle, value in zip(_AXLES, characteristics)]
+        wheels = [mirrored_wheel(tires[axle], value[0]) for axle, value in zip(_AXLES, characteristics)]
         peaks = [value[1] for value in characteristics]
         self._tire_constants = dict(
             mirror_image=tuple(float(wheel == side) for wheel in wheels for side in ("left", "right")),
@@ -269,7 +294,7 @@ class FullVehicle(Model):
 
     def _geometry(self, vehicle):
         """Corner positions, static loads, sprung inertia; ParameterError naming what does not fit."""
-        m, g, s, t = vehicle.mass, vehicle.geometry, vehicle.suspension, vehicle.tires
+        m, g = vehicle.mass, vehicle.geometry
         unsprung = (0.5 * m.front_unsprung_mass,) * 2 + (0.5 * m.rear_unsprung_mass,) * 2
         if min(unsprung) <= 0:
             key = "mass.front_unsprung_mass" if m.front_unsprung_mass <= 0 else "mass.rear_unsprung_mass"
@@ -317,7 +342,13 @@ class FullVehicle(Model):
         self.sprung_inertia = tensor.matrix
 
     def constants(self) -> assembly.Constants:
-        """The :class:`~vehdyn.full_vehicle.assembly.Constants` the equations read (floats and tuples)."""
+        """The numbers the equations read.
+
+        Returns
+        -------
+        Constants
+            :class:`~vehdyn.full_vehicle.assembly.Constants` (floats and tuples).
+        """
         from vehdyn.components.aero import wind_side_force_factor
         from vehdyn.full_vehicle.body import added_mass_projection
 
@@ -354,6 +385,8 @@ class FullVehicle(Model):
             wheel_spin_inertia=float(t.wheel_spin_inertia), friction_coefficient=float(t.friction_coefficient),
             low_speed_damping_speed=self.low_speed_damping_speed,
             brake_regularization_speed=self.brake_regularization_speed, wheel_spin=True, tire_lag=self.tire_lag,
+            road_friction=self.friction if isinstance(self.friction, float) else 1.0,
+            friction_scaled=self.friction is not None,
             drag_factor=half * a.drag_coefficient, wind_side_force_factor=wind_side_force_factor(v),
             centre_of_pressure=float(self.corner_x[0] - a.centre_of_pressure_from_front_axle * L),
             front_lift_factor=half * a.front_lift_coefficient, rear_lift_factor=half * a.rear_lift_coefficient,
@@ -376,41 +409,74 @@ class FullVehicle(Model):
 
     # ------------------------------------------------------------------ tire laws
     def corner_law_forces(self, corner, fz, kappa, alpha, gamma, vx, friction=1.0):
-        """ISO-W (fx, fy) [N] of ``corner``'s tire (0 FL, 1 FR, 2 RL, 3 RR) from ISO-W slips: the
-        forces of :meth:`corner_law_loads`."""
+        """ISO-W (F_x, F_y) of ``corner``'s tire from ISO-W slips: the forces of :meth:`corner_law_loads`.
+
+        Parameters
+        ----------
+        corner : int
+            0 front left, 1 front right, 2 rear left, 3 rear right.
+        fz : float or ndarray
+            Normal load [N].
+        kappa : float or ndarray
+            Slip ratio [-] (ISO-W).
+        alpha : float or ndarray
+            Slip angle [rad] (ISO-W).
+        gamma : float or ndarray
+            Inclination angle [rad] (ISO-W).
+        vx : float or ndarray
+            Signed wheel-centre speed [m/s].
+        friction : float or ndarray
+            The road's friction relative to the law's own [-] (1: the law as it is).
+
+        Returns
+        -------
+        tuple
+            (F_x [N], F_y [N]), ISO-W.
+        """
         fx, fy, _ = self.corner_law_loads(corner, fz, kappa, alpha, gamma, vx, friction)
         return fx, fy
 
     def corner_law_loads(self, corner, fz, kappa, alpha, gamma, vx, friction=1.0):
-        """ISO-W (fx, fy, my) [N, N, N*m] of ``corner``'s tire (0 FL, 1 FR, 2 RL, 3 RR) from ISO-W slips.
+        """ISO-W (F_x, F_y, M_y) of ``corner``'s tire from ISO-W slips.
 
-        ``my`` is the tire's rolling-resistance moment (ISO-W, about the axis of forward spin; 0 for
-        laws without one), which acts on the wheel's spin as in
-        :func:`vehdyn.handling.single_track_equations.axle_loads`. It comes from the hysteresis of
-        the tire, not from the road's grip, so the friction ratio below does not scale it.
+        :func:`vehdyn.components.tire_forces.tire_loads`, the tire step the equations take. ``my``
+        is the tire's rolling-resistance moment (ISO-W, about the axis of forward spin; 0 for laws
+        without one); it comes from the hysteresis of the tire, not from the road's grip, so the
+        friction ratio does not scale it. ``friction`` is the road's friction relative to the law's
+        own, applied by similarity (Pacejka 2012, sec. 4.3.2): F(kappa, tan alpha) ->
+        mu F(kappa / mu, tan(alpha) / mu), which keeps the slip stiffnesses and scales the peak
+        forces and the slips at which they occur. One tire of an axle is the mirror image of the
+        law's tire when the law makes a lateral force at zero slip (ply steer, conicity): the left
+        one, or the right one where the law is a left tire (a ``.tir`` file with ``TYRESIDE =
+        'LEFT'``; :func:`vehdyn.components.tire_setup.mirrored_wheel`). It is evaluated at (-alpha,
+        -gamma) and its F_y negated, so that a vehicle with zero steer runs straight.
 
-        ``friction`` is the road's friction relative to the law's own, applied by similarity
-        (Pacejka 2012, sec. 4.3.2): F(kappa, tan alpha) -> mu F(kappa / mu, tan(alpha) / mu), which
-        keeps the slip stiffnesses and scales the peak forces and the slips at which they occur.
+        Parameters
+        ----------
+        corner : int
+            0 front left, 1 front right, 2 rear left, 3 rear right.
+        fz : float or ndarray
+            Normal load [N].
+        kappa : float or ndarray
+            Slip ratio [-] (ISO-W).
+        alpha : float or ndarray
+            Slip angle [rad] (ISO-W).
+        gamma : float or ndarray
+            Inclination angle [rad] (ISO-W).
+        vx : float or ndarray
+            Signed wheel-centre speed [m/s].
+        friction : float or ndarray
+            The road's friction relative to the law's own [-] (1: the law as it is).
 
-        One tire of an axle is the mirror image of the law's tire when the law makes a lateral force
-        at zero slip (ply-steer, conicity; see :meth:`vehdyn.handling.SingleTrack.axle_law_forces`):
-        the left one, or the right one where the law is a left tire (a ``.tir`` file with
-        ``TYRESIDE = 'LEFT'``, ``SingleTrack._mirrored_wheel``). It is evaluated at (-alpha, -gamma)
-        and its F_y negated, so that a vehicle with zero steer runs straight.
+        Returns
+        -------
+        tuple
+            (F_x [N], F_y [N], M_y [N*m]), ISO-W.
         """
-        axle = corner // 2
-        tire = self.front_tire if axle == 0 else self.rear_tire
-        mirror = self._k.mirror_image[corner] > 0.5
+        tire = self.front_tire if corner // 2 == 0 else self.rear_tire
         scaled = not (np.ndim(friction) == 0 and friction == 1.0)
-        if scaled:
-            kappa, alpha = kappa / friction, np.arctan(np.tan(alpha) / friction)
-        args = (fz, kappa, -alpha if mirror else alpha, -gamma if mirror else gamma, vx)
-        if all(np.ndim(a) == 0 for a in args):
-            args = tuple(float(a) for a in args)
-        f = tire.forces(*args)
-        fx, fy = f.fx, (-f.fy if mirror else f.fy)
-        return (friction * fx, friction * fy, f.my) if scaled else (fx, fy, f.my)
+        return tire_loads(assembly.NUMPY, tire, fz, kappa, alpha, gamma, vx, self._k.mirror_image[corner] > 0.5,
+                          friction, scaled)
 
     # ------------------------------------------------------------------ the contract
     def _inputs_with_road(self, x, u):
@@ -438,13 +504,11 @@ class FullVehicle(Model):
         u = self._inputs_with_road(x, np.asarray(u, dtype=float))
         states = assembly.gather(x, self._state_index)
         inputs = list(u)
-        friction = (1.0, 1.0, 1.0, 1.0)
-        if self.friction is not None:
-            friction = [np.asarray(self.friction(X, Y), dtype=float) for X, Y, _, _ in self._ground_points(states)]
-            if not all(np.all(f > 0) for f in friction):
-                raise ParameterError("friction(X, Y) must be > 0 under every wheel", key="friction",
-                                     value=[float(np.min(f)) for f in friction])
-        return states, assembly.evaluate(assembly.NUMPY, self, self._k, states, inputs, friction)
+        friction = (self._k.road_friction,) * 4
+        if callable(self.friction):  # the road under each contact point
+            friction = tuple(friction_at(self.friction, X, Y) for X, Y, _, _ in self._ground_points(states))
+        laws = (self.front_tire, self.rear_tire)
+        return states, assembly.evaluate(assembly.NUMPY, laws, self._k, states, inputs, friction)
 
     def rhs(self, t, x, u):
         """State derivatives (equations in the module docstrings).
@@ -513,6 +577,11 @@ class FullVehicle(Model):
 
         Evaluated by the model's equations at its rest state (which they hold in equilibrium:
         :meth:`rhs` is zero there).
+
+        Returns
+        -------
+        dict
+            ``{"normal_load_front_left": ..., ...}`` [N].
         """
         x0, u0 = self.state_vector(), self.input_vector()
         y = self.output(0.0, x0, u0)
@@ -537,7 +606,7 @@ class FullVehicle(Model):
             heights, slips and deflections steady, the velocities decreasing in proportion, the
             torques split by the vehicle's ``driveline`` fractions (brake torques when braking).
         tol : float
-            Largest derivative allowed, relative to g for accelerations and to the speed for
+            Largest derivative allowed [-], relative to g for accelerations and to the speed for
             velocities (every derivative except of x, y and yaw angle).
         guess : (x, u), optional
             A nearby operating point to start from (continuation towards the limit), instead of the
@@ -563,11 +632,18 @@ class FullVehicle(Model):
 
     @staticmethod
     def wheel_lift(result) -> dict[str, list[tuple[float, float]]]:
-        """The intervals [s] during which each wheel carried no load in a simulation ``result``.
+        """The intervals during which each wheel carried no load in a simulation ``result``.
 
-        Returns ``{"front_left": [(t_start, t_end), ...], ...}`` from the ``normal_load_*`` outputs
-        (a wheel is off the ground where its load is exactly 0, the model's lift-off); empty lists
-        for wheels that never lifted.
+        Parameters
+        ----------
+        result : SimulationResult
+            A run of this model (its ``normal_load_*`` outputs; a wheel is off the ground where its
+            load is exactly 0, the model's lift-off).
+
+        Returns
+        -------
+        dict
+            ``{"front_left": [(t_start, t_end), ...], ...}`` [s]; empty lists for wheels that never lifted.
         """
         time = np.asarray(result.time)
         out = {}

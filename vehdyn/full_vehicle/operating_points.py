@@ -49,9 +49,30 @@ def _residual_scales(model, speed):
 
 def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_acceleration=0.0, tol=1e-9,
          guess=None):
-    """``(x0, u0)`` of steady running at ``speed`` (see :meth:`FullVehicle.trim`)."""
-    from scipy.optimize import root
+    """``(x0, u0)`` of steady running at ``speed``: what :meth:`FullVehicle.trim` returns.
 
+    Parameters
+    ----------
+    model : FullVehicle
+        The model.
+    speed : float
+        Speed of the sprung CG [m/s].
+    lateral_acceleration : float
+        Steady lateral acceleration [m/s^2].
+    radius : float, optional
+        Path radius [m] (overrides ``lateral_acceleration``).
+    longitudinal_acceleration : float
+        Quasi-steady braking or driving [m/s^2].
+    tol : float
+        Largest derivative allowed, relative [-].
+    guess : (x, u), optional
+        A nearby operating point to start from.
+
+    Returns
+    -------
+    x0, u0 : ndarray
+        The state and inputs [SI units] (see :meth:`FullVehicle.trim`).
+    """
     if isinstance(speed, bool) or not isinstance(speed, (int, float)) or not np.isfinite(speed) or speed <= 0:
         raise ParameterError(f"speed must be a finite number > 0 [m/s], got {speed!r}", key="speed", value=speed)
     speed = float(speed)

@@ -19,7 +19,24 @@ __all__ = ["corner_steer_angles"]
 
 
 def corner_steer_angles(xp, k, front_steer, rear_steer, roll):
-    """Road-wheel steer angles [rad] of the four corners (SAE, positive turns right)."""
+    """Road-wheel steer angles of the four corners: Ackermann blend and roll steer (module docstring).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace (:mod:`vehdyn.components.xp`).
+    k : Constants
+        The model's constants (:class:`vehdyn.full_vehicle.assembly.Constants`).
+    front_steer, rear_steer : float or ndarray
+        The bicycle steer angles [rad].
+    roll : float or ndarray
+        Roll angle [rad].
+
+    Returns
+    -------
+    tuple
+        Four steer angles [rad] (SAE, positive turns right), corner order.
+    """
     t = xp.tan(front_steer)
     L, half = k.wheelbase, 0.5 * k.front_track
     # atan2 keeps the angle continuous where L -/+ (T/2) tan(delta) passes zero (never, below 60 deg)

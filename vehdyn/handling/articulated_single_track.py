@@ -67,7 +67,6 @@ that deflection's force acts at once (a short transient, not a sliding-to-rollin
 
 from __future__ import annotations
 
-import types
 from typing import NamedTuple
 
 import numpy as np
@@ -79,13 +78,32 @@ from vehdyn.signals import Signal
 from vehdyn.units import GRAVITY
 from vehdyn.handling import single_track_equations as eq
 from vehdyn.components.aero import aero_side_force, trailer_wind_side_force_factor
-from vehdyn.handling.single_track import SingleTrack, _stack
+from vehdyn.components.planar import position_rates
+from vehdyn.components.tire_forces import axle_tire_loads
+from vehdyn.components.tire_slip import deflection_rate
+from vehdyn.components.tire_setup import tire_characteristics
+from vehdyn.components.xp import stack as _stack
+from vehdyn.handling.single_track import SingleTrack
 
 __all__ = ["ArticulatedSingleTrack", "ArticulationEvent", "LOCKED_SLIDING_SPEED"]
 
 
 class ArticulationEvent(NamedTuple):
-    """The first moment the articulation angle leaves its safe range in a simulation."""
+    """The first moment the articulation angle leaves its safe range in a simulation.
+
+    Parameters
+    ----------
+    kind : str
+        ``"jackknife"`` (the towing vehicle yaws faster than the trailer) or ``"trailer_swing"``.
+    time : float
+        [s].
+    articulation_angle : float
+        [rad] at that time.
+    yaw_rate : float
+        The towing vehicle's [rad/s].
+    trailer_yaw_rate : float
+        [rad/s].
+    """
 
     kind: str
     """``"jackknife"`` (the towing vehicle yaws faster than the trailer) or ``"trailer_swing"``"""
@@ -122,7 +140,7 @@ def _lock(forces, demand, limit, vx, vy):
 
 
 class ArticulatedSingleTrack(Model):
-    """Towing vehicle and trailer in the road plane, nonlinear tires (equations in the module docstring).
+    r"""Towing vehicle and trailer in the road plane, nonlinear tires (equations in the module docstring).
 
     Parameters
     ----------
@@ -163,6 +181,25 @@ class ArticulatedSingleTrack(Model):
         See :attr:`outputs`: accelerations, yaw rates, slips, axle forces and loads of both
         bodies, the hitch force (``hitch_longitudinal_force``, ``hitch_lateral_force``: of the
         trailer on the towing vehicle, towing vehicle's axes) and the positions.
+
+    Notes
+    -----
+    The two bodies coupled by the hitch force H (module docstring; SAE axes):
+
+    .. math::
+
+        m a_1 = F_1 + H,\qquad I \dot r = M_1 - h H_y,\qquad
+        m_t a_t = F_t - H,\qquad I_t \dot r_t = -e (H \cdot n) - f Y_t + M_{t,ext}
+
+    with each axle's forces from the shared tire step of :mod:`vehdyn.components` (two tires at
+    half the axle load, the single track's force mode and relaxation).
+
+    References
+    ----------
+    .. [1] J. R. Ellis, *Vehicle Dynamics*, Business Books, 1969, ch. 10.
+    .. [2] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, sec. 1.3.3.
+    .. [3] D. Karnopp, *Vehicle Dynamics, Stability, and Control*, 2nd ed., CRC Press, 2013, ch. 9.
+    .. [4] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 1.4 (a locked tire).
     """
 
     def __init__(self, vehicle: Vehicle, trailer: Trailer, front_tire=None, rear_tire=None, trailer_tire=None, *,
@@ -198,10 +235,7 @@ class ArticulatedSingleTrack(Model):
         # the trailer's k_w with the towing vehicle's air density (vehdyn.handling.crosswind)
         self._trailer_wind_factor = trailer_wind_side_force_factor(trailer, vehicle.aero.air_density)
         half_load = 0.5 * trailer.static_axle_load(self.gravity)
-        mirrored, self._trailer_peak = SingleTrack._tire_characteristics(trailer_tire, half_load)
-        # SingleTrack.axle_law_forces applied to the trailer tire (its "front" axle)
-        self._trailer_axle = types.SimpleNamespace(front_tire=trailer_tire, rear_tire=trailer_tire,
-                                                   _mirrored={"front": mirrored, "rear": mirrored})
+        self._trailer_mirrored, self._trailer_peak = tire_characteristics(trailer_tire, half_load)
         self._declare_signals()
 
     # ------------------------------------------------------------------ signals
@@ -266,9 +300,30 @@ class ArticulatedSingleTrack(Model):
 
     # ------------------------------------------------------------------ the equations
     def axle_law_forces(self, axle, fz, kappa, alpha, vx):
-        """ISO-W axle forces (fx, fy) [N]: ``axle`` 0 front, 1 rear (SingleTrack's), 2 the trailer's."""
+        """ISO-W axle forces from the law of one tire at half the load (:meth:`SingleTrack.axle_law_forces`).
+
+        Parameters
+        ----------
+        axle : int
+            0 front, 1 rear (the towing vehicle's), 2 the trailer's.
+        fz : float or ndarray
+            Axle load [N].
+        kappa : float or ndarray
+            Slip ratio [-] (ISO-W).
+        alpha : float or ndarray
+            Slip angle [rad] (ISO-W).
+        vx : float or ndarray
+            Signed wheel-centre speed [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x [N], F_y [N]) of the axle, ISO-W.
+        """
         if axle == 2:
-            return SingleTrack.axle_law_forces(self._trailer_axle, 0, fz, kappa, alpha, vx)
+            fx, fy, _ = axle_tire_loads(eq.NUMPY, self.trailer_tire, fz, kappa, alpha, vx, self._trailer_mirrored, 1.0,
+                                        False)
+            return fx, fy
         return self.tractor.axle_law_forces(axle, fz, kappa, alpha, vx)
 
     def _evaluate(self, x, u):
@@ -284,7 +339,8 @@ class ArticulatedSingleTrack(Model):
         a, b, h = p.a, p.b, self.hitch_distance
         e, f = tr.hitch_to_cg, tr.cg_to_axle
         lt = e + f
-        kt = k._replace(friction_coefficient=tr.friction_coefficient)
+        # the trailer's axle as the "front" axle of its own constants
+        kt = k._replace(friction_coefficient=tr.friction_coefficient, front_ply_steer=float(self._trailer_mirrored))
         sigma_t = tr.relaxation_length if tr.relaxation_length > 0 else 1.0
         peak_kappa_t, peak_tan_t = self._trailer_peak
         r_t = r - dtheta
@@ -299,11 +355,11 @@ class ArticulatedSingleTrack(Model):
         zero = 0.0 * lon
         rate_f = rate_r = rate_t = zero
         if self.tire_lag:
-            rate_f = eq.deflection_rate(xp, vyf, vxf, rho_f, p.front_lateral_relaxation_length,
+            rate_f = deflection_rate(xp, vyf, vxf, rho_f, p.front_lateral_relaxation_length,
                                         k.front_peak_tan_slip_angle)
-            rate_r = eq.deflection_rate(xp, vyr, vxr, rho_r, p.rear_lateral_relaxation_length,
+            rate_r = deflection_rate(xp, vyr, vxr, rho_r, p.rear_lateral_relaxation_length,
                                         k.rear_peak_tan_slip_angle)
-            rate_t = eq.deflection_rate(xp, vyt, vxt, rho_t, sigma_t, peak_tan_t)
+            rate_t = deflection_rate(xp, vyt, vxt, rho_t, sigma_t, peak_tan_t)
         # normal loads: the tongue load enters as a (negative) lift at each axle of the towing vehicle
         tongue = tr.tongue_load(p.gravity)
         wheelbase = a + b
@@ -311,14 +367,15 @@ class ArticulatedSingleTrack(Model):
         lift_r = p.rear_lift_factor * lon * lon - tongue * (a + h) / wheelbase
         fz_f, fz_r = eq.normal_loads(xp, k, ff * cd + fr, lift_f, lift_r)
         fz_t = tr.static_axle_load(p.gravity) + zero
-        front = eq.axle_forces(xp, self, 0, k, fz_f, vxf, vyf, zero, rho_f, zero, rate_f, zero,
-                               p.front_lateral_relaxation_length, p.front_longitudinal_relaxation_length,
-                               k.front_peak_slip_ratio, k.front_peak_tan_slip_angle, ff)
-        rear = eq.axle_forces(xp, self, 1, k, fz_r, vxr, vyr, zero, rho_r, zero, rate_r, zero,
-                              p.rear_lateral_relaxation_length, p.rear_longitudinal_relaxation_length,
-                              k.rear_peak_slip_ratio, k.rear_peak_tan_slip_angle, fr)
-        trail = eq.axle_forces(xp, self, 2, kt, fz_t, vxt, vyt, zero, rho_t, zero, rate_t, zero, sigma_t, 1.0,
-                               peak_kappa_t, peak_tan_t, ft)
+        tires = (self.tractor.front_tire, self.tractor.rear_tire)
+        front = eq.axle_loads(xp, tires, 0, k, fz_f, vxf, vyf, zero, rho_f, zero, rate_f, zero,
+                              p.front_lateral_relaxation_length, p.front_longitudinal_relaxation_length,
+                              k.front_peak_slip_ratio, k.front_peak_tan_slip_angle, ff, 1.0)[:4]
+        rear = eq.axle_loads(xp, tires, 1, k, fz_r, vxr, vyr, zero, rho_r, zero, rate_r, zero,
+                             p.rear_lateral_relaxation_length, p.rear_longitudinal_relaxation_length,
+                             k.rear_peak_slip_ratio, k.rear_peak_tan_slip_angle, fr, 1.0)[:4]
+        trail = eq.axle_loads(xp, (self.trailer_tire,), 0, kt, fz_t, vxt, vyt, zero, rho_t, zero, rate_t, zero, sigma_t,
+                              1.0, peak_kappa_t, peak_tan_t, ft, 1.0)[:4]
         front = _lock(front, ff, k.friction_coefficient * fz_f, vxf, vyf)
         rear = _lock(rear, fr, k.friction_coefficient * fz_r, vxr, vyr)
         trail = _lock(trail, ft, tr.friction_coefficient * fz_t, vxt, vyt)
@@ -366,9 +423,9 @@ class ArticulatedSingleTrack(Model):
     def rhs(self, t, x, u):
         """State derivatives (equations in the module docstring)."""
         s = self._evaluate(x, u)
-        lon, lat, psi = s["lon"], s["lat"], s["psi"]
+        position = position_rates(eq.NUMPY, s["lon"], s["lat"], s["psi"])
         d = {"longitudinal_velocity": s["du"], "lateral_velocity": s["dv"], "yaw_rate": s["dr"],
-             "x": lon * np.cos(psi) - lat * np.sin(psi), "y": lon * np.sin(psi) + lat * np.cos(psi),
+             "x": position[0], "y": position[1],
              "yaw_angle": s["r"], "articulation_angle": s["dtheta"], "articulation_rate": s["dr"] - s["drt"],
              "front_lateral_deflection": s["rates"][0], "rear_lateral_deflection": s["rates"][1],
              "trailer_lateral_deflection": s["rates"][2]}
@@ -391,7 +448,20 @@ class ArticulatedSingleTrack(Model):
 
     # ------------------------------------------------------------------ operating points and analysis
     def straight_running(self, speed: float, **states) -> np.ndarray:
-        """State vector of straight running at ``speed`` [m/s], trailer in line, tires relaxed."""
+        """State vector of straight running at ``speed``, trailer in line, tires relaxed.
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed [m/s].
+        **states
+            Other states by name [their units].
+
+        Returns
+        -------
+        ndarray
+            The state vector [SI units].
+        """
         return self.state_vector({"longitudinal_velocity": speed, **states})
 
     def lateral_yaw(self, speed: float, *, crosswind: bool = False):
@@ -402,6 +472,17 @@ class ArticulatedSingleTrack(Model):
         ``wind_velocity_lateral`` with ``crosswind=True``), the first fifteen outputs (those of
         :class:`~vehdyn.handling.LinearCarTrailer`, in its order). With linear tires and no tire
         lag its matrices are those of LinearCarTrailer (with the same ``crosswind``).
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed [m/s].
+        crosswind : bool
+            Keep the input ``wind_velocity_lateral``.
+
+        Returns
+        -------
+        LinearModel
         """
         from vehdyn.model import LinearModel
 
@@ -427,7 +508,19 @@ class ArticulatedSingleTrack(Model):
         Classified by which body turns faster at that moment: ``"jackknife"`` when the towing
         vehicle's yaw rate is the larger (it swings round towards the trailer, as after a locked
         drive axle), ``"trailer_swing"`` when the trailer's is (it swings out, as after a locked
-        trailer axle). None if the threshold is never reached.
+        trailer axle).
+
+        Parameters
+        ----------
+        result : SimulationResult
+            A run of this model.
+        threshold : float
+            |articulation angle| [rad].
+
+        Returns
+        -------
+        ArticulationEvent or None
+            None if the threshold is never reached.
         """
         theta = np.asarray(result["articulation_angle"])
         beyond = np.flatnonzero(np.abs(theta) > threshold)

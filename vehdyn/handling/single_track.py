@@ -135,8 +135,16 @@ Longitudinal input, two modes:
   sec. 4.3.5; Wong 2008, sec. 2.7 for a towed wheel on soil). The brake torque opposes the spin; sat(z) = z / sqrt(1 + z^2) regularizes its sign
   within ``brake_regularization_speed`` omega_b so that a locked wheel stops without chatter.
 
+Road friction (``friction``, a constant ratio or a callable of the earth position under each
+axle's centre): every tire's law on the road is the similar one, F(kappa, tan alpha) ->
+mu F(kappa / mu, tan(alpha) / mu) (Pacejka 2012, sec. 4.3.2), so the peak forces and the slips at
+which they occur scale by mu and the slip stiffnesses stay; the deflections' limits (the peak
+slips) and the force mode's friction ellipse scale with it. The same step as the full vehicle's
+(:mod:`vehdyn.components.tire_forces`).
+
 The equations are written once, as pure functions over an ``xp`` namespace, in
-:mod:`~vehdyn.handling.single_track_equations`: :meth:`SingleTrack.rhs` and ``output`` run them on
+:mod:`~vehdyn.handling.single_track_equations` (with the components the full vehicle shares,
+:mod:`vehdyn.components`): :meth:`SingleTrack.rhs` and ``output`` run them on
 numpy arrays (with a batch axis), and :meth:`SingleTrack.compiled_rhs` compiles them with numba
 (optional: ``pip install vehdyn[fast]``) for ``simulate(model, t, inputs, method="RK45",
 "DOP853" or "BDF")``, which uses the compiled backend by default (``backend="auto"``) for one vehicle
@@ -151,9 +159,6 @@ evaluated exactly inside the compiled steps (see :mod:`vehdyn.simulation.compile
 from __future__ import annotations
 
 import dataclasses
-import threading
-import weakref
-from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
@@ -165,16 +170,15 @@ from vehdyn.signals import STEER_INPUTS, Signal
 from vehdyn.units import GRAVITY
 from vehdyn.handling import single_track_equations as equations
 from vehdyn.components.aero import centre_of_pressure_ahead_of_cg, wind_side_force_factor
+from vehdyn.components.planar import body_point
+from vehdyn.components.tire_forces import axle_tire_loads, wheel_pair_tire_loads
+from vehdyn.components.tire_setup import (friction_at, longitudinal_relaxation_lengths, mirrored_wheel, road_friction,
+                                          tire_characteristics)
+from vehdyn.components.xp import stack as _stack
 
 __all__ = ["SingleTrack", "SingleTrackParameters", "lateral_load_transfer_coefficients", "roll_parameters"]
 
 _AXLES = ("front", "rear")
-# SingleTrack._tire_characteristics per tire law and load: tire -> OrderedDict(load -> result), the
-# most recent CHARACTERISTICS_PER_TIRE loads of each law (a law is shared by the models built from
-# one vehicle file, :func:`vehdyn.tire.registry.tire_for_vehicle`)
-_CHARACTERISTICS = weakref.WeakKeyDictionary()
-_CHARACTERISTICS_LOCK = threading.Lock()
-CHARACTERISTICS_PER_TIRE = 256
 
 
 @dataclass(frozen=True)
@@ -231,7 +235,13 @@ class SingleTrackParameters:
         return self.a + self.b
 
     def static_axle_loads(self):
-        """(front, rear) static axle loads [N]."""
+        """The static axle loads.
+
+        Returns
+        -------
+        tuple
+            (front, rear) [N].
+        """
         w = self.mass * self.gravity
         return w * self.b / self.wheelbase, w * self.a / self.wheelbase
 
@@ -263,14 +273,6 @@ def _check_parameters(p: SingleTrackParameters) -> SingleTrackParameters:
     return p
 
 
-def _stack(rows) -> np.ndarray:
-    """Rows of scalars or arrays as one array with the batch axis last."""
-    if all(np.ndim(row) == 0 for row in rows):
-        return np.array(rows, dtype=float)
-    shape = np.broadcast_shapes(*(np.shape(row) for row in rows))
-    return np.stack([np.broadcast_to(row, shape) for row in rows])
-
-
 def lateral_load_transfer_coefficients(vehicle, *, mass=None, cg_height=None, a=None, b=None, gravity=GRAVITY):
     """Quasi-static lateral load transfer coefficients ((front geometric, front elastic), (rear ...)) [-].
 
@@ -286,8 +288,28 @@ def lateral_load_transfer_coefficients(vehicle, *, mass=None, cg_height=None, a=
     F_y,f + F_y,r = m a_y and F_y,i = m a_y l_j / L, which gives the textbook
     dF_z,i = m a_y / t_i (h_1 K_i / (K_f + K_r - m g h_1) + z_i l_j / L).
 
-    ``mass``, ``cg_height``, ``a``, ``b`` default to the vehicle's (floats or arrays across
-    variants). Raises ParameterError when K_f + K_r <= m g h_1 (the body would roll over).
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Tracks, roll centres and roll stiffnesses.
+    mass : float or ndarray, optional
+        m [kg] (default the vehicle's; arrays across variants).
+    cg_height : float or ndarray, optional
+        h [m].
+    a, b : float or ndarray, optional
+        CG to the front and rear axle [m].
+    gravity : float
+        [m/s^2].
+
+    Returns
+    -------
+    tuple
+        ((front geometric, front elastic), (rear geometric, rear elastic)) [-].
+
+    Raises
+    ------
+    ParameterError
+        When K_f + K_r <= m g h_1 (the body would roll over).
     """
     m, g = vehicle.mass, vehicle.geometry
     mass = m.mass if mass is None else mass
@@ -316,8 +338,23 @@ def roll_parameters(vehicle, *, mass=None, cg_height=None, a=None, b=None) -> di
     less (m_s h_s)^2 / m, eliminating dv/dt from Segel's lateral and roll equations (positive, as
     m_s < m); ``{axle}_roll_transfer_stiffness`` K_i / t_i [N/rad] with K_i the suspension roll
     stiffness (springs and anti-roll bar, tires excluded), and ``{axle}_roll_transfer_damping``
-    C_i / t_i [N*s/rad] with C_i = c_i t_i^2 / 2 from the corner dampers. ``mass``, ``cg_height``, ``a``,
-    ``b`` default to the vehicle's.
+    C_i / t_i [N*s/rad] with C_i = c_i t_i^2 / 2 from the corner dampers.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle.
+    mass : float, optional
+        m [kg] (default the vehicle's).
+    cg_height : float, optional
+        h [m].
+    a, b : float, optional
+        CG to the front and rear axle [m].
+
+    Returns
+    -------
+    dict
+        The numbers above [their units].
     """
     from vehdyn.handling.lateral_yaw_roll import lateral_yaw_roll_parameters
 
@@ -337,7 +374,7 @@ def roll_parameters(vehicle, *, mass=None, cg_height=None, a=None, b=None) -> di
 
 
 class SingleTrack(Model):
-    """Nonlinear planar single-track model with any tire law (equations in the module docstring).
+    r"""Nonlinear planar single-track model with any tire law (equations in the module docstring).
 
     Parameters
     ----------
@@ -371,6 +408,15 @@ class SingleTrack(Model):
         The roll degree of freedom (module docstring; needs ``lateral_load_transfer=True``): the
         roll angle and rate of the body set the elastic part of the lateral load transfer. Adds the
         states and outputs ``roll_angle`` [rad] and ``roll_rate`` [rad/s] (default False).
+    friction : float or callable, optional
+        The road's friction relative to the tire laws' own [-]: a constant ratio (e.g. 0.5; it
+        compiles), or a callable ``friction(X, Y) -> ratio`` of earth positions [m] (arrays),
+        evaluated under each axle's centre (numpy backend only; the single track lumps an axle's
+        wheels on the centre line, so a split-mu road needs :class:`~vehdyn.full_vehicle.FullVehicle`).
+        Applied to every tire by similarity (Pacejka 2012, sec. 4.3.2): the peak forces and their
+        slips scale by the ratio, the slip stiffnesses stay (:mod:`vehdyn.components.tire_forces`);
+        the force mode's friction ellipse takes the same ratio. Default: the laws as they are.
+        :func:`vehdyn.components.tire_setup.friction_ratio` gives the ratio of a road of known peak mu.
 
     Signals
     -------
@@ -390,15 +436,47 @@ class SingleTrack(Model):
 
     Notes
     -----
+    The planar equations (module docstring; SAE axes, axle forces resolved through the steer
+    angles):
+
+    .. math::
+
+        m (\dot u - v r) &= F_{xf} \cos\delta_f - F_{yf} \sin\delta_f + F_{xr} \cos\delta_r
+        - F_{yr} \sin\delta_r - F_{drag}\\
+        m (\dot v + u r) &= F_{xf} \sin\delta_f + F_{yf} \cos\delta_f + F_{xr} \sin\delta_r
+        + F_{yr} \cos\delta_r + F_{ext}\\
+        I_z \dot r &= a (F_{xf} \sin\delta_f + F_{yf} \cos\delta_f) - b (F_{xr} \sin\delta_r
+        + F_{yr} \cos\delta_r) + M_{ext}\\
+        \dot\rho_y &= V_{sy} - |V_x| \rho_y / \sigma_y,\qquad \tan\alpha' = \rho_y / \sigma_y\\
+        2 I_w \dot\omega &= T_{drive} - T_{brake}\,\mathrm{sat}(\omega / \omega_b) - R_e F_x + M_y
+
+    with the axle loads F_zf = m g b / L - h X / L - L_f (quasi-static longitudinal transfer) and
+    each axle's forces from its tire law at the transient slips (two tires at half the axle load, or
+    each wheel at its own load under the lateral load transfer).
+
     Parameters may vary across a batch: :meth:`variants` returns a model whose mass, inertia,
     axle positions, CG height or relaxation lengths are arrays, and one ``simulate`` call with
     ``x0`` of shape (n_states, n_variants) runs them all.
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, sec. 1.3
+       (eq. 1.43, the single-track equations), 4.3.2 (similarity), 7.2.1 (eq. 7.9-7.12, the tire
+       deflections), 8.7 (eq. 8.125-8.126, the low-speed damping).
+    .. [2] R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., Springer, 2012, sec. 2.3, 2.5 and
+       13.7 (the friction ellipse).
+    .. [3] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, eq. 2-18 and ch. 6.
+    .. [4] W. F. Milliken, D. L. Milliken, *Race Car Vehicle Dynamics*, SAE, 1995, ch. 18 (lateral
+       load transfer).
+    .. [5] L. Segel, "Theoretical prediction and experimental substantiation of the response of the
+       automobile to steering control", *Proc. IMechE Automobile Division*, 1956 (the roll degree
+       of freedom).
     """
 
     def __init__(self, vehicle: Vehicle, front_tire=None, rear_tire=None, *, wheel_spin: bool = False,
                  tire_lag: bool = True, longitudinal_relaxation_length=None, low_speed_damping_speed: float = 2.0,
                  brake_regularization_speed: float = 1.0, gravity: float = GRAVITY,
-                 lateral_load_transfer: bool = False, roll: bool = False):
+                 lateral_load_transfer: bool = False, roll: bool = False, friction=None):
         if not isinstance(vehicle, Vehicle):
             raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
                                  value=vehicle)
@@ -424,6 +502,7 @@ class SingleTrack(Model):
             raise ParameterError("roll=True needs lateral_load_transfer=True (the roll sets the wheels' loads)",
                                  key="roll", value=roll)
         self.roll = bool(roll)
+        self.friction = road_friction(friction)
         for name, value in (("low_speed_damping_speed", low_speed_damping_speed),
                             ("brake_regularization_speed", brake_regularization_speed), ("gravity", gravity)):
             if not (np.isfinite(value) and value > 0):
@@ -437,7 +516,7 @@ class SingleTrack(Model):
                                  f"tires.rear_relaxation_length, got {lateral}", key="tires.front_relaxation_length",
                                  value=lateral)
         lateral = tuple(s if s > 0 else 1.0 for s in lateral)  # unused without tire lag
-        longitudinal = self._longitudinal_lengths(vehicle, tires, longitudinal_relaxation_length, lateral, gravity)
+        longitudinal = longitudinal_relaxation_lengths(vehicle, tires, longitudinal_relaxation_length, lateral, gravity)
         half_rho_a = 0.5 * aero.air_density * aero.frontal_area
         self.parameters = _check_parameters(SingleTrackParameters(
             mass=m.mass, yaw_inertia=m.yaw_inertia, a=g.cg_to_front_axle, b=g.cg_to_rear_axle, cg_height=m.cg_height,
@@ -450,32 +529,25 @@ class SingleTrack(Model):
             wind_side_force_factor=wind_side_force_factor(vehicle),
             centre_of_pressure=centre_of_pressure_ahead_of_cg(vehicle)))
         static = self.parameters.static_axle_loads()
-        characteristics = {axle: self._tire_characteristics(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
+        characteristics = {axle: tire_characteristics(tires[axle], 0.5 * load) for axle, load in zip(_AXLES, static)}
         self._mirrored = {axle: value[0] for axle, value in characteristics.items()}
-        self._mirrored_wheels = {axle: self._mirrored_wheel(tires[axle], value[0])
-                                 for axle, value in characteristics.items()}
+        self._mirrored_wheels = {axle: mirrored_wheel(tires[axle], value[0]) for axle, value in characteristics.items()}
         self._peak_slip = {axle: value[1] for axle, value in characteristics.items()}
         if self.lateral_load_transfer:
             self._transfer_coefficients()  # a vehicle whose body would roll over: error here
         self._declare_signals()
 
     # ------------------------------------------------------------------ construction helpers
-    @staticmethod
-    def _longitudinal_lengths(vehicle, tires, given, lateral, gravity):
-        if given is not None:
-            values = np.broadcast_to(np.asarray(given, dtype=float), (2,))
-            if not np.all(np.isfinite(values)) or np.any(values <= 0):
-                raise ParameterError(f"longitudinal_relaxation_length must be > 0 [m], got {given!r}",
-                                     key="longitudinal_relaxation_length", value=given)
-            return float(values[0]), float(values[1])
-        from vehdyn.tire import MagicFormula, relaxation_lengths
+    # (for the handling models that share them: vehdyn.components.tire_setup holds them)
+    _longitudinal_lengths = staticmethod(longitudinal_relaxation_lengths)
+    _mirrored_wheel = staticmethod(mirrored_wheel)
+    _tire_characteristics = staticmethod(tire_characteristics)
 
-        lengths = []
-        for axle, load, fallback in zip(_AXLES, vehicle.static_axle_loads(gravity), lateral):
-            tire = tires[axle]
-            sigma = float(relaxation_lengths(tire, 0.5 * load)[0]) if isinstance(tire, MagicFormula) else fallback
-            lengths.append(sigma if np.isfinite(sigma) and sigma > 0 else fallback)
-        return tuple(lengths)
+    @staticmethod
+    def _needs_mirror(tire, load) -> bool:
+        """True when ``tire`` makes a lateral force at zero slip (at ``load`` [N], 20 m/s): one wheel of
+        an axle is then the law's mirror image (:func:`~vehdyn.components.tire_setup.mirrored_wheel`)."""
+        return tire_characteristics(tire, load)[0]
 
     def _declare_signals(self):
         states = [Signal("longitudinal_velocity", "m/s", "body-frame forward velocity u of the CG"),
@@ -562,6 +634,16 @@ class SingleTrack(Model):
         Arrays (1-D, one entry per variant) make a batch model: simulate it with ``x0`` of shape
         (n_states, n_variants). Example: ``model.variants(mass=np.linspace(1000, 1600, 1000))``.
 
+        Parameters
+        ----------
+        **arrays
+            Fields of :class:`SingleTrackParameters` and their values [the fields' units].
+
+        Returns
+        -------
+        SingleTrack
+            The copy.
+
         Raises
         ------
         ParameterError
@@ -624,7 +706,9 @@ class SingleTrack(Model):
             rear_peak_slip_ratio=self._peak_slip["rear"][0], rear_peak_tan_slip_angle=self._peak_slip["rear"][1],
             front_mirror_right=float(self._mirrored_wheels["front"] == "right"),
             rear_mirror_right=float(self._mirrored_wheels["rear"] == "right"),
-            wheel_spin=self.wheel_spin, tire_lag=self.tire_lag)
+            front_ply_steer=float(self._mirrored["front"]), rear_ply_steer=float(self._mirrored["rear"]),
+            road_friction=self.friction if isinstance(self.friction, float) else 1.0,
+            wheel_spin=self.wheel_spin, tire_lag=self.tire_lag, friction_scaled=self.friction is not None)
 
     def _evaluate(self, x, u):
         """(named states, named inputs, Evaluation) at x, u (numpy arrays, optional batch axis)."""
@@ -633,139 +717,101 @@ class SingleTrack(Model):
         states = equations.named_states(x, self._state_index)
         inputs = equations.named_inputs(u, self._input_index)
         k = self._constants()
-        return states, inputs, k, equations.evaluate(equations.NUMPY, self, k, states, inputs)
+        friction = (k.road_friction, k.road_friction)
+        if callable(self.friction):  # the road under each axle's centre
+            p = self.parameters
+            friction = tuple(friction_at(self.friction, *body_point(equations.NUMPY, states[3], states[4], states[5],
+                                                                      forward, 0.0))
+                             for forward in (p.a, -p.b))
+        tires = (self.front_tire, self.rear_tire)
+        return states, inputs, k, equations.evaluate(equations.NUMPY, tires, k, states, inputs, friction)
 
     def axle_law_forces(self, axle, fz, kappa, alpha, vx):
-        """Axle forces (fx, fy) [N] in ISO-W from the law of one tire at half the load ``fz`` [N]:
-        the forces of :meth:`axle_law_loads`."""
+        """Axle forces in ISO-W from the law of one tire at half the load: those of :meth:`axle_law_loads`.
+
+        Parameters
+        ----------
+        axle : int
+            0 front, 1 rear.
+        fz : float or ndarray
+            Axle load [N].
+        kappa : float or ndarray
+            Slip ratio [-] (ISO-W).
+        alpha : float or ndarray
+            Slip angle [rad] (ISO-W).
+        vx : float or ndarray
+            Signed wheel-centre speed [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x [N], F_y [N]) of the axle, ISO-W.
+        """
         fx, fy, _ = SingleTrack.axle_law_loads(self, axle, fz, kappa, alpha, vx)
         return fx, fy
 
     def axle_law_loads(self, axle, fz, kappa, alpha, vx):
-        """Axle forces and rolling-resistance moment (fx, fy, my) [N, N, N*m] in ISO-W from the law of
-        one tire at half the load ``fz`` [N].
+        """Axle forces and rolling-resistance moment in ISO-W from the law of one tire at half the load.
 
-        ``axle`` is 0 (front) or 1 (rear); ``kappa``, ``alpha`` the ISO-W slips, ``vx`` the signed
-        wheel-centre speed [m/s]. The two tires of an axle are mirror images: when the law has a
-        lateral force at zero slip (ply-steer and conicity shifts of a Magic Formula file), the axle
-        force is the tire's plus its mirror image's, F_y = F_y(alpha) - F_y(-alpha),
-        F_x = F_x(alpha) + F_x(-alpha), M_y = M_y(alpha) + M_y(-alpha), so that a vehicle with zero
-        steer runs straight. Laws without such shifts are evaluated once.
+        The two tires of an axle are mirror images: when the law has a lateral force at zero slip
+        (ply-steer and conicity shifts of a Magic Formula file), the axle force is the tire's plus
+        its mirror image's, F_y = F_y(alpha) - F_y(-alpha), F_x = F_x(alpha) + F_x(-alpha),
+        M_y = M_y(alpha) + M_y(-alpha), so that a vehicle with zero steer runs straight; laws
+        without such shifts are evaluated once, doubled
+        (:func:`vehdyn.components.tire_forces.axle_tire_loads`, on the law's own road).
+
+        Parameters
+        ----------
+        axle : int
+            0 front, 1 rear.
+        fz : float or ndarray
+            Axle load [N].
+        kappa : float or ndarray
+            Slip ratio [-] (ISO-W).
+        alpha : float or ndarray
+            Slip angle [rad] (ISO-W).
+        vx : float or ndarray
+            Signed wheel-centre speed [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x [N], F_y [N], M_y [N*m]) of the axle, ISO-W.
+        """
+        tire = self.front_tire if axle == 0 else self.rear_tire
+        return axle_tire_loads(equations.NUMPY, tire, fz, kappa, alpha, vx, self._mirrored[_AXLES[axle]], 1.0, False)
+
+    def wheel_pair_law_loads(self, axle, left_load, right_load, kappa, alpha, vx):
+        """ISO-W (F_x, F_y, M_y) of the left, then the right tire of ``axle`` at their own loads.
+
+        The mirror image of the law (:meth:`axle_law_loads`) on the side
+        :func:`~vehdyn.components.tire_setup.mirrored_wheel` names: the left tire for a right-side
+        law, the right one for a ``TYRESIDE = 'LEFT'`` file
+        (:func:`vehdyn.components.tire_forces.wheel_pair_tire_loads`).
+
+        Parameters
+        ----------
+        axle : int
+            0 front, 1 rear.
+        left_load, right_load : float or ndarray
+            Wheel loads [N].
+        kappa : float or ndarray
+            Slip ratio [-] (ISO-W).
+        alpha : float or ndarray
+            Slip angle [rad] (ISO-W).
+        vx : float or ndarray
+            Signed wheel-centre speed [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x, F_y, M_y of the left tire, F_x, F_y, M_y of the right one) [N, N, N*m], ISO-W.
         """
         name = _AXLES[axle]
         tire = self.front_tire if axle == 0 else self.rear_tire
-        load = 0.5 * fz
-        scalar = np.ndim(load) == 0 and np.ndim(kappa) == 0 and np.ndim(alpha) == 0 and np.ndim(vx) == 0
-        if scalar:  # one vehicle: Python floats take the laws' fast scalar path
-            load, kap, alp, vx = float(load), float(kappa), float(alpha), float(vx)
-        else:
-            kap, alp = kappa, alpha
-        if self._mirrored[name]:
-            if scalar:
-                f, g = tire.forces(load, kap, alp, 0.0, vx), tire.forces(load, kap, -alp, 0.0, vx)
-                return f.fx + g.fx, f.fy - g.fy, f.my + g.my
-            both = tire.forces(np.stack(np.broadcast_arrays(load, load)), np.stack(np.broadcast_arrays(kap, kap)),
-                               np.stack(np.broadcast_arrays(alp, -alp)), 0.0, np.stack(np.broadcast_arrays(vx, vx)))
-            return both.fx[0] + both.fx[1], both.fy[0] - both.fy[1], both.my[0] + both.my[1]
-        f = tire.forces(load, kap, alp, 0.0, vx)
-        return 2.0 * f.fx, 2.0 * f.fy, 2.0 * f.my
-
-    def wheel_pair_law_loads(self, axle, left_load, right_load, kappa, alpha, vx):
-        """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N],
-        the left one the law's mirror image when the law has ply steer (see :meth:`axle_law_loads`):
-        (F_x, -F_y, M_y) of the law at -alpha; the right one the law's own.
-
-        Where the law is a left tire (:meth:`_mirrored_wheel`: ``TYRESIDE = 'LEFT'``),
-        :func:`~vehdyn.handling.single_track_equations.wheel_pair_loads` passes the right wheel's
-        load first and takes its forces from the first place (the compiled form is the same)."""
-        tire = self.front_tire if axle == 0 else self.rear_tire
-        mirror = -1.0 if self._mirrored[_AXLES[axle]] else 1.0
-        if all(np.ndim(v) == 0 for v in (left_load, right_load, kappa, alpha, vx)):
-            f = tire.forces(float(left_load), float(kappa), mirror * float(alpha), 0.0, float(vx))
-            g = tire.forces(float(right_load), float(kappa), float(alpha), 0.0, float(vx))
-            return f.fx, mirror * f.fy, f.my, g.fx, g.fy, g.my
-        both = tire.forces(np.stack(np.broadcast_arrays(left_load, right_load)),
-                           np.stack(np.broadcast_arrays(kappa, kappa)),
-                           np.stack(np.broadcast_arrays(mirror * alpha, alpha)), 0.0,
-                           np.stack(np.broadcast_arrays(vx, vx)))
-        return both.fx[0], mirror * both.fy[0], both.my[0], both.fx[1], both.fy[1], both.my[1]
-
-    @staticmethod
-    def _needs_mirror(tire, load) -> bool:
-        """True when ``tire`` makes a lateral force at zero slip (at the static load, 20 m/s): one
-        wheel of an axle is then the law's mirror image (:meth:`_mirrored_wheel` says which)."""
-        f = tire.forces(float(load), 0.0, 0.0, 0.0, 20.0)
-        return abs(float(f.fy)) > 1e-9 * max(float(load), 1.0)
-
-    @staticmethod
-    def _mirrored_wheel(tire, has_ply_steer: bool) -> str | None:
-        """The wheel of an axle that is the mirror image of ``tire``'s law: ``"left"``, ``"right"``,
-        or None when the law makes no lateral force at zero slip (``has_ply_steer`` False, from
-        :meth:`_needs_mirror` or :meth:`_tire_characteristics`: the two wheels are then the same
-        law). Every model that tells the wheels apart decides here.
-
-        A ``.tir`` file's ``TYRESIDE`` names the side of the vehicle (or test bench) the tire was
-        mounted on when it was measured; the file's law is that wheel's, and a tire of the same
-        make on the other side is its mirror image, (F_x, -F_y, M_y) at (-alpha, -gamma) (the
-        convention of MF-Tyre and ADAMS property files; MFeval and :class:`~vehdyn.tire.MagicFormula`
-        evaluate the law as written). So a ``'LEFT'`` file (the shipped mf_185_80R14.tir) mirrors
-        the right wheel, a ``'RIGHT'`` file the left one; a law without ``TYRESIDE`` (other tire
-        laws) is taken as a right tire. At equal wheel loads the axle force is the same either way;
-        under a lateral load transfer the ply-steer part of it changes sign with the side.
-        """
-        if not has_ply_steer:
-            return None
-        params = getattr(tire, "params", None)
-        side = str(params.get("TYRESIDE", "RIGHT")).strip().strip("'\"").upper() if params is not None else "RIGHT"
-        return "right" if side == "LEFT" else "left"
-
-    @staticmethod
-    def _tire_characteristics(tire, load):
-        """(:meth:`_needs_mirror`, peak slips) of ``tire`` at ``load`` [N]: :meth:`_uncached_tire_characteristics`,
-        remembered per law and load (the law evaluates 803 points, ~1.2 ms for a Magic Formula: most
-        of building a model; a sweep over speeds, manoeuvres or stiffnesses builds every model at the
-        same loads). A law that cannot be a weak dictionary key is evaluated every time."""
-        load = float(load)
-        try:
-            with _CHARACTERISTICS_LOCK:
-                memo = _CHARACTERISTICS.setdefault(tire, OrderedDict())
-                hit = memo.get(load)
-                if hit is not None:
-                    memo.move_to_end(load)
-                    return hit
-        except TypeError:  # unhashable, or no weak reference to it
-            return SingleTrack._uncached_tire_characteristics(tire, load)
-        result = SingleTrack._uncached_tire_characteristics(tire, load)
-        with _CHARACTERISTICS_LOCK:
-            memo[load] = result
-            while len(memo) > CHARACTERISTICS_PER_TIRE:
-                memo.popitem(last=False)
-        return result
-
-    @staticmethod
-    def _uncached_tire_characteristics(tire, load):
-        """(:meth:`_needs_mirror`, peak slips) of ``tire`` at ``load`` [N] from one call of the law
-        (its slip-ratio sweep, slip-angle sweep and zero-slip point side by side: a numpy law's
-        call costs its overhead, not its points).
-
-        The peak slips: (slip ratio, tan slip angle) [-] at which the law's pure-slip force peaks.
-        The tire deflection cannot grow beyond what the peak force needs: past it the contact patch
-        slides (Pacejka 2012, sec. 7.2 and 8.2; Rill, *Road Vehicle Dynamics*, 2012, sec. 3.10).
-        A law without a peak (linear) gives slip ratio 1 and slip angle 80 degrees.
-        """
-        grid = np.linspace(0.0, 1.0, 401)
-        angles = np.linspace(0.0, np.radians(80.0), 401)
-        zeros = np.zeros(grid.size + angles.size + 1)
-        kappa, alpha = zeros.copy(), zeros.copy()
-        kappa[:grid.size] = grid
-        alpha[grid.size:-1] = angles
-        f = tire.forces(np.full(zeros.size, float(load)), kappa, alpha, 0.0, 20.0)
-        fx = np.abs(np.asarray(f.fx)[:grid.size])
-        fy = np.abs(np.asarray(f.fy)[grid.size:-1])
-        mirrored = abs(float(np.asarray(f.fy)[-1])) > 1e-9 * max(float(load), 1.0)
-        kx = grid[np.argmax(fx >= (1 - 1e-9) * fx.max())]
-        ay = angles[np.argmax(fy >= (1 - 1e-9) * fy.max())]
-        return mirrored, (max(float(kx), 0.01), max(float(np.tan(ay)), 0.01))
+        side = self._mirrored_wheels[name]
+        return wheel_pair_tire_loads(equations.NUMPY, tire, left_load, right_load, kappa, alpha, vx, side == "left",
+                                     side == "right", 1.0, False)
 
     def compiled_rhs(self):
         """The rhs compiled by numba for ``simulate(..., backend="compiled")`` (see :meth:`vehdyn.Model.compiled_rhs`).
@@ -788,7 +834,17 @@ class SingleTrack(Model):
         variants (array parameters, :meth:`variants`), or ``n_variants`` copies of a model with
         scalar parameters (a batch of initial states or inputs). ``simulate`` runs it on the compiled
         backend, each variant with its own step-size control: every variant's states are bitwise
-        those of its own compiled run. Raises ParameterError as :meth:`compiled_rhs` does."""
+        those of its own compiled run. Raises ParameterError as :meth:`compiled_rhs` does.
+
+        Parameters
+        ----------
+        n_variants : int, optional
+            The number of copies of a model with scalar parameters (default: the variants).
+
+        Returns
+        -------
+        CompiledBatch
+        """
         from vehdyn.handling import _single_track_numba
 
         return _single_track_numba.compiled_batch(self, n_variants)
@@ -796,13 +852,29 @@ class SingleTrack(Model):
     @staticmethod
     def compiled_batch_of(models):
         """The compiled batch of many models with scalar parameters and one :meth:`batch_structure`
-        (their parameters and tires may differ): what :func:`vehdyn.simulate.simulate_many` runs."""
+        (their parameters and tires may differ): what :func:`vehdyn.simulate.simulate_many` runs.
+
+        Parameters
+        ----------
+        models : sequence of SingleTrack
+            The models.
+
+        Returns
+        -------
+        CompiledBatch
+        """
         from vehdyn.handling import _single_track_numba
 
         return _single_track_numba.compiled_batch(list(models))
 
     def batch_structure(self) -> tuple:
-        """What models must share to run in one compiled batch (modes, tire laws, signals): a hashable key."""
+        """What models must share to run in one compiled batch (modes, tire laws, friction mode, signals).
+
+        Returns
+        -------
+        tuple
+            A hashable key.
+        """
         from vehdyn.handling import _single_track_numba
 
         return _single_track_numba.batch_structure(self)
@@ -825,9 +897,19 @@ class SingleTrack(Model):
 
     # ------------------------------------------------------------------ operating points
     def straight_running(self, speed: float, **states) -> np.ndarray:
-        """State vector of straight running at ``speed`` [m/s] (wheels rolling freely, tires relaxed).
+        """State vector of straight running at ``speed`` (wheels rolling freely, tires relaxed).
 
-        Keyword arguments set other states by name (``x=..., yaw_angle=...``).
+        Parameters
+        ----------
+        speed : float
+            Forward speed [m/s].
+        **states
+            Other states by name (``x=..., yaw_angle=...``) [their units].
+
+        Returns
+        -------
+        ndarray
+            The state vector [SI units].
         """
         values = {"longitudinal_velocity": speed}
         if self.wheel_spin:
@@ -866,6 +948,17 @@ class SingleTrack(Model):
         the bicycle model's (evaluated at zero longitudinal force, the constant-speed assumption of
         the bicycle model). In straight running these states decouple from the others exactly
         (every coupling term is proportional to v, r or the steer angle), so the block is exact.
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed [m/s].
+        crosswind : bool
+            Keep the input ``wind_velocity_lateral``.
+
+        Returns
+        -------
+        LinearModel
         """
         from vehdyn.model import LinearModel
 
@@ -886,6 +979,18 @@ class SingleTrack(Model):
 
         -dF_y/d(alpha) at zero slip of two tires, each at half the axle load, by a central
         difference of the tire law (SAE sign: positive).
+
+        Parameters
+        ----------
+        fz : (float, float), optional
+            Axle loads [N] (default: static).
+        eps : float
+            Slip-angle step of the difference [rad].
+
+        Returns
+        -------
+        tuple
+            (front, rear) [N/rad].
         """
         loads = self.parameters.static_axle_loads() if fz is None else fz
         out = []

@@ -1,15 +1,20 @@
 """The equations of :class:`~vehdyn.handling.SingleTrack` as pure functions over an ``xp`` namespace.
 
-One source for both backends (the pattern of :mod:`vehdyn.tire._mf_ops`): the functions below
-use only ``xp.cos``, ``xp.sin``, ``xp.atan``, ``xp.sqrt``, ``xp.abs``, ``xp.where``,
-``xp.minimum``, ``xp.maximum`` and ``xp.axle_tire_forces`` / ``xp.axle_tire_loads`` (the tire law
-of an axle: forces, or forces and rolling-resistance moment), and plain arithmetic, so that they run
+One source for every backend: the functions below use only the interface of
+:mod:`vehdyn.components.xp` (``xp.cos``, ``xp.sin``, ``xp.atan``, ``xp.atan2``, ``xp.sqrt``,
+``xp.abs``, ``xp.tanh``, ``xp.where``, ``xp.minimum``, ``xp.maximum`` and the tire hooks
+``xp.tire_law`` / ``xp.tire_law_pair``) and plain arithmetic, and the shared components
+(:mod:`~vehdyn.components.tire_slip`, :mod:`~vehdyn.components.tire_forces`,
+:mod:`~vehdyn.components.wheel`, :mod:`~vehdyn.components.planar`, :mod:`~vehdyn.components.aero`),
+so that they run
 
 * on numpy arrays with a trailing batch axis (:data:`NUMPY`, what ``SingleTrack.rhs`` and
-  ``output`` use; the tire law is the model's :class:`~vehdyn.tire.TireModel`), and
+  ``output`` use; a tire law is a :class:`~vehdyn.tire.TireModel`), and
 * on floats inside numba-compiled code (:mod:`vehdyn.handling._single_track_numba` registers
-  these functions with ``register_jitable`` and supplies a compiled ``xp``).
+  these functions with ``register_jitable`` and runs them with the compiled ``xp`` of
+  :mod:`vehdyn.components.compiled`; a tire law is a :class:`vehdyn.tire.compiled.TireLaw`).
 
+Control flow branches only on the model's options (fields of :class:`Constants`), never on a state.
 The equations, their signs and references are in the docstring of
 :mod:`vehdyn.handling.single_track`. Signals travel in a fixed order (:data:`STATES`,
 :data:`INPUTS`); a model's own vectors hold a subset, mapped through an index (-1: absent, 0.0).
@@ -17,18 +22,19 @@ The equations, their signs and references are in the docstring of
 
 from __future__ import annotations
 
-import math
 from collections import namedtuple
 
-import numpy as np
-
-from vehdyn.conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slips_sae_to_iso_w
-from vehdyn.tire._mf_ops import NumpyOps
 from vehdyn.components.aero import aero_side_force
+from vehdyn.components.planar import position_rates
+from vehdyn.components.tire_forces import contact_loads, demanded_forces, wheel_pair_tire_loads
+from vehdyn.components.tire_slip import contact_slips, deflection_rate, low_speed_blend
+from vehdyn.components.wheel import net_wheel_torque, rolling_resistance_fade
+from vehdyn.components.xp import NUMPY
+from vehdyn.conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slips_sae_to_iso_w
 
 __all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate",
-           "derivatives", "outputs", "axle_slips", "axle_forces", "axle_loads", "wheel_pair_loads",
-           "wheel_load_outputs", "lateral_load_transfer", "roll_acceleration"]
+           "derivatives", "outputs", "axle_loads", "wheel_pair_loads", "wheel_load_outputs", "normal_loads",
+           "lateral_load_transfer", "roll_acceleration", "deflection_rates"]
 
 STATES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y", "yaw_angle", "front_wheel_speed",
           "rear_wheel_speed", "front_lateral_deflection", "rear_lateral_deflection", "front_longitudinal_deflection",
@@ -40,8 +46,6 @@ INPUTS = ("front_steer_angle", "rear_steer_angle", "front_longitudinal_force", "
           "external_lateral_force", "external_yaw_moment", "wind_velocity_lateral")
 """Every input a SingleTrack can have, in the order of :func:`evaluate`."""
 
-REGULARIZATION_SPEED = 0.5  # [m/s], the default v_0 of vehdyn.tire.slip
-
 Constants = namedtuple("Constants", (
     "mass", "yaw_inertia", "a", "b", "cg_height", "rolling_radius", "wheel_spin_inertia", "friction_coefficient",
     "front_lateral_relaxation_length", "rear_lateral_relaxation_length", "front_longitudinal_relaxation_length",
@@ -51,16 +55,75 @@ Constants = namedtuple("Constants", (
     "front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer", "rear_elastic_transfer",
     "front_track", "rear_track", "roll_inertia", "roll_arm", "front_roll_transfer_stiffness",
     "rear_roll_transfer_stiffness", "front_roll_transfer_damping", "rear_roll_transfer_damping",
-    "front_mirror_right", "rear_mirror_right", "wheel_spin", "tire_lag", "lateral_load_transfer"))
-Constants.__doc__ = """What the equations read: the fields of :class:`SingleTrackParameters` (floats, or arrays
-across batch variants on numpy), the model's options and the peak-force slips of the two laws
-(the limits of the tire deflections); ``wheel_spin``, ``tire_lag`` and ``lateral_load_transfer`` are
-bools, the last three fields (a compiled batch appends them to a variant's floats). The four
-``*_transfer`` coefficients [-] give the load moved onto an axle's left wheel by the axles' lateral
-forces (:func:`lateral_load_transfer`; zero without lateral load transfer), the tracks [m] the arm
-of the yaw couple of unequal left and right longitudinal forces (zero without). ``*_mirror_right``
-is 1.0 where the axle's right wheel is the mirror image of the law (a ``.tir`` file with
-``TYRESIDE = 'LEFT'``), else 0.0 (the left one, or none: ``SingleTrack._mirrored_wheel``)."""
+    "front_mirror_right", "rear_mirror_right", "front_ply_steer", "rear_ply_steer", "road_friction", "wheel_spin",
+    "tire_lag", "lateral_load_transfer", "friction_scaled"))
+Constants.__doc__ = """What the equations read: the model's numbers, options and the two laws' characteristics.
+
+The fields of :class:`~vehdyn.handling.single_track.SingleTrackParameters` are floats, or arrays
+across batch variants on numpy; the four flags come last (a compiled batch appends them to a
+variant's floats).
+
+Parameters
+----------
+mass : float
+    m [kg].
+yaw_inertia : float
+    I_z [kg*m^2].
+a, b : float
+    CG to the front and rear axle [m].
+cg_height : float
+    h [m].
+rolling_radius : float
+    R_e [m].
+wheel_spin_inertia : float
+    I_w of one wheel [kg*m^2].
+friction_coefficient : float
+    The laws' own mu of the force mode's friction ellipse [-].
+front_lateral_relaxation_length, rear_lateral_relaxation_length : float
+    sigma_y [m].
+front_longitudinal_relaxation_length, rear_longitudinal_relaxation_length : float
+    sigma_x [m].
+drag_factor : float
+    0.5 rho c_x A [kg/m].
+front_lift_factor, rear_lift_factor : float
+    0.5 rho c_l A of each axle [kg/m].
+gravity : float
+    g [m/s^2].
+low_speed_damping_speed : float
+    v_l [m/s].
+brake_regularization_speed : float
+    omega_b [rad/s].
+front_peak_slip_ratio, front_peak_tan_slip_angle, rear_peak_slip_ratio, rear_peak_tan_slip_angle : float
+    The slips of the laws' peak forces [-] (the deflections' limits).
+wind_side_force_factor : float
+    k_w [kg/m].
+centre_of_pressure : float
+    x_p ahead of the CG [m].
+front_geometric_transfer, front_elastic_transfer, rear_geometric_transfer, rear_elastic_transfer : float
+    Lateral load transfer coefficients [-] (:func:`lateral_load_transfer`; 0 without the transfer).
+front_track, rear_track : float
+    The arms of the yaw couple of unequal left and right longitudinal forces [m] (0 without).
+roll_inertia : float
+    J [kg*m^2] (1 without roll).
+roll_arm : float
+    h_1 [m] (0 without roll).
+front_roll_transfer_stiffness, rear_roll_transfer_stiffness : float
+    K_i / t_i [N/rad].
+front_roll_transfer_damping, rear_roll_transfer_damping : float
+    C_i / t_i [N*s/rad].
+front_mirror_right, rear_mirror_right : float
+    1.0 where the axle's right wheel is the law's mirror image (a ``.tir`` file with
+    ``TYRESIDE = 'LEFT'``), else 0.0 (the left one, or none:
+    :func:`vehdyn.components.tire_setup.mirrored_wheel`) [-].
+front_ply_steer, rear_ply_steer : float
+    1.0 where the law makes a lateral force at zero slip (one tire of the axle is its mirror
+    image), else 0.0 [-].
+road_friction : float
+    The road's friction relative to the laws' own, mu [-] (a constant ratio; 1.0 without).
+wheel_spin, tire_lag, lateral_load_transfer : bool
+    The model's options.
+friction_scaled : bool
+    The road's friction applies (a ratio or a callable was given)."""
 
 Evaluation = namedtuple("Evaluation", (
     "longitudinal_acceleration", "lateral_acceleration", "yaw_acceleration", "front_longitudinal_force",
@@ -69,37 +132,36 @@ Evaluation = namedtuple("Evaluation", (
     "rear_vx", "rear_vy", "front_lateral_deflection_rate", "rear_lateral_deflection_rate",
     "front_longitudinal_deflection_rate", "rear_longitudinal_deflection_rate", "front_rolling_moment",
     "rear_rolling_moment", "front_load_transfer", "rear_load_transfer", "roll_acceleration"))
-Evaluation.__doc__ = """Accelerations of the CG (du/dt - v r, dv/dt + u r [m/s^2], dr/dt [rad/s^2]), axle forces
-in SAE wheel axes [N], the slips acting in the laws (SAE slip angle [rad], slip ratio [-]), normal
-loads [N], the wheel-centre velocities in wheel axes [m/s], the tire deflection rates [m/s] (0 without
-tire lag), the axles' rolling-resistance moments M_y [N*m] (ISO-W: about the axis of forward spin,
-negative rolling forwards; 0 in force mode, where no wheel spins) and the lateral load transfer of
-each axle [N] (load onto its left wheel, which carries F_z / 2 + dF_z; 0 without lateral load transfer)."""
+Evaluation.__doc__ = """Everything one evaluation of the equations yields.
 
-
-class NUMPY(NumpyOps):
-    """``xp`` of the equations on numpy arrays: the Magic Formula's, with numpy's own sin and cos
-    (not the half-angle forms) and the tire law ``tires.axle_law_forces``."""
-
-    cos = staticmethod(np.cos)
-    sin = staticmethod(np.sin)
-    tanh = staticmethod(np.tanh)
-    atan2 = staticmethod(np.arctan2)
-
-    @staticmethod
-    def axle_tire_forces(tires, axle, fz, kappa, alpha, vx):
-        """ISO-W axle forces (fx, fy) [N] of ``axle`` (0 front, 1 rear) from ISO-W slips."""
-        return tires.axle_law_forces(axle, fz, kappa, alpha, vx)
-
-    @staticmethod
-    def axle_tire_loads(tires, axle, fz, kappa, alpha, vx):
-        """ISO-W axle forces and rolling-resistance moment (fx, fy, my) [N, N, N*m] of ``axle``."""
-        return tires.axle_law_loads(axle, fz, kappa, alpha, vx)
-
-    @staticmethod
-    def wheel_pair_tire_loads(tires, axle, left_load, right_load, kappa, alpha, vx):
-        """ISO-W (fx, fy, my) of the left, then the right tire of ``axle`` at their own loads [N]."""
-        return tires.wheel_pair_law_loads(axle, left_load, right_load, kappa, alpha, vx)
+Parameters
+----------
+longitudinal_acceleration, lateral_acceleration : float or ndarray
+    du/dt - v r and dv/dt + u r of the CG [m/s^2].
+yaw_acceleration : float or ndarray
+    dr/dt [rad/s^2].
+front_longitudinal_force, front_lateral_force, rear_longitudinal_force, rear_lateral_force : float or ndarray
+    Axle forces in SAE wheel axes [N].
+front_slip_angle, rear_slip_angle : float or ndarray
+    SAE slip angles acting in the laws [rad].
+front_slip_ratio, rear_slip_ratio : float or ndarray
+    Slip ratios acting in the laws [-].
+front_normal_load, rear_normal_load : float or ndarray
+    Axle loads [N].
+front_vx, front_vy, rear_vx, rear_vy : float or ndarray
+    Wheel-centre velocities in wheel axes [m/s].
+front_lateral_deflection_rate, rear_lateral_deflection_rate : float or ndarray
+    [m/s] (0 without tire lag).
+front_longitudinal_deflection_rate, rear_longitudinal_deflection_rate : float or ndarray
+    [m/s] (0 without tire lag or wheel spin).
+front_rolling_moment, rear_rolling_moment : float or ndarray
+    The axles' rolling-resistance moments M_y [N*m] (ISO-W, about the axis of forward spin,
+    negative rolling forwards; 0 in force mode).
+front_load_transfer, rear_load_transfer : float or ndarray
+    Lateral load transfer onto each axle's left wheel [N] (which carries F_z / 2 + dF_z; 0
+    without lateral load transfer).
+roll_acceleration : float or ndarray
+    dp/dt [rad/s^2] (0 without roll)."""
 
 
 def _at(values, i):
@@ -108,127 +170,119 @@ def _at(values, i):
 
 
 def named_states(x, index):
-    """The states of a model's vector ``x`` in the order of :data:`STATES` (``index``: position of
-    each in ``x``, -1 where the model lacks it)."""
+    """The states of a model's vector in the order of :data:`STATES`.
+
+    Parameters
+    ----------
+    x : ndarray
+        The model's state vector (optional batch axis) [SI units].
+    index : sequence of int
+        Position of each entry of :data:`STATES` in ``x``, -1 where the model lacks it.
+
+    Returns
+    -------
+    tuple
+        14 entries [SI units of :data:`STATES`]; zeros where the model lacks a state.
+    """
     return (_at(x, index[0]), _at(x, index[1]), _at(x, index[2]), _at(x, index[3]), _at(x, index[4]),
             _at(x, index[5]), _at(x, index[6]), _at(x, index[7]), _at(x, index[8]), _at(x, index[9]),
             _at(x, index[10]), _at(x, index[11]), _at(x, index[12]), _at(x, index[13]))
 
 
 def named_inputs(u, index):
-    """The inputs of a model's vector ``u`` in the order of :data:`INPUTS` (see :func:`named_states`)."""
+    """The inputs of a model's vector in the order of :data:`INPUTS` (see :func:`named_states`).
+
+    Parameters
+    ----------
+    u : ndarray
+        The model's input vector [SI units].
+    index : sequence of int
+        Position of each entry of :data:`INPUTS` in ``u``, -1 where the model lacks it.
+
+    Returns
+    -------
+    tuple
+        11 entries [SI units of :data:`INPUTS`]; zeros where the model lacks an input.
+    """
     return (_at(u, index[0]), _at(u, index[1]), _at(u, index[2]), _at(u, index[3]), _at(u, index[4]),
             _at(u, index[5]), _at(u, index[6]), _at(u, index[7]), _at(u, index[8]), _at(u, index[9]), _at(u, index[10]))
 
 
-def regularized_speed(xp, vx):
-    """|vx| above v_0, (vx^2 + v_0^2) / (2 v_0) below (:func:`vehdyn.tire.regularized_speed`)."""
-    v0 = REGULARIZATION_SPEED
-    return xp.where(xp.abs(vx) >= v0, xp.abs(vx), (vx * vx + v0 * v0) / (2.0 * v0))
-
-
-def low_speed_blend(xp, speed, damping_speed):
-    """w = (1 + cos(pi |V_x| / v_l)) / 2 below v_l, 0 above (Pacejka 2012, eq. 8.126)."""
-    return 0.5 * (1.0 + xp.cos(math.pi * xp.minimum(speed / damping_speed, 1.0)))
-
-
-def sliding_slip(xp, transient, kinematic, peak):
-    """The slip that makes the force: the transient (deflection) slip, or the kinematic slip when
-    the deflection sits at its peak-force limit and the kinematic slip lies beyond it (sliding)."""
-    at_limit = xp.where(xp.abs(transient) >= 0.999 * peak, 1.0, 0.0)
-    beyond = xp.where(transient * kinematic > 0, 1.0, 0.0) * xp.where(xp.abs(kinematic) > xp.abs(transient), 1.0, 0.0)
-    return xp.where(at_limit * beyond > 0, kinematic, transient)
-
-
-def limit_deflection_rate(xp, rate, slip, peak):
-    """Deflection rate with its outward part faded out over the last 5 % before the peak slip."""
-    room = xp.minimum(xp.maximum((peak - xp.abs(slip)) / (0.05 * peak), 0.0), 1.0)
-    return xp.where(rate * slip > 0, rate * room, rate)
-
-
-def axle_slips(xp, k, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection, lateral_rate,
-               longitudinal_rate, lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle):
-    """The slips acting in an axle's law: (alpha SAE [rad], kappa [-], sign of vx, |vx| [m/s]).
-
-    With tire lag the low-speed damping acts on the deflection rates ``lateral_rate``,
-    ``longitudinal_rate`` [m/s] (:func:`deflection_rates`): zero in the steady state."""
-    speed = xp.abs(vx)
-    direction = xp.where(vx < 0.0, -1.0, 1.0)  # sign(vx) with sign(0) = +1
-    blend = low_speed_blend(xp, speed, k.low_speed_damping_speed)
-    if k.tire_lag:
-        tan_alpha = sliding_slip(xp, lateral_deflection / lateral_length, vy / regularized_speed(xp, vx),
-                                 peak_tan_slip_angle)
-        tan_alpha = tan_alpha + blend * lateral_rate / k.low_speed_damping_speed
-    else:
-        tan_alpha = vy / regularized_speed(xp, vx)
-    alpha = xp.atan(tan_alpha)
-    if k.wheel_spin:
-        vsx = vx - wheel_speed * k.rolling_radius
-        if k.tire_lag:
-            slip = sliding_slip(xp, longitudinal_deflection / longitudinal_length, -vsx / regularized_speed(xp, vx),
-                                peak_slip_ratio)
-            slip = slip + blend * longitudinal_rate / k.low_speed_damping_speed
-            kappa = slip * direction
-        else:
-            kappa = -vsx / (direction * regularized_speed(xp, vx))
-    else:
-        kappa = 0.0 * alpha
-    return alpha, kappa, direction, speed
-
-
-def demanded_forces(xp, k, fz, fx, fy, force_demand):
-    """Force mode (no wheel spin): F_x the demand clipped at mu F_z, F_y of the law reduced by the
-    friction ellipse."""
-    limit = k.friction_coefficient * xp.maximum(fz, 0.0)
-    fx = xp.minimum(xp.maximum(force_demand, -limit), limit)
-    safe = xp.where(limit > 0, limit, 1.0)
-    return fx, fy * xp.sqrt(xp.maximum(1.0 - (fx / safe) ** 2, 0.0))
-
-
-def axle_forces(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection,
-                lateral_rate, longitudinal_rate, lateral_length, longitudinal_length, peak_slip_ratio,
-                peak_tan_slip_angle, force_demand):
-    """Axle forces (fx, fy) in SAE wheel axes [N] and the slips (alpha SAE [rad], kappa [-]) at load ``fz``
-    (slips: :func:`axle_slips`; the law: ``xp.axle_tire_forces``)."""
-    alpha, kappa, direction, speed = axle_slips(
-        xp, k, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection, lateral_rate, longitudinal_rate,
-        lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle)
-    kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
-    fx_iso, fy_iso = xp.axle_tire_forces(tires, axle, fz, kappa_iso, alpha_iso, direction * xp.maximum(speed, 1e-3))
-    fx, fy = planar_tire_forces_iso_w_to_sae(fx_iso, fy_iso)
-    if not k.wheel_spin:
-        fx, fy = demanded_forces(xp, k, fz, fx, fy, force_demand)
-    return fx, fy, alpha, kappa
-
-
 def axle_loads(xp, tires, axle, k, fz, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection,
                lateral_rate, longitudinal_rate, lateral_length, longitudinal_length, peak_slip_ratio,
-               peak_tan_slip_angle, force_demand):
-    """:func:`axle_forces` and the axle's rolling-resistance moment M_y [N*m] (ISO-W, about the axis
-    of forward spin; 0 in force mode), from one evaluation of the law (``xp.axle_tire_loads``)."""
-    alpha, kappa, direction, speed = axle_slips(
-        xp, k, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection, lateral_rate, longitudinal_rate,
-        lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle)
-    kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
-    fx_iso, fy_iso, my = xp.axle_tire_loads(tires, axle, fz, kappa_iso, alpha_iso,
-                                            direction * xp.maximum(speed, 1e-3))
-    fx, fy = planar_tire_forces_iso_w_to_sae(fx_iso, fy_iso)
-    if not k.wheel_spin:
-        fx, fy = demanded_forces(xp, k, fz, fx, fy, force_demand)
-        my = 0.0 * my
-    return fx, fy, alpha, kappa, my * rolling_resistance_fade(xp, k, wheel_speed)
+               peak_tan_slip_angle, force_demand, friction):
+    """The tire step of a lumped axle: two tires at half its load each, on the centre line.
 
+    :func:`vehdyn.components.tire_forces.contact_loads` with ``axle=True``: the axle's law, its
+    mirror image with ply steer (``k.front_ply_steer``, ``k.rear_ply_steer``), the road's friction
+    by similarity.
 
-def rolling_resistance_fade(xp, k, wheel_speed):
-    """tanh(|omega| / omega_b) [-]: the rolling resistance opposes rolling and fades to 0 at
-    standstill (omega_b the brake regularization speed [rad/s]; exactly 1 in floating point above
-    about 19 omega_b), else a law's M_y at zero speed would spin a wheel at rest backwards."""
-    return xp.tanh(xp.abs(wheel_speed) / k.brake_regularization_speed)
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    tires : tuple
+        The (front, rear) laws (``TireModel`` on numpy, ``TireLaw`` compiled).
+    axle : int
+        0 front, 1 rear.
+    k : Constants
+        The model's constants.
+    fz : float or ndarray
+        Axle load [N].
+    vx, vy : float or ndarray
+        Wheel-centre velocity in wheel axes (SAE) [m/s].
+    wheel_speed : float or ndarray
+        Spin of the axle's wheels [rad/s].
+    lateral_deflection, longitudinal_deflection : float or ndarray
+        Tire deflections [m].
+    lateral_rate, longitudinal_rate : float or ndarray
+        Their rates [m/s].
+    lateral_length, longitudinal_length : float or ndarray
+        Relaxation lengths [m].
+    peak_slip_ratio, peak_tan_slip_angle : float or ndarray
+        Peak-force slips on this road [-].
+    force_demand : float or ndarray
+        Force mode's longitudinal force demand [N].
+    friction : float or ndarray
+        The road's friction ratio under the axle [-].
+
+    Returns
+    -------
+    tuple
+        (F_x [N], F_y [N]) in SAE wheel axes, alpha SAE [rad], kappa [-], and M_y [N*m] (ISO-W,
+        faded at standstill; 0 in force mode).
+    """
+    ply_steer = (k.front_ply_steer if axle == 0 else k.rear_ply_steer) > 0.5
+    return contact_loads(xp, k, tires[axle], fz, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection,
+                         lateral_rate, longitudinal_rate, lateral_length, longitudinal_length, peak_slip_ratio,
+                         peak_tan_slip_angle, force_demand, 0.0, True, ply_steer, friction)
 
 
 def normal_loads(xp, k, x_force, front_lift, rear_lift):
-    """Axle loads (front, rear) [N] with quasi-static load transfer by the body-x tire force
-    ``x_force`` [N]; an axle that would lift off carries 0 and the other the whole weight."""
+    r"""Axle loads with quasi-static longitudinal load transfer (Gillespie 1992, eq. 2-18) and lift.
+
+    .. math::
+
+        F_{zf} = m g b / L - h X / L - L_f,\qquad F_{zr} = m g - L_f - L_r - F_{zf}
+
+    An axle that would lift off carries 0 and the other the whole weight.
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    k : Constants
+        The model's constants.
+    x_force : float or ndarray
+        The body-x tire force X [N].
+    front_lift, rear_lift : float or ndarray
+        Aerodynamic lift at the axles [N].
+
+    Returns
+    -------
+    tuple
+        (front, rear) [N].
+    """
     wheelbase = k.a + k.b
     weight = k.mass * k.gravity
     front = weight * k.b / wheelbase - k.cg_height * x_force / wheelbase - front_lift
@@ -238,19 +292,39 @@ def normal_loads(xp, k, x_force, front_lift, rear_lift):
 
 
 def lateral_load_transfer(xp, k, front_lateral, rear_lateral, front_load, rear_load, roll_angle, roll_rate):
-    """Lateral load transfer (front, rear) [N]: the load moved onto each axle's left wheel.
+    r"""Lateral load transfer (front, rear) [N]: the load moved onto each axle's left wheel.
 
-    ``front_lateral``, ``rear_lateral`` are the axles' lateral forces in body axes [N] (SAE y,
-    positive turning right, so the load moves onto the left, outer wheels); ``roll_angle`` phi
-    [rad] and ``roll_rate`` p [rad/s] the body's roll (SAE: positive right side down)::
+    .. math::
 
-        dF_z,i = (z_i / t_i) F_y,i + h_1 K_i / ((K_f + K_r - m g h_1) t_i) (F_y,f + F_y,r)
-                 - (K_i phi + C_i p) / t_i
+        \Delta F_{z,i} = \frac{z_i}{t_i} F_{y,i} + \frac{h_1 K_i}{(K_f + K_r - m g h_1) t_i}
+        (F_{y,f} + F_{y,r}) - \frac{K_i \phi + C_i p}{t_i}
 
-    (the ``*_geometric_transfer``, ``*_elastic_transfer``, ``*_roll_transfer_stiffness`` and
-    ``*_roll_transfer_damping`` coefficients of :class:`Constants`): without the roll degree of
-    freedom the last term is absent (the quasi-static elastic part), with it the elastic part is
-    the suspension's roll moment; held within +-F_z,i / 2 (an inner wheel that would lift carries 0).
+    (Milliken & Milliken 1995, ch. 18; the ``*_geometric_transfer``, ``*_elastic_transfer``,
+    ``*_roll_transfer_stiffness`` and ``*_roll_transfer_damping`` coefficients of
+    :class:`Constants`): without the roll degree of freedom the last term is absent (the
+    quasi-static elastic part), with it the elastic part is the suspension's roll moment; held
+    within +-F_z,i / 2 (an inner wheel that would lift carries 0).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    k : Constants
+        The model's constants.
+    front_lateral, rear_lateral : float or ndarray
+        The axles' lateral forces in body axes [N] (SAE y, positive turning right, so the load
+        moves onto the left, outer wheels).
+    front_load, rear_load : float or ndarray
+        Axle loads [N].
+    roll_angle : float or ndarray
+        phi [rad] (SAE: positive right side down).
+    roll_rate : float or ndarray
+        p [rad/s].
+
+    Returns
+    -------
+    tuple
+        (front, rear) [N].
     """
     total = front_lateral + rear_lateral
     front = k.front_geometric_transfer * front_lateral + k.front_elastic_transfer * total \
@@ -263,13 +337,33 @@ def lateral_load_transfer(xp, k, front_lateral, rear_lateral, front_load, rear_l
 
 
 def roll_acceleration(xp, k, lateral_acceleration, roll_angle, roll_rate):
-    """Roll acceleration of the body [rad/s^2] (SAE: positive right side down)::
+    r"""Roll acceleration of the body (SAE: positive right side down; Segel 1956).
 
-        J dp/dt = -m h_1 a_y - (K_f + K_r - m g h_1) phi - (C_f + C_r) p
+    .. math::
 
-    with a_y the lateral acceleration of the CG [m/s^2] (all lateral forces over the mass), J the
-    effective roll inertia, h_1 the CG height above the roll axis; K_i = t_i (K_i / t_i) and
-    C_i = t_i (C_i / t_i) from :class:`Constants` (0 without roll: then h_1 = 0 and the result is 0).
+        J \dot p = -m h_1 a_y - (K_f + K_r - m g h_1) \phi - (C_f + C_r) p
+
+    with J the effective roll inertia, h_1 the CG height above the roll axis; K_i = t_i (K_i / t_i)
+    and C_i = t_i (C_i / t_i) from :class:`Constants` (0 without roll: then h_1 = 0 and the result
+    is 0).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    k : Constants
+        The model's constants.
+    lateral_acceleration : float or ndarray
+        a_y of the CG [m/s^2] (all lateral forces over the mass).
+    roll_angle : float or ndarray
+        phi [rad].
+    roll_rate : float or ndarray
+        p [rad/s].
+
+    Returns
+    -------
+    float or ndarray
+        dp/dt [rad/s^2].
     """
     stiffness = k.front_track * k.front_roll_transfer_stiffness + k.rear_track * k.rear_roll_transfer_stiffness
     damping = k.front_track * k.front_roll_transfer_damping + k.rear_track * k.rear_roll_transfer_damping
@@ -280,35 +374,68 @@ def roll_acceleration(xp, k, lateral_acceleration, roll_angle, roll_rate):
 
 def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral_deflection,
                      longitudinal_deflection, lateral_rate, longitudinal_rate, lateral_length, longitudinal_length,
-                     peak_slip_ratio, peak_tan_slip_angle, force_demand):
-    """:func:`axle_loads` of an axle whose left wheel carries F_z / 2 + ``shift`` and right wheel
-    F_z / 2 - ``shift`` [N], and the difference F_x,left - F_x,right [N] of the wheels' longitudinal
-    forces: each wheel's law at its own load (``xp.wheel_pair_tire_loads``). In force mode each
-    wheel takes half the demand (an open differential, equal brake pressures), clipped at mu times
-    its load, with its own friction ellipse, and its rolling resistance M_y / R_e shifts the force
-    between the wheels (the demand stays the axle's net force)."""
-    alpha, kappa, direction, speed = axle_slips(
+                     peak_slip_ratio, peak_tan_slip_angle, force_demand, friction):
+    """The tire step of an axle whose wheels carry F_z / 2 + ``shift`` (left) and F_z / 2 - ``shift`` (right).
+
+    Each wheel's law at its own load (:func:`vehdyn.components.tire_forces.wheel_pair_tire_loads`;
+    the mirror image on the side :func:`vehdyn.components.tire_setup.mirrored_wheel` names). In
+    force mode each wheel takes half the demand (an open differential, equal brake pressures),
+    clipped at mu times its load, with its own friction ellipse, and its rolling resistance M_y / R_e
+    shifts the force between the wheels (the demand stays the axle's net force).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    tires : tuple
+        The (front, rear) laws.
+    axle : int
+        0 front, 1 rear.
+    k : Constants
+        The model's constants.
+    fz : float or ndarray
+        Axle load [N].
+    shift : float or ndarray
+        Lateral load transfer onto the left wheel [N].
+    vx, vy : float or ndarray
+        Wheel-centre velocity in wheel axes (SAE) [m/s].
+    wheel_speed : float or ndarray
+        Spin of the axle's wheels [rad/s].
+    lateral_deflection, longitudinal_deflection : float or ndarray
+        Tire deflections [m].
+    lateral_rate, longitudinal_rate : float or ndarray
+        Their rates [m/s].
+    lateral_length, longitudinal_length : float or ndarray
+        Relaxation lengths [m].
+    peak_slip_ratio, peak_tan_slip_angle : float or ndarray
+        Peak-force slips on this road [-].
+    force_demand : float or ndarray
+        Force mode's longitudinal force demand of the axle [N].
+    friction : float or ndarray
+        The road's friction ratio under the axle [-].
+
+    Returns
+    -------
+    tuple
+        The axle's (F_x [N], F_y [N]) in SAE wheel axes, alpha SAE [rad], kappa [-], M_y [N*m] (as
+        :func:`axle_loads`), and F_x,left - F_x,right [N].
+    """
+    alpha, kappa, direction, speed = contact_slips(
         xp, k, vx, vy, wheel_speed, lateral_deflection, longitudinal_deflection, lateral_rate, longitudinal_rate,
         lateral_length, longitudinal_length, peak_slip_ratio, peak_tan_slip_angle)
     kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
     left_load, right_load = 0.5 * fz + shift, 0.5 * fz - shift
-    # the law's wheel pair mirrors its first wheel: the right one where the law is a left tire (a
-    # float per model or variant; both wheels of the axle run at the same slips, so exchanging the
-    # loads in and the wheels out is the pair with the right wheel mirrored)
+    ply_steer = (k.front_ply_steer if axle == 0 else k.rear_ply_steer) > 0.5
     right_mirrored = (k.front_mirror_right if axle == 0 else k.rear_mirror_right) > 0.5
-    first_load, second_load = left_load, right_load
-    if right_mirrored:
-        first_load, second_load = right_load, left_load
-    w = xp.wheel_pair_tire_loads(tires, axle, first_load, second_load, kappa_iso, alpha_iso,
-                                 direction * xp.maximum(speed, 1e-3))
-    if right_mirrored:
-        w = (w[3], w[4], w[5], w[0], w[1], w[2])
+    w = wheel_pair_tire_loads(xp, tires[axle], left_load, right_load, kappa_iso, alpha_iso,
+                              direction * xp.maximum(speed, 1e-3), ply_steer and not right_mirrored, right_mirrored,
+                              friction, k.friction_scaled)
     fx_left, fy_left = planar_tire_forces_iso_w_to_sae(w[0], w[1])
     fx_right, fy_right = planar_tire_forces_iso_w_to_sae(w[3], w[4])
     my = w[2] + w[5]
     if not k.wheel_spin:
-        fx_left, fy_left = demanded_forces(xp, k, left_load, fx_left, fy_left, 0.5 * force_demand)
-        fx_right, fy_right = demanded_forces(xp, k, right_load, fx_right, fy_right, 0.5 * force_demand)
+        fx_left, fy_left = demanded_forces(xp, k, left_load, fx_left, fy_left, 0.5 * force_demand, friction)
+        fx_right, fy_right = demanded_forces(xp, k, right_load, fx_right, fy_right, 0.5 * force_demand, friction)
         resistance = (w[2] - w[5]) / k.rolling_radius  # ISO-W M_y < 0 rolling forwards: retarding
         # the rolling resistance fades at standstill as in axle_loads
         return (fx_left + fx_right, fy_left + fy_right, alpha, kappa, 0.0 * my,
@@ -317,9 +444,28 @@ def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral
             fx_left - fx_right)
 
 
-def evaluate(xp, tires, k, states, inputs):
-    """Forces, loads and accelerations at ``states``, ``inputs`` (tuples in the order of
-    :data:`STATES`, :data:`INPUTS`): an :class:`Evaluation`."""
+def evaluate(xp, tires, k, states, inputs, friction):
+    """Forces, loads and accelerations at ``states``, ``inputs``.
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    tires : tuple
+        The (front, rear) tire laws (``TireModel`` on numpy, ``TireLaw`` compiled).
+    k : Constants
+        The model's constants.
+    states : tuple
+        In the order of :data:`STATES` [SI units].
+    inputs : tuple
+        In the order of :data:`INPUTS` [SI units].
+    friction : tuple
+        The road's friction ratio under the (front, rear) axle [-] (read where ``k.friction_scaled``).
+
+    Returns
+    -------
+    Evaluation
+    """
     (lon, lat, yaw_rate, _x, _y, _yaw, front_wheel_speed, rear_wheel_speed, front_lateral_deflection,
      rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection, roll_angle,
      roll_rate) = states
@@ -331,19 +477,21 @@ def evaluate(xp, tires, k, states, inputs):
     front_body_lateral, rear_body_lateral = lat + k.a * yaw_rate, lat - k.b * yaw_rate
     vxf, vyf = lon * cf + front_body_lateral * sf, -lon * sf + front_body_lateral * cf
     vxr, vyr = lon * cr + rear_body_lateral * sr, -lon * sr + rear_body_lateral * cr
-    rates = deflection_rates(xp, k, vxf, vyf, vxr, vyr, states)
+    # the peak-force slips scale with the road's friction (similarity)
+    peaks = (k.front_peak_slip_ratio, k.front_peak_tan_slip_angle, k.rear_peak_slip_ratio, k.rear_peak_tan_slip_angle)
+    if k.friction_scaled:
+        peaks = (peaks[0] * friction[0], peaks[1] * friction[0], peaks[2] * friction[1], peaks[3] * friction[1])
+    rates = deflection_rates(xp, k, vxf, vyf, vxr, vyr, states, peaks)
 
     def front_axle(fz):
         return axle_loads(xp, tires, 0, k, fz, vxf, vyf, front_wheel_speed, front_lateral_deflection,
                           front_longitudinal_deflection, rates[0], rates[2], k.front_lateral_relaxation_length,
-                          k.front_longitudinal_relaxation_length, k.front_peak_slip_ratio,
-                          k.front_peak_tan_slip_angle, front_force)
+                          k.front_longitudinal_relaxation_length, peaks[0], peaks[1], front_force, friction[0])
 
     def rear_axle(fz):
         return axle_loads(xp, tires, 1, k, fz, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
                           rear_longitudinal_deflection, rates[1], rates[3], k.rear_lateral_relaxation_length,
-                          k.rear_longitudinal_relaxation_length, k.rear_peak_slip_ratio,
-                          k.rear_peak_tan_slip_angle, rear_force)
+                          k.rear_longitudinal_relaxation_length, peaks[2], peaks[3], rear_force, friction[1])
 
     # with lateral load transfer the left wheel carries fz / 2 + shift, the right fz / 2 - shift
     # (with the difference of the wheels' longitudinal forces, zero without the transfer)
@@ -352,7 +500,7 @@ def evaluate(xp, tires, k, states, inputs):
             return wheel_pair_loads(xp, tires, 0, k, fz, shift, vxf, vyf, front_wheel_speed, front_lateral_deflection,
                                     front_longitudinal_deflection, rates[0], rates[2],
                                     k.front_lateral_relaxation_length, k.front_longitudinal_relaxation_length,
-                                    k.front_peak_slip_ratio, k.front_peak_tan_slip_angle, front_force)
+                                    peaks[0], peaks[1], front_force, friction[0])
         return front_axle(fz) + (0.0 * fz,)
 
     def rear(fz, shift):
@@ -360,7 +508,7 @@ def evaluate(xp, tires, k, states, inputs):
             return wheel_pair_loads(xp, tires, 1, k, fz, shift, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
                                     rear_longitudinal_deflection, rates[1], rates[3],
                                     k.rear_lateral_relaxation_length, k.rear_longitudinal_relaxation_length,
-                                    k.rear_peak_slip_ratio, k.rear_peak_tan_slip_angle, rear_force)
+                                    peaks[2], peaks[3], rear_force, friction[1])
         return rear_axle(fz) + (0.0 * fz,)
 
     def transfer(f, r, fz_f, fz_r):
@@ -407,36 +555,75 @@ def evaluate(xp, tires, k, states, inputs):
                       roll_acceleration(xp, k, lateral_acceleration, roll_angle, roll_rate))
 
 
-def deflection_rates(xp, k, front_vx, front_vy, rear_vx, rear_vy, states):
-    """d/dt of the tire deflections (front lateral, rear lateral, front longitudinal, rear longitudinal)
-    [m/s] from the wheel-centre velocities; 0.0 for those the model lacks."""
+def deflection_rates(xp, k, front_vx, front_vy, rear_vx, rear_vy, states, peaks):
+    """d/dt of the tire deflections from the wheel-centre velocities
+    (:func:`vehdyn.components.tire_slip.deflection_rate`).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    k : Constants
+        The model's constants.
+    front_vx, front_vy, rear_vx, rear_vy : float or ndarray
+        Wheel-centre velocities in wheel axes (SAE) [m/s].
+    states : tuple
+        In the order of :data:`STATES`.
+    peaks : tuple
+        Peak-force slips on this road (front ratio, front tan angle, rear ratio, rear tan angle) [-].
+
+    Returns
+    -------
+    tuple
+        (front lateral, rear lateral, front longitudinal, rear longitudinal) [m/s]; 0.0 for those the
+        model lacks.
+    """
     zero = 0.0 * front_vx
     if not k.tire_lag:
         return zero, zero, zero, zero
     (_u, _v, _r, _x, _y, _yaw, front_wheel_speed, rear_wheel_speed, front_lateral_deflection,
      rear_lateral_deflection, front_longitudinal_deflection, rear_longitudinal_deflection, _phi, _p) = states
     front_lateral = deflection_rate(xp, front_vy, front_vx, front_lateral_deflection,
-                                    k.front_lateral_relaxation_length, k.front_peak_tan_slip_angle)
+                                    k.front_lateral_relaxation_length, peaks[1])
     rear_lateral = deflection_rate(xp, rear_vy, rear_vx, rear_lateral_deflection, k.rear_lateral_relaxation_length,
-                                   k.rear_peak_tan_slip_angle)
+                                   peaks[3])
     front_longitudinal = rear_longitudinal = zero
     if k.wheel_spin:
         front_longitudinal = deflection_rate(xp, -(front_vx - front_wheel_speed * k.rolling_radius), front_vx,
                                              front_longitudinal_deflection, k.front_longitudinal_relaxation_length,
-                                             k.front_peak_slip_ratio)
+                                             peaks[0])
         rear_longitudinal = deflection_rate(xp, -(rear_vx - rear_wheel_speed * k.rolling_radius), rear_vx,
                                             rear_longitudinal_deflection, k.rear_longitudinal_relaxation_length,
-                                            k.rear_peak_slip_ratio)
+                                            peaks[2])
     return front_lateral, rear_lateral, front_longitudinal, rear_longitudinal
 
 
 def derivatives(xp, k, e, states, inputs):
-    """d/dt of every entry of :data:`STATES` (0.0 for a state the model lacks) from an :class:`Evaluation`."""
+    """d/dt of every entry of :data:`STATES` from an :class:`Evaluation`.
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    k : Constants
+        The model's constants.
+    e : Evaluation
+        :func:`evaluate` at ``states``, ``inputs``.
+    states : tuple
+        In the order of :data:`STATES`.
+    inputs : tuple
+        In the order of :data:`INPUTS`.
+
+    Returns
+    -------
+    tuple
+        14 rates [SI units per second]; 0.0 for a state the model lacks.
+    """
     (lon, lat, yaw_rate, _x, _y, yaw, front_wheel_speed, rear_wheel_speed, _fld, _rld, _fxd, _rxd, _phi,
      roll_rate) = states
     (_fs, _rs, _ff, _rf, front_drive, rear_drive, front_brake, rear_brake, _fe, _me, _w) = inputs
     zero = 0.0 * lon
-    cpsi, spsi = xp.cos(yaw), xp.sin(yaw)
+    position = position_rates(xp, lon, lat, yaw)
     d_front_wheel = d_rear_wheel = zero
     if k.wheel_spin:
         inertia = 2.0 * k.wheel_spin_inertia
@@ -447,25 +634,28 @@ def derivatives(xp, k, e, states, inputs):
     # with roll, v is the lateral velocity of the non-rolling frame: m (dv/dt + u r) + m h_1 dp/dt = F_y
     return (e.longitudinal_acceleration + lat * yaw_rate,
             e.lateral_acceleration - k.roll_arm * e.roll_acceleration - lon * yaw_rate,
-            e.yaw_acceleration, lon * cpsi - lat * spsi, lon * spsi + lat * cpsi, yaw_rate, d_front_wheel,
+            e.yaw_acceleration, position[0], position[1], yaw_rate, d_front_wheel,
             d_rear_wheel, e.front_lateral_deflection_rate, e.rear_lateral_deflection_rate,
             e.front_longitudinal_deflection_rate, e.rear_longitudinal_deflection_rate, roll_rate, e.roll_acceleration)
 
 
-def net_wheel_torque(xp, k, wheel_speed, drive, brake, longitudinal_force):
-    """Torque on the two wheels of an axle [N*m]: drive - brake sat(omega / omega_b) - R_e F_x."""
-    z = wheel_speed / k.brake_regularization_speed
-    return drive - xp.abs(brake) * z / xp.sqrt(1.0 + z * z) - k.rolling_radius * longitudinal_force
-
-
-def deflection_rate(xp, slip_velocity, vx, deflection, length, peak):
-    """d(rho)/dt = V_s - |V_x| rho / sigma, its outward part limited at the peak slip."""
-    rate = slip_velocity - xp.abs(vx) * deflection / length
-    return limit_deflection_rate(xp, rate, deflection / length, peak)
-
-
 def outputs(xp, states, e):
-    """The outputs of :class:`~vehdyn.handling.SingleTrack` (in the order of its ``outputs``)."""
+    """The outputs of :class:`~vehdyn.handling.SingleTrack`, in the order of its ``outputs``.
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    states : tuple
+        In the order of :data:`STATES`.
+    e : Evaluation
+        :func:`evaluate` at the states.
+
+    Returns
+    -------
+    tuple
+        The 21 outputs every SingleTrack has [SI units of its ``outputs``].
+    """
     lon, lat, yaw_rate = states[0], states[1], states[2]
     speed_squared = lon * lon + lat * lat
     return (e.lateral_acceleration, xp.atan2(lat, xp.abs(lon)), yaw_rate, lat, e.front_slip_angle,
@@ -476,7 +666,17 @@ def outputs(xp, states, e):
 
 
 def wheel_load_outputs(e):
-    """The wheel loads (front left, front right, rear left, rear right) [N] of a model with lateral
-    load transfer (in the order of its outputs after those of :func:`outputs`)."""
+    """The wheel loads of a model with lateral load transfer (its outputs after those of :func:`outputs`).
+
+    Parameters
+    ----------
+    e : Evaluation
+        :func:`evaluate` at the states.
+
+    Returns
+    -------
+    tuple
+        (front left, front right, rear left, rear right) [N].
+    """
     return (0.5 * e.front_normal_load + e.front_load_transfer, 0.5 * e.front_normal_load - e.front_load_transfer,
             0.5 * e.rear_normal_load + e.rear_load_transfer, 0.5 * e.rear_normal_load - e.rear_load_transfer)

@@ -28,9 +28,10 @@ import numpy as np
 
 from vehdyn.errors import ParameterError
 from vehdyn.mechanics.inertia import InertiaTensor, inertia_matrix
-from vehdyn.mechanics.kinematics import apply_matrix, as_vector3, as_vectors3, cross
+from vehdyn.mechanics.kinematics import apply_matrix, as_vector3, as_vectors3, cross, cross_components
 
-__all__ = ["newton_euler", "torque_free_period", "accelerations", "angular_momentum", "kinetic_energy", "inverse_inertia", "mass_array"]
+__all__ = ["newton_euler", "torque_free_period", "accelerations", "rigid_body_accelerations", "angular_momentum",
+           "kinetic_energy", "inverse_inertia", "mass_array"]
 
 
 def mass_array(mass) -> np.ndarray:
@@ -207,6 +208,54 @@ def accelerations(mass, inertia, inverse, velocity, angular_velocity, force, mom
     velocity_rate = force / mass - cross(angular_velocity, velocity)
     angular_acceleration = apply_matrix(inverse, moment - cross(angular_velocity, apply_matrix(inertia, angular_velocity)))
     return velocity_rate, angular_acceleration
+
+
+def _matrix_vector(m, a0, a1, a2):
+    """m @ (a0, a1, a2) for a nested 3x3 tuple, written out."""
+    return (m[0][0] * a0 + m[0][1] * a1 + m[0][2] * a2, m[1][0] * a0 + m[1][1] * a1 + m[1][2] * a2,
+            m[2][0] * a0 + m[2][1] * a1 + m[2][2] * a2)
+
+
+def rigid_body_accelerations(mass, inertia, inverse, velocity, rates, force, moment):
+    r""":func:`accelerations` on 3-tuples, written out: the form vehicle models' equations call.
+
+    Plain arithmetic on the components (floats, arrays along a batch axis, numba-compiled code,
+    symbols), with the inertia and its inverse as nested 3x3 tuples:
+
+    .. math::
+
+        \dot V = F / m - \omega \times V,\qquad \dot\omega = J^{-1} (M - \omega \times J \omega)
+
+    Parameters
+    ----------
+    mass : float
+        m [kg].
+    inertia, inverse : tuple
+        J [kg*m^2] and J^-1 [1/(kg*m^2)], nested 3x3 tuples (rows).
+    velocity : tuple
+        (u, v, w) [m/s], body axes.
+    rates : tuple
+        (p, q, r) [rad/s].
+    force : tuple
+        (X, Y, Z) [N], body axes.
+    moment : tuple
+        (L, M, N) [N*m] about the centre of mass.
+
+    Returns
+    -------
+    tuple
+        ((du/dt, dv/dt, dw/dt) [m/s^2], (dp/dt, dq/dt, dr/dt) [rad/s^2]).
+
+    References
+    ----------
+    .. [1] L. D. Landau, E. M. Lifshitz, *Mechanics*, 3rd ed., 1976, sec. 36.
+    """
+    p, q, r = rates
+    cx, cy, cz = cross_components(p, q, r, velocity[0], velocity[1], velocity[2])
+    h0, h1, h2 = _matrix_vector(inertia, p, q, r)
+    gx, gy, gz = cross_components(p, q, r, h0, h1, h2)
+    return ((force[0] / mass - cx, force[1] / mass - cy, force[2] / mass - cz),
+            _matrix_vector(inverse, moment[0] - gx, moment[1] - gy, moment[2] - gz))
 
 
 def torque_free_period(inertia, angular_velocity) -> float:

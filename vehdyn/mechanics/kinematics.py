@@ -33,6 +33,9 @@ from vehdyn.errors import ParameterError
 __all__ = [
     "GIMBAL_LOCK_MARGIN",
     "rotation_body_to_earth",
+    "rotation_matrix",
+    "euler_rates",
+    "cross_components",
     "rotation_earth_to_body",
     "body_to_earth",
     "earth_to_body",
@@ -91,6 +94,89 @@ def apply_matrix(matrix: np.ndarray, vector: np.ndarray) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------------- rotations
+def cross_components(a0, a1, a2, b0, b1, b2):
+    """The components of a x b, written out (plain arithmetic: floats, arrays, compiled code).
+
+    Parameters
+    ----------
+    a0, a1, a2 : float or ndarray
+        a [any unit].
+    b0, b1, b2 : float or ndarray
+        b [any unit].
+
+    Returns
+    -------
+    tuple
+        (a1 b2 - a2 b1, a2 b0 - a0 b2, a0 b1 - a1 b0).
+    """
+    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+
+
+def rotation_matrix(xp, roll, pitch, yaw):
+    r"""R = Rz(yaw) Ry(pitch) Rx(roll) as nested 3-tuples, over an ``xp`` namespace.
+
+    The one source of the rotation (:func:`rotation_body_to_earth` stacks it into an array;
+    vehicle models' compiled code reads it as tuples).
+
+    .. math::
+
+        R = \begin{pmatrix} c_\theta c_\psi & s_\phi s_\theta c_\psi - c_\phi s_\psi &
+        c_\phi s_\theta c_\psi + s_\phi s_\psi \\ c_\theta s_\psi & s_\phi s_\theta s_\psi
+        + c_\phi c_\psi & c_\phi s_\theta s_\psi - s_\phi c_\psi \\ -s_\theta & s_\phi c_\theta
+        & c_\phi c_\theta \end{pmatrix}
+
+    Parameters
+    ----------
+    xp : namespace
+        ``numpy`` or any namespace with ``sin`` and ``cos``.
+    roll, pitch, yaw : float or ndarray
+        phi, theta, psi [rad].
+
+    Returns
+    -------
+    tuple
+        Three rows of three entries [-]; v_earth = R v_body.
+    """
+    sf, cf = xp.sin(roll), xp.cos(roll)
+    st, ct = xp.sin(pitch), xp.cos(pitch)
+    ss, cs = xp.sin(yaw), xp.cos(yaw)
+    return ((ct * cs, sf * st * cs - cf * ss, cf * st * cs + sf * ss),
+            (ct * ss, sf * st * ss + cf * cs, cf * st * ss - sf * cs),
+            (-st, sf * ct, cf * ct))
+
+
+def euler_rates(xp, roll, pitch, roll_rate, pitch_rate, yaw_rate):
+    r"""Euler-angle rates from the body rates over an ``xp`` namespace, without the gimbal-lock check.
+
+    The one source of :func:`euler_angle_rates` (which checks the pitch first); a model whose
+    domain keeps away from +-90 deg of pitch calls it directly.
+
+    .. math::
+
+        \dot\phi = p + (q \sin\phi + r \cos\phi) \tan\theta,\quad
+        \dot\theta = q \cos\phi - r \sin\phi,\quad
+        \dot\psi = (q \sin\phi + r \cos\phi) / \cos\theta
+
+    Parameters
+    ----------
+    xp : namespace
+        ``numpy`` or any namespace with ``sin`` and ``cos``.
+    roll, pitch : float or ndarray
+        phi, theta [rad].
+    roll_rate, pitch_rate, yaw_rate : float or ndarray
+        p, q, r [rad/s].
+
+    Returns
+    -------
+    tuple
+        (dphi/dt, dtheta/dt, dpsi/dt) [rad/s].
+    """
+    sf, cf = xp.sin(roll), xp.cos(roll)
+    q_r = pitch_rate * sf + yaw_rate * cf  # rate about the intermediate (once-rotated) z axis, times cos theta
+    ct = xp.cos(pitch)
+    return roll_rate + q_r * xp.sin(pitch) / ct, pitch_rate * cf - yaw_rate * sf, q_r / ct
+
+
 def rotation_body_to_earth(roll, pitch, yaw) -> np.ndarray:
     r"""Body-to-earth rotation matrix R = Rz(yaw) Ry(pitch) Rx(roll).
 
@@ -127,14 +213,7 @@ def rotation_body_to_earth(roll, pitch, yaw) -> np.ndarray:
     [0.0, 1.0, 0.0]
     """
     phi, theta, psi = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (roll, pitch, yaw)))
-    sf, cf = np.sin(phi), np.cos(phi)
-    st, ct = np.sin(theta), np.cos(theta)
-    ss, cs = np.sin(psi), np.cos(psi)
-    return np.array([
-        [ct * cs, sf * st * cs - cf * ss, cf * st * cs + sf * ss],
-        [ct * ss, sf * st * ss + cf * cs, cf * st * ss - sf * cs],
-        [-st, sf * ct, cf * ct],
-    ])
+    return np.array(rotation_matrix(np, phi, theta, psi))
 
 
 def rotation_earth_to_body(roll, pitch, yaw) -> np.ndarray:
@@ -282,12 +361,8 @@ def euler_angle_rates(roll, pitch, roll_rate, pitch_rate, yaw_rate, *, margin: f
     .. [1] B. Etkin, *Dynamics of Atmospheric Flight*, Wiley, 1972, ch. 4.
     """
     check_gimbal_lock(pitch, margin)
-    phi = np.asarray(roll, dtype=float)
-    theta = np.asarray(pitch, dtype=float)
-    sf, cf = np.sin(phi), np.cos(phi)
-    q_r = pitch_rate * sf + yaw_rate * cf  # rate about the intermediate (once-rotated) z axis, times cos theta
-    ct = np.cos(theta)
-    return roll_rate + q_r * np.sin(theta) / ct, pitch_rate * cf - yaw_rate * sf, q_r / ct
+    return euler_rates(np, np.asarray(roll, dtype=float), np.asarray(pitch, dtype=float), roll_rate, pitch_rate,
+                       yaw_rate)
 
 
 def body_rates(roll, pitch, roll_angle_rate, pitch_angle_rate, yaw_angle_rate):

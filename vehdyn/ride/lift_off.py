@@ -75,7 +75,7 @@ under its drive torque and lands with slip; the full car alone rolls its wheels 
 option adds the body's fore-aft velocity change du (from the constant speed u), each wheel's spin
 change w_i (from its steady spin) and each tire's longitudinal deflection rho_i (from its steady
 value rho_0,i), with the same tire law as the full vehicle's relaxation
-(:func:`vehdyn.handling.single_track_equations.deflection_rate`, here about the steady state):
+(:func:`vehdyn.components.tire_slip.deflection_rate`, here about the steady state):
 
     V_i = du + h q - R_e w_i                        (contact point's slip velocity change)
     rho_i' = -V_i - u rho_i / sigma_i,   F_x,i = C_i(F_z,i) (rho_0,i + rho_i) / sigma_i + e_i F_z,i
@@ -112,12 +112,53 @@ import functools
 
 import numpy as np
 
+from vehdyn.components.xp import NUMPY
 from vehdyn.errors import ParameterError
 from vehdyn.model import Model
 from vehdyn.params.base import ParameterSet, parameter
 from vehdyn.units import GRAVITY
 
 __all__ = ["LiftOff", "LateralSlip", "LongitudinalSlip"]
+
+
+XP = None
+"""The compiled namespace :func:`_rhs` calls the equations with (bound by :func:`_compiled_rhs`)."""
+
+
+# ---- the equations, once over an ``xp`` namespace: per corner (numpy: rows of corners, columns
+# of a batch; compiled: one corner's floats, :func:`_rhs`), and the coupled 2 x 2 body equations
+def _contact_force(xp, static, stiffness, damping, compression, compression_rate):
+    """(F, F_lin) [N]: the unilateral contact force and the linear tire's force, with the static load."""
+    linear = static + stiffness * compression + damping * compression_rate
+    deflection = static / stiffness + compression
+    return xp.where(deflection > 0.0, xp.maximum(linear, 0.0), 0.0), linear
+
+
+def _degressive_stiffness(xp, stiffness, load_scale, force):
+    """C(F_z) = K_1 sin(2 atan(F_z / K_2)) = 2 K_1 l / (1 + l^2), l = F_z / K_2 (0 off the road)."""
+    load = xp.maximum(force, 0.0) / load_scale
+    return stiffness * 2.0 * load / (1.0 + load * load)
+
+
+def _lateral_tire(xp, force, deflection, slip_velocity, cornering, load_scale, relaxation, speed):
+    """(F_y [N], dy/dt [m/s]) of a tire's first-order lateral relaxation."""
+    stiffness = _degressive_stiffness(xp, cornering, load_scale, force)
+    return -stiffness * deflection / relaxation, slip_velocity - speed * deflection / relaxation
+
+
+def _longitudinal_tire(xp, force, deflection, slip_velocity, slip_stiffness, slip_scale, relaxation, deflection0,
+                       zero_slip, speed, drive, rolling, radius, spin_inertia):
+    """(F_x [N], d(rho)/dt [m/s], dw/dt [rad/s^2]) of a tire's longitudinal relaxation and its wheel's spin."""
+    stiffness = _degressive_stiffness(xp, slip_stiffness, slip_scale, force)
+    fx = stiffness * (deflection0 + deflection) / relaxation + zero_slip * force
+    return fx, -slip_velocity - speed * deflection / relaxation, (drive - rolling * force - radius * fx) / spin_inertia
+
+
+def _coupled(total, angular, mass, coupling, inertia):
+    """The 2 x 2 body equations m a - m_c b' = F, I b' - m_c a = M solved: (a, b') for the total tire
+    force F and the moment M (lateral: a = v' + u r, b = roll; longitudinal with m_c -> -m_c)."""
+    det = mass * inertia - coupling * coupling
+    return (inertia * total + coupling * angular) / det, (coupling * total + mass * angular) / det
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -186,7 +227,7 @@ def _degressive(static_load, stiffness, sensitivity):
 
 
 class LiftOff(Model):
-    """A linear ride model with unilateral tire contact (the wheels lift off and land again).
+    r"""A linear ride model with unilateral tire contact (the wheels lift off and land again).
 
     Parameters
     ----------
@@ -224,7 +265,27 @@ class LiftOff(Model):
     ``wheel_lift`` (and ``lateral``, ``yaw``; ``longitudinal``, ``wheel_spin``). On a road that
     never unloads a wheel the result equals the
     linear model's. ``simulate(model, ..., method="RK45")`` runs a compiled right-hand side when
-    numba is installed (:meth:`compiled_rhs`), else the numpy one.
+    numba is installed (:meth:`compiled_rhs`), else the numpy one: both run the same per-corner
+    equations (the contact law, the tires' relaxation and the coupled body equations are written
+    once, over an ``xp`` namespace).
+
+    .. math::
+
+        \dot x = A x + B u + \sum_i e_i f_{c,i} / m_{u,i},\qquad
+        f_{c,i} = F_i - (F_{s,i} + k_t (z_r - z_u) + c_t (\dot z_r - \dot z_u)),\\
+        F_i = \max(F_{s,i} + \Delta F_{lin}, 0) \text{ where } \delta_i > 0,\ 0 \text{ elsewhere};\quad
+        \dot y_i = V_i - u\, y_i / \sigma_i,\quad F_{y,i} = -C_i(F_i)\, y_i / \sigma_i
+
+    References
+    ----------
+    .. [1] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 5 (ride; wheel hop and
+       the tire's vertical load).
+    .. [2] R. N. Jazar, *Vehicle Dynamics: Theory and Application*, Springer, 2008, ch. 14 and 15
+       (the full car, sec. 15.5).
+    .. [3] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 7.2 (tire lift-off on
+       rough roads).
+    .. [4] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 7.2 (relaxation) and eq.
+       4.E25 (the load dependence of the cornering stiffness).
 
     Examples
     --------
@@ -399,15 +460,24 @@ class LiftOff(Model):
         """(F, F_lin) [N] per corner (rows; columns along any batch axis): the unilateral contact
         force and the linear tire's force, both with the static load."""
         col = (slice(None),) + (None,) * (x.ndim - 1)
-        compression = u[self._road] - x[self._wheel]
-        linear = self.static_tire_load[col] + self.tire_stiffness[col] * compression \
-            + self.tire_damping[col] * (u[self._road_rate] - x[self._wheel_rate])
-        deflection = self.static_tire_load[col] / self.tire_stiffness[col] + compression
-        return np.where(deflection > 0.0, np.maximum(linear, 0.0), 0.0), linear
+        return _contact_force(NUMPY, self.static_tire_load[col], self.tire_stiffness[col], self.tire_damping[col],
+                              u[self._road] - x[self._wheel], u[self._road_rate] - x[self._wheel_rate])
 
     def correction(self, x, u):
-        """f_c [N] per corner (rows; columns along any batch axis of ``x``, ``u``): the unilateral
-        contact force minus the linear tire's (0 while the tire is compressed and pushing)."""
+        """The unilateral contact force minus the linear tire's (0 while the tire is compressed and pushing).
+
+        Parameters
+        ----------
+        x : array_like
+            States [SI units] (optional batch axis).
+        u : array_like
+            Inputs [SI units].
+
+        Returns
+        -------
+        ndarray
+            f_c [N] per corner (rows; columns along any batch axis of ``x``, ``u``).
+        """
         force, linear = self._contact(np.asarray(x, dtype=float), np.asarray(u, dtype=float))
         return force - linear
 
@@ -426,16 +496,11 @@ class LiftOff(Model):
         u = lat.speed
         v, r, deflection = x[self._n], x[self._n + 1], x[self._n + 2:self._n + 6]
         slip_velocity = v + self._x[col] * r - self._h * x[self._roll_rate]
-        load = np.maximum(force, 0.0) / self._load_scale[col]
-        stiffness = self._cornering[col] * 2.0 * load / (1.0 + load * load)
-        rates = slip_velocity - u * deflection / self._relaxation[col]
-        fy = -stiffness * deflection / self._relaxation[col]
+        fy, rates = _lateral_tire(NUMPY, force, deflection, slip_velocity, self._cornering[col], self._load_scale[col],
+                                  self._relaxation[col], u)
         total, yaw_moment = np.sum(fy, axis=0), np.sum(self._x[col] * fy, axis=0)
         moment = self._roll_inertia * roll_acceleration - self._h * total
-        m, mc, inertia = self._mass, self._coupling, self._roll_inertia
-        det = m * inertia - mc * mc
-        lateral_acceleration = (inertia * total + mc * moment) / det
-        roll = (mc * total + m * moment) / det
+        lateral_acceleration, roll = _coupled(total, moment, self._mass, self._coupling, self._roll_inertia)
         return roll, lateral_acceleration - u * r, yaw_moment / lat.yaw_inertia, rates, fy
 
     def _spin(self, x, force, pitch_acceleration):
@@ -445,20 +510,15 @@ class LiftOff(Model):
         col = (slice(None),) + (None,) * (x.ndim - 1)
         o, nc = self._o, self._cx.size
         du, spin, deflection = x[o], x[o + 1:o + 1 + nc], x[o + 1 + nc:]
-        load = np.maximum(force, 0.0) / self._slip_load_scale[col]
-        stiffness = self._slip_stiffness[col] * 2.0 * load / (1.0 + load * load)
-        sigma = self._lon_relaxation[col]
-        fx = stiffness * (self._deflection0[col] + deflection) / sigma + self._zero_slip[col] * force
         slip_velocity = du + self._h * x[self._pitch_rate] - lon.rolling_radius * spin
-        rates = -slip_velocity - lon.speed * deflection / sigma
-        spin_acceleration = (self._drive[col] - self._rolling[col] * force - lon.rolling_radius * fx) \
-            / lon.wheel_spin_inertia
+        fx, rates, spin_acceleration = _longitudinal_tire(
+            NUMPY, force, deflection, slip_velocity, self._slip_stiffness[col], self._slip_load_scale[col],
+            self._lon_relaxation[col], self._deflection0[col], self._zero_slip[col], lon.speed, self._drive[col],
+            self._rolling[col], lon.rolling_radius, lon.wheel_spin_inertia)
         total = np.sum(fx - self.static_longitudinal_force[col], axis=0)
         moment = self._pitch_inertia_full * pitch_acceleration + self._h * total
-        m, mc, inertia = self._mass, self._coupling, self._pitch_inertia
-        det = m * inertia - mc * mc
-        return ((m * moment - mc * total) / det, (inertia * total - mc * moment) / det, spin_acceleration, rates, fx,
-                -np.sum(self._cy[col] * fx, axis=0))
+        acceleration, pitch = _coupled(total, -moment, self._mass, self._coupling, self._pitch_inertia)
+        return -pitch, acceleration, spin_acceleration, rates, fx, -np.sum(self._cy[col] * fx, axis=0)
 
     def rhs(self, t, x, u):
         x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
@@ -527,7 +587,8 @@ class LiftOff(Model):
 
 
 def _rhs(t, x, u, args, dxdt):
-    """dx/dt of a :class:`LiftOff` into ``dxdt`` (compiled; ``args`` from :meth:`LiftOff.compiled_rhs`)."""
+    """dx/dt of a :class:`LiftOff` into ``dxdt`` (compiled; ``args`` from :meth:`LiftOff.compiled_rhs`;
+    ``XP`` bound to the compiled namespace of :mod:`vehdyn.components.compiled` by :func:`_compiled_rhs`)."""
     A, B, wheel, wheel_rate, road, road_rate, static, stiffness, damping, mass, lateral, longitudinal = args
     speed, roll_rate, h, cx, cornering, load_scale, relaxation, total_mass, coupling, inertia, yaw_inertia = lateral
     (lon_speed, o, pitch_rate, lon_h, radius, spin_inertia, slip_stiffness, slip_scale, lon_relaxation, deflection0,
@@ -543,43 +604,40 @@ def _rhs(t, x, u, args, dxdt):
         for j in range(m):
             s += B[i, j] * u[j]
         dxdt[i] = s
-    total, yaw_moment, lon_total = 0.0, 0.0, 0.0
+    total, lateral_yaw, lon_total, lon_yaw = 0.0, 0.0, 0.0, 0.0
     nc = wheel.shape[0]
-    for c in range(nc):
-        compression = u[road[c]] - x[wheel[c]]
-        linear = static[c] + stiffness[c] * compression + damping[c] * (u[road_rate[c]] - x[wheel_rate[c]])
-        force = 0.0
-        if static[c] / stiffness[c] + compression > 0.0 and linear > 0.0:
-            force = linear
+    for c in range(nc):  # the equations of the numpy methods, one corner at a time
+        force, linear = _contact_force(XP, static[c], stiffness[c], damping[c], u[road[c]] - x[wheel[c]],
+                                       u[road_rate[c]] - x[wheel_rate[c]])
         dxdt[wheel_rate[c]] += (force - linear) / mass[c]
         if speed > 0.0:
-            load = force / load_scale[c]
-            k = cornering[c] * 2.0 * load / (1.0 + load * load)
-            fy = -k * x[n + 2 + c] / relaxation[c]
-            slip_velocity = x[n] + cx[c] * x[n + 1] - h * x[roll_rate]
-            dxdt[n + 2 + c] = slip_velocity - speed * x[n + 2 + c] / relaxation[c]
+            fy, rate = _lateral_tire(XP, force, x[n + 2 + c], x[n] + cx[c] * x[n + 1] - h * x[roll_rate],
+                                     cornering[c], load_scale[c], relaxation[c], speed)
+            dxdt[n + 2 + c] = rate
             total += fy
-            yaw_moment += cx[c] * fy
+            lateral_yaw += cx[c] * fy
         if lon_speed > 0.0:
-            load = force / slip_scale[c]
-            k = slip_stiffness[c] * 2.0 * load / (1.0 + load * load)
-            fx = k * (deflection0[c] + x[o + 1 + nc + c]) / lon_relaxation[c] + zero_slip[c] * force
-            slip_velocity = x[o] + lon_h * x[pitch_rate] - radius * x[o + 1 + c]
-            dxdt[o + 1 + nc + c] = -slip_velocity - lon_speed * x[o + 1 + nc + c] / lon_relaxation[c]
-            dxdt[o + 1 + c] = (drive[c] - rolling[c] * force - radius * fx) / spin_inertia
+            fx, rate, spin = _longitudinal_tire(
+                XP, force, x[o + 1 + nc + c], x[o] + lon_h * x[pitch_rate] - radius * x[o + 1 + c], slip_stiffness[c],
+                slip_scale[c], lon_relaxation[c], deflection0[c], zero_slip[c], lon_speed, drive[c], rolling[c], radius,
+                spin_inertia)
+            dxdt[o + 1 + nc + c] = rate
+            dxdt[o + 1 + c] = spin
             lon_total += fx - static_fx[c]
-            yaw_moment -= cy[c] * fx
+            lon_yaw += cy[c] * fx
     if lon_speed > 0.0:
         moment = pitch_inertia_full * dxdt[pitch_rate] + lon_h * lon_total
-        det = lon_mass * pitch_inertia - lon_coupling * lon_coupling
-        dxdt[pitch_rate] = (lon_mass * moment - lon_coupling * lon_total) / det
-        dxdt[o] = (pitch_inertia * lon_total - lon_coupling * moment) / det
+        acceleration, pitch = _coupled(lon_total, -moment, lon_mass, lon_coupling, pitch_inertia)
+        dxdt[pitch_rate] = -pitch
+        dxdt[o] = acceleration
     if speed > 0.0:
         moment = inertia * dxdt[roll_rate] - h * total
-        det = total_mass * inertia - coupling * coupling
-        dxdt[roll_rate] = (coupling * total + total_mass * moment) / det
-        dxdt[n] = (inertia * total + coupling * moment) / det - speed * x[n + 1]
-        dxdt[n + 1] = yaw_moment / yaw_inertia
+        lateral_acceleration, roll = _coupled(total, moment, total_mass, coupling, inertia)
+        dxdt[roll_rate] = roll
+        dxdt[n] = lateral_acceleration - speed * x[n + 1]
+        dxdt[n + 1] = lateral_yaw / yaw_inertia
+        if lon_speed > 0.0:
+            dxdt[n + 1] = dxdt[n + 1] + (-lon_yaw) / yaw_inertia
 
 
 @functools.lru_cache(maxsize=None)
@@ -589,5 +647,11 @@ def _compiled_rhs():
 
     from vehdyn.simulation.compiled import compiled_copy, source_stamp
 
-    key = "lift_off_" + source_stamp(sys.modules[__name__])
-    return compiled_copy(_rhs, f"{key}_rhs"), key
+    from numba.extending import register_jitable
+
+    from vehdyn.components.compiled import JIT_OPTIONS, SOURCE_MODULES, XP
+
+    for function in (_contact_force, _degressive_stiffness, _lateral_tire, _longitudinal_tire, _coupled):
+        register_jitable(**JIT_OPTIONS)(function)
+    key = "lift_off_" + source_stamp(*SOURCE_MODULES, sys.modules[__name__])
+    return compiled_copy(_rhs, f"{key}_rhs", XP=XP), key

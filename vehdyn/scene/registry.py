@@ -305,11 +305,15 @@ def _positioned_class():
     from vehdyn.model import Model
     from vehdyn.signals import Signal
 
+    from vehdyn.components.planar import position_rates
+    from vehdyn.components.xp import NUMPY
+
     class Positioned(Model):
         """A constant-speed lateral model with the earth-fixed position and heading added.
 
-        dX/dt = u cos(psi) - v sin(psi), dY/dt = u sin(psi) + v cos(psi), dpsi/dt = r (SAE), and
-        the constant forward speed u as a state (du/dt = 0) for a driver that reads it.
+        dX/dt = u cos(psi) - v sin(psi), dY/dt = u sin(psi) + v cos(psi), dpsi/dt = r (SAE,
+        :func:`vehdyn.components.planar.position_rates`), and the constant forward speed u as a
+        state (du/dt = 0) for a driver that reads it.
         """
 
         def __init__(self, model, speed):
@@ -326,9 +330,9 @@ def _positioned_class():
             n = self.model.n_states
             inner, psi = x[:n], x[n + 2]
             v, r = inner[self._iv], inner[self._ir]
-            c, s = np.cos(psi), np.sin(psi)
+            dx, dy = position_rates(NUMPY, self.speed, v, psi)
             return np.concatenate([np.asarray(self.model.rhs(t, inner, u), dtype=float),
-                                   np.stack([self.speed * c - v * s, self.speed * s + v * c, r, 0.0 * r])])
+                                   np.stack([dx, dy, r, 0.0 * r])])
 
         def output(self, t, x, u):
             n = self.model.n_states
@@ -506,7 +510,7 @@ def longitudinal_slip(drive):
     F_z and the rolling resistance lever -M_y / F_z at zero slip, the longitudinal relaxation lengths of the full
     vehicle, and the drive torques that hold the speed against the drag and the rolling resistance
     (split by ``driveline.front_drive_fraction``, as the full vehicle's trim)."""
-    from vehdyn.handling.single_track import SingleTrack
+    from vehdyn.components.tire_setup import longitudinal_relaxation_lengths
     from vehdyn.ride.lift_off import LongitudinalSlip
     from vehdyn.units import GRAVITY
 
@@ -531,8 +535,8 @@ def longitudinal_slip(drive):
         values[f"{axle}_load_sensitivity"] = max((c[2] - c[1]) / (0.2 * wheel), 0.0)
         values[f"{axle}_rolling_resistance"] = lever
         resistance += 2.0 * lever * wheel
-    lengths = SingleTrack._longitudinal_lengths(vehicle, dict(zip(("front", "rear"), laws)), None,
-                                                (t.front_relaxation_length, t.rear_relaxation_length), GRAVITY)
+    lengths = longitudinal_relaxation_lengths(vehicle, dict(zip(("front", "rear"), laws)), None,
+                                              (t.front_relaxation_length, t.rear_relaxation_length), GRAVITY)
     torque = t.rolling_radius * 0.5 * a.air_density * a.frontal_area * a.drag_coefficient * speed**2 + resistance
     front = vehicle.driveline.front_drive_fraction
     return LongitudinalSlip(speed=speed, rolling_radius=t.rolling_radius, wheel_spin_inertia=t.wheel_spin_inertia,

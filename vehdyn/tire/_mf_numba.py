@@ -36,7 +36,7 @@ loop with each function replaced by one multiply-add runs at ~22 M points/s (~45
 every function at its best isolated throughput (1.3-3.9 ns per call and point) to that estimates
 the best this formulation can do at this precision on this core: 7.6-8.8 M points/s.
 
-:data:`OPS` is also what a compiled vehicle model calls ``magic_formula._forces_kernel`` with, one
+:data:`OPS` is also what a compiled vehicle model calls ``magic_formula.forces_kernel`` with, one
 point at a time.
 """
 
@@ -104,14 +104,14 @@ _EQUATIONS = (
     (mf_moments, ("overturning_moment", "rolling_resistance_moment", "aligning_moment")),
     (mf_vertical, ("_free_radius", "rolling_radius", "loaded_radius_mf61", "_load_mf62", "loaded_radius_mf62",
                    "contact_patch", "carcass_stiffness")),
-    (magic_formula, ("_pass_inputs", "_forces_pass", "_forces_kernel",
-                     "_lateral_force_kernel", "_full_kernel")),
+    (magic_formula, ("_pass_inputs", "_forces_pass", "forces_kernel",
+                     "lateral_force_kernel", "_full_kernel")),
 )
 for _module, _names in _EQUATIONS:
     for _name in _names:
         register_jitable(**_JIT_OPTIONS, **_INLINE, fastmath=_EQUATION_FASTMATH)(getattr(_module, _name))
 
-_forces_kernel = magic_formula._forces_kernel
+forces_kernel = magic_formula.forces_kernel
 _full_kernel = magic_formula._full_kernel
 
 
@@ -165,16 +165,16 @@ def _forces_loop(c, inputs, limits, alpha_star, out, first, stop):
             pressure = inputs[5][0]  # one value: the pressure terms are computed once, outside the loop
             if not (0.0 < c.CAMMIN) and not (0.0 > c.CAMMAX) and _zero_inclination(buffer[3], m):
                 for i in range(m):  # no camber: the camber-free lateral force of Mz is Fy0 itself
-                    _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i],
+                    _store_forces(results, i, forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i],
                                                              buffer[2, i], 0.0, buffer[4, i], pressure, True, False))
             else:
                 for i in range(m):
-                    _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i],
+                    _store_forces(results, i, forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i],
                                                              buffer[2, i], buffer[3, i], buffer[4, i], pressure, True,
                                                              False))
         else:
             for i in range(m):
-                _store_forces(results, i, _forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i],
+                _store_forces(results, i, forces_kernel(OPS_VECTOR, c, buffer[0, i], buffer[1, i], buffer[2, i],
                                                          buffer[3, i], buffer[4, i], buffer[5, i], limits,
                                                          alpha_star))
         out[:, start:start + m] = results[:, :m]

@@ -35,9 +35,8 @@ __all__ = ["LinearTire", "linear_tire_law"]
 def linear_tire_law(xp, coefficients, fz, kappa, alpha, gamma, vx):
     """``(F_x, F_y, M_z)`` [N, N, N m] of the linear law (module docstring), ISO-W.
 
-    Written against the array namespace ``xp`` (:mod:`vehdyn.tire._mf_ops`), so that numpy arrays,
-    Python floats and numba-compiled callers (:mod:`vehdyn.handling._single_track_numba`) run this
-    one source.
+    Written against the array namespace ``xp`` (:mod:`vehdyn.tire.kernels`), so that numpy arrays,
+    Python floats and numba-compiled callers (:mod:`vehdyn.tire.compiled`) run this one source.
 
     Parameters
     ----------
@@ -49,6 +48,11 @@ def linear_tire_law(xp, coefficients, fz, kappa, alpha, gamma, vx):
     fz, kappa, alpha, gamma, vx
         Normal load [N] (negative counts as 0), slip ratio [-], slip angle [rad], inclination [rad],
         forward speed [m/s].
+
+    Returns
+    -------
+    tuple
+        (F_x [N], F_y [N], M_z [N*m]), ISO-W.
     """
     cornering, slip, camber, trail, nominal = coefficients
     fz = xp.maximum(fz, 0.0)

@@ -544,7 +544,7 @@ class MagicFormula(TireModel):
         """Forces at one point on Python floats; numpy (IEEE inf/nan) where floats raise."""
         c = self._c
         try:
-            out = _forces_kernel(ScalarOps, c, fz, kappa, alpha, gamma, vx, c.INFLPRES, limits, alpha_star)
+            out = forces_kernel(ScalarOps, c, fz, kappa, alpha, gamma, vx, c.INFLPRES, limits, alpha_star)
         except (ArithmeticError, ValueError):  # a 0/0 or x/0: numpy gives MFeval's values
             arrays = self._inputs(fz, kappa, alpha, gamma, vx, c.INFLPRES, 0.0, None)
             out = self._run(arrays, (limits, alpha_star), full=False, backend="numpy")
@@ -588,7 +588,7 @@ class MagicFormula(TireModel):
 
             outputs = _mf_numba.run(self._c, flat, switches, full, n, parallel=NUMBA_PARALLEL)
             return tuple(row.reshape(shape) for row in outputs)
-        kernel = _full_kernel if full else _forces_kernel
+        kernel = _full_kernel if full else forces_kernel
         result = None
         with np.errstate(all="ignore"):
             for start in range(0, max(n, 1), CHUNK_SIZE):
@@ -791,20 +791,90 @@ def _forces_pass(xp, c, fz, kappa, alpha, gamma, phit, vx, pressure, omega, omeg
     return forces, extras
 
 
-def _forces_kernel(xp, c, fz, kappa, alpha, gamma, vx, pressure, limits, alpha_star):
-    """Fx, Fy, Fz, Mx, My, Mz (no turn slip, no rolling radius): :meth:`MagicFormula.forces`."""
+def forces_kernel(xp, c, fz, kappa, alpha, gamma, vx, pressure, limits, alpha_star):
+    r"""Forces and moments without turn slip or rolling radius: what :meth:`MagicFormula.forces` evaluates.
+
+    The public kernel of the law for models written over an ``xp`` namespace
+    (:mod:`vehdyn.tire.kernels`): the pure-slip forces weighted by the combined-slip factors,
+
+    .. math::
+
+        F_x = G_{x\alpha} F_{x0},\quad F_y = G_{y\kappa} F_{y0} + S_{Vy\kappa},\quad
+        F_0 = D \sin(C \arctan(B x - E (B x - \arctan B x))) + S_V
+
+    Parameters
+    ----------
+    xp : namespace
+        :data:`vehdyn.tire.kernels.NUMPY`, ``SCALAR`` or the compiled namespace.
+    c : MFCoefficients or record
+        The law's coefficients (a ``MagicFormula``'s named tuple, or a record with its field names).
+    fz : float or ndarray
+        Normal load [N] (negative counts as 0).
+    kappa : float or ndarray
+        Slip ratio [-] (ISO-W).
+    alpha : float or ndarray
+        Slip angle [rad] (ISO-W).
+    gamma : float or ndarray
+        Inclination angle [rad] (ISO-W).
+    vx : float or ndarray
+        Forward speed of the wheel centre [m/s] (negative rolling backwards).
+    pressure : float or ndarray
+        Inflation pressure [Pa] (``c.INFLPRES`` for the file's own).
+    limits : bool
+        The file's input limits and MFeval's low-speed rules (``True`` in ``MagicFormula``).
+    alpha_star : bool
+        MFeval's ``useMode`` tens digit 2: alpha* = tan(alpha) sign(V_x), gamma* = sin(gamma).
+
+    Returns
+    -------
+    tuple
+        (F_x [N], F_y [N], F_z [N], M_x [N*m], M_y [N*m], M_z [N*m]), ISO-W.
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 4.3.2, eq. 4.E9-4.E78.
+    """
     return _forces_pass(xp, c, fz, kappa, alpha, gamma, 0.0, vx, pressure, 0.0, False, limits, alpha_star, False,
                         False)[0]
 
 
-def _lateral_force_kernel(xp, c, fz, alpha, vx, pressure):
-    """Fy [N] of :func:`_forces_kernel` at kappa = 0 and gamma = 0 (``limits=True``,
+def lateral_force_kernel(xp, c, fz, alpha, vx, pressure):
+    r"""Fy [N] of :func:`forces_kernel` at kappa = 0 and gamma = 0 (``limits=True``,
     ``alpha_star=False``), without the longitudinal force and the moments: what a vehicle model in
     force mode (longitudinal forces as inputs, no wheel spin) takes from the law.
 
     At kappa = 0 the combined-slip Fy = Gyk Fy0 + SVyk (book eq. 4.E58) is Fy0: Gyk (4.E59) divides
     two equal numbers (kappa_s = kappa + SHyk = SHyk, 4.E61) and SVyk (4.E66) is sin(atan(0)) = 0,
     so the pure-slip force is the combined one up to rounding (the test compares them).
+
+    .. math::
+
+        F_y = F_{y0}(\alpha) = D_y \sin(C_y \arctan(B_y \alpha_y - E_y (B_y \alpha_y
+        - \arctan B_y \alpha_y))) + S_{Vy}
+
+    Parameters
+    ----------
+    xp : namespace
+        :data:`vehdyn.tire.kernels.NUMPY`, ``SCALAR`` or the compiled namespace.
+    c : MFCoefficients or record
+        The law's coefficients.
+    fz : float or ndarray
+        Normal load [N].
+    alpha : float or ndarray
+        Slip angle [rad] (ISO-W).
+    vx : float or ndarray
+        Forward speed of the wheel centre [m/s].
+    pressure : float or ndarray
+        Inflation pressure [Pa].
+
+    Returns
+    -------
+    float or ndarray
+        F_y [N] (ISO-W).
+
+    References
+    ----------
+    .. [1] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 4.3.2, eq. 4.E19-4.E30.
     """
     s = _pass_inputs(xp, c, fz, 0.0, alpha, 0.0, 0.0, vx, pressure, 0.0, False, True, False, False, False)[0]
     return lateral_pure(xp, c, s, s.gamma_star, False).fy0

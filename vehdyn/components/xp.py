@@ -1,0 +1,126 @@
+"""The ``xp`` namespace of the vehicle models' equations on numpy arrays, and its interface.
+
+The equations of the vehicle models (:mod:`vehdyn.handling.single_track_equations`,
+:mod:`vehdyn.full_vehicle.assembly`) and of the components they share are written once, as pure
+functions of an ``xp`` namespace and plain arithmetic. The interface an ``xp`` offers:
+
+* math on numbers or arrays: ``cos``, ``sin``, ``tan``, ``tanh``, ``atan``, ``atan2``, ``sqrt``,
+  ``abs``; ``where(condition, a, b)``, ``minimum(a, b)``, ``maximum(a, b)`` (elementwise);
+* the tire hooks ``tire_law(law, fz, kappa, alpha, gamma, vx) -> (fx, fy, my)`` and
+  ``tire_law_pair(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx)`` (a 6-tuple):
+  one tire law evaluated at ISO-W slips (:mod:`vehdyn.components.tire_forces`).
+
+A model may add hooks of its own (the full vehicle's rigid-body functions,
+:mod:`vehdyn.full_vehicle.assembly`). :data:`NUMPY` runs the equations on numpy arrays with a
+trailing batch axis (what the models' ``rhs`` and ``output`` use); the compiled namespace of
+:mod:`vehdyn.components.compiled` runs them on floats inside numba-compiled code. Control flow in
+the equations branches only on the model's constants (its options), never on a state, so that the
+same source also builds a symbolic expression.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vehdyn.tire.kernels import NUMPY as _TIRE_NUMPY
+
+__all__ = ["NUMPY", "stack"]
+
+
+def _scalars(*values) -> bool:
+    return all(np.ndim(v) == 0 for v in values)
+
+
+class NUMPY(_TIRE_NUMPY):
+    """``xp`` of the equations on numpy arrays: numpy's functions (``sin`` and ``cos`` numpy's own,
+    not the half-angle forms of the tire kernels) and the tire hooks on a
+    :class:`~vehdyn.tire.TireModel`."""
+
+    cos = staticmethod(np.cos)
+    sin = staticmethod(np.sin)
+    tanh = staticmethod(np.tanh)
+    atan2 = staticmethod(np.arctan2)
+
+    @staticmethod
+    def tire_law(law, fz, kappa, alpha, gamma, vx):
+        """ISO-W (F_x, F_y, M_y) of one tire.
+
+        Parameters
+        ----------
+        law : TireModel
+            The law (``law.forces`` is called once; with every argument a number, on Python floats:
+            the laws' fast scalar path).
+        fz : float or ndarray
+            Normal load [N].
+        kappa : float or ndarray
+            Slip ratio [-].
+        alpha : float or ndarray
+            Slip angle [rad].
+        gamma : float or ndarray
+            Inclination [rad].
+        vx : float or ndarray
+            Signed forward speed [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x [N], F_y [N], M_y [N*m]), ISO-W.
+        """
+        if _scalars(fz, kappa, alpha, gamma, vx):
+            fz, kappa, alpha, gamma, vx = float(fz), float(kappa), float(alpha), float(gamma), float(vx)
+        f = law.forces(fz, kappa, alpha, gamma, vx)
+        return f.fx, f.fy, f.my
+
+    @staticmethod
+    def tire_law_pair(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx):
+        """ISO-W (F_x, F_y, M_y) of two tires at the same slip ratio and speed, from one call of the law.
+
+        Parameters
+        ----------
+        law : TireModel
+            The law (one call on stacked arrays; two calls on floats when every argument is a number).
+        fz_1, fz_2 : float or ndarray
+            Normal loads [N].
+        kappa : float or ndarray
+            Slip ratio of both [-].
+        alpha_1, alpha_2 : float or ndarray
+            Slip angles [rad].
+        gamma_1, gamma_2 : float or ndarray
+            Inclinations [rad] (one number where they are equal numbers).
+        vx : float or ndarray
+            Signed forward speed of both [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x, F_y, M_y of the first, F_x, F_y, M_y of the second) [N, N, N*m], ISO-W.
+        """
+        if _scalars(fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx):
+            f = law.forces(float(fz_1), float(kappa), float(alpha_1), float(gamma_1), float(vx))
+            g = law.forces(float(fz_2), float(kappa), float(alpha_2), float(gamma_2), float(vx))
+            return f.fx, f.fy, f.my, g.fx, g.fy, g.my
+        gamma = gamma_1 if _scalars(gamma_1, gamma_2) and gamma_1 == gamma_2 else \
+            np.stack(np.broadcast_arrays(gamma_1, gamma_2))
+        both = law.forces(np.stack(np.broadcast_arrays(fz_1, fz_2)), np.stack(np.broadcast_arrays(kappa, kappa)),
+                          np.stack(np.broadcast_arrays(alpha_1, alpha_2)), gamma,
+                          np.stack(np.broadcast_arrays(vx, vx)))
+        return both.fx[0], both.fy[0], both.my[0], both.fx[1], both.fy[1], both.my[1]
+
+
+def stack(rows) -> np.ndarray:
+    """Rows of numbers or arrays as one array, the batch axis last.
+
+    Parameters
+    ----------
+    rows : sequence
+        Numbers or arrays that broadcast together (one per state or output).
+
+    Returns
+    -------
+    ndarray
+        Shape (len(rows),) for numbers, else (len(rows), *batch shape).
+    """
+    if all(np.ndim(row) == 0 for row in rows):
+        return np.array(rows, dtype=float)
+    shape = np.broadcast_shapes(*(np.shape(row) for row in rows))
+    return np.stack([np.broadcast_to(row, shape) for row in rows])
