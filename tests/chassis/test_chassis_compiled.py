@@ -1,15 +1,15 @@
-"""The compiled closed loops (numba) against the numpy ones: laws equal at random points, trajectories within the
-integrator's error, stopping distances; fallback to numpy; ESC and ABS around the full vehicle (compiled)."""
+"""The compiled chassis loops (numba) against the numpy ones: trajectories within the integrator's error, stopping
+distances; ESC and ABS around the full vehicle (compiled). (The laws at random points, the fallback to numpy:
+tests/interconnect/test_compiled_loop.py.)"""
 
 import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn import LinearModel, ParameterError
-from vehdyn.chassis import ABS, ESC, TractionControl, road_friction_tire
+from vehdyn import ParameterError
+from vehdyn.chassis import ABS, ESC, road_friction_tire
 from vehdyn.interconnect import ClosedLoop
 from vehdyn.full_vehicle import FullVehicle
-from vehdyn.driver import DriverInTheLoop, PreviewDriver
 from vehdyn.handling import SingleTrack
 from vehdyn.procedures import fmvss126
 from vehdyn.tire import tire_for_vehicle
@@ -24,55 +24,6 @@ WHEELS = ("front_left", "front_right", "rear_left", "rear_right")
 def _tires(mu):
     loads = CAR.static_axle_loads()
     return [road_friction_tire(tire_for_vehicle(CAR, a), mu, 0.5 * w) for a, w in zip(("front", "rear"), loads)]
-
-
-def _loops():
-    spin = SingleTrack(CAR, wheel_spin=True)
-    full = FullVehicle(CAR)
-    return {
-        "abs": ClosedLoop(spin, ABS(CAR)),
-        "traction_control": ClosedLoop(spin, TractionControl(CAR)),
-        "esc_force": ClosedLoop(SingleTrack(CAR), ESC(CAR)),
-        "esc_around_abs": ClosedLoop(ClosedLoop(spin, ABS(CAR)), ESC(CAR, wheel_spin=True)),
-        "full_esc_around_abs": ClosedLoop(ClosedLoop(full, ABS(CAR, corners=True)), ESC(CAR, corners=True)),
-        "full_traction_control": ClosedLoop(full, TractionControl(CAR, corners=True)),
-    }
-
-
-@pytest.mark.parametrize("name", list(_loops()))
-def test_compiled_rhs_and_outputs_equal_the_numpy_ones(name):
-    loop = _loops()[name]
-    compiled = loop.compiled_rhs()
-    assert compiled is not None and compiled.output is not None
-    rng = np.random.default_rng(7)
-    base = loop.plant
-    while isinstance(base, ClosedLoop):
-        base = base.plant
-    x_car = base.trim(20.0)[0] if isinstance(base, FullVehicle) else base.straight_running(20.0)
-    for _ in range(20):
-        x = loop.state_vector(dict(zip(base.state_names, x_car)))
-        x[:2] += rng.normal(0.0, [2.0, 1.0])  # speed, sideslip
-        x[base.index("yaw_rate")] = rng.normal(0.0, 0.5)
-        for k, state in enumerate(loop.state_names):
-            if "wheel_speed" in state:
-                x[k] *= 1.0 + rng.uniform(-0.3, 0.3)  # braking and spinning wheels
-            if state.endswith("brake_torque") and k >= base.n_states:
-                x[k] = rng.uniform(-100.0, 1500.0)
-            if state == "engine_torque_reduction":
-                x[k] = rng.uniform(-0.1, 1.1)
-        u = loop.input_vector()
-        for k, signal in enumerate(loop.input_names):
-            if "torque" in signal or "force" in signal or "moment" in signal:
-                u[k] = rng.uniform(-200.0, 2000.0)
-        u[loop.index("front_steer_angle", "inputs")] = rng.normal(0.0, 0.05)
-        dxdt = np.empty(loop.n_states)
-        compiled.rhs(0.0, x, u, compiled.args, dxdt)
-        expected = loop.rhs(0.0, x, u)
-        np.testing.assert_allclose(dxdt, expected, rtol=1e-12, atol=1e-12 * np.max(np.abs(expected)))
-        y = np.empty(loop.n_outputs)
-        compiled.output(0.0, x, u, compiled.args, y)
-        expected = loop.output(0.0, x, u)
-        np.testing.assert_allclose(y, expected, rtol=1e-12, atol=1e-12 * np.max(np.abs(expected)))
 
 
 def _panic(speed, mu, backend, rtol, duration=1.0):
@@ -110,59 +61,6 @@ def test_compiled_abs_stopping_distance_equals_numpy():
     # friction-limited: v0^2 / (2 mu g) = 40.8 m to rest
     assert 35.0 < distances["compiled"] < 45.0
     assert distances["compiled"] == pytest.approx(distances["numpy"], rel=2e-3)
-
-
-def test_compiled_driver_around_abs_equals_numpy():
-    plant = SingleTrack(CAR, *_tires(0.5), wheel_spin=True)
-    path_x = np.linspace(-10.0, 100.0, 221)
-    path_y = -1.5 * np.clip(path_x / 40.0, 0.0, 1.0) ** 2
-    loop = DriverInTheLoop(ClosedLoop(plant, ABS(CAR)), PreviewDriver(path_x, path_y, preview_time=0.6, lag=0.1),
-                           wheelbase=CAR.geometry.wheelbase)
-    x0 = loop.state_vector(dict(zip(plant.state_names, plant.straight_running(15.0))))
-    x0[-1] = 0.01
-    u = loop.input_vector(front_brake_torque=3000.0, rear_brake_torque=1000.0)
-    compiled = loop.compiled_rhs()
-    dxdt = np.empty(loop.n_states)
-    compiled.rhs(0.0, x0, u, compiled.args, dxdt)
-    np.testing.assert_allclose(dxdt, loop.rhs(0.0, x0, u), rtol=1e-12, atol=1e-12)
-    t = np.linspace(0.0, 1.0, 21)
-    runs = [vehdyn.simulate(loop, t, {"front_brake_torque": 3000.0, "rear_brake_torque": 1000.0}, x0=x0,
-                            method="RK45", rtol=1e-8, atol=1e-10, max_step=0.05, backend=backend)
-            for backend in ("numpy", "compiled")]
-    assert "compiled" in runs[1].method_reason
-    for name in ("y", "driver_steer_angle"):
-        assert np.max(np.abs(runs[1][name] - runs[0][name])) < 1e-5 * np.max(np.abs(runs[0][name])), name
-
-
-def test_compiled_driver_with_speed_control_equals_numpy():
-    plant = SingleTrack(CAR)
-    path_x = np.linspace(-10.0, 100.0, 111)
-    driver = PreviewDriver(path_x, np.sin(path_x / 20.0), preview_time=0.8, lag=0.1, target_speed=18.0)
-    loop = DriverInTheLoop(plant, driver, wheelbase=CAR.geometry.wheelbase, mass=CAR.mass.mass)
-    compiled = loop.compiled_rhs()
-    rng = np.random.default_rng(3)
-    for _ in range(5):
-        x = np.concatenate([plant.straight_running(15.0), [0.0]]) + rng.normal(0.0, 0.2, loop.n_states)
-        u = rng.normal(0.0, 100.0, loop.n_inputs)
-        dxdt, y = np.empty(loop.n_states), np.empty(loop.n_outputs)
-        compiled.rhs(0.0, x, u, compiled.args, dxdt)
-        compiled.output(0.0, x, u, compiled.args, y)
-        np.testing.assert_allclose(dxdt, loop.rhs(0.0, x, u), rtol=1e-12, atol=1e-12)
-        np.testing.assert_allclose(y, loop.output(0.0, x, u), rtol=1e-12, atol=1e-9)
-
-
-def test_loop_without_compiled_parts_falls_back_to_numpy():
-    A = np.array([[-1.0]])
-    ctrl = LinearModel(A, np.array([[0.0, 1.0]]), np.array([[2.0]]), np.array([[1.0, 0.0]]), states=["integral"],
-                       inputs=["front_brake_torque", "yaw_rate"], outputs=["front_brake_torque"])
-    loop = ClosedLoop(SingleTrack(CAR, wheel_spin=True), ctrl)
-    assert loop.compiled_rhs() is None
-    x0 = loop.state_vector(dict(zip(loop.plant.state_names, loop.plant.straight_running(20.0))))
-    t = np.linspace(0.0, 0.2, 5)
-    r = vehdyn.simulate(loop, t, x0=x0, method="RK45", rtol=1e-4)
-    assert "compiled" not in r.method_reason
-    with pytest.raises(ParameterError, match="has no compiled rhs"):
-        vehdyn.simulate(loop, t, x0=x0, method="RK45", backend="compiled")
 
 
 def test_fullvehicle_with_esc_passes_fmvss126_where_it_fails_alone():

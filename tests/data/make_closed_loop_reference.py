@@ -1,19 +1,23 @@
 """Reference trajectories of the driver loops as the OLD code computed them (closed_loop_reference.npz).
 
-Run once, at commit 255e4dd (before ``DriverInTheLoop``, ``DrivenVehicle`` and their compiled
-twins ``vehdyn/driver/_driver_in_the_loop_numba.py``, ``vehdyn/driver/_driver_numba.py`` were
-replaced by :class:`vehdyn.interconnect.ClosedLoop` with the drivers as controller models)::
+Run once on the code of commit 255e4dd (before ``DriverInTheLoop``, ``DrivenVehicle`` and their
+compiled twins ``vehdyn/driver/_driver_in_the_loop_numba.py``, ``vehdyn/driver/_driver_numba.py``
+were replaced by :class:`vehdyn.interconnect.ClosedLoop` with the drivers as controller models)::
 
-    git checkout 255e4dd
-    PYTHONPATH=. python tests/data/make_closed_loop_reference.py
+    mkdir /tmp/old && git archive 255e4dd | tar -x -C /tmp/old
+    VEHDYN_REFERENCE_COMMIT=255e4dd PYTHONPATH=/tmp/old python tests/data/make_closed_loop_reference.py
 
 It needs the old API and does not run on later commits; ``tests/driver/test_closed_loop_reference.py``
 rebuilds the same cases with the new API and compares (see ``closed_loop_reference.md``).
 
-For every case and backend (``numpy``: scipy's RK45 on the numpy rhs; ``compiled``: the numba
-RK45 on the old compiled twin) the file holds ``<case>/<backend>/states`` (n_states x n_t, the
-plant's states then the driver's), ``<case>/<backend>/steer`` (the road-wheel steer the driver
-applies) and ``<case>/<backend>/nfev``; ``<case>/time`` and ``<case>/state_names``. The old Padé
+For every case and run -- ``numpy`` (scipy's RK45 on the numpy rhs) and ``compiled`` (the numba
+RK45 on the old compiled twin) with the case's step control, ``numpy_fixed`` and
+``compiled_fixed`` the same Dormand-Prince pair at a fixed step (``first_step = max_step = h``,
+tolerances so loose that no step is rejected: the trajectory is then a smooth function of the
+rhs's values, so that a rounding difference in the rhs stays a rounding difference instead of
+changing the step sequence) -- the file holds ``<case>/<run>/states`` (n_states x n_t, the
+plant's states then the driver's), ``<case>/<run>/steer`` (the road-wheel steer the driver
+applies) and ``<case>/<run>/nfev`` (rhs evaluations, steps); ``<case>/time`` and ``<case>/state_names``. The old Padé
 realization of the crossover and optimal preview drivers (controllable canonical form) is kept
 as ``pade/<delay>/<order>/{A,B,C,D}``, and the old driver-loop margins as ``margins/<case>``
 (gain margin, phase margin [rad], crossover and phase-crossover frequencies [rad/s]).
@@ -21,6 +25,7 @@ as ``pade/<delay>/<order>/{A,B,C,D}``, and the old driver-loop margins as ``marg
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -61,7 +66,8 @@ def _low_mu_plant(mu=0.5):
 
 
 def cases():
-    """{name: (loop, plant, time, inputs, x0, rtol, atol, max_step)} with the old API."""
+    """{name: (loop, plant, time, inputs, x0, rtol, atol, max_step)} with the old API (the fixed step of
+    a case is ``FIXED_STEP`` by its duration)."""
     out = {}
     st = SingleTrack(CAR)
     t = np.linspace(0.0, 4.5, 91)  # through the first lane change
@@ -110,6 +116,11 @@ def cases():
     return out
 
 
+def fixed_step(t):
+    """The fixed step [s] of a case's ``*_fixed`` runs: 5 ms over the lane change, 1 ms over the short runs."""
+    return 5e-3 if t[-1] > 2.0 else 1e-3
+
+
 def _steer(loop, result):
     if isinstance(loop, DriverInTheLoop):
         return result["driver_steer_angle"]
@@ -117,21 +128,26 @@ def _steer(loop, result):
 
 
 def main():
-    commit = subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True,
-                            cwd=Path(__file__).parent).stdout.strip()
+    commit = os.environ.get("VEHDYN_REFERENCE_COMMIT") or subprocess.run(
+        ["git", "rev-parse", "HEAD"], capture_output=True, text=True, cwd=Path(vehdyn.__file__).parent).stdout.strip()
     data = {"commit": np.array(commit)}
     for name, (loop, plant, t, inputs, x0, rtol, atol, max_step) in cases().items():
         data[f"{name}/time"] = t
         data[f"{name}/state_names"] = np.array(loop.state_names)
-        for backend in ("numpy", "compiled"):
-            r = vehdyn.simulate(loop, t, inputs, x0=x0, method="RK45", rtol=rtol, atol=atol, max_step=max_step,
-                                backend=backend)
+        h = fixed_step(t)
+        for run in ("numpy", "compiled", "numpy_fixed", "compiled_fixed"):
+            backend = run.split("_")[0]
+            options = (dict(rtol=rtol, atol=atol, max_step=max_step) if run == backend else
+                       dict(rtol=1e3, atol=1e3, first_step=h, max_step=h))
+            r = vehdyn.simulate(loop, t, inputs, x0=x0, method="RK45", backend=backend, **options)
             assert (backend == "compiled") == ("compiled" in r.method_reason), (name, r.method_reason)
-            data[f"{name}/{backend}/states"] = r.states
-            data[f"{name}/{backend}/steer"] = np.asarray(_steer(loop, r))
-            data[f"{name}/{backend}/nfev"] = np.array([r.nfev, r.n_steps])
-            print(f"{name:22s} {backend:9s} n_states {loop.n_states:3d}  y[-1] {r['y'][-1]: .6f}  "
-                  f"wall {r.wall_time:.2f} s", flush=True)
+            data[f"{name}/{run}/states"] = r.states
+            data[f"{name}/{run}/steer"] = np.asarray(_steer(loop, r))
+            data[f"{name}/{run}/nfev"] = np.array([r.nfev, r.n_steps])
+            error = np.max(np.abs(r.states - data[f"{name}/numpy/states"]), axis=1) / np.maximum(
+                np.max(np.abs(data[f"{name}/numpy/states"]), axis=1), 1e-12)
+            print(f"{name:22s} {run:15s} n_states {loop.n_states:3d}  y[-1] {r['y'][-1]: .6f}  nfev {r.nfev:6d}  "
+                  f"vs numpy {error.max():.1e}  wall {r.wall_time:.2f} s", flush=True)
     for delay in (0.1, 0.12, 0.2):
         for order in (1, 3, 4, 6, 8):
             for key, value in zip("ABCD", pade_delay(delay, order)):

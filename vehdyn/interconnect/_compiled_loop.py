@@ -1,12 +1,15 @@
 """The compiled :class:`~vehdyn.interconnect.ClosedLoop` (numba, optional).
 
 Imported only when a compiled backend is used. A closed loop compiles when its plant and its
-controller both have a compiled rhs and output (``Model.compiled_rhs``): :func:`compiled_loop`
-binds the four compiled functions into one ``rhs(t, x, u, args, dxdt)`` that evaluates the
-controller's commands from its states and the demands, substitutes them for the plant's inputs,
-reads the feedback from the plant's states (or its compiled outputs) and stacks the two
-derivatives -- the same sequence as :meth:`ClosedLoop._split`. Loops nest (ESC around ABS around
-the car): an inner loop is a plant with a compiled rhs and output.
+controller both have a compiled rhs and the controller a compiled output
+(``Model.compiled_rhs``): :func:`compiled_loop` binds the compiled functions into one
+``rhs(t, x, u, args, dxdt)`` that evaluates the controller's commands from its states, the
+demands and the plant-state feedback, substitutes them for the plant's inputs, reads the
+output feedback from the plant's compiled outputs and stacks the two derivatives -- the same
+sequence as :meth:`ClosedLoop._split`. Loops nest (ESC around ABS around the car, a driver
+around that): an inner loop is a plant with a compiled rhs and output. The drivers and the
+chassis controllers are compiled from their one source (:mod:`vehdyn.driver`,
+:mod:`vehdyn.chassis`); nothing here knows a control law.
 """
 
 from __future__ import annotations
@@ -29,14 +32,19 @@ def _stamp() -> str:
 
 
 def _commands(t, x, u, args):
-    """(controller inputs with the demands, plant inputs with the commands substituted, the commands)."""
-    plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs = args
-    uc = np.zeros(demand.shape[0] + feedback_state.shape[0] + feedback_output.shape[0])
-    up = u.copy()
-    command = np.empty(commanded.shape[0])
+    """(controller inputs with demands and state feedback, plant inputs with the commands, the commands)."""
+    (plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs,
+     passed, n_plant_inputs, n_controller_inputs) = args
+    uc = np.zeros(n_controller_inputs)
     for k in range(demand.shape[0]):
         uc[demand[k, 0]] = u[demand[k, 1]]
-    _controller_output(t, x[n_plant:], uc, controller_args, command)
+    for k in range(feedback_state.shape[0]):
+        uc[feedback_state[k, 0]] = x[feedback_state[k, 1]]
+    command = np.empty(commanded.shape[0])
+    _controller_output(t, x[n_plant:], uc, controller_args, command)  # noqa: F821 (bound by compiled_copy)
+    up = np.zeros(n_plant_inputs)
+    for k in range(passed.shape[0]):
+        up[passed[k]] = u[k]
     for k in range(commanded.shape[0]):
         up[commanded[k]] = command[k]
     return uc, up, command
@@ -44,25 +52,23 @@ def _commands(t, x, u, args):
 
 def _loop_rhs(t, x, u, args, dxdt):
     """dx/dt of the closed loop: the plant's, then the controller's."""
-    plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs = args
-    uc, up, command = _commands(t, x, u, args)
+    plant_args, controller_args, n_plant, feedback_output, n_plant_outputs = args[0], args[1], args[2], args[5], args[7]
+    uc, up, command = _commands(t, x, u, args)  # noqa: F821 (bound by compiled_copy)
     xp = x[:n_plant]
-    for k in range(feedback_state.shape[0]):
-        uc[feedback_state[k, 0]] = xp[feedback_state[k, 1]]
     if feedback_output.shape[0] > 0:
         yp = np.empty(n_plant_outputs)
-        _plant_output(t, xp, up, plant_args, yp)
+        _plant_output(t, xp, up, plant_args, yp)  # noqa: F821
         for k in range(feedback_output.shape[0]):
             uc[feedback_output[k, 0]] = yp[feedback_output[k, 1]]
-    _plant_rhs(t, xp, up, plant_args, dxdt[:n_plant])
-    _controller_rhs(t, x[n_plant:], uc, controller_args, dxdt[n_plant:])
+    _plant_rhs(t, xp, up, plant_args, dxdt[:n_plant])  # noqa: F821
+    _controller_rhs(t, x[n_plant:], uc, controller_args, dxdt[n_plant:])  # noqa: F821
 
 
 def _loop_output(t, x, u, args, y):
     """The plant's outputs, then the commands."""
-    plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs = args
-    uc, up, command = _commands(t, x, u, args)
-    _plant_output(t, x[:n_plant], up, plant_args, y[:n_plant_outputs])
+    plant_args, n_plant, commanded, n_plant_outputs = args[0], args[2], args[6], args[7]
+    uc, up, command = _commands(t, x, u, args)  # noqa: F821
+    _plant_output(t, x[:n_plant], up, plant_args, y[:n_plant_outputs])  # noqa: F821
     for k in range(commanded.shape[0]):
         y[n_plant_outputs + k] = command[k]
 
@@ -109,5 +115,6 @@ def compiled_loop(loop) -> CompiledModel | None:
     rhs, output, key = _loop_functions(plant.rhs, plant.output, controller.rhs, controller.output, plant.key,
                                        controller.key)
     args = (plant.args, controller.args, int(loop._np), _pairs(loop._demand), _pairs(loop._fb_state),
-            _pairs(loop._fb_output), np.array(loop._command, dtype=np.int64), int(loop.plant.n_outputs))
+            _pairs(loop._fb_output), np.array(loop._command, dtype=np.int64), int(loop.plant.n_outputs),
+            np.array(loop._passed, dtype=np.int64), int(loop.plant.n_inputs), int(loop.controller.n_inputs))
     return CompiledModel(rhs, output, key, args)
