@@ -22,7 +22,7 @@ __all__ = ["compiled_driver"]
 
 _JIT = {"error_model": "numpy"}
 
-for _module, _names in ((base, ("preview_offsets", "delay_rates", "steer_rates", "steer_output")),
+for _module, _names in ((base, ("preview_offsets", "heading_offsets", "delay_rates", "steer_rates", "steer_output")),
                         (preview, ("pure_pursuit_command", "speed_control_force", "preview_driver_rhs",
                                    "preview_driver_output")),
                         (crossover, ("crossover_command", "crossover_driver_rhs")),

@@ -27,7 +27,7 @@ from vehdyn.errors import ParameterError
 from vehdyn.interconnect import Controller, pade_delay
 from vehdyn.signals import Signal
 
-__all__ = ["preview_offsets", "delay_rates", "steer_rates"]
+__all__ = ["preview_offsets", "heading_offsets", "delay_rates", "steer_rates"]
 
 
 def preview_offsets(path_x, path_y, x, y, yaw_angle, distance):
@@ -56,7 +56,28 @@ def preview_offsets(path_x, path_y, x, y, yaw_angle, distance):
     float or ndarray
         e [m] in vehicle axes (SAE: positive when the path lies to the right of the preview point).
     """
-    cos_psi, sin_psi = np.cos(yaw_angle), np.sin(yaw_angle)
+    return heading_offsets(path_x, path_y, x, y, np.cos(yaw_angle), np.sin(yaw_angle), distance)
+
+
+def heading_offsets(path_x, path_y, x, y, cos_psi, sin_psi, distance):
+    """:func:`preview_offsets` with the heading given by its cosine and sine (computed once for many distances).
+
+    Parameters
+    ----------
+    path_x, path_y : ndarray
+        The desired path in earth axes [m], ``path_x`` strictly increasing.
+    x, y : float or ndarray
+        Earth position of the CG [m].
+    cos_psi, sin_psi : float or ndarray
+        cos and sin of the heading psi [-].
+    distance : float or ndarray
+        Preview distance d [m].
+
+    Returns
+    -------
+    float or ndarray
+        e [m] in vehicle axes.
+    """
     preview_x = x + distance * cos_psi
     preview_y = y + distance * sin_psi
     return (np.interp(preview_x, path_x, path_y) - preview_y) * cos_psi

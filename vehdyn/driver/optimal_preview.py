@@ -7,7 +7,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from vehdyn.driver.base import _PathDriver, preview_offsets, steer_rates
+from vehdyn.driver.base import _PathDriver, heading_offsets, steer_rates
 from vehdyn.errors import ParameterError
 
 __all__ = ["OptimalPreviewDriver", "preview_gains", "optimal_preview_command"]
@@ -102,9 +102,10 @@ def optimal_preview_command(p, x, y, yaw_angle, speed, lateral_velocity, yaw_rat
         delta_c [rad], before the delay and the lag.
     """
     total = 0.0
+    cos_psi, sin_psi = np.cos(yaw_angle), np.sin(yaw_angle)
     for k in range(p.q.shape[0]):
         distance = np.maximum(np.abs(speed) * (p.delay + p.preview_times[k]), p.minimum_preview_distance)
-        offset = preview_offsets(p.path_x, p.path_y, x, y, yaw_angle, distance)
+        offset = heading_offsets(p.path_x, p.path_y, x, y, cos_psi, sin_psi, distance)
         free = p.h_lateral_velocity[k] * lateral_velocity + p.h_yaw_rate[k] * yaw_rate
         total = total + p.q[k] * (offset - free)
     return p.gain * total

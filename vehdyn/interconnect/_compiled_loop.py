@@ -31,29 +31,36 @@ def _stamp() -> str:
     return source_stamp(closed_loop, sys.modules[__name__])
 
 
-def _commands(t, x, u, args):
-    """(controller inputs with demands and state feedback, plant inputs with the commands, the commands)."""
-    (plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs,
-     passed, n_plant_inputs, n_controller_inputs) = args
-    uc = np.zeros(n_controller_inputs)
+def _commands(t, x, u, controller_args, n_plant, demand, feedback_state, commanded, passed, uc, command, up):
+    """Fill the controller's inputs ``uc`` (demands and state feedback; output feedback zero), its
+    commands ``command`` and the plant's inputs ``up`` (the loop's, with the commands substituted).
+
+    Takes the pieces of ``args`` it reads and writes into views of one work array that the caller
+    allocates (an allocation and a reference count per array cost more than the loop's own work).
+    """
+    for k in range(uc.shape[0]):
+        uc[k] = 0.0
     for k in range(demand.shape[0]):
         uc[demand[k, 0]] = u[demand[k, 1]]
     for k in range(feedback_state.shape[0]):
         uc[feedback_state[k, 0]] = x[feedback_state[k, 1]]
-    command = np.empty(commanded.shape[0])
     _controller_output(t, x[n_plant:], uc, controller_args, command)  # noqa: F821 (bound by compiled_copy)
-    up = np.zeros(n_plant_inputs)
-    for k in range(passed.shape[0]):
+    for k in range(passed.shape[0]):  # every plant input is passed or commanded
         up[passed[k]] = u[k]
     for k in range(commanded.shape[0]):
         up[commanded[k]] = command[k]
-    return uc, up, command
 
 
 def _loop_rhs(t, x, u, args, dxdt):
     """dx/dt of the closed loop: the plant's, then the controller's."""
-    plant_args, controller_args, n_plant, feedback_output, n_plant_outputs = args[0], args[1], args[2], args[5], args[7]
-    uc, up, command = _commands(t, x, u, args)  # noqa: F821 (bound by compiled_copy)
+    (plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs,
+     passed, n_plant_inputs, n_controller_inputs) = args
+    n_commands = commanded.shape[0]
+    work = np.empty(n_controller_inputs + n_commands + n_plant_inputs)
+    uc, command, up = (work[:n_controller_inputs], work[n_controller_inputs:n_controller_inputs + n_commands],
+                       work[n_controller_inputs + n_commands:])
+    _commands(t, x, u, controller_args, n_plant, demand, feedback_state, commanded, passed, uc, command,  # noqa: F821
+              up)
     xp = x[:n_plant]
     if feedback_output.shape[0] > 0:
         yp = np.empty(n_plant_outputs)
@@ -66,10 +73,16 @@ def _loop_rhs(t, x, u, args, dxdt):
 
 def _loop_output(t, x, u, args, y):
     """The plant's outputs, then the commands."""
-    plant_args, n_plant, commanded, n_plant_outputs = args[0], args[2], args[6], args[7]
-    uc, up, command = _commands(t, x, u, args)  # noqa: F821
+    (plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs,
+     passed, n_plant_inputs, n_controller_inputs) = args
+    n_commands = commanded.shape[0]
+    work = np.empty(n_controller_inputs + n_commands + n_plant_inputs)
+    uc, command, up = (work[:n_controller_inputs], work[n_controller_inputs:n_controller_inputs + n_commands],
+                       work[n_controller_inputs + n_commands:])
+    _commands(t, x, u, controller_args, n_plant, demand, feedback_state, commanded, passed, uc, command,  # noqa: F821
+              up)
     _plant_output(t, x[:n_plant], up, plant_args, y[:n_plant_outputs])  # noqa: F821
-    for k in range(commanded.shape[0]):
+    for k in range(n_commands):
         y[n_plant_outputs + k] = command[k]
 
 
