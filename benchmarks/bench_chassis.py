@@ -96,7 +96,7 @@ def driver_case(car):
     import vehdyn
     from vehdyn.chassis import ABS
     from vehdyn.interconnect import ClosedLoop
-    from vehdyn.driver import DriverInTheLoop, PreviewDriver
+    from vehdyn.driver import PreviewDriver
     from vehdyn.handling import SingleTrack
 
     mu, speed = 0.5, 80.0 / 3.6
@@ -104,8 +104,9 @@ def driver_case(car):
     path_x = np.linspace(-10.0, 200.0, 421)
     length = speed**2 / (2 * mu * G)
     ramp = np.clip((path_x - 2.0) / length, 0.0, 1.0)
-    driver = PreviewDriver(path_x, -1.5 * ramp**2 * (3 - 2 * ramp), preview_time=0.6, lag=0.1)
-    loop = DriverInTheLoop(ClosedLoop(plant, ABS(car)), driver, wheelbase=car.geometry.wheelbase)
+    driver = PreviewDriver(path_x, -1.5 * ramp**2 * (3 - 2 * ramp), wheelbase=car.geometry.wheelbase,
+                           preview_time=0.6, lag=0.1)
+    loop = driver.close(ClosedLoop(plant, ABS(car)))
     x0 = loop.state_vector(dict(zip(plant.state_names, plant.straight_running(speed))))
     t = np.linspace(0.0, 0.9 * speed / (0.7 * mu * G), 300)
     torque = 1.2 * car.mass.mass * G * car.tires.rolling_radius

@@ -10,13 +10,13 @@ developed deceleration (MFDD, UN ECE R13-H Annex 4: between 0.8 v0 and 0.1 v0), 
 deceleration v0 / t_stop and the friction limit's distance v0^2 / (2 mu g). The last 0.1 v0 is
 extrapolated at the MFDD (below 2 m/s the ABS hands back to the driver anyway).
 
-Steerability: on mu 0.5 the preview driver (vehdyn.driver.DriverInTheLoop) follows a 1.5 m swerve
+Steerability: on mu 0.5 the preview driver (vehdyn.driver.PreviewDriver) follows a 1.5 m swerve
 (a smooth step over the friction-limited stopping distance) while the car brakes fully. With ABS the wheels keep rolling near the peak slip and keep
 side force: the car follows the path. Without ABS the front wheels lock, the front axle has no
 side force left and the car slides straight on whatever the driver does.
 
 Every run is compiled (numba): the closed loop of car and ABS (vehdyn.interconnect.ClosedLoop) and the
-driver around it (DriverInTheLoop) have compiled right-hand sides, so the stops from 100 km/h and
+driver around it (driver.close(...), a ClosedLoop too) have compiled right-hand sides, so the stops from 100 km/h and
 the swerve from 80 km/h take about a second together (numpy: about 2 minutes; without numba the
 study brakes from 40 km/h and swerves at 50 km/h unless run with --full).
 """
@@ -28,7 +28,7 @@ from vehdyn.simulation.compiled import numba_available
 from vehdyn.chassis import ABS
 from vehdyn.components.tire_setup import friction_ratio
 from vehdyn.interconnect import ClosedLoop
-from vehdyn.driver import DriverInTheLoop, PreviewDriver
+from vehdyn.driver import PreviewDriver
 from vehdyn.handling import SingleTrack
 from vehdyn.plotting import new_figure
 from vehdyn.report import Study
@@ -119,14 +119,14 @@ def run(study: Study) -> None:
     start, length = 2.0, speed**2 / (2 * mu * G)  # the swerve takes the whole friction-limited stopping distance
     ramp = np.clip((path_x - start) / length, 0.0, 1.0)
     path_y = -OFFSET * ramp**2 * (3 - 2 * ramp)
-    driver = PreviewDriver(path_x, path_y, preview_time=0.6, lag=0.1)
+    driver = PreviewDriver(path_x, path_y, wheelbase=car.geometry.wheelbase, preview_time=0.6, lag=0.1)
     fig, axes = new_figure(1, 1, height_per_row=3.2)
     ax = axes[0, 0]
     near = path_x < 1.3 * (start + length)
     ax.plot(path_x[near], path_y[near], "k--", label="path")
     rows = []
     for label, model in (("ABS", ClosedLoop(plant, ABS(car))), ("locked", plant)):
-        loop = DriverInTheLoop(model, driver, wheelbase=car.geometry.wheelbase)
+        loop = driver.close(model)
         x0 = loop.state_vector(dict(zip(plant.state_names, plant.straight_running(speed))))
         t = np.linspace(0.0, 0.9 * speed / (0.7 * mu * G), 300)
         r = vehdyn.simulate(loop, t, demand, x0=x0, method="RK45", rtol=1e-4, atol=1e-6, max_step=0.05)

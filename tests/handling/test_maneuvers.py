@@ -1,16 +1,15 @@
-"""Manoeuvre signals against their defining formulas, metrics on signals with known answers, driver."""
+"""Manoeuvre signals against their defining formulas, metrics on signals with known answers (the drivers:
+tests/driver)."""
 
 import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn.driver import DriverInTheLoop, PreviewDriver
 from vehdyn.handling import SingleTrack
 from vehdyn.procedures import (
     braking_in_turn,
     crosswind_gust,
     double_lane_change_track,
-    lane_change_outcome,
     obstacle_avoidance_track,
     ramp_steer,
     sine_steer,
@@ -106,43 +105,6 @@ def test_obstacle_avoidance_track_dimensions_iso_3888_2():
         assert [r1 - l1, r3 - l3, r5 - l5] == pytest.approx([1.1 * b + 0.25, b + 1.0, w5])
         assert l1 - r3 == pytest.approx(1.0)  # 1 m between lane 1's left and lane 3's right cone lines
         assert r5 == pytest.approx(r1)
-
-
-def test_preview_driver_settles_on_an_offset_straight_path():
-    model = fiala_model(tire_lag=False)
-    x = np.linspace(-50, 500, 200)
-    driver = PreviewDriver(x, np.full_like(x, 2.0), preview_time=1.0, lag=0.1, target_speed=15.0)
-    loop = DriverInTheLoop(model, driver, wheelbase=SEDAN.wheelbase, mass=SEDAN.mass.mass)
-    t = np.linspace(0, 15, 151)
-    x0 = np.concatenate([model.straight_running(15.0), [0.0]])
-    r = vehdyn.simulate(loop, t, None, x0=x0, method="RK45", rtol=1e-6)
-    assert r["y"][-1] == pytest.approx(2.0, abs=0.02)
-    assert r["yaw_angle"][-1] == pytest.approx(0.0, abs=1e-3)
-    assert r["longitudinal_velocity"][-1] == pytest.approx(15.0, rel=1e-2)
-
-
-def test_double_lane_change_passes_slowly():
-    model = fiala_model(tire_lag=False)
-    track = double_lane_change_track(1.61)
-    driver = PreviewDriver(track.path_x, track.path_y, preview_time=0.8, lag=0.1, target_speed=12.0)
-    loop = DriverInTheLoop(model, driver, wheelbase=SEDAN.wheelbase, mass=SEDAN.mass.mass)
-    t = np.linspace(0, 150 / 12.0, 301)
-    r = vehdyn.simulate(loop, t, None, x0=np.concatenate([model.straight_running(12.0, x=-30.0), [0.0]]),
-                        method="RK45", rtol=1e-6)
-    outcome = lane_change_outcome(track, r)
-    assert outcome["passed"], outcome
-
-
-def test_driver_errors():
-    x = np.linspace(0, 10, 5)
-    with pytest.raises(vehdyn.ParameterError, match="increasing"):
-        PreviewDriver(x[::-1], x)
-    with pytest.raises(vehdyn.ParameterError, match="preview_time"):
-        PreviewDriver(x, x, preview_time=0.0)
-    with pytest.raises(vehdyn.ParameterError, match="front_steer_angle"):
-        DriverInTheLoop(vehdyn.LinearModel(np.zeros((1, 1)), np.zeros((1, 1)), np.eye(1), np.zeros((1, 1)),
-                                           states=["x"], inputs=["u"], outputs=["x"]),
-                        PreviewDriver(x, x), wheelbase=2.5)
 
 
 def test_braking_in_turn_decelerates_as_asked():

@@ -40,19 +40,70 @@ _AXLES = ("front", "rear")
 
 ABSGains = namedtuple("ABSGains", ("rolling_radius", "apply_slip", "release_slip", "slip_width", "apply_time_constant",
                                    "release_time_constant", "cutoff_speed", "minimum_speed"))
-ABSGains.__doc__ = """The numbers of the ABS law (SI): R_e, lambda_apply, lambda_release, w, tau_apply,
-tau_release, v_off, u_min (see :class:`ABS`)."""
+ABSGains.__doc__ = """The numbers of the ABS law (SI), see :class:`ABS`.
+
+Parameters
+----------
+rolling_radius : float
+    R_e [m].
+apply_slip, release_slip : float
+    lambda_apply, lambda_release [-].
+slip_width : float
+    w [-] of the smooth mode switches.
+apply_time_constant, release_time_constant : float
+    tau_apply, tau_release [s].
+cutoff_speed : float
+    v_off [m/s].
+minimum_speed : float
+    u_min [m/s] of the slip's denominator.
+"""
 
 
 def braking_slip(p, wheel_speed, speed):
-    """lambda = (u - omega R_e) / max(u, u_min) [-] (positive braking); ``p`` an :data:`ABSGains`."""
+    r"""The braking slip :math:`\lambda = (u - \omega R_e) / \max(u, u_{min})` (positive braking).
+
+    Parameters
+    ----------
+    p : ABSGains
+        The law's numbers.
+    wheel_speed : float or ndarray
+        omega [rad/s].
+    speed : float or ndarray
+        Forward speed u [m/s].
+
+    Returns
+    -------
+    float or ndarray
+        lambda [-].
+    """
     return (speed - wheel_speed * p.rolling_radius) / np.maximum(speed, p.minimum_speed)
 
 
 def torque_rate(p, torque, demand, wheel_speed, speed):
-    """dT/dt [N*m/s] of one channel (module docstring): numpy arrays or, compiled, floats.
+    r"""The rate of one channel's brake torque (the equations of :class:`ABS`): numpy arrays or, compiled, floats.
 
-    ``torque`` T, ``demand`` T_d (negative taken as 0), ``wheel_speed`` omega, ``speed`` u.
+    .. math::
+
+        \dot T = w_a \frac{T_d - T}{\tau_{apply}} - w_r \frac{T}{\tau_{release}}
+                 - (1 - w_a) \frac{\max(T - T_d, 0)}{\tau_{release}}
+
+    Parameters
+    ----------
+    p : ABSGains
+        The law's numbers.
+    torque : float or ndarray
+        T [N*m], the channel's state.
+    demand : float or ndarray
+        T_d [N*m], the driver's demand (negative taken as 0).
+    wheel_speed : float or ndarray
+        omega [rad/s].
+    speed : float or ndarray
+        Forward speed u [m/s].
+
+    Returns
+    -------
+    float or ndarray
+        dT/dt [N*m/s].
     """
     demand = np.maximum(demand, 0.0)
     slip = braking_slip(p, wheel_speed, speed)
@@ -64,7 +115,22 @@ def torque_rate(p, torque, demand, wheel_speed, speed):
 
 
 class ABS(ChassisController):
-    """Anti-lock braking of a wheel-spin :class:`~vehdyn.handling.SingleTrack` (equations in the module docstring).
+    r"""Anti-lock braking of a wheel-spin single track or the full vehicle: an apply/hold/release modulator.
+
+    Each channel (axle, or wheel with ``corners``) has one state, the brake torque :math:`T` that
+    the modulated wheel-cylinder pressure applies, with a first-order hydraulic lag; the modes are
+    smooth functions of the braking slip (module docstring):
+
+    .. math::
+
+        \lambda &= \frac{u - \omega R_e}{\max(u, u_{min})}, \qquad
+        s_v = \sigma\!\left(\frac{u - v_{off}}{0.5\ \mathrm{m/s}}\right), \\
+        w_r &= s_v\, \sigma\!\left(\frac{\lambda - \lambda_{release}}{w}\right), \qquad
+        w_a = (1 - s_v) + s_v\, \sigma\!\left(\frac{\lambda_{apply} - \lambda}{w}\right), \\
+        \dot T &= w_a \frac{T_d - T}{\tau_{apply}} - w_r \frac{T}{\tau_{release}}
+                 - (1 - w_a) \frac{\max(T - T_d, 0)}{\tau_{release}}
+
+    with :math:`\sigma(z) = (1 + \tanh z) / 2`; the torque applied is :math:`\max(T, 0)`.
 
     Parameters
     ----------
@@ -98,6 +164,14 @@ class ABS(ChassisController):
         ``longitudinal_velocity`` [m/s] (per wheel with ``corners``).
     outputs
         ``<axle>_brake_torque`` [N*m], the modulated torque (replaces the demand at the plant).
+
+    References
+    ----------
+    .. [1] Robert Bosch GmbH, *Automotive Handbook*, 10th ed., 2018, "Antilock braking system"
+       (the apply, hold and release modes on slip thresholds).
+    .. [2] S. M. Savaresi and M. Tanelli, *Active Braking Control Systems Design for Vehicles*,
+       Springer, 2010, ch. 1 and 6.
+    .. [3] R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., Springer, 2012, sec. 6.4.
 
     Examples
     --------
@@ -141,7 +215,20 @@ class ABS(ChassisController):
         return ABSGains(*(getattr(self, name) for name in ABSGains._fields))
 
     def braking_slip(self, wheel_speed, speed):
-        """lambda = (u - omega R_e) / max(u, u_min) [-] (positive braking)."""
+        """The braking slip lambda = (u - omega R_e) / max(u, u_min) (:func:`braking_slip`).
+
+        Parameters
+        ----------
+        wheel_speed : float or array_like
+            omega [rad/s].
+        speed : float or array_like
+            Forward speed u [m/s].
+
+        Returns
+        -------
+        float or ndarray
+            lambda [-] (positive braking).
+        """
         return braking_slip(self.gains, wheel_speed, speed)
 
     def rhs(self, t, x, u):
@@ -153,7 +240,13 @@ class ABS(ChassisController):
         return np.maximum(np.asarray(x, dtype=float), 0.0)
 
     def compiled_rhs(self):
-        """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`."""
+        """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`.
+
+        Returns
+        -------
+        vehdyn.simulation.compiled.CompiledModel
+            The compiled rhs and output of the channels, their key and the gains as arguments.
+        """
         from vehdyn.chassis import _chassis_numba
 
         return _chassis_numba.compiled_abs(self)

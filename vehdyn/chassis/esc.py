@@ -51,12 +51,61 @@ ESCGains = namedtuple("ESCGains", ("wheelbase", "stability_factor", "yaw_inertia
                                    "friction_coefficient", "yaw_rate_gain", "sideslip_gain", "yaw_rate_deadband",
                                    "sideslip_limit", "hydraulic_time_constant", "minimum_speed", "half_tracks",
                                    "torque_limits"))
-ESCGains.__doc__ = """The numbers of the ESC law (SI): L, A, I_z, R_e, mu, k_r, k_beta, e_0, beta_0, tau, v_min,
-the half tracks t/2 and the torque limits of front_left, front_right, rear_left, rear_right (tuples)."""
+ESCGains.__doc__ = """The numbers of the ESC law (SI), see :class:`ESC`.
+
+Parameters
+----------
+wheelbase : float
+    L [m].
+stability_factor : float
+    A [s^2/m^2] (Abe's stability factor, K / L).
+yaw_inertia : float
+    I_z [kg*m^2].
+rolling_radius : float
+    R_e [m].
+friction_coefficient : float
+    mu [-].
+yaw_rate_gain : float
+    k_r [1/s].
+sideslip_gain : float
+    k_beta [1/s^2].
+yaw_rate_deadband : float
+    e_0 [rad/s].
+sideslip_limit : float
+    beta_0 [rad].
+hydraulic_time_constant : float
+    tau [s].
+minimum_speed : float
+    v_min [m/s].
+half_tracks : array_like
+    t/2 of front_left, front_right, rear_left, rear_right [m].
+torque_limits : array_like
+    mu F_z,static R_e of the four wheels [N*m].
+"""
 
 
 def reference_yaw_rate(p, steer_angle, speed):
-    """r_ref [rad/s]: the linear bicycle's steady-state yaw rate, limited by mu g / u (``p``: :data:`ESCGains`)."""
+    r"""The yaw-rate reference: the linear bicycle's steady-state yaw rate, limited by :math:`\mu g / u`.
+
+    .. math::
+
+        r_{ref} = \mathrm{clip}\!\left(\frac{u \delta}{L (1 + A u^2)}, -\frac{\mu g}{\max(|u|, 1)},
+        \frac{\mu g}{\max(|u|, 1)}\right)
+
+    Parameters
+    ----------
+    p : ESCGains
+        The law's numbers (:attr:`ESC.gains`).
+    steer_angle : float or ndarray
+        delta [rad], the driver's front road-wheel steer.
+    speed : float or ndarray
+        Forward speed u [m/s].
+
+    Returns
+    -------
+    float or ndarray
+        r_ref [rad/s].
+    """
     u = np.maximum(np.abs(speed), 1.0)
     steady = speed * steer_angle / (p.wheelbase * (1.0 + p.stability_factor * speed**2))
     limit = p.friction_coefficient * GRAVITY / u
@@ -64,7 +113,31 @@ def reference_yaw_rate(p, steer_angle, speed):
 
 
 def yaw_moment_demand(p, steer_angle, speed, lateral_velocity, yaw_rate):
-    """M [N*m] the ESC asks for (SAE z: positive turns right)."""
+    r"""The yaw moment the ESC asks for (SAE z: positive turns right).
+
+    .. math::
+
+        M = s_v I_z \left[-k_r\, \mathrm{db}(r - r_{ref}, e_0) + k_\beta\, \mathrm{db}(\beta, \beta_0)\right],
+        \qquad \beta = \arctan(v / |u|)
+
+    Parameters
+    ----------
+    p : ESCGains
+        The law's numbers (:attr:`ESC.gains`).
+    steer_angle : float or ndarray
+        delta [rad].
+    speed : float or ndarray
+        Forward speed u [m/s].
+    lateral_velocity : float or ndarray
+        v [m/s].
+    yaw_rate : float or ndarray
+        r [rad/s].
+
+    Returns
+    -------
+    float or ndarray
+        M [N*m].
+    """
     error = yaw_rate - reference_yaw_rate(p, steer_angle, speed)
     sideslip = np.arctan2(lateral_velocity, np.abs(speed))
     active = sigmoid((speed - p.minimum_speed) / 1.0)
@@ -73,7 +146,26 @@ def yaw_moment_demand(p, steer_angle, speed, lateral_velocity, yaw_rate):
 
 
 def wheel_torque_commands(p, moment, yaw_rate):
-    """Brake torque commands [N*m] of front_left, front_right, rear_left, rear_right (one wheel at a time)."""
+    """Brake torque commands of the four wheels that make the yaw moment (one wheel at a time).
+
+    An oversteering car (M against the yaw rate) is braked at the outer front wheel, an
+    understeering one at the inner rear wheel (van Zanten 2000); a brake force F_b at y = +-t/2
+    gives +-F_b t/2, so the torque is |M| R_e / (t/2), limited to mu F_z,static R_e.
+
+    Parameters
+    ----------
+    p : ESCGains
+        The law's numbers (:attr:`ESC.gains`).
+    moment : float or ndarray
+        M [N*m].
+    yaw_rate : float or ndarray
+        r [rad/s].
+
+    Returns
+    -------
+    tuple of float or ndarray
+        Brake torques [N*m] of front_left, front_right, rear_left, rear_right.
+    """
     # oversteer: the moment opposes the yaw rate -> front outer wheel; understeer -> rear inner
     front = sigmoid(-np.tanh(yaw_rate / 0.02) * moment / 100.0)
     right, left = np.maximum(moment, 0.0), np.maximum(-moment, 0.0)
@@ -84,7 +176,25 @@ def wheel_torque_commands(p, moment, yaw_rate):
 
 
 def axle_commands(p, wheel_spin, fl, fr, rl, rr, front_demand, rear_demand, moment_demand):
-    """The single track's (front, rear, external_yaw_moment) with the wheel torques fl ... rr [N*m] applied.
+    """The single track's (front, rear, external_yaw_moment) with the ESC's wheel torques applied.
+
+    Parameters
+    ----------
+    p : ESCGains
+        The law's numbers (:attr:`ESC.gains`).
+    wheel_spin : bool
+        The plant takes axle brake torques (True) or axle longitudinal forces (False).
+    fl, fr, rl, rr : float or ndarray
+        The ESC's brake torques of the four wheels [N*m] (negative taken as 0).
+    front_demand, rear_demand : float or ndarray
+        The driver's axle brake torques [N*m] (``wheel_spin``) or longitudinal forces [N].
+    moment_demand : float or ndarray
+        The demanded ``external_yaw_moment`` [N*m].
+
+    Returns
+    -------
+    tuple of float or ndarray
+        (front, rear) axle brake torques [N*m] or forces [N], and the yaw moment [N*m].
 
     ``front_demand``, ``rear_demand`` are the axle brake torques (``wheel_spin``) or longitudinal forces.
     """
@@ -100,7 +210,22 @@ def axle_commands(p, wheel_spin, fl, fr, rl, rr, front_demand, rear_demand, mome
 
 
 class ESC(ChassisController):
-    """Electronic stability control of the :class:`~vehdyn.handling.SingleTrack` or the full vehicle.
+    r"""Electronic stability control of the :class:`~vehdyn.handling.SingleTrack` or the full vehicle.
+
+    A yaw-rate reference from the linear bicycle's steady state, limited by the road, a direct
+    yaw moment on the yaw-rate error beyond a deadband and on the sideslip beyond a limit, made by
+    braking one wheel through a first-order hydraulic lag (module docstring):
+
+    .. math::
+
+        r_{ref} &= \mathrm{clip}\!\left(\frac{u \delta}{L (1 + A u^2)}, \pm\frac{\mu g}{u}\right), \qquad
+        \mathrm{db}(e, d) = e - \mathrm{clip}(e, -d, d), \\
+        M &= s_v I_z \left[-k_r\, \mathrm{db}(r - r_{ref}, e_0) + k_\beta\, \mathrm{db}(\beta, \beta_0)\right],
+        \qquad s_v = \sigma\!\left(\frac{u - v_{min}}{1\ \mathrm{m/s}}\right), \\
+        \tau \dot T_j &= T_{c,j}(M, r) - T_j, \qquad
+        T_{c,j} = \min\!\left(\frac{|M| R_e}{t_j / 2}, \mu F_{z,j} R_e\right) \text{ on the wheel chosen}
+
+    (the outer front wheel when oversteering, the inner rear wheel when understeering).
 
     Parameters
     ----------
@@ -140,6 +265,15 @@ class ESC(ChassisController):
     outputs
         The longitudinal forces (or brake torques) and ``external_yaw_moment`` with the ESC's
         share; with ``corners`` the four wheel brake torques.
+
+    References
+    ----------
+    .. [1] A. T. van Zanten, "Bosch ESP systems: 5 years of experience", SAE Technical Paper
+       2000-01-1633, 2000 (the yaw-rate and sideslip control, the wheel braked).
+    .. [2] R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., Springer, 2012, sec. 8.4,
+       eq. 8.55-8.57 (the yaw-rate reference and its friction limit).
+    .. [3] M. Abe, *Vehicle Handling Dynamics*, 2nd ed., Butterworth-Heinemann, 2015 (the
+       stability factor).
 
     Examples
     --------
@@ -208,15 +342,58 @@ class ESC(ChassisController):
         return ESCGains(**values)
 
     def reference_yaw_rate(self, steer_angle, speed):
-        """r_ref [rad/s]: the linear bicycle's steady-state yaw rate, limited by mu g / u."""
+        """The yaw-rate reference (:func:`reference_yaw_rate`).
+
+        Parameters
+        ----------
+        steer_angle : float or array_like
+            delta [rad].
+        speed : float or array_like
+            Forward speed u [m/s].
+
+        Returns
+        -------
+        float or ndarray
+            r_ref [rad/s].
+        """
         return reference_yaw_rate(self.gains, steer_angle, speed)
 
     def yaw_moment_demand(self, steer_angle, speed, lateral_velocity, yaw_rate):
-        """M [N*m] the ESC asks for (SAE z: positive turns right)."""
+        """The yaw moment the ESC asks for (:func:`yaw_moment_demand`; SAE z: positive turns right).
+
+        Parameters
+        ----------
+        steer_angle : float or array_like
+            delta [rad].
+        speed : float or array_like
+            Forward speed u [m/s].
+        lateral_velocity : float or array_like
+            v [m/s].
+        yaw_rate : float or array_like
+            r [rad/s].
+
+        Returns
+        -------
+        float or ndarray
+            M [N*m].
+        """
         return yaw_moment_demand(self.gains, steer_angle, speed, lateral_velocity, yaw_rate)
 
     def wheel_torque_commands(self, moment, yaw_rate):
-        """Brake torque commands [N*m] of front_left, front_right, rear_left, rear_right (one wheel at a time)."""
+        """Brake torque commands of the four wheels (:func:`wheel_torque_commands`; one wheel at a time).
+
+        Parameters
+        ----------
+        moment : float or array_like
+            M [N*m].
+        yaw_rate : float or array_like
+            r [rad/s].
+
+        Returns
+        -------
+        list
+            Brake torques [N*m] of front_left, front_right, rear_left, rear_right.
+        """
         return list(wheel_torque_commands(self.gains, moment, yaw_rate))
 
     def rhs(self, t, x, u):
@@ -234,7 +411,13 @@ class ESC(ChassisController):
         return np.stack(axle_commands(self.gains, self.wheel_spin, *x, u[1], u[2], u[3]))
 
     def compiled_rhs(self):
-        """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`."""
+        """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`.
+
+        Returns
+        -------
+        vehdyn.simulation.compiled.CompiledModel
+            The compiled rhs and output of the four channels, their key and the gains as arguments.
+        """
         from vehdyn.chassis import _chassis_numba
 
         return _chassis_numba.compiled_esc(self)

@@ -44,34 +44,139 @@ _AXLES = ("front", "rear")
 TractionGains = namedtuple("TractionGains", ("rolling_radius", "target_slip", "brake_slip", "slip_width",
                                              "engine_time_constant", "brake_time_constant", "brake_gain",
                                              "maximum_reduction", "minimum_speed"))
-TractionGains.__doc__ = """The numbers of the traction-control law (SI): R_e, lambda_t, lambda_b, w, tau_e, tau_b,
-k_b, rho_max, u_min (see :class:`TractionControl`)."""
+TractionGains.__doc__ = """The numbers of the traction-control law (SI), see :class:`TractionControl`.
+
+Parameters
+----------
+rolling_radius : float
+    R_e [m].
+target_slip, brake_slip : float
+    lambda_t, lambda_b [-].
+slip_width : float
+    w [-] of the smooth switch.
+engine_time_constant, brake_time_constant : float
+    tau_e, tau_b [s].
+brake_gain : float
+    k_b [-].
+maximum_reduction : float
+    rho_max [-].
+minimum_speed : float
+    u_min [m/s] of the slip's denominator.
+"""
 
 
 def drive_slip(p, wheel_speed, speed):
-    """lambda_s = (omega R_e - u) / max(u, u_min) [-] (positive spinning); ``p`` a :data:`TractionGains`."""
+    r"""The drive slip :math:`\lambda_s = (\omega R_e - u) / \max(u, u_{min})` (positive spinning).
+
+    Parameters
+    ----------
+    p : TractionGains
+        The law's numbers (:attr:`TractionControl.gains`).
+    wheel_speed : float or ndarray
+        omega [rad/s].
+    speed : float or ndarray
+        Forward speed u [m/s].
+
+    Returns
+    -------
+    float or ndarray
+        lambda_s [-].
+    """
     return (wheel_speed * p.rolling_radius - speed) / np.maximum(speed, p.minimum_speed)
 
 
 def reduction_rate(p, reduction, mean_slip):
-    """d(rho)/dt [1/s] of the engine's torque reduction at the channels' mean drive slip."""
+    r"""The rate of the engine's torque reduction at the channels' mean drive slip.
+
+    .. math::
+
+        \dot\rho = \left[\sigma\!\left(\frac{\bar\lambda - \lambda_t}{w}\right) - \rho\right] / \tau_e
+
+    Parameters
+    ----------
+    p : TractionGains
+        The law's numbers (:attr:`TractionControl.gains`).
+    reduction : float or ndarray
+        rho [-], the state.
+    mean_slip : float or ndarray
+        The channels' mean drive slip [-].
+
+    Returns
+    -------
+    float or ndarray
+        d(rho)/dt [1/s].
+    """
     return (sigmoid((mean_slip - p.target_slip) / p.slip_width) - reduction) / p.engine_time_constant
 
 
 def brake_rate(p, brake, demand, slip):
-    """d(T_b)/dt [N*m/s] of one channel's brake intervention at drive-torque demand T_d and slip."""
+    r"""The rate of one channel's brake intervention.
+
+    .. math::
+
+        \tau_b \dot T_b = k_b \max(T_d, 0) \frac{\max(\lambda - \lambda_b, 0)}{\lambda_b} - T_b
+
+    Parameters
+    ----------
+    p : TractionGains
+        The law's numbers (:attr:`TractionControl.gains`).
+    brake : float or ndarray
+        T_b [N*m], the state.
+    demand : float or ndarray
+        The drive-torque demand T_d [N*m].
+    slip : float or ndarray
+        The channel's drive slip [-].
+
+    Returns
+    -------
+    float or ndarray
+        d(T_b)/dt [N*m/s].
+    """
     target = p.brake_gain * np.maximum(demand, 0.0) * np.maximum(slip - p.brake_slip, 0.0) / p.brake_slip
     return (target - brake) / p.brake_time_constant
 
 
 def applied_torques(p, reduction, brake, drive_demand, brake_demand):
-    """(drive, brake) torques [N*m] applied to one channel."""
+    r"""The drive and brake torques applied to one channel.
+
+    .. math::
+
+        T_{drive} = (1 - \rho_{max}\, \mathrm{clip}(\rho, 0, 1)) \max(T_d, 0), \qquad
+        T_{brake} = \max(T_{brake,d}, 0) + \max(T_b, 0)
+
+    Parameters
+    ----------
+    p : TractionGains
+        The law's numbers (:attr:`TractionControl.gains`).
+    reduction : float or ndarray
+        rho [-].
+    brake : float or ndarray
+        T_b [N*m], the intervention.
+    drive_demand, brake_demand : float or ndarray
+        The demands T_d and T_brake,d [N*m].
+
+    Returns
+    -------
+    tuple of float or ndarray
+        (drive, brake) torques [N*m].
+    """
     drive = (1.0 - p.maximum_reduction * np.minimum(np.maximum(reduction, 0.0), 1.0)) * np.maximum(drive_demand, 0.0)
     return drive, np.maximum(brake_demand, 0.0) + np.maximum(brake, 0.0)
 
 
 class TractionControl(ChassisController):
-    """Traction control of a wheel-spin :class:`~vehdyn.handling.SingleTrack` (module docstring).
+    r"""Traction control of a wheel-spin single track or the full vehicle: engine reduction and brake intervention.
+
+    With one channel per driven axle (or driven wheel with ``corners``), the engine's torque
+    reduction :math:`\rho` follows the channels' mean drive slip, and each channel's brakes join
+    in above a higher slip (module docstring):
+
+    .. math::
+
+        \lambda_i &= \frac{\omega_i R_e - u}{\max(u, u_{min})}, \qquad
+        \tau_e \dot\rho = \sigma\!\left(\frac{\bar\lambda - \lambda_t}{w}\right) - \rho, \\
+        \tau_b \dot T_{b,i} &= k_b T_{d,i} \frac{\max(\lambda_i - \lambda_b, 0)}{\lambda_b} - T_{b,i}, \qquad
+        T_{drive,i} = (1 - \rho_{max} \rho) T_{d,i}, \quad T_{brake,i} = T_{brake,d,i} + T_{b,i}
 
     Parameters
     ----------
@@ -109,6 +214,12 @@ class TractionControl(ChassisController):
         ``longitudinal_velocity``.
     outputs
         The drive and brake torques applied per channel.
+
+    References
+    ----------
+    .. [1] Robert Bosch GmbH, *Automotive Handbook*, 10th ed., 2018, "Traction control system"
+       (engine intervention and brake intervention on a spinning wheel).
+    .. [2] R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., Springer, 2012, sec. 6.5.
     """
 
     def __init__(self, vehicle: Vehicle, *, target_slip: float = 0.08, brake_slip: float = 0.15,
@@ -153,7 +264,20 @@ class TractionControl(ChassisController):
         return TractionGains(*(getattr(self, name) for name in TractionGains._fields))
 
     def drive_slip(self, wheel_speed, speed):
-        """lambda_s = (omega R_e - u) / max(u, u_min) [-] (positive spinning)."""
+        """The drive slip lambda_s = (omega R_e - u) / max(u, u_min) (:func:`drive_slip`).
+
+        Parameters
+        ----------
+        wheel_speed : float or array_like
+            omega [rad/s].
+        speed : float or array_like
+            Forward speed u [m/s].
+
+        Returns
+        -------
+        float or ndarray
+            lambda_s [-] (positive spinning).
+        """
         return drive_slip(self.gains, wheel_speed, speed)
 
     def rhs(self, t, x, u):
@@ -173,7 +297,13 @@ class TractionControl(ChassisController):
         return np.concatenate(applied_torques(self.gains, x[0], x[1:], u[:n], u[n:2 * n]))
 
     def compiled_rhs(self):
-        """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`."""
+        """The law compiled by numba (:mod:`vehdyn.chassis._chassis_numba`), for a compiled :class:`ClosedLoop`.
+
+        Returns
+        -------
+        vehdyn.simulation.compiled.CompiledModel
+            The compiled rhs and output of the channels, their key and the gains as arguments.
+        """
         from vehdyn.chassis import _chassis_numba
 
         return _chassis_numba.compiled_traction_control(self)

@@ -1,69 +1,155 @@
-"""What the driver models share: the path and its preview, the controller drivers' base class
-(command -> delay -> neuromuscular lag -> steer) and their loop with a vehicle.
+r"""What the driver models share: the path and its preview, the steer stage (limit, delay, lag) and
+the drivers' base class.
 
 The preview: the driver looks ahead along the vehicle's heading by the preview distance
-d = max(u T_p, d_min) (T_p the preview time) and measures the lateral offset e of the desired path
-from that preview point, in vehicle axes (SAE: positive when the path lies to the right)
-(:func:`preview_offsets`).
+:math:`d = \max(|u| T_p, d_{min})` (:math:`T_p` the preview time) and measures the lateral offset
+:math:`e` of the desired path from that preview point, in vehicle axes (SAE: positive when the
+path lies to the right) (:func:`preview_offsets`).
+
+The steer stage: every driver's command :math:`\delta_c` is limited to :math:`\pm\delta_{max}`,
+delayed by the driver's reaction time :math:`\tau` (the Padé approximant of
+:func:`vehdyn.interconnect.pade_delay`, states ``driver_delay_1..n``; none for :math:`\tau = 0`)
+and lagged by the first-order neuromuscular lag :math:`T_N` (state ``driver_steer_angle``, the
+road-wheel steer the driver applies, :func:`steer_rates`). The driver's steer output is that
+state, so its output never depends on its feedback at the same instant.
+
+The laws are written once, over numpy arrays (with a trailing batch axis) and floats: the
+drivers' ``rhs`` call them with arrays, their compiled form (:mod:`vehdyn.driver._compiled_drivers`,
+for a compiled :class:`~vehdyn.interconnect.ClosedLoop`) registers them with numba's
+``register_jitable`` and calls them with floats.
 """
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.interconnect import ClosedLoop
-from vehdyn.model import Model
+from vehdyn.interconnect import Controller, pade_delay
 from vehdyn.signals import Signal
 
-__all__ = ["preview_offsets", "DrivenVehicle"]
-
-
-# ====================================================================== drivers as controllers
-# The crossover-model driver (McRuer) and the optimal preview driver (MacAdam) are controller
-# Models for vehdyn.interconnect.ClosedLoop: their inputs are the plant's states they read (feedback),
-# their one output ``front_steer_angle`` replaces the plant's input.
-
-def pade_delay(delay: float, order: int):
-    """State-space matrices (A, B, C, D) of the [n/n] Pade approximant of e^(-delay s).
-
-    e^(-tau s) ~ N(s) / D(s), N(s) = sum_k (-1)^k c_k (tau s)^k, D(s) = sum_k c_k (tau s)^k,
-    c_k = (2n - k)! n! / ((2n)! k! (n - k)!) (Baker & Graves-Morris, *Pade Approximants*, 1996;
-    the same approximant as ``control.pade``), realized in controllable canonical form. A zero delay
-    gives an empty realization (A 0x0, D = 1).
-    """
-    from math import factorial
-
-    n = int(order)
-    tau = float(delay)
-    if tau == 0.0 or n == 0:
-        return np.zeros((0, 0)), np.zeros((0, 1)), np.zeros((1, 0)), np.ones((1, 1))
-    c = np.array([factorial(2 * n - k) * factorial(n) / (factorial(2 * n) * factorial(k) * factorial(n - k))
-                  for k in range(n + 1)])
-    scale = c * tau ** np.arange(n + 1)
-    a = scale[:n] / scale[n]                                 # monic denominator s^n + sum a_k s^k
-    b = (-1.0) ** np.arange(n + 1) * scale / scale[n]        # numerator, b_n = (-1)^n
-    A = np.zeros((n, n))
-    A[:-1, 1:] = np.eye(n - 1)
-    A[-1] = -a
-    B = np.zeros((n, 1))
-    B[-1, 0] = 1.0
-    C = (b[:n] - b[n] * a)[None, :]
-    D = np.array([[b[n]]])
-    return A, B, C, D
+__all__ = ["preview_offsets", "heading_offsets", "delay_rates", "steer_rates"]
 
 
 def preview_offsets(path_x, path_y, x, y, yaw_angle, distance):
-    """Lateral offset [m] of the path from the point ``distance`` [m] ahead along the heading.
+    r"""Lateral offset of the path from the point ``distance`` ahead along the heading.
 
-    In vehicle axes (SAE: positive when the path lies to the right of the preview point); the
-    path is read at the preview point's earth x. Broadcasts over ``distance`` and the batch.
+    .. math::
+
+        e = \left[f(X + d\cos\psi) - (Y + d\sin\psi)\right]\cos\psi
+
+    with :math:`f` the path :math:`Y(X)`, read at the preview point's earth :math:`X`. Broadcasts
+    over ``distance`` and the batch; under numba, floats.
+
+    Parameters
+    ----------
+    path_x, path_y : ndarray
+        The desired path in earth axes [m] (SAE: y to the right), ``path_x`` strictly increasing.
+    x, y : float or ndarray
+        Earth position of the CG [m].
+    yaw_angle : float or ndarray
+        Heading psi [rad].
+    distance : float or ndarray
+        Preview distance d [m].
+
+    Returns
+    -------
+    float or ndarray
+        e [m] in vehicle axes (SAE: positive when the path lies to the right of the preview point).
     """
-    cos_psi, sin_psi = np.cos(yaw_angle), np.sin(yaw_angle)
+    return heading_offsets(path_x, path_y, x, y, np.cos(yaw_angle), np.sin(yaw_angle), distance)
+
+
+def heading_offsets(path_x, path_y, x, y, cos_psi, sin_psi, distance):
+    """:func:`preview_offsets` with the heading given by its cosine and sine (computed once for many distances).
+
+    Parameters
+    ----------
+    path_x, path_y : ndarray
+        The desired path in earth axes [m], ``path_x`` strictly increasing.
+    x, y : float or ndarray
+        Earth position of the CG [m].
+    cos_psi, sin_psi : float or ndarray
+        cos and sin of the heading psi [-].
+    distance : float or ndarray
+        Preview distance d [m].
+
+    Returns
+    -------
+    float or ndarray
+        e [m] in vehicle axes.
+    """
     preview_x = x + distance * cos_psi
     preview_y = y + distance * sin_psi
     return (np.interp(preview_x, path_x, path_y) - preview_y) * cos_psi
+
+
+def delay_rates(a, b, c, d, z, command, dz):
+    r"""Rates of the delay's states into ``dz`` and the delayed command: a state space evaluated in loops.
+
+    .. math::
+
+        \dot z = A z + B \delta_c, \qquad \delta_d = C z + D \delta_c
+
+    written as loops so that the same code runs on numpy rows (a batch axis) and, compiled, on floats.
+
+    Parameters
+    ----------
+    a, b, c : ndarray
+        A (n, n) [1/s], B (n,) [1/s], C (n,) [-] of the delay (:func:`vehdyn.interconnect.pade_delay`).
+    d : float
+        D [-].
+    z : ndarray
+        The delay's states (the first n rows are read) [rad].
+    command : float or ndarray
+        delta_c [rad].
+    dz : ndarray
+        Written: dz/dt in its first n rows [1/s].
+
+    Returns
+    -------
+    float or ndarray
+        delta_d [rad], the delayed command.
+    """
+    delayed = d * command
+    for i in range(a.shape[0]):
+        rate = b[i] * command
+        for j in range(a.shape[0]):
+            rate = rate + a[i, j] * z[j]
+        dz[i] = rate
+        delayed = delayed + c[i] * z[i]
+    return delayed
+
+
+def steer_rates(p, command, x, dxdt):
+    r"""The driver's steer stage: the command limited, delayed (Padé) and lagged; rates into ``dxdt``.
+
+    .. math::
+
+        \dot z = A z + B \bar\delta_c, \qquad
+        T_N \dot\delta = C z + D \bar\delta_c - \delta, \qquad
+        \bar\delta_c = \min(\max(\delta_c, -\delta_{max}), \delta_{max})
+
+    Parameters
+    ----------
+    p : namedtuple
+        The driver's numbers (fields ``pade_a``, ``pade_b``, ``pade_c``, ``pade_d``,
+        ``max_steer_angle`` [rad], ``lag`` T_N [s]).
+    command : float or ndarray
+        delta_c [rad].
+    x : ndarray
+        The driver's states: the delay's ``z`` then the steer delta [rad].
+    dxdt : ndarray
+        Written: their rates, dz/dt [1/s] and d(delta)/dt [rad/s].
+    """
+    n = p.pade_a.shape[0]
+    limited = np.minimum(np.maximum(command, -p.max_steer_angle), p.max_steer_angle)
+    delayed = delay_rates(p.pade_a, p.pade_b, p.pade_c, p.pade_d, x, limited, dxdt)
+    dxdt[n] = (delayed - x[n]) / p.lag
+
+
+def steer_output(p, x, u, y):
+    """The steer the driver applies, ``front_steer_angle`` = the state ``driver_steer_angle``, into ``y[0]``."""
+    y[0] = x[p.pade_a.shape[0]]
 
 
 def _check_path(path_x, path_y):
@@ -73,145 +159,107 @@ def _check_path(path_x, path_y):
                              f"{py.shape}", key="path_x", value=px.shape)
     if not (np.all(np.isfinite(px)) and np.all(np.isfinite(py))) or np.any(np.diff(px) <= 0):
         raise ParameterError("path_x must be finite and strictly increasing (path_y finite)", key="path_x", value=px)
-    return px, py
+    return np.ascontiguousarray(px), np.ascontiguousarray(py)
 
 
 _FEEDBACK_UNITS = {"x": "m", "y": "m", "yaw_angle": "rad", "longitudinal_velocity": "m/s",
                    "lateral_velocity": "m/s", "yaw_rate": "rad/s"}
 
 
-class _PathDriver(Model):
-    """Base of the controller drivers: command -> delay (Pade) -> neuromuscular lag -> steer.
+class _PathDriver(Controller):
+    """Base of the drivers: a command law on the previewed path, then the steer stage (module docstring).
 
-    ``tau_N d(delta)/dt = delta_d - delta`` with delta_d the command delayed by ``delay`` (a Pade
-    approximant, states ``driver_delay_1..n``); the output ``front_steer_angle`` is the state
-    ``driver_steer_angle``, so the driver's output never depends on its feedback at the same
-    instant (the loop is not algebraic).
+    A subclass sets ``feedback`` (the plant states it reads), ``_law_rhs`` and ``_law_output``
+    (module functions ``(p, x, u, dxdt)`` and ``(p, x, u, y)`` of its law, written once), its
+    ``numbers`` (the namedtuple they read) and calls :meth:`_setup`.
     """
 
     feedback = ("x", "y", "yaw_angle", "longitudinal_velocity")
-    _gain_names: tuple = ()
+    _lag_name = "neuromuscular_lag"
+    _parameter_names: tuple = ("delay", "neuromuscular_lag", "preview_time", "minimum_preview_distance",
+                               "max_steer_angle", "pade_order")
+    _law_rhs = None
+    _law_output = staticmethod(steer_output)
 
-    def _setup(self, path_x, path_y, *, delay, neuromuscular_lag, preview_time, minimum_preview_distance,
-               max_steer_angle, pade_order, **gains):
+    def _setup(self, path_x, path_y, *, delay, lag, preview_time, minimum_preview_distance, max_steer_angle,
+               pade_order, outputs=None, **gains):
         from vehdyn.params.checks import check_gains
 
         self.path_x, self.path_y = _check_path(path_x, path_y)
-        owner = type(self).__name__
-        values = check_gains(owner, positive=("neuromuscular_lag", "preview_time", "max_steer_angle") + tuple(gains),
+        owner, lag_name = type(self).__name__, self._lag_name
+        values = check_gains(owner, positive=(lag_name, "preview_time", "max_steer_angle") + tuple(gains),
                              nonnegative=("delay", "minimum_preview_distance"), delay=delay,
-                             neuromuscular_lag=neuromuscular_lag, preview_time=preview_time,
-                             minimum_preview_distance=minimum_preview_distance, max_steer_angle=max_steer_angle,
-                             **gains)
+                             preview_time=preview_time, minimum_preview_distance=minimum_preview_distance,
+                             max_steer_angle=max_steer_angle, **{lag_name: lag}, **gains)
         if isinstance(pade_order, bool) or pade_order not in range(1, 11):
             raise ParameterError(f"{owner} pade_order must be an integer 1..10, got {pade_order!r}", key="pade_order",
                                  value=pade_order)
         for name, value in values.items():
             setattr(self, name, value)
         self.pade_order = int(pade_order)
-        self._pade = pade_delay(self.delay, self.pade_order)
-        n = self._pade[0].shape[0]
+        A, B, C, D = pade_delay(self.delay, self.pade_order)
+        self._pade = (np.ascontiguousarray(A), np.ascontiguousarray(B[:, 0]), np.ascontiguousarray(C[0]),
+                      float(D[0, 0]))
+        n = A.shape[0]
         states = tuple(Signal(f"driver_delay_{k + 1}", "-", f"Pade state {k + 1} of the driver's delay")
                        for k in range(n))
         self.declare(states=states + (Signal("driver_steer_angle", "rad", "road-wheel steer applied by the driver"),),
                      inputs=tuple(Signal(name, _FEEDBACK_UNITS[name], f"{name} of the vehicle (feedback)")
                                   for name in self.feedback),
-                     outputs=(Signal("front_steer_angle", "rad", "front road-wheel steer commanded by the driver"),))
+                     outputs=outputs or (Signal("front_steer_angle", "rad",
+                                                "front road-wheel steer commanded by the driver"),))
 
     def named_parameters(self) -> dict:
-        """The driver's named parameters (SI)."""
-        names = ("delay", "neuromuscular_lag", "preview_time", "minimum_preview_distance", "max_steer_angle")
-        return {name: getattr(self, name) for name in self._gain_names + names} | {"pade_order": self.pade_order}
+        """The driver's named parameters (SI).
+
+        Returns
+        -------
+        dict
+            ``{name: value}`` of its gains, delay [s], lag [s], preview time [s], minimum preview
+            distance [m], steer limit [rad] (and ``pade_order``, where it has a delay).
+        """
+        return {name: getattr(self, name) for name in self._parameter_names}
 
     def preview_distance(self, speed):
-        """d = max(|u| T_p, d_min) [m]."""
-        return np.maximum(np.abs(speed) * self.preview_time, self.minimum_preview_distance)
+        """The preview distance d = max(|u| T_p, d_min).
 
-    def _feedback(self, u):
-        return {name: u[k] for k, name in enumerate(self.feedback)}
+        Parameters
+        ----------
+        speed : float or array_like
+            Forward speed u [m/s].
 
-    def command(self, t, signals, steer):
-        """The driver's steer command [rad] (before delay and lag) from the feedback signals and the
-        present road-wheel steer ``steer`` [rad] (the driver's own state)."""
-        raise NotImplementedError
-
-    def perception(self, speed) -> dict:
-        """The linear command law about straight running on a straight path at y = 0.
-
-        ``{signal: k}`` such that delta_c = -sum_k k * signal (the driver's gains on the vehicle's
-        signals; used by :func:`driver_loop_margins`).
+        Returns
+        -------
+        float or ndarray
+            d [m].
         """
-        raise NotImplementedError
+        return np.maximum(np.abs(speed) * self.preview_time, self.minimum_preview_distance)
 
     def rhs(self, t, x, u):
         x = np.asarray(x, dtype=float)
         u = np.asarray(u, dtype=float)
-        A, B, C, D = self._pade
-        n = A.shape[0]
-        z, steer = x[:n], x[n]
-        command = np.clip(self.command(t, self._feedback(u), steer), -self.max_steer_angle, self.max_steer_angle)
-        dz = np.tensordot(A, z, axes=1) + B[:, 0].reshape((n,) + (1,) * (x.ndim - 1)) * command
-        delayed = np.tensordot(C[0], z, axes=1) + D[0, 0] * command
-        return np.concatenate([dz, ((delayed - steer) / self.neuromuscular_lag)[None]])
+        dxdt = np.empty(np.broadcast_shapes(x.shape, (x.shape[0],) + u.shape[1:]))
+        type(self)._law_rhs(self.numbers, x, u, dxdt)
+        return dxdt
 
     def output(self, t, x, u):
         x = np.asarray(x, dtype=float)
-        return x[-1:].copy()
-
-    def close(self, plant: Model):
-        """The driver steering ``plant``: a :class:`vehdyn.interconnect.ClosedLoop` (errors name the feedback
-        the plant lacks) that also has a compiled rhs when the plant has one (:class:`DrivenVehicle`)."""
-        return DrivenVehicle(plant, self)
-
-    def _compiled_args(self):
-        A, B, C, D = self._pade
-        empty = np.zeros(0)
-        times, q, h = (getattr(self, "preview_times", empty), getattr(self, "_q", empty),
-                       getattr(self, "_h", np.zeros((0, 3))))
-        return (1 if times.size else 0, self.path_x, self.path_y, self.gain, self.preview_time,
-                self.minimum_preview_distance, self.max_steer_angle, np.ascontiguousarray(A), B[:, 0].copy(),
-                C[0].copy(), float(D[0, 0]), self.neuromuscular_lag, np.ascontiguousarray(times),
-                np.ascontiguousarray(q), np.ascontiguousarray(h[:, 0]), np.ascontiguousarray(h[:, 1]),
-                np.ascontiguousarray(h[:, 2]), self.delay)
-
-
-# ====================================================================== loop analysis
-
-
-# ====================================================================== compiled driver-vehicle loop
-class DrivenVehicle(ClosedLoop):
-    """A :class:`vehdyn.interconnect.ClosedLoop` of a vehicle model and a :class:`CrossoverDriver` or
-    :class:`OptimalPreviewDriver` (made by ``driver.close(plant)``).
-
-    Identical signals and numpy evaluation to ``ClosedLoop(plant, driver)``; in addition, when the
-    plant has a compiled rhs (:class:`~vehdyn.handling.SingleTrack` with Magic Formula or linear
-    tires), :meth:`compiled_rhs` composes it with the driver's law in numba, so that
-    ``vehdyn.simulate(loop, t, ..., method="RK45")`` runs compiled (tens of times faster than numpy
-    for one run).
-    """
+        u = np.asarray(u, dtype=float)
+        y = np.empty((self.n_outputs,) + np.broadcast_shapes(x.shape[1:], u.shape[1:]))
+        type(self)._law_output(self.numbers, x, u, y)
+        return y
 
     def compiled_rhs(self):
-        from vehdyn.simulation.compiled import CompiledModel, compiled_copy, source_stamp
+        """The driver's law compiled by numba, for a compiled :class:`~vehdyn.interconnect.ClosedLoop`.
 
-        plant = self.plant.compiled_rhs()
-        if plant is None:
-            return None
-        from vehdyn.driver import _driver_numba
+        The same functions as :meth:`rhs` and :meth:`output` (registered with numba's
+        ``register_jitable``), called with floats (:mod:`vehdyn.driver._compiled_drivers`).
 
-        key = f"driven_{plant.key}_{source_stamp(_driver_numba)}"
-        cached = self.__dict__.get("_compiled")
-        if cached is not None and cached.key == key:
-            return cached
-        rhs = compiled_copy(_driver_numba.driven_rhs, f"{key}_rhs", _plant_rhs=plant.rhs)
-        p = self.plant
-        index = tuple(p.index(n) for n in ("x", "y", "yaw_angle", "longitudinal_velocity", "lateral_velocity",
-                                           "yaw_rate"))
-        args = ((plant.args, p.n_states, p.index("front_steer_angle", "inputs")) + index
-                + self.controller._compiled_args())
-        self._compiled = CompiledModel(rhs, None, key, args)
-        return self._compiled
+        Returns
+        -------
+        vehdyn.simulation.compiled.CompiledModel
+            Compiled ``rhs`` and ``output``, their key and :attr:`numbers` as their arguments.
+        """
+        from vehdyn.driver import _compiled_drivers
 
-
-# ====================================================================== the lane change that measures the car
-
-
+        return _compiled_drivers.compiled_driver(self)

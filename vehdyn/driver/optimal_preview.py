@@ -2,40 +2,59 @@
 the vehicle's linear model over a preview window."""
 
 from __future__ import annotations
-from vehdyn.errors import ParameterError
-from vehdyn.driver.base import _PathDriver
-import numpy as np
-from vehdyn.driver.base import preview_offsets
 
-__all__ = ["OptimalPreviewDriver", "preview_gains"]
+from collections import namedtuple
+
+import numpy as np
+
+from vehdyn.driver.base import _PathDriver, heading_offsets, steer_rates
+from vehdyn.errors import ParameterError
+
+__all__ = ["OptimalPreviewDriver", "preview_gains", "optimal_preview_command"]
+
+OptimalPreviewNumbers = namedtuple("OptimalPreviewNumbers", (
+    "path_x", "path_y", "delay", "preview_times", "minimum_preview_distance", "gain", "q", "h_lateral_velocity",
+    "h_yaw_rate", "max_steer_angle", "lag", "pade_a", "pade_b", "pade_c", "pade_d"))
+OptimalPreviewNumbers.__doc__ = """The numbers of the :class:`OptimalPreviewDriver`'s law (SI): the path [m], tau [s],
+the preview instants eta_k [s], d_min [m], K [-], the preview gains q_k [rad/m], the free-response
+coefficients of v [s] and r [m*s/rad], delta_max [rad], T_N [s] and the delay's balanced Padé realization."""
 
 
 def preview_gains(A, B, C, times, weights=None):
-    """MacAdam's optimal preview gains for an internal model dx/dt = A x + B delta, y = C x.
+    r"""MacAdam's optimal preview gains for an internal model :math:`\dot x = A x + B\delta`, :math:`y = C x`.
 
     With the steer held constant over the preview window, the steer that minimizes
-    J = int_0^T W(eta) [f(t + eta) - y(t + eta)]^2 d eta is (MacAdam 1981, eq. 8-11)::
+    :math:`J = \int_0^T W(\eta) [f(t + \eta) - y(t + \eta)]^2 d\eta` is (MacAdam 1981, eq. 8-11)
 
-        delta* = sum_k q_k (f_k - h_k x),   q_k = w_k g_k / sum_j w_j g_j^2,
-        g_k = C int_0^{eta_k} e^(A s) ds B  (the step response),   h_k = C e^(A eta_k)
+    .. math::
 
-    at the preview instants eta_k with quadrature weights w_k (times the weighting W).
+        \delta^* = \sum_k q_k (f_k - h_k x), \qquad q_k = \frac{w_k g_k}{\sum_j w_j g_j^2}, \qquad
+        g_k = C \int_0^{\eta_k} e^{A s} ds\, B, \qquad h_k = C e^{A \eta_k}
+
+    at the preview instants :math:`\eta_k` with quadrature weights :math:`w_k` (times the
+    weighting :math:`W`): :math:`g_k` is the step response, :math:`h_k` the free response.
 
     Parameters
     ----------
     A, B, C : array_like
-        (n, n), (n, 1), (1, n).
+        The internal model's matrices, (n, n) [1/s], (n, 1) and (1, n) in the units of its
+        states and output [-].
     times : array_like
         eta_k [s] > 0.
     weights : array_like, optional
-        w_k (default: ones).
+        w_k [-] (default: ones).
 
     Returns
     -------
     q : ndarray (n_k,)
-        [rad/m].
+        The preview gains [rad/m].
     h : ndarray (n_k, n)
-        Free-response rows.
+        Free-response rows [-].
+
+    References
+    ----------
+    .. [1] C. C. MacAdam, "Application of an optimal preview control for simulation of closed-loop
+       automobile driving", IEEE Trans. Systems, Man, and Cybernetics 11(6), 393-399, 1981, eq. 8-11.
     """
     from scipy.linalg import expm
 
@@ -54,25 +73,76 @@ def preview_gains(A, B, C, times, weights=None):
     return q, h
 
 
+def optimal_preview_command(p, x, y, yaw_angle, speed, lateral_velocity, yaw_rate):
+    r"""MacAdam's command: the preview gains on the previewed offsets less the predicted free motion.
+
+    .. math::
+
+        \delta_c = K \sum_k q_k \left[e_k - (h_{v,k} v + h_{r,k} r)\right], \qquad
+        e_k = e\!\left(\max(|u| (\tau + \eta_k), d_{min})\right)
+
+    Parameters
+    ----------
+    p : OptimalPreviewNumbers
+        The driver's numbers (:attr:`OptimalPreviewDriver.numbers`).
+    x, y : float or ndarray
+        Earth position of the CG [m].
+    yaw_angle : float or ndarray
+        Heading psi [rad].
+    speed : float or ndarray
+        Forward speed u [m/s].
+    lateral_velocity : float or ndarray
+        v [m/s].
+    yaw_rate : float or ndarray
+        r [rad/s].
+
+    Returns
+    -------
+    float or ndarray
+        delta_c [rad], before the delay and the lag.
+    """
+    total = 0.0
+    cos_psi, sin_psi = np.cos(yaw_angle), np.sin(yaw_angle)
+    for k in range(p.q.shape[0]):
+        distance = np.maximum(np.abs(speed) * (p.delay + p.preview_times[k]), p.minimum_preview_distance)
+        offset = heading_offsets(p.path_x, p.path_y, x, y, cos_psi, sin_psi, distance)
+        free = p.h_lateral_velocity[k] * lateral_velocity + p.h_yaw_rate[k] * yaw_rate
+        total = total + p.q[k] * (offset - free)
+    return p.gain * total
+
+
+def optimal_preview_driver_rhs(p, x, u, dxdt):
+    """Rates of the optimal preview driver's delay and steer into ``dxdt``; ``u`` = (x, y, yaw_angle,
+    longitudinal_velocity, lateral_velocity, yaw_rate)."""
+    steer_rates(p, optimal_preview_command(p, u[0], u[1], u[2], u[3], u[4], u[5]), x, dxdt)
+
+
 class OptimalPreviewDriver(_PathDriver):
-    """MacAdam's optimal preview driver: a linear internal model of the car, a preview window, a delay.
+    r"""MacAdam's optimal preview driver: a linear internal model of the car, a preview window, a delay.
 
     The driver knows the car as a linear single-track model at the design ``speed`` (lateral
-    velocity v, yaw rate r and, in the car's own frame, heading and lateral position; the steer
-    is its input, not a state). It predicts the car's free motion over its own delay tau and
-    chooses the steer c, held over the preview window [tau, tau + T_p], that minimizes the squared
-    distance between the predicted lateral position and the path at the preview points
-    (:func:`preview_gains`; Gauss-Legendre points, uniform weighting)::
+    velocity :math:`v`, yaw rate :math:`r` and, in the car's own frame, heading and lateral
+    position; the steer is its input, not a state). It predicts the car's free motion over its
+    own delay :math:`\tau` and chooses the steer :math:`c`, held over the preview window
+    :math:`[\tau, \tau + T_p]`, that minimizes the squared distance between the predicted lateral
+    position and the path at the preview points (:func:`preview_gains`; Gauss-Legendre points,
+    uniform weighting):
 
-        c = K sum_k q_k (e_k - h_k [v, r, 0, 0]),   e_k = path offset at u (tau + eta_k) ahead,
-        h_k = C e^(A eta_k) e^(A tau)
+    .. math::
 
-    then applies it through the delay tau (Pade approximant) and the lag T_N as
-    :class:`CrossoverDriver` does (the lag is not in the internal model). With K = 1 the command is the
-    optimal one for the internal model; K scales it. C. C. MacAdam, "Application of an optimal
-    preview control for simulation of closed-loop automobile driving", IEEE Trans. SMC 11(6),
-    393-399, 1981 (the delay ahead of the preview window, eq. 12-16); "Understanding and modeling
-    the human driver", Vehicle System Dynamics 40(1-3), 101-134, 2003.
+        c = K \sum_k q_k \left(e_k - h_k [v, r, 0, 0]^T\right), \qquad
+        h_k = C e^{A \eta_k} e^{A \tau},
+
+    :math:`e_k` the path offset at :math:`\max(u (\tau + \eta_k), d_{min})` ahead
+    (:func:`optimal_preview_command`), then applies it through the delay :math:`\tau` (balanced
+    Padé approximant) and the lag :math:`T_N` as :class:`CrossoverDriver` does (the lag is not in
+    the internal model):
+
+    .. math::
+
+        \delta(s) = \frac{e^{-\tau s}}{T_N s + 1}\, c(s)
+
+    With :math:`K = 1` the command is the optimal one for the internal model; :math:`K` scales it.
 
     Parameters
     ----------
@@ -87,21 +157,40 @@ class OptimalPreviewDriver(_PathDriver):
         T_p [s] (default 1.0).
     gain : float
         K [-] > 0 (default 1: the optimal command).
-    delay, neuromuscular_lag, max_steer_angle, pade_order
-        As :class:`CrossoverDriver`.
+    delay : float
+        tau [s] >= 0 (default 0.15).
+    neuromuscular_lag : float
+        T_N [s] > 0 (default 0.1).
     minimum_preview_distance : float
         Lower bound of the preview distances [m] (default 0).
+    max_steer_angle : float
+        delta_max [rad]: limit of the command (default 0.6).
+    pade_order : int
+        Order of the delay's Padé approximant, 1 to 10 (default 3).
     n_preview : int
         Number of preview points (default 10).
 
     Signals
     -------
-    Inputs (feedback): ``x``, ``y``, ``yaw_angle``, ``longitudinal_velocity``,
-    ``lateral_velocity``, ``yaw_rate``; states and output as :class:`CrossoverDriver`.
+    states
+        ``driver_delay_1..n`` [-], ``driver_steer_angle`` [rad].
+    inputs (feedback)
+        ``x``, ``y``, ``yaw_angle``, ``longitudinal_velocity``, ``lateral_velocity``, ``yaw_rate``.
+    outputs
+        ``front_steer_angle`` [rad].
+
+    References
+    ----------
+    .. [1] C. C. MacAdam, "Application of an optimal preview control for simulation of closed-loop
+       automobile driving", IEEE Trans. Systems, Man, and Cybernetics 11(6), 393-399, 1981 (the
+       preview gains, eq. 8-11; the delay ahead of the preview window, eq. 12-16).
+    .. [2] C. C. MacAdam, "Understanding and modeling the human driver", Vehicle System Dynamics
+       40(1-3), 101-134, 2003.
     """
 
     feedback = ("x", "y", "yaw_angle", "longitudinal_velocity", "lateral_velocity", "yaw_rate")
-    _gain_names = ("gain", "speed")
+    _parameter_names = ("gain", "speed") + _PathDriver._parameter_names
+    _law_rhs = staticmethod(optimal_preview_driver_rhs)
 
     def __init__(self, path_x, path_y, *, vehicle, speed: float, preview_time: float = 1.0, gain: float = 1.0,
                  delay: float = 0.15, neuromuscular_lag: float = 0.1, minimum_preview_distance: float = 0.0,
@@ -110,7 +199,7 @@ class OptimalPreviewDriver(_PathDriver):
 
         from vehdyn.handling.bicycle import LinearBicycle
 
-        self._setup(path_x, path_y, delay=delay, neuromuscular_lag=neuromuscular_lag, preview_time=preview_time,
+        self._setup(path_x, path_y, delay=delay, lag=neuromuscular_lag, preview_time=preview_time,
                     minimum_preview_distance=minimum_preview_distance, max_steer_angle=max_steer_angle,
                     pade_order=pade_order, gain=gain, speed=speed)
         if isinstance(n_preview, bool) or n_preview not in range(1, 101):
@@ -129,23 +218,43 @@ class OptimalPreviewDriver(_PathDriver):
         self.preview_times = 0.5 * self.preview_time * (nodes + 1.0)
         q, h = preview_gains(A, B, np.array([[0.0, 0.0, 0.0, 1.0]]), self.preview_times, weights)
         h = h @ expm(A * self.delay)  # the free motion during the delay, then over the window
-        self._q, self._h = q, np.column_stack([h[:, 0], h[:, 1], np.zeros(len(q))])
+        self.q = q  # q_k [rad/m]
+        self.free_response = np.ascontiguousarray(h[:, :2])  # on v and r (psi and y are 0 in the car's frame)
         self.n_preview = int(n_preview)
 
-    def _distances(self, speed):
-        return np.maximum(np.abs(speed) * (self.delay + self.preview_times), self.minimum_preview_distance)
-
-    def command(self, t, s, steer):
-        shape = (-1,) + (1,) * np.ndim(s["x"])
-        distance = np.maximum(np.abs(s["longitudinal_velocity"]) * (self.delay + self.preview_times).reshape(shape),
-                              self.minimum_preview_distance)
-        offsets = preview_offsets(self.path_x, self.path_y, s["x"], s["y"], s["yaw_angle"], distance)
-        h = [self._h[:, j].reshape(shape) for j in range(3)]
-        free = h[0] * s["lateral_velocity"] + h[1] * s["yaw_rate"] + h[2] * steer
-        return self.gain * np.sum(self._q.reshape(shape) * (offsets - free), axis=0)
+    @property
+    def numbers(self) -> OptimalPreviewNumbers:
+        """The numbers of the law as an :data:`OptimalPreviewNumbers` (read from the attributes on every call)."""
+        a, b, c, d = self._pade
+        h = self.free_response
+        return OptimalPreviewNumbers(self.path_x, self.path_y, self.delay, self.preview_times,
+                                     self.minimum_preview_distance, self.gain, self.q,
+                                     np.ascontiguousarray(h[:, 0]), np.ascontiguousarray(h[:, 1]),
+                                     self.max_steer_angle, self.neuromuscular_lag, a, b, c, d)
 
     def perception(self, speed) -> dict:
-        distance = self._distances(np.full(self.n_preview, float(speed)))
-        k = self.gain * self._q
-        return {"y": k.sum(), "yaw_angle": np.sum(k * distance), "lateral_velocity": np.sum(k * self._h[:, 0]),
-                "yaw_rate": np.sum(k * self._h[:, 1])}
+        r"""The linear command law about straight running on a straight path at y = 0.
+
+        :math:`\delta_c = -K \sum_k q_k (y + d_k \psi + h_{v,k} v + h_{r,k} r)` with
+        :math:`d_k = \max(u (\tau + \eta_k), d_{min})` (used by
+        :func:`~vehdyn.driver.driver_loop_margins`).
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed u [m/s].
+
+        Returns
+        -------
+        dict
+            Gains on ``y`` [rad/m], ``yaw_angle`` [-], ``lateral_velocity`` [rad*s/m] and
+            ``yaw_rate`` [s] such that delta_c = -sum k * signal.
+        """
+        distance = np.maximum(np.abs(float(speed)) * (self.delay + self.preview_times), self.minimum_preview_distance)
+        k = self.gain * self.q
+        return {"y": k.sum(), "yaw_angle": np.sum(k * distance), "lateral_velocity": np.sum(k * self.free_response[:, 0]),
+                "yaw_rate": np.sum(k * self.free_response[:, 1])}
+
+    def __repr__(self) -> str:
+        return (f"<OptimalPreviewDriver at {self.speed:g} m/s: T_p = {self.preview_time:g} s, K = {self.gain:g}, "
+                f"delay {self.delay:g} s, T_N = {self.neuromuscular_lag:g} s>")

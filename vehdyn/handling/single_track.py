@@ -974,6 +974,24 @@ class SingleTrack(Model):
                            states=[self.states[k] for k in keep], inputs=[self.inputs[k] for k in inputs],
                            outputs=[self.outputs[k] for k in outputs], name=f"SingleTrack lateral-yaw at {speed:g} m/s")
 
+    def peak_slip(self, axle: str) -> tuple:
+        """Where the pure-slip force of ``axle``'s tire law peaks, at the static axle load.
+
+        Parameters
+        ----------
+        axle : str
+            ``"front"`` or ``"rear"``.
+
+        Returns
+        -------
+        tuple of float
+            (slip ratio [-], tangent of the slip angle [-]) of the peak longitudinal and lateral
+            force (1 and tan 80 deg for a law without a peak).
+        """
+        if axle not in self._peak_slip:
+            raise ParameterError(f"axle must be 'front' or 'rear', got {axle!r}", key="axle", value=axle)
+        return self._peak_slip[axle]
+
     def axle_cornering_stiffness(self, fz=None, eps: float = 1e-6):
         """Cornering stiffnesses (front, rear) of the AXLES [N/rad] at loads ``fz`` (default static).
 

@@ -1,12 +1,15 @@
 """The compiled :class:`~vehdyn.interconnect.ClosedLoop` (numba, optional).
 
 Imported only when a compiled backend is used. A closed loop compiles when its plant and its
-controller both have a compiled rhs and output (``Model.compiled_rhs``): :func:`compiled_loop`
-binds the four compiled functions into one ``rhs(t, x, u, args, dxdt)`` that evaluates the
-controller's commands from its states and the demands, substitutes them for the plant's inputs,
-reads the feedback from the plant's states (or its compiled outputs) and stacks the two
-derivatives -- the same sequence as :meth:`ClosedLoop._split`. Loops nest (ESC around ABS around
-the car): an inner loop is a plant with a compiled rhs and output.
+controller both have a compiled rhs and the controller a compiled output
+(``Model.compiled_rhs``): :func:`compiled_loop` binds the compiled functions into one
+``rhs(t, x, u, args, dxdt)`` that evaluates the controller's commands from its states, the
+demands and the plant-state feedback, substitutes them for the plant's inputs, reads the
+output feedback from the plant's compiled outputs and stacks the two derivatives -- the same
+sequence as :meth:`ClosedLoop._split`. Loops nest (ESC around ABS around the car, a driver
+around that): an inner loop is a plant with a compiled rhs and output. The drivers and the
+chassis controllers are compiled from their one source (:mod:`vehdyn.driver`,
+:mod:`vehdyn.chassis`); nothing here knows a control law.
 """
 
 from __future__ import annotations
@@ -28,42 +31,58 @@ def _stamp() -> str:
     return source_stamp(closed_loop, sys.modules[__name__])
 
 
-def _commands(t, x, u, args):
-    """(controller inputs with the demands, plant inputs with the commands substituted, the commands)."""
-    plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs = args
-    uc = np.zeros(demand.shape[0] + feedback_state.shape[0] + feedback_output.shape[0])
-    up = u.copy()
-    command = np.empty(commanded.shape[0])
+def _commands(t, x, u, controller_args, n_plant, demand, feedback_state, commanded, passed, uc, command, up):
+    """Fill the controller's inputs ``uc`` (demands and state feedback; output feedback zero), its
+    commands ``command`` and the plant's inputs ``up`` (the loop's, with the commands substituted).
+
+    Takes the pieces of ``args`` it reads and writes into views of one work array that the caller
+    allocates (an allocation and a reference count per array cost more than the loop's own work).
+    """
+    for k in range(uc.shape[0]):
+        uc[k] = 0.0
     for k in range(demand.shape[0]):
         uc[demand[k, 0]] = u[demand[k, 1]]
-    _controller_output(t, x[n_plant:], uc, controller_args, command)
+    for k in range(feedback_state.shape[0]):
+        uc[feedback_state[k, 0]] = x[feedback_state[k, 1]]
+    _controller_output(t, x[n_plant:], uc, controller_args, command)  # noqa: F821 (bound by compiled_copy)
+    for k in range(passed.shape[0]):  # every plant input is passed or commanded
+        up[passed[k]] = u[k]
     for k in range(commanded.shape[0]):
         up[commanded[k]] = command[k]
-    return uc, up, command
 
 
 def _loop_rhs(t, x, u, args, dxdt):
     """dx/dt of the closed loop: the plant's, then the controller's."""
-    plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs = args
-    uc, up, command = _commands(t, x, u, args)
+    (plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs,
+     passed, n_plant_inputs, n_controller_inputs) = args
+    n_commands = commanded.shape[0]
+    work = np.empty(n_controller_inputs + n_commands + n_plant_inputs)
+    uc, command, up = (work[:n_controller_inputs], work[n_controller_inputs:n_controller_inputs + n_commands],
+                       work[n_controller_inputs + n_commands:])
+    _commands(t, x, u, controller_args, n_plant, demand, feedback_state, commanded, passed, uc, command,  # noqa: F821
+              up)
     xp = x[:n_plant]
-    for k in range(feedback_state.shape[0]):
-        uc[feedback_state[k, 0]] = xp[feedback_state[k, 1]]
     if feedback_output.shape[0] > 0:
         yp = np.empty(n_plant_outputs)
-        _plant_output(t, xp, up, plant_args, yp)
+        _plant_output(t, xp, up, plant_args, yp)  # noqa: F821
         for k in range(feedback_output.shape[0]):
             uc[feedback_output[k, 0]] = yp[feedback_output[k, 1]]
-    _plant_rhs(t, xp, up, plant_args, dxdt[:n_plant])
-    _controller_rhs(t, x[n_plant:], uc, controller_args, dxdt[n_plant:])
+    _plant_rhs(t, xp, up, plant_args, dxdt[:n_plant])  # noqa: F821
+    _controller_rhs(t, x[n_plant:], uc, controller_args, dxdt[n_plant:])  # noqa: F821
 
 
 def _loop_output(t, x, u, args, y):
     """The plant's outputs, then the commands."""
-    plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs = args
-    uc, up, command = _commands(t, x, u, args)
-    _plant_output(t, x[:n_plant], up, plant_args, y[:n_plant_outputs])
-    for k in range(commanded.shape[0]):
+    (plant_args, controller_args, n_plant, demand, feedback_state, feedback_output, commanded, n_plant_outputs,
+     passed, n_plant_inputs, n_controller_inputs) = args
+    n_commands = commanded.shape[0]
+    work = np.empty(n_controller_inputs + n_commands + n_plant_inputs)
+    uc, command, up = (work[:n_controller_inputs], work[n_controller_inputs:n_controller_inputs + n_commands],
+                       work[n_controller_inputs + n_commands:])
+    _commands(t, x, u, controller_args, n_plant, demand, feedback_state, commanded, passed, uc, command,  # noqa: F821
+              up)
+    _plant_output(t, x[:n_plant], up, plant_args, y[:n_plant_outputs])  # noqa: F821
+    for k in range(n_commands):
         y[n_plant_outputs + k] = command[k]
 
 
@@ -109,5 +128,6 @@ def compiled_loop(loop) -> CompiledModel | None:
     rhs, output, key = _loop_functions(plant.rhs, plant.output, controller.rhs, controller.output, plant.key,
                                        controller.key)
     args = (plant.args, controller.args, int(loop._np), _pairs(loop._demand), _pairs(loop._fb_state),
-            _pairs(loop._fb_output), np.array(loop._command, dtype=np.int64), int(loop.plant.n_outputs))
+            _pairs(loop._fb_output), np.array(loop._command, dtype=np.int64), int(loop.plant.n_outputs),
+            np.array(loop._passed, dtype=np.int64), int(loop.plant.n_inputs), int(loop.controller.n_inputs))
     return CompiledModel(rhs, output, key, args)

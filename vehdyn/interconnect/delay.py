@@ -30,11 +30,26 @@ __all__ = ["pade_coefficients", "pade_delay"]
 
 
 def pade_coefficients(order: int) -> np.ndarray:
-    """Coefficients c_k of the [n/n] Padé approximant of exp(-p) = sum (-p)^k c_k / sum p^k c_k.
+    r"""Coefficients :math:`c_k` of the [n/n] Padé approximant of :math:`e^{-p}`.
 
-    c_k = (2n - k)! n! / ((2n)! k! (n - k)!), k = 0..n (ascending powers).
+    .. math::
+
+        e^{-p} \approx \frac{\sum_k c_k (-p)^k}{\sum_k c_k p^k}, \qquad
+        c_k = \frac{(2n - k)!\, n!}{(2n)!\, k!\, (n - k)!}, \quad k = 0..n
+
+    (Baker & Graves-Morris 1996).
+
+    Parameters
+    ----------
+    order : int
+        n >= 1.
+
+    Returns
+    -------
+    ndarray
+        c_0 .. c_n [-] (ascending powers; c_0 = 1).
     """
-    if not (isinstance(order, (int, np.integer)) and order >= 1):
+    if isinstance(order, bool) or not (isinstance(order, (int, np.integer)) and order >= 1):
         raise ParameterError(f"order must be a positive integer, got {order!r}", key="order", value=order)
     n = int(order)
     return np.array([factorial(2 * n - k) * factorial(n) / (factorial(2 * n) * factorial(k) * factorial(n - k))
@@ -42,14 +57,43 @@ def pade_coefficients(order: int) -> np.ndarray:
 
 
 def pade_delay(delay: float, order: int):
-    """State space (A, B, C, D) of the [order/order] Padé approximant of e^(-s delay) [delay in s].
+    r"""State space (A, B, C, D) of the [order/order] Padé approximant of :math:`e^{-s \tau}`.
+
+    .. math::
+
+        e^{-s\tau} \approx \frac{\sum_k c_k (-s\tau)^k}{\sum_k c_k (s\tau)^k}
+        = C (sI - A)^{-1} B + D
 
     Built for a unit delay from :func:`pade_coefficients`, balanced by a diagonal similarity (the
     companion form is ill-conditioned beyond order 4) and scaled in time (A / delay, B / delay).
-    All-pass; see the module docstring for its phase error. ``order`` from 1 to 12. A zero delay is a
-    pass-through: an empty realization (A 0x0, D = 1).
+    All-pass; see the module docstring for its phase error. The same transfer function as
+    python-control's ``control.pade`` (another realization of it). The one delay of the package:
+    the drivers' reaction delay, the ride models' wheelbase delay and the driver-loop analysis.
+
+    Parameters
+    ----------
+    delay : float
+        tau [s] >= 0; 0 is a pass-through: an empty realization (A 0x0, D = 1).
+    order : int
+        n, from 1 to 12.
+
+    Returns
+    -------
+    A : ndarray (n, n)
+        [1/s].
+    B : ndarray (n, 1)
+        [1/s].
+    C : ndarray (1, n)
+        [-].
+    D : ndarray (1, 1)
+        [-], (-1)^n.
+
+    Raises
+    ------
+    ParameterError
+        On an order outside 1..12 or a delay that is not a finite number >= 0.
     """
-    if not (isinstance(order, (int, np.integer)) and 1 <= order <= 12):
+    if isinstance(order, bool) or not (isinstance(order, (int, np.integer)) and 1 <= order <= 12):
         raise ParameterError(f"order of the Padé delay must be an integer from 1 to 12 (higher orders lose accuracy "
                              f"to rounding), got {order!r}", key="order", value=order)
     if isinstance(delay, bool) or not (isinstance(delay, (int, float, np.integer, np.floating)) and np.isfinite(delay)

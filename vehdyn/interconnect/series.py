@@ -19,6 +19,8 @@ def connect_in_series(upstream: LinearModel, downstream: LinearModel, connection
     connections : mapping of str to str, optional
         ``{downstream_input: upstream_output}``; by default every downstream input that shares a
         name with an upstream output is connected.
+    name : str, optional
+        Name of the result (default ``"<upstream> -> <downstream>"``).
 
     Returns
     -------

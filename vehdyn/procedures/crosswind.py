@@ -177,7 +177,9 @@ def crosswind_sensitivity(vehicle, speed: float = 100 / 3.6, *, wind_speed: floa
         Zone length [m] (default 20 m), at least the wheelbase.
     driver : bool or PreviewDriver
         False: steering held at zero (open loop); True: the default preview driver on the path
-        y = 0; or a PreviewDriver of your own.
+        y = 0 (:class:`~vehdyn.driver.PreviewDriver` with the vehicle's wheelbase, defaults
+        otherwise); or a driver of your own (any controller of :mod:`vehdyn.driver`), closed
+        around the model with ``driver.close(model)``.
     duration : float
         Run length [s] after the front axle enters the zone (the zone starts 0.5 s into the run).
     model : SingleTrack, optional
@@ -193,7 +195,7 @@ def crosswind_sensitivity(vehicle, speed: float = 100 / 3.6, *, wind_speed: floa
     """
     from vehdyn.simulation import simulate
     from vehdyn.handling.bicycle import check_speed
-    from vehdyn.driver import DriverInTheLoop, PreviewDriver
+    from vehdyn.driver import PreviewDriver
     from vehdyn.handling.single_track import SingleTrack
     from vehdyn.handling.steady_state import neutral_steer_point
 
@@ -221,9 +223,10 @@ def crosswind_sensitivity(vehicle, speed: float = 100 / 3.6, *, wind_speed: floa
     closed = driver is not False and driver is not None
     if closed:
         if driver is True:
-            driver = PreviewDriver(path_x=np.array([-100.0, u * (start + duration) + 1e3]), path_y=np.zeros(2))
-        model = DriverInTheLoop(model, driver, wheelbase=L)
-        x0 = np.append(x0, 0.0)
+            driver = PreviewDriver(np.array([-100.0, u * (start + duration) + 1e3]), np.zeros(2), wheelbase=L)
+        model = driver.close(model)
+        x0 = np.concatenate([x0, np.zeros(driver.n_states)])
+        inputs = {k: v for k, v in inputs.items() if k in model.input_names}  # what the driver commands goes
     t = np.linspace(0.0, start + duration, int(round((start + duration) * 200)) + 1)
     res = simulate(model, t, inputs, x0=x0, method="RK45", rtol=rtol, atol=1e-9 * max(u, 1.0))
     y, psi, r, ay = res["y"], res["yaw_angle"], res["yaw_rate"], res["lateral_acceleration"]

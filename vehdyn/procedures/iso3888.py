@@ -212,14 +212,39 @@ def spin_out_time(result, sideslip_limit: float = np.pi / 4):
 
 
 def lane_change_run(model: Model, track, driver, speed: float, *, throttle: str = "hold", rtol: float = 1e-5):
-    """One run of ``driver`` steering ``model`` through ``track`` from ``speed`` [m/s].
+    """One run of ``driver`` steering ``model`` through ``track`` from ``speed``.
 
     The car starts on the path's first point in straight running. ``throttle="hold"``: the rear
     axle force balances the aerodynamic drag at the entry speed (the speed held, ISO 3888-1);
-    ``"release"``: no drive force (coasting from the entry, the ISO 3888-2 procedure). Compiled
-    when the model has a compiled rhs. Returns ``(result, outcome)`` with
-    :func:`~vehdyn.procedures.lane_change_outcome` plus ``spin_out_time``; ``passed`` is False on a
-    spin (|sideslip| > 45 deg).
+    ``"release"``: no drive force (coasting from the entry, the ISO 3888-2 procedure); a driver
+    that commands the rear axle force itself (a :class:`~vehdyn.driver.PreviewDriver` with a
+    target speed) holds the speed its way. The loop is ``driver.close(model)`` (a
+    :class:`~vehdyn.interconnect.ClosedLoop`), compiled when the model and the driver have
+    compiled forms; RK45.
+
+    Parameters
+    ----------
+    model : SingleTrack
+        The vehicle model (with ``straight_running`` and the states ``x``, ``y``, ``yaw_angle``,
+        ``longitudinal_velocity``).
+    track : DoubleLaneChangeTrack
+        The cones and the path.
+    driver : Controller
+        A driver of :mod:`vehdyn.driver` on the track's path.
+    speed : float
+        Entry speed [m/s].
+    throttle : str
+        ``"hold"`` or ``"release"``.
+    rtol : float
+        Relative tolerance of the RK45 integration [-] (atol 1e-8).
+
+    Returns
+    -------
+    result : SimulationResult
+        The run.
+    outcome : dict
+        :func:`~vehdyn.procedures.lane_change_outcome` plus ``spin_out_time``; ``passed`` is
+        False on a spin (|sideslip| > 45 deg).
     """
     from vehdyn.simulation import simulate
     from vehdyn.procedures import lane_change_outcome, spin_out_time
@@ -232,7 +257,8 @@ def lane_change_run(model: Model, track, driver, speed: float, *, throttle: str 
     t = np.linspace(0.0, 1.15 * (x_end - x_start) / speed, n)
     x0 = np.concatenate([model.straight_running(speed, x=x_start), np.zeros(loop.n_states - model.n_states)])
     force = float(np.asarray(model.parameters.drag_factor)) * speed**2 if throttle == "hold" else 0.0
-    result = simulate(loop, t, {"rear_longitudinal_force": force}, x0=x0, method="RK45", rtol=rtol, atol=1e-8)
+    inputs = {"rear_longitudinal_force": force} if "rear_longitudinal_force" in loop.input_names else None
+    result = simulate(loop, t, inputs, x0=x0, method="RK45", rtol=rtol, atol=1e-8)
     outcome = lane_change_outcome(track, result)
     outcome["spin_out_time"] = spin_out_time(result)
     outcome["passed"] = outcome["passed"] and outcome["spin_out_time"] is None
@@ -240,13 +266,27 @@ def lane_change_run(model: Model, track, driver, speed: float, *, throttle: str 
 
 
 def slip_angle_utilization(model, result) -> dict:
-    """``{axle: (largest |tan(slip angle)| over the peak-force one, first time [s] it passed 1 or None)}``.
+    """How far each axle's slip angle went toward and past the one of its law's peak force.
 
-    The peak-force slip angle is the tire law's at the static axle load (``model`` a SingleTrack).
+    The peak-force slip angle is the tire law's at the static axle load
+    (:meth:`~vehdyn.handling.SingleTrack.peak_slip`).
+
+    Parameters
+    ----------
+    model : SingleTrack
+        The vehicle model of the run.
+    result : SimulationResult
+        A run of it with the outputs ``front_slip_angle`` and ``rear_slip_angle``.
+
+    Returns
+    -------
+    dict
+        ``{axle: (largest |tan(slip angle)| over the peak-force one [-], first time [s] it passed 1
+        or None)}``.
     """
     out = {}
     for axle in ("front", "rear"):
-        peak = float(np.asarray(model._peak_slip[axle][1]))
+        peak = float(np.asarray(model.peak_slip(axle)[1]))
         ratio = np.abs(np.tan(np.asarray(result[f"{axle}_slip_angle"]))) / peak
         over = np.nonzero(ratio > 1.0)[0]
         out[axle] = (float(ratio.max()), float(result.time[over[0]]) if over.size else None)

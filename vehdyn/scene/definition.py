@@ -30,7 +30,7 @@ Standard manoeuvres (names and parameters; steer in road-wheel angle [rad], SAE 
     lateral acceleration: f = sqrt(a / (2 pi offset)).
 ``"iso3888_1"``
     The ISO 3888-1 double lane change, steered by :class:`~vehdyn.driver.PreviewDriver`
-    (``preview_time`` 0.8 s, ``lag`` 0.1 s).
+    (``preview_time`` 0.8 s, ``lag`` 0.1 s) in a :class:`~vehdyn.interconnect.ClosedLoop` with the rung's model.
 ``"iso4138_circle"``
     Steady-state circular driving at constant speed with a slowly increasing steer (ISO 4138,
     constant-speed method): a ramp from ``start`` (0.5 s) reaching at the end of the scene the

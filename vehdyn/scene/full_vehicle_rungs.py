@@ -22,8 +22,8 @@ How a scene's drive becomes the full vehicle's inputs
   the drive torques that held the speed are released at the start of braking, as the single
   track's drag-holding force is.
 * **Driver** (ISO 3888-1): the full vehicle in the loop of the same preview driver as the other
-  rungs (:class:`~vehdyn.driver.DriverInTheLoop`, steer only; the drive torques of the
-  trim hold the speed).
+  rungs (:class:`~vehdyn.driver.PreviewDriver` in a :class:`~vehdyn.interconnect.ClosedLoop`,
+  steer only; the drive torques of the trim hold the speed).
 * **Road**: each track's profile under its wheels at the scene's constant speed V, front wheels at
   distance V t, rear wheels a wheelbase behind (the exact wheelbase delay of
   :meth:`vehdyn.ride.RoadProfile.road_inputs`, sampled on the scene's time grid as for the ride

@@ -229,14 +229,14 @@ def build_steady_state(drive) -> Setup:
 
 
 def _with_driver(model, drive, speed_control):
-    """The model in the loop with the ISO 3888-1 preview driver (states x, y, yaw_angle needed)."""
-    from vehdyn.driver import DriverInTheLoop, PreviewDriver
+    """The model in the loop with the ISO 3888-1 preview driver (states x, y, yaw_angle and
+    longitudinal_velocity needed): a :class:`~vehdyn.interconnect.ClosedLoop`."""
+    from vehdyn.driver import PreviewDriver
 
-    track = drive.track
-    u = drive.scene.speed
-    driver = PreviewDriver(track.path_x, track.path_y, target_speed=u if speed_control else None, **drive.driver)
-    return DriverInTheLoop(model, driver, wheelbase=drive.vehicle.geometry.wheelbase,
-                           mass=drive.vehicle.mass.mass if speed_control else None)
+    track, vehicle = drive.track, drive.vehicle
+    speed = dict(target_speed=drive.scene.speed, mass=vehicle.mass.mass) if speed_control else {}
+    driver = PreviewDriver(track.path_x, track.path_y, wheelbase=vehicle.geometry.wheelbase, **speed, **drive.driver)
+    return driver.close(model)
 
 
 def _linear_setup(model, drive) -> Setup:

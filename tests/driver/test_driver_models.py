@@ -1,4 +1,5 @@
-"""Crossover (McRuer) and optimal preview (MacAdam) drivers: closed forms, closed loops, errors."""
+"""Preview (pure pursuit), crossover (McRuer) and optimal preview (MacAdam) drivers: closed forms, closed
+loops, loop analysis, errors."""
 
 import numpy as np
 import pytest
@@ -8,13 +9,13 @@ from vehdyn import ParameterError
 from vehdyn.driver import (
     CrossoverDriver,
     OptimalPreviewDriver,
+    PreviewDriver,
     driver_loop,
     driver_loop_margins,
     driver_loop_response,
     preview_gains,
 )
 from vehdyn.handling import SingleTrack
-from vehdyn.driver.base import pade_delay
 from vehdyn.model import LinearModel
 
 SEDAN = vehdyn.load_vehicle("sedan")
@@ -34,23 +35,6 @@ class Integrator(LinearModel):
 
     def linearize(self, x0=None, u0=None, t=0.0, *, speed=None):
         return self
-
-
-def test_pade_delay_is_control_pade_and_approximates_the_delay():
-    import control
-
-    omega = np.array([0.1, 1.0, 5.0])
-    for order in (1, 3, 6):
-        A, B, C, D = pade_delay(0.2, order)
-        ours = np.array([(C @ np.linalg.solve(1j * w * np.eye(order) - A, B) + D)[0, 0] for w in omega])
-        num, den = control.pade(0.2, order)
-        theirs = np.polyval(num, 1j * omega) / np.polyval(den, 1j * omega)
-        assert ours == pytest.approx(theirs, rel=1e-10)
-        assert np.abs(ours) == pytest.approx(1.0, rel=1e-12)  # all-pass
-    A, B, C, D = pade_delay(0.2, 6)
-    w = 5.0  # omega tau = 1: the 6th-order approximant's phase error is far below 1e-8
-    value = (C @ np.linalg.solve(1j * w * np.eye(6) - A, B) + D)[0, 0]
-    assert value == pytest.approx(np.exp(-1j * w * 0.2), abs=1e-9)
 
 
 @pytest.mark.parametrize("b, T", [(2.0, 1.0), (0.5, 0.6)])
@@ -106,17 +90,26 @@ def test_loop_response_of_the_state_space_loop_matches_the_exact_one():
     assert np.asarray(pade.complex).ravel() == pytest.approx(exact, rel=1e-6)
 
 
-@pytest.mark.parametrize("kind", ["crossover", "optimal"])
+def _driver(kind, model, path_y, **options):
+    if kind == "preview":
+        return PreviewDriver(PATH_X, path_y, wheelbase=SEDAN.geometry.wheelbase, **options)
+    if kind == "crossover":
+        return CrossoverDriver.tuned(model, 20.0, PATH_X, path_y, **options)
+    return OptimalPreviewDriver(PATH_X, path_y, vehicle=SEDAN, speed=20.0, **options)
+
+
+@pytest.mark.parametrize("kind", ["preview", "crossover", "optimal"])
 def test_drivers_settle_on_an_offset_path_numpy_and_compiled_agree(kind):
     model = SingleTrack(SEDAN)
     path_y = np.full_like(PATH_X, -1.5)
-    if kind == "crossover":
-        driver = CrossoverDriver.tuned(model, 20.0, PATH_X, path_y, preview_time=1.2, delay=0.1)
-    else:
-        driver = OptimalPreviewDriver(PATH_X, path_y, vehicle=SEDAN, speed=20.0, delay=0.1)
+    options = {"preview": dict(preview_time=1.2, lag=0.1), "crossover": dict(preview_time=1.2, delay=0.1),
+               "optimal": dict(delay=0.1)}[kind]
+    driver = _driver(kind, model, path_y, **options)
     loop = driver.close(model)
     assert loop.state_names[:model.n_states] == model.state_names
-    suffix = {"crossover": "crossover_driver", "optimal": "optimal_preview_driver"}[kind]
+    assert loop.state_names[model.n_states:] == driver.state_names
+    assert "front_steer_angle" not in loop.input_names  # the driver commands it
+    suffix = {"preview": "preview_driver", "crossover": "crossover_driver", "optimal": "optimal_preview_driver"}[kind]
     assert loop.output_names[-1] == "front_steer_angle_after_" + suffix
     t = np.linspace(0, 12, 121)
     x0 = np.concatenate([model.straight_running(20.0), np.zeros(loop.n_states - model.n_states)])
@@ -147,6 +140,46 @@ def test_driver_errors_name_the_parameter():
         CrossoverDriver.tuned(SingleTrack(SEDAN), 20.0, PATH_X, PATH_X, crossover_frequency=-1.0)
     with pytest.raises(ParameterError, match="path_x"):
         CrossoverDriver(PATH_X[::-1], PATH_X, gain=0.1)
+
+
+def test_preview_driver_errors_name_the_parameter():
+    x = np.linspace(0, 10, 5)
+    L = SEDAN.geometry.wheelbase
+    with pytest.raises(ParameterError, match="increasing") as info:
+        PreviewDriver(x[::-1], x, wheelbase=L)
+    assert info.value.key == "path_x"
+    with pytest.raises(ParameterError, match="path_x"):
+        PreviewDriver(x, x[:3], wheelbase=L)
+    for key, value in (("preview_time", 0.0), ("lag", -0.1), ("gain", np.nan), ("wheelbase", 0.0),
+                       ("minimum_preview_distance", 0.0), ("max_steer_angle", np.inf), ("speed_gain", 0.0)):
+        options = {"wheelbase": L, key: value}
+        with pytest.raises(ParameterError, match=key) as info:
+            PreviewDriver(x, x, **options)
+        assert info.value.key == key and info.value.value is value
+    with pytest.raises(TypeError, match="wheelbase"):
+        PreviewDriver(x, x)
+    with pytest.raises(ParameterError, match="mass") as info:
+        PreviewDriver(x, x, wheelbase=L, target_speed=15.0)
+    assert info.value.key == "mass"
+    for key, value in (("target_speed", np.nan), ("mass", -1500.0)):
+        options = {"target_speed": 15.0, "mass": 1500.0, key: value}
+        with pytest.raises(ParameterError, match=key) as info:
+            PreviewDriver(x, x, wheelbase=L, **options)
+        assert info.value.key == key
+
+
+def test_preview_driver_needs_the_plant_signals_it_reads_and_commands():
+    plant = LinearModel(np.zeros((1, 1)), np.zeros((1, 1)), np.eye(1), np.zeros((1, 1)), states=["x"], inputs=["u"],
+                        outputs=["x_out"])
+    x = np.linspace(0, 10, 5)
+    with pytest.raises(ParameterError, match=r"missing inputs \['y', 'yaw_angle', 'longitudinal_velocity', "
+                                             r"'front_steer_angle'\]") as info:
+        PreviewDriver(x, x, wheelbase=2.5).close(plant)
+    assert info.value.key == "missing_inputs"
+    # speed control needs the rear axle force: the force-mode SingleTrack has it, the wheel-spin one does not
+    driver = PreviewDriver(x, x, wheelbase=2.5, target_speed=15.0, mass=1500.0)
+    with pytest.raises(ParameterError, match="rear_longitudinal_force"):
+        driver.close(SingleTrack(SEDAN, wheel_spin=True))
 
 
 def test_driver_on_a_model_without_its_feedback_names_the_missing_inputs():
@@ -186,7 +219,7 @@ def test_lane_change_limit_brackets_the_speed_at_which_the_cones_are_cleared():
         lane_change_run(model, track, make(20.0, **tunings[0]), 20.0, throttle="coast")
 
 
-@pytest.mark.parametrize("kind", ["crossover", "optimal"])
+@pytest.mark.parametrize("kind", ["preview", "crossover", "optimal"])
 def test_loop_analysis_matches_the_linearized_closed_loop(kind):
     # the linear driver law of the analysis (perception) is the linearization of the driver's command:
     # the closed-loop poles of driver_loop are poles of the finite-difference linearization of the ClosedLoop
@@ -194,7 +227,9 @@ def test_loop_analysis_matches_the_linearized_closed_loop(kind):
 
     model = SingleTrack(SEDAN)
     path_y = np.zeros_like(PATH_X)
-    if kind == "crossover":
+    if kind == "preview":
+        driver = PreviewDriver(PATH_X, path_y, wheelbase=SEDAN.geometry.wheelbase, preview_time=1.0, lag=0.12)
+    elif kind == "crossover":
         driver = CrossoverDriver(PATH_X, path_y, gain=0.03, preview_time=1.0, delay=0.12, pade_order=3)
     else:
         driver = OptimalPreviewDriver(PATH_X, path_y, vehicle=SEDAN, speed=20.0, delay=0.12, pade_order=3)
