@@ -6,14 +6,9 @@ import numpy as np
 import pytest
 
 import vehdyn
-<<<<<<< HEAD
 from vehdyn import LinearModel, ParameterError
-from vehdyn.chassis import ABS, ESC, TractionControl
+from vehdyn.chassis import ABS, ESC
 from vehdyn.components.tire_setup import friction_ratio
-=======
-from vehdyn import ParameterError
-from vehdyn.chassis import ABS, ESC, road_friction_tire
->>>>>>> closedloop
 from vehdyn.interconnect import ClosedLoop
 from vehdyn.full_vehicle import FullVehicle
 from vehdyn.handling import SingleTrack
@@ -69,62 +64,9 @@ def test_compiled_abs_stopping_distance_equals_numpy():
     assert distances["compiled"] == pytest.approx(distances["numpy"], rel=2e-3)
 
 
-<<<<<<< HEAD
-def test_compiled_driver_around_abs_equals_numpy():
-    plant = SingleTrack(CAR, wheel_spin=True, friction=_friction(0.5))
-    path_x = np.linspace(-10.0, 100.0, 221)
-    path_y = -1.5 * np.clip(path_x / 40.0, 0.0, 1.0) ** 2
-    loop = DriverInTheLoop(ClosedLoop(plant, ABS(CAR)), PreviewDriver(path_x, path_y, preview_time=0.6, lag=0.1),
-                           wheelbase=CAR.geometry.wheelbase)
-    x0 = loop.state_vector(dict(zip(plant.state_names, plant.straight_running(15.0))))
-    x0[-1] = 0.01
-    u = loop.input_vector(front_brake_torque=3000.0, rear_brake_torque=1000.0)
-    compiled = loop.compiled_rhs()
-    dxdt = np.empty(loop.n_states)
-    compiled.rhs(0.0, x0, u, compiled.args, dxdt)
-    np.testing.assert_allclose(dxdt, loop.rhs(0.0, x0, u), rtol=1e-12, atol=1e-12)
-    t = np.linspace(0.0, 1.0, 21)
-    runs = [vehdyn.simulate(loop, t, {"front_brake_torque": 3000.0, "rear_brake_torque": 1000.0}, x0=x0,
-                            method="RK45", rtol=1e-8, atol=1e-10, max_step=0.05, backend=backend)
-            for backend in ("numpy", "compiled")]
-    assert "compiled" in runs[1].method_reason
-    for name in ("y", "driver_steer_angle"):
-        assert np.max(np.abs(runs[1][name] - runs[0][name])) < 1e-5 * np.max(np.abs(runs[0][name])), name
-
-
-def test_compiled_driver_with_speed_control_equals_numpy():
-    plant = SingleTrack(CAR)
-    path_x = np.linspace(-10.0, 100.0, 111)
-    driver = PreviewDriver(path_x, np.sin(path_x / 20.0), preview_time=0.8, lag=0.1, target_speed=18.0)
-    loop = DriverInTheLoop(plant, driver, wheelbase=CAR.geometry.wheelbase, mass=CAR.mass.mass)
-    compiled = loop.compiled_rhs()
-    rng = np.random.default_rng(3)
-    for _ in range(5):
-        x = np.concatenate([plant.straight_running(15.0), [0.0]]) + rng.normal(0.0, 0.2, loop.n_states)
-        u = rng.normal(0.0, 100.0, loop.n_inputs)
-        dxdt, y = np.empty(loop.n_states), np.empty(loop.n_outputs)
-        compiled.rhs(0.0, x, u, compiled.args, dxdt)
-        compiled.output(0.0, x, u, compiled.args, y)
-        np.testing.assert_allclose(dxdt, loop.rhs(0.0, x, u), rtol=1e-12, atol=1e-12)
-        np.testing.assert_allclose(y, loop.output(0.0, x, u), rtol=1e-12, atol=1e-9)
-
-
-def test_loop_without_compiled_parts_falls_back_to_numpy():
-    A = np.array([[-1.0]])
-    ctrl = LinearModel(A, np.array([[0.0, 1.0]]), np.array([[2.0]]), np.array([[1.0, 0.0]]), states=["integral"],
-                       inputs=["front_brake_torque", "yaw_rate"], outputs=["front_brake_torque"])
-    loop = ClosedLoop(SingleTrack(CAR, wheel_spin=True), ctrl)
-    assert loop.compiled_rhs() is None
-    x0 = loop.state_vector(dict(zip(loop.plant.state_names, loop.plant.straight_running(20.0))))
-    t = np.linspace(0.0, 0.2, 5)
-    r = vehdyn.simulate(loop, t, x0=x0, method="RK45", rtol=1e-4)
-    assert "compiled" not in r.method_reason
-    with pytest.raises(ParameterError, match="has no compiled rhs"):
-        vehdyn.simulate(loop, t, x0=x0, method="RK45", backend="compiled")
-
-
-=======
->>>>>>> closedloop
+from vehdyn import LinearModel, ParameterError
+from vehdyn.chassis import ABS, ESC
+from vehdyn.components.tire_setup import friction_ratio
 def test_fullvehicle_with_esc_passes_fmvss126_where_it_fails_alone():
     # 8 A: within the standard's series (up to 6.5 A or 270 deg at the hand wheel, whichever is larger)
     kwargs = dict(plant="full_vehicle", amplitude_multiples=[8.0], directions=("clockwise",))
