@@ -403,8 +403,10 @@ class ArticulatedSingleTrack(Model):
         :class:`~vehdyn.handling.LinearCarTrailer`, in its order). With linear tires and no tire
         lag its matrices are those of LinearCarTrailer (with the same ``crosswind``).
         """
+        from vehdyn.handling.bicycle import linear_model_speed
         from vehdyn.model import LinearModel
 
+        speed = linear_model_speed(speed, "ArticulatedSingleTrack.lateral_yaw")
         full = self.linearize(self.straight_running(speed), self.input_vector())
         names = ["lateral_velocity", "yaw_rate", "articulation_angle", "articulation_rate"]
         if self.tire_lag:
@@ -427,8 +429,16 @@ class ArticulatedSingleTrack(Model):
         Classified by which body turns faster at that moment: ``"jackknife"`` when the towing
         vehicle's yaw rate is the larger (it swings round towards the trailer, as after a locked
         drive axle), ``"trailer_swing"`` when the trailer's is (it swings out, as after a locked
-        trailer axle). None if the threshold is never reached.
+        trailer axle). None if the threshold is never reached. ``threshold`` must lie in (0, pi].
         """
+        from vehdyn.params.checks import finite_number
+
+        threshold = finite_number(threshold, "threshold", positive=True, maximum=np.pi)
+        needed = ("articulation_angle", "yaw_rate", "trailer_yaw_rate")
+        if not (hasattr(result, "time") and all(name in result for name in needed)):
+            raise ParameterError(f"result must be a SimulationResult of an ArticulatedSingleTrack (with "
+                                 f"{', '.join(needed)}), got {type(result).__name__}", key="result",
+                                 value=type(result).__name__)
         theta = np.asarray(result["articulation_angle"])
         beyond = np.flatnonzero(np.abs(theta) > threshold)
         if beyond.size == 0:
