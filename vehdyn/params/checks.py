@@ -23,7 +23,19 @@ MAX_SAMPLES = 1_000_000
 
 
 def is_number(value) -> bool:
-    """True for a real scalar: int, float or a numpy scalar of either kind (never bool or str)."""
+    """Whether ``value`` is a real scalar: int, float or a numpy scalar of either kind.
+
+    Parameters
+    ----------
+    value : object
+        Anything.
+
+    Returns
+    -------
+    bool
+        True for ``3``, ``2.5``, ``np.float32(2.5)``, ``np.int64(3)``; False for bools (Python or
+        numpy), strings, arrays, None.
+    """
     return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
 
 
@@ -34,7 +46,22 @@ def _as_float(value, name: str, what: str = "a number") -> float:
 
 
 def check_gains(owner: str, *, positive=(), nonnegative=(), **values) -> dict:
-    """Floats of ``values``; ParameterError naming a non-finite one or one of the wrong sign."""
+    """Floats of ``values``; ParameterError naming a non-finite one or one of the wrong sign.
+
+    Parameters
+    ----------
+    owner : str
+        Who takes the gains (named in the message, e.g. ``"ABS"``).
+    positive, nonnegative : sequence of str
+        The names that must be > 0 and >= 0.
+    **values
+        Name -> value [the gain's own unit].
+
+    Returns
+    -------
+    dict
+        Name -> float.
+    """
     out = {}
     for name, value in values.items():
         if not is_number(value):
@@ -52,7 +79,21 @@ def check_gains(owner: str, *, positive=(), nonnegative=(), **values) -> dict:
 
 def positive_number(value, name: str, *, allow_zero: bool = False) -> float:
     """``float(value)``; ParameterError naming ``name`` unless it is a finite number > 0 (>= 0 with
-    ``allow_zero``)."""
+    ``allow_zero``).
+
+    Parameters
+    ----------
+    value : object
+        The argument [its own unit].
+    name : str
+        The argument's name (the error's ``key``).
+    allow_zero : bool
+        Accept 0.
+
+    Returns
+    -------
+    float
+    """
     v = _as_float(value, name)
     if not np.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
         raise ParameterError(f"{name} must be a {'non-negative' if allow_zero else 'positive'} number, got {value!r}",
@@ -63,7 +104,23 @@ def positive_number(value, name: str, *, allow_zero: bool = False) -> float:
 def finite_number(value, name: str, *, positive: bool = False, minimum: float | None = None,
                   maximum: float | None = None) -> float:
     """``float(value)``; ParameterError naming ``name`` unless it is finite (and > 0 with
-    ``positive``, >= ``minimum``, <= ``maximum`` where given)."""
+    ``positive``, >= ``minimum``, <= ``maximum`` where given).
+
+    Parameters
+    ----------
+    value : object
+        The argument [its own unit].
+    name : str
+        The argument's name (the error's ``key``).
+    positive : bool
+        Require > 0.
+    minimum, maximum : float, optional
+        Bounds, inclusive [the argument's unit].
+
+    Returns
+    -------
+    float
+    """
     number = _as_float(value, name)
     if not np.isfinite(number) or (positive and number <= 0):
         raise ParameterError(f"{name} must be finite{' and > 0' if positive else ''}, got {value!r}", key=name,
@@ -77,7 +134,23 @@ def finite_number(value, name: str, *, positive: bool = False, minimum: float | 
 
 def whole_number(value, name: str, *, minimum: int = 1, maximum: int | None = None) -> int:
     """``int(value)`` of a count (iterations, samples, repeats); ParameterError naming ``name`` unless
-    it is a whole number (``3`` or ``3.0``) >= ``minimum`` (and <= ``maximum``)."""
+    it is a whole number (``3`` or ``3.0``) >= ``minimum`` (and <= ``maximum``).
+
+    Parameters
+    ----------
+    value : object
+        The count [-].
+    name : str
+        The argument's name (the error's ``key``).
+    minimum : int
+        Smallest count accepted [-].
+    maximum : int, optional
+        Largest count accepted [-].
+
+    Returns
+    -------
+    int
+    """
     rule = f">= {minimum}" + (f" and <= {maximum}" if maximum is not None else "")
     if not is_number(value) or not np.isfinite(float(value)) or float(value) != int(value) \
             or int(value) < minimum or (maximum is not None and int(value) > maximum):
@@ -87,7 +160,23 @@ def whole_number(value, name: str, *, minimum: int = 1, maximum: int | None = No
 
 def check_sample_count(count: float, name: str, value, how: str) -> int:
     """``int(count)``; ParameterError naming ``name`` = ``value`` when the grid it makes would hold
-    more than :data:`MAX_SAMPLES` samples (``how`` says how the count follows from the arguments)."""
+    more than :data:`MAX_SAMPLES` samples.
+
+    Parameters
+    ----------
+    count : float
+        Samples the grid would hold [-] (inf or NaN are refused too).
+    name : str
+        The argument that makes the grid large (the error's ``key``).
+    value : object
+        Its value.
+    how : str
+        How the count follows from the arguments (for the message).
+
+    Returns
+    -------
+    int
+    """
     if not np.isfinite(count) or count > MAX_SAMPLES:
         raise ParameterError(f"{name} = {value!r} gives {count:.3g} samples ({how}), more than the {MAX_SAMPLES:.0e} "
                              "a grid may hold (8 MB per signal); shorten it or coarsen its step", key=name, value=value)
@@ -95,7 +184,19 @@ def check_sample_count(count: float, name: str, value, how: str) -> int:
 
 
 def check_vehicle(owner: str, vehicle):
-    """``vehicle``; ParameterError unless it is a :class:`~vehdyn.Vehicle` (``owner`` names who needs it)."""
+    """``vehicle``; ParameterError unless it is a :class:`~vehdyn.Vehicle`.
+
+    Parameters
+    ----------
+    owner : str
+        Who needs it (named in the message).
+    vehicle : object
+        The argument.
+
+    Returns
+    -------
+    Vehicle
+    """
     from vehdyn.params.vehicle import Vehicle
 
     if not isinstance(vehicle, Vehicle):

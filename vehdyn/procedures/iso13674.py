@@ -303,9 +303,10 @@ def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, freq
     cycles = whole_number(cycles, "cycles", minimum=2)
     iterations = whole_number(iterations, "iterations", minimum=1)
     samples_per_cycle = whole_number(samples_per_cycle, "samples_per_cycle", minimum=1)
-    for name, value in (("cycles", cycles), ("samples_per_cycle", samples_per_cycle)):
-        check_sample_count((cycles + 0.75) * max(samples_per_cycle, METRIC_SAMPLES_PER_CYCLE), name, value,
-                           "(cycles + 0.75) x samples per cycle")
+    finer = samples_per_cycle > max(cycles, METRIC_SAMPLES_PER_CYCLE)
+    name, value = ("samples_per_cycle", samples_per_cycle) if finer else ("cycles", cycles)
+    check_sample_count((cycles + 0.75) * max(samples_per_cycle, METRIC_SAMPLES_PER_CYCLE), name, value,
+                       "(cycles + 0.75) x samples per cycle")
     if vehicle_model is None:
         vehicle_model = LinearBicycle(vehicle, u)
     if steering is None:

@@ -72,7 +72,7 @@ def braking_in_turn(model, *, radius: float = 100.0, lateral_acceleration: float
     from vehdyn.params.checks import check_sample_count
 
     if not isinstance(model, SingleTrack) or model.wheel_spin:
-        raise ParameterError(f"braking_in_turn drives a force-mode SingleTrack (wheel_spin=False), got "
+        raise ParameterError(f"braking_in_turn: model must be a force-mode SingleTrack (wheel_spin=False), got "
                              f"{type(model).__name__}", key="model", value=model)
     share = finite_number(brake_front_share, "brake_front_share")
     if not 0 <= share <= 1:

@@ -84,6 +84,12 @@ ROAD_EVENTS: dict[str, tuple[str, ...]] = {
     "step": ("position", "height"),
 }
 _ROAD_CLASSES = tuple("ABCDEFGH")
+#: Where the named manoeuvres begin by default [s] (vehdyn.scene.drive).
+_DEFAULT_STARTS = {
+    "step_steer": {"start": 0.5}, "sine_steer": {"start": 0.5}, "sine_with_dwell": {"start": 0.5},
+    "lane_change": {"start": 0.5}, "iso4138_circle": {"start": 0.5},
+    "braking_in_turn": {"brake_start": 1.0}, "straight_braking": {"brake_start": 0.5},
+}
 #: The ranges of the named manoeuvres' parameters (module docstring), checked where the scene is made.
 _PARAMETER_RULES = {
     "lateral_acceleration": (lambda v: v != 0, "non-zero [m/s^2] (the steady-state size of the manoeuvre; SAE "
@@ -229,6 +235,10 @@ class Scene:
                     raise _bad(f"manoeuvre_parameters.{key}", params[key],
                                f"must be in [0, duration) = [0, {self.duration:g}) s: the manoeuvre must begin "
                                "within the scene")
+                default = _DEFAULT_STARTS.get(m, {}).get(key)
+                if key not in params and default is not None and default >= self.duration:
+                    raise _bad("duration", self.duration, f"the {m} begins at {default:g} s (its default {key}): "
+                               f"the scene must last beyond it (or give manoeuvre_parameters.{key})")
         elif m is None or callable(m):
             if params:
                 raise _bad("manoeuvre_parameters", dict(params), "only a named manoeuvre takes parameters")
@@ -431,7 +441,7 @@ def _signal_to_data(name, signal):
 
     if isinstance(signal, PiecewiseSignal):
         return {"pieces": signal.pieces.tolist()}
-    if isinstance(signal, (int, float)):
+    if is_number(signal):
         return float(signal)
     raise ParameterError(f"{name}: a {type(signal).__name__} cannot be written to TOML; use a PiecewiseSignal "
                          "(vehdyn.procedures) or a number", key=name, value=signal)
@@ -442,7 +452,7 @@ def _signal_from_data(name, value):
 
     if isinstance(value, Mapping) and set(value) == {"pieces"}:
         return PiecewiseSignal(np.asarray(value["pieces"], dtype=float))
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
+    if is_number(value):
         return float(value)
     raise ParameterError(f"{name} = {value!r}: a signal is a number or a table {{pieces = [[...]]}}", key=name,
                          value=value)

@@ -162,7 +162,7 @@ def _check_scene(scene, owner: str):
 
         try:
             load_tire(scene.tire)
-        except (TirFileError, OSError) as exc:
+        except (TirFileError, ParameterError, OSError) as exc:
             raise ParameterError(f"Scene.tire = {scene.tire!r}: {exc}", key="tire", value=scene.tire) from None
     return scene
 
@@ -532,7 +532,7 @@ class SceneResult:
         The rung the plan picked (or ``model`` named) when a verified miss made :func:`run` rerun the
         scene on a rung further up; None otherwise.
     tolerance : float
-        The scene's tolerance.
+        The scene's tolerance [-].
     """
 
     model: Any
