@@ -3,7 +3,8 @@
 A number is any real scalar: a Python ``int`` or ``float`` or a numpy scalar (``np.float32``,
 ``np.int64``, ...), never a ``bool`` or a string (``"3"`` is refused rather than read as 3).
 Counts (iterations, samples, repeats) are whole numbers; a grid whose size would not fit in memory
-(more than :data:`MAX_SAMPLES` samples) is refused before it is allocated.
+(more than :data:`MAX_SAMPLES` samples of one signal, :data:`MAX_RUN_SAMPLES` of a simulation's
+time grid) is refused before it is allocated.
 """
 
 from __future__ import annotations
@@ -14,12 +15,15 @@ import numpy as np
 
 from vehdyn.errors import ParameterError
 
-__all__ = ["MAX_SAMPLES", "check_gains", "check_sample_count", "check_vehicle", "finite_number", "is_number",
-           "positive_number", "whole_number"]
+__all__ = ["MAX_RUN_SAMPLES", "MAX_SAMPLES", "check_gains", "check_sample_count", "check_vehicle", "finite_number",
+           "is_number", "positive_number", "whole_number"]
 
-#: The most samples a time grid, a profile or a search grid built from an argument may have: 8 MB
-#: per signal. A larger one is refused with a message that names the arguments that make it.
-MAX_SAMPLES = 1_000_000
+#: The most samples a grid of one signal built from arguments may have (a road profile, a track's
+#: path, a sweep): 80 MB. A larger one is refused with a message that names the argument that makes it.
+MAX_SAMPLES = 10_000_000
+#: The most samples of a simulation's time grid built from arguments: every state, input and output
+#: of the model is stored on it (tens of signals, 8 MB each at this size).
+MAX_RUN_SAMPLES = 1_000_000
 
 
 def is_number(value) -> bool:
@@ -158,9 +162,9 @@ def whole_number(value, name: str, *, minimum: int = 1, maximum: int | None = No
     return int(value)
 
 
-def check_sample_count(count: float, name: str, value, how: str) -> int:
+def check_sample_count(count: float, name: str, value, how: str, *, limit: int = MAX_SAMPLES) -> int:
     """``int(count)``; ParameterError naming ``name`` = ``value`` when the grid it makes would hold
-    more than :data:`MAX_SAMPLES` samples.
+    more than ``limit`` samples.
 
     Parameters
     ----------
@@ -172,14 +176,18 @@ def check_sample_count(count: float, name: str, value, how: str) -> int:
         Its value.
     how : str
         How the count follows from the arguments (for the message).
+    limit : int
+        The most samples accepted [-]: :data:`MAX_SAMPLES` for one signal, :data:`MAX_RUN_SAMPLES`
+        for a simulation's time grid.
 
     Returns
     -------
     int
     """
-    if not np.isfinite(count) or count > MAX_SAMPLES:
-        raise ParameterError(f"{name} = {value!r} gives {count:.3g} samples ({how}), more than the {MAX_SAMPLES:.0e} "
-                             "a grid may hold (8 MB per signal); shorten it or coarsen its step", key=name, value=value)
+    if not np.isfinite(count) or count > limit:
+        raise ParameterError(f"{name} = {value!r} gives {count:.3g} samples ({how}), more than the {limit:.0e} the "
+                             f"grid may hold ({8 * limit / 1e6:.0f} MB per signal); shorten it or coarsen its step",
+                             key=name, value=value)
     return int(count)
 
 

@@ -9,7 +9,7 @@ vehicles -- Sensitivity to lateral wind -- Open-loop test method using wind gene
 
 from __future__ import annotations
 
-from vehdyn.params.checks import check_sample_count, check_vehicle, finite_number
+from vehdyn.params.checks import MAX_RUN_SAMPLES, check_sample_count, check_vehicle, finite_number
 from vehdyn.errors import ParameterError
 from vehdyn.components.aero import centre_of_pressure_ahead_of_cg
 from dataclasses import dataclass
@@ -220,7 +220,7 @@ def crosswind_sensitivity(vehicle, speed: float = 100 / 3.6, *, wind_speed: floa
     u = float(check_speed(speed))
     wind_speed, duration = finite_number(wind_speed, "wind_speed"), finite_number(duration, "duration", positive=True)
     wind_length = finite_number(wind_length, "wind_length", positive=True)
-    check_sample_count((0.5 + duration) * 200, "duration", duration, "samples every 5 ms")
+    check_sample_count((0.5 + duration) * 200, "duration", duration, "samples every 5 ms", limit=MAX_RUN_SAMPLES)
     L = v.geometry.wheelbase
     if wind_length < L:
         raise ParameterError(f"wind_length must be at least the wheelbase {L:.3f} m, got {wind_length!r}",

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.params.checks import check_sample_count, finite_number, whole_number
+from vehdyn.params.checks import MAX_RUN_SAMPLES, check_sample_count, finite_number, whole_number
 from vehdyn.procedures._sampling import at_samples, union_grid
 from vehdyn.units import GRAVITY, kmh_to_ms
 
@@ -270,7 +270,7 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
     gvwr = float(vehicle.mass.mass) if gross_vehicle_weight_rating is None else \
         finite_number(gross_vehicle_weight_rating, "gross_vehicle_weight_rating", positive=True)
     n_points = whole_number(n_points, "n_points", minimum=2)
-    check_sample_count(n_points, "n_points", n_points, "samples per run")
+    check_sample_count(n_points, "n_points", n_points, "samples per run", limit=MAX_RUN_SAMPLES)
     plants = ("single_track", "full_vehicle")
     if plant not in plants:
         raise ParameterError(f"plant must be one of {plants}, got {plant!r}", key="plant", value=plant)

@@ -292,7 +292,7 @@ def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, freq
     """
     from vehdyn.simulation import simulate
     from vehdyn.handling.bicycle import LinearBicycle, check_speed
-    from vehdyn.params.checks import check_sample_count, check_vehicle, finite_number, whole_number
+    from vehdyn.params.checks import MAX_RUN_SAMPLES, check_sample_count, check_vehicle, finite_number, whole_number
     from vehdyn.handling.steady_state import steady_state_gains
     from vehdyn.handling.steering_system import SteeredVehicle, SteeringSystem
 
@@ -306,7 +306,7 @@ def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, freq
     finer = samples_per_cycle > max(cycles, METRIC_SAMPLES_PER_CYCLE)
     name, value = ("samples_per_cycle", samples_per_cycle) if finer else ("cycles", cycles)
     check_sample_count((cycles + 0.75) * max(samples_per_cycle, METRIC_SAMPLES_PER_CYCLE), name, value,
-                       "(cycles + 0.75) x samples per cycle")
+                       "(cycles + 0.75) x samples per cycle", limit=MAX_RUN_SAMPLES)
     if vehicle_model is None:
         vehicle_model = LinearBicycle(vehicle, u)
     if steering is None:

@@ -223,7 +223,7 @@ def _check_resolution(t_after, step_time, response_time):
     step = float(np.max(np.diff(horizon if horizon.size > 1 else t_after[:2])))
     fastest = float(np.min(response))
     if step > fastest / MIN_SAMPLES_PER_RESPONSE:
-        raise ParameterError(f"result is sampled {step:.3g} s apart, too coarsely for the response time {fastest:.3g} s "
-                             f"it gives: the ISO 7401 metrics need at least {MIN_SAMPLES_PER_RESPONSE} samples between "
-                             f"the step and the 90 % response (a grid of {fastest / (2 * MIN_SAMPLES_PER_RESPONSE):.2g} "
-                             "s or finer)", key="result", value=step)
+        raise ParameterError(f"result is sampled {step:.3g} s apart, too coarsely for the response time {fastest:.3g} "
+                             f"s it gives: the ISO 7401 metrics need at least {MIN_SAMPLES_PER_RESPONSE} samples "
+                             "between the step and the 90 % response (a grid of "
+                             f"{fastest / (2 * MIN_SAMPLES_PER_RESPONSE):.2g} s or finer)", key="result", value=step)

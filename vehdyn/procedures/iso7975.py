@@ -69,7 +69,7 @@ def braking_in_turn(model, *, radius: float = 100.0, lateral_acceleration: float
     from vehdyn.simulation import simulate
     from vehdyn.handling.nonlinear_steady_state import steady_state_cornering
     from vehdyn.handling.single_track import SingleTrack
-    from vehdyn.params.checks import check_sample_count
+    from vehdyn.params.checks import MAX_RUN_SAMPLES, check_sample_count
 
     if not isinstance(model, SingleTrack) or model.wheel_spin:
         raise ParameterError(f"braking_in_turn: model must be a force-mode SingleTrack (wheel_spin=False), got "
@@ -81,7 +81,8 @@ def braking_in_turn(model, *, radius: float = 100.0, lateral_acceleration: float
     brake_start = finite_number(brake_start, "brake_start", minimum=0.0)
     duration = finite_number(duration, "duration", minimum=1.0)
     check_sample_count((brake_start + duration) / 0.01, "duration" if duration > brake_start else "brake_start",
-                       duration if duration > brake_start else brake_start, "(brake_start + duration) / 0.01 s")
+                       duration if duration > brake_start else brake_start, "(brake_start + duration) / 0.01 s",
+                       limit=MAX_RUN_SAMPLES)
     initial = steady_state_cornering(model, lateral_acceleration=lateral_acceleration, radius=radius)
     force = float(model.parameters.mass) * deceleration
     drive = initial.drive

@@ -60,7 +60,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.params.checks import MAX_SAMPLES, is_number
+from vehdyn.params.checks import MAX_RUN_SAMPLES, MAX_SAMPLES, is_number
 
 __all__ = ["Scene", "STANDARD_MANOEUVRES", "ROAD_EVENTS"]
 
@@ -184,11 +184,11 @@ class Scene:
             if self.time_step > self.duration / 2:
                 raise _bad("time_step", self.time_step, f"must be at most half the duration {self.duration} s")
         samples = self.duration / self.effective_time_step
-        if samples > MAX_SAMPLES:
+        if samples > MAX_RUN_SAMPLES:
             name = "duration" if self.time_step is None else "time_step"
             raise _bad(name, getattr(self, name), f"a duration of {self.duration:g} s on a time step of "
                        f"{self.effective_time_step:g} s makes {samples:.3g} samples per signal, more than the "
-                       f"{MAX_SAMPLES:.0e} a scene may hold; shorten the duration or give a longer time_step")
+                       f"{MAX_RUN_SAMPLES:.0e} a scene may hold; shorten the duration or give a longer time_step")
         if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)):
             raise _bad("seed", self.seed, "must be an integer")
         outputs = (self.outputs,) if isinstance(self.outputs, str) else self.outputs
