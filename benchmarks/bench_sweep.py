@@ -114,11 +114,7 @@ def batch_states(design, rtol=1e-8, threads=None, tire_lag=True, method="RK45"):
     """Peak yaw rates and rhs calls per variant of one compiled batch of a batch model
     (``SingleTrack.variants`` with array parameters; states only: the metric is a state)."""
     from vehdyn.simulation import compiled as _compiled_ode
-<<<<<<< HEAD
-    from vehdyn.simulation._api import _sample_inputs
-=======
     from vehdyn.simulation._inputs import _sample_inputs
->>>>>>> core
 
     base = handling.SingleTrack(BASE, tire_lag=tire_lag)
     m = _batch_model(base, design)
@@ -157,11 +153,7 @@ def shared_step_runs(design, block=16, rtol=1e-8):
     """Peak yaw rates with one step size per block of ``block`` variants (the compiled RK45 on the
     stacked system: its error norm is the r.m.s. over every state of the block)."""
     from vehdyn.simulation import compiled as _compiled_ode
-<<<<<<< HEAD
-    from vehdyn.simulation._api import _sample_inputs
-=======
     from vehdyn.simulation._inputs import _sample_inputs
->>>>>>> core
 
     model = _model()
     u = _sample_inputs(model, _inputs(model), T)

@@ -13,8 +13,11 @@
     shipped soil name or ``soils.toml:NAME``) and write the curves' figure.
 ``vehdyn vehicles``
     List the shipped vehicles with their key numbers.
-``vehdyn scene FILE.toml [--verify]``
-    Plan a scene (the fidelity ladder), run the chosen model and print the headline numbers.
+``vehdyn scene FILE.toml [--verify [--no-escalate]]``
+    Plan a scene (the fidelity ladder), run the chosen model and print the headline numbers. With
+    ``--verify`` the reference rung runs too; a rung beyond the tolerance is reported (a warning on
+    stderr, the verdict in the headline) and the scene rerun on the next rung up that meets it,
+    unless ``--no-escalate``.
 ``vehdyn sweep FILE.toml [OPTIONS]``
     Sweep a scene's parameters (:func:`vehdyn.sweep.run`) with a progress bar; print a summary of the
     metrics and write the table chunk by chunk. Options: ``[--grid NAME=START:STOP:COUNT ...]
@@ -134,11 +137,11 @@ def cmd_tire_soil(args) -> int:
     from vehdyn.tire.terramechanics import load_soil
     from vehdyn.tire.terramechanics.curves import describe_soil, plot_soil_curves, soil_curves
 
-    soil = load_soil(args.soil)
-    print(describe_soil(soil))
     from vehdyn.report import make_folder
 
-    out = make_folder(args.out)
+    soil = load_soil(args.soil)
+    out = make_folder(args.out)  # a bad --out is said before anything is printed
+    print(describe_soil(soil))
     import matplotlib
 
     matplotlib.use("Agg")
@@ -229,13 +232,22 @@ def cmd_vehicles(args) -> int:
 
 
 def cmd_scene(args) -> int:
+    import warnings
+
+    from vehdyn.errors import VehdynWarning
     from vehdyn.scene import Scene, run
 
+    if args.no_escalate and not args.verify:
+        raise _UsageError("--no-escalate goes with --verify (a miss is found by verifying)")
     # A bad scene file or field raises a VehdynError: main() reports it as one line, exit status 2.
-    outcome = run(Scene.from_toml(args.file), verify=args.verify)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", VehdynWarning)
+        outcome = run(Scene.from_toml(args.file), verify=args.verify, escalate=False if args.no_escalate else None)
     print(outcome.plan)
     print()
     print(outcome.headline())
+    for warning in caught:  # a verified miss (and the escalation): said on stderr, one line each
+        print(f"vehdyn scene: warning: {_one_line(warning.message)}", file=sys.stderr)
     return 0
 
 
@@ -305,7 +317,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_vehicles)
     p = sub.add_parser("scene", help="plan a scene (.toml), run the chosen model, print the headline numbers")
     p.add_argument("file", help="path of a scene .toml file")
-    p.add_argument("--verify", action="store_true", help="also run the reference rung and measure the error")
+    p.add_argument("--verify", action="store_true", help="also run the reference rung and measure the error; "
+                   "beyond the tolerance, rerun on the next rung up that meets it (and say so)")
+    p.add_argument("--no-escalate", action="store_true", help="with --verify: report a miss, do not rerun")
     p.set_defaults(func=cmd_scene)
     p = sub.add_parser("sweep", help="sweep a scene's parameters (grid, Monte Carlo) and summarize the metrics")
     p.add_argument("file", help="path of a scene .toml file")

@@ -125,7 +125,6 @@ def plot_time_histories(result: "SimulationResult", names: Sequence[str], *, fig
     matplotlib.figure.Figure
         The figure.
     """
-    import matplotlib.pyplot as plt
 
     if fig is None:
         fig, axes = new_figure(len(names), 1, sharex=True)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn import LinearModel, ParameterError
+from vehdyn import ParameterError
 from vehdyn.chassis import ABS, ESC
 from vehdyn.components.tire_setup import friction_ratio
 from vehdyn.interconnect import ClosedLoop
@@ -64,9 +64,6 @@ def test_compiled_abs_stopping_distance_equals_numpy():
     assert distances["compiled"] == pytest.approx(distances["numpy"], rel=2e-3)
 
 
-from vehdyn import LinearModel, ParameterError
-from vehdyn.chassis import ABS, ESC
-from vehdyn.components.tire_setup import friction_ratio
 def test_fullvehicle_with_esc_passes_fmvss126_where_it_fails_alone():
     # 8 A: within the standard's series (up to 6.5 A or 270 deg at the hand wheel, whichever is larger)
     kwargs = dict(plant="full_vehicle", amplitude_multiples=[8.0], directions=("clockwise",))

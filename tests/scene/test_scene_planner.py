@@ -222,7 +222,7 @@ def test_ladder_times_a_fast_rung_by_enough_runs(monkeypatch):
         assert np.all(frame["wall_time_s"].to_numpy() == tick)
         return len(readings) / 2 / len(frame)
 
-    scene = Scene(manoeuvre="step_steer", duration=0.2, outputs=("yaw_rate",))
+    scene = Scene(manoeuvre="step_steer", duration=0.2, outputs=("yaw_rate",), manoeuvre_parameters={"start": 0.05})
     assert runs_per_rung(0.125) == 1
     assert runs_per_rung(0.125, repeat=3) == 3
     assert runs_per_rung(0.125, repeat=2, min_time=1.0) == 9  # the first, then 8 x 0.125 s

@@ -5,7 +5,6 @@ import matplotlib
 matplotlib.use("Agg")
 
 import numpy as np  # noqa: E402
-import pytest  # noqa: E402
 
 from vehdyn.tire import BrushTire, FialaTire, LinearTire, describe_tire, plot_tire_characteristics  # noqa: E402
 from vehdyn.tire.plots import characteristic_values, nominal_load  # noqa: E402

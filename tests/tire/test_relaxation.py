@@ -9,7 +9,7 @@ import pytest
 import vehdyn
 from vehdyn import ParameterError
 from vehdyn.tire import TireRelaxation, relaxation_lengths
-from vehdyn.tire import MagicFormula, read_tir
+from vehdyn.tire import MagicFormula
 from vehdyn.tire.tir import MFEVAL_DEFAULTS
 
 DATA = Path(__file__).resolve().parent.parent / "data" / "tire_relaxation"

@@ -1,6 +1,5 @@
 """``vehdyn tire --soil NAME``: prints the soil and its curves, writes the figure; usage errors."""
 
-import numpy as np
 import pytest
 
 from vehdyn.cli import main

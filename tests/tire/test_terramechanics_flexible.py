@@ -10,7 +10,7 @@ from scipy.integrate import quad
 import vehdyn
 from vehdyn import ParameterError
 from vehdyn.tire import SoftSoilTire, TireForces
-from vehdyn.tire.terramechanics import (FlexibleWheel, RigidWheel, SoftSoilTireGeometry, bekker_pressure,
+from vehdyn.tire.terramechanics import (FlexibleWheel, SoftSoilTireGeometry, bekker_pressure,
                                         critical_ground_pressure, load_soil, plate_sinkage, rigid_wheel_sinkage)
 
 GEOMETRY = SoftSoilTireGeometry(radius=0.344, width=0.205, inflation_pressure=1.0e5)

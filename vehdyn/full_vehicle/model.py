@@ -53,10 +53,11 @@ from __future__ import annotations
 import numpy as np
 
 from vehdyn.components.tire_forces import tire_loads
-from vehdyn.components.tire_setup import (friction_at, longitudinal_relaxation_lengths, mirrored_wheel, road_friction,
+from vehdyn.components.tire_setup import (longitudinal_relaxation_lengths, mirrored_wheel, road_friction,
                                           tire_characteristics)
 from vehdyn.components.xp import stack as _stack
 from vehdyn.errors import ParameterError
+from vehdyn.params.checks import is_number
 from vehdyn.model import Model
 from vehdyn.params import Vehicle
 from vehdyn.signals import Signal
@@ -235,7 +236,7 @@ class FullVehicle(Model):
                                  value=vehicle)
         for name, value in (("low_speed_damping_speed", low_speed_damping_speed),
                             ("brake_regularization_speed", brake_regularization_speed), ("gravity", gravity)):
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (np.isfinite(value) and value > 0):
+            if not is_number(value) or not (np.isfinite(value) and value > 0):
                 raise ParameterError(f"{name} must be a finite number > 0, got {value!r}", key=name, value=value)
         self.vehicle = vehicle
         self.tire_lag = bool(tire_lag)
@@ -244,6 +245,8 @@ class FullVehicle(Model):
         self.brake_regularization_speed = float(brake_regularization_speed)
         self.road = self._check_road(road)
         self.friction = road_friction(friction)
+        if callable(self.friction):
+            _check_takes_x_y("friction", self.friction, "friction(X, Y) -> ratio")
         self._geometry(vehicle)
         from vehdyn.tire import tire_for_vehicle
 
@@ -283,7 +286,10 @@ class FullVehicle(Model):
     # ------------------------------------------------------------------ construction
     @staticmethod
     def _check_road(road):
-        if road is None or callable(road):
+        if road is None:
+            return road
+        if callable(road):
+            _check_takes_x_y("road", road, "road(X, Y) -> (elevation, slope_X, slope_Y)")
             return road
         from vehdyn.road import RoadProfile
 
@@ -486,7 +492,7 @@ class FullVehicle(Model):
         # ground points below the wheels: earth X, Y of the body points (x_c, y_c, h_s), their velocity
         for c, (X, Y, VX, VY) in enumerate(self._ground_points(assembly.gather(x, self._state_index))):
             if callable(self.road):
-                elevation, slope_x, slope_y = self.road(X, Y)
+                elevation, slope_x, slope_y = _called("road", self.road, X, Y, ("elevation", "slope_X", "slope_Y"))
             else:
                 elevation, slope_x = self.road.sample(X)
                 slope_y = 0.0
@@ -506,7 +512,11 @@ class FullVehicle(Model):
         inputs = list(u)
         friction = (self._k.road_friction,) * 4
         if callable(self.friction):  # the road under each contact point
-            friction = tuple(friction_at(self.friction, X, Y) for X, Y, _, _ in self._ground_points(states))
+            friction = [_called("friction", self.friction, X, Y, ("ratio",))[0]
+                        for X, Y, _, _ in self._ground_points(states)]
+            if not all(np.all(f > 0) for f in friction):
+                raise ParameterError("friction(X, Y) must be > 0 under every wheel", key="friction",
+                                     value=[float(np.min(f)) for f in friction])
         laws = (self.front_tire, self.rear_tire)
         return states, assembly.evaluate(assembly.NUMPY, laws, self._k, states, inputs, friction)
 
@@ -645,6 +655,9 @@ class FullVehicle(Model):
         dict
             ``{"front_left": [(t_start, t_end), ...], ...}`` [s]; empty lists for wheels that never lifted.
         """
+        if not (hasattr(result, "time") and all(f"normal_load{sfx}" in result for sfx in CORNERS)):
+            raise ParameterError(f"result must be a FullVehicle SimulationResult (with the normal_load_* outputs), got "
+                                 f"{type(result).__name__}", key="result", value=type(result).__name__)
         time = np.asarray(result.time)
         out = {}
         for sfx in CORNERS:
@@ -657,3 +670,54 @@ class FullVehicle(Model):
         return (f"<FullVehicle of {self.vehicle.name!r}: tires {type(self.front_tire).__name__}/"
                 f"{type(self.rear_tire).__name__}, tire_lag={self.tire_lag}, {self.n_states} states>")
 
+
+def _check_takes_x_y(name: str, function, form: str):
+    """ParameterError naming ``name`` when ``function`` cannot be called with the two positions (X, Y)."""
+    import inspect
+
+    try:
+        signature = inspect.signature(function)
+    except (TypeError, ValueError):  # a builtin or an extension type without a signature: called as it is
+        return
+    try:
+        signature.bind(0.0, 0.0)
+    except TypeError:
+        raise ParameterError(f"{name} must be a callable {form} of the earth positions X, Y [m] (arrays), got "
+                             f"{getattr(function, '__name__', type(function).__name__)}{signature}", key=name,
+                             value=function) from None
+
+
+def _called(name: str, function, X, Y, parts: tuple) -> list:
+    """The arrays ``function(X, Y)`` returns (one per name in ``parts``: a ratio alone, or the three
+    road values), each checked numeric, finite and of the shape of X; ParameterError naming
+    ``name``, what came back and where."""
+    out = function(X, Y)
+    values = [out] if len(parts) == 1 else out
+    form = ("a number or an array of X's shape" if len(parts) == 1 else
+            "(" + ", ".join(parts) + "), each a number or an array of X's shape") + f" {np.shape(X)} (a value per point)"
+    try:
+        values = list(values)
+    except TypeError:
+        values = None
+    if values is None or len(values) != len(parts):
+        raise ParameterError(f"{name}(X, Y) must return {form}; got {type(out).__name__} {out!r:.80}", key=name,
+                             value=out)
+    checked = []
+    for part, value in zip(parts, values):
+        a = np.asarray(value)
+        try:
+            fits = a.dtype.kind in "iuf" and np.broadcast_shapes(a.shape, np.shape(X)) == np.shape(X)
+        except ValueError:
+            fits = False
+        if not fits:
+            raise ParameterError(f"{name}(X, Y) must return {form}; its {part} is {type(value).__name__} "
+                                 f"{value!r:.80}", key=name, value=value)
+        a = a.astype(float, copy=False)
+        if not np.all(np.isfinite(a)):
+            full = np.broadcast_to(a, np.shape(X))
+            bad = ~np.isfinite(full)
+            at_x, at_y = (np.broadcast_to(np.asarray(c, dtype=float), bad.shape)[bad].flat[0] for c in (X, Y))
+            raise ParameterError(f"{name}(X, Y) returned a non-finite {part} ({full[bad].flat[0]}) at X = {at_x:.6g} m, "
+                                 f"Y = {at_y:.6g} m", key=name, value=float(full[bad].flat[0]))
+        checked.append(a)
+    return checked

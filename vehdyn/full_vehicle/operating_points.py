@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from vehdyn.errors import ParameterError
+from vehdyn.params.checks import finite_number, is_number
 from vehdyn.full_vehicle.corner import CORNERS
 
 __all__ = ["trim"]
@@ -73,25 +74,26 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
     x0, u0 : ndarray
         The state and inputs [SI units] (see :meth:`FullVehicle.trim`).
     """
-    if isinstance(speed, bool) or not isinstance(speed, (int, float)) or not np.isfinite(speed) or speed <= 0:
+    if not is_number(speed) or not np.isfinite(speed) or speed <= 0:
         raise ParameterError(f"speed must be a finite number > 0 [m/s], got {speed!r}", key="speed", value=speed)
     speed = float(speed)
     if radius is not None:
-        if isinstance(radius, bool) or not isinstance(radius, (int, float)) or not np.isfinite(radius) or radius == 0:
+        if not is_number(radius) or not np.isfinite(radius) or radius == 0:
             raise ParameterError(f"radius must be a finite non-zero number [m] (positive turning right), got "
                                  f"{radius!r}", key="radius", value=radius)
         lateral_acceleration = speed**2 / float(radius)
-    if isinstance(lateral_acceleration, bool) or not isinstance(lateral_acceleration, (int, float)) \
-            or not np.isfinite(lateral_acceleration):
+    if not is_number(lateral_acceleration) or not np.isfinite(lateral_acceleration):
         raise ParameterError(f"lateral_acceleration must be a finite number [m/s^2], got {lateral_acceleration!r}",
                              key="lateral_acceleration", value=lateral_acceleration)
+    lateral_acceleration = float(lateral_acceleration)
+    tol = finite_number(tol, "tol", positive=True)
     mu_g = model.vehicle.tires.friction_coefficient * model.gravity
     if abs(lateral_acceleration) >= mu_g:
         raise ParameterError(f"lateral_acceleration = {lateral_acceleration} m/s^2 is not below the friction limit "
                              f"mu g = {mu_g:.4g} m/s^2: no steady turn", key="lateral_acceleration",
                              value=lateral_acceleration)
     a_x = longitudinal_acceleration
-    if isinstance(a_x, bool) or not isinstance(a_x, (int, float)) or not np.isfinite(a_x) or abs(a_x) >= mu_g:
+    if not is_number(a_x) or not np.isfinite(a_x) or abs(a_x) >= mu_g:
         raise ParameterError(f"longitudinal_acceleration must be a finite number below mu g = {mu_g:.4g} m/s^2 in "
                              f"size [m/s^2], got {a_x!r}", key="longitudinal_acceleration", value=a_x)
     a_x = float(a_x)

@@ -484,8 +484,10 @@ class ArticulatedSingleTrack(Model):
         -------
         LinearModel
         """
+        from vehdyn.handling.bicycle import linear_model_speed
         from vehdyn.model import LinearModel
 
+        speed = linear_model_speed(speed, "ArticulatedSingleTrack.lateral_yaw")
         full = self.linearize(self.straight_running(speed), self.input_vector())
         names = ["lateral_velocity", "yaw_rate", "articulation_angle", "articulation_rate"]
         if self.tire_lag:
@@ -515,13 +517,21 @@ class ArticulatedSingleTrack(Model):
         result : SimulationResult
             A run of this model.
         threshold : float
-            |articulation angle| [rad].
+            |articulation angle| [rad], in (0, pi].
 
         Returns
         -------
         ArticulationEvent or None
             None if the threshold is never reached.
         """
+        from vehdyn.params.checks import finite_number
+
+        threshold = finite_number(threshold, "threshold", positive=True, maximum=np.pi)
+        needed = ("articulation_angle", "yaw_rate", "trailer_yaw_rate")
+        if not (hasattr(result, "time") and all(name in result for name in needed)):
+            raise ParameterError(f"result must be a SimulationResult of an ArticulatedSingleTrack (with "
+                                 f"{', '.join(needed)}), got {type(result).__name__}", key="result",
+                                 value=type(result).__name__)
         theta = np.asarray(result["articulation_angle"])
         beyond = np.flatnonzero(np.abs(theta) > threshold)
         if beyond.size == 0:

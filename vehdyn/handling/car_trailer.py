@@ -84,6 +84,8 @@ __all__ = ["CarTrailerParameters", "CrosswindAmplification", "EOM_TRUCK_TRAILER"
            "car_trailer_parameters", "trailer_crosswind_amplification"]
 
 
+_LOWEST_SCANNED_SPEED = 0.5  # [m/s] where critical_speed starts its scan
+
 _STATES = (
     Signal("lateral_velocity", "m/s", "body-frame lateral velocity v of the car's CG (right, SAE)"),
     Signal("yaw_rate", "rad/s", "yaw rate r of the car (positive turning right, SAE)"),
@@ -406,6 +408,13 @@ class LinearCarTrailer(LinearModel):
         The real part of the least-damped oscillatory eigenvalue is scanned on a grid from 0.5 m/s
         to ``max_speed`` and its first sign change is refined by Brent's method to ``xtol``.
 
+        Parameters
+        ----------
+        max_speed : float
+            Top of the scanned range [m/s], finite and above the lowest speed scanned (0.5 m/s).
+        xtol : float
+            Absolute tolerance of the refined speed [m/s], finite and > 0.
+
         Returns
         -------
         float
@@ -423,8 +432,18 @@ class LinearCarTrailer(LinearModel):
         """
         from scipy.optimize import brentq
 
+        from vehdyn.params.checks import finite_number
+
+        max_speed = finite_number(max_speed, "max_speed")
+        if not max_speed > _LOWEST_SCANNED_SPEED:
+            raise ParameterError(f"max_speed must be above the lowest speed scanned, {_LOWEST_SCANNED_SPEED} m/s, got "
+                                 f"{max_speed!r}", key="max_speed", value=max_speed)
+        xtol = finite_number(xtol, "xtol", positive=True)
         p = self.car_trailer_parameters
-        speeds = np.concatenate([np.linspace(0.5, 10.0, 20), np.linspace(10.5, max_speed, 190)])
+        if max_speed > 10.5:
+            speeds = np.concatenate([np.linspace(_LOWEST_SCANNED_SPEED, 10.0, 20), np.linspace(10.5, max_speed, 190)])
+        else:  # the same spacing, or finer, below 10.5 m/s: the scan ends at max_speed
+            speeds = np.linspace(_LOWEST_SCANNED_SPEED, max_speed, 20)
         growth = np.array([_snaking_real_part(p, u) for u in speeds])
         positive = np.flatnonzero(growth >= 0)
         if positive.size == 0:

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from vehdyn.errors import ParameterError, SimulationError
+from vehdyn.params.checks import is_number
 
 __all__ = ["SteadyStateCornering", "steady_state_cornering", "nonlinear_handling_diagram",
            "NonlinearHandlingDiagram", "limit_lateral_acceleration"]
@@ -276,6 +277,9 @@ class NonlinearHandlingDiagram:
         return ax
 
 
+_MAX_STEPS = 10_000  # steady turns of one handling diagram at most (a step of 3 mm/s^2 to 30 m/s^2)
+
+
 def nonlinear_handling_diagram(model, *, radius=None, speed=None, driven_axle: str = "rear", step: float = 0.25,
                                tolerance: float = 0.01, max_lateral_acceleration: float = 30.0
                                ) -> NonlinearHandlingDiagram:
@@ -301,9 +305,17 @@ def nonlinear_handling_diagram(model, *, radius=None, speed=None, driven_axle: s
     _check_model(model)
     if radius is not None and float(radius) <= 0:
         raise ParameterError(f"radius must be > 0 for the handling diagram, got {radius!r}", key="radius", value=radius)
-    for name, value in (("step", step), ("tolerance", tolerance)):
-        if not (np.isfinite(value) and value > 0):
+    limits = (("step", step), ("tolerance", tolerance), ("max_lateral_acceleration", max_lateral_acceleration))
+    for name, value in limits:
+        if not (is_number(value) and np.isfinite(value) and value > 0):
             raise ParameterError(f"{name} must be > 0, got {value!r}", key=name, value=value)
+    if step < tolerance:  # the continuation would stop before its first step
+        raise ParameterError(f"step = {step!r} m/s^2 must be at least the tolerance {tolerance!r} m/s^2 (the step is "
+                             "halved down to it near the limit)", key="step", value=step)
+    if max_lateral_acceleration / step > _MAX_STEPS:
+        raise ParameterError(f"step = {step!r} m/s^2 takes {max_lateral_acceleration / step:.3g} steps to "
+                             f"max_lateral_acceleration = {max_lateral_acceleration!r} m/s^2, more than {_MAX_STEPS}",
+                             key="step", value=step)
     points, previous, ay, h = [], None, 0.0, float(step)
     while h >= tolerance and ay + h <= max_lateral_acceleration:
         try:

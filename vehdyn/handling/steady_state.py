@@ -26,6 +26,7 @@ from typing import NamedTuple
 import numpy as np
 
 from vehdyn.errors import ParameterError
+from vehdyn.params.checks import is_number
 from vehdyn.units import GRAVITY
 from vehdyn.handling.bicycle import bicycle_parameters, check_speed, speed_of
 
@@ -180,7 +181,7 @@ def steady_state_gains(vehicle_or_bicycle, speed=None, *, rear_steer_ratio=0.0) 
     """
     p = bicycle_parameters(vehicle_or_bicycle)
     u = speed_of(vehicle_or_bicycle, speed, allow_zero=True)
-    k = np.asarray(rear_steer_ratio, dtype=float)
+    k = _finite_array(rear_steer_ratio, "rear_steer_ratio")
     L, K = p.wheelbase, p.understeer_gradient
     with np.errstate(divide="ignore", invalid="ignore"):
         denominator = L + K * u**2
@@ -217,7 +218,7 @@ def static_margin(vehicle_or_bicycle) -> float:
 
 # --------------------------------------------------------------------------- steer angles
 def _wheelbase_of(vehicle_or_wheelbase) -> float:
-    if isinstance(vehicle_or_wheelbase, (int, float, np.floating, np.integer)):
+    if is_number(vehicle_or_wheelbase):
         L = float(vehicle_or_wheelbase)
         if not (np.isfinite(L) and L > 0):
             raise ParameterError(f"wheelbase must be positive [m], got {L!r}", key="wheelbase", value=L)
@@ -228,8 +229,20 @@ def _wheelbase_of(vehicle_or_wheelbase) -> float:
     return bicycle_parameters(vehicle_or_wheelbase).wheelbase
 
 
+def _finite_array(value, name: str, *, finite: bool = True) -> np.ndarray:
+    """``value`` as a float array; ParameterError naming ``name`` unless it holds (finite) numbers."""
+    raw = np.asarray(value)
+    if raw.dtype.kind not in "iuf":
+        raise ParameterError(f"{name} must be a number or an array of numbers, got {type(value).__name__} "
+                             f"{value!r:.80}", key=name, value=value)
+    a = raw.astype(float)
+    if finite and not np.all(np.isfinite(a)):
+        raise ParameterError(f"{name} must be finite, got {value!r:.80}", key=name, value=value)
+    return a
+
+
 def _radius(radius) -> np.ndarray:
-    R = np.asarray(radius, dtype=float)
+    R = _finite_array(radius, "radius", finite=False)
     if np.any(~np.isfinite(R) | (R == 0)):
         raise ParameterError(f"radius must be finite and non-zero [m], got {radius!r}", key="radius", value=radius)
     return R
@@ -302,7 +315,7 @@ def steer_angle_for(vehicle_or_bicycle, radius, speed=None, *, rear_steer_ratio=
     p = bicycle_parameters(vehicle_or_bicycle)
     u = speed_of(vehicle_or_bicycle, speed, allow_zero=True)
     R = _radius(radius)
-    k = np.asarray(rear_steer_ratio, dtype=float)
+    k = _finite_array(rear_steer_ratio, "rear_steer_ratio")
     return (p.wheelbase / R + understeer_gradient(vehicle_or_bicycle) * u**2 / R) / (1.0 - k)
 
 
@@ -363,9 +376,7 @@ def handling_diagram(vehicle_or_bicycle, lateral_acceleration, *, radius=None, s
     """
     if (radius is None) == (speed is None):
         raise ParameterError("give exactly one of radius or speed", key="radius", value=(radius, speed))
-    ay = np.asarray(lateral_acceleration, dtype=float)
-    if np.any(~np.isfinite(ay)):
-        raise ParameterError("lateral_acceleration must be finite", key="lateral_acceleration", value=ay)
+    ay = _finite_array(lateral_acceleration, "lateral_acceleration")
     p = bicycle_parameters(vehicle_or_bicycle)
     K = understeer_gradient(vehicle_or_bicycle)
     if radius is not None:

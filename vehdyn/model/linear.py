@@ -14,7 +14,7 @@ import numpy as np
 
 from vehdyn.errors import ParameterError
 from vehdyn.model.base import Model, signal_vector
-from vehdyn.signals import Signal, as_signals, names_of
+from vehdyn.signals import Signal, as_signals
 
 __all__ = ["LinearModel"]
 

@@ -21,7 +21,7 @@ from typing import Sequence
 import numpy as np
 
 from vehdyn.errors import ParameterError
-from vehdyn.signals import Signal, names_of
+from vehdyn.signals import Signal
 
 __all__ = ["Modes", "SecondOrderModes", "state_space_modes", "modal_analysis"]
 

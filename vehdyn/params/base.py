@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from vehdyn.errors import ParameterError
+from vehdyn.params.checks import is_number
 
 __all__ = ["ParameterSet", "parameter", "text", "read_toml", "load_toml", "dump_toml"]
 
@@ -134,7 +135,7 @@ class ParameterSet:
                 continue
             if value is None and f.default is None:  # an optional parameter left unset
                 continue
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
+            if not is_number(value):
                 raise ParameterError(f"{key} must be a number [{meta['unit']}], got {_type_name(value)} {value!r}",
                                      key=key, value=value)
             if not math.isfinite(value):
@@ -145,7 +146,7 @@ class ParameterSet:
                 if b is not None and not ok(value, b):
                     raise ParameterError(f"{key} must be {word} {b} [{meta['unit']}], got {value!r}",
                                          key=key, value=value)
-            if isinstance(value, int):
+            if not isinstance(value, float):  # an int or a numpy scalar other than float64
                 object.__setattr__(self, f.name, float(value))
 
     # ------------------------------------------------------------------ dict round trip

@@ -9,7 +9,7 @@ vehicles -- Sensitivity to lateral wind -- Open-loop test method using wind gene
 
 from __future__ import annotations
 
-from vehdyn.params.checks import check_vehicle, finite_number
+from vehdyn.params.checks import MAX_RUN_SAMPLES, check_sample_count, check_vehicle, finite_number
 from vehdyn.errors import ParameterError
 from vehdyn.components.aero import centre_of_pressure_ahead_of_cg
 from dataclasses import dataclass
@@ -58,6 +58,7 @@ def crosswind_gust(vehicle, speed: float, gust_speed: float, *, start: float = 1
     dict
         ``{"external_lateral_force": f(t), "external_yaw_moment": g(t)}`` for ``simulate``.
     """
+    check_vehicle("crosswind_gust", vehicle)
     speed, gust_speed = finite_number(speed, "speed", positive=True), finite_number(gust_speed, "gust_speed")
     start, duration = finite_number(start, "start"), finite_number(duration, "duration", positive=True)
     area = vehicle.aero.frontal_area if side_area is None else finite_number(side_area, "side_area", positive=True)
@@ -86,12 +87,30 @@ def wind_zone_signal(speed: float, wind_speed: float, wind_length: float, wheelb
     u``). The rise stands for the body entering the wind; the aerodynamic transient is not modelled
     (Hucho 1998, sec. 4.4, for the measured build-up of side force at a gust edge).
 
+    Parameters
+    ----------
+    speed : float
+        Forward speed u [m/s], > 0.
+    wind_speed : float
+        Lateral wind in the zone [m/s].
+    wind_length : float
+        Zone length [m], at least ``wheelbase``.
+    wheelbase : float
+        L [m], > 0.
+    start : float
+        When the front axle enters the zone [s].
+
     Returns
     -------
     PiecewiseSignal
         ``u(t)`` for :func:`vehdyn.simulate` (evaluated exactly by the compiled backend).
     """
     from vehdyn.piecewise_signal import PiecewiseSignal
+
+    speed = finite_number(speed, "speed", positive=True)
+    wheelbase = finite_number(wheelbase, "wheelbase", positive=True)
+    wind_speed, start = finite_number(wind_speed, "wind_speed"), finite_number(start, "start")
+    wind_length = finite_number(wind_length, "wind_length", minimum=wheelbase)
 
     rise = wheelbase / speed
     full, leave = start + rise, start + wind_length / speed
@@ -203,6 +222,7 @@ def crosswind_sensitivity(vehicle, speed: float = 100 / 3.6, *, wind_speed: floa
     u = float(check_speed(speed))
     wind_speed, duration = finite_number(wind_speed, "wind_speed"), finite_number(duration, "duration", positive=True)
     wind_length = finite_number(wind_length, "wind_length", positive=True)
+    check_sample_count((0.5 + duration) * 200, "duration", duration, "samples every 5 ms", limit=MAX_RUN_SAMPLES)
     L = v.geometry.wheelbase
     if wind_length < L:
         raise ParameterError(f"wind_length must be at least the wheelbase {L:.3f} m, got {wind_length!r}",

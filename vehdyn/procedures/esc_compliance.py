@@ -29,6 +29,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from vehdyn.errors import ParameterError
+from vehdyn.params.checks import MAX_RUN_SAMPLES, check_sample_count, finite_number, whole_number
+from vehdyn.procedures._sampling import at_samples, union_grid
 from vehdyn.units import GRAVITY, kmh_to_ms
 
 __all__ = ["FMVSS126Result", "fmvss126", "SineWithDwellMetrics", "sine_with_dwell_metrics"]
@@ -56,12 +58,57 @@ class SineWithDwellMetrics:
     stable: bool
 
 
+#: The coarsest output step [s] the S5.2 metrics are read from: the peak of a 0.7 Hz yaw response
+#: sampled this finely is within (2 pi 0.7 * 0.02)^2 / 8 = 1e-3 of its true value, and the yaw
+#: rates 1.00 s and 1.75 s after completion of steer are interpolated as closely.
+MAX_METRIC_STEP = 0.02
+#: The samples of the grid :func:`fmvss126` computes its verdict on, over each run (0 to completion
+#: of steer + 2 s: about 16 ms apart), whatever output grid is asked for.
+METRIC_POINTS = 301
+
+
 def sine_with_dwell_metrics(result, steer) -> SineWithDwellMetrics:
-    """FMVSS 126 metrics of a simulated sine with dwell (``steer`` from :func:`sine_with_dwell`)."""
-    t = result.time
+    """FMVSS 126 metrics of a simulated sine with dwell (``steer`` from :func:`sine_with_dwell`).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        A run with ``yaw_rate`` [rad/s] and ``y`` [m], sampled at most :data:`MAX_METRIC_STEP`
+        (0.02 s) apart up to 1.75 s after completion of steer.
+    steer : PiecewiseSignal
+        The steer of :func:`~vehdyn.procedures.sine_with_dwell` (its beginning and completion of
+        steer time the metrics).
+
+    Returns
+    -------
+    SineWithDwellMetrics
+
+    Raises
+    ------
+    ParameterError
+        A steer without the sine with dwell's times, a result without ``yaw_rate`` and ``y``, one
+        that ends before the metrics' instants or is sampled too coarsely for them.
+    """
+    cos, bos = getattr(steer, "completion_of_steer", None), getattr(steer, "beginning_of_steer", None)
+    if cos is None or bos is None or not callable(steer):
+        raise ParameterError(f"steer must be the signal of vehdyn.procedures.sine_with_dwell (it carries the "
+                             f"beginning and completion of steer), got {type(steer).__name__}", key="steer",
+                             value=steer)
+    if not (hasattr(result, "time") and "yaw_rate" in result and "y" in result):
+        raise ParameterError(f"result must be a SimulationResult with yaw_rate and y, got {type(result).__name__}",
+                             key="result", value=type(result).__name__)
+    t = np.asarray(result.time, dtype=float)
+    if t[-1] < cos + 1.75:
+        raise ParameterError(f"the simulation ends at {t[-1]} s, before {cos + 1.75} s that the metric needs",
+                             key="time", value=cos + 1.75)
+    used = t <= cos + 1.75 + MAX_METRIC_STEP
+    step = float(np.max(np.diff(t[used]))) if np.count_nonzero(used) > 1 else float("inf")
+    if step > MAX_METRIC_STEP + 1e-12:
+        raise ParameterError(f"result is sampled {step:.3g} s apart: the S5.2 metrics need samples at most "
+                             f"{MAX_METRIC_STEP} s apart up to {cos + 1.75:.3g} s (its peak yaw rate and the yaw "
+                             "rates after completion of steer are read off them)", key="result", value=step)
     r = np.asarray(result["yaw_rate"], dtype=float)
     y = np.asarray(result["y"], dtype=float)
-    cos, bos = steer.completion_of_steer, steer.beginning_of_steer
     delta = steer(t)
     first_sign = np.sign(delta[np.argmax(np.abs(delta) > 0)]) if np.any(delta != 0) else 1.0
     reversal = t[np.argmax((t > bos) & (np.sign(delta) == -first_sign))]
@@ -106,6 +153,9 @@ class FMVSS126Result:
         ``displacement_required`` (bool), ``passed`` (bool).
     displacement_limit : float
         [m], 1.83 or 1.52 by GVWR.
+    results : list of SimulationResult
+        Each run's simulation on the output grid asked for (``n_points`` samples), in the order of
+        ``runs``.
     """
 
     vehicle: str
@@ -113,6 +163,7 @@ class FMVSS126Result:
     amplitude_a: float
     displacement_limit: float
     runs: list = field(default_factory=list)
+    results: list = field(default_factory=list, repr=False)
 
     @property
     def passed(self) -> bool:
@@ -192,12 +243,14 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
     rtol, atol : float
         Tolerances of the RK45 integration.
     n_points : int
-        Samples of each run's output grid.
+        Samples of each run's output grid (``FMVSS126Result.results``), >= 2. The metrics and the
+        verdict do not depend on it: they are read off the procedure's own grid of
+        :data:`METRIC_POINTS` samples per run, in the same integration.
 
     Returns
     -------
     FMVSS126Result
-        ``.passed``, ``.to_frame()`` (one row per run), ``.failures()``.
+        ``.passed``, ``.to_frame()`` (one row per run), ``.failures()``, ``.results``.
     """
     from vehdyn.params import Vehicle
     from vehdyn.simulation import simulate
@@ -208,18 +261,16 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
     if not isinstance(vehicle, Vehicle):
         raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
                              value=vehicle)
-    speed = float(kmh_to_ms(80.0)) if speed is None else speed
-    if isinstance(speed, bool) or not (np.isfinite(speed) and speed > 0):
-        raise ParameterError(f"speed must be a finite number > 0 [m/s], got {speed!r}", key="speed", value=speed)
+    speed = float(kmh_to_ms(80.0)) if speed is None else finite_number(speed, "speed", positive=True)
     signs = {"counterclockwise": -1.0, "clockwise": 1.0}  # SAE: positive steer turns right (clockwise)
     directions = tuple(directions)
     if not directions or any(d not in signs for d in directions):
         raise ParameterError(f"directions must be drawn from {tuple(signs)}, got {directions!r}", key="directions",
                              value=directions)
-    gvwr = float(vehicle.mass.mass) if gross_vehicle_weight_rating is None else gross_vehicle_weight_rating
-    if isinstance(gvwr, bool) or not (np.isfinite(gvwr) and gvwr > 0):
-        raise ParameterError(f"gross_vehicle_weight_rating must be > 0 [kg], got {gvwr!r}",
-                             key="gross_vehicle_weight_rating", value=gvwr)
+    gvwr = float(vehicle.mass.mass) if gross_vehicle_weight_rating is None else \
+        finite_number(gross_vehicle_weight_rating, "gross_vehicle_weight_rating", positive=True)
+    n_points = whole_number(n_points, "n_points", minimum=2)
+    check_sample_count(n_points, "n_points", n_points, "samples per run", limit=MAX_RUN_SAMPLES)
     plants = ("single_track", "full_vehicle")
     if plant not in plants:
         raise ParameterError(f"plant must be one of {plants}, got {plant!r}", key="plant", value=plant)
@@ -244,7 +295,11 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
                                  key="amplitude_multiples", value=amplitude_multiples)
     cases = [(d, k) for d in directions for k in multiples]
     steers = [sine_with_dwell(signs[d] * k * a) for d, k in cases]
-    t = np.linspace(0.0, steers[0].completion_of_steer + 2.0, n_points)
+    end = steers[0].completion_of_steer + 2.0
+    # the verdict's own grid and the output grid asked for, integrated together (the adaptive steps
+    # do not depend on the output times): the metrics are those of METRIC_POINTS samples however
+    # many n_points are
+    t, on_metric, on_output = union_grid(np.linspace(0.0, end, METRIC_POINTS), np.linspace(0.0, end, n_points))
     options = dict(method="RK45", rtol=rtol, atol=atol, max_step=0.02)
     name, x0 = "none", x_car
     if controller is not None:
@@ -256,14 +311,15 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
         model = loop
     if _compiles(model):
         results = [simulate(model, t, {"front_steer_angle": s}, x0=x0, **options) for s in steers]
+        members = [(r, None) for r in results]
     else:
         batch = simulate(model, t, {"front_steer_angle": lambda time: np.stack([s(time) for s in steers], axis=-1)},
                          x0=np.repeat(x0[:, None], len(steers), axis=1), **options)
-        results = [_Member(batch, k) for k in range(len(steers))]
+        members = [(batch, k) for k in range(len(steers))]
     limit = _DISPLACEMENT[gvwr <= GVWR_LIMIT]
     runs = []
-    for (direction, k), steer, result in zip(cases, steers, results):
-        m = sine_with_dwell_metrics(result, steer)
+    for (direction, k), steer, member in zip(cases, steers, members):
+        m = sine_with_dwell_metrics(at_samples(member[0], on_metric, member[1]), steer)
         required = bool(k >= 5.0 - 1e-9)
         ok = (m.yaw_rate_ratio_1000ms <= YAW_RATIO_LIMIT_1000MS and m.yaw_rate_ratio_1750ms <= YAW_RATIO_LIMIT_1750MS
               and (not required or m.lateral_displacement >= limit))
@@ -273,7 +329,8 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
                      "yaw_rate_ratio_1000ms": m.yaw_rate_ratio_1000ms, "yaw_rate_ratio_1750ms": m.yaw_rate_ratio_1750ms,
                      "lateral_displacement": m.lateral_displacement, "displacement_required": required,
                      "passed": bool(ok)})
-    return FMVSS126Result(vehicle=vehicle.name, controller=name, amplitude_a=a, displacement_limit=limit, runs=runs)
+    return FMVSS126Result(vehicle=vehicle.name, controller=name, amplitude_a=a, displacement_limit=limit, runs=runs,
+                          results=[at_samples(r, on_output, k) for r, k in members])
 
 
 def _compiles(model) -> bool:
@@ -287,12 +344,3 @@ def _compiles(model) -> bool:
     except ParameterError:
         return False
 
-
-class _Member:
-    """One member of a batched SimulationResult, as sine_with_dwell_metrics reads it."""
-
-    def __init__(self, result, k):
-        self.result, self.k, self.time = result, k, result.time
-
-    def __getitem__(self, name):
-        return self.result[name][:, self.k]

@@ -41,6 +41,7 @@ import numpy as np
 
 from vehdyn.errors import ParameterError
 from vehdyn.model import Model
+from vehdyn.procedures._sampling import at_samples, union_grid
 from vehdyn.signals import Signal
 from vehdyn.units import GRAVITY
 
@@ -128,21 +129,60 @@ def _slope(x, y, level, band) -> float:
     return float(np.polyfit(x[near], y[near], 1)[0])
 
 
+#: The fewest samples per period the metrics are read from: the slopes are fitted to the samples
+#: within +-0.01 g of a level, which a 0.2 g sine crosses in about 1.6 % of its period (three
+#: samples at least need about 200 per period).
+MIN_SAMPLES_PER_CYCLE = 200
+#: The samples per period of the grid :func:`weave_test` reads its metrics from, whatever output
+#: grid is asked for.
+METRIC_SAMPLES_PER_CYCLE = 800
+
+
 def weave_metrics(result, frequency: float, *, start: float | None = None) -> dict:
     """The weave metrics of one cycle of ``result`` (a run with ``steering_wheel_angle``,
     ``lateral_acceleration``, ``yaw_rate``, ``steering_wheel_torque``), from ``start`` (a trough of
     the steering-wheel angle) over one period; default the last whole period of the run.
 
+    Parameters
+    ----------
+    result : SimulationResult
+        The run, sampled at least :data:`MIN_SAMPLES_PER_CYCLE` times per period over the cycle.
+    frequency : float
+        Steer frequency [Hz], > 0.
+    start : float, optional
+        Start of the evaluated cycle [s], within the run a whole period before its end.
+
     Returns
     -------
     dict
         The fields of :class:`WeaveTestMetrics` but ``speed``, ``frequency``, the amplitude and ``result``.
+
+    Raises
+    ------
+    ParameterError
+        A result without the four signals, a cycle outside the run, or one sampled too coarsely for
+        the slopes and crossings.
     """
+    from vehdyn.params.checks import finite_number
+
+    frequency = finite_number(frequency, "frequency", positive=True)
+    needed = ("steering_wheel_angle", "lateral_acceleration", "yaw_rate", "steering_wheel_torque")
+    if not (hasattr(result, "time") and all(name in result for name in needed)):
+        raise ParameterError(f"result must be a SimulationResult with {', '.join(needed)}, got "
+                             f"{type(result).__name__}", key="result", value=type(result).__name__)
     t = result.time
     period = 1.0 / frequency
     if start is None:
         start = t[-1] - period
+    start = finite_number(start, "start")
+    if start < t[0] - 1e-9 or start + period > t[-1] + 1e-9:
+        raise ParameterError(f"start = {start!r} s: the cycle [{start:g}, {start + period:g}] s must lie within "
+                             f"the run [{t[0]:g}, {t[-1]:g}] s", key="start", value=start)
     sel = (t >= start - 1e-9) & (t <= start + period + 1e-9)
+    if np.count_nonzero(sel) < MIN_SAMPLES_PER_CYCLE:
+        raise ParameterError(f"result has {np.count_nonzero(sel)} samples in the evaluated cycle: the weave metrics "
+                             f"need at least {MIN_SAMPLES_PER_CYCLE} per period (their slopes are fitted within "
+                             "+-0.01 g of a level)", key="result", value=int(np.count_nonzero(sel)))
     tt = t[sel]
     wheel, ay = result["steering_wheel_angle"][sel], result["lateral_acceleration"][sel]
     yaw, torque = result["yaw_rate"][sel], result["steering_wheel_torque"][sel]
@@ -223,7 +263,9 @@ def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, freq
     speed : float
         [m/s] (default 100 km/h).
     amplitude_g : float
-        Target peak lateral acceleration [g] (default 0.2).
+        Target peak lateral acceleration [g] (default 0.2), in [0.11, 0.8]: the metrics at 0.1 g
+        need the peak beyond their +-0.01 g band, and beyond 0.8 g the band holds fewer than three
+        samples of the metric grid.
     frequency : float
         [Hz] (default 0.2).
     vehicle_model : Model, optional
@@ -232,11 +274,13 @@ def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, freq
     steering : SteeringSystem, optional
         Default ``SteeringSystem(vehicle, **steering_overrides)`` (steering-wheel angle input).
     cycles : int
-        Periods simulated; the metrics use the last (default 3).
+        Periods simulated, >= 2; the metrics use the last (default 3).
     iterations : int
-        Runs to size the amplitude: each scales it by target / measured peak (default 3).
+        Runs to size the amplitude, >= 1: each scales it by target / measured peak (default 3).
     samples_per_cycle : int
-        Output samples per period.
+        Output samples per period of the returned ``result``, >= 1. The metrics do not depend on
+        it: they are read off the procedure's own grid of :data:`METRIC_SAMPLES_PER_CYCLE` samples
+        per period, in the same integration.
     method, rtol : str, float
         Integrator (implicit by default: the friction law is stiff) and its relative tolerance.
     **steering_overrides
@@ -248,18 +292,21 @@ def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, freq
     """
     from vehdyn.simulation import simulate
     from vehdyn.handling.bicycle import LinearBicycle, check_speed
-    from vehdyn.params.checks import check_vehicle, finite_number
+    from vehdyn.params.checks import MAX_RUN_SAMPLES, check_sample_count, check_vehicle, finite_number, whole_number
     from vehdyn.handling.steady_state import steady_state_gains
     from vehdyn.handling.steering_system import SteeredVehicle, SteeringSystem
 
     check_vehicle("weave_test", vehicle)
     u = float(check_speed(speed))
-    target = finite_number(amplitude_g, "amplitude_g", positive=True) * GRAVITY
+    target = finite_number(amplitude_g, "amplitude_g", minimum=0.11, maximum=0.8) * GRAVITY
     f = finite_number(frequency, "frequency", positive=True)
-    for name, value in (("cycles", cycles), ("iterations", iterations), ("samples_per_cycle", samples_per_cycle)):
-        if int(value) != value or value < (2 if name == "cycles" else 1):
-            raise ParameterError(f"{name} must be a whole number >= {2 if name == 'cycles' else 1}, got {value!r}",
-                                 key=name, value=value)
+    cycles = whole_number(cycles, "cycles", minimum=2)
+    iterations = whole_number(iterations, "iterations", minimum=1)
+    samples_per_cycle = whole_number(samples_per_cycle, "samples_per_cycle", minimum=1)
+    finer = samples_per_cycle > max(cycles, METRIC_SAMPLES_PER_CYCLE)
+    name, value = ("samples_per_cycle", samples_per_cycle) if finer else ("cycles", cycles)
+    check_sample_count((cycles + 0.75) * max(samples_per_cycle, METRIC_SAMPLES_PER_CYCLE), name, value,
+                       "(cycles + 0.75) x samples per cycle", limit=MAX_RUN_SAMPLES)
     if vehicle_model is None:
         vehicle_model = LinearBicycle(vehicle, u)
     if steering is None:
@@ -282,13 +329,20 @@ def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, freq
     amplitude = target / gain * steering.parameters.ratio
     period = 1.0 / f
     end = (cycles + 0.75) * period  # ends at a trough of the angle: the last period is trough to trough
-    t = np.linspace(0.0, end, int(round((cycles + 0.75) * samples_per_cycle)) + 1)
+    # the metrics' own grid and the output grid asked for, integrated together (the adaptive steps
+    # do not depend on the output times)
+    def grid(per_cycle):
+        return np.linspace(0.0, end, int(round((cycles + 0.75) * per_cycle)) + 1)
+
+    t, on_metric, on_output = union_grid(grid(METRIC_SAMPLES_PER_CYCLE), grid(samples_per_cycle))
     omega = 2 * np.pi * f
-    for _ in range(int(iterations)):
+    for _ in range(iterations):
         driven = _SineDriven(model, "steering_wheel_angle", amplitude, omega)
         res = simulate(driven, t, inputs, x0=driven.initial_state(x0), method=method, rtol=rtol, atol=1e-10,
                        max_step=period / 50)
-        metrics = weave_metrics(res, f)
+        metrics = weave_metrics(at_samples(res, on_metric), f)
         amplitude *= target / metrics["peak_lateral_acceleration"]
     amplitude /= target / metrics["peak_lateral_acceleration"]  # the amplitude of the run returned
-    return WeaveTestMetrics(speed=u, frequency=f, steering_wheel_amplitude=float(amplitude), result=res, **metrics)
+    return WeaveTestMetrics(speed=u, frequency=f, steering_wheel_amplitude=float(amplitude),
+                            result=at_samples(res, on_output), **metrics)
+

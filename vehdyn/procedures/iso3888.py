@@ -10,7 +10,7 @@ cones; :func:`lane_change_speed_bound` is the friction-limited bound on that spe
 
 from __future__ import annotations
 
-from vehdyn.params.checks import finite_number
+from vehdyn.params.checks import finite_number, is_number
 from vehdyn.model import Model
 from vehdyn.errors import ParameterError
 from dataclasses import dataclass
@@ -81,16 +81,31 @@ def _lane_blend(x, sections, levels):
     return np.where(x <= e3, blend(e1, s3, levels[0], levels[1]), blend(e3, s5, levels[1], levels[2]))
 
 
+_PATH_SPACING = 0.1  # [m] between the points of a track's centre-line path
+_MAX_BOUND_POINTS = 20_000  # grid points of lane_change_speed_bound's linear program at most (5 mm on 100 m)
+#: The coarsest spacing [m] along x of a run :func:`lane_change_outcome` scores: between samples
+#: the path is a chord, within (curvature x spacing^2 / 8) of the arc, a few millimetres at the
+#: curvature of a lane change.
+MAX_OUTCOME_SPACING = 1.0
+
+
 def _lane_change_track(b, lengths, widths, near_gap, standard, run_in, run_out):
     """Sections from lengths (lane 1, gap, lane 3, gap, lane 5) and lane widths; lane 3's right cone line
     ``near_gap`` [m] left of lane 1's right (ISO 3888-1) cone line; lanes 1 and 5 share their right line."""
+    from vehdyn.params.checks import check_sample_count
+
+    run_in = finite_number(run_in, "run_in", minimum=0.0)
+    run_out = finite_number(run_out, "run_out", minimum=0.0)
+    for name, value in (("run_in", run_in), ("run_out", run_out)):
+        check_sample_count((sum(lengths) + run_in + run_out) / _PATH_SPACING, name, value,
+                           f"path points {_PATH_SPACING} m apart")
     w1, w3, w5 = widths
     edges = np.cumsum((0.0,) + tuple(lengths))
     right1 = w1 / 2  # lane 1 centred on y = 0
     sections = [(edges[0], edges[1], right1 - w1, right1),
                 (edges[2], edges[3], right1 - near_gap - w3, right1 - near_gap),
                 (edges[4], edges[5], right1 - w5, right1)]
-    x = np.linspace(-run_in, edges[5] + run_out, int(round((edges[5] + run_in + run_out) / 0.1)) + 1)
+    x = np.linspace(-run_in, edges[5] + run_out, int(round((edges[5] + run_in + run_out) / _PATH_SPACING)) + 1)
     y = _lane_blend(x, sections, [0.5 * (sec[2] + sec[3]) for sec in sections])
     return DoubleLaneChangeTrack(sections, x, y, b, standard)
 
@@ -110,6 +125,14 @@ def double_lane_change_track(vehicle_width: float, *, lateral_offset: float = 3.
     ----------
     vehicle_width : float
         b [m].
+    lateral_offset : float
+        Lane 3's right cone line left of lane 1's [m] (3.5 m in the standard).
+    run_in, run_out : float
+        Straight path before lane 1 and after lane 5 [m], >= 0.
+
+    Returns
+    -------
+    DoubleLaneChangeTrack
     """
     b = finite_number(vehicle_width, "vehicle_width", positive=True)
     offset = finite_number(lateral_offset, "lateral_offset", positive=True)
@@ -125,7 +148,18 @@ def obstacle_avoidance_track(vehicle_width: float, *, run_in: float = 30.0,
     b + 1, its right cone line 1 m left of section 1's left one), section 4 (12.5 m), section 5
     (12 m, width 1.3 b + 0.25 but at least 3 m, its right cone line section 1's): 61 m in all
     (ISO 3888-2:2011, Fig. 1 and Table 1; the same in Project Chrono's
-    ``demo_VEH_HMMWV_DoubleLaneChange``). b is the vehicle width [m].
+    ``demo_VEH_HMMWV_DoubleLaneChange``).
+
+    Parameters
+    ----------
+    vehicle_width : float
+        b [m].
+    run_in, run_out : float
+        Straight path before lane 1 and after lane 5 [m], >= 0.
+
+    Returns
+    -------
+    DoubleLaneChangeTrack
     """
     b = finite_number(vehicle_width, "vehicle_width", positive=True)
     w1 = 1.1 * b + 0.25
@@ -154,9 +188,15 @@ def lane_change_speed_bound(track: DoubleLaneChangeTrack, friction_coefficient: 
     from scipy.optimize import linprog
     from scipy.sparse import diags, hstack, vstack
 
+    _check_track(track)
     mu = finite_number(friction_coefficient, "friction_coefficient", positive=True)
+    gravity = finite_number(gravity, "gravity", positive=True)
     h = finite_number(step, "step", positive=True)
     start, end = track.sections[0][0], track.sections[-1][1]
+    if (end - start) / h > _MAX_BOUND_POINTS:
+        raise ParameterError(f"step = {h!r} m makes {(end - start) / h:.3g} grid points on the {end - start:g} m of "
+                             f"coned track, more than the {_MAX_BOUND_POINTS} the linear program takes", key="step",
+                             value=h)
     x = start + h * np.arange(int(round((end - start) / h)) + 1)
     n = x.size
     if n < 3:
@@ -185,9 +225,40 @@ def lane_change_outcome(track: DoubleLaneChangeTrack, result) -> dict:
 
     The vehicle is a rectangle of the track's width centred on the CG path (yaw neglected in the
     width, a standard simplification); the margin is the smallest distance [m] from its side to a
-    cone line inside the coned sections (negative: a cone is hit).
+    cone line inside the coned sections (negative: a cone is hit), read off the run's samples,
+    which must lie at most :data:`MAX_OUTCOME_SPACING` (1 m) apart along x in the coned sections.
+
+    Parameters
+    ----------
+    track : DoubleLaneChangeTrack
+    result : SimulationResult
+        A run with the CG's earth position ``x``, ``y`` [m].
+
+    Returns
+    -------
+    dict
+        ``passed`` (bool), ``worst_margin`` [m] and ``section`` (index of the section where it is).
+
+    Raises
+    ------
+    ParameterError
+        Not a track, a result without ``x`` and ``y``, or one sampled too coarsely to score.
     """
-    x, y = np.asarray(result["x"]), np.asarray(result["y"])
+    _check_track(track)
+    try:
+        x, y = np.asarray(result["x"], dtype=float), np.asarray(result["y"], dtype=float)
+    except (KeyError, TypeError, IndexError, ValueError):
+        raise ParameterError(f"result must be a run with the CG's earth position x and y, got "
+                             f"{type(result).__name__}", key="result", value=type(result).__name__) from None
+    if x.ndim != 1 or x.shape != y.shape or x.size < 2:
+        raise ParameterError(f"result must hold one run of x and y of the same length (>= 2 samples), got shapes "
+                             f"{x.shape} and {y.shape}", key="result", value=(x.shape, y.shape))
+    coned = (x >= track.sections[0][0]) & (x <= track.sections[-1][1])
+    spacing = np.abs(np.diff(x))[coned[1:] | coned[:-1]]
+    if spacing.size and float(spacing.max()) > MAX_OUTCOME_SPACING:
+        raise ParameterError(f"result is sampled {float(spacing.max()):.3g} m apart along the coned track: scoring the "
+                             f"cones needs samples at most {MAX_OUTCOME_SPACING} m apart (a finer output grid)",
+                             key="result", value=float(spacing.max()))
     half = track.vehicle_width / 2
     worst, where = np.inf, None
     for k, (x0, x1, left, right) in enumerate(track.sections):
@@ -205,9 +276,24 @@ def spin_out_time(result, sideslip_limit: float = np.pi / 4):
 
     A sideslip of 45 degrees at the CG is far beyond what a driver can recover; it marks the
     vehicle as spun out (the simulation itself carries on through the spin).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        A run with ``sideslip_angle`` [rad].
+    sideslip_limit : float
+        [rad], in (0, pi].
+
+    Returns
+    -------
+    float or None
     """
+    sideslip_limit = finite_number(sideslip_limit, "sideslip_limit", positive=True, maximum=np.pi)
+    if not (hasattr(result, "time") and "sideslip_angle" in result):
+        raise ParameterError(f"result must be a SimulationResult with sideslip_angle, got {type(result).__name__}",
+                             key="result", value=type(result).__name__)
     beta = np.abs(np.asarray(result["sideslip_angle"], dtype=float))
-    over = np.nonzero(beta > float(sideslip_limit))[0]
+    over = np.nonzero(beta > sideslip_limit)[0]
     return float(result.time[over[0]]) if over.size else None
 
 
@@ -251,6 +337,8 @@ def lane_change_run(model: Model, track, driver, speed: float, *, throttle: str 
 
     if throttle not in ("hold", "release"):
         raise ParameterError(f"throttle must be 'hold' or 'release', got {throttle!r}", key="throttle", value=throttle)
+    _check_track(track)
+    speed = finite_number(speed, "speed", positive=True)
     loop = driver.close(model)
     x_start, x_end = float(track.path_x[0]), float(track.path_x[-1])
     n = int(np.ceil((x_end - x_start) / 0.25)) + 1
@@ -328,9 +416,18 @@ def lane_change_limit(model: Model, track, make_driver, tunings, *, throttle: st
     tunings = list(tunings)
     if not tunings:
         raise ParameterError("tunings must not be empty", key="tunings", value=tunings)
-    lo, hi = (float(s) for s in speeds)
-    if not (0 < lo < hi) or not np.isfinite(hi):
+    try:
+        lo, hi = speeds
+    except (TypeError, ValueError):
+        raise ParameterError(f"speeds must be the bracket (low, high) [m/s], got {speeds!r}", key="speeds",
+                             value=speeds) from None
+    if not (is_number(lo) and is_number(hi) and 0 < lo < hi < np.inf):
         raise ParameterError(f"speeds must be 0 < low < high, finite, got {speeds!r}", key="speeds", value=speeds)
+    lo, hi = float(lo), float(hi)
+    resolution = finite_number(resolution, "resolution", positive=True)
+    if np.log2((hi - lo) / resolution) > _MAX_BISECTIONS:
+        raise ParameterError(f"resolution = {resolution!r} m/s takes more than {_MAX_BISECTIONS} bisections of the "
+                             f"bracket {speeds!r}", key="resolution", value=resolution)
     order = list(range(len(tunings)))
     runs = 0
 
@@ -367,6 +464,15 @@ def lane_change_limit(model: Model, track, make_driver, tunings, *, throttle: st
             hi, failing, failing_speed = mid, trial[1], mid
     return {"speed": lo, "tuning": tunings[passing[0]], "failing_speed": failing_speed, "passing": passing[1],
             "failing": failing[2], "runs": runs, "limiting_factor": _factor(model, failing[2][0], passing[1][0])}
+
+
+def _check_track(track):
+    if not isinstance(track, DoubleLaneChangeTrack):
+        raise ParameterError(f"track must be a DoubleLaneChangeTrack (double_lane_change_track(...) or "
+                             f"obstacle_avoidance_track(...)), got {type(track).__name__}", key="track", value=track)
+
+
+_MAX_BISECTIONS = 40  # a bracket of 40 m/s to 4e-11 m/s: beyond it the runs cannot tell the speeds apart
 
 
 def _factor(model, *results) -> str:

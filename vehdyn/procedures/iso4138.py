@@ -13,6 +13,16 @@ __all__ = ["constant_radius_test"]
 def constant_radius_test(model, radius: float, *, driven_axle: str = "rear", step: float = 0.25):
     """ISO 4138 constant-radius test of a SingleTrack model: steady turns on ``radius`` [m] to the limit.
 
+    Parameters
+    ----------
+    model : SingleTrack
+    radius : float
+        Circle radius [m], > 0.
+    driven_axle : {"rear", "front"}
+    step : float
+        Lateral-acceleration step of the continuation [m/s^2] (halved near the limit), at least its
+        resolution 0.01 m/s^2.
+
     Returns
     -------
     pandas.DataFrame
@@ -21,7 +31,9 @@ def constant_radius_test(model, radius: float, *, driven_axle: str = "rear", ste
         constant, so the whole slope is understeer; ISO 4138 sec. 8).
     """
     from vehdyn.handling.nonlinear_steady_state import nonlinear_handling_diagram
+    from vehdyn.params.checks import finite_number
 
+    radius = finite_number(radius, "radius", positive=True)
     diagram = nonlinear_handling_diagram(model, radius=radius, driven_axle=driven_axle, step=step)
     frame = diagram.to_frame()
     frame["understeer_gradient"] = np.gradient(diagram.steer_angle, diagram.lateral_acceleration) \

@@ -117,14 +117,21 @@ def step_response_metrics(result, signal: str = "yaw_rate", *, steer: str | None
     Returns
     -------
     StepResponseMetrics
+
+    Raises
+    ------
+    ParameterError
+        A signal or steer the result does not have, a step time or window outside the run, or a
+        result sampled too coarsely for the metrics: fewer than :data:`MIN_SAMPLES_PER_RESPONSE`
+        samples between the step and the 90 % response.
     """
     t = np.asarray(result.time, dtype=float)
-    y = np.asarray(result[signal], dtype=float)
+    y = np.asarray(_signal(result, signal, "signal"), dtype=float)
     ideal_step = False
     if step_time is None:
         if steer is None:
             raise ParameterError("give steer (a signal name) or step_time", key="steer", value=None)
-        s = np.asarray(result[steer], dtype=float)
+        s = np.asarray(_signal(result, steer, "steer"), dtype=float)
         if s.ndim > 1:
             s = s[:, 0]
         step_time = _step_time(t, s)
@@ -163,6 +170,7 @@ def step_response_metrics(result, signal: str = "yaw_rate", *, steer: str | None
     z_peak = z0 - 0.25 * (zm1 - zp1) * shift
     overshoot = np.where(has_peak, z_peak - 1.0, 0.0)
     peak_value = np.where(has_peak, y0 + z_peak * change, ys)
+    _check_resolution(ta, step_time, t90 - step_time)
     unit = result.unit(signal) if hasattr(result, "unit") else ""
     return StepResponseMetrics(
         signal=signal, unit=unit, step_time=float(step_time), initial_value=y0, steady_state_value=ys,
@@ -171,5 +179,51 @@ def step_response_metrics(result, signal: str = "yaw_rate", *, steer: str | None
 
 
 def step_steer_metrics(result, signals=("yaw_rate", "lateral_acceleration"), **kwargs) -> dict:
-    """:func:`step_response_metrics` of several signals: ``{signal: StepResponseMetrics}``."""
+    """:func:`step_response_metrics` of several signals: ``{signal: StepResponseMetrics}``.
+
+    Parameters
+    ----------
+    result : SimulationResult
+    signals : sequence of str
+        The responses.
+    **kwargs
+        Keyword arguments of :func:`step_response_metrics` (``steer``, ``step_time``,
+        ``steady_window``, ``initial_value``).
+
+    Returns
+    -------
+    dict
+    """
+    if isinstance(signals, str):
+        signals = (signals,)
     return {s: step_response_metrics(result, s, **kwargs) for s in signals}
+
+
+#: The fewest samples between the step time and the 90 % response the metrics are read from: the
+#: crossings are linear interpolations between samples, the peak a parabola through three.
+MIN_SAMPLES_PER_RESPONSE = 4
+
+
+def _signal(result, name, what):
+    """``result[name]``; ParameterError naming ``what`` when the result has no such signal."""
+    try:
+        return result[name]
+    except (KeyError, TypeError) as exc:
+        raise ParameterError(f"{what} = {name!r}: {exc.args[0] if exc.args else 'not in the result'}", key=what,
+                             value=name) from None
+
+
+def _check_resolution(t_after, step_time, response_time):
+    """ParameterError when the samples after the step are too far apart for the response time."""
+    response = np.atleast_1d(response_time)
+    response = response[np.isfinite(response) & (response > 0)]  # 0: at 90 % at once (a direct feedthrough)
+    if t_after.size < 2 or not response.size:
+        return
+    horizon = t_after[t_after <= step_time + float(np.max(response)) + 1e-12]
+    step = float(np.max(np.diff(horizon if horizon.size > 1 else t_after[:2])))
+    fastest = float(np.min(response))
+    if step > fastest / MIN_SAMPLES_PER_RESPONSE:
+        raise ParameterError(f"result is sampled {step:.3g} s apart, too coarsely for the response time {fastest:.3g} "
+                             f"s it gives: the ISO 7401 metrics need at least {MIN_SAMPLES_PER_RESPONSE} samples "
+                             "between the step and the 90 % response (a grid of "
+                             f"{fastest / (2 * MIN_SAMPLES_PER_RESPONSE):.2g} s or finer)", key="result", value=step)

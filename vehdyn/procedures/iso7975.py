@@ -40,19 +40,49 @@ def braking_in_turn(model, *, radius: float = 100.0, lateral_acceleration: float
 
     The vehicle starts in the steady turn (radius [m], a_y [m/s^2]); at ``brake_start`` the drive is
     released and braking forces m * ``deceleration`` split ``brake_front_share`` : rest between the
-    axles are applied (clipped by the tire friction in the model); the steer is held.
+    axles are applied (clipped by the tire friction in the model); the steer is held. The run is
+    sampled every 0.01 s (the metrics' own grid).
+
+    Parameters
+    ----------
+    model : SingleTrack
+        A force-mode SingleTrack (``wheel_spin=False``).
+    radius : float
+        Radius of the initial turn [m] (positive turning right).
+    lateral_acceleration : float
+        Lateral acceleration of the initial turn [m/s^2].
+    deceleration : float
+        Braking demand [m/s^2], > 0.
+    brake_front_share : float
+        Front axle's share of the braking force [-], in [0, 1].
+    brake_start : float
+        Brake onset [s], >= 0.
+    duration : float
+        Run after the brake onset [s], > 0 (at least the 1 s the metrics need).
+    method, rtol : str, float
+        Integrator and its relative tolerance.
+
+    Returns
+    -------
+    BrakingInTurn
     """
     from vehdyn.simulation import simulate
     from vehdyn.handling.nonlinear_steady_state import steady_state_cornering
+    from vehdyn.handling.single_track import SingleTrack
+    from vehdyn.params.checks import MAX_RUN_SAMPLES, check_sample_count
 
-    if model.wheel_spin:
-        raise ParameterError("braking_in_turn drives a force-mode SingleTrack (wheel_spin=False)", key="model",
-                             value=model)
+    if not isinstance(model, SingleTrack) or model.wheel_spin:
+        raise ParameterError(f"braking_in_turn: model must be a force-mode SingleTrack (wheel_spin=False), got "
+                             f"{type(model).__name__}", key="model", value=model)
     share = finite_number(brake_front_share, "brake_front_share")
     if not 0 <= share <= 1:
         raise ParameterError(f"brake_front_share must be in [0, 1], got {share}", key="brake_front_share", value=share)
     deceleration = finite_number(deceleration, "deceleration", positive=True)
-    brake_start, duration = finite_number(brake_start, "brake_start"), finite_number(duration, "duration", positive=True)
+    brake_start = finite_number(brake_start, "brake_start", minimum=0.0)
+    duration = finite_number(duration, "duration", minimum=1.0)
+    check_sample_count((brake_start + duration) / 0.01, "duration" if duration > brake_start else "brake_start",
+                       duration if duration > brake_start else brake_start, "(brake_start + duration) / 0.01 s",
+                       limit=MAX_RUN_SAMPLES)
     initial = steady_state_cornering(model, lateral_acceleration=lateral_acceleration, radius=radius)
     force = float(model.parameters.mass) * deceleration
     drive = initial.drive

@@ -45,6 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from vehdyn.errors import ParameterError
+from vehdyn.params.checks import MAX_SAMPLES, check_sample_count
 from vehdyn.params.checks import positive_number as _positive
 from vehdyn.road.profile import RoadProfile
 
@@ -436,7 +437,8 @@ def _rng(seed):
 def _grid(length, spacing):
     L = _positive(length, "length")
     dx = _positive(spacing, "spacing")
-    N = int(round(L / dx))
+    N = int(round(L / dx)) if L / dx <= MAX_SAMPLES else check_sample_count(L / dx, "length", length,
+                                                                             f"length / spacing {dx:g} m")
     if N < 4:
         raise ParameterError(f"length / spacing = {L / dx:g} gives fewer than 4 samples", key="spacing", value=dx)
     return N, dx

@@ -60,6 +60,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from vehdyn.errors import ParameterError
+from vehdyn.params.checks import MAX_RUN_SAMPLES, MAX_SAMPLES, is_number
 
 __all__ = ["Scene", "STANDARD_MANOEUVRES", "ROAD_EVENTS"]
 
@@ -83,6 +84,27 @@ ROAD_EVENTS: dict[str, tuple[str, ...]] = {
     "step": ("position", "height"),
 }
 _ROAD_CLASSES = tuple("ABCDEFGH")
+#: Where the named manoeuvres begin by default [s] (vehdyn.scene.drive).
+_DEFAULT_STARTS = {
+    "step_steer": {"start": 0.5}, "sine_steer": {"start": 0.5}, "sine_with_dwell": {"start": 0.5},
+    "lane_change": {"start": 0.5}, "iso4138_circle": {"start": 0.5},
+    "braking_in_turn": {"brake_start": 1.0}, "straight_braking": {"brake_start": 0.5},
+}
+#: The ranges of the named manoeuvres' parameters (module docstring), checked where the scene is made.
+_PARAMETER_RULES = {
+    "lateral_acceleration": (lambda v: v != 0, "non-zero [m/s^2] (the steady-state size of the manoeuvre; SAE "
+                             "signs, positive turning right)"),
+    "amplitude": (lambda v: v != 0, "non-zero [rad] (SAE signs, positive turning right)"),
+    "rise_time": (lambda v: v > 0, "> 0 [s]"),
+    "frequency": (lambda v: v > 0, "> 0 [Hz]"),
+    "cycles": (lambda v: v > 0, "> 0"),
+    "dwell": (lambda v: v >= 0, ">= 0 [s]"),
+    "offset": (lambda v: v > 0, "> 0 [m]"),
+    "preview_time": (lambda v: v > 0, "> 0 [s]"),
+    "lag": (lambda v: v >= 0, ">= 0 [s]"),
+    "deceleration": (lambda v: v > 0, "> 0 [m/s^2]"),
+    "brake_front_share": (lambda v: 0 <= v <= 1, "in [0, 1]"),
+}
 
 
 def _bad(field_name: str, value, why: str) -> ParameterError:
@@ -90,7 +112,7 @@ def _bad(field_name: str, value, why: str) -> ParameterError:
 
 
 def _number(name, value, *, positive=True, upper=None) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+    if not is_number(value):
         raise _bad(name, value, "must be a number")
     x = float(value)
     if not math.isfinite(x) or (positive and x <= 0) or (upper is not None and x >= upper):
@@ -161,6 +183,12 @@ class Scene:
             set_("time_step", _number("time_step", self.time_step))
             if self.time_step > self.duration / 2:
                 raise _bad("time_step", self.time_step, f"must be at most half the duration {self.duration} s")
+        samples = self.duration / self.effective_time_step
+        if samples > MAX_RUN_SAMPLES:
+            name = "duration" if self.time_step is None else "time_step"
+            raise _bad(name, getattr(self, name), f"a duration of {self.duration:g} s on a time step of "
+                       f"{self.effective_time_step:g} s makes {samples:.3g} samples per signal, more than the "
+                       f"{MAX_RUN_SAMPLES:.0e} a scene may hold; shorten the duration or give a longer time_step")
         if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)):
             raise _bad("seed", self.seed, "must be an integer")
         outputs = (self.outputs,) if isinstance(self.outputs, str) else self.outputs
@@ -177,6 +205,7 @@ class Scene:
             set_("tire", str(self.tire))
         self._check_manoeuvre()
         self._check_road()
+        self._check_road_length()
         if self.manoeuvre is None and self.road is None:
             raise _bad("manoeuvre", None, "a scene needs a manoeuvre, a road or both")
 
@@ -193,10 +222,23 @@ class Scene:
                 where = f"manoeuvre_parameters.{key}"
                 if key not in allowed:
                     raise _bad(where, value, f"not a parameter of {m!r}; it takes {list(allowed)}")
-                if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                if not is_number(value) or not math.isfinite(value):
                     raise _bad(where, value, "must be a finite number")
             if "amplitude" in params and "lateral_acceleration" in params:
                 raise _bad("manoeuvre_parameters", dict(params), "give amplitude or lateral_acceleration, not both")
+            for key, value in params.items():
+                rule = _PARAMETER_RULES.get(key)
+                if rule is not None and not rule[0](value):
+                    raise _bad(f"manoeuvre_parameters.{key}", value, f"must be {rule[1]}")
+            for key in ("start", "brake_start"):  # a programme that begins after the end drives nothing
+                if key in params and not 0.0 <= params[key] < self.duration:
+                    raise _bad(f"manoeuvre_parameters.{key}", params[key],
+                               f"must be in [0, duration) = [0, {self.duration:g}) s: the manoeuvre must begin "
+                               "within the scene")
+                default = _DEFAULT_STARTS.get(m, {}).get(key)
+                if key not in params and default is not None and default >= self.duration:
+                    raise _bad("duration", self.duration, f"the {m} begins at {default:g} s (its default {key}): "
+                               f"the scene must last beyond it (or give manoeuvre_parameters.{key})")
         elif m is None or callable(m):
             if params:
                 raise _bad("manoeuvre_parameters", dict(params), "only a named manoeuvre takes parameters")
@@ -206,7 +248,7 @@ class Scene:
             for name, signal in m.items():
                 if not isinstance(name, str) or not name.isidentifier():
                     raise _bad("manoeuvre", name, "keys must be input signal names")
-                if not (callable(signal) or isinstance(signal, (int, float)) and math.isfinite(signal)):
+                if not (callable(signal) or is_number(signal) and math.isfinite(signal)):
                     raise _bad(f"manoeuvre.{name}", signal, "must be a callable of time or a finite number")
             object.__setattr__(self, "manoeuvre", dict(m))
         else:
@@ -236,12 +278,30 @@ class Scene:
                 if key not in ROAD_EVENTS[event]:
                     raise _bad(f"road.{key}", value,
                                f"not a parameter of {event!r}; it takes {list(ROAD_EVENTS[event])}")
-                if key != "shape" and (isinstance(value, bool) or not isinstance(value, (int, float))
-                                       or not math.isfinite(value)):
+                if key != "shape" and (not is_number(value) or not math.isfinite(value)):
                     raise _bad(f"road.{key}", value, "must be a finite number")
             object.__setattr__(self, "road", dict(r))
             return
         raise _bad("road", r, "must be None, an ISO 8608 class letter, a RoadProfile or an event table")
+
+    def _check_road_length(self):
+        """A synthesized road or an event table is sampled along speed * duration: bound its samples."""
+        from vehdyn.road import RoadProfile
+        from vehdyn.scene.drive import _ROAD_SPACING
+
+        if self.road is None or isinstance(self.road, RoadProfile):
+            return
+        spacing = _ROAD_SPACING if isinstance(self.road, str) else 0.5 * _ROAD_SPACING
+        length = self.speed * self.duration
+        if length / spacing > MAX_SAMPLES:
+            raise _bad("speed", self.speed, f"covers {length:.3g} m of road in the {self.duration:g} s of the scene: "
+                       f"{length / spacing:.3g} road samples {spacing:g} m apart, more than the {MAX_SAMPLES:.0e} a "
+                       "scene may hold; lower the speed or shorten the duration")
+        position = self.road.get("position") if isinstance(self.road, Mapping) else None
+        if position is not None and not 0.0 <= position < length:
+            raise _bad("road.position", position, f"must be in [0, {length:.4g}) m: the front wheels start at 0 and "
+                       f"cover speed x duration = {length:.4g} m in the scene, so the event would never be driven "
+                       "over")
 
     def __eq__(self, other):
         """Equal plain data (:meth:`to_dict`: profiles and piecewise signals by value); other
@@ -381,7 +441,7 @@ def _signal_to_data(name, signal):
 
     if isinstance(signal, PiecewiseSignal):
         return {"pieces": signal.pieces.tolist()}
-    if isinstance(signal, (int, float)):
+    if is_number(signal):
         return float(signal)
     raise ParameterError(f"{name}: a {type(signal).__name__} cannot be written to TOML; use a PiecewiseSignal "
                          "(vehdyn.procedures) or a number", key=name, value=signal)
@@ -392,7 +452,7 @@ def _signal_from_data(name, value):
 
     if isinstance(value, Mapping) and set(value) == {"pieces"}:
         return PiecewiseSignal(np.asarray(value["pieces"], dtype=float))
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
+    if is_number(value):
         return float(value)
     raise ParameterError(f"{name} = {value!r}: a signal is a number or a table {{pieces = [[...]]}}", key=name,
                          value=value)

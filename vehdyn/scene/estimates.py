@@ -361,6 +361,24 @@ def lateral_acceleration_share(vehicle, lateral_acceleration, gravity=GRAVITY) -
     mu_g = vehicle.tires.friction_coefficient * gravity
     return min(abs(float(lateral_acceleration)) / mu_g, THRESHOLDS["steady_limit_fraction"])
 
+def check_drag_load_transfer(vehicle, speed) -> tuple[float, float]:
+    """The drag F_drag [N] at ``speed`` [m/s] and the load h F_drag / L [N] the drive force that holds
+    the speed moves off the front axle; ParameterError naming the speed when that lifts the front
+    axle (beyond a few hundred m/s for a car): no model of the ladder holds there."""
+    from vehdyn.errors import ParameterError
+
+    aero = vehicle.aero
+    drag = 0.5 * aero.air_density * aero.frontal_area * aero.drag_coefficient * speed**2
+    shift = vehicle.mass.cg_height * drag / vehicle.geometry.wheelbase
+    front_load = vehicle.static_axle_loads(GRAVITY)[0]
+    if not shift < front_load:
+        raise ParameterError(f"Scene.speed = {speed!r} m/s: the drive force that holds it against the drag "
+                             f"({drag:.3g} N) would lift the front axle (load transfer h F_drag / L = {shift:.3g} N "
+                             f"against its static load {front_load:.3g} N): no vehicle model of the ladder holds "
+                             "there", key="speed", value=speed)
+    return drag, shift
+
+
 def drag_load_transfer_gain_change(vehicle, speed, tire_name=None, *, law=None) -> float:
     """Relative change of the steady-state yaw-rate gain from the load transfer of the drive force
     that holds ``speed`` against the drag: dF_z = h F_drag / L off the front axle onto the rear,
@@ -371,9 +389,7 @@ def drag_load_transfer_gain_change(vehicle, speed, tire_name=None, *, law=None) 
     from vehdyn.handling.steady_state import steady_state_gains
     from vehdyn.handling.bicycle import bicycle_parameters
 
-    aero, g = vehicle.aero, vehicle.geometry
-    drag = 0.5 * aero.air_density * aero.frontal_area * aero.drag_coefficient * speed**2
-    shift = vehicle.mass.cg_height * drag / g.wheelbase
+    _, shift = check_drag_load_transfer(vehicle, speed)
     if law is not None:
         from vehdyn.tire import tire_for_vehicle
 

@@ -10,14 +10,15 @@ rung), :func:`ladder` runs every admissible rung and measures its error against 
 
 from __future__ import annotations
 
-import numbers
 import time as _time
+import warnings
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from vehdyn.errors import ParameterError, SimulationError
+from vehdyn.errors import ParameterError, SimulationError, TirFileError, VehdynWarning
+from vehdyn.params.checks import finite_number, is_number, whole_number
 from vehdyn.units import GRAVITY
 from vehdyn.scene import estimates as est
 from vehdyn.scene.drive import drive_of
@@ -149,8 +150,75 @@ def _assess(rung: Rung, drive, scene) -> RungAssessment:
     return RungAssessment(rung, True, "", setup, outputs=resolved)
 
 
+def _check_scene(scene, owner: str):
+    """``scene``; ParameterError unless it is a :class:`~vehdyn.Scene` whose ``tire`` file (if any) reads."""
+    from vehdyn.scene.definition import Scene
+
+    if not isinstance(scene, Scene):
+        raise ParameterError(f"{owner}: scene must be a vehdyn Scene (vehdyn.Scene(...) or Scene.from_toml(path)), "
+                             f"got {type(scene).__name__} {scene!r:.80}", key="scene", value=scene)
+    if scene.tire is not None:
+        from vehdyn.tire import load_tire
+
+        try:
+            load_tire(scene.tire)
+        except (TirFileError, ParameterError, OSError) as exc:
+            raise ParameterError(f"Scene.tire = {scene.tire!r}: {exc}", key="tire", value=scene.tire) from None
+    return scene
+
+
+#: The largest road-wheel steer [rad] a scene may ask for: beyond +-90 degrees the wheel points
+#: backwards and no model of the ladder holds (their slip angles and steer kinematics assume less).
+MAX_STEER_ANGLE = 0.5 * np.pi
+
+
+def _check_steer(scene, drive):
+    """ParameterError naming the manoeuvre's parameter when its steer reaches beyond :data:`MAX_STEER_ANGLE`."""
+    steer = drive.steer
+    if steer is None:
+        return
+    try:
+        peak = float(np.max(np.abs(np.asarray(steer(drive.time), dtype=float))))
+    except (TypeError, ValueError):  # a user's scalar-only callable: simulate samples and names it
+        return
+    if not peak >= MAX_STEER_ANGLE:  # NaN is simulate's to name (at the instant it appears)
+        return
+    params = scene.manoeuvre_parameters
+    if not isinstance(scene.manoeuvre, str):
+        key, value, why = "manoeuvre", scene.manoeuvre, "the steer signal"
+    elif "amplitude" in params:
+        key, value, why = "manoeuvre_parameters.amplitude", params["amplitude"], "the amplitude"
+    else:
+        value = params.get("lateral_acceleration")
+        key = "manoeuvre_parameters.lateral_acceleration"
+        asked = "the manoeuvre's default lateral acceleration" if value is None else \
+            f"a steady lateral acceleration of {value:g} m/s^2"
+        why = f"{asked} at speed {scene.speed:g} m/s (the linear steady-state steer gain sizes the steer)"
+    raise ParameterError(f"Scene.{key} = {value!r:.80}: {why} steers the road wheels to {peak:.3g} rad "
+                         f"({np.degrees(peak):.0f} deg), beyond the +-90 deg where the ladder's models hold; ask for "
+                         "less (or give amplitude [rad])", key=key, value=value)
+
+
+def _check_road_event(scene, drive):
+    """ParameterError naming a road event's height or depth beyond the wheel's radius: a wall or a hole
+    the wheel falls into, not a road the ladder's models drive over."""
+    if not isinstance(scene.road, dict):
+        return
+    radius = drive.vehicle.tires.rolling_radius
+    for key in ("height", "depth"):
+        value = scene.road.get(key)
+        if value is not None and abs(value) > radius:
+            raise ParameterError(f"Scene.road.{key} = {value!r} m: more than the wheel's radius {radius:.3g} m, not a "
+                                 "road the ladder's models drive over (a wall, or a hole the wheel falls into)",
+                                 key=f"road.{key}", value=value)
+
+
 def plan(scene) -> Plan:
     """Assess every registered rung for ``scene`` and pick the cheapest within its tolerance.
+
+    The plan is a function of the scene and the registry alone: it keeps no state between calls
+    and learns nothing from a run (a verified miss in :func:`run` is reported on its result and
+    in a warning, and changes no threshold, cost or later plan).
 
     Parameters
     ----------
@@ -164,9 +232,13 @@ def plan(scene) -> Plan:
     ------
     ParameterError
         When no rung has the requested outputs (the message lists who has what) or the scene is
-        malformed.
+        malformed (not a Scene, an unreadable tire file, a steer beyond +-90 degrees).
     """
+    _check_scene(scene, "plan")
     drive = drive_of(scene)
+    est.check_drag_load_transfer(drive.vehicle, scene.speed)
+    _check_steer(scene, drive)
+    _check_road_event(scene, drive)
     rows = [_assess(r, drive, scene) for r in rungs()]
     admissible = [r for r in rows if r.admissible]
     if not admissible:
@@ -436,7 +508,7 @@ class SceneResult:
     result : SimulationResult
         Its result on the scene's time grid.
     rung : str
-        The rung's name.
+        The rung's name (after an escalation, the rung that met the tolerance).
     outputs : dict
         Scene output name -> array on the time grid.
     estimated_error : dict
@@ -446,8 +518,21 @@ class SceneResult:
     reference : str
         The reference rung's name.
     plan : Plan
+        The plan as it was made (its ``chosen`` row is the rung it picked, also after an escalation).
     signals : dict
         Scene output name -> the model's output name that answers it.
+    within_tolerance : bool or None
+        ``verify=True``: whether the verified error of the rung returned is within the scene's
+        tolerance; None without verification (nothing was measured).
+    misses : tuple of dict
+        Every rung run and verified beyond the tolerance, in the order run: ``rung``,
+        ``estimated_error`` and ``verified_error`` (largest over the outputs). Empty when the first
+        rung met it.
+    escalated_from : str or None
+        The rung the plan picked (or ``model`` named) when a verified miss made :func:`run` rerun the
+        scene on a rung further up; None otherwise.
+    tolerance : float
+        The scene's tolerance [-].
     """
 
     model: Any
@@ -459,9 +544,27 @@ class SceneResult:
     reference: str
     plan: Plan
     signals: dict = field(default_factory=dict)
+    within_tolerance: bool | None = None
+    misses: tuple = ()
+    escalated_from: str | None = None
+    tolerance: float = float("nan")
+
+    def _verdict(self) -> str:
+        """One line on the verification: within or beyond the tolerance, and any escalation."""
+        if self.verified_error is None:
+            return ""
+        worst = max(self.verified_error.values())
+        if self.escalated_from is not None:
+            first = self.misses[0]
+            return (f"escalated from {self.escalated_from} (verified {first['verified_error']:.2e} > tolerance "
+                    f"{self.tolerance:g}, estimated {first['estimated_error']:.2e}) to {self.rung} "
+                    f"(verified {worst:.2e})")
+        if self.within_tolerance:
+            return f"within tolerance {self.tolerance:g} (verified {worst:.2e})"
+        return f"BEYOND TOLERANCE: verified {worst:.2e} > {self.tolerance:g}"
 
     def headline(self) -> str:
-        """Peak |value| of each output with its estimated (and verified) error."""
+        """Peak |value| of each output with its estimated (and verified) error, and the verdict."""
         lines = [f"{self.rung} ({type(self.model).__name__}): {self.result.wall_time:.3g} s of integration"]
         for name, x in self.outputs.items():
             unit = self.result.unit(self.signals[name]) if name in self.signals else ""
@@ -470,10 +573,13 @@ class SceneResult:
             if self.verified_error is not None:
                 line += f", verified {self.verified_error[name]:.2e} against {self.reference}"
             lines.append(line)
+        if self.verified_error is not None:
+            lines.append(f"  {self._verdict()}")
         return "\n".join(lines)
 
     def __repr__(self) -> str:
-        return f"<SceneResult of {self.rung}: {list(self.outputs)}>"
+        verdict = self._verdict()
+        return f"<SceneResult of {self.rung}: {list(self.outputs)}{'; ' + verdict if verdict else ''}>"
 
 
 def _run_row(p: Plan, row: RungAssessment):
@@ -481,8 +587,30 @@ def _run_row(p: Plan, row: RungAssessment):
     return cached if cached is not None else row.setup.run()
 
 
-def run(scene, model: str = "auto", verify: bool = False) -> SceneResult:
+def _worst(errors: dict) -> float:
+    """The largest error over the outputs (NaN counts as the largest: never within a tolerance)."""
+    values = np.asarray(list(errors.values()), dtype=float)
+    return float("nan") if np.any(np.isnan(values)) else float(np.max(values))
+
+
+def _rungs_above(p: Plan, row: RungAssessment) -> list:
+    """The admissible rungs of higher fidelity than ``row``'s, the next one up first (then the cheaper)."""
+    above = [r for r in p.rows if r.admissible and r is not row and r.rung.fidelity > row.rung.fidelity]
+    return sorted(above, key=lambda r: (r.rung.fidelity, r.estimated_cost_s))
+
+
+def run(scene, model: str = "auto", verify: bool = False, *, escalate: bool | None = None) -> SceneResult:
     """Run the rung the plan picks (or the rung named ``model``) on ``scene``.
+
+    With ``verify=True`` the reference (top admissible) rung runs too and the error of the rung
+    against it is measured. A rung whose verified error exceeds the scene's tolerance is a miss:
+    the result says so (``within_tolerance`` False, its repr and :meth:`SceneResult.headline`),
+    a :class:`~vehdyn.VehdynWarning` names the rung, its estimated and verified errors, and --
+    with ``escalate`` -- the scene is run again on the rungs above it, the next one up first, until
+    one meets the tolerance (the reference always does: it is what the errors are measured
+    against); the result is that rung's, ``escalated_from`` names the first, ``misses`` lists every
+    rung that missed. The plan learns nothing from a miss: thresholds, costs and later plans are
+    unchanged (:func:`plan`).
 
     Parameters
     ----------
@@ -491,21 +619,75 @@ def run(scene, model: str = "auto", verify: bool = False) -> SceneResult:
         ``"auto"`` (the plan's pick) or a rung or model class name (``"LinearBicycle"``).
     verify : bool
         Also run the reference (top admissible) rung and report the measured errors.
+    escalate : bool, optional
+        After a verified miss, rerun the scene on the next rung up that meets the tolerance.
+        Default: True for ``model="auto"`` (the plan promised the tolerance), False for a rung named
+        by ``model`` (its result is what was asked for; the miss is still flagged and warned about).
 
     Returns
     -------
     SceneResult
+
+    Raises
+    ------
+    ParameterError
+        A bad scene (see :func:`plan`), an unknown or inadmissible ``model``, a ``verify`` or
+        ``escalate`` that is not a bool.
     """
+    for name, value in (("verify", verify), ("escalate", escalate)):
+        if not (isinstance(value, (bool, np.bool_)) or (value is None and name == "escalate")):
+            raise ParameterError(f"run: {name} must be True or False, got {value!r}", key=name, value=value)
+    if not isinstance(model, str):
+        raise ParameterError(f"run: model must be 'auto' or a rung or model class name, got {model!r}", key="model",
+                             value=model)
+    _check_scene(scene, "run")
     p = plan(scene)
     row = p.chosen if model == "auto" else p.row(model)
     result = _run_row(p, row)
     outputs = _signals(result, row.outputs)
-    verified = None
-    if verify:
-        reference = _signals(_run_row(p, p.top), p.top.outputs)
-        verified = est.relative_errors(outputs, reference)
-    return SceneResult(row.setup.model, result, row.rung.name, outputs, dict(row.errors), verified, p.top.rung.name,
-                       p, dict(row.outputs))
+    if not verify:
+        return SceneResult(row.setup.model, result, row.rung.name, outputs, dict(row.errors), None, p.top.rung.name,
+                           p, dict(row.outputs), tolerance=scene.tolerance)
+    reference_result = _run_row(p, p.top)
+    reference = _signals(reference_result, p.top.outputs)
+    verified = est.relative_errors(outputs, reference)
+    tolerance = scene.tolerance
+    if _worst(verified) <= tolerance:
+        return SceneResult(row.setup.model, result, row.rung.name, outputs, dict(row.errors), verified,
+                           p.top.rung.name, p, dict(row.outputs), within_tolerance=True, tolerance=tolerance)
+    misses = [{"rung": row.rung.name, "estimated_error": row.estimated_error, "verified_error": _worst(verified)}]
+    what = "picked" if row is p.chosen else "named"
+    promise = (f"estimated {row.estimated_error:.2e}" + (f", planned within the tolerance {tolerance:g}"
+                                                           if row.estimated_error <= tolerance else ""))
+    worst_output = max(verified, key=lambda o: np.inf if np.isnan(verified[o]) else verified[o])
+    head = (f"run: the {what} rung {row.rung.name} ({promise}) is {_worst(verified):.2e} off the reference "
+            f"{p.top.rung.name} in {worst_output} (verified), beyond the scene's tolerance {tolerance:g}")
+    if escalate is None:
+        escalate = model == "auto"
+    if not escalate:
+        warnings.warn(f"{head}; the result is {row.rung.name}'s (result.within_tolerance is False; "
+                      "escalate=True reruns the scene on the next rung up that meets the tolerance)", VehdynWarning,
+                      stacklevel=2)
+        return SceneResult(row.setup.model, result, row.rung.name, outputs, dict(row.errors), verified,
+                           p.top.rung.name, p, dict(row.outputs), within_tolerance=False, misses=tuple(misses),
+                           tolerance=tolerance)
+    for candidate in _rungs_above(p, row):
+        cand_result = reference_result if candidate is p.top else _run_row(p, candidate)
+        cand_outputs = _signals(cand_result, candidate.outputs)
+        cand_verified = est.relative_errors(cand_outputs, reference)
+        if _worst(cand_verified) <= tolerance:
+            tried = ", ".join(f"{m['rung']} {m['verified_error']:.2e}" for m in misses[1:])
+            warnings.warn(f"{head}; reran the scene on {candidate.rung.name} (verified {_worst(cand_verified):.2e})"
+                          + (f" after {tried} also missed" if tried else "") + "; the result is that rung's", VehdynWarning,
+                          stacklevel=2)
+            return SceneResult(candidate.setup.model, cand_result, candidate.rung.name, cand_outputs,
+                               dict(candidate.errors), cand_verified, p.top.rung.name, p, dict(candidate.outputs),
+                               within_tolerance=True, misses=tuple(misses), escalated_from=row.rung.name,
+                               tolerance=tolerance)
+        misses.append({"rung": candidate.rung.name, "estimated_error": candidate.estimated_error,
+                       "verified_error": _worst(cand_verified)})
+    # the reference meets the tolerance against itself unless its own outputs are not finite
+    raise SimulationError(f"{head}; no rung above it met the tolerance (the reference's outputs are not finite)")
 
 
 _LONG_RUN_S = 1.0  # [s] a run this long is timed well enough by the best of two
@@ -533,15 +715,24 @@ def ladder(scene, *, repeat: int = 1, min_time: float = 0.0):
     pandas.DataFrame
         A row per admissible rung (cheapest first): ``model``, ``rung``, ``wall_time_s``,
         ``estimated_cost_s``, ``estimated_error``, ``error`` (max over outputs), ``error_<output>``,
-        ``planned``, ``reference``. ``attrs["tolerance"]`` and ``attrs["scene"]``.
+        ``within_tolerance`` (``error`` <= the scene's tolerance), ``planned``, ``reference``.
+        ``attrs["tolerance"]`` and ``attrs["scene"]``. When the planned rung's measured error
+        exceeds the tolerance the plan promised, a :class:`~vehdyn.VehdynWarning` says so.
+
+    Raises
+    ------
+    ParameterError
+        A bad scene (see :func:`plan`), ``repeat`` not a whole number >= 1, ``min_time`` not a
+        finite number >= 0.
     """
     import pandas as pd
 
-    if int(repeat) < 1:
-        raise ParameterError(f"repeat must be >= 1, got {repeat!r}", key="repeat", value=repeat)
-    if not (isinstance(min_time, numbers.Real) and not isinstance(min_time, bool) and 0.0 <= min_time < np.inf):
+    _check_scene(scene, "ladder")
+    repeat = whole_number(repeat, "repeat", minimum=1)
+    if not (is_number(min_time) and 0.0 <= min_time < np.inf):
         raise ParameterError(f"min_time must be a finite number of seconds >= 0, got {min_time!r}", key="min_time",
                              value=min_time)
+    min_time = float(min_time)
     p = plan(scene)
     results, times = {}, {}
     for row in p.rows:
@@ -563,11 +754,18 @@ def ladder(scene, *, repeat: int = 1, min_time: float = 0.0):
         if not row.admissible:
             continue
         errors = est.relative_errors(_signals(results[row.rung.name], row.outputs), reference)
+        worst = _worst(errors)
         rec = {"model": row.rung.model.split(":")[1], "rung": row.rung.name, "wall_time_s": times[row.rung.name],
                "estimated_cost_s": row.estimated_cost_s, "estimated_error": row.estimated_error,
-               "error": max(errors.values()), "planned": row is p.chosen, "reference": row is p.top}
+               "error": max(errors.values()), "within_tolerance": bool(worst <= scene.tolerance),
+               "planned": row is p.chosen, "reference": row is p.top}
         rec.update({f"error_{k}": v for k, v in errors.items()})
         records.append(rec)
+        if row is p.chosen and not worst <= scene.tolerance:
+            warnings.warn(f"ladder: the planned rung {row.rung.name} (estimated {row.estimated_error:.2e}) is "
+                          f"{worst:.2e} off the reference {p.top.rung.name} (measured), beyond the scene's tolerance "
+                          f"{scene.tolerance:g}; vehdyn.run(scene, verify=True) reruns it on the next rung up that "
+                          "meets it", VehdynWarning, stacklevel=2)
     frame = pd.DataFrame(records).sort_values("wall_time_s", kind="stable").reset_index(drop=True)
     frame.attrs["tolerance"] = scene.tolerance
     frame.attrs["scene"] = scene
@@ -593,6 +791,12 @@ def plot_ladder(frame, *, ax=None, title: str | None = None, error_floor: float 
     """
     import matplotlib.pyplot as plt
 
+    error_floor = finite_number(error_floor, "error_floor", positive=True)
+    columns = getattr(frame, "columns", ())
+    missing = [c for c in ("rung", "error", "wall_time_s", "planned", "reference") if c not in columns]
+    if missing:
+        raise ParameterError(f"plot_ladder: frame must be a table from vehdyn.ladder, got {type(frame).__name__} "
+                             f"without the columns {missing}", key="frame", value=type(frame).__name__)
     if ax is None:
         _, ax = plt.subplots(figsize=(6.0, 4.0))
     err = np.maximum(frame["error"].to_numpy(dtype=float), error_floor)

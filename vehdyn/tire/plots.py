@@ -192,9 +192,9 @@ def plot_tire_characteristics(tire, loads=None, *, vx: float = 20.0, max_slip_an
     vx : float
         Forward speed [m/s] passed to the laws.
     max_slip_angle_deg, max_slip_ratio : float
-        Sweep ranges [deg] and [-].
+        Sweep ranges [deg] and [-], > 0.
     n_points : int
-        Points per sweep.
+        Points per sweep, >= 2.
 
     Returns
     -------
@@ -202,8 +202,13 @@ def plot_tire_characteristics(tire, loads=None, *, vx: float = 20.0, max_slip_an
         ``lateral_force``, ``longitudinal_force``, ``aligning_moment``, ``friction_ellipse``,
         ``cornering_stiffness``.
     """
+    from vehdyn.params.checks import check_sample_count, finite_number, whole_number
     from vehdyn.plotting import new_figure
 
+    n_points = whole_number(n_points, "n_points", minimum=2)
+    check_sample_count(n_points, "n_points", n_points, "points per sweep")
+    max_slip_angle_deg = finite_number(max_slip_angle_deg, "max_slip_angle_deg", positive=True)
+    max_slip_ratio = finite_number(max_slip_ratio, "max_slip_ratio", positive=True)
     tires = _tires(tire)
     first = next(iter(tires.values()))
     nominal = nominal_load(first)

@@ -68,7 +68,11 @@ def checked_array(name: str, value, *, ge: float | None = None, gt: float | None
     ParameterError
         Naming ``name`` and the first bad value.
     """
-    a = np.asarray(value, dtype=float)
+    raw = np.asarray(value)
+    if raw.dtype.kind not in "iuf":  # a string, a bool, None or an object is not read as a number
+        raise ParameterError(f"{name} must be a number or an array of numbers, got {type(value).__name__} "
+                             f"{value!r:.80}", key=name, value=value)
+    a = np.asarray(raw, dtype=float)
     ok = np.isfinite(a)
     if ge is not None:
         ok &= a >= ge

@@ -38,7 +38,8 @@ from vehdyn.params.base import ParameterSet, parameter
 from vehdyn.tire.terramechanics.bekker import checked_array, rigid_wheel_sinkage
 from vehdyn.tire.terramechanics.lateral import flat_side_force, mobilized_fraction
 from vehdyn.tire.terramechanics.soil import Soil
-from vehdyn.tire.terramechanics.wong_reece import QUADRATURE_NODES, RigidWheel, WheelSoilResult, check_slip, efficiency, travel_ratio
+from vehdyn.tire.terramechanics.wong_reece import (QUADRATURE_NODES, RigidWheel, WheelSoilResult, check_slip,
+                                                   check_solver_settings, efficiency, travel_ratio)
 
 __all__ = ["SoftSoilTireGeometry", "FlexibleWheel", "critical_ground_pressure"]
 
@@ -209,13 +210,15 @@ class FlexibleWheel(ParameterSet):
         slip_angle : array_like, optional
             alpha [rad] (ISO-W) for the side force.
         nodes : int
-            Gauss-Legendre nodes per sub-interval of the rigid mode's arc.
+            Gauss-Legendre nodes per sub-interval of the rigid mode's arc, 1 to
+            :data:`~vehdyn.tire.terramechanics.wong_reece.MAX_QUADRATURE_NODES`.
 
         Returns
         -------
         WheelSoilResult
             Of the broadcast shape; ``mode`` says which mode each point ran in.
         """
+        nodes = check_solver_settings(nodes, 1e-10, 1)[0]
         w = checked_array("load", load, ge=0.0)
         s = check_slip(slip)
         a = None if slip_angle is None else checked_array("slip_angle", slip_angle)
@@ -227,13 +230,14 @@ class FlexibleWheel(ParameterSet):
         fields = [f.name for f in dataclasses.fields(WheelSoilResult)]
         out = {name: np.zeros(flat[0].size) for name in fields}
         out["stuck"] = np.zeros(flat[0].size, dtype=bool)
+        out["converged"] = np.ones(flat[0].size, dtype=bool)  # the elastic mode is a closed form
         out["mode"] = np.where(elastic, "elastic", "rigid")
         for mask, part in ((rigid, self._solve_rigid), (elastic, self._solve_elastic)):
             if np.any(mask):
                 result = part(*(v[mask] for v in flat), nodes=nodes) if a is not None else \
                     part(flat[0][mask], flat[1][mask], None, nodes=nodes)
                 for name in fields:
-                    if name != "mode":
+                    if name != "mode" and getattr(result, name) is not None:
                         out[name][mask] = getattr(result, name)
         return WheelSoilResult(**{k: v.reshape(shape) for k, v in out.items()})
 

@@ -42,6 +42,7 @@ from vehdyn.tire.terramechanics.wong_reece import WheelSoilResult
 __all__ = ["SoftSoilTire", "SoftSoilTireGeometry", "slip_from_kappa"]
 
 _MAX_SLIP_ANGLE = 0.5 * math.pi - 1e-6
+_WHEEL_OPTIONS = frozenset({"c1", "c2", "rebound"})  # the fields of FlexibleWheel a SoftSoilTire passes on
 
 
 def slip_from_kappa(kappa):
@@ -129,6 +130,11 @@ class SoftSoilTire(TireModel):
                                  key="tire_geometry", value=tire_geometry)
         if not isinstance(soil, Soil):
             raise ParameterError(f"soil must be a Soil, got {type(soil).__name__}", key="soil", value=soil)
+        unknown = sorted(set(wheel_options) - _WHEEL_OPTIONS)
+        if unknown:
+            raise ParameterError(f"SoftSoilTire: unknown wheel option {unknown[0]!r} = {wheel_options[unknown[0]]!r}; "
+                                 f"the options are {sorted(_WHEEL_OPTIONS)}", key=unknown[0],
+                                 value=wheel_options[unknown[0]])
         self.wheel = FlexibleWheel(geometry=tire_geometry, soil=soil, **wheel_options)
         self.tire_geometry = tire_geometry
         self.soil = soil
@@ -165,7 +171,7 @@ class SoftSoilTire(TireModel):
         result = self.wheel.solve(fz, slip_from_kappa(kappa), np.clip(alpha, -_MAX_SLIP_ANGLE, _MAX_SLIP_ANGLE))
         if bad is None:
             return result
-        invalid = {"stuck": False, "mode": "invalid"}
+        invalid = {"stuck": False, "mode": "invalid", "converged": True}
         return dataclasses.replace(result, **{
             f.name: np.where(bad, invalid.get(f.name, np.nan), np.broadcast_to(getattr(result, f.name), bad.shape))
             for f in dataclasses.fields(result)})

@@ -22,6 +22,7 @@ import numpy as np
 
 from vehdyn.errors import ParameterError
 from vehdyn.params.base import ParameterSet, parameter, read_toml, text
+from vehdyn.params.checks import is_number
 
 __all__ = ["Soil", "load_soil", "shipped_soils", "soil_source"]
 
@@ -197,7 +198,7 @@ def soil_from_table(entry: dict, name: str = "custom") -> Soil:
             if unit not in factors:
                 raise ParameterError(f"soil {name!r}: unit {unit!r} of {key} is not one of {list(factors)}",
                                      key=f"{name}.units.{key}", value=unit)
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
+            if not is_number(value):
                 raise ParameterError(f"soil {name!r}: {key} must be a number, got {value!r}", key=f"{name}.{key}",
                                      value=value)
             value = value * factors[unit]

@@ -69,7 +69,22 @@ __all__ = ["RigidWheel", "WheelSoilResult", "travel_ratio", "check_slip"]
 
 #: Gauss-Legendre nodes per sub-interval of the contact arc.
 QUADRATURE_NODES = 16
+#: The most nodes per sub-interval :meth:`RigidWheel.solve` takes (the integrands are smooth but
+#: for sigma's power at the entry: 16 nodes agree with adaptive quadrature to 1e-6, see above).
+MAX_QUADRATURE_NODES = 1000
 _STUCK_ANGLE = 0.5 * math.pi
+_CHUNK_VALUES = 4_000_000  # stress samples (points x nodes) evaluated at once: ~32 MB per array
+
+
+def check_solver_settings(nodes, rtol, max_iterations) -> tuple[int, float, int]:
+    """``nodes``, ``rtol`` and ``max_iterations`` of a wheel's solve, checked; ParameterError naming a
+    setting that cannot produce the answer (no node, no iteration, a tolerance that is not one)."""
+    from vehdyn.params.checks import finite_number, whole_number
+
+    nodes = whole_number(nodes, "nodes", minimum=1, maximum=MAX_QUADRATURE_NODES)
+    rtol = finite_number(rtol, "rtol", positive=True, maximum=0.1)
+    max_iterations = whole_number(max_iterations, "max_iterations", minimum=1)
+    return nodes, rtol, max_iterations
 
 
 def check_slip(slip):
@@ -143,6 +158,9 @@ class WheelSoilResult:
     mode : ndarray of str
         ``"rigid"``, or ``"elastic"`` for a flexible tire in its flat-contact mode [text, no
         unit]; ``"invalid"`` where :class:`SoftSoilTire` got a non-finite input.
+    converged : ndarray of bool, optional
+        The vertical equilibrium was met within ``rtol`` in ``max_iterations`` (the stuck points and
+        the elastic mode's closed form count as converged); None: all converged.
     """
 
     load: np.ndarray
@@ -159,11 +177,16 @@ class WheelSoilResult:
     lateral_force: np.ndarray
     stuck: np.ndarray
     mode: np.ndarray
+    converged: np.ndarray | None = None
 
     @property
     def status(self) -> np.ndarray:
-        """``"ok"`` or ``"stuck"`` per point."""
-        return np.where(self.stuck, "stuck", "ok")
+        """``"ok"``, ``"stuck"`` or ``"unconverged"`` (the root find ran out of iterations: the
+        sinkage and forces there are the last iterate's, not the equilibrium's) per point."""
+        status = np.where(self.stuck, "stuck", "ok")
+        if self.converged is not None:
+            status = np.where(self.converged | self.stuck, status, "unconverged")
+        return status
 
 
 def efficiency(drawbar_pull, torque, radius, slip):
@@ -358,24 +381,27 @@ class RigidWheel(ParameterSet):
         slip_angle : array_like, optional
             alpha [rad] (ISO-W) for the side force; ``|alpha| < pi/2``.
         nodes : int
-            Gauss-Legendre nodes per sub-interval of the arc.
+            Gauss-Legendre nodes per sub-interval of the arc, 1 to :data:`MAX_QUADRATURE_NODES`.
         rtol : float
-            Relative tolerance of the vertical equilibrium [-].
+            Relative tolerance of the vertical equilibrium [-], in (0, 0.1].
         max_iterations : int
-            Most iterations of the root finder (about ten are needed for rtol = 1e-10).
+            Iterations of the root find at most (>= 1); a point that has not met ``rtol`` by then
+            has the status ``"unconverged"`` (about ten iterations reach 1e-10).
 
         Returns
         -------
         WheelSoilResult
             Of the broadcast shape; ``stuck`` where the soil cannot carry the load before the
-            sinkage reaches the radius (the forces are then those at z = r).
+            sinkage reaches the radius (the forces are then those at z = r); ``status``
+            ``"ok"``, ``"stuck"`` or ``"unconverged"`` per point.
 
         Raises
         ------
         ParameterError
-            For a negative or non-finite load, a slip outside [-1, 1], or a slip angle outside
-            (-pi/2, pi/2).
+            A load, slip or slip angle out of range, or a ``nodes``, ``rtol`` or ``max_iterations``
+            that cannot produce the answer.
         """
+        nodes, rtol, max_iterations = check_solver_settings(nodes, rtol, max_iterations)
         w = checked_array("load", load, ge=0.0)
         s = check_slip(slip)
         arrays = [w, s]
@@ -390,7 +416,18 @@ class RigidWheel(ParameterSet):
         shape = arrays[0].shape
         w, s = (np.ascontiguousarray(v, dtype=float).reshape(-1) for v in arrays[:2])
         tan_alpha = np.tan(arrays[2].reshape(-1)) if slip_angle is not None else None
-        q = self._root(w, s, nodes, rtol, max_iterations)
+        # in chunks, so that the (points x 2 nodes) stress arrays stay small however many points
+        chunk = max(1, _CHUNK_VALUES // (2 * nodes))
+        parts = [self._solve_flat(w[k:k + chunk], s[k:k + chunk],
+                                  None if tan_alpha is None else tan_alpha[k:k + chunk], nodes, rtol, max_iterations)
+                 for k in range(0, max(w.size, 1), chunk)]
+        flat = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+        shaped = {k: v.reshape(shape) for k, v in flat.items()}
+        return WheelSoilResult(**shaped, mode=np.full(shape, "rigid"))
+
+    def _solve_flat(self, w, s, tan_alpha, nodes, rtol, max_iterations) -> dict:
+        """The fields of a WheelSoilResult for 1-D arrays of loads and slips."""
+        q, converged = self._root(w, s, nodes, rtol, max_iterations)
         stuck = q >= 1.0
         theta1 = self._angle(q)
         theta1[stuck] = _STUCK_ANGLE
@@ -399,15 +436,14 @@ class RigidWheel(ParameterSet):
         sinkage[stuck] = self.radius
         drawbar = thrust - resistance
         lateral = np.zeros_like(drawbar) if side is None else side
-        shaped = {k: v.reshape(shape) for k, v in dict(
-            load=w, slip=s, sinkage=sinkage, entry_angle=theta1, exit_angle=t2, max_stress_angle=tm,
-            drawbar_pull=drawbar, thrust=thrust, motion_resistance=resistance, torque=torque,
-            tractive_efficiency=efficiency(drawbar, torque, self.radius, s), lateral_force=lateral,
-            stuck=stuck).items()}
-        return WheelSoilResult(**shaped, mode=np.full(shape, "rigid"))
+        return dict(load=w, slip=s, sinkage=sinkage, entry_angle=theta1, exit_angle=t2, max_stress_angle=tm,
+                    drawbar_pull=drawbar, thrust=thrust, motion_resistance=resistance, torque=torque,
+                    tractive_efficiency=efficiency(drawbar, torque, self.radius, s), lateral_force=lateral,
+                    stuck=stuck, converged=converged)
 
     def _root(self, load, slip, nodes, rtol, max_iterations):
-        """q in [0, 1] with W(q) = load for every pair (Illinois); q = 1 where the wheel is stuck."""
+        """q in [0, 1] with W(q) = load for every pair (Illinois); q = 1 where the wheel is stuck.
+        Returns q and whether each point met ``rtol`` (or is stuck, or carries no load)."""
         lo = np.zeros_like(load)
         hi = np.ones_like(load)
         f_lo = -load
@@ -437,7 +473,7 @@ class RigidWheel(ParameterSet):
             hi = np.where(above, trial, hi)
             f_hi = np.where(above, f, f_hi)
             last = np.where(below, -1, np.where(above, 1, last)).astype(np.int8)
-        return q
+        return q, done
 
 
 _GAUSS_CACHE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
