@@ -109,3 +109,13 @@ def test_soft_soil_tire_names_an_unknown_wheel_option():
     _refused(lambda: SoftSoilTire(geometry, load_soil("dry_sand"), max_iterations=0), "max_iterations", "0")
     error = _refused(lambda: SoftSoilTire(geometry, load_soil("dry_sand"), bogus=1), "bogus", "1")
     assert "c1" in str(error) and "rebound" in str(error)
+
+
+def test_the_adaptive_reference_names_a_load_the_soil_cannot_carry(wheel):
+    """brentq's 'f(a) and f(b) must have different signs' for a wheel that sinks to its axle; the
+    solver calls the same load stuck."""
+    from vehdyn.tire.terramechanics.reference import adaptive_solve
+
+    assert wheel.solve(1e7, 0.2).status == "stuck"
+    _refused(lambda: adaptive_solve(wheel, 1e7, 0.2), "load", "10000000.0")
+    _refused(lambda: adaptive_solve(wheel, 1500.0, 0.2, epsrel=0.0), "epsrel", "0.0")

@@ -107,12 +107,27 @@ def adaptive_solve(wheel, load: float, slip: float, epsrel: float = 1e-10):
     -------
     tuple of float
         ``(sinkage [m], drawbar pull [N])``.
+
+    Raises
+    ------
+    ParameterError
+        For a load the soil cannot carry before the sinkage reaches the radius (the bracket of the
+        root has no sign change: :meth:`RigidWheel.solve` reports such a wheel as stuck), and for a
+        tolerance ``epsrel`` outside (0, 0.1].
     """
     from scipy.optimize import brentq
 
+    from vehdyn.errors import ParameterError
+    from vehdyn.params.checks import finite_number
+
+    load = finite_number(load, "load", positive=True)
+    epsrel = finite_number(epsrel, "epsrel", positive=True, maximum=0.1)
     with warnings.catch_warnings():  # quad's round-off notice near 1e-10 on the kinked integrands
         warnings.simplefilter("ignore")
-        theta1 = brentq(lambda t: adaptive_integrals(wheel, t, slip, epsrel)[0] - load, 1e-9, 0.5 * math.pi,
-                        xtol=1e-13)
+        bracket = (1e-9, 0.5 * math.pi)
+        if adaptive_integrals(wheel, bracket[1], slip, epsrel)[0] < load:
+            raise ParameterError(f"load = {load!r} N is more than the soil carries before the sinkage reaches the "
+                                 "radius: the wheel is stuck (RigidWheel.solve reports it so)", key="load", value=load)
+        theta1 = brentq(lambda t: adaptive_integrals(wheel, t, slip, epsrel)[0] - load, *bracket, xtol=1e-13)
         _, thrust, resistance, _ = adaptive_integrals(wheel, theta1, slip, epsrel)
     return wheel.radius * (1 - math.cos(theta1)), thrust - resistance
