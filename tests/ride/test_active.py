@@ -26,7 +26,7 @@ def iso_c_car(**changes):
     kw = dict(sprung_mass=i["ms"], unsprung_mass=i["mu"], spring_rate=i["ks"], damping=i["cs"],
               tire_stiffness=i["kt"])
     kw.update(changes)
-    return QuarterCar(**kw)
+    return QuarterCar.from_parameters(**kw)
 
 
 def iso_c_road():
