@@ -366,8 +366,21 @@ class RideModel(LinearModel):
     def replace(self, **changes) -> "RideModel":
         """The same kind of model with some parameters changed (``qc.replace(damping=2000.0)``).
 
-        The actuator option (``actuator`` for the quarter car, ``actuators`` otherwise) may be
-        changed too; everything else is validated again.
+        Parameters
+        ----------
+        **changes
+            Fields of the model's parameter set, in their units (``damping=2000.0`` [N*s/m]), and
+            the actuator option (``actuator`` for the quarter car, ``actuators`` otherwise).
+
+        Returns
+        -------
+        RideModel
+            A new model of the same class and name, its parameters validated again.
+
+        Raises
+        ------
+        ParameterError
+            Naming an unknown field or a value out of its range.
         """
         flag = changes.pop(self._actuator_keyword, self.has_actuators)
         params = self.parameters.replace(**changes)
@@ -380,8 +393,15 @@ class RideModel(LinearModel):
 
     @property
     def has_actuators(self) -> bool:
+        """True when the model has ``actuator_force`` inputs."""
         return any(name.startswith("actuator_force") for name in self.input_names)
 
     def road_input_names(self) -> tuple[tuple[str, str], ...]:
-        """``((road_displacement<sfx>, road_velocity<sfx>), ...)`` per corner."""
+        """The names of the road inputs, per corner.
+
+        Returns
+        -------
+        tuple of (str, str)
+            ``((road_displacement<sfx>, road_velocity<sfx>), ...)`` in corner order.
+        """
         return tuple((f"road_displacement{s}", f"road_velocity{s}") for s in self.corner_suffixes)
