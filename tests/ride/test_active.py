@@ -218,6 +218,10 @@ def test_bad_inputs_of_the_active_functions():
         compare_suspensions({"passive": relative_quarter_car(qc, actuator=False)}, "C", -20.0)
     with pytest.raises(vehdyn.ParameterError):
         relative_quarter_car("not a quarter car")
+    # a vehicle where its corner is meant: the message says how to build the corner
+    with pytest.raises(vehdyn.ParameterError, match=r"QuarterCar\(vehicle, axle='front'\)") as err:
+        SemiActiveQuarterCar(vehdyn.load_vehicle("sedan"), min_damping=100.0, max_damping=3000.0)
+    assert err.value.key == "quarter_car"
     unstable = vehdyn.LinearModel([[1.0]], [[1.0]], states=["x"], inputs=["road_velocity"])
     with pytest.raises(vehdyn.ParameterError):
         white_noise_rms(unstable)

@@ -59,8 +59,9 @@ def _spectrum(road) -> RoadSpectrum:
 
 def _require_quarter_car(qc):
     if not isinstance(qc, QuarterCar):
-        raise ParameterError(f"expected a vehdyn.ride.QuarterCar, got {type(qc).__name__}", key="quarter_car",
-                             value=qc)
+        raise ParameterError(f"expected a vehdyn.ride.QuarterCar, got {type(qc).__name__}: build one from a vehicle, "
+                             "QuarterCar(vehicle, axle='front'), or from numbers, QuarterCar.from_parameters(...)",
+                             key="quarter_car", value=qc)
 
 
 def _with_actuator(qc: QuarterCar) -> QuarterCar:
