@@ -47,8 +47,8 @@ def quarter_car():
     """vehdyn.ride.QuarterCar with the E-QC-ISO-C numbers, restricted to the case's four outputs."""
     from vehdyn.ride import QuarterCar
 
-    qc = QuarterCar(sprung_mass=300.0, unsprung_mass=60.0, spring_rate=16000.0, damping=1000.0,
-                    tire_stiffness=190000.0, name="quarter car")
+    qc = QuarterCar.from_parameters(sprung_mass=300.0, unsprung_mass=60.0, spring_rate=16000.0, damping=1000.0,
+                                    tire_stiffness=190000.0, name="quarter car")
     return qc.select(outputs=list(E_QC_ISO_C))
 
 
@@ -60,10 +60,10 @@ def half_car():
     """vehdyn.ride.BouncePitch (4 DOF, axle rates), wheelbase 2.7 m, restricted to six outputs."""
     from vehdyn.ride import BouncePitch
 
-    bp = BouncePitch(mass=1200.0, pitch_inertia=1800.0, a=1.2, b=1.5, front_spring_rate=30000.0,
-                     rear_spring_rate=32000.0, front_damping=2500.0, rear_damping=2400.0, front_unsprung_mass=40.0,
-                     rear_unsprung_mass=40.0, front_tire_stiffness=200000.0, rear_tire_stiffness=200000.0,
-                     name="half car")
+    bp = BouncePitch.from_parameters(mass=1200.0, pitch_inertia=1800.0, a=1.2, b=1.5, front_spring_rate=30000.0,
+                                     rear_spring_rate=32000.0, front_damping=2500.0, rear_damping=2400.0,
+                                     front_unsprung_mass=40.0, rear_unsprung_mass=40.0, front_tire_stiffness=200000.0,
+                                     rear_tire_stiffness=200000.0, name="half car")
     return bp.select(outputs=HALF_CAR_OUTPUTS)
 
 

@@ -212,8 +212,8 @@ def quarter_car_rms(sprung_mass, spring_rate, damping, unsprung_mass=40.0, tire_
     """Reference: vehdyn.ride.random_vibration per variant."""
     from vehdyn.ride import QuarterCar, random_response
 
-    qc = QuarterCar(sprung_mass=sprung_mass, unsprung_mass=unsprung_mass, spring_rate=spring_rate, damping=damping,
-                    tire_stiffness=tire_stiffness)
+    qc = QuarterCar.from_parameters(sprung_mass=sprung_mass, unsprung_mass=unsprung_mass, spring_rate=spring_rate,
+                                    damping=damping, tire_stiffness=tire_stiffness)
     return {"rms_sprung_acceleration": random_response(qc, road, speed, outputs=["sprung_acceleration"])[
         "sprung_acceleration"]}
 

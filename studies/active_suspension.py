@@ -1,6 +1,6 @@
 """Active and semi-active suspension of the quarter car: skyhook, groundhook, LQR against the passive car.
 
-The sedan's front corner (vehdyn.ride.QuarterCar.from_vehicle) on an ISO 8608 class-C road at 20 m/s,
+The sedan's front corner (vehdyn.ride.QuarterCar(vehicle, "front")) on an ISO 8608 class-C road at 20 m/s,
 whose road velocity is white with one-sided PSD (2 pi n0)^2 G_d(n0) V. Ideal skyhook, groundhook and
 hybrid dampers and an LQR controller (designed through LinearModel.to_control() and python-control's
 lqr) are compared with the passive car on comfort (r.m.s. body acceleration), suspension travel and
@@ -47,7 +47,7 @@ def exact_rms(model, outputs=MEASURES) -> dict[str, float]:
 def run(study: Study) -> None:
     import pandas as pd
 
-    qc = QuarterCar.from_vehicle(vehdyn.load_vehicle("sedan"), "front")
+    qc = QuarterCar(vehdyn.load_vehicle("sedan"), "front")
     c_nominal = qc.parameters.damping
     c_sky = critical(qc, 0.7)
     soft = qc.replace(damping=critical(qc, 0.1))

@@ -1,7 +1,7 @@
 """Bounce and pitch: modes, nodes and Olley's flat-ride check for the shipped vehicles.
 
-Each shipped vehicle as a 4-DOF half car (vehdyn.ride.BouncePitch.from_vehicle) and as a 7-DOF
-full car with anti-roll bars (vehdyn.ride.FullCar.from_vehicle). The study lists the labelled modes
+Each shipped vehicle as a 4-DOF half car (vehdyn.ride.BouncePitch(vehicle)) and as a 7-DOF
+full car with anti-roll bars (vehdyn.ride.FullCar(vehicle)). The study lists the labelled modes
 (body bounce, pitch, roll, wheel hop and tramp) with their damping, draws the two body modes of each
 car in side view with their centres of rotation (the bounce and pitch centres), checks Olley's
 flat-ride criteria, and shows the wheelbase filtering of the body response at 20 m/s — exact delay
@@ -24,7 +24,7 @@ def run(study: Study) -> None:
     # ---------------------------------------------------------------- labelled modes of the full cars
     frames = []
     for name in names:
-        df = ride_modes(FullCar.from_vehicle(vehdyn.load_vehicle(name))).to_frame()
+        df = ride_modes(FullCar(vehdyn.load_vehicle(name))).to_frame()
         df = df[["undamped_frequency_hz", "natural_frequency_hz", "damping_ratio"]].copy()
         df.insert(0, "vehicle", name)
         frames.append(df.reset_index().set_index(["vehicle", "mode"]))
@@ -38,11 +38,11 @@ def run(study: Study) -> None:
     fig, axes = new_figure(len(names), 1, height_per_row=2.0, width=7.0)
     for ax, name in zip(axes[:, 0], names):
         v = vehdyn.load_vehicle(name)
-        bp = BouncePitch.from_vehicle(v)
-        fc = FullCar.from_vehicle(v)
+        bp = BouncePitch(v)
+        fc = FullCar(v)
         c = bounce_pitch_centres(bp)
         o = olley_criteria(bp, roll_frequency_hz=olley_criteria(fc).roll_frequency_hz)
-        two = bounce_pitch_centres(BouncePitch.from_vehicle(v, unsprung=False))
+        two = bounce_pitch_centres(BouncePitch(v, unsprung=False))
         rows.append({"vehicle": name, "bounce_hz": c.bounce_frequency_hz, "pitch_hz": c.pitch_frequency_hz,
                      "roll_hz": o.roll_frequency_hz, "bounce_hz_2dof": two.bounce_frequency_hz,
                      "pitch_hz_2dof": two.pitch_frequency_hz, "bounce_centre_m": c.bounce_centre,
@@ -87,7 +87,7 @@ def run(study: Study) -> None:
     speed = 20.0
     f = np.logspace(-0.5, 1.3, 150 if study.quick else 400)
     w = 2 * np.pi * f
-    bp = BouncePitch.from_vehicle(vehdyn.load_vehicle("sedan"))
+    bp = BouncePitch(vehdyn.load_vehicle("sedan"))
     outputs = ["sprung_acceleration_front", "sprung_acceleration_rear"]
     exact = road_frequency_response(bp, w, speed=speed, outputs=outputs)
     pade = with_wheelbase_delay(bp, speed, order=6)

@@ -517,14 +517,14 @@ def rough_road(study: Study) -> None:
     t = np.arange(0.0, duration + 1e-9, 0.05 / speed)
     fade = np.clip(t / 0.3, 0.0, 1.0)
     fade_rate = np.where(t < 0.3, 1.0 / 0.3, 0.0)
-    road = road_inputs(FullCar.from_vehicle(vehicle), t, speed, left.distance, left.elevation, right.elevation)
+    road = road_inputs(FullCar(vehicle), t, speed, left.distance, left.elevation, right.elevation)
     for sfx in CORNERS:  # faded in: the trim starts on a flat road
         z = road[f"road_displacement{sfx}"]
         road[f"road_velocity{sfx}"] = fade * road[f"road_velocity{sfx}"] + fade_rate * z
         road[f"road_displacement{sfx}"] = fade * z
     rough = vehdyn.simulate(model, t, {**dict(zip(model.input_names, u0)), **road}, x0=x0, method="RK45",
                             rtol=rtol, atol=rtol * 1e-2, max_step=0.05 / speed)
-    ride = vehdyn.simulate(FullCar.from_vehicle(vehicle), t, road, method="RK45", rtol=1e-6, atol=1e-9)
+    ride = vehdyn.simulate(FullCar(vehicle), t, road, method="RK45", rtol=1e-6, atol=1e-9)
     settled = t > 0.5
     # quasi-static: the tire law (ISO-W) at the run's loads and the trim's slips and camber, against at the
     # trim's loads; SAE F_y (the sign of the ratio's terms is the model's)

@@ -60,7 +60,7 @@ def numbers(mass_factor, cg_shift, front_stiffness_factor, rear_stiffness_factor
     steer = np.where(t >= 0.5, delta, 0.0)
     res = vehdyn.simulate(car, t, {"front_steer_angle": steer}, method="exact")
     yaw = procedures.step_response_metrics(res, "yaw_rate")
-    quarter = vehdyn.connect_in_series(QuarterCar.from_vehicle(v, "front"),
+    quarter = vehdyn.connect_in_series(QuarterCar(v, "front"),
                                        weighting("Wk").to_linear_model(input_name="sprung_acceleration",
                                                                        output_name="aw"))
     aw = random_response(quarter, "B", RIDE_SPEED, outputs=["aw"])["aw"]

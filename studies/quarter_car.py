@@ -42,7 +42,7 @@ def run(study: Study) -> None:
     rows = []
     for name in vehdyn.shipped_vehicles("passenger_car"):
         for axle in ("front", "rear"):
-            qc = QuarterCar.from_vehicle(vehdyn.load_vehicle(name), axle)
+            qc = QuarterCar(vehdyn.load_vehicle(name), axle)
             m, est = ride_modes(qc), qc.estimates()
             rows.append({"vehicle": name, "axle": axle,
                          "body_frequency_hz": m.undamped_frequency_hz[0], "body_estimate_hz": est["body_frequency_hz"],
@@ -55,7 +55,7 @@ def run(study: Study) -> None:
                                      "Gillespie's uncoupled estimates", floatfmt="{:.4g}")
 
     # ---------------------------------------------------------------- transmissibility family
-    qc0 = QuarterCar.from_vehicle(vehdyn.load_vehicle("sedan"), "front")
+    qc0 = QuarterCar(vehdyn.load_vehicle("sedan"), "front")
     f = np.logspace(-1, 1.5, 200 if study.quick else 600)
     w = 2 * np.pi * f
     zetas = [0.1, 0.2, 0.3, 0.5, 0.7, 1.0]
@@ -84,7 +84,7 @@ def run(study: Study) -> None:
     fig, axes = new_figure(1, 2, width=10.0, height_per_row=4.2)
     rows = []
     for name in vehicles:
-        base = QuarterCar.from_vehicle(vehdyn.load_vehicle(name), "front")
+        base = QuarterCar(vehdyn.load_vehicle(name), "front")
         acc = np.empty((spring_scale.size, zeta_grid.size))
         travel, load = np.empty_like(acc), np.empty_like(acc)
         for i, s in enumerate(spring_scale):

@@ -72,8 +72,8 @@ def ride_models(vehicle) -> dict:
     Outputs ``aw_front`` and ``aw_rear`` [m/s^2] (the quarter cars one each), and the keyword
     arguments of :func:`vehdyn.ride.random_vibration` each needs.
     """
-    full = FullCar.from_vehicle(vehicle)
-    half = BouncePitch.from_vehicle(vehicle)
+    full = FullCar(vehicle)
+    half = BouncePitch(vehicle)
     track = 0.5 * (vehicle.geometry.front_track + vehicle.geometry.rear_track)
     models = {
         "full car": (weighted(full, {f"sprung_acceleration_{c}": f"aw_{axle}" for axle, c in POSITIONS.items()}),
@@ -82,7 +82,7 @@ def ride_models(vehicle) -> dict:
                      dict(wheelbase=half.wheelbase)),
     }
     for axle in POSITIONS:
-        models[f"quarter car {axle}"] = (weighted(QuarterCar.from_vehicle(vehicle, axle=axle),
+        models[f"quarter car {axle}"] = (weighted(QuarterCar(vehicle, axle=axle),
                                                   {"sprung_acceleration": f"aw_{axle}"}), {})
     return models
 
@@ -236,7 +236,7 @@ def run(study: Study) -> None:
 
     # time domain: class-C road at 20 m/s, then a speed hump at 20 km/h (sedan, front axle)
     fs = 1000.0
-    car = QuarterCar.from_vehicle(vehdyn.load_vehicle("sedan"), axle="front")
+    car = QuarterCar(vehdyn.load_vehicle("sedan"), axle="front")
     duration = 20.0 if study.quick else 60.0
     V = 20.0
     profile = synthesize_profile("C", V * duration, V / fs, seed=1)

@@ -178,7 +178,7 @@ def _class_d_road_run(model, duration, speed=40.0, **options):
     fade, fade_rate = np.clip(t / 0.5, 0.0, 1.0), np.where(t < 0.5, 1.0 / 0.5, 0.0)
     x0, u0 = model.trim(speed)
     inputs = dict(zip(model.input_names, u0))
-    road = road_inputs(FullCar.from_vehicle(vehicle), t, speed, left.distance, left.elevation, right.elevation)
+    road = road_inputs(FullCar(vehicle), t, speed, left.distance, left.elevation, right.elevation)
     for sfx in CORNERS:
         z = road[f"road_displacement{sfx}"]
         inputs[f"road_displacement{sfx}"] = fade * z

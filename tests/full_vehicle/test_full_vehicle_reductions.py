@@ -60,7 +60,7 @@ def test_heave_pitch_and_wheel_hop_modes_are_the_full_car_s(sedan, linear_tires)
     """
     model = FullVehicle(sedan, *linear_tires(sedan), tire_lag=False)
     full = _eigenvalues(model, 20.0)
-    car = FullCar.from_vehicle(sedan)
+    car = FullCar(sedan)
     reference = np.linalg.eigvals(car.A)
     heave_pitch = [e for e in reference if abs(e) < 12 and e.imag > 0]
     hops = [e for e in reference if abs(e) > 60 and e.imag > 0]
@@ -121,7 +121,7 @@ def test_full_car_is_the_full_vehicle_with_its_cg_on_the_ground(sedan, linear_ti
     model = FullVehicle(vehicle, *linear_tires(vehicle), tire_lag=False)
     x0, u0 = model.trim(20.0)
     linear = model.linearize(x0, u0)
-    car = FullCar.from_vehicle(vehicle)
+    car = FullCar(vehicle)
     reference = [e for e in np.linalg.eigvals(car.A) if e.imag > 0]
     assert len(reference) == 7
     errors = _nearest_errors(reference, np.linalg.eigvals(linear.A))

@@ -26,7 +26,7 @@ def iso_c_car(**changes):
     kw = dict(sprung_mass=i["ms"], unsprung_mass=i["mu"], spring_rate=i["ks"], damping=i["cs"],
               tire_stiffness=i["kt"])
     kw.update(changes)
-    return QuarterCar(**kw)
+    return QuarterCar.from_parameters(**kw)
 
 
 def iso_c_road():
@@ -218,6 +218,10 @@ def test_bad_inputs_of_the_active_functions():
         compare_suspensions({"passive": relative_quarter_car(qc, actuator=False)}, "C", -20.0)
     with pytest.raises(vehdyn.ParameterError):
         relative_quarter_car("not a quarter car")
+    # a vehicle where its corner is meant: the message says how to build the corner
+    with pytest.raises(vehdyn.ParameterError, match=r"QuarterCar\(vehicle, axle='front'\)") as err:
+        SemiActiveQuarterCar(vehdyn.load_vehicle("sedan"), min_damping=100.0, max_damping=3000.0)
+    assert err.value.key == "quarter_car"
     unstable = vehdyn.LinearModel([[1.0]], [[1.0]], states=["x"], inputs=["road_velocity"])
     with pytest.raises(vehdyn.ParameterError):
         white_noise_rms(unstable)

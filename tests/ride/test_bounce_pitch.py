@@ -12,8 +12,9 @@ from .conftest import check, load_case
 def two_dof(case_id, kf_key, kr_key):
     inp = load_case(case_id)["inputs"]
     m, k = inp["m"][0], inp["k_pitch_radius"][0]
-    return BouncePitch(mass=m, pitch_inertia=m * k**2, a=inp["b_CG_to_front_axle"][0], b=inp["c_CG_to_rear_axle"][0],
-                       front_spring_rate=inp[kf_key][0], rear_spring_rate=inp[kr_key][0])
+    return BouncePitch.from_parameters(mass=m, pitch_inertia=m * k**2, a=inp["b_CG_to_front_axle"][0],
+                                       b=inp["c_CG_to_rear_axle"][0], front_spring_rate=inp[kf_key][0],
+                                       rear_spring_rate=inp[kr_key][0])
 
 
 def test_bp_1600_frequencies_and_nodes():
@@ -60,7 +61,8 @@ def test_olley_case():
 def test_dynamic_index_one_uncouples_the_axles():
     """DI = 1: each axle's mass m b/L, m a/L oscillates alone with node at the other axle (Gillespie ch. 5)."""
     a, b, m = 1.2, 1.5, 1500.0
-    bp = BouncePitch(mass=m, pitch_inertia=m * a * b, a=a, b=b, front_spring_rate=3e4, rear_spring_rate=4.5e4)
+    bp = BouncePitch.from_parameters(mass=m, pitch_inertia=m * a * b, a=a, b=b, front_spring_rate=3e4,
+                                     rear_spring_rate=4.5e4)
     c = bounce_pitch_centres(bp)
     nodes = sorted([c.bounce_centre, c.pitch_centre])
     np.testing.assert_allclose(nodes, [-b, a], rtol=1e-10)
@@ -71,10 +73,10 @@ def test_dynamic_index_one_uncouples_the_axles():
 def test_half_car_case():
     c = load_case("E-HALFCAR")
     i, exp = {k: v[0] for k, v in c["inputs"].items()}, c["expected"]
-    hc = BouncePitch(mass=i["ms"], pitch_inertia=i["Iy"], a=i["a"], b=i["b"], front_spring_rate=i["ksf"],
-                     rear_spring_rate=i["ksr"], front_damping=i["csf"], rear_damping=i["csr"],
-                     front_unsprung_mass=i["muf"], rear_unsprung_mass=i["mur"], front_tire_stiffness=i["ktf"],
-                     rear_tire_stiffness=i["ktr"])
+    hc = BouncePitch.from_parameters(mass=i["ms"], pitch_inertia=i["Iy"], a=i["a"], b=i["b"],
+                                     front_spring_rate=i["ksf"], rear_spring_rate=i["ksr"], front_damping=i["csf"],
+                                     rear_damping=i["csr"], front_unsprung_mass=i["muf"], rear_unsprung_mass=i["mur"],
+                                     front_tire_stiffness=i["ktf"], rear_tire_stiffness=i["ktr"])
     modes = ride_modes(hc)
     for k in range(4):
         check(modes.undamped_frequency_hz[k], exp[f"f{k + 1}_undamped"], f"f{k + 1}")
@@ -91,17 +93,17 @@ def test_half_car_with_stiff_light_wheels_tends_to_two_dof():
     """Unsprung masses -> 0 and tires -> rigid: the 4-DOF body modes tend to the 2-DOF model's."""
     two = two_dof("E-BP-1600", "kf_total", "kr_total")
     p = two.parameters
-    four = BouncePitch(mass=p.mass, pitch_inertia=p.pitch_inertia, a=p.a, b=p.b, front_spring_rate=38e3,
-                       rear_spring_rate=34e3, front_unsprung_mass=1e-2, rear_unsprung_mass=1e-2,
-                       front_tire_stiffness=1e10, rear_tire_stiffness=1e10)
+    four = BouncePitch.from_parameters(mass=p.mass, pitch_inertia=p.pitch_inertia, a=p.a, b=p.b,
+                                       front_spring_rate=38e3, rear_spring_rate=34e3, front_unsprung_mass=1e-2,
+                                       rear_unsprung_mass=1e-2, front_tire_stiffness=1e10, rear_tire_stiffness=1e10)
     np.testing.assert_allclose(four.modal_analysis().natural_frequency_hz[:2],
                                two.modal_analysis().natural_frequency_hz, rtol=1e-5)
 
 
-def test_from_vehicle_two_dof_uses_ride_rates():
+def test_a_vehicle_two_dof_uses_ride_rates():
     v = vehdyn.load_vehicle("compact")
-    bp2 = BouncePitch.from_vehicle(v, unsprung=False)
-    bp4 = BouncePitch.from_vehicle(v)
+    bp2 = BouncePitch(v, unsprung=False)
+    bp4 = BouncePitch(v)
     np.testing.assert_allclose(axle_ride_rates(bp2), axle_ride_rates(bp4), rtol=1e-12)
     ks, kt = 2 * v.suspension.front_spring_rate, 2 * v.tires.vertical_stiffness
     assert axle_ride_rates(bp2)[0] == pytest.approx(ks * kt / (ks + kt), rel=1e-12)
@@ -135,14 +137,14 @@ def test_bad_parameters(changes, key):
     kw = dict(mass=1000.0, pitch_inertia=1500.0, a=1.2, b=1.4, front_spring_rate=3e4, rear_spring_rate=3e4)
     kw.update(changes)
     with pytest.raises(vehdyn.ParameterError) as err:
-        BouncePitch(**kw)
+        BouncePitch.from_parameters(**kw)
     assert err.value.key == key
 
 
 def test_centres_need_pitch():
     from vehdyn.ride import QuarterCar
 
-    qc = QuarterCar(sprung_mass=300.0, unsprung_mass=40.0, spring_rate=2e4, tire_stiffness=2e5)
+    qc = QuarterCar.from_parameters(sprung_mass=300.0, unsprung_mass=40.0, spring_rate=2e4, tire_stiffness=2e5)
     with pytest.raises(vehdyn.ParameterError):
         bounce_pitch_centres(qc)
     with pytest.raises(vehdyn.ParameterError):

@@ -18,7 +18,7 @@ def reference_car(**changes):
               # the case's bar is a spring k_arb [N/m] on the left-right deflection difference: K = k t^2
               front_antiroll_stiffness=i["karbf"] * i["tf"] ** 2, rear_antiroll_stiffness=i["karbr"] * i["tr"] ** 2)
     kw.update(changes)
-    return FullCar(**kw)
+    return FullCar.from_parameters(**kw)
 
 
 def test_full_car_case():
@@ -49,11 +49,13 @@ def test_symmetric_input_equals_half_car():
     """Equal left and right roads: the full car responds as the half car with axle (doubled) rates."""
     fc = reference_car()
     p = fc.parameters
-    hc = BouncePitch(mass=p.mass, pitch_inertia=p.pitch_inertia, a=p.a, b=p.b,
-                     front_spring_rate=2 * p.front_spring_rate, rear_spring_rate=2 * p.rear_spring_rate,
-                     front_damping=2 * p.front_damping, rear_damping=2 * p.rear_damping,
-                     front_unsprung_mass=2 * p.front_unsprung_mass, rear_unsprung_mass=2 * p.rear_unsprung_mass,
-                     front_tire_stiffness=2 * p.front_tire_stiffness, rear_tire_stiffness=2 * p.rear_tire_stiffness)
+    hc = BouncePitch.from_parameters(mass=p.mass, pitch_inertia=p.pitch_inertia, a=p.a, b=p.b,
+                                     front_spring_rate=2 * p.front_spring_rate,
+                                     rear_spring_rate=2 * p.rear_spring_rate, front_damping=2 * p.front_damping,
+                                     rear_damping=2 * p.rear_damping, front_unsprung_mass=2 * p.front_unsprung_mass,
+                                     rear_unsprung_mass=2 * p.rear_unsprung_mass,
+                                     front_tire_stiffness=2 * p.front_tire_stiffness,
+                                     rear_tire_stiffness=2 * p.rear_tire_stiffness)
     w = 2 * np.pi * np.logspace(-1, 1.5, 40)
     full = road_frequency_response(fc, w, speed=15.0, outputs=["sprung_acceleration", "pitch_angle", "roll_angle",
                                                              "dynamic_tire_load_front_left"])
@@ -78,7 +80,7 @@ def test_antiroll_bar_changes_only_roll_and_warp():
 
 def test_shipped_vehicles_build_and_olley_uses_roll_mode():
     for name in vehdyn.shipped_vehicles():
-        fc = FullCar.from_vehicle(vehdyn.load_vehicle(name))
+        fc = FullCar(vehdyn.load_vehicle(name))
         assert fc.is_stable()
         o = olley_criteria(fc)
         modes = ride_modes(fc)
@@ -95,7 +97,7 @@ def test_bad_track():
 def test_tire_loads_balance_the_inertial_forces(build):
     """Newton for the whole car: sum of dynamic tire loads = m z_s'' + sum m_u z_u'' (pitch/roll moments likewise)."""
     v = vehdyn.load_vehicle("van")
-    model = {"two_dof": lambda: BouncePitch.from_vehicle(v, unsprung=False), "half": lambda: BouncePitch.from_vehicle(v),
+    model = {"two_dof": lambda: BouncePitch(v, unsprung=False), "half": lambda: BouncePitch(v),
              "full": lambda: reference_car()}[build]()
     w = np.array([2.0, 9.0, 70.0])
     fr = model.frequency_response(w)

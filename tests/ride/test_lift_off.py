@@ -20,9 +20,9 @@ def sedan():
 
 def test_static_tire_loads_are_the_weights_they_carry(sedan):
     """Quarter car: (m_s + m_u) g; full car: m_s g b / (2 L) + m_u g at a front wheel (statics)."""
-    qc = LiftOff(QuarterCar(**_QC))
+    qc = LiftOff(QuarterCar.from_parameters(**_QC))
     assert qc.static_tire_load[0] == pytest.approx((300.0 + 35.0) * GRAVITY, rel=1e-12)
-    car = FullCar.from_vehicle(sedan, cg_heights=True)
+    car = FullCar(sedan, cg_heights=True)
     p = car.parameters
     loads = LiftOff(car).static_tire_load
     front = p.mass * GRAVITY * p.b / (2 * (p.a + p.b)) + p.front_unsprung_mass * GRAVITY
@@ -33,7 +33,7 @@ def test_static_tire_loads_are_the_weights_they_carry(sedan):
 def test_without_lift_it_is_the_linear_full_car(sedan):
     """A road that never unloads a tire: the same solver on LiftOff and on FullCar gives the same
     result to round-off (the correction force is exactly 0), here a 5 mm, 1.5 Hz heave-and-roll road."""
-    car = FullCar.from_vehicle(sedan)
+    car = FullCar(sedan)
     model = LiftOff(car)
     t = np.linspace(0.0, 0.5, 51)
     w = 2 * np.pi * 1.5
@@ -54,7 +54,7 @@ def test_wheel_dropping_off_a_step_flies_as_the_free_wheel_closed_form():
     motion is that of the quarter car without its tire under the constant force -F_s on the wheel
     (weight and static preloads in the deviation coordinates), solved by the matrix exponential of
     the augmented system; then the wheel lands (the load comes back)."""
-    qc = QuarterCar(**_QC)
+    qc = QuarterCar.from_parameters(**_QC)
     model = LiftOff(qc)
     t = np.linspace(0.0, 0.3, 301)
     inputs = {"road_displacement": np.full(t.size, -0.1), "road_velocity": 0.0}
@@ -85,7 +85,7 @@ def test_wheel_dropping_off_a_step_flies_as_the_free_wheel_closed_form():
 
 def test_compiled_rhs_is_the_numpy_rhs(sedan):
     pytest.importorskip("numba")
-    model = LiftOff(FullCar.from_vehicle(sedan, cg_heights=True))
+    model = LiftOff(FullCar(sedan, cg_heights=True))
     compiled = model.compiled_rhs()
     rng = np.random.default_rng(1)
     for scale in (1e-3, 5e-2):  # in contact, and wheels off the road
@@ -98,14 +98,14 @@ def test_compiled_rhs_is_the_numpy_rhs(sedan):
 def test_full_car_cg_heights_are_the_full_vehicle_s_couplings(sedan):
     """With the CG heights, FullCar's pitch stiffness and inertia carry gravity's moment, the
     unsprung masses' and the wheel spins' share; without them it is the FullCar of before."""
-    plain, high = FullCar.from_vehicle(sedan), FullCar.from_vehicle(sedan, cg_heights=True)
+    plain, high = FullCar(sedan), FullCar(sedan, cg_heights=True)
     m, h = sedan.mass, sedan.mass.sprung_cg_height
     h_u = (m.mass * m.cg_height - m.sprung_mass * h) / m.unsprung_mass
     assert 0 < h_u < h
     assert high.stiffness_matrix[1, 1] == pytest.approx(plain.stiffness_matrix[1, 1] - m.sprung_mass * GRAVITY * h)
     extra = m.unsprung_mass * (h - h_u) ** 2 + 4 * sedan.tires.wheel_spin_inertia * (h / sedan.tires.rolling_radius) ** 2
     assert high.mass_matrix[1, 1] == pytest.approx(plain.mass_matrix[1, 1] + extra)
-    assert FullCar(**{**plain.parameters.to_dict()}).A == pytest.approx(plain.A)
+    assert FullCar.from_parameters(**{**plain.parameters.to_dict()}).A == pytest.approx(plain.A)
 
 
 def test_bad_inputs_name_the_parameter(sedan):
@@ -113,16 +113,16 @@ def test_bad_inputs_name_the_parameter(sedan):
         LiftOff(vehdyn.handling.LinearBicycle(sedan, 20.0))
     assert info.value.key == "model"
     with pytest.raises(ParameterError, match="unsprung mass at every corner"):
-        LiftOff(BouncePitch(mass=1000.0, pitch_inertia=1500.0, a=1.2, b=1.4, front_spring_rate=2e4,
-                            rear_spring_rate=2e4))
+        LiftOff(BouncePitch.from_parameters(mass=1000.0, pitch_inertia=1500.0, a=1.2, b=1.4, front_spring_rate=2e4,
+                                            rear_spring_rate=2e4))
     with pytest.raises(ParameterError, match="passive"):
-        LiftOff(QuarterCar(**_QC, actuator=True))
+        LiftOff(QuarterCar.from_parameters(**_QC, actuator=True))
     for bad in (float("nan"), -9.81, 0.0, True, "9.81"):
         with pytest.raises(ParameterError, match="gravity") as info:
-            LiftOff(QuarterCar(**_QC), gravity=bad)
+            LiftOff(QuarterCar.from_parameters(**_QC), gravity=bad)
         assert info.value.key == "gravity"
     with pytest.raises(ParameterError, match="sprung_cg_height") as info:
-        FullCar.from_vehicle(sedan).replace(sprung_cg_height=10.0)
+        FullCar(sedan).replace(sprung_cg_height=10.0)
     assert info.value.key == "sprung_cg_height"
 
 
@@ -135,7 +135,7 @@ def _slip(speed=15.0):
 def test_lateral_slip_stays_out_of_a_road_without_roll(sedan):
     """Equal tracks excite no roll: v, r and the tire deflections stay 0 (to round-off), and the
     outputs are those of the model without the option (the same solver)."""
-    car = FullCar.from_vehicle(sedan, cg_heights=True)
+    car = FullCar(sedan, cg_heights=True)
     plain, lateral = LiftOff(car), LiftOff(car, lateral=_slip())
     t = np.linspace(0.0, 0.4, 41)
     w = 2 * np.pi * 8.0
@@ -156,7 +156,7 @@ def test_lateral_slip_holds_the_contact_points_steady_state(sedan):
     """A steady roll rate p with the body otherwise at rest: each tire's deflection settles at
     sigma V / u with V = -h p (first-order relaxation), the force at -C V / u (the tire law's
     steady slip), and the roll moment of the forces is -h sum F (closed forms)."""
-    car = FullCar.from_vehicle(sedan, cg_heights=True)
+    car = FullCar(sedan, cg_heights=True)
     slip = _slip()
     model = LiftOff(car, lateral=slip)
     x = np.zeros(model.n_states)
@@ -190,7 +190,7 @@ def test_lateral_slip_holds_the_contact_points_steady_state(sedan):
 
 def test_compiled_rhs_with_both_slips_is_the_numpy_rhs(sedan):
     pytest.importorskip("numba")
-    model = LiftOff(FullCar.from_vehicle(sedan, cg_heights=True), lateral=_slip(), longitudinal=_spin())
+    model = LiftOff(FullCar(sedan, cg_heights=True), lateral=_slip(), longitudinal=_spin())
     compiled = model.compiled_rhs()
     rng = np.random.default_rng(2)
     for scale in (1e-3, 5e-2):
@@ -202,10 +202,10 @@ def test_compiled_rhs_with_both_slips_is_the_numpy_rhs(sedan):
 
 def test_lateral_slip_bad_inputs(sedan):
     with pytest.raises(ParameterError, match="FullCar") as info:
-        LiftOff(QuarterCar(**_QC), lateral=_slip())
+        LiftOff(QuarterCar.from_parameters(**_QC), lateral=_slip())
     assert info.value.key == "lateral"
     with pytest.raises(ParameterError, match="LateralSlip"):
-        LiftOff(FullCar.from_vehicle(sedan), lateral={"speed": 10.0})
+        LiftOff(FullCar(sedan), lateral={"speed": 10.0})
     with pytest.raises(ParameterError, match="speed"):
         LateralSlip(speed=0.0, yaw_inertia=1.0, front_cornering_stiffness=1.0, rear_cornering_stiffness=1.0,
                     front_relaxation_length=0.4, rear_relaxation_length=0.4)
@@ -226,7 +226,7 @@ def test_longitudinal_slip_stays_out_of_a_road_without_pitch(sedan):
     """Without drive torque or rolling resistance and on a road that rolls the body only (left up,
     right down, the same under both axles): no pitch, no slip; the wheels' spin, the fore-aft speed
     and the deflections stay 0 and the outputs are those of the model without the option."""
-    car = FullCar.from_vehicle(sedan, cg_heights=True)
+    car = FullCar(sedan, cg_heights=True)
     plain = LiftOff(car)
     spin = LiftOff(car, longitudinal=_spin(rear_drive_torque=0.0, front_rolling_resistance=0.0,
                                            rear_rolling_resistance=0.0, rear_zero_slip_force=0.0))
@@ -250,7 +250,7 @@ def test_longitudinal_slip_steady_rolling_and_airborne_spin_up(sedan):
     against the rolling resistance (whatever the law's force at zero slip) and every derivative is
     0. A wheel lifted off the road carries no load and no force: it spins up at T_d / I_w exactly
     (closed form omega(t) = T_d t / I_w)."""
-    car = FullCar.from_vehicle(sedan, cg_heights=True)
+    car = FullCar(sedan, cg_heights=True)
     slip = _spin()
     model = LiftOff(car, longitudinal=slip)
     zero_x, zero_u = np.zeros(model.n_states), np.zeros(model.n_inputs)
@@ -273,12 +273,12 @@ def test_longitudinal_slip_steady_rolling_and_airborne_spin_up(sedan):
 
 def test_longitudinal_slip_bad_inputs(sedan):
     with pytest.raises(ParameterError, match="FullCar") as info:
-        LiftOff(QuarterCar(**_QC), longitudinal=_spin())
+        LiftOff(QuarterCar.from_parameters(**_QC), longitudinal=_spin())
     assert info.value.key == "longitudinal"
     with pytest.raises(ParameterError, match="LongitudinalSlip"):
-        LiftOff(FullCar.from_vehicle(sedan), longitudinal={"speed": 10.0})
+        LiftOff(FullCar(sedan), longitudinal={"speed": 10.0})
     with pytest.raises(ParameterError, match="differs") as info:
-        LiftOff(FullCar.from_vehicle(sedan), lateral=_slip(15.0), longitudinal=_spin(12.0))
+        LiftOff(FullCar(sedan), lateral=_slip(15.0), longitudinal=_spin(12.0))
     assert info.value.key == "longitudinal.speed"
     with pytest.raises(ParameterError, match="rolling_radius"):
         _spin(rolling_radius=-0.3)

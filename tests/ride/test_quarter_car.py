@@ -14,8 +14,8 @@ from .conftest import check, load_case
 
 def golden_car(**extra):
     inp = load_case("E-QC-GOLDENCAR")["inputs"]
-    return QuarterCar(sprung_mass=inp["ms"][0], unsprung_mass=inp["mu"][0], spring_rate=inp["ks"][0],
-                      damping=inp["cs"][0], tire_stiffness=inp["kt"][0], **extra)
+    return QuarterCar.from_parameters(sprung_mass=inp["ms"][0], unsprung_mass=inp["mu"][0], spring_rate=inp["ks"][0],
+                                      damping=inp["cs"][0], tire_stiffness=inp["kt"][0], **extra)
 
 
 def closed_form(p, s):
@@ -68,8 +68,9 @@ def test_published_wheel_hop_example():
     inp, exp = c["inputs"], c["expected"]
     static = inp["vehicle_mass"][0] * inp["front_weight_fraction"][0] * inp["g"][0] / 2
     check(static, exp["static_load_per_front_tyre"], "static load")
-    qc = QuarterCar(sprung_mass=static / inp["g"][0] - inp["mu_unsprung"][0], unsprung_mass=inp["mu_unsprung"][0],
-                    spring_rate=inp["ks_wheel_rate"][0], tire_stiffness=inp["kt"][0])
+    qc = QuarterCar.from_parameters(sprung_mass=static / inp["g"][0] - inp["mu_unsprung"][0],
+                                    unsprung_mass=inp["mu_unsprung"][0], spring_rate=inp["ks_wheel_rate"][0],
+                                    tire_stiffness=inp["kt"][0])
     f_est = qc.estimates()["wheel_hop_frequency_hz"]
     check(f_est, exp["f_wheel_hop"], "estimate")
     # the exact 2-DOF hop frequency is within the book's 3 digits too
@@ -83,7 +84,7 @@ def test_published_wheel_hop_example():
        kt=st.floats(1e5, 4e5), ct=st.floats(0, 500), f=st.floats(0.05, 40))
 def test_frequency_response_equals_closed_form(ms, mu, ks, cs, kt, ct, f):
     p = dict(sprung_mass=ms, unsprung_mass=mu, spring_rate=ks, damping=cs, tire_stiffness=kt, tire_damping=ct)
-    qc = QuarterCar(**p)
+    qc = QuarterCar.from_parameters(**p)
     w = 2 * np.pi * f
     fr = vehdyn.ride.road_frequency_response(qc, [w])
     zs, zu, load = closed_form(p, 1j * w)
@@ -102,15 +103,16 @@ def test_frequency_response_equals_closed_form(ms, mu, ks, cs, kt, ct, f):
 
 def test_single_dof_limit_damping_ratio():
     """Stiff tire, light wheel: the body mode tends to the 1-DOF oscillator zeta = c / (2 sqrt(k m))."""
-    qc = QuarterCar(sprung_mass=400.0, unsprung_mass=1e-3, spring_rate=2e4, damping=1500.0, tire_stiffness=1e10)
+    qc = QuarterCar.from_parameters(sprung_mass=400.0, unsprung_mass=1e-3, spring_rate=2e4, damping=1500.0,
+                                    tire_stiffness=1e10)
     m = ride_modes(qc)
     assert m.damping_ratio[0] == pytest.approx(1500.0 / (2 * np.sqrt(2e4 * 400.0)), rel=1e-5)
     assert m.natural_frequency_hz[0] == pytest.approx(np.sqrt(2e4 / 400.0) / (2 * np.pi), rel=1e-5)
 
 
-def test_from_vehicle_corner_shares():
+def test_a_vehicle_corner_shares():
     v = vehdyn.load_vehicle("sedan")
-    front, rear = QuarterCar.from_vehicle(v, "front"), QuarterCar.from_vehicle(v, "rear")
+    front, rear = QuarterCar(v, "front"), QuarterCar(v, "rear")
     # the four corners carry the sprung mass (static moment balance about each axle)
     total = 2 * (front.parameters.sprung_mass + rear.parameters.sprung_mass)
     assert total == pytest.approx(v.mass.sprung_mass, rel=1e-12)
@@ -141,13 +143,13 @@ def test_bad_parameters_are_named(key, value):
     kw = dict(sprung_mass=300.0, unsprung_mass=40.0, spring_rate=2e4, damping=1e3, tire_stiffness=2e5)
     kw[key] = value
     with pytest.raises(vehdyn.ParameterError) as err:
-        QuarterCar(**kw)
+        QuarterCar.from_parameters(**kw)
     assert err.value.key == key
 
 
 def test_bad_axle():
     with pytest.raises(vehdyn.ParameterError, match="axle"):
-        QuarterCar.from_vehicle(vehdyn.load_vehicle("sedan"), "middle")
+        QuarterCar(vehdyn.load_vehicle("sedan"), "middle")
 
 
 def test_replace_validates_and_keeps_the_actuator_option():

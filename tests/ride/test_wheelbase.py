@@ -11,7 +11,7 @@ from vehdyn.interconnect import pade_coefficients
 
 @pytest.fixture(scope="module")
 def half_car():
-    return BouncePitch.from_vehicle(vehdyn.load_vehicle("sedan"))
+    return BouncePitch(vehdyn.load_vehicle("sedan"))
 
 
 def test_pade_error_bound_stated_in_the_docstring():
@@ -51,8 +51,8 @@ def test_exact_delay_frequency_response_is_front_plus_delayed_rear(half_car):
 
 def test_wheelbase_filtering_cancels_pitch_or_bounce():
     """Symmetric 2-DOF car (a = b, equal rates, DI = 1): pitch vanishes where L / wavelength is whole (Gillespie ch. 5)."""
-    bp = BouncePitch(mass=1000.0, pitch_inertia=1000.0 * 1.3**2, a=1.3, b=1.3, front_spring_rate=3e4,
-                     rear_spring_rate=3e4, front_damping=2e3, rear_damping=2e3)
+    bp = BouncePitch.from_parameters(mass=1000.0, pitch_inertia=1000.0 * 1.3**2, a=1.3, b=1.3, front_spring_rate=3e4,
+                                     rear_spring_rate=3e4, front_damping=2e3, rear_damping=2e3)
     speed = 13.0
     L = 2.6
     w = 2 * np.pi * speed / np.array([L, L / 2])  # wavelength = L, L/2: front and rear in phase
@@ -70,7 +70,7 @@ def test_time_domain_exact_delay_agrees_with_pade(half_car):
     ramp = 0.5 * (1 - np.cos(np.pi * np.clip((s - 10.0) / 16.0, 0.0, 1.0)))  # smooth onset over 16 m
     z = 0.01 * np.sin(2 * np.pi * s / 8.0) * ramp  # 2.5 Hz at 20 m/s: omega tau = 2.0
     exact = vehdyn.simulate(half_car, t, inputs=road_inputs(half_car, t, speed, s, z), method="exact")
-    front = road_inputs(QuarterCar.from_vehicle(vehdyn.load_vehicle("sedan")), t, speed, s, z)
+    front = road_inputs(QuarterCar(vehdyn.load_vehicle("sedan")), t, speed, s, z)
     padé = with_wheelbase_delay(half_car, speed, order=6)
     approx = vehdyn.simulate(padé, t, inputs=front, method="exact")
     peak = np.max(np.abs(exact["pitch_angle"]))
@@ -83,7 +83,7 @@ def test_time_domain_exact_delay_agrees_with_pade(half_car):
 
 
 def test_full_car_tracks():
-    fc = FullCar.from_vehicle(vehdyn.load_vehicle("van"))
+    fc = FullCar(vehdyn.load_vehicle("van"))
     model = with_wheelbase_delay(fc, 25.0, order=4)
     assert model.input_names == ("road_displacement_left", "road_velocity_left", "road_displacement_right",
                                  "road_velocity_right")
@@ -97,7 +97,7 @@ def test_full_car_tracks():
 
 
 def test_quarter_car_has_no_delay():
-    qc = QuarterCar(sprung_mass=300.0, unsprung_mass=40.0, spring_rate=2e4, tire_stiffness=2e5)
+    qc = QuarterCar.from_parameters(sprung_mass=300.0, unsprung_mass=40.0, spring_rate=2e4, tire_stiffness=2e5)
     assert with_wheelbase_delay(qc, 20.0) is qc
 
 

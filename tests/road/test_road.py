@@ -319,8 +319,9 @@ def test_golden_car_is_the_quarter_car_of_its_ratios():
     from vehdyn.ride import QuarterCar
 
     g = road.GOLDEN_CAR
-    quarter = QuarterCar(sprung_mass=1.0, unsprung_mass=g["mass_ratio"], spring_rate=g["spring_stiffness_ratio"],
-                         damping=g["damping_ratio"], tire_stiffness=g["tire_stiffness_ratio"])
+    quarter = QuarterCar.from_parameters(sprung_mass=1.0, unsprung_mass=g["mass_ratio"],
+                                         spring_rate=g["spring_stiffness_ratio"], damping=g["damping_ratio"],
+                                         tire_stiffness=g["tire_stiffness_ratio"])
     golden = road.golden_car()
     states = [quarter.index(name) for name in golden.state_names]
     np.testing.assert_allclose(quarter.A[np.ix_(states, states)], golden.A, rtol=1e-15, atol=0)

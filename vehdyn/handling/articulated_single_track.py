@@ -100,7 +100,7 @@ class ArticulationEvent(NamedTuple):
     articulation_angle : float
         [rad] at that time.
     yaw_rate : float
-        The towing vehicle's [rad/s].
+        Of the towing vehicle [rad/s].
     trailer_yaw_rate : float
         [rad/s].
     """
@@ -140,7 +140,7 @@ def _lock(forces, demand, limit, vx, vy):
 
 
 class ArticulatedSingleTrack(Model):
-    r"""Towing vehicle and trailer in the road plane, nonlinear tires (equations in the module docstring).
+    r"""Towing vehicle and trailer in the road plane, nonlinear tires, through standstill.
 
     Parameters
     ----------
@@ -160,9 +160,9 @@ class ArticulatedSingleTrack(Model):
         Tire deflection (relaxation) states on all three axles (default True; needed for low speed
         and standstill). The trailer's needs ``trailer.relaxation_length > 0``.
     low_speed_damping_speed : float
-        v_l [m/s] of the low-speed tire damping (SingleTrack's).
+        v_l [m/s] of the low-speed tire damping (SingleTrack's; default 2).
     gravity : float
-        [m/s^2].
+        g [m/s^2] (default :data:`vehdyn.units.GRAVITY`).
 
     Signals
     -------
@@ -184,22 +184,44 @@ class ArticulatedSingleTrack(Model):
 
     Notes
     -----
-    The two bodies coupled by the hitch force H (module docstring; SAE axes):
+    Two rigid bodies joined by a pin hitch h behind the towing vehicle's CG, each axle lumped on
+    the centre line, its forces from the shared tire step of :mod:`vehdyn.components` (two tires at
+    half the axle load, the single track's force mode and relaxation). With u, v,
+    r the towing vehicle's velocities and yaw rate (its axes), theta the articulation angle,
+    r_t = r - dtheta/dt the trailer's yaw rate, t = (cos theta, -sin theta) and
+    n = (sin theta, cos theta) the trailer's forward and right unit vectors in the towing
+    vehicle's axes, H the hitch force of the trailer on the towing vehicle, F_1, M_1 the tire,
+    drag, wind and external forces and moment on the towing vehicle, F_t the trailer's axle force
+    (X_t along t, Y_t along n) plus its external and wind forces:
 
     .. math::
 
-        m a_1 = F_1 + H,\qquad I \dot r = M_1 - h H_y,\qquad
-        m_t a_t = F_t - H,\qquad I_t \dot r_t = -e (H \cdot n) - f Y_t + M_{t,ext}
+        a_1 &= (\dot u - v r, \; \dot v + u r), \qquad
+        a_h = a_1 + (h r^2, \; -h \dot r), \qquad
+        a_t = a_h - e \dot r_t \, n + e r_t^2 \, t, \\
+        m a_1 &= F_1 + H, \qquad I \dot r = M_1 - h H_y, \\
+        m_t a_t &= F_t - H, \qquad
+        I_t \dot r_t = -e (H \cdot n) - f Y_t + M_{t,ext} - (d_p - e) F_{wt}, \\
+        V_{x,t} &= u \cos\theta - (v - h r) \sin\theta, \qquad
+        V_{y,t} = u \sin\theta + (v - h r) \cos\theta - l_t r_t
 
-    with each axle's forces from the shared tire step of :mod:`vehdyn.components` (two tires at
-    half the axle load, the single track's force mode and relaxation).
+    (e the trailer CG behind the hitch, f its axle behind its CG, l_t = e + f, d_p its centre of
+    pressure behind the hitch, V_t the trailer axle's velocity in its axes). Eliminating H leaves
+    four equations linear in (du/dt, dv/dt, dr/dt, dr_t/dt), solved at every call. The trailer's
+    static tongue load m_t g f / l_t moves load between the towing vehicle's axles; a braking
+    demand beyond mu F_z locks an axle, whose force is then the Coulomb friction against its
+    sliding velocity, -mu F_z V / sqrt(|V|^2 + v_s^2), v_s = :data:`LOCKED_SLIDING_SPEED`. For
+    small angles at constant speed with linear tires this is :class:`~vehdyn.handling.LinearCarTrailer`
+    (tested to 1e-6). Assumptions and the crosswind law in the module docstring.
 
     References
     ----------
-    .. [1] J. R. Ellis, *Vehicle Dynamics*, Business Books, 1969, ch. 10.
-    .. [2] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, sec. 1.3.3.
+    .. [1] J. R. Ellis, *Vehicle Dynamics*, Business Books, 1969, ch. 10 (articulated vehicles).
+    .. [2] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 1.3.3 (the car–trailer combination).
     .. [3] D. Karnopp, *Vehicle Dynamics, Stability, and Control*, 2nd ed., CRC Press, 2013, ch. 9.
-    .. [4] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 1.4 (a locked tire).
+    .. [4] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 1.4 (a locked tire
+       slides: no better sideways grip than its sliding friction).
     """
 
     def __init__(self, vehicle: Vehicle, trailer: Trailer, front_tire=None, rear_tire=None, trailer_tire=None, *,
@@ -307,18 +329,18 @@ class ArticulatedSingleTrack(Model):
         axle : int
             0 front, 1 rear (the towing vehicle's), 2 the trailer's.
         fz : float or ndarray
-            Axle load [N].
+            Axle normal load [N].
         kappa : float or ndarray
-            Slip ratio [-] (ISO-W).
+            Longitudinal slip ratio [-] (ISO-W).
         alpha : float or ndarray
             Slip angle [rad] (ISO-W).
         vx : float or ndarray
-            Signed wheel-centre speed [m/s].
+            Longitudinal speed of the wheel centre [m/s].
 
         Returns
         -------
-        tuple
-            (F_x [N], F_y [N]) of the axle, ISO-W.
+        fx, fy : ndarray
+            The axle's longitudinal and lateral forces [N] (ISO-W, both tires).
         """
         if axle == 2:
             fx, fy, _ = axle_tire_loads(eq.NUMPY, self.trailer_tire, fz, kappa, alpha, vx, self._trailer_mirrored, 1.0,
@@ -448,14 +470,14 @@ class ArticulatedSingleTrack(Model):
 
     # ------------------------------------------------------------------ operating points and analysis
     def straight_running(self, speed: float, **states) -> np.ndarray:
-        """State vector of straight running at ``speed``, trailer in line, tires relaxed.
+        """State vector of straight running, trailer in line, tires relaxed.
 
         Parameters
         ----------
         speed : float
-            Forward speed [m/s].
+            Forward speed u [m/s].
         **states
-            Other states by name [their units].
+            Other states by name [their units] (default 0).
 
         Returns
         -------
@@ -465,24 +487,23 @@ class ArticulatedSingleTrack(Model):
         return self.state_vector({"longitudinal_velocity": speed, **states})
 
     def lateral_yaw(self, speed: float, *, crosswind: bool = False):
-        """The lateral–yaw–articulation block of the linearization at straight running at ``speed``.
-
-        States ``lateral_velocity``, ``yaw_rate``, ``articulation_angle``, ``articulation_rate``
-        (and the lateral deflections with tire lag), input ``front_steer_angle`` (and
-        ``wind_velocity_lateral`` with ``crosswind=True``), the first fifteen outputs (those of
-        :class:`~vehdyn.handling.LinearCarTrailer`, in its order). With linear tires and no tire
-        lag its matrices are those of LinearCarTrailer (with the same ``crosswind``).
+        """The lateral–yaw–articulation block of the linearization at straight running.
 
         Parameters
         ----------
         speed : float
-            Forward speed [m/s].
-        crosswind : bool
-            Keep the input ``wind_velocity_lateral``.
+            Forward speed u [m/s] of the straight running linearized about.
+        crosswind : bool, optional
+            Keep the input ``wind_velocity_lateral`` (default False).
 
         Returns
         -------
         LinearModel
+            States ``lateral_velocity``, ``yaw_rate``, ``articulation_angle``,
+            ``articulation_rate`` (and the lateral deflections with tire lag), input
+            ``front_steer_angle`` (and ``wind_velocity_lateral``), the fifteen outputs of
+            :class:`~vehdyn.handling.LinearCarTrailer` in its order. With linear tires and no tire
+            lag its matrices are those of LinearCarTrailer (with the same ``crosswind``).
         """
         from vehdyn.handling.bicycle import linear_model_speed
         from vehdyn.model import LinearModel
@@ -505,7 +526,7 @@ class ArticulatedSingleTrack(Model):
 
     @staticmethod
     def articulation_event(result, threshold: float = np.radians(45.0)) -> ArticulationEvent | None:
-        """The first time |articulation angle| exceeds ``threshold`` [rad] in a simulation ``result``.
+        """The first time the articulation angle leaves its safe range in a simulation.
 
         Classified by which body turns faster at that moment: ``"jackknife"`` when the towing
         vehicle's yaw rate is the larger (it swings round towards the trailer, as after a locked
@@ -515,14 +536,16 @@ class ArticulatedSingleTrack(Model):
         Parameters
         ----------
         result : SimulationResult
-            A run of this model.
-        threshold : float
-            |articulation angle| [rad], in (0, pi].
+            A simulation of this model (outputs ``articulation_angle``, ``yaw_rate``,
+            ``trailer_yaw_rate``).
+        threshold : float, optional
+            |articulation angle| beyond which the combination is out of control [rad], in
+            (0, pi] (default 45 degrees).
 
         Returns
         -------
         ArticulationEvent or None
-            None if the threshold is never reached.
+            The first sample beyond the threshold; None if it is never reached.
         """
         from vehdyn.params.checks import finite_number
 

@@ -137,9 +137,24 @@ class BicycleParameters(ParameterSet):
 def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
     """The :class:`BicycleParameters` of a Vehicle, a LinearBicycle or a BicycleParameters.
 
-    For a Vehicle the axle cornering stiffnesses and relaxation lengths come from
-    ``vehicle.tires``, the yaw inertia from ``vehicle.mass.yaw_inertia`` (whole vehicle), the
-    crosswind numbers from ``vehicle.aero`` (:mod:`vehdyn.handling.crosswind`).
+    Parameters
+    ----------
+    vehicle_or_model : Vehicle, LinearBicycle or BicycleParameters
+        For a Vehicle the total mass and yaw inertia (``vehicle.mass``, whole vehicle), the total
+        CG's distances to the axles (``vehicle.geometry``), the AXLE cornering stiffnesses and
+        relaxation lengths (``vehicle.tires``) and the crosswind numbers (``vehicle.aero``, see
+        :mod:`vehdyn.handling.crosswind`); a model (anything with a ``bicycle_parameters``
+        attribute, such as :class:`LinearBicycle`) gives its own; a BicycleParameters passes through.
+
+    Returns
+    -------
+    BicycleParameters
+        The validated parameters.
+
+    Raises
+    ------
+    ParameterError
+        For any other argument (``key="vehicle"``).
     """
     if isinstance(vehicle_or_model, BicycleParameters):
         return vehicle_or_model
@@ -210,7 +225,7 @@ def speed_of(model, speed=None, *, allow_zero: bool = False) -> np.ndarray:
 
 
 class LinearBicycle(LinearModel):
-    """2-DOF lateral/yaw single-track model at constant forward speed, an exact LinearModel.
+    r"""2-DOF lateral/yaw single-track (bicycle) model at constant forward speed, an exact LinearModel.
 
     Parameters
     ----------
@@ -236,22 +251,74 @@ class LinearBicycle(LinearModel):
 
     Notes
     -----
+    SAE J670 axes (x forward, y right, z down): u the forward speed, v the lateral velocity of the
+    CG, r the yaw rate, delta_f and delta_r the front and rear road-wheel steer angles (positive
+    steering right), C_f and C_r the AXLE cornering stiffnesses (both tires, positive), a and b
+    the CG's distances to the axles, alpha the SAE slip angles (linearized):
+
+    .. math::
+
+        m (\dot v + u r) &= F_{yf} + F_{yr} + k_w u w, \qquad
+        I_z \dot r = a F_{yf} - b F_{yr} + x_p k_w u w, \\
+        F_{yf} &= -C_f \alpha_f, \qquad \alpha_f = \frac{v + a r}{u} - \delta_f, \qquad
+        F_{yr} = -C_r \alpha_r, \qquad \alpha_r = \frac{v - b r}{u} - \delta_r
+
+    The wind term (``crosswind=True``) is the side force 0.5 rho A C_Y' u w of a lateral wind w
+    linearized about w = 0, at the centre of pressure x_p ahead of the CG. With tire lag
+    (``tire_lag=True``, relaxation length sigma > 0) the axle's force follows the transient slip
+    angle alpha', a state:
+
+    .. math::
+
+        \frac{\sigma}{u} \dot\alpha' + \alpha' = \alpha, \qquad F_y = -C \alpha'
+
+    Outputs are linear in the states and inputs: a_y = dv/dt + u r, beta = v / u, the path
+    curvature a_y / u^2, the slip angles and the axle forces. The model takes u >=
+    :data:`LINEAR_MIN_SPEED`: below it the path curvature loses its digits as 1/u^2 (module
+    docstring, "Minimum speed").
+
     States ``lateral_velocity`` [m/s], ``yaw_rate`` [rad/s] (then the transient slip angles);
     inputs ``front_steer_angle``, ``rear_steer_angle`` (road-wheel angles [rad]; with
     ``crosswind=True`` also ``wind_velocity_lateral`` [m/s], toward +y); outputs
     ``lateral_acceleration``, ``sideslip_angle``, ``yaw_rate``, ``lateral_velocity``,
     ``front_slip_angle``, ``rear_slip_angle``, ``path_curvature``, ``front_lateral_force``,
     ``rear_lateral_force``. SAE signs: a positive front steer gives a positive yaw rate and a
-    positive lateral acceleration. Equations and references in the module docstring.
+    positive lateral acceleration.
+
+    References
+    ----------
+    .. [1] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 6 (the cornering
+       equations, eq. 6-15 to 6-24). Gillespie's slip angle is the wheel's angle to its velocity,
+       the opposite sign of the SAE slip angle used here; the forces are the same.
+    .. [2] M. Abe, *Vehicle Handling Dynamics*, Butterworth-Heinemann, 2009, sec. 3.2
+       (eq. 3.11-3.12; K_f, K_r there are per tire: C = 2 K).
+    .. [3] R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., Springer, 2012, sec. 2.3
+       (eq. 2.31; cornering stiffness per tire).
+    .. [4] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 1.3 (the two-degree-of-freedom model and its stability) and sec. 7.1.2 (eq. 7.12, the
+       relaxation-length law, linearized here).
+    .. [5] W. F. Milliken and D. L. Milliken, *Race Car Vehicle Dynamics*, SAE, 1995, ch. 5.
+    .. [6] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, ch. 5 (handling
+       characteristics of road vehicles).
 
     Examples
     --------
+    The yaw-rate gain of a textbook car at 20 m/s, per radian of road-wheel steer:
+
     >>> import vehdyn
     >>> from vehdyn.handling import LinearBicycle
     >>> car = LinearBicycle.from_parameters(mass=1500, yaw_inertia=2500, a=1.1, b=1.6,
     ...     front_cornering_stiffness=110e3, rear_cornering_stiffness=120e3, speed=20.0)
     >>> round(float(car.dc_gain()[car.index("yaw_rate", "outputs"), 0]), 4)
     5.1344
+
+    A shipped vehicle, its yaw mode at 30 m/s:
+
+    >>> sedan = LinearBicycle(vehdyn.load_vehicle("sedan"), 30.0)
+    >>> sedan.state_names
+    ('lateral_velocity', 'yaw_rate')
+    >>> bool(sedan.is_stable())
+    True
     """
 
     phenomena = frozenset({"lateral", "yaw"})
@@ -296,6 +363,12 @@ class LinearBicycle(LinearModel):
             ``wind_velocity_lateral``.
         centre_of_pressure : float, optional
             x_p [m], the aerodynamic centre of pressure ahead of the CG.
+
+        Returns
+        -------
+        LinearBicycle
+            With tire lag where a relaxation length is positive and the crosswind input where
+            ``wind_side_force_factor`` is.
         """
         params = BicycleParameters(mass=mass, yaw_inertia=yaw_inertia, a=a, b=b,
                                    front_cornering_stiffness=front_cornering_stiffness,
@@ -308,7 +381,18 @@ class LinearBicycle(LinearModel):
         return cls(params, speed, tire_lag=lag, crosswind=wind_side_force_factor > 0)
 
     def at_speed(self, speed: float) -> "LinearBicycle":
-        """The same vehicle at another forward speed [m/s]."""
+        """The same vehicle at another forward speed.
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed u [m/s], >= :data:`LINEAR_MIN_SPEED`.
+
+        Returns
+        -------
+        LinearBicycle
+            The same parameters, tire lag and crosswind input at ``speed``.
+        """
         p = self.bicycle_parameters
         return type(self)(p, speed, tire_lag=p.front_relaxation_length > 0 or p.rear_relaxation_length > 0,
                           crosswind="wind_velocity_lateral" in self.input_names)

@@ -203,6 +203,12 @@ def car_trailer_parameters(vehicle, trailer: Trailer | None = None) -> CarTraile
         load); a CarTrailerParameters is returned as it is.
     trailer : Trailer
         The trailer; its ``hitch_behind_rear_axle`` places the hitch, h = b + that distance.
+        Not needed with a CarTrailerParameters.
+
+    Returns
+    -------
+    CarTrailerParameters
+        The validated parameters (with the wind numbers of ``vehicle.aero`` and the trailer's).
     """
     if isinstance(vehicle, CarTrailerParameters):
         return vehicle
@@ -230,7 +236,21 @@ def car_trailer_parameters(vehicle, trailer: Trailer | None = None) -> CarTraile
 
 
 class SnakingMode(NamedTuple):
-    """The trailer's least-damped oscillatory mode at one speed."""
+    """The trailer's least-damped oscillatory mode at one speed.
+
+    Attributes
+    ----------
+    speed : float
+        [m/s].
+    eigenvalue : complex
+        lambda [1/s], the one with positive imaginary part.
+    frequency_hz : float
+        Damped frequency Im(lambda) / (2 pi) [Hz].
+    natural_frequency_hz : float
+        |lambda| / (2 pi) [Hz].
+    damping_ratio : float
+        -Re(lambda) / |lambda| [-] (negative: the oscillation grows).
+    """
 
     speed: float
     """[m/s]"""
@@ -285,7 +305,7 @@ def _state_space(p: CarTrailerParameters, u: float):
 
 
 class LinearCarTrailer(LinearModel):
-    """Car–trailer combination at constant speed: an exact LinearModel (equations in the module docstring).
+    r"""Car–trailer combination at constant speed: lateral, yaw and articulation motion, an exact LinearModel.
 
     Parameters
     ----------
@@ -295,15 +315,51 @@ class LinearCarTrailer(LinearModel):
     trailer : Trailer, optional
         The trailer (mass, yaw inertia, hitch and axle positions, axle cornering stiffness).
     speed : float
-        Constant forward speed u [m/s], > 0.
+        Constant forward speed u [m/s], > 0 (required).
     crosswind : bool
         Add the input ``wind_velocity_lateral`` [m/s] (module docstring), the wind acting on both
         bodies with the side-force factors and centres of pressure of the parameters (from
         ``vehicle.aero`` and the trailer's ``frontal_area``, ``side_force_coefficient_slope`` and
         ``centre_of_pressure_behind_hitch``). Default False.
 
+    Attributes
+    ----------
+    car_trailer_parameters : CarTrailerParameters
+    speed : float
+        [m/s].
+
     Notes
     -----
+    Two rigid bodies joined by a pin hitch h behind the car's CG, SAE axes on each: the car's
+    lateral velocity v and yaw rate r at its CG, the articulation angle theta (car yaw minus
+    trailer yaw, so that the trailer's yaw rate is r_t = r - dtheta/dt), the trailer's CG e behind
+    the hitch and its axle f behind its CG (l_t = e + f), F_h the hitch's lateral force on the
+    car, Y the axle forces of the AXLE cornering stiffnesses C, F_w = k_w u w and F_wt = k_wt u w
+    the wind's side forces on the two bodies (``crosswind=True``) at x_p ahead of the car's CG and
+    d_p behind the hitch:
+
+    .. math::
+
+        m (\dot v + u r) &= Y_f + Y_r + F_h + F_w, \qquad
+        I \dot r = a Y_f - b Y_r - h F_h + x_p F_w, \\
+        m_t a_t &= Y_t - F_h + F_{wt}, \qquad
+        I_t \dot r_t = -e F_h - f Y_t - (d_p - e) F_{wt}, \\
+        a_t &= \dot v - h \dot r - e \dot r_t + u r, \qquad Y_i = -C_i \alpha_i, \\
+        \alpha_f &= \frac{v + a r}{u} - \delta, \quad \alpha_r = \frac{v - b r}{u}, \quad
+        \alpha_t = \frac{v - h r + u \theta - l_t r_t}{u}
+
+    F_h is eliminated, leaving three second-order equations in dv/dt, dr/dt and d^2theta/dt^2. In
+    the steady state the hitch passes the share f / l_t of the trailer's lateral inertia force to
+    the car, which gives the combination's understeer gradient (:attr:`understeer_gradient`):
+
+    .. math::
+
+        K = \frac{m b - m_h (h - b)}{L C_f} - \frac{m a + m_h (a + h)}{L C_r}, \qquad
+        m_h = m_t \frac{f}{l_t}
+
+    The snaking mode (the trailer's yaw oscillation) loses its damping at the critical speed
+    (:meth:`critical_speed`).
+
     States ``lateral_velocity`` [m/s], ``yaw_rate`` [rad/s], ``articulation_angle`` [rad] (car yaw
     minus trailer yaw), ``articulation_rate`` [rad/s]; input ``front_steer_angle`` [rad] (and with
     ``crosswind=True`` ``wind_velocity_lateral`` [m/s]); outputs
@@ -311,6 +367,18 @@ class LinearCarTrailer(LinearModel):
     ``yaw_rate``, ``trailer_yaw_rate``, ``articulation_rate``, ``lateral_velocity``,
     ``sideslip_angle``, the three slip angles and axle forces and ``hitch_lateral_force``. SAE
     signs: a positive steer gives a positive yaw rate, lateral acceleration and articulation angle.
+
+    References
+    ----------
+    .. [1] J. R. Ellis, *Vehicle Dynamics*, Business Books, 1969, ch. 10 (articulated vehicles).
+    .. [2] R. T. Bundorf, "Directional control dynamics of automobile–travel trailer
+       combinations", SAE 670099, 1967.
+    .. [3] R. S. Sharp and M. A. Alonso Fernández, "Car–caravan snaking. Part 1: the influence of
+       pintle pin friction", Proc. IMechE Part C 216, 2002 (snaking and its critical speed).
+    .. [4] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 1.3.3 (the car–trailer combination, by Lagrange's equations in the car's body-fixed
+       quasi-coordinates: the same equations, see the tests).
+    .. [5] D. Karnopp, *Vehicle Dynamics, Stability, and Control*, 2nd ed., CRC Press, 2013, ch. 9.
 
     Examples
     --------
@@ -372,6 +440,11 @@ class LinearCarTrailer(LinearModel):
         trailer_wind_side_force_factor, trailer_centre_of_pressure : float, optional
             The trailer's k_wt [kg/m] and centre of pressure d_p behind the hitch [m]. A positive
             k_w or k_wt adds the crosswind input ``wind_velocity_lateral``.
+
+        Returns
+        -------
+        LinearCarTrailer
+            The combination at ``speed``.
         """
         params = CarTrailerParameters(
             mass=mass, yaw_inertia=yaw_inertia, a=a, b=b, front_cornering_stiffness=front_cornering_stiffness,
@@ -384,15 +457,39 @@ class LinearCarTrailer(LinearModel):
         return cls(params, speed=speed, crosswind=wind_side_force_factor > 0 or trailer_wind_side_force_factor > 0)
 
     def at_speed(self, speed: float) -> "LinearCarTrailer":
-        """The same combination at another forward speed [m/s] (with the wind input if this one has it)."""
+        """The same combination at another forward speed (with the wind input if this one has it).
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed u [m/s], > 0.
+
+        Returns
+        -------
+        LinearCarTrailer
+            The same parameters at ``speed``.
+        """
         return type(self)(self.car_trailer_parameters, speed=speed,
                           crosswind="wind_velocity_lateral" in self.input_names)
 
     # ------------------------------------------------------------------ stability
     def snaking_mode(self, speed: float | None = None) -> SnakingMode:
-        """The trailer's snaking mode (least-damped oscillatory eigenvalue pair) at ``speed`` [m/s].
+        """The trailer's snaking mode: the least-damped oscillatory eigenvalue pair.
 
-        Default: the model's own speed. Raises ParameterError when no mode oscillates at that speed.
+        Parameters
+        ----------
+        speed : float, optional
+            Forward speed [m/s], > 0; default the model's own.
+
+        Returns
+        -------
+        SnakingMode
+            Its eigenvalue, frequencies and damping ratio.
+
+        Raises
+        ------
+        ParameterError
+            When no mode oscillates at that speed.
         """
         u = self.speed if speed is None else float(check_speed(speed))
         lam = _snaking_eigenvalue(self.car_trailer_parameters, u)
@@ -410,10 +507,11 @@ class LinearCarTrailer(LinearModel):
 
         Parameters
         ----------
-        max_speed : float
-            Top of the scanned range [m/s], finite and above the lowest speed scanned (0.5 m/s).
-        xtol : float
-            Absolute tolerance of the refined speed [m/s], finite and > 0.
+        max_speed : float, optional
+            Highest speed scanned [m/s], finite and above the lowest speed scanned (0.5 m/s)
+            (default 100).
+        xtol : float, optional
+            Absolute tolerance of the critical speed [m/s], finite and > 0 (default 1e-10).
 
         Returns
         -------
@@ -454,7 +552,18 @@ class LinearCarTrailer(LinearModel):
         return float(brentq(lambda u: _snaking_real_part(p, u), speeds[k - 1], speeds[k], xtol=xtol, rtol=1e-14))
 
     def max_real_part(self, speed: float | None = None) -> float:
-        """Largest real part of all eigenvalues [1/s] at ``speed`` (> 0: unstable in some mode)."""
+        """Largest real part of all eigenvalues at ``speed``.
+
+        Parameters
+        ----------
+        speed : float, optional
+            Forward speed [m/s], > 0; default the model's own.
+
+        Returns
+        -------
+        float
+            max Re(lambda) [1/s]; > 0: unstable in some mode (snaking or divergence).
+        """
         u = self.speed if speed is None else float(check_speed(speed))
         return float(np.max(np.linalg.eigvals(_state_space(self.car_trailer_parameters, u)[0]).real))
 
@@ -469,6 +578,11 @@ class LinearCarTrailer(LinearModel):
 
         theta / a_y = (h - b + l_t) / u^2 + m_h' / C_r - m_t e / (l_t C_t) with
         m_h' = (m a + m_h (a + h)) / L (module docstring), from the DC gains.
+
+        Returns
+        -------
+        float
+            theta / a_y [rad/(m/s^2)] (positive: the car's heading leads the trailer's in the turn).
         """
         gain = self.dc_gain()
         return float(gain[self.index("articulation_angle", "outputs"), 0]
@@ -477,9 +591,19 @@ class LinearCarTrailer(LinearModel):
     def low_speed_offtracking(self, radius) -> np.ndarray:
         """Off-tracking [m] of the trailer axle inside the car's rear axle on a circle at walking pace.
 
-        Kinematic steady state (no tire slip): the rear axle runs on ``radius`` R [m], the hitch on
+        Kinematic steady state (no tire slip): the rear axle runs on ``radius`` R, the hitch on
         sqrt(R^2 + d^2) with d = h - b its distance behind the rear axle, the trailer axle on
         sqrt(R^2 + d^2 - l_t^2); the off-tracking is R minus that (positive: inside).
+
+        Parameters
+        ----------
+        radius : float or array_like
+            Radius R of the car's rear-axle path [m], > 0, with R^2 + d^2 >= l_t^2.
+
+        Returns
+        -------
+        float or ndarray
+            Off-tracking [m] (positive: the trailer axle runs inside the car's rear axle).
         """
         p = self.car_trailer_parameters
         R = np.asarray(radius, dtype=float)
@@ -515,6 +639,22 @@ class CrosswindAmplification(NamedTuple):
 
     Gains are per unit lateral wind w [m/s] (steering held), magnitudes of the frequency responses
     of the linear models with the wind input.
+
+    Attributes
+    ----------
+    speed : float
+        [m/s].
+    omega : ndarray
+        Angular frequencies of the wind [rad/s].
+    car_yaw_rate, combination_yaw_rate : ndarray
+        |r / w| of the car alone and with the trailer [(rad/s)/(m/s)].
+    car_lateral_offset, combination_lateral_offset : ndarray
+        |y / w| of the car's CG alone and with the trailer, y the lateral offset from the straight
+        path [m/(m/s)].
+    steady_yaw_rate_ratio : float
+        Steady (w constant) yaw rate of the combination over that of the car alone [-] (signed).
+    peak_yaw_rate_ratio : float
+        Largest |r / w| of the combination over the car's largest, both over ``omega`` [-].
     """
 
     speed: float

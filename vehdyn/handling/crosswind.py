@@ -60,8 +60,26 @@ def _vehicle(vehicle) -> Vehicle:
 def optional_wind_input(crosswind: bool, B, D, inputs, phenomena):
     """A linear model's wind input (the last column of B and D): named and kept, or dropped.
 
-    Returns ``(B, D, inputs, phenomena)`` with ``wind_velocity_lateral`` [m/s] appended to the
-    input signals and ``"aero"`` to the phenomena when ``crosswind`` is true.
+    Parameters
+    ----------
+    crosswind : bool
+        Keep the wind input.
+    B, D : ndarray
+        Input and feedthrough matrices whose last column is the response to the lateral wind
+        w [m/s] (per unit w: [1/s, (m/s^2)/(m/s), ...] as the states and outputs need).
+    inputs : sequence of Signal
+        The model's other inputs (those of the other columns).
+    phenomena : set of str
+        The model's phenomena.
+
+    Returns
+    -------
+    B, D : ndarray
+        With the wind column, or without it when ``crosswind`` is false.
+    inputs : tuple of Signal
+        With ``wind_velocity_lateral`` [m/s] appended when ``crosswind`` is true.
+    phenomena : set of str
+        With ``"aero"`` added when ``crosswind`` is true.
     """
     from vehdyn.signals import Signal
 
@@ -82,12 +100,24 @@ def steady_state_crosswind_yaw_rate(vehicle_or_bicycle, speed, side_force, centr
     Parameters
     ----------
     vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
-    speed : float
-        [m/s].
-    side_force : float
-        F [N] (SAE y).
-    centre_of_pressure : float
-        x_p [m] ahead of the CG.
+        The vehicle (see :func:`~vehdyn.handling.bicycle_parameters`).
+    speed : float or array_like
+        Forward speed u [m/s], > 0.
+    side_force : float or array_like
+        F [N] (SAE y: positive toward the right).
+    centre_of_pressure : float or array_like
+        x_p [m] ahead of the CG (negative: behind it).
+
+    Returns
+    -------
+    float or ndarray
+        r [rad/s] (SAE: positive turning right).
+
+    References
+    ----------
+    .. [1] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 3.2 (the
+       aerodynamic side force and the vehicle's response to it).
+    .. [2] W.-H. Hucho (ed.), *Aerodynamics of Road Vehicles*, 4th ed., SAE, 1998, sec. 4.4.
     """
     from vehdyn.handling.bicycle import bicycle_parameters, check_speed
     from vehdyn.handling.steady_state import neutral_steer_point

@@ -44,19 +44,30 @@ _FRONT, _REAR = STEER_INPUTS
 
 
 def zero_sideslip_rear_steer_ratio(vehicle_or_bicycle, speed=None):
-    """Rear/front road-wheel angle ratio k that gives zero steady-state sideslip at the CG.
+    r"""Rear/front road-wheel angle ratio k that gives zero steady-state sideslip at the CG.
+
+    .. math::
+
+        k(u) = -\frac{b - m a u^2 / (L C_r)}{a + m b u^2 / (L C_f)}
 
     Parameters
     ----------
     vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (see :func:`~vehdyn.handling.bicycle_parameters`).
     speed : float or array_like, optional
         Forward speed [m/s] (>= 0); defaults to the bicycle's.
 
     Returns
     -------
     float or ndarray
-        k [-], positive when the rear wheels steer the same way as the front (formula in the
-        module docstring).
+        k [-], positive when the rear wheels steer the same way as the front: -b / a at
+        standstill, 0 at the zero-sideslip speed, a C_f / (b C_r) in the limit of high speed.
+
+    References
+    ----------
+    .. [1] M. Abe, *Vehicle Handling Dynamics*, Butterworth-Heinemann, 2009, sec. 9.2 (eq. 9.9).
+    .. [2] S. Sano, Y. Furukawa and S. Shiraishi, "Four wheel steering system with rear wheel steer
+       angle controlled as a function of steering wheel angle", SAE 860625, 1986.
     """
     p = bicycle_parameters(vehicle_or_bicycle)
     u = speed_of(vehicle_or_bicycle, speed, allow_zero=True)
@@ -78,8 +89,9 @@ def proportional_rear_steer(bicycle: LinearBicycle, ratio=None) -> LinearModel:
     Parameters
     ----------
     bicycle : LinearBicycle
+        The vehicle with front and rear steer inputs.
     ratio : float, optional
-        k [-]; by default :func:`zero_sideslip_rear_steer_ratio` at the bicycle's speed.
+        k [-], finite; by default :func:`zero_sideslip_rear_steer_ratio` at the bicycle's speed.
 
     Returns
     -------
@@ -101,8 +113,15 @@ def proportional_rear_steer(bicycle: LinearBicycle, ratio=None) -> LinearModel:
 def yaw_rate_feedback_rear_steer(bicycle: LinearBicycle, gain: float) -> LinearModel:
     """The bicycle with rear steer fed back from the yaw rate, delta_r = gain * r.
 
-    A positive ``gain`` [s] steers the rear wheels in the direction of the turn (in phase), which
+    A positive ``gain`` steers the rear wheels in the direction of the turn (in phase), which
     adds yaw damping and reduces the yaw gain (Abe 2009, sec. 9.3).
+
+    Parameters
+    ----------
+    bicycle : LinearBicycle
+        The vehicle with front and rear steer inputs.
+    gain : float
+        delta_r / r [s] (rad of rear road-wheel steer per rad/s of yaw rate), finite.
 
     Returns
     -------
@@ -158,6 +177,14 @@ class FourWheelSteerComparison:
     lateral_acceleration_phase_4ws: np.ndarray
 
     def to_frame(self):
+        """The comparison as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Indexed by ``speed``, one column per attribute; units in ``attrs["units"]``, the
+            frequency of the dynamic comparison in ``attrs["frequency_hz"]``.
+        """
         import pandas as pd
 
         names = [n for n in self.__dataclass_fields__ if n not in ("speed", "frequency_hz")]
@@ -176,8 +203,26 @@ class FourWheelSteerComparison:
 
 
 def compare_four_wheel_steering(vehicle_or_bicycle, speeds, *, frequency_hz: float = 1.0) -> FourWheelSteerComparison:
-    """Steady sideslip and yaw-rate gains, and the yaw-rate/lateral-acceleration phase at
-    ``frequency_hz``, with and without the zero-sideslip proportional rear steer.
+    """Front steer only (2WS) against zero-sideslip proportional rear steer (4WS), against speed.
+
+    The steady sideslip and yaw-rate gains (:func:`~vehdyn.handling.steady_state_gains`) and the
+    yaw-rate and lateral-acceleration response at ``frequency_hz`` (the linear bicycle's
+    frequency response, the rear steer k delta_f added to the front's), with k of
+    :func:`zero_sideslip_rear_steer_ratio` at each speed.
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (see :func:`~vehdyn.handling.bicycle_parameters`).
+    speeds : float or array_like
+        Forward speeds [m/s], > 0.
+    frequency_hz : float, optional
+        Frequency of the dynamic comparison [Hz], > 0 (default 1 Hz).
+
+    Returns
+    -------
+    FourWheelSteerComparison
+        Arrays over ``speeds``.
     """
     p = bicycle_parameters(vehicle_or_bicycle)
     u = np.atleast_1d(check_speed(speeds)).astype(float)

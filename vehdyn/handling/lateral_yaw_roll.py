@@ -155,7 +155,13 @@ class LateralYawRollParameters(ParameterSet):
         return self.sprung_mass * self.roll_arm / (self.roll_stiffness - self.pendulum_stiffness)
 
     def bicycle_parameters(self) -> BicycleParameters:
-        """The single-track part (mass, yaw inertia, axles, cornering stiffnesses)."""
+        """The single-track part (mass, yaw inertia, axles, cornering stiffnesses).
+
+        Returns
+        -------
+        BicycleParameters
+            Without tire lag or wind.
+        """
         return BicycleParameters(mass=self.mass, yaw_inertia=self.yaw_inertia, a=self.a, b=self.b,
                                  front_cornering_stiffness=self.front_cornering_stiffness,
                                  rear_cornering_stiffness=self.rear_cornering_stiffness)
@@ -165,8 +171,30 @@ def lateral_yaw_roll_parameters(vehicle: Vehicle, *, tire_compliance: bool = Fal
                                 gravity: float = GRAVITY) -> LateralYawRollParameters:
     """:class:`LateralYawRollParameters` of a Vehicle (formulas in the module docstring).
 
-    ``tire_compliance`` puts each axle's tire roll stiffness k_t T^2 / 2 in series with its
-    suspension roll stiffness.
+    The roll axis runs through the front and rear roll centres; h is the sprung CG's distance
+    above it, I_x and I_xz the sprung mass's inertias about it; K_phi and C_phi come from the
+    corner springs, dampers and anti-roll bars.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle file's masses, inertias, geometry, suspension and tires.
+    tire_compliance : bool, optional
+        Put each axle's tire roll stiffness k_t T^2 / 2 in series with its suspension roll
+        stiffness (default False).
+    gravity : float, optional
+        g [m/s^2] (default :data:`vehdyn.units.GRAVITY`).
+
+    Returns
+    -------
+    LateralYawRollParameters
+        The validated parameters.
+
+    Raises
+    ------
+    ParameterError
+        When the yaw inertia leaves none for the sprung mass, or the roll stiffness does not
+        exceed the pendulum term m_s g h cos(theta).
     """
     ms, g, s, t = vehicle.mass, vehicle.geometry, vehicle.suspension, vehicle.tires
     L = g.wheelbase
@@ -200,16 +228,19 @@ def lateral_yaw_roll_parameters(vehicle: Vehicle, *, tire_compliance: bool = Fal
 
 
 class LateralYawRoll(LinearModel):
-    """3-DOF lateral-yaw-roll model at constant speed, an exact LinearModel.
+    r"""3-DOF lateral-yaw-roll model at constant speed (Segel's model), an exact LinearModel.
 
     Parameters
     ----------
     vehicle : Vehicle or LateralYawRollParameters
+        The vehicle (its parameters by :func:`lateral_yaw_roll_parameters`), or the parameters
+        themselves (build those from textbook numbers with :meth:`from_parameters`).
     speed : float
         Forward speed u [m/s], >= :data:`~vehdyn.handling.bicycle.LINEAR_MIN_SPEED` (0.01 m/s: below it
         ``path_curvature`` = a_y/u^2 loses its digits, see :mod:`vehdyn.handling.bicycle`); one number.
     tire_compliance : bool
-        With a Vehicle: tires' vertical compliance in series with the suspension roll stiffness.
+        With a Vehicle: tires' vertical compliance in series with the suspension roll stiffness
+        (default False).
 
     Attributes
     ----------
@@ -221,10 +252,62 @@ class LateralYawRoll(LinearModel):
 
     Notes
     -----
-    Derivation, equations, assumptions and references in the module docstring. Outputs:
-    ``lateral_acceleration``, ``sideslip_angle``, ``yaw_rate``, ``lateral_velocity``, ``roll_angle``,
-    ``roll_rate``, ``front_slip_angle``, ``rear_slip_angle``, ``path_curvature``,
-    ``front_lateral_force``, ``rear_lateral_force``.
+    The bicycle model (:class:`~vehdyn.handling.LinearBicycle`) plus the sprung mass m_s rolling
+    by phi about the roll axis (SAE: positive right side down), h the sprung CG's height above
+    the axis, theta the axis's inclination, K_phi and C_phi the roll stiffness and damping,
+    eps_f and eps_r the roll-steer coefficients; Lagrange's equations in quasi-coordinates,
+    linearized (derivation and assumptions in the module docstring):
+
+    .. math::
+
+        m (\dot v + u r) + m_s h \dot p &= F_{yf} + F_{yr} \\
+        I_z \dot r - I_{xz} \dot p &= a F_{yf} - b F_{yr} \\
+        I_x \dot p - I_{xz} \dot r + m_s h (\dot v + u r) &=
+            -(K_\phi - m_s g h \cos\theta) \phi - C_\phi p, \qquad \dot\phi = p \\
+        F_{yf} &= C_f \left(\delta_f + \varepsilon_f \phi - \frac{v + a r}{u}\right), \qquad
+        F_{yr} = C_r \left(\delta_r + \varepsilon_r \phi - \frac{v - b r}{u}\right)
+
+    with I_x and I_xz the sprung mass's roll inertia and roll-yaw product about the roll axis,
+    I_z the total yaw inertia. In the steady state the body rolls out of the turn and roll steer
+    adds to the understeer gradient:
+
+    .. math::
+
+        \phi = -\frac{m_s h}{K_\phi - m_s g h \cos\theta} a_y, \qquad
+        K_{eff} = K + (\varepsilon_f - \varepsilon_r) \frac{m_s h}{K_\phi - m_s g h \cos\theta}
+
+    Outputs: ``lateral_acceleration`` (dv/dt + u r of the non-rolling frame), ``sideslip_angle``,
+    ``yaw_rate``, ``lateral_velocity``, ``roll_angle``, ``roll_rate``, ``front_slip_angle``,
+    ``rear_slip_angle``, ``path_curvature``, ``front_lateral_force``, ``rear_lateral_force``.
+
+    References
+    ----------
+    .. [1] L. Segel, "Theoretical prediction and experimental substantiation of the response of the
+       automobile to steering control", Proc. IMechE Automobile Division, 1956.
+    .. [2] G. Mastinu and M. Ploechl (eds.), *Road and Off-Road Vehicle System Dynamics Handbook*,
+       CRC Press, 2014, sec. 20.5.
+    .. [3] U. Kiencke and L. Nielsen, *Automotive Control Systems*, 2nd ed., Springer, 2005,
+       sec. 7.4.
+    .. [4] L. Meirovitch, *Methods of Analytical Dynamics*, McGraw-Hill, 1970, sec. 4.12
+       (Lagrange's equations in quasi-coordinates).
+    .. [5] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 6 (roll steer in
+       the understeer gradient).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import vehdyn
+    >>> from vehdyn.handling import LateralYawRoll
+    >>> model = LateralYawRoll(vehdyn.load_vehicle("sedan"), 20.0)
+    >>> round(model.roll_gradient_deg_per_g(), 3)
+    7.318
+
+    The steady state of the simulation model is the closed form's roll gradient:
+
+    >>> gain = model.dc_gain()[:, 0]
+    >>> roll, ay = gain[model.index("roll_angle", "outputs")], gain[model.index("lateral_acceleration", "outputs")]
+    >>> bool(np.isclose(-roll / ay, model.roll_gradient(), rtol=1e-12))
+    True
     """
 
     phenomena = frozenset({"lateral", "yaw", "roll"})
@@ -254,18 +337,39 @@ class LateralYawRoll(LinearModel):
 
         Parameters
         ----------
+        mass : float
+            Total mass m [kg].
+        sprung_mass : float
+            Sprung mass m_s [kg], <= m.
+        yaw_inertia : float
+            Total yaw inertia I_z about the total CG [kg*m^2].
         sprung_roll_inertia : float
             Roll inertia of the sprung mass about ITS OWN CG [kg*m^2]; the model uses
             I_x = sprung_roll_inertia + m_s h^2 about the roll axis.
+        a, b : float
+            Total CG to front and rear axle [m].
         roll_arm : float
             h, sprung CG height above the roll axis [m].
-        roll_yaw_product : float
-            I_xz of the sprung mass about the roll axis, SAE axes (int x z dm, z down) [kg*m^2].
-        front_roll_steer, rear_roll_steer : float
-            Road-wheel steer per unit roll, SAE signs [rad/rad].
+        front_cornering_stiffness, rear_cornering_stiffness : float
+            AXLE cornering stiffnesses (both tires), positive [N/rad].
+        roll_stiffness : float
+            Total roll stiffness K_phi [N*m/rad], > m_s g h.
+        speed : float
+            Forward speed u [m/s].
+        roll_damping : float, optional
+            Total roll damping C_phi [N*m*s/rad] (default 0).
+        roll_yaw_product : float, optional
+            I_xz of the sprung mass about the roll axis, SAE axes (int x z dm, z down) [kg*m^2]
+            (default 0).
+        front_roll_steer, rear_roll_steer : float, optional
+            Road-wheel steer per unit roll, SAE signs [rad/rad] (default 0).
+        gravity : float, optional
+            g [m/s^2] (default :data:`vehdyn.units.GRAVITY`).
 
-        The other parameters are those of :class:`LateralYawRollParameters` (axle cornering
-        stiffnesses, total roll stiffness and damping).
+        Returns
+        -------
+        LateralYawRoll
+            The model at ``speed``.
         """
         params = LateralYawRollParameters(
             mass=mass, sprung_mass=sprung_mass, yaw_inertia=yaw_inertia,
@@ -277,11 +381,28 @@ class LateralYawRoll(LinearModel):
         return cls(params, speed)
 
     def at_speed(self, speed: float) -> "LateralYawRoll":
-        """The same vehicle at another speed [m/s]."""
+        """The same vehicle at another speed.
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed u [m/s], >= :data:`~vehdyn.handling.bicycle.LINEAR_MIN_SPEED`.
+
+        Returns
+        -------
+        LateralYawRoll
+            The same parameters at ``speed``.
+        """
         return type(self)(self.parameters, speed)
 
     def bicycle(self) -> LinearBicycle:
-        """The :class:`LinearBicycle` with the same mass, yaw inertia, axles and tires."""
+        """The bicycle model of the same vehicle (the roll taken away).
+
+        Returns
+        -------
+        LinearBicycle
+            The same mass, yaw inertia, axles and tires, at the same speed.
+        """
         return LinearBicycle(self.parameters.bicycle_parameters(), self.speed)
 
     @property
@@ -289,18 +410,34 @@ class LateralYawRoll(LinearModel):
         return self.parameters.wheelbase
 
     def roll_gradient(self) -> float:
-        """Steady roll per unit lateral acceleration, m_s h / (K_phi - m_s g h cos theta) [rad/(m/s^2)].
+        """Steady roll per unit lateral acceleration, m_s h / (K_phi - m_s g h cos theta).
 
-        A magnitude: the body rolls out of the turn, phi = -roll_gradient * a_y in SAE axes.
+        Returns
+        -------
+        float
+            The roll gradient [rad/(m/s^2)], a magnitude: the body rolls out of the turn,
+            phi = -roll_gradient * a_y in SAE axes.
         """
         return float(self.parameters.roll_gradient)
 
     def roll_gradient_deg_per_g(self) -> float:
-        """:meth:`roll_gradient` in deg/g."""
+        """:meth:`roll_gradient` in the unit of handling tests.
+
+        Returns
+        -------
+        float
+            The roll gradient [deg/g] (with the model's g).
+        """
         return float(np.rad2deg(self.roll_gradient() * self.parameters.gravity))
 
     def understeer_gradient(self) -> float:
-        """Understeer gradient including roll steer, K + (eps_f - eps_r) roll_gradient [rad/(m/s^2)]."""
+        """Understeer gradient including roll steer, K + (eps_f - eps_r) roll_gradient.
+
+        Returns
+        -------
+        float
+            K_eff [rad/(m/s^2)] (class Notes; K of :func:`~vehdyn.handling.understeer_gradient`).
+        """
         p = self.parameters
         return float(p.bicycle_parameters().understeer_gradient
                      + (p.front_roll_steer - p.rear_roll_steer) * p.roll_gradient)
@@ -312,10 +449,23 @@ class LateralYawRoll(LinearModel):
 
 
 def roll_gradient(vehicle_or_model, *, tire_compliance: bool = False) -> float:
-    """Steady-state roll gradient [rad/(m/s^2)] of a Vehicle, LateralYawRoll or its parameters.
+    """Steady-state roll gradient of a Vehicle, LateralYawRoll or its parameters.
 
     m_s h / (K_phi - m_s g h cos theta) with h the sprung-CG height above the roll axis; the body
     rolls out of the turn (phi = -gradient * a_y in SAE axes).
+
+    Parameters
+    ----------
+    vehicle_or_model : Vehicle, LateralYawRoll or LateralYawRollParameters
+        The vehicle (through :func:`lateral_yaw_roll_parameters`) or the model.
+    tire_compliance : bool, optional
+        With a Vehicle: the tires' vertical compliance in series with the suspension roll
+        stiffness (default False).
+
+    Returns
+    -------
+    float
+        The roll gradient [rad/(m/s^2)], a magnitude.
     """
     if isinstance(vehicle_or_model, LateralYawRoll):
         return vehicle_or_model.roll_gradient()

@@ -73,10 +73,25 @@ _OUTPUTS = (Signal("lateral_acceleration", "m/s^2", "lateral acceleration of the
 
 
 def running_axle_loads(vehicle: Vehicle, speed: float, gravity: float = GRAVITY) -> tuple[float, float]:
-    """(front, rear) axle loads [N] in steady straight running at ``speed`` [m/s].
+    """Front and rear axle loads in steady straight running.
 
     The static loads minus each axle's aero lift, with h_s F_drag / L moved from the front to the
-    rear axle by the drive force that holds the speed (drag at the sprung CG height h_s).
+    rear axle by the drive force that holds the speed (drag at the sprung CG height h_s, the
+    drive at the ground; Gillespie 1992, eq. 2-18).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Its masses, geometry and ``aero`` (drag and lift coefficients, frontal area, air density).
+    speed : float
+        Forward speed u [m/s].
+    gravity : float, optional
+        g [m/s^2] (default :data:`vehdyn.units.GRAVITY`).
+
+    Returns
+    -------
+    front, rear : float
+        Axle loads [N] (both wheels of the axle).
     """
     aero, geometry = vehicle.aero, vehicle.geometry
     front, rear = vehicle.static_axle_loads(gravity)
@@ -86,13 +101,29 @@ def running_axle_loads(vehicle: Vehicle, speed: float, gravity: float = GRAVITY)
 
 
 def running_slip_ratios(vehicle: Vehicle, tires, loads, speed: float) -> tuple[float, float]:
-    """(front, rear) longitudinal slip ratios [-] of the wheels in steady straight running.
+    """Front and rear longitudinal slip ratios of the wheels in steady straight running.
 
     Each wheel turns steadily, so R_e F_x = T + M_y (drive torque T, the law's rolling-resistance
     moment M_y, ISO-W): a wheel without drive torque brakes the car by F_x = M_y / R_e, and the drive
     torque, split by ``driveline.front_drive_fraction``, makes the four F_x add up to the drag. The
     slip ratio of each axle is the one at which the law gives that F_x at half the axle load
-    (Newton's method on the law; M_y taken at the slip of the previous iterate).
+    (four steps of Newton's method on the law; M_y taken at the slip of the previous iterate).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Its rolling radius, ``aero`` (drag) and ``driveline.front_drive_fraction``.
+    tires : sequence of two TireModel
+        The laws of one front and one rear tire (ISO-W, as :mod:`vehdyn.tire` gives them).
+    loads : sequence of two float
+        Front and rear axle loads [N] (e.g. :func:`running_axle_loads`).
+    speed : float
+        Forward speed u [m/s].
+
+    Returns
+    -------
+    front, rear : float
+        Slip ratios kappa [-] (ISO-W: positive driving).
     """
     radius = vehicle.tires.rolling_radius
     aero = vehicle.aero
@@ -139,25 +170,76 @@ def _axle_law(tire, axle_load, kappa=0.0):
 
 
 class LateralYawRollLag(LinearModel):
-    """Lateral-yaw-roll model with tire lag, parameters from the tire law at the running loads.
+    r"""Lateral-yaw-roll model with tire lag, parameters from the tire law at the running loads.
 
     Parameters
     ----------
     vehicle : Vehicle
+        The vehicle file: masses, inertias, geometry, suspension, tires (relaxation lengths,
+        rolling radius), aero and driveline.
     speed : float
-        Forward speed u [m/s] (the cornering stiffnesses are those of straight running at it).
-    front_tire, rear_tire : tire law, optional
-        Default: the vehicle's (:func:`vehdyn.tire.tire_for_vehicle`).
-    gravity : float
-        [m/s^2].
+        Forward speed u [m/s] (the cornering stiffnesses are those of straight running at it),
+        >= :data:`~vehdyn.handling.bicycle.LINEAR_MIN_SPEED`.
+    front_tire, rear_tire : TireModel, optional
+        Laws of one front and one rear tire; default the vehicle's
+        (:func:`vehdyn.tire.tire_for_vehicle`).
+    gravity : float, optional
+        g [m/s^2] (default :data:`vehdyn.units.GRAVITY`).
+
+    Attributes
+    ----------
+    cornering_stiffness : tuple of float
+        (C_f, C_r), the axles' cornering stiffnesses at the running loads and slip ratios [N/rad].
+    ply_steer_load_coefficient : tuple of float
+        (k_f, k_r), the SAE axle force per unit load moved onto the left wheel [N/N].
+    speed : float
+        [m/s].
+    mass_matrix : ndarray, shape (6, 6)
+        M of M dx/dt = ... over the states.
 
     Notes
     -----
+    :class:`~vehdyn.handling.LateralYawRoll` with the tire lag of each axle, the unsprung masses
+    m_u rolling with the body at their height r_w - h_ra above the roll axis, and the axle forces
+    and the rolling resistance's yaw moment under the lateral load transfer (derivation and
+    assumptions in the module docstring):
+
+    .. math::
+
+        m (\dot v + u r) + c \dot p &= F_f + F_r, \qquad
+        I_z \dot r - I_{xz} \dot p = a F_f - b F_r + \sum_i \frac{T_i e_i}{R_e} \Delta F_{z,i}, \\
+        c (\dot v + u r) - I_{xz} \dot r + I_x' \dot p &= -(K_\phi - g c') \phi - C_\phi p,
+        \qquad \dot\phi = p, \\
+        \frac{\sigma_i}{u} \dot\alpha_i' + \alpha_i' &= \alpha_i, \qquad
+        F_i = -C_i \alpha_i' + k_i \Delta F_{z,i}, \qquad
+        \Delta F_{z,i} = -\frac{K_{\phi,i} \phi + C_{\phi,i} p}{T_i} + \frac{h_{rc,i}}{T_i} F_i, \\
+        c &= m_s h + m_u (r_w - h_{ra}), \quad c' = m_s h \cos\theta + m_u (r_w - h_{ra}), \quad
+        I_x' = I_x + m_u (r_w - h_{ra})^2, \quad a_y = \frac{F_f + F_r}{m}
+
+    with alpha_i the kinematic slip angles of :class:`~vehdyn.handling.LateralYawRoll` (with roll
+    steer), sigma_i the relaxation lengths, C_i the cornering stiffnesses of the tire law at the
+    running axle load and slip ratio (:func:`running_axle_loads`, :func:`running_slip_ratios`),
+    k_i the ply-steer force per unit load transfer of mirrored tires, e_i = dM_y/dF_z of one tire,
+    T_i the tracks, h_rc,i the roll-centre heights, K_phi,i and C_phi,i the axles' roll stiffness
+    and damping, R_e the rolling radius. With zero relaxation length the tire lag is that of a
+    very short one (1 mm).
+
     States ``lateral_velocity``, ``yaw_rate``, ``roll_rate``, ``roll_angle``,
     ``front_transient_slip_angle``, ``rear_transient_slip_angle``; inputs ``front_steer_angle``,
     ``rear_steer_angle``; outputs as :class:`~vehdyn.handling.LateralYawRoll` with the lateral
-    acceleration of the total CG. Equations in the module docstring; with zero relaxation length the
-    tire lag is that of a very short one (1 mm).
+    acceleration of the total CG.
+
+    References
+    ----------
+    .. [1] L. Segel, "Theoretical prediction and experimental substantiation of the response of the
+       automobile to steering control", Proc. IMechE Automobile Division, 1956 (the 3-DOF model).
+    .. [2] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 7.2.1 (the relaxation-length tire lag) and eq. 4.E67 (the Magic Formula's
+       kappa-induced ply steer S_Vyk).
+    .. [3] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, eq. 2-18 (load transfer
+       of the drive force).
+    .. [4] G. Mastinu and M. Ploechl (eds.), *Road and Off-Road Vehicle System Dynamics Handbook*,
+       CRC Press, 2014, sec. 20.5.
     """
 
     phenomena = frozenset({"lateral", "yaw", "roll", "tire_lag"})

@@ -52,7 +52,8 @@ class SteadyStateCornering:
     drive : float
         The driven axle's longitudinal force [N] (force mode) or drive torque [N*m] (wheel spin).
     state, inputs : ndarray
-        The full state and input vectors of the equilibrium (for ``simulate`` or ``linearize``).
+        The full state and input vectors of the equilibrium [each signal in its unit, see the
+        model's ``states`` and ``inputs``] (for ``simulate`` or ``linearize``).
     outputs : dict
         Every model output at the equilibrium.
     """
@@ -178,7 +179,7 @@ def steady_state_cornering(model, *, lateral_acceleration, radius=None, speed=No
     lateral_acceleration : float
         a_y [m/s^2], positive turning right (SAE).
     radius, speed : float
-        Exactly one: the path radius (same sign as a_y) or the forward speed (> 0).
+        Exactly one: the path radius [m] (same sign as a_y) or the forward speed [m/s] (> 0).
     driven_axle : {"rear", "front"}
         The axle whose drive input holds the speed.
     initial_guess : SteadyStateCornering, optional
@@ -233,7 +234,8 @@ class NonlinearHandlingDiagram:
     limit_lateral_acceleration : float
         The largest a_y with an equilibrium [m/s^2] (to ``tolerance``).
     radius, speed_given : float or None
-        The turn definition.
+        The turn definition: the constant radius [m] or the constant speed [m/s] (the other
+        None).
     """
 
     lateral_acceleration: np.ndarray
@@ -249,7 +251,14 @@ class NonlinearHandlingDiagram:
     speed_given: float | None = None
 
     def to_frame(self):
-        """pandas DataFrame indexed by lateral acceleration, with ``attrs["units"]``."""
+        """The diagram as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Indexed by ``lateral_acceleration``, one column per array attribute; units in
+            ``attrs["units"]``.
+        """
         import pandas as pd
 
         frame = pd.DataFrame({"steer_angle": self.steer_angle, "sideslip_angle": self.sideslip_angle,
@@ -262,7 +271,18 @@ class NonlinearHandlingDiagram:
         return frame
 
     def plot(self, ax=None):
-        """Steer angle and sideslip [deg] against lateral acceleration [g] (the handling diagram)."""
+        """Steer angle and sideslip [deg] against lateral acceleration [g] (the handling diagram).
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; default a new figure.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
         from vehdyn.plotting import new_figure
 
         if ax is None:
@@ -289,7 +309,7 @@ def nonlinear_handling_diagram(model, *, radius=None, speed=None, driven_axle: s
     ----------
     model : SingleTrack
     radius, speed : float
-        Exactly one (a positive radius: right turns; speed > 0).
+        Exactly one: the path radius [m] (positive: right turns) or the forward speed [m/s] (> 0).
     driven_axle : {"rear", "front"}
     step : float
         Initial a_y step [m/s^2]; halved near the limit.
@@ -345,6 +365,31 @@ def nonlinear_handling_diagram(model, *, radius=None, speed=None, driven_axle: s
 
 def limit_lateral_acceleration(model, *, radius=None, speed=None, driven_axle: str = "rear",
                                tolerance: float = 0.01) -> float:
-    """The largest steady-state lateral acceleration [m/s^2] of ``model`` on ``radius`` or at ``speed``."""
+    """The largest steady-state lateral acceleration of ``model`` on ``radius`` or at ``speed``.
+
+    The end of :func:`nonlinear_handling_diagram`'s continuation: the fold of the equilibrium
+    branch, where no steady turn exists any more (Pacejka 2012, sec. 1.3.2).
+
+    Parameters
+    ----------
+    model : SingleTrack
+        With scalar parameters.
+    radius, speed : float
+        Exactly one: the path radius [m] (> 0) or the forward speed [m/s] (> 0).
+    driven_axle : {"rear", "front"}, optional
+        The axle whose drive input holds the speed (default ``"rear"``).
+    tolerance : float, optional
+        Resolution of the limit [m/s^2] (default 0.01).
+
+    Returns
+    -------
+    float
+        The limit lateral acceleration [m/s^2].
+
+    Raises
+    ------
+    SimulationError
+        When not even the first step of the continuation has an equilibrium.
+    """
     return nonlinear_handling_diagram(model, radius=radius, speed=speed, driven_axle=driven_axle,
                                       tolerance=tolerance).limit_lateral_acceleration

@@ -54,37 +54,141 @@ __all__ = [
 
 # --------------------------------------------------------------------------- understeer
 def understeer_gradient(vehicle_or_bicycle) -> float:
-    """Understeer gradient K [rad/(m/s^2)].
+    r"""Understeer gradient K [rad/(m/s^2)] of the linear single-track model.
 
-    K = (m / L)(b / C_f - a / C_r) = W_f / C_f - W_r / C_r per unit g (Gillespie eq. 6-15): the
-    extra road-wheel steer per unit lateral acceleration beyond the Ackermann angle L / R. K > 0
-    understeer, K = 0 neutral steer, K < 0 oversteer. (With roll steer, see
+    The extra road-wheel steer per unit lateral acceleration beyond the Ackermann angle L / R
+    (SAE: a_y and the steer angle positive turning right):
+
+    .. math::
+
+        K = \frac{m}{L} \left( \frac{b}{C_f} - \frac{a}{C_r} \right)
+          = \frac{W_f}{C_f} - \frac{W_r}{C_r} \text{ per unit } g,
+        \qquad \delta_f - \delta_r = \frac{L}{R} + K a_y
+
+    K > 0 understeer, K = 0 neutral steer, K < 0 oversteer. (With roll steer, see
     :meth:`vehdyn.handling.LateralYawRoll.understeer_gradient`.)
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+
+    Returns
+    -------
+    float
+        K [rad/(m/s^2)].
+
+    References
+    ----------
+    .. [1] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 6, eq. 6-15 (with
+       the axle loads W_f = m g b / L, W_r = m g a / L).
+    .. [2] W. F. Milliken and D. L. Milliken, *Race Car Vehicle Dynamics*, SAE, 1995, ch. 5.
     """
     return float(bicycle_parameters(vehicle_or_bicycle).understeer_gradient)
 
 
 def understeer_gradient_rad_per_g(vehicle_or_bicycle, gravity: float = GRAVITY) -> float:
-    """Understeer gradient [rad/g] = K [rad/(m/s^2)] * g."""
+    """Understeer gradient in radians per g: K g.
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+    gravity : float, optional
+        g [m/s^2] (default :data:`vehdyn.units.GRAVITY`).
+
+    Returns
+    -------
+    float
+        K g [rad/g] (K of :func:`understeer_gradient`).
+    """
     return understeer_gradient(vehicle_or_bicycle) * gravity
 
 
 def understeer_gradient_deg_per_g(vehicle_or_bicycle, gravity: float = GRAVITY) -> float:
-    """Understeer gradient [deg/g] = K [rad/(m/s^2)] * g * 180 / pi."""
+    """Understeer gradient in degrees of road-wheel steer per g, the unit of handling tests.
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+    gravity : float, optional
+        g [m/s^2] (default :data:`vehdyn.units.GRAVITY`).
+
+    Returns
+    -------
+    float
+        K g 180 / pi [deg/g] (K of :func:`understeer_gradient`); positive for understeer.
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> from vehdyn.handling import understeer_gradient_deg_per_g
+    >>> round(understeer_gradient_deg_per_g(vehdyn.load_vehicle("sedan")), 3)
+    0.3
+    """
     return float(np.rad2deg(understeer_gradient_rad_per_g(vehicle_or_bicycle, gravity)))
 
 
 def stability_factor(vehicle_or_bicycle) -> float:
-    """Abe's stability factor A = K / L [s^2/m^2]: r / delta = (u / L) / (1 + A u^2)."""
+    """Abe's stability factor A = K / L: the yaw-rate gain is r / delta = (u / L) / (1 + A u^2).
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+
+    Returns
+    -------
+    float
+        A [s^2/m^2]; positive for understeer.
+
+    References
+    ----------
+    .. [1] M. Abe, *Vehicle Handling Dynamics*, Butterworth-Heinemann, 2009, sec. 3.3.
+    """
     return understeer_gradient(vehicle_or_bicycle) / bicycle_parameters(vehicle_or_bicycle).wheelbase
 
 
 def characteristic_speed(vehicle_or_bicycle) -> float:
-    """Characteristic speed sqrt(L / K) [m/s] of an understeering vehicle.
+    r"""Characteristic speed of an understeering vehicle.
 
     The speed at which the steer angle needed on any radius is twice the Ackermann angle and at
-    which the yaw-rate gain per unit speed, r / (delta u), has halved. ``inf`` for a neutral or
-    oversteering vehicle (K <= 0), which has none.
+    which the yaw-rate gain per unit speed, r / (delta u), has halved; the yaw-rate gain
+    u / (L + K u^2) is largest there:
+
+    .. math::
+
+        u_{char} = \sqrt{L / K} \quad (K > 0)
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+
+    Returns
+    -------
+    float
+        u_char [m/s]; ``inf`` for a neutral or oversteering vehicle (K <= 0), which has none.
+
+    References
+    ----------
+    .. [1] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 6 (the
+       characteristic speed).
+    .. [2] M. Abe, *Vehicle Handling Dynamics*, Butterworth-Heinemann, 2009, sec. 3.3.
+
+    Examples
+    --------
+    >>> import vehdyn
+    >>> from vehdyn.handling import characteristic_speed
+    >>> u = characteristic_speed(vehdyn.load_vehicle("sedan"))
+    >>> round(u, 2), round(3.6 * u, 1)  # [m/s], [km/h]
+    (69.53, 250.3)
     """
     K = understeer_gradient(vehicle_or_bicycle)
     L = bicycle_parameters(vehicle_or_bicycle).wheelbase
@@ -92,10 +196,33 @@ def characteristic_speed(vehicle_or_bicycle) -> float:
 
 
 def critical_speed(vehicle_or_bicycle) -> float:
-    """Critical speed sqrt(-L / K) [m/s] of an oversteering vehicle (K < 0).
+    r"""Critical speed of an oversteering vehicle (K < 0).
 
     Above it the linear model has a real positive eigenvalue (the vehicle is directionally
-    unstable) and the steady-state gains change sign. ``inf`` when K >= 0 (never unstable).
+    unstable: the constant term of its characteristic polynomial, proportional to L + K u^2, is
+    negative) and the steady-state gains change sign:
+
+    .. math::
+
+        u_{crit} = \sqrt{-L / K} \quad (K < 0)
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+
+    Returns
+    -------
+    float
+        u_crit [m/s]; ``inf`` when K >= 0 (never unstable).
+
+    References
+    ----------
+    .. [1] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 6 (the critical
+       speed).
+    .. [2] H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012,
+       sec. 1.3 (stability of the two-degree-of-freedom model).
     """
     K = understeer_gradient(vehicle_or_bicycle)
     L = bicycle_parameters(vehicle_or_bicycle).wheelbase
@@ -103,9 +230,21 @@ def critical_speed(vehicle_or_bicycle) -> float:
 
 
 def zero_sideslip_speed(vehicle_or_bicycle) -> float:
-    """Speed sqrt(b L C_r / (m a)) [m/s] at which the steady sideslip at the CG is zero (2WS).
+    """Speed at which the steady sideslip at the CG is zero (front steer only): sqrt(b L C_r / (m a)).
 
-    Below it the CG sideslip has the sign of the steer angle, above it the opposite sign.
+    Below it the CG sideslip has the sign of the steer angle, above it the opposite sign (the
+    numerator b - m a u^2 / (L C_r) of beta / delta_f, module docstring).
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+
+    Returns
+    -------
+    float
+        The speed [m/s].
     """
     p = bicycle_parameters(vehicle_or_bicycle)
     return float(np.sqrt(p.b * p.wheelbase * p.rear_cornering_stiffness / (p.mass * p.a)))
@@ -145,7 +284,15 @@ class SteadyStateGains:
         return self.lateral_acceleration / GRAVITY * np.pi / 180.0
 
     def to_frame(self):
-        """A pandas DataFrame indexed by speed with ``attrs["units"]``."""
+        """The gains as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Indexed by ``speed``; columns ``rear_steer_ratio``, ``yaw_rate``,
+            ``lateral_acceleration``, ``sideslip_angle``, ``path_curvature`` (raveled against a
+            speed array); units in ``attrs["units"]``.
+        """
         import pandas as pd
 
         df = pd.DataFrame({
@@ -162,13 +309,26 @@ class SteadyStateGains:
 
 
 def steady_state_gains(vehicle_or_bicycle, speed=None, *, rear_steer_ratio=0.0) -> SteadyStateGains:
-    """Steady-state yaw-rate, lateral-acceleration, sideslip and curvature gains.
+    r"""Steady-state yaw-rate, lateral-acceleration, sideslip and curvature gains per unit front steer.
+
+    The equilibrium of the linear single-track model (:class:`~vehdyn.handling.LinearBicycle`)
+    with the rear wheels steered by k = delta_r / delta_f:
+
+    .. math::
+
+        \frac{r}{\delta_f} = \frac{u (1 - k)}{L + K u^2}, \qquad
+        \frac{a_y}{\delta_f} = u \frac{r}{\delta_f}, \qquad
+        \frac{1/R}{\delta_f} = \frac{1 - k}{L + K u^2}, \qquad
+        \frac{\beta}{\delta_f} = k + \frac{(b - m a u^2 / (L C_r)) (1 - k)}{L + K u^2}
 
     Parameters
     ----------
     vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
     speed : float or array_like, optional
-        Forward speed [m/s]; defaults to the bicycle's.
+        Forward speed u [m/s], >= 0, broadcast against ``rear_steer_ratio``; defaults to the
+        bicycle's.
     rear_steer_ratio : float or array_like
         k = delta_r / delta_f [-] (positive: rear wheels steer the same way as the front), e.g.
         :func:`~vehdyn.handling.zero_sideslip_rear_steer_ratio`; 0 for front steer only.
@@ -178,6 +338,24 @@ def steady_state_gains(vehicle_or_bicycle, speed=None, *, rear_steer_ratio=0.0) 
     SteadyStateGains
         Per unit front road-wheel angle; at or above the critical speed the gains are those of
         the (unstable) equilibrium, infinite at u_crit exactly.
+
+    References
+    ----------
+    .. [1] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 6 (eq. 6-15 to
+       6-22: the steady-state gains of front steer).
+    .. [2] M. Abe, *Vehicle Handling Dynamics*, Butterworth-Heinemann, 2009, sec. 3.3 and 3.4.
+
+    Examples
+    --------
+    The sedan's yaw-rate gain [1/s] and lateral-acceleration gain [g/deg] grow with speed:
+
+    >>> import vehdyn
+    >>> from vehdyn.handling import steady_state_gains
+    >>> gains = steady_state_gains(vehdyn.load_vehicle("sedan"), [10.0, 20.0, 30.0])
+    >>> gains.yaw_rate.round(3).tolist()
+    [3.799, 7.163, 9.807]
+    >>> gains.lateral_acceleration_g_per_deg.round(4).tolist()
+    [0.0676, 0.2549, 0.5234]
     """
     p = bicycle_parameters(vehicle_or_bicycle)
     u = speed_of(vehicle_or_bicycle, speed, allow_zero=True)
@@ -195,16 +373,39 @@ def steady_state_gains(vehicle_or_bicycle, speed=None, *, rear_steer_ratio=0.0) 
 
 # --------------------------------------------------------------------------- neutral steer point
 class NeutralSteerPoint(NamedTuple):
-    """Neutral steer point: where a lateral force on the vehicle makes no yaw moment [m]."""
+    """Neutral steer point: where a lateral force on the vehicle makes no yaw moment.
+
+    Attributes
+    ----------
+    from_front_axle : float
+        Distance behind the front axle [m].
+    behind_cg : float
+        Distance behind the CG [m]; positive for an understeering vehicle.
+    """
 
     from_front_axle: float
     behind_cg: float
 
 
 def neutral_steer_point(vehicle_or_bicycle) -> NeutralSteerPoint:
-    """Position of the neutral steer point: C_r L / (C_f + C_r) behind the front axle [m].
+    """Position of the neutral steer point: x_NSP = C_r L / (C_f + C_r) behind the front axle.
 
-    ``behind_cg`` is positive when the point lies behind the CG (an understeering vehicle).
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+
+    Returns
+    -------
+    NeutralSteerPoint
+        ``from_front_axle`` x_NSP [m] and ``behind_cg`` x_NSP - a [m] (positive when the point
+        lies behind the CG: an understeering vehicle).
+
+    References
+    ----------
+    .. [1] W. F. Milliken and D. L. Milliken, *Race Car Vehicle Dynamics*, SAE, 1995, ch. 5
+       (neutral steer point and static margin).
     """
     p = bicycle_parameters(vehicle_or_bicycle)
     x = p.rear_cornering_stiffness * p.wheelbase / (p.front_cornering_stiffness + p.rear_cornering_stiffness)
@@ -212,7 +413,21 @@ def neutral_steer_point(vehicle_or_bicycle) -> NeutralSteerPoint:
 
 
 def static_margin(vehicle_or_bicycle) -> float:
-    """Static margin SM = (neutral steer point behind the CG) / L [-]; positive for understeer."""
+    """Static margin: the neutral steer point's distance behind the CG over the wheelbase.
+
+    K = m (C_f + C_r) SM / (C_f C_r) (module docstring).
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+
+    Returns
+    -------
+    float
+        SM [-]; positive for understeer.
+    """
     return neutral_steer_point(vehicle_or_bicycle).behind_cg / bicycle_parameters(vehicle_or_bicycle).wheelbase
 
 
@@ -271,7 +486,15 @@ def ackermann_steer_angle(vehicle_or_wheelbase, radius, *, exact: bool = False):
 
 
 class AckermannWheelAngles(NamedTuple):
-    """Road-wheel angles of the inner and outer front wheels in a kinematic turn [rad]."""
+    """Road-wheel angles of the inner and outer front wheels in a kinematic turn.
+
+    Attributes
+    ----------
+    inner : ndarray
+        Angle of the wheel on the side of the turn centre [rad] (sign of the radius).
+    outer : ndarray
+        Angle of the other front wheel [rad].
+    """
 
     inner: np.ndarray
     outer: np.ndarray
@@ -279,12 +502,28 @@ class AckermannWheelAngles(NamedTuple):
 
 def ackermann_wheel_angles(vehicle_or_wheelbase, radius, *, track: float | None = None,
                            exact: bool = False) -> AckermannWheelAngles:
-    """Inner and outer front-wheel angles of perfect Ackermann geometry [rad].
+    """Inner and outer front-wheel angles of perfect Ackermann geometry.
 
-    delta_i = L / (R - t/2), delta_o = L / (R + t/2) (Gillespie eq. 6-2), or with atan when
-    ``exact``; R to the rear-axle centre, t the front track (``vehicle.geometry.front_track`` by
-    default). Signs follow the radius (positive right turn, SAE); the inner wheel is on the side
+    delta_i = L / (R - t/2), delta_o = L / (R + t/2) (Gillespie 1992, eq. 6-2), or with atan when
+    ``exact``. Signs follow the radius (positive right turn, SAE); the inner wheel is on the side
     of the turn centre.
+
+    Parameters
+    ----------
+    vehicle_or_wheelbase : Vehicle, LinearBicycle, BicycleParameters or float
+        The vehicle, or its wheelbase L [m].
+    radius : float or array_like
+        Turn radius R of the rear-axle centre [m]; positive for a right turn (SAE); |R| > t / 2.
+    track : float, optional
+        Front track t [m]; default ``vehicle.geometry.front_track`` (needed unless a Vehicle is
+        given).
+    exact : bool, optional
+        ``atan`` of the ratios instead of the small-angle ratios (default False).
+
+    Returns
+    -------
+    AckermannWheelAngles
+        ``inner`` and ``outer`` road-wheel angles [rad].
     """
     L = _wheelbase_of(vehicle_or_wheelbase)
     if track is None:
@@ -306,11 +545,27 @@ def ackermann_wheel_angles(vehicle_or_wheelbase, radius, *, track: float | None 
 
 
 def steer_angle_for(vehicle_or_bicycle, radius, speed=None, *, rear_steer_ratio=0.0):
-    """Front road-wheel steer angle [rad] for a steady turn of radius ``radius`` at ``speed``.
+    """Front road-wheel steer angle for a steady turn of radius ``radius`` at ``speed``.
 
-    delta_f (1 - k) = L / R + K u^2 / R (Gillespie eq. 6-17 in consistent units), the Ackermann
-    angle plus the understeer part K a_y. Radius positive for a right turn (SAE); ``speed``
-    defaults to the bicycle's; ``rear_steer_ratio`` k = delta_r / delta_f.
+    delta_f (1 - k) = L / R + K u^2 / R (Gillespie 1992, eq. 6-17 in consistent units), the
+    Ackermann angle plus the understeer part K a_y.
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+    radius : float or array_like
+        Radius R of the CG path [m], finite and non-zero; positive for a right turn (SAE).
+    speed : float or array_like, optional
+        Forward speed u [m/s], >= 0; defaults to the bicycle's.
+    rear_steer_ratio : float or array_like, optional
+        k = delta_r / delta_f [-] (default 0: front steer only).
+
+    Returns
+    -------
+    float or ndarray
+        delta_f [rad], with the sign of the radius (broadcast over the arguments).
     """
     p = bicycle_parameters(vehicle_or_bicycle)
     u = speed_of(vehicle_or_bicycle, speed, allow_zero=True)
@@ -343,6 +598,14 @@ class HandlingDiagram:
     condition: str
 
     def to_frame(self):
+        """The diagram as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Indexed by ``lateral_acceleration``; columns ``steer_angle``, ``speed``, ``radius``;
+            units in ``attrs["units"]``, the test in ``attrs["condition"]``.
+        """
         import pandas as pd
 
         df = pd.DataFrame({"steer_angle": self.steer_angle, "speed": self.speed, "radius": self.radius},
@@ -352,7 +615,20 @@ class HandlingDiagram:
         return df
 
     def plot(self, ax=None, label: str | None = None):
-        """Steer angle [deg] against lateral acceleration [g], the textbook's handling diagram."""
+        """Steer angle [deg] against lateral acceleration [g], the textbook's handling diagram.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; default a new figure.
+        label : str, optional
+            Legend label; default the test condition.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure of ``ax``.
+        """
         from vehdyn.plotting import new_figure
 
         if ax is None:
@@ -369,10 +645,27 @@ class HandlingDiagram:
 def handling_diagram(vehicle_or_bicycle, lateral_acceleration, *, radius=None, speed=None) -> HandlingDiagram:
     """Linear handling diagram: steer angle against lateral acceleration.
 
-    Give ``radius`` [m] (constant-radius test, ISO 4138 method 1: u = sqrt(a_y R),
-    delta = L / R + K a_y) or ``speed`` [m/s] (constant-speed test: R = u^2 / a_y,
+    Give ``radius`` (constant-radius test, ISO 4138 method 1: u = sqrt(a_y R),
+    delta = L / R + K a_y) or ``speed`` (constant-speed test: R = u^2 / a_y,
     delta = (L / u^2 + K) a_y). The slope of the constant-radius line is K; of the constant-speed
     line L / u^2 + K.
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (its mass, axle positions and AXLE cornering stiffnesses, see
+        :func:`~vehdyn.handling.bicycle_parameters`).
+    lateral_acceleration : array_like
+        a_y [m/s^2], finite (positive: the SAE right turn).
+    radius : float, optional
+        Radius R of the constant-radius test [m], finite and non-zero.
+    speed : float, optional
+        Speed u of the constant-speed test [m/s], > 0.
+
+    Returns
+    -------
+    HandlingDiagram
+        Steer angle [rad], speed [m/s] and radius [m] at each lateral acceleration.
     """
     if (radius is None) == (speed is None):
         raise ParameterError("give exactly one of radius or speed", key="radius", value=(radius, speed))

@@ -101,7 +101,26 @@ def steering_system_parameters(vehicle, **overrides) -> SteeringSystemParameters
 
     ``vehicle.steering.pneumatic_trail`` left unset (None) is taken from the front tire law:
     -dM_z/dF_y at zero slip and half the static front axle load (0.042 m for the sedan's
-    mf_185_80R14.tir). A SteeringSystemParameters passes through (with the overrides applied).
+    mf_185_80R14.tir).
+
+    Parameters
+    ----------
+    vehicle : Vehicle or SteeringSystemParameters
+        The vehicle (its ``steering`` group and front tire law); a SteeringSystemParameters
+        passes through (with the overrides applied).
+    **overrides
+        Fields of :class:`SteeringSystemParameters` to replace, in their units
+        (``steering_friction_torque=0.0`` [N*m], ``assist_gain=2.0`` [-], ...).
+
+    Returns
+    -------
+    SteeringSystemParameters
+        The validated parameters.
+
+    Raises
+    ------
+    ParameterError
+        For another ``vehicle``, or an override that is not a parameter of the steering system.
     """
     if isinstance(vehicle, SteeringSystemParameters):
         return dataclasses.replace(vehicle, **overrides) if overrides else vehicle
@@ -123,17 +142,40 @@ def steering_system_parameters(vehicle, **overrides) -> SteeringSystemParameters
 
 
 def boost_torque(column_torque, assist_gain, knee_torque):
-    """Assist torque T_a = G T_c^3 / (T_c^2 + T_k^2) [N*m] of the boost curve (module docstring)."""
+    r"""Assist torque of the power-steering boost curve (module docstring).
+
+    .. math::
+
+        T_a = G \frac{T_c^3}{T_c^2 + T_k^2}
+
+    Almost no assist on centre (slope 0 at T_c = 0), the boost ratio G far from it.
+
+    Parameters
+    ----------
+    column_torque : float or array_like
+        Column (torsion-bar) torque T_c [N*m].
+    assist_gain : float
+        Boost ratio G far from centre [-] (0: a manual rack).
+    knee_torque : float
+        T_k [N*m], where the assist turns on.
+
+    Returns
+    -------
+    float or ndarray
+        T_a [N*m], with the sign of T_c.
+    """
     t = np.asarray(column_torque, dtype=float)
     return assist_gain * t**3 / (t * t + knee_torque * knee_torque)
 
 
 class SteeringSystem(Model):
-    """Steering wheel, column, rack with friction and power assist (equations in the module docstring).
+    r"""Steering wheel, column, rack with friction and power assist, and the tires' aligning moment.
 
     Parameters
     ----------
     vehicle : Vehicle or SteeringSystemParameters
+        The vehicle (its ``steering`` group and front tire law, see
+        :func:`steering_system_parameters`) or the parameters.
     steering_input : {"angle", "torque"}
         ``"angle"`` (default): the steering-wheel angle is an input (a steering robot; the weave
         test); ``"torque"``: the driver's torque is, and the steering wheel has its inertia and
@@ -151,6 +193,35 @@ class SteeringSystem(Model):
     outputs
         ``front_steer_angle`` [rad], ``steering_wheel_torque`` [N*m] (the column torque T_c),
         ``assist_torque``, ``aligning_torque`` (at the pinion) [N*m], ``steering_wheel_angle`` [rad].
+
+    Notes
+    -----
+    The pinion angle theta_p (rack, road wheels and assist motor lumped into J_p referred to the
+    pinion) below the torsion bar and, with the driver's torque T_d as the input, the steering
+    wheel's angle theta_sw above it; SAE signs (positive steering right):
+
+    .. math::
+
+        T_c &= k_c (\theta_{sw} - \theta_p), \qquad
+        T_a = G \frac{T_c^3}{T_c^2 + T_k^2}, \qquad
+        T_{al} = -\frac{(t_m + t_p) F_{yf}}{N}, \\
+        J_p \dot\omega_p &= T_c + T_a + T_{al} - c \, \omega_p - T_f \tanh(\omega_p / \omega_f),
+        \qquad \dot\theta_p = \omega_p, \\
+        J_{sw} \dot\omega_{sw} &= T_d - T_c \quad \text{(torque input only)}, \qquad
+        \delta = \theta_p / N
+
+    with N the overall steering ratio, k_c the column stiffness, G and T_k the boost curve, t_m and
+    t_p the caster and pneumatic trails, F_yf the front axle's lateral force, c the viscous
+    damping and T_f the Coulomb friction regularized within omega_f (no stiction). With the
+    steering-wheel angle as the input the wheel's inertia carries no state and the output
+    ``steering_wheel_torque`` is T_c.
+
+    References
+    ----------
+    .. [1] P. Pfeffer and M. Harrer (eds.), *Steering Handbook*, Springer, 2017, ch. 5 (steering
+       system models) and ch. 7 (the assist characteristic over the torsion-bar torque).
+    .. [2] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 8 (the aligning
+       moment about the steering axis: the lateral force times the trail).
     """
 
     phenomena = frozenset({"steering"})
@@ -213,7 +284,7 @@ class SteeringSystem(Model):
 
 
 class SteeredVehicle(Model):
-    """A vehicle model steered through a :class:`SteeringSystem` (the loop closed; module docstring).
+    r"""A vehicle model steered through a :class:`SteeringSystem`: the loop closed.
 
     Parameters
     ----------
@@ -221,6 +292,27 @@ class SteeredVehicle(Model):
         Has the input ``front_steer_angle`` and the output ``front_lateral_force``
         (LinearBicycle, SingleTrack, ...).
     steering : SteeringSystem
+        The steering (its first input, the steering-wheel angle or the driver's torque, becomes
+        this model's first input).
+
+    Notes
+    -----
+    The road-wheel angle comes from the steering's pinion state, the aligning moment from the
+    vehicle's front axle force; the vehicle's other inputs u_v pass through:
+
+    .. math::
+
+        \dot x_v = f_v(x_v, [\theta_p / N, u_v]), \qquad
+        \dot x_s = f_s(x_s, [u_0, F_{yf}(x_v, \theta_p / N, u_v)])
+
+    (x_v, f_v the vehicle's states and equations, x_s, f_s the steering's, u_0 the steering
+    wheel's angle or torque). F_yf depends on the states, not on the steering's outputs, so the
+    loop has no algebraic part.
+
+    References
+    ----------
+    .. [1] P. Pfeffer and M. Harrer (eds.), *Steering Handbook*, Springer, 2017, ch. 5.
+    .. [2] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 8.
 
     Signals
     -------

@@ -75,6 +75,14 @@ class YawMode:
         return np.all(self.eigenvalues.real < 0, axis=0)
 
     def to_frame(self):
+        """The mode against speed as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Indexed by ``speed``; the natural frequency [rad/s and Hz], the damping ratio and the
+            two eigenvalues' real and imaginary parts; units in ``attrs["units"]``.
+        """
         import pandas as pd
 
         df = pd.DataFrame({
@@ -128,10 +136,27 @@ def yaw_mode(vehicle_or_bicycle, speed=None) -> YawMode:
 
 
 def yaw_rate_transfer_function(vehicle_or_bicycle, speed=None):
-    """r / delta_f as ``(numerator, denominator)`` polynomial coefficients in s, highest power first.
+    r"""Yaw rate per unit front road-wheel steer angle of the 2-DOF bicycle model, as a transfer function.
 
-    Closed form in the module docstring; [1/s] at s = 0. Usable with ``control.tf(num, den)`` and
-    ``scipy.signal.freqs``.
+    .. math::
+
+        \frac{r}{\delta_f}(s) = \frac{\frac{C_f a}{I_z} s + \frac{C_f C_r L}{m I_z u}}
+                                      {s^2 + 2 \zeta \omega_n s + \omega_n^2}
+
+    with omega_n and zeta of :func:`yaw_mode` (module docstring; Abe 2009, sec. 4.2). Usable with
+    ``control.tf(num, den)`` and ``scipy.signal.freqs``.
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (see :func:`~vehdyn.handling.bicycle_parameters`).
+    speed : float, optional
+        Forward speed u [m/s], > 0; defaults to the bicycle's.
+
+    Returns
+    -------
+    numerator, denominator : ndarray
+        Polynomial coefficients in s, highest power first; the gain at s = 0 is r / delta_f [1/s].
     """
     p = bicycle_parameters(vehicle_or_bicycle)
     u = float(speed_of(vehicle_or_bicycle, speed))
@@ -141,9 +166,28 @@ def yaw_rate_transfer_function(vehicle_or_bicycle, speed=None):
 
 
 def lateral_acceleration_transfer_function(vehicle_or_bicycle, speed=None):
-    """a_y / delta_f as ``(numerator, denominator)`` coefficients in s, highest power first.
+    r"""Lateral acceleration per unit front road-wheel steer angle of the 2-DOF bicycle model.
 
-    [(m/s^2)/rad]; closed form in the module docstring.
+    .. math::
+
+        \frac{a_y}{\delta_f}(s) = \frac{\frac{C_f}{m} s^2 + \frac{C_f C_r b L}{m I_z u} s
+                                          + \frac{C_f C_r L}{m I_z}}
+                                         {s^2 + 2 \zeta \omega_n s + \omega_n^2}
+
+    (module docstring; Abe 2009, sec. 4.2).
+
+    Parameters
+    ----------
+    vehicle_or_bicycle : Vehicle, LinearBicycle or BicycleParameters
+        The vehicle (see :func:`~vehdyn.handling.bicycle_parameters`).
+    speed : float, optional
+        Forward speed u [m/s], > 0; defaults to the bicycle's.
+
+    Returns
+    -------
+    numerator, denominator : ndarray
+        Polynomial coefficients in s, highest power first; the gain at s = 0 is a_y / delta_f
+        [(m/s^2)/rad].
     """
     p = bicycle_parameters(vehicle_or_bicycle)
     u = float(speed_of(vehicle_or_bicycle, speed))

@@ -3,8 +3,9 @@
 Models (each an exact :class:`vehdyn.LinearModel` with named signals)
     :class:`QuarterCar`, :class:`BouncePitch` (4-DOF half car, or the 2-DOF body-only model),
     :class:`FullCar` (7 DOF, anti-roll bars), their parameter sets :class:`QuarterCarParameters`,
-    :class:`BouncePitchParameters`, :class:`FullCarParameters`; ``from_vehicle(vehicle)`` builds
-    each from the shipped vehicle data.
+    :class:`BouncePitchParameters`, :class:`FullCarParameters`. As every vehdyn model, each is
+    built from a vehicle, ``QuarterCar(vehicle, axle="front")``, ``BouncePitch(vehicle)``,
+    ``FullCar(vehicle)``, or from a textbook's numbers, ``QuarterCar.from_parameters(...)``.
 Wheelbase delay, the road at every wheel (:mod:`~vehdyn.ride.wheelbase`)
     :func:`road_frequency_response` (exact, frequency domain), :func:`road_inputs` (exact, time
     domain, through :meth:`RoadProfile.road_inputs`), :func:`with_wheelbase_delay` (Padé, state

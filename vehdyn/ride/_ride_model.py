@@ -29,14 +29,93 @@ the deflection delta = G q - R z_r adds k G'G to K, c G'G to C, k G'R to F_d and
 
 from __future__ import annotations
 
+import functools
+import inspect
 from dataclasses import dataclass
 
 import numpy as np
 
+from vehdyn.errors import ParameterError
 from vehdyn.model import LinearModel
+from vehdyn.params import Vehicle
 from vehdyn.signals import Signal
 
 __all__ = ["RideModel", "Corner"]
+
+
+def vehicle_or_parameters(model: str, vehicle, parameter_class, example: str):
+    """The first argument of a ride model: a :class:`~vehdyn.Vehicle` or its parameter set.
+
+    Anything else (numbers, a dict, None) raises a ParameterError that says how to call the model
+    now: ``Model(vehicle, ...)`` or ``Model.from_parameters(...)`` with the numbers.
+
+    Parameters
+    ----------
+    model : str
+        The class name (``"QuarterCar"``).
+    vehicle : object
+        What the caller passed first.
+    parameter_class : type
+        The model's :class:`~vehdyn.params.ParameterSet` (``QuarterCarParameters``).
+    example : str
+        The keywords of ``from_parameters`` to show in the message (``"sprung_mass=..., ..."``).
+
+    Returns
+    -------
+    Vehicle or ParameterSet
+        ``vehicle``, checked.
+    """
+    if isinstance(vehicle, (Vehicle, parameter_class)):
+        return vehicle
+    if isinstance(vehicle, dict):
+        got = "a dict of parameters"
+        hint = f"{model}.from_parameters(**parameters)"
+    else:
+        got = f"the {type(vehicle).__name__} {vehicle!r}"
+        hint = f"{model}.from_parameters({example})"
+    raise ParameterError(f"{model}(vehicle, ...) takes a vehdyn Vehicle (e.g. vehdyn.load_vehicle('sedan')) or a "
+                         f"{parameter_class.__name__}, got {got}; to build one from numbers call {hint}",
+                         key="vehicle", value=vehicle)
+
+
+def ride_model_constructor(parameter_class, example: str):
+    """Decorator of a ride model's ``__init__``: a call that does not fit its signature (the numbers
+    given as keywords, the old way, or too many positional arguments) raises a ParameterError that
+    says how to call it now, instead of a bare TypeError. The signature stays the wrapped one.
+
+    Parameters
+    ----------
+    parameter_class : type
+        The model's parameter set (``QuarterCarParameters``), named in the message.
+    example : str
+        The keywords of the model's ``from_parameters`` to show in the message.
+
+    Returns
+    -------
+    callable
+        The decorator.
+    """
+    def decorate(init):
+        signature = inspect.signature(init)
+
+        @functools.wraps(init)
+        def checked(self, *args, **kwargs):
+            try:
+                signature.bind(self, *args, **kwargs)
+            except TypeError as exc:
+                model = type(self).__name__
+                numbers = [key for key in kwargs if key not in signature.parameters]
+                what = f"the keyword(s) {', '.join(numbers)}" if numbers else str(exc)
+                raise ParameterError(
+                    f"{model}(vehicle, ...) takes a vehdyn Vehicle or a {parameter_class.__name__}, got {what}; to "
+                    f"build one from numbers call {model}.from_parameters({example})",
+                    key=numbers[0] if numbers else "vehicle", value=kwargs[numbers[0]] if numbers else args,
+                ) from None
+            init(self, *args, **kwargs)
+
+        return checked
+
+    return decorate
 
 
 @dataclass(frozen=True)
@@ -287,14 +366,25 @@ class RideModel(LinearModel):
     def replace(self, **changes) -> "RideModel":
         """The same kind of model with some parameters changed (``qc.replace(damping=2000.0)``).
 
-        The actuator option (``actuator`` for the quarter car, ``actuators`` otherwise) may be
-        changed too; everything else is validated again.
-        """
-        import dataclasses
+        Parameters
+        ----------
+        **changes
+            Fields of the model's parameter set, in their units (``damping=2000.0`` [N*s/m]), and
+            the actuator option (``actuator`` for the quarter car, ``actuators`` otherwise).
 
+        Returns
+        -------
+        RideModel
+            A new model of the same class and name, its parameters validated again.
+
+        Raises
+        ------
+        ParameterError
+            Naming an unknown field or a value out of its range.
+        """
         flag = changes.pop(self._actuator_keyword, self.has_actuators)
-        params = dataclasses.replace(self.parameters, **changes)
-        return type(self)(**params.to_dict(), **{self._actuator_keyword: flag}, name=self.name)
+        params = self.parameters.replace(**changes)
+        return type(self)(params, **{self._actuator_keyword: flag}, name=self.name)
 
     @property
     def corner_suffixes(self) -> tuple[str, ...]:
@@ -303,8 +393,15 @@ class RideModel(LinearModel):
 
     @property
     def has_actuators(self) -> bool:
+        """True when the model has ``actuator_force`` inputs."""
         return any(name.startswith("actuator_force") for name in self.input_names)
 
     def road_input_names(self) -> tuple[tuple[str, str], ...]:
-        """``((road_displacement<sfx>, road_velocity<sfx>), ...)`` per corner."""
+        """The names of the road inputs, per corner.
+
+        Returns
+        -------
+        tuple of (str, str)
+            ``((road_displacement<sfx>, road_velocity<sfx>), ...)`` in corner order.
+        """
         return tuple((f"road_displacement{s}", f"road_velocity{s}") for s in self.corner_suffixes)

@@ -59,8 +59,9 @@ def _spectrum(road) -> RoadSpectrum:
 
 def _require_quarter_car(qc):
     if not isinstance(qc, QuarterCar):
-        raise ParameterError(f"expected a vehdyn.ride.QuarterCar, got {type(qc).__name__}", key="quarter_car",
-                             value=qc)
+        raise ParameterError(f"expected a vehdyn.ride.QuarterCar, got {type(qc).__name__}: build one from a vehicle, "
+                             "QuarterCar(vehicle, axle='front'), or from numbers, QuarterCar.from_parameters(...)",
+                             key="quarter_car", value=qc)
 
 
 def _with_actuator(qc: QuarterCar) -> QuarterCar:
@@ -68,16 +69,31 @@ def _with_actuator(qc: QuarterCar) -> QuarterCar:
 
 
 def relative_quarter_car(qc: QuarterCar, actuator: bool = True) -> LinearModel:
-    """The quarter car in relative coordinates, driven by the road velocity only.
+    r"""The quarter car in relative coordinates, driven by the road velocity only.
 
-    States ``suspension_travel`` (z_s - z_u), ``tire_deflection`` (z_r - z_u), ``sprung_velocity``,
-    ``unsprung_velocity``; inputs ``road_velocity`` (and ``actuator_force``). The road elevation
-    drops out because every force depends on differences of displacements; so a white road
-    velocity (an ISO 8608 road of waviness 2) gives a stationary state with finite covariance.
-    The outputs are those of ``qc`` that do not depend on absolute position.
+    The road elevation drops out because every force depends on differences of displacements;
+    so a white road velocity (an ISO 8608 road of waviness 2) gives a stationary state with finite
+    covariance. Derived from ``qc``'s own matrices by the substitution (checked: the coefficient
+    of z_r vanishes)
 
-    Derived from ``qc``'s own matrices by the substitution z_s = x_1 - x_2 + z_r,
-    z_u = z_r - x_2 (checked: the coefficient of z_r vanishes).
+    .. math::
+
+        z_s = x_1 - x_2 + z_r, \qquad z_u = z_r - x_2, \qquad
+        x_1 = z_s - z_u \text{ (suspension travel)}, \quad x_2 = z_r - z_u \text{ (tire deflection)}
+
+    Parameters
+    ----------
+    qc : QuarterCar
+        The passive car.
+    actuator : bool, optional
+        Keep (add) the input ``actuator_force`` [N] (default True); False drops it.
+
+    Returns
+    -------
+    LinearModel
+        States ``suspension_travel`` [m], ``tire_deflection`` [m], ``sprung_velocity`` [m/s],
+        ``unsprung_velocity`` [m/s]; inputs ``road_velocity`` [m/s] (and ``actuator_force``);
+        the outputs of ``qc`` that do not depend on absolute position.
     """
     _require_quarter_car(qc)
     m = _with_actuator(qc) if actuator else qc.replace(actuator=False)
@@ -137,7 +153,7 @@ def _hook_gain(model: LinearModel, sky: float, ground: float) -> np.ndarray:
 
 
 def skyhook(model, skyhook_damping: float, groundhook_damping: float = 0.0) -> LinearModel:
-    """Ideal skyhook (and optionally groundhook: the hybrid) active quarter car.
+    r"""Ideal skyhook (and optionally groundhook: the hybrid) active quarter car.
 
     Parameters
     ----------
@@ -146,14 +162,30 @@ def skyhook(model, skyhook_damping: float, groundhook_damping: float = 0.0) -> L
         ``qc.replace(damping=0.0)`` for a pure skyhook) or a model with an ``actuator_force`` input
         and ``sprung_velocity``/``unsprung_velocity`` states (e.g. :func:`relative_quarter_car`).
     skyhook_damping : float
-        c_sky [N*s/m]: actuator force -c_sky z_s' on the body.
-    groundhook_damping : float
-        c_gnd [N*s/m]: actuator force -c_gnd z_u' on the wheel.
+        c_sky [N*s/m], >= 0: actuator force -c_sky z_s' on the body.
+    groundhook_damping : float, optional
+        c_gnd [N*s/m], >= 0: actuator force -c_gnd z_u' on the wheel (default 0).
 
     Returns
     -------
     LinearModel
         The closed loop: the model's inputs without the actuator, its outputs and ``actuator_force``.
+
+    Notes
+    -----
+    The actuator between body and wheel makes the force of dampers to the inertial "sky" and to
+    the ground (positive extending the suspension: up on the body, down on the wheel):
+
+    .. math::
+
+        f = -c_{sky} \dot z_s + c_{gnd} \dot z_u
+
+    References
+    ----------
+    .. [1] D. Karnopp, M. J. Crosby and R. A. Harwood, "Vibration control using semi-active force
+       generators", *J. Eng. Ind.* 96(2), 1974, pp. 619-626.
+    .. [2] M. Valášek, M. Novák, Z. Šika and O. Vaculín, "Extended ground-hook: new concept of
+       semi-active control of truck's suspension", *Vehicle System Dynamics*, 1997.
     """
     base = _with_actuator(model) if isinstance(model, QuarterCar) else model
     gain = _hook_gain(base, float(skyhook_damping), float(groundhook_damping))
@@ -161,13 +193,28 @@ def skyhook(model, skyhook_damping: float, groundhook_damping: float = 0.0) -> L
 
 
 def groundhook(model, groundhook_damping: float) -> LinearModel:
-    """Ideal groundhook active quarter car (actuator force -c_gnd z_u' on the wheel); see :func:`skyhook`."""
+    """Ideal groundhook active quarter car: actuator force c_gnd z_u' up on the body, -c_gnd z_u' on the wheel.
+
+    :func:`skyhook` with ``skyhook_damping=0``.
+
+    Parameters
+    ----------
+    model : QuarterCar or LinearModel
+        As for :func:`skyhook`.
+    groundhook_damping : float
+        c_gnd [N*s/m], >= 0.
+
+    Returns
+    -------
+    LinearModel
+        The closed loop: the model's inputs without the actuator, its outputs and ``actuator_force``.
+    """
     base = _with_actuator(model) if isinstance(model, QuarterCar) else model
     return _close_loop(base, _hook_gain(base, 0.0, float(groundhook_damping)), name=f"{base.name}_groundhook")
 
 
 class SemiActiveQuarterCar(Model):
-    """Quarter car with a continuously variable, purely dissipative damper (clipped skyhook/groundhook).
+    r"""Quarter car with a continuously variable, purely dissipative damper (clipped skyhook/groundhook).
 
     The damper's coefficient c is chosen at each instant to make the force of the ideal hybrid
     skyhook-groundhook law, f* = -c_sky z_s' + c_gnd z_u' (on the body; the wheel takes -f*), when
@@ -177,17 +224,41 @@ class SemiActiveQuarterCar(Model):
     Parameters
     ----------
     quarter_car : QuarterCar
-        Masses, spring and tire (its damping is replaced by the variable damper).
-    skyhook_damping, groundhook_damping : float
-        c_sky, c_gnd [N*s/m] of the reference law.
+        Masses, spring and tire (its damping is replaced by the variable damper). Build it from a
+        vehicle, ``QuarterCar(vehicle, axle="front")``, or from numbers,
+        ``QuarterCar.from_parameters(...)``.
+    skyhook_damping, groundhook_damping : float, optional
+        c_sky, c_gnd [N*s/m] of the reference law, >= 0 (default 0).
     min_damping, max_damping : float
         Range of the damper [N*s/m], 0 <= c_min <= c_max.
 
     Notes
     -----
+    The quarter car of :class:`QuarterCar` without its passive damper, the damper's force f on
+    the body (its reaction on the wheel) set by the clipped hybrid law:
+
+    .. math::
+
+        f^* &= -c_{sky} \dot z_s + c_{gnd} \dot z_u, \qquad v_{rel} = \dot z_s - \dot z_u, \\
+        c &= \begin{cases}
+             \min\left(\max\left(-f^* / v_{rel}, c_{min}\right), c_{max}\right)
+                 & f^* v_{rel} < 0 \\
+             c_{min} & \text{otherwise}
+             \end{cases}, \qquad
+        f = -c \, v_{rel}
+
+    so that f v_rel <= 0 always: the damper only dissipates.
+
     States, inputs and outputs as the :class:`QuarterCar`, plus outputs ``damper_force`` [N] (on
     the body, up +) and ``damper_coefficient`` [N*s/m]. ``rhs`` and ``output`` take a trailing
     batch axis. With c_min = c_max = c it is the passive quarter car of damping c.
+
+    References
+    ----------
+    .. [1] D. Karnopp, M. J. Crosby and R. A. Harwood, "Vibration control using semi-active force
+       generators", *J. Eng. Ind.* 96(2), 1974, pp. 619-626.
+    .. [2] D. Sammier, O. Sename and L. Dugard, "Skyhook and H-infinity control of semi-active
+       suspensions: some practical aspects", *Vehicle System Dynamics* 39, 2003.
     """
 
     phenomena = frozenset({"heave", "wheel_hop", "road_input"})
@@ -219,7 +290,20 @@ class SemiActiveQuarterCar(Model):
         self.name = f"{quarter_car.name}_semi_active"
 
     def damper(self, x):
-        """Damper coefficient [N*s/m] and force on the body [N] for states ``x`` (batch axis allowed)."""
+        """The damper's coefficient and force at the states ``x`` (class Notes).
+
+        Parameters
+        ----------
+        x : ndarray
+            States of the model [m, m/s], shape (4,) or (4, n_batch).
+
+        Returns
+        -------
+        coefficient : ndarray
+            c [N*s/m].
+        force : ndarray
+            f on the body [N] (up +; the wheel feels -f).
+        """
         vs, vu = x[self._i_vs], x[self._i_vu]
         rel = vs - vu
         target = -self.skyhook_damping * vs + self.groundhook_damping * vu
@@ -250,7 +334,7 @@ class LQRDesign:
     gain : ndarray, shape (n_states,)
         K in f = -K x over the states of ``plant`` [N/m, N*s/m].
     riccati : ndarray
-        Solution S of the algebraic Riccati equation.
+        Solution S of the algebraic Riccati equation [units of the cost per unit state squared].
     closed_loop : LinearModel
         Input ``road_velocity``; the plant's outputs and ``actuator_force``.
     plant : LinearModel
@@ -269,11 +353,23 @@ class LQRDesign:
     poles: np.ndarray
 
     def cost(self, road, speed: float) -> float:
-        """Expected cost E[sum w y^2 + r f^2] [-] on the ISO 8608 road ``road`` at ``speed`` [m/s].
+        """Expected cost E[sum w y^2 + r f^2] of the design on an ISO 8608 road.
 
-        ``road`` is a :class:`~vehdyn.ride.RoadSpectrum`, a class letter or Gd(n0) [m^3] (waviness
-        2: the road velocity is sigma w, w unit-intensity white noise,
-        sigma = :meth:`~vehdyn.ride.RoadSpectrum.white_noise_gain`); the cost is sigma^2 b_w' S b_w.
+        The road velocity is sigma w, w unit-intensity white noise (waviness 2;
+        sigma = :meth:`~vehdyn.road.RoadSpectrum.white_noise_gain`), so the cost is
+        sigma^2 b_w' S b_w.
+
+        Parameters
+        ----------
+        road : RoadSpectrum, str or float
+            A :class:`~vehdyn.road.RoadSpectrum`, an ISO 8608 class letter or Gd(n0) [m^3].
+        speed : float
+            Forward speed V [m/s].
+
+        Returns
+        -------
+        float
+            The expected cost [-] (in the units the weights make it).
         """
         sigma = _spectrum(road).white_noise_gain(speed)
         bw = self.plant.B[:, self.plant.index("road_velocity", "inputs")]
@@ -282,7 +378,7 @@ class LQRDesign:
 
 def lqr_quarter_car(qc: QuarterCar, weights: Mapping[str, float] | None = None, force_weight: float = 1e-8,
                     ) -> LQRDesign:
-    """Design an LQR active suspension through ``to_control()`` and python-control's ``lqr``.
+    r"""Design an LQR active suspension through ``to_control()`` and python-control's ``lqr``.
 
     Parameters
     ----------
@@ -298,12 +394,26 @@ def lqr_quarter_car(qc: QuarterCar, weights: Mapping[str, float] | None = None, 
     Returns
     -------
     LQRDesign
+        The gain, the Riccati solution, the closed loop and the plant.
 
     Notes
     -----
-    With y = C x + D f the cost is x'Qx + f'Rf + 2 x'N f with Q = C'WC, R = D'WD + r, N = C'WD
-    (the sprung acceleration depends on f directly, hence the cross term). Full-state feedback
-    needs the tire deflection, which a real car estimates rather than measures.
+    Full-state feedback f = -K x on the states x of :func:`relative_quarter_car` minimizing
+
+    .. math::
+
+        J = E\left[\sum_i w_i y_i^2 + r f^2\right]
+          = E\left[x^T Q x + f^T R f + 2 x^T N f\right], \qquad
+        Q = C^T W C, \quad R = D^T W D + r, \quad N = C^T W D
+
+    with y = C x + D f the weighted outputs (the sprung acceleration depends on f directly, hence
+    the cross term). Full-state feedback needs the tire deflection, which a real car estimates
+    rather than measures.
+
+    References
+    ----------
+    .. [1] D. Hrovat, "Survey of advanced suspension developments and related optimal control
+       applications", *Automatica* 33(10), 1997, pp. 1781-1817, sec. 3.
     """
     _require_quarter_car(qc)
     import control as ct

@@ -73,8 +73,9 @@ class RideModes:
     shapes : ndarray, shape (n_dof, n_modes)
         Undamped mode shapes scaled so that the largest entry is 1 [m or rad].
     energy_fraction : ndarray, shape (n_dof, n_modes)
-        Share of each coordinate in the mode's kinetic energy, phi_i (M phi)_i / phi' M phi.
+        Share of each coordinate in the mode's kinetic energy, phi_i (M phi)_i / phi' M phi [-].
     dof : tuple of str
+        The coordinates (``sprung_displacement``, ``pitch_angle``, ..., ``unsprung_displacement*``).
     """
 
     labels: tuple[str, ...]
@@ -90,18 +91,52 @@ class RideModes:
         return len(self.labels)
 
     def index(self, label: str) -> int:
-        """Position of the (first) mode whose label starts with ``label``."""
+        """Position of the (first) mode whose label starts with ``label``.
+
+        Parameters
+        ----------
+        label : str
+            E.g. ``"pitch"``, ``"wheel hop"``, ``"wheel hop front"``.
+
+        Returns
+        -------
+        int
+            Its index in the arrays (ascending undamped frequency).
+
+        Raises
+        ------
+        KeyError
+            When no mode has that label.
+        """
         for k, lab in enumerate(self.labels):
             if lab.startswith(label):
                 return k
         raise KeyError(f"no mode labelled {label!r}; modes are {list(self.labels)}")
 
     def shape(self, label: str) -> dict[str, float]:
-        """Mode shape of a labelled mode by coordinate name."""
+        """Mode shape of a labelled mode by coordinate name.
+
+        Parameters
+        ----------
+        label : str
+            As for :meth:`index`.
+
+        Returns
+        -------
+        dict
+            ``{coordinate: amplitude}`` [m or rad], the largest entry 1.
+        """
         return dict(zip(self.dof, self.shapes[:, self.index(label)]))
 
     def to_frame(self):
-        """A pandas DataFrame, one row per mode, with ``attrs["units"]``."""
+        """The modes as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per mode (index ``mode``, the label): frequencies [Hz], damping ratio [-] and
+            the shape by coordinate; units in ``attrs["units"]``.
+        """
         import pandas as pd
 
         df = pd.DataFrame({
@@ -146,8 +181,26 @@ def ride_modes(model) -> RideModes:
 
     The undamped modes come from the symmetric eigenproblem K phi = omega^2 M phi; each is matched to
     an eigenvalue of the damped state matrix by the mass-weighted modal assurance criterion of
-    the eigenvector's displacement part (Allemang, *Sound and Vibration*, 2003), which gives its
-    damping ratio and damped frequency exactly, however non-proportional the damping.
+    the eigenvector's displacement part, which gives its damping ratio and damped frequency
+    exactly, however non-proportional the damping. Each mode is labelled by where its kinetic
+    energy lies (body bounce, pitch, roll, wheel hop or tramp).
+
+    Parameters
+    ----------
+    model : QuarterCar, BouncePitch or FullCar
+        A ride model of :mod:`vehdyn.ride`.
+
+    Returns
+    -------
+    RideModes
+        One entry per degree of freedom, ascending undamped frequency.
+
+    References
+    ----------
+    .. [1] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 5.
+    .. [2] R. J. Allemang, "The modal assurance criterion -- twenty years of use and abuse",
+       *Sound and Vibration*, 2003.
+    .. [3] L. Meirovitch, *Fundamentals of Vibrations*, McGraw-Hill, 2001, sec. 7.4.
     """
     _require_ride_model(model)
     from scipy.optimize import linear_sum_assignment
@@ -179,7 +232,21 @@ def ride_modes(model) -> RideModes:
 
 
 def axle_ride_rates(model) -> tuple[float, float]:
-    """Front and rear axle ride rates [N/m]: per corner k_s k_t / (k_s + k_t) (k_s with rigid tires), summed."""
+    """Front and rear axle ride rates: per corner k_s k_t / (k_s + k_t), summed over the axle.
+
+    The suspension and tire springs in series (Gillespie 1992, eq. 5-6); with a rigid tire (no
+    unsprung mass) the corner's rate k_s is the ride rate.
+
+    Parameters
+    ----------
+    model : QuarterCar, BouncePitch or FullCar
+        A ride model of :mod:`vehdyn.ride`.
+
+    Returns
+    -------
+    front, rear : float
+        Axle ride rates [N/m].
+    """
     _require_ride_model(model)
     rates = {"front": 0.0, "rear": 0.0}
     for c in model.corners:
@@ -225,6 +292,14 @@ class BouncePitchCentres:
     wheelbase: float
 
     def to_frame(self):
+        """The results as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per attribute (columns ``value`` and ``unit``); units also in
+            ``attrs["units"]``.
+        """
         import pandas as pd
 
         names = ["bounce_frequency_hz", "pitch_frequency_hz", "bounce_centre", "pitch_centre", "spring_centre",
@@ -236,7 +311,34 @@ class BouncePitchCentres:
 
 
 def bounce_pitch_centres(model) -> BouncePitchCentres:
-    """Bounce and pitch frequencies and centres of a :class:`~vehdyn.ride.BouncePitch` or :class:`~vehdyn.ride.FullCar`."""
+    r"""Bounce and pitch frequencies and their centres of rotation in the pitch plane.
+
+    The node of each of the two body modes (the undamped modes with the most body energy) lies
+    x = -z / theta ahead of the sprung CG; the mode whose node lies farther from the CG is the
+    bounce mode. With the axle ride rates K_f, K_r:
+
+    .. math::
+
+        x_{node} = -\frac{z}{\theta}, \qquad
+        x_{spring} = \frac{K_f a - K_r b}{K_f + K_r}, \qquad
+        DI = \frac{I_y}{m a b}
+
+    Parameters
+    ----------
+    model : BouncePitch or FullCar
+        A ride model with a pitch coordinate.
+
+    Returns
+    -------
+    BouncePitchCentres
+        Frequencies [Hz], centres [m ahead of the CG], dynamic index [-].
+
+    References
+    ----------
+    .. [1] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 5, "Pitch/bounce
+       frequencies".
+    .. [2] W. F. Milliken and D. L. Milliken, *Race Car Vehicle Dynamics*, SAE, 1995, ch. 16.
+    """
     _require_ride_model(model)
     if "pitch" not in model.body_dof:
         raise ParameterError(f"{type(model).__name__} has no pitch coordinate", key="model", value=model.name)
@@ -308,6 +410,14 @@ class OlleyCheck:
         return all(checks)
 
     def to_frame(self):
+        """The criteria as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per criterion: ``value`` and ``criterion_met`` (None where it cannot be
+            checked).
+        """
         import pandas as pd
 
         rows = {
@@ -333,8 +443,18 @@ def olley_criteria(model, roll_frequency_hz: float | None = None, *, roll_tolera
     roll_frequency_hz : float, optional
         Roll frequency [Hz]; a :class:`~vehdyn.ride.FullCar`'s own roll mode is used by default.
     roll_tolerance : float
-        Criterion (4) holds when the roll frequency is within this fraction of the mean of the
-        bounce and pitch frequencies (Olley's "approximately equal"; default 20 %).
+        Criterion (4) holds when the roll frequency is within this fraction [-] of the mean of the
+        bounce and pitch frequencies (Olley's "approximately equal"; default 0.2).
+
+    Returns
+    -------
+    OlleyCheck
+        The four criteria and the numbers behind them.
+
+    References
+    ----------
+    .. [1] T. D. Gillespie, *Fundamentals of Vehicle Dynamics*, SAE, 1992, ch. 5 (Olley's flat-ride
+       criteria).
     """
     c = bounce_pitch_centres(model)
     if roll_frequency_hz is None and "roll" in model.body_dof:
@@ -364,16 +484,35 @@ def _outputs_starting(model, prefix: str) -> list[str]:
 
 
 def transmissibility(model, omega, speed: float | None = None) -> FrequencyResponse:
-    """Body heave (and pitch, roll) per unit road elevation [m/m, rad/m].
+    """Body heave (and pitch, roll) per unit road elevation.
 
     Parameters
     ----------
-    model : RideModel
+    model : QuarterCar, BouncePitch or FullCar
+        A ride model of :mod:`vehdyn.ride`.
     omega : array_like
         Angular frequency [rad/s].
     speed : float, optional
-        With a speed, one profile per track with the exact wheelbase delay (see
-        :func:`vehdyn.ride.road_frequency_response`); without, one input per wheel.
+        Forward speed [m/s]. With a speed, one profile per track with the exact wheelbase delay
+        (see :func:`vehdyn.ride.road_frequency_response`); without, one input per wheel.
+
+    Returns
+    -------
+    FrequencyResponse
+        Outputs ``sprung_displacement`` [m/m] (and ``pitch_angle``, ``roll_angle`` [rad/m]) per
+        road input.
+
+    Examples
+    --------
+    The quarter car's body transmissibility peaks near its body frequency (1.21 Hz):
+
+    >>> import numpy as np
+    >>> from vehdyn.ride import QuarterCar, transmissibility
+    >>> qc = QuarterCar.from_parameters(sprung_mass=250.0, unsprung_mass=35.0, spring_rate=16e3,
+    ...                                 damping=1000.0, tire_stiffness=160e3)
+    >>> fr = transmissibility(qc, 2 * np.pi * np.array([0.5, 1.213, 5.0]))
+    >>> fr.magnitude[0, 0].round(3).tolist()
+    [1.198, 2.594, 0.17]
     """
     _require_ride_model(model)
     outs = [n for n in ("sprung_displacement", "pitch_angle", "roll_angle") if n in model.output_names]
@@ -381,12 +520,42 @@ def transmissibility(model, omega, speed: float | None = None) -> FrequencyRespo
 
 
 def suspension_travel_response(model, omega, speed: float | None = None) -> FrequencyResponse:
-    """Suspension travel (rebound +) per unit road elevation [m/m] at every wheel."""
+    """Suspension travel (rebound +) per unit road elevation at every wheel.
+
+    Parameters
+    ----------
+    model : QuarterCar, BouncePitch or FullCar
+        A ride model of :mod:`vehdyn.ride`.
+    omega : array_like
+        Angular frequency [rad/s].
+    speed : float, optional
+        Forward speed [m/s] (the exact wheelbase delay, as :func:`transmissibility`).
+
+    Returns
+    -------
+    FrequencyResponse
+        Outputs ``suspension_travel*`` [m/m] per road input.
+    """
     _require_ride_model(model)
     return road_frequency_response(model, omega, speed=speed, outputs=_outputs_starting(model, "suspension_travel"))
 
 
 def dynamic_tire_load_response(model, omega, speed: float | None = None) -> FrequencyResponse:
-    """Dynamic tire load per unit road elevation [N/m] at every wheel."""
+    """Dynamic tire load (more load +) per unit road elevation at every wheel.
+
+    Parameters
+    ----------
+    model : QuarterCar, BouncePitch or FullCar
+        A ride model of :mod:`vehdyn.ride`.
+    omega : array_like
+        Angular frequency [rad/s].
+    speed : float, optional
+        Forward speed [m/s] (the exact wheelbase delay, as :func:`transmissibility`).
+
+    Returns
+    -------
+    FrequencyResponse
+        Outputs ``dynamic_tire_load*`` [N/m] per road input.
+    """
     _require_ride_model(model)
     return road_frequency_response(model, omega, speed=speed, outputs=_outputs_starting(model, "dynamic_tire_load"))

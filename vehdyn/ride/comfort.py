@@ -93,7 +93,7 @@ def _frequencies(values, name="frequency_hz") -> np.ndarray:
 
 @dataclass(frozen=True)
 class Weighting:
-    """One ISO 2631-1 frequency weighting defined by its Annex A parameters.
+    r"""One ISO 2631-1 frequency weighting defined by its Annex A parameters.
 
     Parameters
     ----------
@@ -106,6 +106,40 @@ class Weighting:
         (Wf); ``f4=None`` means no transition stage (Wj).
     f5, q5, f6, q6 : float or None
         Upward step [Hz, -, Hz, -]; ``None`` means no step stage.
+    description : str, optional
+        What the weighting is for (``"vertical (z) on the seat, ..."``).
+
+    Notes
+    -----
+    The weighting is the product of four continuous-time stages, s = j 2 pi f,
+    omega_i = 2 pi f_i, Q_1 = Q_2 = 1/sqrt(2); a weighting without a transition or a step omits
+    that stage:
+
+    .. math::
+
+        H_h(s) &= \frac{s^2}{s^2 + \omega_1 s / Q_1 + \omega_1^2}, \qquad
+        H_l(s) = \frac{\omega_2^2}{s^2 + \omega_2 s / Q_2 + \omega_2^2}, \\
+        H_t(s) &= \frac{1 + s / \omega_3}{1 + s / (Q_4 \omega_4) + s^2 / \omega_4^2}, \qquad
+        H_s(s) = \frac{s^2 + \omega_5 s / Q_5 + \omega_5^2}{s^2 + \omega_6 s / Q_6 + \omega_6^2}, \\
+        W(s) &= H_h(s) \, H_l(s) \, H_t(s) \, H_s(s)
+
+    (band limiting high and low pass, acceleration-velocity transition, upward step). Table 3 of
+    the standard is |W| at the nominal one-third-octave frequencies rounded to three significant
+    figures (e.g. Wk = 0.482 at 1 Hz). :meth:`filter` applies it to samples by the bilinear
+    transform, each stage pre-warped at its own characteristic frequency (its accuracy:
+    :meth:`digital_error`); :meth:`to_linear_model` gives the exact state space.
+
+    References
+    ----------
+    .. [1] ISO 2631-1:1997, *Mechanical vibration and shock -- Evaluation of human exposure to
+       whole-body vibration -- Part 1: General requirements*, Annex A (Table A.2, the parameters
+       of the weightings) and Table 3.
+
+    Examples
+    --------
+    >>> from vehdyn.ride import weighting
+    >>> weighting("Wk").factor([1.0, 8.0]).round(3).tolist()
+    [0.482, 1.036]
     """
 
     name: str
@@ -139,9 +173,17 @@ class Weighting:
         return stages
 
     def response(self, frequency_hz) -> np.ndarray:
-        """Complex analog weighting W(j 2 pi f) [-] at ``frequency_hz`` [Hz] (finite, >= 0).
+        """Complex analog weighting W(j 2 pi f) (class Notes).
 
-        At 0 Hz it is 0: the band-limiting high-pass (f1) removes a constant acceleration.
+        Parameters
+        ----------
+        frequency_hz : float or array_like
+            Frequencies f [Hz], finite and >= 0.
+
+        Returns
+        -------
+        ndarray of complex
+            W [-]; 0 at 0 Hz (the band-limiting high pass removes a constant acceleration).
         """
         f = _frequencies(frequency_hz)
         s = 2j * np.pi * f
@@ -151,7 +193,18 @@ class Weighting:
         return H
 
     def factor(self, frequency_hz) -> np.ndarray:
-        """Weighting factor |W(f)| [-] (the quantity tabulated in ISO 2631-1 Table 3)."""
+        """Weighting factor |W(f)|, the quantity tabulated in ISO 2631-1 Table 3.
+
+        Parameters
+        ----------
+        frequency_hz : float or array_like
+            Frequencies f [Hz], finite and >= 0.
+
+        Returns
+        -------
+        ndarray
+            |W| [-].
+        """
         return np.abs(self.response(frequency_hz))
 
     # ---------------------------------------------------------------- state space
@@ -163,6 +216,18 @@ class Weighting:
         a ride model with :func:`vehdyn.connect_in_series` to get weighted responses exactly
         (frequency response, Lyapunov covariance, exact-discretization simulation); its states are
         named ``<output_name>_<weighting>_state_<k>``, so filters on several outputs can be appended.
+
+        Parameters
+        ----------
+        input_name : str, optional
+            Name of the input (default ``"acceleration"``), e.g. the ride model's output to weight.
+        output_name : str, optional
+            Name of the output; default ``"weighted_<input_name>"``.
+
+        Returns
+        -------
+        LinearModel
+            One input, one output (the weighted signal, in the input's unit), 2 states per stage.
         """
         from scipy import signal
 
@@ -196,6 +261,16 @@ class Weighting:
         Bilinear transform of each analog stage, pre-warped at its characteristic frequency
         (f1, f2, f4, sqrt(f5 f6)), so that each stage is exact there. Needs
         ``sample_rate > 2 f2`` (the band-limiting low pass must lie below the Nyquist frequency).
+
+        Parameters
+        ----------
+        sample_rate : float
+            fs [Hz], > 2 f2.
+
+        Returns
+        -------
+        ndarray, shape (n_stages, 6)
+            Second-order sections [b0, b1, b2, a0, a1, a2] (``scipy.signal.sosfilt``'s form).
         """
         from scipy import signal
 
@@ -214,7 +289,20 @@ class Weighting:
         return np.array(sections)
 
     def digital_response(self, frequency_hz, sample_rate: float) -> np.ndarray:
-        """Complex response of the digital weighting (:meth:`sos`) at ``frequency_hz`` [Hz]."""
+        """Complex response of the digital weighting (:meth:`sos`).
+
+        Parameters
+        ----------
+        frequency_hz : float or array_like
+            Frequencies [Hz], below sample_rate / 2.
+        sample_rate : float
+            fs [Hz], > 2 f2.
+
+        Returns
+        -------
+        ndarray of complex
+            The response [-].
+        """
         from scipy import signal
 
         _, h = signal.sosfreqz(self.sos(sample_rate), worN=np.atleast_1d(np.asarray(frequency_hz, float)),
@@ -222,9 +310,22 @@ class Weighting:
         return h
 
     def digital_error(self, sample_rate: float, f_low: float | None = None, f_high: float | None = None) -> float:
-        """Largest relative error | |W_digital| / |W_analog| - 1 | over [f_low, f_high] [Hz].
+        """Largest relative error of the digital weighting's magnitude against the analog one.
 
-        Defaults: from 0.1 f1 to min(f2, sample_rate / 20); e.g. Wk at 1 kHz: 1.4 % (at 50 Hz).
+        Parameters
+        ----------
+        sample_rate : float
+            fs [Hz], > 2 f2.
+        f_low : float, optional
+            Lower end of the band [Hz] (default 0.1 f1).
+        f_high : float, optional
+            Upper end of the band [Hz] (default min(f2, sample_rate / 20)).
+
+        Returns
+        -------
+        float
+            max | |W_digital| / |W_analog| - 1 | [-] over 400 log-spaced frequencies of the band;
+            e.g. Wk at 1 kHz: 1.4 % (at 50 Hz).
         """
         f_low = 0.1 * self.f1 if f_low is None else f_low
         f_high = min(self.f2, sample_rate / 20.0) if f_high is None else f_high
@@ -242,6 +343,11 @@ class Weighting:
             Sampling rate [Hz]; must exceed 2 f2.
         axis : int
             Time axis.
+
+        Returns
+        -------
+        ndarray
+            The weighted signal, in the unit of ``signal_values``, same shape.
         """
         from scipy import signal
 
@@ -269,7 +375,19 @@ WEIGHTINGS: dict[str, Weighting] = {
 
 
 def weighting(name: str | Weighting) -> Weighting:
-    """The :class:`Weighting` called ``name`` (``"Wk"``, ``"Wd"``, ``"Wf"``, ``"Wc"``, ``"We"``, ``"Wj"``)."""
+    """The ISO 2631-1 weighting called ``name``.
+
+    Parameters
+    ----------
+    name : str or Weighting
+        ``"Wk"``, ``"Wd"``, ``"Wf"``, ``"Wc"``, ``"We"``, ``"Wj"`` (any case); a Weighting passes
+        through.
+
+    Returns
+    -------
+    Weighting
+        From :data:`WEIGHTINGS`.
+    """
     if isinstance(name, Weighting):
         return name
     key = str(name)
@@ -280,10 +398,20 @@ def weighting(name: str | Weighting) -> Weighting:
 
 
 def weighting_factor(name: str | Weighting, frequency_hz) -> np.ndarray:
-    """|W(f)| [-] of the ISO 2631-1 weighting ``name`` at ``frequency_hz`` [Hz] (analog filter, Annex A).
+    """Weighting factor |W(f)| of an ISO 2631-1 weighting (the analog filter of Annex A).
 
-    Frequencies must be finite and >= 0 (ParameterError naming the first other value and its
-    index); at 0 Hz the factor is 0 (the band-limiting high-pass).
+    Parameters
+    ----------
+    name : str or Weighting
+        The weighting (``"Wk"``, ...).
+    frequency_hz : float or array_like
+        Frequencies [Hz], finite and >= 0 (ParameterError naming the first other value and its
+        index).
+
+    Returns
+    -------
+    ndarray
+        |W| [-]; 0 at 0 Hz (the band-limiting high pass).
     """
     return weighting(name).factor(frequency_hz)
 
@@ -306,13 +434,24 @@ def _samples(values, name="signal_values"):
 
 
 def rms(signal_values) -> np.ndarray:
-    """Root mean square over the last axis, sqrt(mean(a^2)) [unit of the signal] (ISO 2631-1, basic method)."""
+    """Root mean square over the last axis, sqrt(mean(a^2)) (ISO 2631-1, the basic method).
+
+    Parameters
+    ----------
+    signal_values : array_like
+        Samples [any unit], the last axis time; finite, non-empty.
+
+    Returns
+    -------
+    ndarray
+        The r.m.s. [unit of the signal] over the other axes.
+    """
     x = _samples(signal_values)
     return np.sqrt(np.mean(x**2, axis=-1))
 
 
 def weighted_rms(signal_values, sample_rate: float, name: str | Weighting = "Wk", *, settle: float = 0.0):
-    """Frequency-weighted r.m.s. a_w [m/s^2] of an acceleration record (ISO 2631-1, basic method).
+    """Frequency-weighted r.m.s. a_w of an acceleration record (ISO 2631-1, the basic method).
 
     Parameters
     ----------
@@ -324,6 +463,28 @@ def weighted_rms(signal_values, sample_rate: float, name: str | Weighting = "Wk"
         Weighting (``"Wk"`` for vertical seat acceleration).
     settle : float
         Leading time [s] discarded after filtering (the filter's start-up transient).
+
+    Returns
+    -------
+    ndarray
+        a_w = sqrt(1/T int a_w(t)^2 dt) [m/s^2] over the other axes.
+
+    References
+    ----------
+    .. [1] ISO 2631-1:1997, clause 6 (the basic evaluation method) and Annex A (the weightings).
+
+    Examples
+    --------
+    A 1-Hz sine of amplitude 1 m/s^2: its r.m.s. 1/sqrt(2) times the Wk factor at 1 Hz:
+
+    >>> import numpy as np
+    >>> from vehdyn.ride import weighted_rms, weighting_factor
+    >>> fs = 500.0
+    >>> t = np.arange(0.0, 30.0, 1 / fs)
+    >>> round(float(weighted_rms(np.sin(2 * np.pi * t), fs, "Wk", settle=10.0)), 4)
+    0.3412
+    >>> round(float(weighting_factor("Wk", 1.0) / np.sqrt(2)), 4)
+    0.3412
     """
     fs = _positive(sample_rate, "sample_rate")
     aw = weighting(name).filter(_samples(signal_values), fs)
@@ -334,10 +495,26 @@ def weighted_rms(signal_values, sample_rate: float, name: str | Weighting = "Wk"
 
 
 def running_rms(weighted_values, sample_rate: float, integration_time: float = 1.0) -> np.ndarray:
-    """Running r.m.s. a_w(t0) = [1/tau int_{t0-tau}^{t0} a_w^2 dt]^(1/2) (ISO 2631-1, linear integration).
+    r"""Running r.m.s. of a weighted record (ISO 2631-1, linear integration).
 
-    Returns the value at every sample from the first full window on (``N - n_tau + 1`` values along
-    the last axis), with tau = ``integration_time`` [s] (the standard recommends 1 s).
+    .. math::
+
+        a_w(t_0) = \left[\frac{1}{\tau} \int_{t_0 - \tau}^{t_0} a_w^2(t) \, dt\right]^{1/2}
+
+    Parameters
+    ----------
+    weighted_values : array_like
+        Frequency-weighted acceleration a_w [m/s^2], the last axis time.
+    sample_rate : float
+        [Hz], > 0.
+    integration_time : float, optional
+        tau [s] (default 1 s, as the standard recommends); at least one sample, at most the record.
+
+    Returns
+    -------
+    ndarray
+        a_w(t_0) [m/s^2] at every sample from the first full window on (``N - n_tau + 1`` values
+        along the last axis).
     """
     x = _samples(weighted_values, "weighted_values")
     fs = _positive(sample_rate, "sample_rate")
@@ -350,19 +527,62 @@ def running_rms(weighted_values, sample_rate: float, integration_time: float = 1
 
 
 def mtvv(weighted_values, sample_rate: float, integration_time: float = 1.0) -> np.ndarray:
-    """Maximum transient vibration value: the largest running r.m.s. (ISO 2631-1) [m/s^2]."""
+    """Maximum transient vibration value MTVV: the largest running r.m.s. (ISO 2631-1).
+
+    Parameters
+    ----------
+    weighted_values : array_like
+        Frequency-weighted acceleration a_w [m/s^2], the last axis time.
+    sample_rate : float
+        [Hz], > 0.
+    integration_time : float, optional
+        tau [s] of the running r.m.s. (default 1 s).
+
+    Returns
+    -------
+    ndarray
+        MTVV = max a_w(t_0) [m/s^2] over the other axes (:func:`running_rms`).
+    """
     return np.max(running_rms(weighted_values, sample_rate, integration_time), axis=-1)
 
 
 def vibration_dose_value(weighted_values, sample_rate: float) -> np.ndarray:
-    """Fourth-power vibration dose value VDV = [int a_w^4 dt]^(1/4) [m/s^1.75] (ISO 2631-1, rectangle rule)."""
+    r"""Fourth-power vibration dose value (ISO 2631-1), by the rectangle rule.
+
+    .. math::
+
+        VDV = \left[\int_0^T a_w^4(t) \, dt\right]^{1/4}
+
+    Parameters
+    ----------
+    weighted_values : array_like
+        Frequency-weighted acceleration a_w [m/s^2], the last axis time.
+    sample_rate : float
+        [Hz], > 0.
+
+    Returns
+    -------
+    ndarray
+        VDV [m/s^1.75] over the other axes.
+    """
     x = _samples(weighted_values, "weighted_values")
     fs = _positive(sample_rate, "sample_rate")
     return (np.sum(x**4, axis=-1) / fs) ** 0.25
 
 
 def crest_factor(weighted_values) -> np.ndarray:
-    """Crest factor: max |a_w| / r.m.s. a_w [-] (ISO 2631-1: the basic method holds up to 9)."""
+    """Crest factor: the peak of the weighted record over its r.m.s. (ISO 2631-1).
+
+    Parameters
+    ----------
+    weighted_values : array_like
+        Frequency-weighted acceleration a_w [m/s^2], the last axis time.
+
+    Returns
+    -------
+    ndarray
+        max |a_w| / a_w,rms [-] over the other axes (the basic method holds up to 9).
+    """
     x = _samples(weighted_values, "weighted_values")
     r = rms(x)
     return np.max(np.abs(x), axis=-1) / r
@@ -378,6 +598,11 @@ def vibration_total_value(weighted_rms_values, factors=None) -> float:
     factors : array_like, optional
         Multiplying factors k_i [-] (1 by default, the seat-surface translational axes for comfort;
         take the standard's factors for other axes or for health, e.g. 1.4 on x and y).
+
+    Returns
+    -------
+    float
+        a_v [m/s^2].
     """
     a = np.asarray(weighted_rms_values, dtype=float)
     k = np.ones_like(a) if factors is None else np.asarray(factors, dtype=float)
@@ -401,9 +626,19 @@ COMFORT_REACTIONS: tuple[tuple[str, float, float], ...] = (
 
 
 def comfort_reactions(total_value) -> list[str]:
-    """Every Annex C.2.3 reaction whose range holds ``total_value`` [m/s^2] (lower <= a_v < upper).
+    """Every likely reaction of ISO 2631-1 Annex C.2.3 whose range holds a vibration total value.
 
     The standard's ranges overlap, so 0.9 m/s^2 is both "fairly uncomfortable" and "uncomfortable".
+
+    Parameters
+    ----------
+    total_value : float
+        a_v [m/s^2], >= 0 (:func:`vibration_total_value`).
+
+    Returns
+    -------
+    list of str
+        The reactions of :data:`COMFORT_REACTIONS` with lower <= a_v < upper.
     """
     a = float(total_value)
     if not (np.isfinite(a) and a >= 0):
@@ -413,12 +648,22 @@ def comfort_reactions(total_value) -> list[str]:
 
 
 def comfort_category(total_value) -> str:
-    """One label for ``total_value`` [m/s^2]: the Annex C.2.3 ranges split at the geometric middle of each overlap.
+    """One comfort label: the ISO 2631-1 Annex C.2.3 ranges split at the geometric middle of each overlap.
 
     Below 0.315 "not uncomfortable"; where two ranges overlap the label changes at the geometric
     mean of the overlap: sqrt(0.5 * 0.63) = 0.561, sqrt(0.8 * 1.0) = 0.894, sqrt(1.25 * 1.6) = 1.414,
     sqrt(2.0 * 2.5) = 2.236 m/s^2. Use :func:`comfort_reactions` for the
-    overlapping labels of the standard itself. Works on arrays (returns an array of labels).
+    overlapping labels of the standard itself.
+
+    Parameters
+    ----------
+    total_value : float or array_like
+        a_v [m/s^2], >= 0.
+
+    Returns
+    -------
+    str or ndarray of str
+        The label (an array of labels for an array).
     """
     a = np.asarray(total_value, dtype=float)
     if not np.all(np.isfinite(a) & (a >= 0)):

@@ -291,7 +291,7 @@ class LiftOff(Model):
     --------
     >>> import vehdyn
     >>> from vehdyn.ride import FullCar, LiftOff
-    >>> car = LiftOff(FullCar.from_vehicle(vehdyn.load_vehicle("sedan")))
+    >>> car = LiftOff(FullCar(vehdyn.load_vehicle("sedan")))
     >>> sorted(car.phenomena)[-1]
     'wheel_lift'
     """

@@ -88,7 +88,26 @@ class _Channel:
 
 
 def road_channels(model) -> list[_Channel]:
-    """The road inputs of ``model`` (by name), each with its kind, axle (delayed or not) and track."""
+    """The road inputs of ``model`` (by name), each with its kind, axle (delayed or not) and track.
+
+    Parameters
+    ----------
+    model : LinearModel
+        With inputs ``road_displacement<suffix>`` [m] / ``road_velocity<suffix>`` [m/s]; a suffix
+        with ``rear`` is delayed by the wheelbase, one with ``left`` or ``right`` on that track.
+
+    Returns
+    -------
+    list
+        One record per road input: its index among the model's inputs, ``kind``
+        (``"displacement"`` or ``"velocity"``), ``suffix``, ``delayed`` (bool) and ``track``
+        (``"coherent"``, ``"left"`` or ``"right"``).
+
+    Raises
+    ------
+    ParameterError
+        When the model has no road input, or mixes one track with left/right tracks.
+    """
     channels = []
     for k, name in enumerate(model.input_names):
         m = _ROAD_INPUT.match(name)
@@ -117,14 +136,19 @@ class RandomResponse:
     rms : ndarray
         R.m.s. of each output [unit of the output] (``inf`` where the variance is unbounded).
     error : ndarray
-        Error of ``rms``: 0 for ``"lyapunov"`` (exact up to rounding and the Pade delay), the
-        estimated error bound for ``"psd"``, one standard error for ``"simulation"``.
+        Error of ``rms`` [unit of the output]: 0 for ``"lyapunov"`` (exact up to rounding and the
+        Pade delay), the estimated error bound for ``"psd"``, one standard error for
+        ``"simulation"``.
     method : str
+        ``"lyapunov"``, ``"psd"`` or ``"simulation"``.
     speed : float
         [m/s].
     spectrum : RoadSpectrum
+        The road.
     wall_time : float
         [s].
+    info : dict
+        What the route reports of itself (grid sizes, panels, the delay used, ...).
     """
 
     outputs: tuple
@@ -148,7 +172,13 @@ class RandomResponse:
                                  value=name) from None
 
     def to_frame(self):
-        """pandas DataFrame indexed by output: ``rms`` and ``error`` (units in ``attrs["units"]``)."""
+        """The r.m.s. values as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Indexed by ``output``: columns ``rms`` and ``error``; units in ``attrs["units"]``.
+        """
         import pandas as pd
 
         df = pd.DataFrame({"rms": self.rms, "error": self.error}, index=pd.Index(self.output_names, name="output"))
@@ -174,7 +204,7 @@ def random_response(
     seed=None,
     n_max: float | None = None,
 ) -> RandomResponse:
-    """R.m.s. of the outputs of a linear ride ``model`` driven at ``speed`` over the random road ``road``.
+    r"""R.m.s. of the outputs of a linear ride ``model`` driven at ``speed`` over the random road ``road``.
 
     Parameters
     ----------
@@ -203,6 +233,48 @@ def random_response(
     duration, sample_rate, seed, n_max : ``"simulation"`` only
         Seconds of road [s], sampling rate [Hz], random seed, highest spatial frequency of the
         profile [cycles/m] (default: the Nyquist frequency of the time grid).
+
+    Returns
+    -------
+    RandomResponse
+        The r.m.s. of each output [its unit] and its error (``inf`` where the variance is
+        unbounded, e.g. absolute displacements on a road without cut-on).
+
+    Notes
+    -----
+    The Lyapunov route appends the road's shaping filter (waviness 2: the road velocity is white
+    noise of one-sided PSD (2 pi n0)^2 G_d(n0) V) to the model, A and B of the whole, and solves
+    for the stationary state covariance X; the PSD route integrates the output spectrum with the
+    exact delay e^(-j omega tau) of the rear inputs (tau = wheelbase / V):
+
+    .. math::
+
+        A X + X A^T + B B^T = 0, \qquad \sigma_y^2 = C X C^T, \qquad
+        \sigma_y^2 = \int_0^\infty \sum_{s,t} H_s(f) \, S_{st}(f) \, H_t(f)^* \, df
+
+    References
+    ----------
+    .. [1] ISO 8608:2016, *Mechanical vibration -- Road surface profiles -- Reporting of measured
+       data* (the road spectra).
+    .. [2] D. E. Newland, *An Introduction to Random Vibrations, Spectral and Wavelet Analysis*,
+       3rd ed., Longman, 1993, ch. 7 (transmission of random vibration).
+    .. [3] J. Y. Wong, *Theory of Ground Vehicles*, 4th ed., Wiley, 2008, sec. 7.3 (vehicle
+       response to random road excitation).
+
+    Examples
+    --------
+    A quarter car at 20 m/s on an ISO 8608 class-C road, by the exact Lyapunov route and by the
+    frequency integral, which states its error bound:
+
+    >>> from vehdyn.ride import QuarterCar, random_response
+    >>> qc = QuarterCar.from_parameters(sprung_mass=250.0, unsprung_mass=35.0, spring_rate=16e3,
+    ...                                 damping=1000.0, tire_stiffness=160e3)
+    >>> r = random_response(qc, "C", 20.0, outputs=["sprung_acceleration", "suspension_travel"])
+    >>> r.rms.round(5).tolist()  # [m/s^2, m]
+    [1.37242, 0.012]
+    >>> psd = random_response(qc, "C", 20.0, method="psd", outputs=["sprung_acceleration"])
+    >>> bool(abs(psd["sprung_acceleration"] - r["sprung_acceleration"]) <= psd.error[0])
+    True
     """
     from vehdyn.model import LinearModel
 
@@ -394,11 +466,15 @@ def stationary_covariance(A, B, C, D=None, integrators=(), output_scale=None):
     Parameters
     ----------
     A, B, C, D : ndarray
+        The state-space matrices, in the units of the states, the noise and the outputs
+        [state units/s, state units/(s * noise unit), output/state unit, output/noise unit]; D
+        defaults to zeros.
     integrators : sequence of int
         States whose rows of A are zero (random walks, e.g. the ISO 8608 road without cut-on).
     output_scale : array_like, optional
-        Typical size of each output per unit change of the states (default: the row sums of |C|);
-        a gain to an integrator below 1e-9 of it is taken as rounding.
+        Typical size of each output per unit change of the states [output unit/state unit]
+        (default: the row sums of |C|); a gain to an integrator below 1e-9 of it is taken as
+        rounding.
 
     Returns
     -------

@@ -67,13 +67,37 @@ def _tracks(model) -> list[str]:
 
 
 def wheel_offsets(model) -> np.ndarray:
-    """Distance of each corner of a ride model behind its front axle [m]: x_front - x_i."""
+    """Distance of each corner of a ride model behind its front axle: x_front - x_i.
+
+    Parameters
+    ----------
+    model : QuarterCar, BouncePitch or FullCar
+        A ride model of :mod:`vehdyn.ride`.
+
+    Returns
+    -------
+    ndarray
+        One distance per corner, in input order [m] (0 at the front axle).
+    """
     x = np.array([c.x for c in model.corners])
     return x.max() - x
 
 
 def wheel_delays(model, speed: float) -> np.ndarray:
-    """Delay of the road input at each corner behind the front axle [s]: (x_front - x_i) / V."""
+    """Delay of the road input at each corner behind the front axle: (x_front - x_i) / V.
+
+    Parameters
+    ----------
+    model : QuarterCar, BouncePitch or FullCar
+        A ride model of :mod:`vehdyn.ride`.
+    speed : float
+        Forward speed V [m/s], > 0.
+
+    Returns
+    -------
+    ndarray
+        One delay per corner, in input order [s].
+    """
     return wheel_offsets(model) / _check_speed(speed)
 
 

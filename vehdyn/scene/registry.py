@@ -425,7 +425,7 @@ def build_quarter_car(drive) -> Setup:
     from vehdyn.simulation import simulate
 
     v = drive.vehicle
-    qf, qr = QuarterCar.from_vehicle(v, "front"), QuarterCar.from_vehicle(v, "rear")
+    qf, qr = QuarterCar(v, "front"), QuarterCar(v, "rear")
     A = np.block([[qf.A, np.zeros_like(qf.A)], [np.zeros_like(qr.A), qr.A]])
     B = np.block([[qf.B, np.zeros_like(qf.B)], [np.zeros_like(qr.B), qr.B]])
     C = np.block([[qf.C, np.zeros_like(qf.C)], [np.zeros_like(qr.C), qr.C]])
@@ -466,7 +466,7 @@ def build_bounce_pitch(drive) -> Setup:
     from vehdyn.ride.bounce_pitch import BouncePitch
     from vehdyn.simulation import simulate
 
-    model = BouncePitch.from_vehicle(drive.vehicle)
+    model = BouncePitch(drive.vehicle)
     u = _ride_inputs(model, drive, average=True)
     return Setup(model, lambda: simulate(model, drive.time, u, method="exact"), _ride_ignores(drive))
 
@@ -475,7 +475,7 @@ def build_full_car(drive) -> Setup:
     from vehdyn.ride.full_car import FullCar
     from vehdyn.simulation import simulate
 
-    model = FullCar.from_vehicle(drive.vehicle)
+    model = FullCar(drive.vehicle)
     u = _ride_inputs(model, drive, average=False)
     return Setup(model, lambda: simulate(model, drive.time, u, method="exact"), _ride_ignores(drive))
 
@@ -547,7 +547,7 @@ def longitudinal_slip(drive):
 
 def build_full_car_lift_off(drive) -> Setup:
     """The full car with tires that lift off (:class:`vehdyn.ride.LiftOff`), the couplings of the
-    sprung CG's height (``FullCar.from_vehicle(..., cg_heights=True)``), the tires' lateral slip
+    sprung CG's height (``FullCar(vehicle, cg_heights=True)``), the tires' lateral slip
     under the rolling body (:func:`lateral_slip`) and their longitudinal slip with the wheels' spin
     and the body's fore-aft motion (:func:`longitudinal_slip`), on both tracks; RK45 at rtol 1e-5, atol 1e-7
     and ``max_step`` the scene's time step (compiled when numba is installed): against rtol 1e-9,
@@ -567,7 +567,7 @@ def build_full_car_lift_off(drive) -> Setup:
     if raised or v.suspension.front_camber_gain or v.suspension.rear_camber_gain:
         raise NotAdmissible(f"the full car's lateral slip acts through roll centres on the ground, without "
                             f"anti-pitch or camber gains ({raised or 'camber gains'})")
-    model = LiftOff(FullCar.from_vehicle(v, cg_heights=True), lateral=lateral_slip(drive),
+    model = LiftOff(FullCar(v, cg_heights=True), lateral=lateral_slip(drive),
                     longitudinal=longitudinal_slip(drive))
     u = _ride_inputs(model.linear, drive, average=False)
     options = dict(SOLVER_OPTIONS, rtol=1e-5, atol=1e-7, max_step=float(drive.scene.effective_time_step))
