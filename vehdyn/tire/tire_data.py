@@ -45,7 +45,8 @@ import numpy as np
 
 from ..errors import ParameterError, TirFileError
 
-__all__ = ["read_tire_data", "TireDataError", "CANONICAL_COLUMNS", "UNIT_FACTORS"]
+__all__ = ["read_tire_data", "check_units", "to_si", "TireDataError", "CANONICAL_COLUMNS", "UNIT_FACTORS",
+           "PLAUSIBLE_RANGES"]
 
 CANONICAL_COLUMNS = ("fz", "kappa", "alpha", "gamma", "vx", "pressure", "fx", "fy", "mx", "my", "mz", "omega",
                      "effective_radius")
@@ -82,6 +83,25 @@ _ALIASES = {
 }
 _ALIAS_TO_NAME = {alias: name for name, aliases in _ALIASES.items() for alias in aliases}
 
+PLAUSIBLE_RANGES = {
+    "alpha": (-math.pi / 2, math.pi / 2),
+    "gamma": (-math.pi / 2, math.pi / 2),
+    "kappa": (-1.5, 1.5),
+    "fz": (20.0, 1e6),
+    "pressure": (1e4, 1e7),
+    "vx": (-150.0, 150.0),
+}
+"""Range [SI] of each column that a tire test can produce: slip and inclination angles within
++-pi/2 rad, slip ratios within the Magic Formula's usual KPUMIN/KPUMAX of +-1.5, a largest load
+between 20 N and 1 MN (a model-car tire to an aircraft's), pressures between 0.1 and 100 bar,
+speeds below 150 m/s. :func:`check_units` refuses a column beyond its range unless its unit was
+stated (the values then are what the user says they are)."""
+
+_LIKELY_UNIT = {
+    "alpha": ("deg", "degrees"), "gamma": ("deg", "degrees"), "kappa": ("%", "percent"), "fz": ("kN", "kN"),
+    "vx": ("km/h", "km/h"),
+}
+
 # Test-consortium channels (SAE tire axes) -> canonical name; SR is used when SL is absent.
 _CONSORTIUM = {"FZ": "fz", "SL": "kappa", "SA": "alpha", "IA": "gamma", "V": "vx", "P": "pressure", "FX": "fx",
                "FY": "fy", "MX": "mx", "MY": "my", "MZ": "mz", "N": "omega", "RE": "effective_radius"}
@@ -103,6 +123,93 @@ def _unit_factor(name, unit, path, line):
         raise TireDataError(f"column {name!r}: unknown {quantity} unit {unit!r}; known: {', '.join(sorted(table))}",
                             path=path, line=line, column=name)
     return table[key]
+
+
+def to_si(name, values, unit):
+    """``values`` of canonical column ``name`` in ``unit`` (a name of :data:`UNIT_FACTORS`) -> SI.
+
+    Raises
+    ------
+    ParameterError
+        If ``name`` is not a canonical column or ``unit`` not a unit of its quantity.
+    """
+    if name not in _QUANTITY:
+        raise ParameterError(f"units: {name!r} is not a canonical column ({', '.join(CANONICAL_COLUMNS)})",
+                             key="units", value=name)
+    table = UNIT_FACTORS[_QUANTITY[name]]
+    key = str(unit).strip().lower().replace(" ", "")
+    if key not in table:
+        raise ParameterError(f"units[{name!r}]: unknown {_QUANTITY[name]} unit {unit!r}; known: "
+                             f"{', '.join(sorted(table))}", key="units", value=unit)
+    return np.asarray(values, dtype=float) * table[key]
+
+
+def check_units(columns, *, stated=()):
+    """Refuse columns whose values no tire test produces in SI units (:data:`PLAUSIBLE_RANGES`).
+
+    Slip angles in degrees in a column taken as radians (|alpha| up to 15 "rad") would be fitted
+    without a word and give a tire with a fraction of the real cornering force; so would slip ratios
+    in percent, loads in kN, pressures in bar. Each column beyond its range is refused with the unit
+    it most likely has.
+
+    Parameters
+    ----------
+    columns : mapping of str to array_like
+        Canonical columns [SI] (others are ignored); NaN values are ignored.
+    stated : collection of str
+        Columns whose unit the user (or the file) stated: not judged.
+
+    Raises
+    ------
+    ParameterError
+        Naming the column, its extreme value and the likely unit; ``key`` is the column.
+    """
+    def how(name, unit):
+        return (f"state the unit: units={{{name!r}: {unit!r}}}, a CSV header '{name} [{unit}]' or, for vehdyn "
+                f"tire-fit, --unit {name}={unit}")
+
+    for name, (low, high) in PLAUSIBLE_RANGES.items():
+        if name not in columns or name in stated:
+            continue
+        values = np.asarray(columns[name], dtype=float).ravel()
+        values = values[np.isfinite(values)]
+        if not values.size:
+            continue
+        if name == "fz":
+            typical = float(np.median(values))
+            if typical < 0:
+                raise ParameterError(
+                    f"data column 'fz': the loads are negative (median {typical:.4g} N): these look like SAE tire "
+                    f"axes (z down); read the file with convention='SAE' (vehdyn.tire.read_tire_data) or convert "
+                    f"with vehdyn.conventions.tire_forces_sae_to_iso_w", key="fz", value=typical)
+            largest = float(values.max())
+            if largest < low:
+                raise ParameterError(f"data column 'fz': the largest load is {largest:.4g} N, below any tire test's "
+                                     f"({low:g} N): it looks like kN; {how('fz', 'kN')}", key="fz", value=largest)
+            if largest > high:
+                raise ParameterError(f"data column 'fz': a load of {largest:.4g} N is beyond any tire's ({high:g} N): "
+                                     f"check the unit; {how('fz', 'N')} if it is right", key="fz", value=largest)
+            continue
+        if name == "pressure":
+            largest = float(np.max(np.abs(values)))
+            if largest < low:
+                unit = "bar" if largest < 15 else "psi" if largest < 100 else "kPa"
+                raise ParameterError(f"data column 'pressure': pressures of at most {largest:.4g} Pa are not tire "
+                                     f"pressures: it looks like {unit}; {how('pressure', unit)}", key="pressure",
+                                     value=largest)
+            if largest > high:
+                raise ParameterError(f"data column 'pressure': {largest:.4g} Pa is beyond any tire's pressure "
+                                     f"({high:g} Pa); {how('pressure', 'Pa')} if it is right", key="pressure",
+                                     value=largest)
+            continue
+        extreme = float(values[np.argmax(np.abs(values))])
+        if low <= extreme <= high:
+            continue
+        unit, word = _LIKELY_UNIT[name]
+        what = {"alpha": "slip angles", "gamma": "inclination angles", "kappa": "slip ratios",
+                "vx": "speeds"}[name]
+        raise ParameterError(f"data column {name!r}: {what} reach {extreme:.4g} {_SI_UNIT[_QUANTITY[name]]}, beyond "
+                             f"+-{high:.4g}: they look like {word}; {how(name, unit)}", key=name, value=extreme)
 
 
 def _split_name(header: str):
@@ -134,7 +241,8 @@ def _numbers(rows, names, path):
             try:
                 data[r, j] = float(text) if text else math.nan
             except ValueError:
-                raise TireDataError(f"column {names[j]!r}: {text!r} is not a number", path=path, line=line,
+                shown = text if len(text) <= 40 else f"{text[:40]}... ({len(text)} characters)"
+                raise TireDataError(f"column {names[j]!r}: {shown!r} is not a number", path=path, line=line,
                                     column=names[j]) from None
     return data
 
@@ -164,6 +272,9 @@ def _to_frame(columns, sae, path):
     frame.attrs["source"] = str(path)
     return frame
 
+
+MAX_FIELD = 100_000
+"""Characters a CSV header line may hold."""
 
 _SI_UNIT = {"force": "N", "moment": "N*m", "ratio": "-", "angle": "rad", "speed": "m/s", "pressure": "Pa",
             "rate": "rad/s", "length": "m"}
@@ -239,16 +350,30 @@ def _read_consortium(lines, head, path):
         if name is None:
             continue
         columns[name] = data[:, j] * _unit_factor(name, unit_row[j], path, head + 2)
-    return _to_frame(columns, True, path)
+    frame = _to_frame(columns, True, path)
+    frame.attrs["stated_units"] = sorted(columns)  # the unit row states every channel's unit
+    return frame
 
 
 def _read_csv(lines, path, sae, units):
     import csv
 
     header_index = next(i for i, line in enumerate(lines) if line.strip())
-    dialect = csv.Sniffer().sniff(lines[header_index], delimiters=",;\t") if any(
-        d in lines[header_index] for d in ",;\t") else csv.excel
-    reader = list(csv.reader(lines[header_index:], dialect))
+    header_line = lines[header_index]
+    if len(header_line) > MAX_FIELD:
+        raise TireDataError(f"the header line has {len(header_line)} characters (at most {MAX_FIELD}): not a CSV "
+                            f"header", path=path, line=header_index + 1)
+    delimiters = [d for d in ",;\t" if d in header_line]
+    try:
+        dialect = csv.Sniffer().sniff(header_line, delimiters=",;\t") if delimiters else csv.excel
+    except csv.Error:  # the sniffer gives up on some headers: the most frequent delimiter
+        dialect = type("Header", (csv.excel,), {"delimiter": max(delimiters, key=header_line.count)})
+    reader = csv.reader(lines[header_index:], dialect)
+    try:
+        reader = list(reader)
+    except csv.Error as error:  # e.g. a field beyond the csv module's size limit, a NUL byte
+        raise TireDataError(f"not a readable CSV row ({error})", path=path,
+                            line=header_index + reader.line_num) from None
     header = reader[0]
     names, header_units, keep = [], {}, []
     for j, field in enumerate(header):
@@ -273,4 +398,11 @@ def _read_csv(lines, path, sae, units):
         unit = units.get(name, header_units.get(name))
         factor = 1.0 if unit is None else _unit_factor(name, unit, path, header_index + 1)
         columns[name] = data[:, j] * factor
-    return _to_frame(columns, sae, path)
+    frame = _to_frame(columns, sae, path)
+    stated = sorted(set(units) | set(header_units))
+    try:
+        check_units(frame, stated=stated)
+    except ParameterError as error:
+        raise ParameterError(f"{path}: {error}", key=error.key, value=error.value) from None
+    frame.attrs["stated_units"] = stated
+    return frame

@@ -14,14 +14,15 @@ import warnings
 import numpy as np
 
 from ...errors import ParameterError, VehdynWarning
-from .magic_formula_fit import PURE_SLIP_ANGLE, PURE_SLIP_RATIO, _as_columns, _drop_nan
+from .columns import canonical_columns, drop_nonfinite
+from .magic_formula_fit import PURE_SLIP_ANGLE, PURE_SLIP_RATIO
 from .result import StageResult, TireFit
 
 __all__ = ["fit_brush", "fit_linear"]
 
 
-def _pure_rows(data, messages):
-    columns = _drop_nan(_as_columns(data), messages)
+def _pure_rows(data, messages, units):
+    columns = drop_nonfinite(canonical_columns(data, units), messages)
     n = columns["fz"].size
     for name in ("kappa", "alpha", "gamma"):
         columns.setdefault(name, np.zeros(n))
@@ -46,7 +47,7 @@ def _metrics(name, coefficients, outputs, model, columns, masks, condition=float
                        n_points=n_points, rms=rms, nrms=nrms, r2=r2, condition=condition)
 
 
-def fit_linear(data, *, nominal_load=None, max_slip_angle=math.radians(2.0), max_slip_ratio=0.02):
+def fit_linear(data, *, nominal_load=None, max_slip_angle=math.radians(2.0), max_slip_ratio=0.02, units=None):
     """Fit :class:`vehdyn.tire.LinearTire` to the linear range of measured data (closed form).
 
     ``F_y = (C_gamma gamma - C_alpha alpha) F_z/F_z0``, ``F_x = C_kappa kappa F_z/F_z0`` and
@@ -72,7 +73,7 @@ def fit_linear(data, *, nominal_load=None, max_slip_angle=math.radians(2.0), max
     from ..linear import LinearTire
 
     messages = []
-    columns, lateral, longitudinal = _pure_rows(data, messages)
+    columns, lateral, longitudinal = _pure_rows(data, messages, units)
     if "fy" not in columns or not np.any(columns["alpha"]):
         raise ParameterError("fit_linear needs the columns fz, alpha and fy (a slip-angle sweep)", key="data",
                              value=sorted(columns))
@@ -114,7 +115,7 @@ def fit_linear(data, *, nominal_load=None, max_slip_angle=math.radians(2.0), max
     return TireFit(tire=tire, stages={"linear": stage}, messages=messages, data=columns)
 
 
-def fit_brush(data, *, contact_half_length=None, sliding=False):
+def fit_brush(data, *, contact_half_length=None, sliding=False, units=None):
     """Fit :class:`vehdyn.tire.BrushTire` (parabolic pressure) to pure-slip data.
 
     Fits the cornering stiffness ``2 c_p a^2`` (= slip stiffness: the brush is isotropic), the
@@ -142,7 +143,7 @@ def fit_brush(data, *, contact_half_length=None, sliding=False):
     from ..brush import BrushTire
 
     messages = []
-    columns, lateral, longitudinal = _pure_rows(data, messages)
+    columns, lateral, longitudinal = _pure_rows(data, messages, units)
     if "fy" not in columns or not np.any(columns["alpha"]):
         raise ParameterError("fit_brush needs the columns fz, alpha and fy (a slip-angle sweep)", key="data",
                              value=sorted(columns))
@@ -172,6 +173,13 @@ def fit_brush(data, *, contact_half_length=None, sliding=False):
         + (["mu_sliding"] if sliding else [])
     x0 = np.array([max(abs(slope), 1.0), mu0] + ([a0] if contact_half_length is None else [])
                   + ([0.9 * mu0] if sliding else []))
+    informative = {"fy": lateral & (columns["alpha"] != 0), "mz": lateral & (columns["alpha"] != 0),
+                   "fx": longitudinal & (columns["kappa"] != 0)}
+    n_values = sum(int(np.count_nonzero(informative[o] & masks[o])) for o in outputs)
+    if n_values < len(names):
+        raise ParameterError(f"fit_brush: {n_values} measured values at non-zero slip ({', '.join(outputs)}) for "
+                             f"{len(names)} coefficients ({', '.join(names)}); the fit needs at least as many values "
+                             f"as coefficients", key="data", value=n_values)
     targets = [columns[o][masks[o]] for o in outputs]
     scales = [max(float(np.max(np.abs(t))), 1e-9) for t in targets]
 
