@@ -63,6 +63,14 @@ REGULARIZATION = 1e-3
 typical size (:func:`~.stages.typical_size`) that moves the fit by less than this r.m.s. fraction
 of the peak is held back."""
 
+FTOL = 1e-7
+"""Relative change of the cost below which a step stops: on noisy data the cost levels off at the
+noise's and a valley of the Magic Formula's coefficients can take hundreds of evaluations to gain a
+millionth of it; clean data keep converging (the cost falls by a factor per iteration) to xtol."""
+
+INTERMEDIATE_NFEV = 60
+"""Residual evaluations at most of a step that a later step of its stage refits."""
+
 CONDITION_LIMIT = 1e8
 """Condition number of the column-normalized Jacobian above which a warning says that some
 coefficients are not identifiable from the data."""
@@ -309,7 +317,7 @@ def _solve(problem, x0, lower, upper, max_nfev):
     inside = np.clip(x0, lower + 1e-9 * np.where(np.isfinite(span), span, 1.0),
                      upper - 1e-9 * np.where(np.isfinite(span), span, 1.0))
     result = least_squares(problem.fun, inside, jac=lambda x: problem.jac(x, lower, upper), bounds=(lower, upper),
-                           x_scale="jac", method="trf", max_nfev=max_nfev, ftol=1e-10, xtol=1e-10, gtol=1e-10)
+                           x_scale="jac", method="trf", max_nfev=max_nfev, ftol=FTOL, xtol=1e-10, gtol=1e-10)
     return result
 
 
@@ -692,7 +700,7 @@ def _fit_stage(stage, ctx, c, full, row_weights, done_stages):
         if ctx.warm and runnable:  # from a fit's solution: the last (cumulative) step alone
             runnable = [(runnable[-1][0], tuple(n for _, names in runnable for n in names))]
         active, last = [], None
-        for step, names in runnable:
+        for index, (step, names) in enumerate(runnable):
             active += [n for n in names if n not in ctx.fixed]
             keep = _step_rows(step, group_rows, c)
             sub = {k: v[keep] for k, v in group_rows.items()}
@@ -730,7 +738,9 @@ def _fit_stage(stage, ctx, c, full, row_weights, done_stages):
             problem.penalize(penalty, hold)
             if ctx.physical and not ctx.warm and (stage, step) in SHAPE_STARTS:
                 x0 = _best_start(problem, x0, lower, upper, SHAPE_STARTS[stage, step])
-            result = _solve(problem, x0, lower, upper, ctx.max_nfev)
+            # a step that a later one refits (with more coefficients, on more points) only gives it a start
+            budget = ctx.max_nfev if index == len(runnable) - 1 else min(ctx.max_nfev, INTERMEDIATE_NFEV)
+            result = _solve(problem, x0, lower, upper, budget)
             last = (result, problem, lower, upper, hold)
             c = problem.coefficients(result.x)
             if step not in done:
@@ -750,7 +760,7 @@ def _fit_stage(stage, ctx, c, full, row_weights, done_stages):
         for reason, names in by_reason.items():
             text = f"stage {stage}: {', '.join(names)} not identifiable ({reason}); kept at their start values"
             ctx.messages.append(text)
-            warnings.warn(text, VehdynWarning, stacklevel=4)
+            warnings.warn(text, VehdynWarning, stacklevel=3)
     return _stage_result(stage, ctx, c, rows, outputs, fitted, lasts, not_identifiable, done), c
 
 
@@ -795,12 +805,12 @@ def _stage_result(stage, ctx, c, rows, outputs, fitted, lasts, not_identifiable,
                 f"held at {ctx.reference_name} along the directions the data leave open (regularization "
                 f"{ctx.regularization:g})")
         ctx.messages.append(text)
-        warnings.warn(text, VehdynWarning, stacklevel=5)
+        warnings.warn(text, VehdynWarning, stacklevel=4)
     elif weak and not ctx.quiet:
         text = (f"stage {stage}: Jacobian condition {condition:.3g}: coefficients not identifiable from these "
                 f"data (weakest: {', '.join(weak)}); consider fixing them")
         ctx.messages.append(text)
-        warnings.warn(text, VehdynWarning, stacklevel=5)
+        warnings.warn(text, VehdynWarning, stacklevel=4)
     coefficients = {n: float(getattr(c, n)) for n in fitted}
     return StageResult(stage, coefficients=coefficients, steps=tuple(done), outputs=outputs,
                        n_points=int(rows["fz"].size), rms=rms, nrms=nrms, r2=r2, at_bounds=tuple(at_bounds),
