@@ -43,11 +43,28 @@ held-out error is many times the training error)."""
 
 CHANNELS = ("fx", "fy", "mz", "mx", "my")
 
+CAMBER_GAP = math.radians(0.25)
+"""Cambers further apart than this [rad] are different conditions (loads: 5 % of the mean load,
+pressures: 2 % of the mean pressure)."""
+
 _VARIABLES = (("load", "fz"), ("camber", "gamma"), ("pressure", "pressure"))
 
 
-def _clusters(values, gap):
-    """Levels of ``values``: medians of the groups that sorted values separate by more than ``gap``."""
+def clusters(values, gap):
+    """Levels of ``values``: the medians of the groups that sorted values separate by more than ``gap``.
+
+    Parameters
+    ----------
+    values : ndarray
+        Values of one variable (loads [N], cambers [rad] or pressures [Pa]).
+    gap : float
+        Smallest difference between two levels, in the values' unit.
+
+    Returns
+    -------
+    ndarray
+        The levels, ascending.
+    """
     ordered = np.sort(values)
     groups = np.split(ordered, np.flatnonzero(np.diff(ordered) > gap) + 1)
     return np.array([float(np.median(g)) for g in groups if g.size])
@@ -70,9 +87,9 @@ def condition_levels(full):
     out = []
     for variable, column in _VARIABLES:
         values = full[column]
-        scale = float(np.mean(np.abs(values))) if values.size else 0.0
-        gap = {"fz": 0.05 * max(scale, 1.0), "gamma": math.radians(0.25), "pressure": 0.02 * max(scale, 1.0)}[column]
-        levels = _clusters(values, gap)
+        scale = max(float(np.mean(np.abs(values))), 1.0) if values.size else 1.0
+        gap = {"fz": 0.05 * scale, "gamma": CAMBER_GAP, "pressure": 0.02 * scale}[column]
+        levels = clusters(values, gap)
         if levels.size < 2:
             continue
         nearest = np.argmin(np.abs(values[:, None] - levels[None, :]), axis=1)

@@ -38,7 +38,7 @@ from .._mf_ops import NumpyOps
 from ..mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure
 from ..mf_moments import aligning_moment, overturning_moment, rolling_resistance_moment
 from .columns import canonical_columns, drop_nonfinite
-from .cross_validation import RATIO_LIMIT, cross_validate, exceeded
+from .cross_validation import RATIO_LIMIT, clusters, cross_validate, exceeded
 from .result import StageResult, TireFit
 from .stages import STAGE_NAMES, STAGES, STEP_VARIATION, owned, typical_size
 from .validity import GridStates, Penalty, ValidityGrid, check_validity
@@ -189,11 +189,7 @@ def _default_section(key):
 
 def _load_levels(fz, tolerance=0.05):
     """The distinct load levels of ``fz`` (clusters within ``tolerance`` of the mean load)."""
-    values = np.sort(fz)
-    gap = tolerance * max(float(np.mean(np.abs(values))), 1.0)
-    breaks = np.flatnonzero(np.diff(values) > gap)
-    groups = np.split(values, breaks + 1)
-    return np.array([float(np.median(g)) for g in groups if g.size])
+    return clusters(fz, tolerance * max(float(np.mean(np.abs(fz))), 1.0))
 
 
 # --------------------------------------------------------------------------------- evaluation
@@ -738,6 +734,8 @@ def _fit_stage(stage, ctx, c, full, row_weights, done_stages):
             problem.penalize(penalty, hold)
             if ctx.physical and not ctx.warm and (stage, step) in SHAPE_STARTS:
                 x0 = _best_start(problem, x0, lower, upper, SHAPE_STARTS[stage, step])
+            if ctx.warm and hold is not None:  # what these data leave open starts from the reference
+                x0 = np.clip(hold.forget(x0, jac), lower, upper)
             # a step that a later one refits (with more coefficients, on more points) only gives it a start
             budget = ctx.max_nfev if index == len(runnable) - 1 else min(ctx.max_nfev, INTERMEDIATE_NFEV)
             result = _solve(problem, x0, lower, upper, budget)
@@ -865,6 +863,16 @@ class _Ridge:
 
     def residuals(self, x):
         return self.weight * (x - self.reference) / self.size
+
+    def forget(self, x, jac, factor=10.0):
+        """``x`` with its components along the directions the ridge influences (singular values of the
+        data Jacobian ``jac`` in the ridge's scaling below ``factor`` times its weight) set to the
+        reference's: a start from another fit's solution keeps nothing those directions learned from
+        data this fit does not have."""
+        _, sv, vt = np.linalg.svd(_triangular(jac * self.size), full_matrices=False)
+        weak = vt[sv < factor * self.weight]
+        z = (x - self.reference) / self.size
+        return self.reference + self.size * (z - weak.T @ (weak @ z))
 
     def held(self, names, jac, n_data):
         """The coefficients of the directions the ridge holds: right singular vectors of the data

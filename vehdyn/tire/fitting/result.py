@@ -376,24 +376,25 @@ class TireFit:
         cambers (data and fit) and midway between them (fit, dashed); None without a camber sweep."""
         import matplotlib.pyplot as plt
 
+        from .cross_validation import CAMBER_GAP, clusters
         from .magic_formula_fit import _select
 
         data = self.data
         if not hasattr(self.tire, "version") or "pure_lateral" not in self.stages:
             return None
         lateral = _select("pure_lateral", data)
-        cambers = np.unique(np.round(data["gamma"][lateral], 4))
+        cambers = clusters(data["gamma"][lateral], CAMBER_GAP)
         if cambers.size < 2:
             return None
-        loads = np.unique(np.round(data["fz"][lateral], -2))
-        load = loads[np.argmin(np.abs(loads - self.tire.nominal_load))]
+        loads = data["fz"][lateral]
+        load = float(loads[np.argmin(np.abs(loads - self.tire.nominal_load))])  # a measured load
         outputs = [o for o in ("fy", "mz") if o in data]
         fig, axes = plt.subplots(1, len(outputs), figsize=(5.5 * len(outputs), 4.2), squeeze=False)
         alpha_max = float(np.max(np.abs(data["alpha"][lateral])))
         x = np.linspace(-alpha_max, alpha_max, 81)
         for ax, out in zip(axes[0], outputs):
             for i, gamma in enumerate(cambers):
-                on = lateral & (np.round(data["fz"], -2) == load) & (np.round(data["gamma"], 4) == gamma)
+                on = lateral & (np.abs(data["fz"] - load) < 0.02 * load) & (np.abs(data["gamma"] - gamma) < CAMBER_GAP)
                 color = f"C{i}"
                 if on.any():
                     order = np.argsort(data["alpha"][on])
