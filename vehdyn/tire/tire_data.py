@@ -195,7 +195,7 @@ def check_units(columns, *, stated=()):
             if largest < low:
                 unit = "bar" if largest < 15 else "psi" if largest < 100 else "kPa"
                 raise ParameterError(f"data column 'pressure': pressures of at most {largest:.4g} Pa are not tire "
-                                     f"pressures: it looks like {unit}; {how('pressure', unit)}", key="pressure",
+                                     f"pressures: they look like {unit}; {how('pressure', unit)}", key="pressure",
                                      value=largest)
             if largest > high:
                 raise ParameterError(f"data column 'pressure': {largest:.4g} Pa is beyond any tire's pressure "
