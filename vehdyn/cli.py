@@ -205,7 +205,8 @@ def cmd_tire_fit(args) -> int:
     data = read_tire_data(args.data, convention=args.convention, units=dict(_unit_option(u) for u in args.unit or ()))
     with warnings.catch_warnings():  # the fit's warnings are also its messages, printed with the table
         warnings.simplefilter("ignore", VehdynWarning)
-        fit = fit_magic_formula(data, version=args.version, start=args.start)
+        fit = fit_magic_formula(data, version=args.version, start=args.start,
+                                cross_validation=not args.no_cross_validation)
     print(fit)
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -312,6 +313,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--convention", default="ISO-W", choices=("ISO-W", "SAE"), help="axes of a CSV file")
     p.add_argument("--unit", action="append", metavar="COLUMN=UNIT",
                    help="unit of a CSV column without one in its header (e.g. alpha=deg, kappa=%%, fz=kN); repeat")
+    p.add_argument("--no-cross-validation", action="store_true",
+                   help="skip leaving each measured condition out in turn (about halves the time)")
     p.set_defaults(func=cmd_tire_fit)
     p = sub.add_parser("vehicles", help="list the shipped vehicles")
     p.set_defaults(func=cmd_vehicles)

@@ -33,6 +33,13 @@ Two layouts are read:
 
 Every sign flip goes through :func:`vehdyn.conventions.tire_slips_sae_to_iso_w` and
 :func:`vehdyn.conventions.tire_forces_sae_to_iso_w`.
+
+**Units at the door.** A column without a stated unit is taken as SI, and its values must be
+what a tire test produces in SI (:data:`PLAUSIBLE_RANGES`: slip angles within +-pi/2 rad, slip
+ratios within +-1.5, loads positive and between 20 N and 1 MN, pressures between 0.1 and 100
+bar, speeds below 150 m/s); otherwise :func:`check_units` refuses it with the unit it most likely
+has (slip angles in degrees read as radians would give a tire with 1/57 of its cornering
+stiffness). The fits judge their data the same way (:mod:`vehdyn.tire.fitting`).
 """
 
 from __future__ import annotations
@@ -108,7 +115,19 @@ _CONSORTIUM = {"FZ": "fz", "SL": "kappa", "SA": "alpha", "IA": "gamma", "V": "vx
 
 
 class TireDataError(TirFileError):
-    """A tire data file cannot be read; the message names the file, the line and the column."""
+    """A tire data file cannot be read; the message names the file, the line and the column.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong.
+    path : str or pathlib.Path, optional
+        The file.
+    line : int, optional
+        The line (1-based).
+    column : str, optional
+        The column, as the file names it.
+    """
 
     def __init__(self, message: str, *, path=None, line=None, column=None):
         super().__init__(message, path=None if path is None else str(path), line=line)
@@ -126,7 +145,21 @@ def _unit_factor(name, unit, path, line):
 
 
 def to_si(name, values, unit):
-    """``values`` of canonical column ``name`` in ``unit`` (a name of :data:`UNIT_FACTORS`) -> SI.
+    """Values of a canonical column in a named unit, converted to SI.
+
+    Parameters
+    ----------
+    name : str
+        Canonical column (:data:`CANONICAL_COLUMNS`).
+    values : array_like
+        The values, in ``unit``.
+    unit : str
+        A unit of the column's quantity in :data:`UNIT_FACTORS` (case and spaces ignored).
+
+    Returns
+    -------
+    ndarray
+        The values in SI (N, N*m, rad, m/s, Pa, rad/s, m; slip ratio as a fraction).
 
     Raises
     ------
@@ -293,23 +326,49 @@ def read_tire_data(path, *, convention: str = "ISO-W", units=None):
         definition and converted regardless.
     units : dict, optional
         Unit of a CSV column, by canonical name (``{"alpha": "deg", "fz": "kN"}``); overrides a unit
-        in the header. Columns without a unit are taken as SI.
+        in the header. Columns without a unit are taken as SI, and must look like it
+        (:func:`check_units`).
 
     Returns
     -------
     pandas.DataFrame
         The canonical columns the file has (:data:`CANONICAL_COLUMNS`), ISO-W, SI and radians;
-        ``attrs["units"]`` and ``attrs["source"]``. Rows with NaN are kept (the fit drops them and
-        says how many).
+        ``attrs["units"]`` (each column's SI unit), ``attrs["source"]`` (the path) and
+        ``attrs["stated_units"]`` (the columns whose unit the file or ``units`` stated; the fits
+        do not judge those again). Rows with NaN are kept (the fit drops them and says how many).
 
     Raises
     ------
     TireDataError
         (a :class:`~vehdyn.errors.TirFileError`) If the file is empty, has no known column, a
-        field that is not a number or a row of the wrong length (message: file, line, column), or
+        field that is not a number, a row of the wrong length or one the csv module cannot read
+        (a field beyond its size limit), an over-long header line (message: file, line, column), or
         an unknown unit.
     ParameterError
-        If ``convention`` or ``units`` is not understood.
+        If ``convention`` or ``units`` is not understood, or an unlabelled column's values are not
+        plausible in SI units (the message names the file, the column and the unit it looks like).
+
+    Examples
+    --------
+    A CSV file whose header states the units:
+
+    >>> import tempfile, pathlib
+    >>> from vehdyn.tire import read_tire_data
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "sweep.csv"
+    >>> _ = path.write_text("load [kN],slip_angle [deg],FY\\n4,2,-2800\\n4,4,-4300\\n")
+    >>> frame = read_tire_data(path)
+    >>> frame[["fz", "alpha", "fy"]].round(4).values.tolist()
+    [[4000.0, 0.0349, -2800.0], [4000.0, 0.0698, -4300.0]]
+
+    The same slip angles without a unit are refused, since 4 rad is no slip angle:
+
+    >>> _ = path.write_text("fz,alpha,fy\\n4000,2,-2800\\n4000,4,-4300\\n")
+    >>> read_tire_data(path)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    vehdyn.errors.ParameterError: ...sweep.csv: data column 'alpha': slip angles reach 4 rad, beyond +-1.571: ...
+    >>> float(read_tire_data(path, units={"alpha": "deg"})["alpha"].iloc[1].round(4))
+    0.0698
     """
     if convention not in ("ISO-W", "SAE"):
         raise ParameterError(f"convention must be 'ISO-W' or 'SAE', got {convention!r}", key="convention",

@@ -74,7 +74,20 @@ def canonical_columns(data, units=None):
 
 
 def drop_nonfinite(columns, messages):
-    """``columns`` without the rows that hold a NaN or an infinity; the count goes to ``messages``."""
+    """The columns without the rows that hold a NaN or an infinity.
+
+    Parameters
+    ----------
+    columns : dict of str to ndarray
+        Columns of one length (with ``fz``).
+    messages : list of str
+        Receives the count of rows dropped, if any.
+
+    Returns
+    -------
+    dict of str to ndarray
+        The finite rows.
+    """
     bad = np.zeros(len(columns["fz"]), dtype=bool)
     for values in columns.values():
         bad |= ~np.isfinite(values)

@@ -11,16 +11,34 @@ stages, the combined forces in the moment stages) is computed once per step. The
 forward difference, one model call per coefficient.
 
 Stages and the coefficients they own: :mod:`vehdyn.tire.fitting.stages`. Each step is a bounded
-:func:`scipy.optimize.least_squares` (trust-region reflective) on residuals normalized by the
-peak of the measured output.
+:func:`scipy.optimize.least_squares` (trust-region reflective) whose residuals are
+
+* the data's, normalized by the peak of the measured output;
+* the Magic Formula's validity conditions (:mod:`vehdyn.tire.fitting.validity`: E <= 1 of every
+  curve, peaks, shape factors and stiffnesses of their sign, a positive trail at small slip) on a
+  grid that fills the span of the data - between the measured loads, cambers and pressures as well
+  as at them - as penalties that vanish while each condition holds with a margin;
+* a ridge toward the start (or a reference tire's) values, measured in each coefficient's typical
+  size (:func:`~vehdyn.tire.fitting.stages.typical_size`), so that the combinations of
+  coefficients the data cannot determine - a camber*|camber| term at a single |camber|, a product
+  whose factors trade - stay where they started instead of wandering to values that are harmless
+  at the data and wrong between them; the coefficients it holds are named.
+
+The nominal step of the pure-slip and aligning stages starts from a few values of the curvature
+(and trail stiffness) factors besides the one read from the data and continues the best; after the
+fit, each measured condition is left out in turn and the fit redone without it
+(:mod:`vehdyn.tire.fitting.cross_validation`), which estimates the error between the conditions.
 
 References
 ----------
-H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, sec. 4.3.2
-(the characteristic values: peak D, stiffness BCD, shape C from the asymptote y_a,
-C = 1 + (1 - (2/pi) asin(y_a/D))) and appendix 3 (the MF 6.1 equations and a parameter set).
+H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012: sec. 4.3.1 (the
+Magic Formula, the meaning of B, C, D, E and E <= 1), sec. 4.3.2 (the characteristic values: peak D,
+stiffness BCD, shape C from the asymptote y_a, C = 1 + (1 - (2/pi) asin(y_a/D)), and the
+parameter determination), the appendix of chapter 4 (eqs. 4.E1-4.E78) and appendix 3 (the MF 6.1
+equations and a parameter set).
 I. J. M. Besselink, A. J. C. Schmeitz, H. B. Pacejka, "An improved Magic Formula/Swift tyre model
 that can handle inflation pressure changes", *Vehicle System Dynamics* 48 (2010), 337-352.
+A. N. Tikhonov, V. Y. Arsenin, *Solutions of Ill-Posed Problems*, Winston, 1977 (the ridge).
 """
 
 from __future__ import annotations
@@ -68,9 +86,6 @@ FTOL = 1e-7
 noise's and a valley of the Magic Formula's coefficients can take hundreds of evaluations to gain a
 millionth of it; clean data keep converging (the cost falls by a factor per iteration) to xtol."""
 
-INTERMEDIATE_NFEV = 60
-"""Residual evaluations at most of a step that a later step of its stage refits."""
-
 CONDITION_LIMIT = 1e8
 """Condition number of the column-normalized Jacobian above which a warning says that some
 coefficients are not identifiable from the data."""
@@ -96,9 +111,9 @@ def _levels_vary(values, span):
 def _template(version, start, columns, messages):
     """The parameter set the fit starts from: ``start`` or MFeval's defaults in a shipped layout,
     with FNOMIN, LONGVL, NOMPRES and the ranges taken from the data."""
+    from ...params import data_path
     from ..magic_formula import MagicFormula, load_tire
     from ..tir import MFEVAL_DEFAULTS, TirParameters, read_tir
-    from ...params import data_path
 
     fz = columns["fz"]
     if start is not None:
@@ -219,14 +234,14 @@ class _Problem:
                 self.combined = (forces[0], *lateral_combined(NumpyOps, base, self.state, self.pure))
         self.varies_combined = any(n.startswith("R") for n in names)
         self.n_data = sum(t.size for t in self.targets)
-        self.penalty, self.hold = None, None
+        self.penalty, self.ridge = None, None
         self._cache = (None, None)
         self.nfev = 0
 
-    def penalize(self, penalty, hold):
-        """Add the validity conditions (a :class:`~.validity.Penalty` or None) and the hold (a
-        :class:`_Hold` or None) to the residuals."""
-        self.penalty, self.hold = penalty, hold
+    def penalize(self, penalty, ridge):
+        """Add the validity conditions (a :class:`~.validity.Penalty` or None) and the ridge (a
+        :class:`_Ridge` or None) to the residuals."""
+        self.penalty, self.ridge = penalty, ridge
         self._cache = (None, None)
 
     def coefficients(self, x):
@@ -266,7 +281,7 @@ class _Problem:
         return np.where(np.isfinite(r), r, 1e3)
 
     def total(self, x, base=None, moved=None):
-        """Residuals of the data, then the validity penalties, then the hold rows. With ``base``
+        """Residuals of the data, then the validity penalties, then the ridge rows. With ``base``
         (the residuals at a point that differs from ``x`` in coefficient ``moved`` alone), only the
         penalties that coefficient moves are evaluated again."""
         c = self.coefficients(x)
@@ -277,8 +292,8 @@ class _Problem:
             else:
                 previous = base[self.n_data:self.n_data + len(self.penalty.names)]
                 parts.append(self.penalty.residuals(c, previous, moved))
-        if self.hold is not None:
-            parts.append(self.hold.residuals(x))
+        if self.ridge is not None:
+            parts.append(self.ridge.residuals(x))
         return np.concatenate(parts) if len(parts) > 1 else parts[0]
 
     def fun(self, x):
@@ -413,7 +428,7 @@ def _bounds(names, x0, user_bounds):
 def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fixed=(), bounds=None, weights=None,
                       max_nfev=200, regularization=REGULARIZATION, reference=None, validity=True,
                       cross_validation=True, units=None):
-    """Fit a Magic Formula to measured forces and moments, stage by stage.
+    """Fit a Magic Formula to measured forces and moments, stage by stage, valid between the data.
 
     Parameters
     ----------
@@ -422,7 +437,9 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
         [N] and the slips (``kappa`` [-], ``alpha``, ``gamma`` [rad]; missing ones are 0),
         ``vx`` [m/s] and ``pressure`` [Pa] (missing: the file's LONGVL and NOMPRES), and the
         measured ``fx``, ``fy`` [N], ``mz``, ``mx``, ``my`` [N*m]. Rows with NaN are dropped (the
-        count is in :attr:`TireFit.messages`).
+        count is in :attr:`TireFit.messages`). Columns beyond a tire test's range in SI units
+        (slip angles beyond +-pi/2 rad, slip ratios beyond +-1.5, ...) are refused unless their
+        unit is stated (``units``, or a file's header read by :func:`~vehdyn.tire.read_tire_data`).
     version : {"6.1", "6.2", "5.2"}
         Magic Formula version of the result (ignored when ``start`` is given: its version).
     start : MagicFormula, TirParameters, str or pathlib.Path, optional
@@ -437,32 +454,87 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
     fixed : sequence of str
         Coefficients held at their start values.
     bounds : dict of str to (float, float), optional
-        Bounds of coefficients, overriding :data:`DEFAULT_BOUNDS`.
+        Bounds of coefficients [the coefficient's unit], overriding :data:`DEFAULT_BOUNDS`.
     weights : array_like, optional
-        One non-negative weight per row of ``data`` (multiplies the residuals).
+        One non-negative weight per row of ``data`` [-] (multiplies the residuals).
     max_nfev : int
-        Function evaluations per step (each Jacobian counts as one).
+        Residual evaluations per step at most.
+    regularization : float
+        Weight of the ridge toward the start (or ``reference``) values [-]: a combination of
+        coefficients that moves the fit by less than this fraction of the peak (r.m.s.) per
+        typical size of its coefficients is held. 0 turns the ridge off. Default
+        :data:`REGULARIZATION`.
+    reference : MagicFormula, TirParameters, str or pathlib.Path, optional
+        A tire whose coefficients the ridge holds instead of the start values (e.g. a fit of a
+        similar tire whose camber dependence was measured).
+    validity : bool
+        Enforce the validity conditions (:mod:`~vehdyn.tire.fitting.validity`) on the grid that
+        spans the data. They are checked and reported on the result either way.
+    cross_validation : bool
+        Leave each measured load, camber and pressure level out in turn, refit, and report the
+        errors at the left-out points (:attr:`TireFit.cross_validation`). About as long again as
+        the fit on a few thousand points; refits of larger data use a thinned copy.
+    units : dict of str to str, optional
+        Units of columns that are not SI, by canonical name (``{"alpha": "deg", "kappa": "%"}``;
+        the names of :data:`vehdyn.tire.tire_data.UNIT_FACTORS`); such a column is converted and
+        not judged.
 
     Returns
     -------
     TireFit
-        The fitted :class:`~vehdyn.tire.MagicFormula` and per stage its coefficients, errors,
-        coefficients at a bound and the Jacobian's condition.
+        The fitted :class:`~vehdyn.tire.MagicFormula`; per stage its coefficients, errors,
+        coefficients at a bound or held, and the Jacobian's condition; the validity conditions on
+        the grid (:attr:`TireFit.validity`); the held-out errors (:attr:`TireFit.cross_validation`).
 
     Raises
     ------
     ParameterError
-        Unknown version, stage or coefficient name, bad bounds or weights, data without ``fz``,
-        or a stage with fewer points than coefficients.
+        Unknown version, stage or coefficient name, bad bounds, weights, regularization or units,
+        data without ``fz``, a column in another unit than SI (named, with the unit it looks like),
+        or a stage with fewer values than coefficients.
 
     Warns
     -----
     VehdynWarning
-        When coefficients are not identifiable from the data (no load, camber or pressure sweep,
-        or an ill-conditioned Jacobian).
+        When coefficients are not identifiable from the data (no load, camber or pressure sweep)
+        or are held by the ridge (named); when a validity condition fails somewhere on the grid;
+        when an error at a left-out condition exceeds 3 times the training error there (and 1 %).
+
+    References
+    ----------
+    H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 4.3.1, 4.3.2 and the appendix of
+    chapter 4 (eqs. 4.E1-4.E78, the equations fitted); see the module's references.
+
+    Examples
+    --------
+    Recover the MF 6.1 example tire's side force from two loads' slip-angle sweeps:
+
+    >>> import warnings
+    >>> import numpy as np
+    >>> from vehdyn.tire import fit_magic_formula, load_tire
+    >>> from vehdyn.tire.fitting import sample_tire
+    >>> tire = load_tire("MagicFormula61_Parameters")
+    >>> data = sample_tire(tire, loads=[4000.0, 6000.0], slip_angles=np.radians(np.linspace(-12, 12, 13)),
+    ...                    slip_ratios=[], cambers=[0.0], combined_angles=[])
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore")  # no camber or pressure sweep: those terms are not identifiable
+    ...     fit = fit_magic_formula(data, stages=("pure_lateral",))
+    >>> bool(fit.stages["pure_lateral"].nrms["fy"] < 1e-3), bool(fit.validity["ok"].all())
+    (True, True)
+    >>> sorted(set(fit.cross_validation["level_text"]))
+    ['load 4000 N', 'load 6000 N']
     """
     from ..magic_formula import MagicFormula
 
+    if isinstance(regularization, bool) or not isinstance(regularization, (int, float, np.integer, np.floating)) \
+            or not (math.isfinite(regularization) and regularization >= 0):
+        raise ParameterError(f"regularization must be a finite number >= 0, got {regularization!r}",
+                             key="regularization", value=regularization)
+    for name, flag in (("validity", validity), ("cross_validation", cross_validation)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise ParameterError(f"{name} must be True or False, got {flag!r}", key=name, value=flag)
+    if isinstance(max_nfev, bool) or not isinstance(max_nfev, (int, np.integer)) or max_nfev < 1:
+        raise ParameterError(f"max_nfev must be an integer >= 1, got {max_nfev!r}", key="max_nfev", value=max_nfev)
     if version not in ("5.2", "6.1", "6.2"):
         raise ParameterError(f"version must be '5.2', '6.1' or '6.2', got {version!r}", key="version", value=version)
     stages = (stages,) if isinstance(stages, str) else tuple(stages)
@@ -511,7 +583,7 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
     grid = ValidityGrid.from_data(full, model)
     reference_values, reference_name = _reference_values(reference)
     ctx = _Context(version=version, fixed=set(fixed), bounds=bounds, physical=start is None, max_nfev=max_nfev,
-                   regularization=regularization, reference=reference_values, reference_name=reference_name,
+                   regularization=float(regularization), reference=reference_values, reference_name=reference_name,
                    states=GridStates(c, grid) if validity else None, messages=messages)
     results = {}
     for stage in stages:
@@ -564,7 +636,7 @@ def _stage_rows(stage, full):
 
 
 def _reference_values(reference):
-    """The coefficient values the hold keeps: {} (each coefficient's start value, filled as
+    """The coefficient values the ridge pulls toward: {} (each coefficient's start value, filled as
     the stages run) or every coefficient of a reference tire; and how to name them."""
     from ..magic_formula import MagicFormula, load_tire
     from ..tir import TirParameters
@@ -696,7 +768,7 @@ def _fit_stage(stage, ctx, c, full, row_weights, done_stages):
         if ctx.warm and runnable:  # from a fit's solution: the last (cumulative) step alone
             runnable = [(runnable[-1][0], tuple(n for _, names in runnable for n in names))]
         active, last = [], None
-        for index, (step, names) in enumerate(runnable):
+        for step, names in runnable:
             active += [n for n in names if n not in ctx.fixed]
             keep = _step_rows(step, group_rows, c)
             sub = {k: v[keep] for k, v in group_rows.items()}
@@ -707,14 +779,14 @@ def _fit_stage(stage, ctx, c, full, row_weights, done_stages):
                 c = c._replace(**start)
             if not active:
                 continue
-            for name in active:  # held combinations return to the value a coefficient had when first fitted
+            for name in active:  # the ridge pulls toward the value a coefficient had when first fitted
                 ctx.reference.setdefault(name, float(getattr(c, name)))
             problem = _Problem(c, stage, sub, group, tuple(active), w)
             x0 = np.array([getattr(c, n) for n in active], dtype=float)
             lower, upper = _bounds(active, x0, ctx.bounds)
             # coefficients without effect on these points (e.g. RBX3: camber only at zero slip angle),
             # judged away from the start, where a product with a zero coefficient hides an effect (a
-            # refit from a solution keeps them: the hold keeps what has no effect at its reference)
+            # refit from a solution keeps them: the ridge keeps what has no effect at its reference)
             probe = x0 if ctx.warm else np.clip(x0 + 0.1 * np.maximum(np.abs(x0), 0.1), lower, upper)
             jac = problem.jac(probe, lower, upper)
             unused = np.zeros(len(active), dtype=bool) if ctx.warm else np.linalg.norm(jac, axis=0) == 0
@@ -730,16 +802,14 @@ def _fit_stage(stage, ctx, c, full, row_weights, done_stages):
                 signs = (math.copysign(1.0, c.PKX1), math.copysign(1.0, c.PKY1))  # kept by the bounds
                 penalty = Penalty(ctx.states, names_used, VALIDITY_WEIGHT * math.sqrt(problem.n_data), signs)
             reference = np.array([ctx.reference[n] for n in names_used])
-            hold = _Ridge.of(names_used, reference, ctx.regularization, problem.n_data)
-            problem.penalize(penalty, hold)
+            ridge = _Ridge.of(names_used, reference, ctx.regularization, problem.n_data)
+            problem.penalize(penalty, ridge)
             if ctx.physical and not ctx.warm and (stage, step) in SHAPE_STARTS:
                 x0 = _best_start(problem, x0, lower, upper, SHAPE_STARTS[stage, step])
-            if ctx.warm and hold is not None:  # what these data leave open starts from the reference
-                x0 = np.clip(hold.forget(x0, jac), lower, upper)
-            # a step that a later one refits (with more coefficients, on more points) only gives it a start
-            budget = ctx.max_nfev if index == len(runnable) - 1 else min(ctx.max_nfev, INTERMEDIATE_NFEV)
-            result = _solve(problem, x0, lower, upper, budget)
-            last = (result, problem, lower, upper, hold)
+            if ctx.warm and ridge is not None:  # what these data leave open starts from the reference
+                x0 = np.clip(ridge.forget(x0, jac), lower, upper)
+            result = _solve(problem, x0, lower, upper, ctx.max_nfev)
+            last = (result, problem, lower, upper, ridge)
             c = problem.coefficients(result.x)
             if step not in done:
                 done.append(step)
@@ -782,12 +852,12 @@ def _stage_result(stage, ctx, c, rows, outputs, fitted, lasts, not_identifiable,
         total = float(np.sum((t - t.mean()) ** 2))
         r2[out] = 1.0 - float(np.sum(err**2)) / total if total > 0 else float("nan")
     at_bounds, condition, weak, held = [], float("nan"), [], []
-    for result, prob, lower, upper, hold in ([] if ctx.warm else lasts):  # (a refit needs no diagnostics)
+    for result, prob, lower, upper, ridge in ([] if ctx.warm else lasts):  # (a refit needs no diagnostics)
         x = result.x
         tol = 1e-6 * np.maximum(np.abs(x), 1.0)
         at_bounds += [n for n, xi, lo, hi, t in zip(prob.names, x, lower, upper, tol)
                       if abs(xi - lo) <= t or abs(xi - hi) <= t]
-        jac = np.asarray(result.jac)[:prob.n_data]  # the data's rows (not the penalties', the hold's)
+        jac = np.asarray(result.jac)[:prob.n_data]  # the data's rows (not the penalties', the ridge's)
         norms = np.linalg.norm(jac, axis=0)
         zero = norms == 0
         scaled = _triangular(jac[:, ~zero] / norms[~zero])
@@ -796,8 +866,8 @@ def _stage_result(stage, ctx, c, rows, outputs, fitted, lasts, not_identifiable,
         condition = cond if np.isnan(condition) else max(condition, cond)
         if cond > CONDITION_LIMIT:
             weak += [n for n in _weak_coefficients(prob.names, scaled, zero) if n not in weak]
-        if hold is not None:
-            held += [n for n in hold.held(prob.names, jac, prob.n_data) if n not in held]
+        if ridge is not None:
+            held += [n for n in ridge.held(prob.names, jac) if n not in held]
     if held and not ctx.quiet:
         text = (f"stage {stage}: the data do not determine {', '.join(held)} (Jacobian condition {condition:.3g}); "
                 f"held at {ctx.reference_name} along the directions the data leave open (regularization "
@@ -874,7 +944,7 @@ class _Ridge:
         z = (x - self.reference) / self.size
         return self.reference + self.size * (z - weak.T @ (weak @ z))
 
-    def held(self, names, jac, n_data):
+    def held(self, names, jac):
         """The coefficients of the directions the ridge holds: right singular vectors of the data
         Jacobian ``jac`` in the ridge's scaling whose singular value is below the ridge's weight (the
         ridge keeps more than half of the reference's component), largest components first."""

@@ -28,6 +28,7 @@ class Stage:
     Attributes
     ----------
     name : str
+        The stage's name.
     outputs : tuple of str
         Measured columns the stage fits (``fx``, ``fy``, ``mz``, ``mx``, ``my``).
     needs : tuple of str
@@ -108,10 +109,22 @@ _NOT_IN = {
 
 
 def owned(stage: str, version: str):
-    """The steps of ``stage`` for Magic Formula ``version``: tuple of ``(step, coefficients)``.
+    """The steps of a stage for one Magic Formula version.
 
     MF 5.2 has no pressure dependence (its pressure step is dropped), no PEY5, PKY5-PKY7 or
     QSY5-QSY8, and uses PHY3 for the camber shift; MF 6.x do not use PHY3.
+
+    Parameters
+    ----------
+    stage : str
+        A key of :data:`STAGES`.
+    version : {"5.2", "6.1", "6.2"}
+        The Magic Formula version.
+
+    Returns
+    -------
+    tuple of (str, tuple of str)
+        ``(step, coefficients)`` in order, without the coefficients the version lacks.
     """
     drop = _NOT_IN[version]
     steps = []
@@ -139,5 +152,16 @@ dimensionless polynomials). The ridge of the fit measures a coefficient's change
 
 
 def typical_size(name: str) -> float:
-    """Typical magnitude of coefficient ``name`` [-]: :data:`TYPICAL_SIZE`, else 1."""
+    """Typical magnitude of a coefficient.
+
+    Parameters
+    ----------
+    name : str
+        Coefficient name (``"QBZ9"``).
+
+    Returns
+    -------
+    float
+        :data:`TYPICAL_SIZE` of it, else 1 [the coefficient's unit].
+    """
     return float(TYPICAL_SIZE.get(name, 1.0))

@@ -95,7 +95,19 @@ coefficient], K [stiffness per load, 1/rad or -], trail [over the unloaded radiu
 
 
 def families(names):
-    """The condition families the coefficients ``names`` move (a set of str)."""
+    """The condition families the coefficients ``names`` move.
+
+    Parameters
+    ----------
+    names : iterable of str
+        Coefficient names (``"PDY1"``, ``"QEZ5"``, ...).
+
+    Returns
+    -------
+    set of str
+        Families of :data:`CONDITIONS` (``"longitudinal"``, ``"lateral"``, ``"trail"``,
+        ``"combined_x"``, ``"combined_y"``) whose quantities depend on any of them.
+    """
     found = set()
     for name in names:
         for pattern, family in _FAMILY_OF_COEFFICIENT:
@@ -181,7 +193,12 @@ class ValidityGrid:
                    speed=float(np.median(speed)) if speed is not None else (16.7 if c is None else c.LONGVL))
 
     def points(self) -> int:
-        """Number of load-camber-pressure combinations [-]."""
+        """Number of load-camber-pressure combinations [-].
+
+        Returns
+        -------
+        int
+        """
         return self.loads.size * self.cambers.size * self.pressures.size
 
 
@@ -207,6 +224,25 @@ class GridStates:
 
     The state depends on the coefficient record only through fields a fit does not change (FNOMIN,
     NOMPRES, the ranges), so one instance serves every candidate coefficient set of a fit.
+
+    Parameters
+    ----------
+    c : MFCoefficients
+        A coefficient record of the tire (``MagicFormula._c``).
+    grid : ValidityGrid
+        Where to evaluate.
+
+    Attributes
+    ----------
+    plain : MFState
+        Every load x camber x pressure at zero slip.
+    sweep : MFState
+        The same at every slip angle of the grid (the trail's curvature).
+    small : MFState
+        The same at the slip angles 0, +-1/2 and +-1 times :data:`TRAIL_SMALL_SLIP` (those within
+        the grid's span).
+    combined : MFState
+        Every other load, camber, slip angle and slip ratio of the grid at the middle pressure.
     """
 
     def __init__(self, c, grid: ValidityGrid):
@@ -217,7 +253,8 @@ class GridStates:
         zero = np.zeros(n)
         self.plain = _state(c, f, zero, zero, g, np.full(n, grid.speed), p)
         alphas = grid.slip_angles
-        small = np.union1d(alphas[np.abs(alphas) <= TRAIL_SMALL_SLIP], [0.0])
+        small = TRAIL_SMALL_SLIP * np.array([-1.0, -0.5, 0.0, 0.5, 1.0])
+        small = small[(small >= min(alphas.min(), 0.0)) & (small <= max(alphas.max(), 0.0))]
         self.sweep = self._product(c, f, g, p, alphas)
         self.small = self._product(c, f, g, p, small)
         # combined slip: loads x cambers x slip angles x slip ratios at the nominal pressure, every
@@ -235,11 +272,39 @@ class GridStates:
 
 
 def trail_factors(c, s):
-    """Dt [m], Bt [1/rad], Ct [-], Et [-] and the shift SHt [rad] of the pneumatic trail at state ``s``.
+    """The factors of the pneumatic trail at state ``s``, as the aligning moment evaluates them.
 
-    Book eqs. 4.E35, 4.E41, 4.E44 and Besselink et al. (2010) A58, A60, as
-    :func:`vehdyn.tire.mf_moments.aligning_moment` evaluates them without turn slip (Et before the
-    E <= 1 limit).
+    Parameters
+    ----------
+    c : MFCoefficients
+        The coefficient record.
+    s : MFState
+        Post-processed inputs (:class:`GridStates`).
+
+    Returns
+    -------
+    dt : ndarray
+        Peak Dt [m] (A60: 4.E42, 4.E43 with the pressure and camber terms).
+    bt : ndarray
+        Stiffness factor Bt [1/rad] (A58: 4.E40).
+    ct : float
+        Shape factor Ct [-] (4.E41).
+    et : ndarray
+        Curvature factor Et [-] (4.E44), before the E <= 1 limit.
+    sht : ndarray
+        Horizontal shift SHt [rad] (4.E35).
+
+    Notes
+    -----
+    :func:`vehdyn.tire.mf_moments.aligning_moment` does not return these; they are written here
+    once more (without turn slip), and a test holds :func:`trail` built from them to the model's
+    trail on every shipped tire.
+
+    References
+    ----------
+    H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, eqs. 4.E34-4.E44.
+    I. J. M. Besselink, A. J. C. Schmeitz, H. B. Pacejka, *Vehicle System Dynamics* 48 (2010), eqs.
+    A58, A60.
     """
     xp, dfz, gamma, gamma_star = NumpyOps, s.dfz, s.gamma, s.gamma_star
     dt = (c.QDZ1 + c.QDZ2 * dfz) * (1 - c.PPZ1 * s.dpi) * (1 + c.QDZ3 * gamma + c.QDZ4 * gamma**2) \
@@ -255,7 +320,28 @@ def trail_factors(c, s):
 
 
 def trail(c, s):
-    """Pneumatic trail t [m] at state ``s`` at zero slip ratio (book eq. 4.E33 with 4.E73's factors)."""
+    """Pneumatic trail at state ``s``, zero slip ratio.
+
+    .. math:: t = D_t \\cos\\big(C_t \\arctan(B_t \\alpha_t - E_t (B_t \\alpha_t - \\arctan B_t \\alpha_t))\\big)
+              \\cos\\alpha'
+
+    Parameters
+    ----------
+    c : MFCoefficients
+        The coefficient record.
+    s : MFState
+        Post-processed inputs.
+
+    Returns
+    -------
+    ndarray
+        The trail t [m] (book eq. 4.E33 with the factors of :func:`trail_factors`, Et limited to 1,
+        scaled by LFZO and the low-speed factor as eq. 4.E73 in vehdyn's aligning moment).
+
+    References
+    ----------
+    H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, eqs. 4.E33, 4.E73.
+    """
     xp = NumpyOps
     dt, bt, ct, et, sht = trail_factors(c, s)
     et = xp.minimum(et, 1.0)
@@ -359,6 +445,17 @@ class Penalty:
     times the 2-norm of ``max(0, g + margin)`` over the grid: zero while the condition holds with
     its margin (:data:`MARGINS`) everywhere. One row per condition adds to the sum of squares what
     one row per grid point would, and keeps the least-squares problem as small as the data's.
+
+    Parameters
+    ----------
+    states : GridStates
+        The grid's states.
+    names : sequence of str
+        The coefficients the step varies.
+    weight : float
+        Weight of the rows [-] (the fit uses 100 times the square root of the step's data values).
+    signs : (float, float)
+        Signs the slip and cornering stiffness must keep (those of PKX1 and PKY1 at the step's start).
     """
 
     NEAR = 1e-3
@@ -373,9 +470,24 @@ class Penalty:
         self.near = set(self.names)
 
     def residuals(self, c, base=None, coefficient=None):
-        """The residuals at ``c``; with ``base`` (the residuals at the record of the last full
-        evaluation, which differs from ``c`` in ``coefficient`` alone, by a finite-difference step)
-        only the conditions that coefficient moves and that were near their bound are evaluated."""
+        """The penalty residuals at coefficient record ``c``.
+
+        Parameters
+        ----------
+        c : MFCoefficients
+            The candidate coefficients.
+        base : ndarray, optional
+            The residuals of the last full evaluation, at a record that differs from ``c`` in
+            ``coefficient`` alone by a finite-difference step: then only the conditions that
+            coefficient moves and that were near their bound (:attr:`NEAR`) are evaluated again.
+        coefficient : str, optional
+            The coefficient that differs (with ``base``).
+
+        Returns
+        -------
+        ndarray
+            One value per condition of the step's families [-].
+        """
         if not self.names:
             return np.zeros(0)
         if base is None:
@@ -394,23 +506,22 @@ class Penalty:
 
 
 def _where(name, states, index):
-    """The grid point (fz, gamma, pressure, alpha, kappa) of one condition value."""
-    if name in ("trail > 0", "Et <= 1"):
-        s = states.small if name == "trail > 0" else states.sweep
-        return float(s.fz[index]), float(s.gamma[index]), float(s.pressure[index]), float(s.alpha[index]), 0.0
-    if name in ("Gxa > 0", "Gyk > 0"):
-        s = states.combined
-        return float(s.fz[index]), float(s.gamma[index]), float(s.pressure[index]), float(s.alpha[index]), \
-            float(s.kappa[index])
-    s = states.plain
-    n = s.fz.size
-    if np.size(s.fz) == 0 or name.split()[0].startswith("C"):
+    """The grid point (fz [N], gamma [rad], pressure [Pa], alpha [rad], kappa [-]) of value ``index``
+    of condition ``name``; for Ex and Ey, kappa and alpha hold the slip's sign (+1 for the first half
+    of the values, -1 for the second); NaN for the shape factors (one value, no grid)."""
+    if name.split()[0] in ("Cx", "Cy", "Ct", "Cxa", "Cyk"):
         return (math.nan,) * 5
-    i = index % n  # the E conditions hold both slip signs one after the other
-    sign = 1.0 if index < n else -1.0
-    slip = {"Ex <= 1": sign, "Ey <= 1": sign}.get(name, 0.0)
-    return float(s.fz[i]), float(s.gamma[i]), float(s.pressure[i]), slip if name == "Ey <= 1" else 0.0, \
-        slip if name == "Ex <= 1" else 0.0
+    states_of = {"trail > 0": states.small, "Et <= 1": states.sweep, "Gxa > 0": states.combined,
+                 "Gyk > 0": states.combined}
+    s = states_of.get(name, states.plain)
+    sign = 0.0
+    if name in ("Ex <= 1", "Ey <= 1"):  # both slip signs, one after the other
+        sign = 1.0 if index < s.fz.size else -1.0
+        index %= s.fz.size
+    alpha = sign if name == "Ey <= 1" else float(np.broadcast_to(s.alpha, s.fz.shape)[index])
+    kappa = sign if name == "Ex <= 1" else float(np.broadcast_to(s.kappa, s.fz.shape)[index])
+    return (float(s.fz[index]), float(np.broadcast_to(s.gamma, s.fz.shape)[index]),
+            float(np.broadcast_to(s.pressure, s.fz.shape)[index]), alpha, kappa)
 
 
 def check_validity(tire, grid=None, *, data=None, signs=None):
