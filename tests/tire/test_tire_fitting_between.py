@@ -133,3 +133,27 @@ def test_unidentifiable_camber_terms_are_held_and_named(case):
     # within a tenth of their typical sizes (2 and 5) of the start, 0; before the fix: -1e3 .. 1e3
     assert abs(fit.tire.params["QDZ10"]) < 0.2 and abs(fit.tire.params["QDZ11"]) < 0.5
     assert any("QDZ10" in m and "held at their start values" in m for m in fit.messages)
+
+
+def test_a_reference_tire_supplies_what_the_data_leave_open():
+    """With the tire itself as reference, the held camber*|camber| terms go to its values (QDZ10
+    1.03, QDZ11 -4.32) instead of 0, and Mz between the cambers comes closer (0.3 % against 1.5 % of
+    the peak, the part of the tire the three cambers cannot show)."""
+    truth = shipped_tire("MagicFormula61_Parameters")
+    data = sample_tire(truth, loads=[2000.0, 4000.0, 6000.0, 8000.0], slip_angles=np.radians(np.linspace(-15, 15, 13)),
+                       slip_ratios=[], cambers=CAMBERS, combined_angles=[])
+    peak = float(np.max(np.abs(data["mz"])))
+    errors = {}
+    for reference in (None, truth):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", VehdynWarning)
+            fit = fit_magic_formula(data, stages=("pure_lateral", "aligning"), cross_validation=False,
+                                    reference=reference)
+        errors[reference is None] = max(_error(fit.tire, truth, "mz", peak, fz=fz, gamma=gamma)
+                                        for fz in (3000.0, 5000.0, 7000.0) for gamma in BETWEEN_CAMBERS)
+        if reference is not None:
+            assert fit.tire.nominal_load == truth.nominal_load  # the reference's FNOMIN: the same dfz
+            assert fit.tire.params["QDZ10"] == pytest.approx(truth.params["QDZ10"], abs=0.1)
+            assert fit.tire.params["QDZ11"] == pytest.approx(truth.params["QDZ11"], abs=0.3)
+            assert any("held at the reference tire's values" in m for m in fit.messages)
+    assert errors[False] < 0.01 < errors[True] < 0.03, errors

@@ -6,12 +6,13 @@ validated against MFeval); errors are r.m.s. over the peak force of the noise-fr
 
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
 import pytest
 
-from vehdyn.errors import ParameterError, VehdynWarning
+from vehdyn.errors import ParameterError, TirFileError, VehdynWarning
 from vehdyn.tire import MagicFormula, TireFit, fit_magic_formula, read_tir
 from vehdyn.tire.fitting.synthetic import sample_tire
 
@@ -191,6 +192,18 @@ def test_bad_input():
         fit_magic_formula(frame.drop(columns=["fz"]))
     with pytest.raises(ParameterError, match="data must be a DataFrame"):
         fit_magic_formula([1, 2, 3])
+    for value in (-1e-3, math.nan, math.inf, "0.1", True):
+        with pytest.raises(ParameterError, match="regularization must be a finite number >= 0") as error:
+            fit_magic_formula(frame, regularization=value)
+        assert error.value.key == "regularization"
+    with pytest.raises(ParameterError, match="validity must be True or False, got 'yes'"):
+        fit_magic_formula(frame, validity="yes")
+    with pytest.raises(ParameterError, match="cross_validation must be True or False, got 1"):
+        fit_magic_formula(frame, cross_validation=1)
+    with pytest.raises(ParameterError, match="max_nfev must be an integer >= 1, got 0"):
+        fit_magic_formula(frame, max_nfev=0)
+    with pytest.raises(TirFileError, match="no_such_tire: cannot read the file"):
+        fit_magic_formula(frame, reference="no_such_tire")  # as start= does
 
 
 @pytest.mark.parametrize("stage, outputs", [("pure_longitudinal", ("fx",)), ("pure_lateral", ("fy",)),

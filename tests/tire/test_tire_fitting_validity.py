@@ -8,12 +8,13 @@ E <= 1 through the forces with and without the model's E <= 1 clamp (limits=True
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
 
-from vehdyn.errors import ParameterError
-from vehdyn.tire import BrushTire, MagicFormula
+from vehdyn.errors import ParameterError, VehdynWarning
+from vehdyn.tire import BrushTire, MagicFormula, fit_magic_formula
 from vehdyn.tire.fitting import CONDITIONS, ValidityGrid, check_validity
 from vehdyn.tire.fitting.synthetic import sample_tire
 from vehdyn.tire.fitting.validity import GridStates, trail
@@ -129,3 +130,23 @@ def test_bad_arguments():
         check_validity(BrushTire(contact_half_length=0.08, tread_stiffness=5e6, mu=1.0), data={"fz": [1.0]})
     with pytest.raises(ParameterError, match="needs a grid or the data"):
         check_validity(tire)
+
+
+def test_the_penalties_keep_a_noisy_fit_valid():
+    """MF 5.2 tire, 3 % noise: without the penalties the fitted curvature factor of Fy exceeds 1
+    between the measured conditions (the forces differ with and without the model's E <= 1 clamp);
+    with them every condition holds, by the same independent check."""
+    from .test_tire_fitting_between import valid_everywhere
+
+    truth = shipped_tire("MagicFormula52_Parameters")
+    data = sample_tire(truth, slip_angles=np.radians(np.linspace(-15, 15, 13)), slip_ratios=np.linspace(-0.3, 0.3, 13),
+                       cambers=np.radians([-3.0, 0.0, 3.0]), combined_angles=[], noise=0.03, seed=2)
+    fits = {}
+    for validity in (False, True):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", VehdynWarning)
+            fits[validity] = fit_magic_formula(data, version="5.2", stages=("pure_longitudinal", "pure_lateral"),
+                                               cross_validation=False, validity=validity)
+    assert "Ey <= 1" in set(fits[False].violations.index)
+    assert any("E <= 1" in text for text in valid_everywhere(fits[False].tire, data))
+    assert len(fits[True].violations) == 0 and valid_everywhere(fits[True].tire, data) == []

@@ -108,9 +108,10 @@ def _levels_vary(values, span):
 
 
 # ------------------------------------------------------------------------------------ template
-def _template(version, start, columns, messages):
+def _template(version, start, columns, messages, nominal_load=None):
     """The parameter set the fit starts from: ``start`` or MFeval's defaults in a shipped layout,
-    with FNOMIN, LONGVL, NOMPRES and the ranges taken from the data."""
+    with FNOMIN (``nominal_load``, else the load level nearest the mean), LONGVL, NOMPRES and the
+    ranges taken from the data."""
     from ...params import data_path
     from ..magic_formula import MagicFormula, load_tire
     from ..tir import MFEVAL_DEFAULTS, TirParameters, read_tir
@@ -139,7 +140,7 @@ def _template(version, start, columns, messages):
         params = layout
         levels = _load_levels(fz)
         nominal = float(levels[np.argmin(np.abs(levels - fz.mean()))])
-        overrides = {"FNOMIN": nominal}
+        overrides = {"FNOMIN": nominal if nominal_load is None else nominal_load}
         if "vx" in columns:
             overrides["LONGVL"] = float(np.median(columns["vx"]))
         if "pressure" in columns:
@@ -466,7 +467,8 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
         :data:`REGULARIZATION`.
     reference : MagicFormula, TirParameters, str or pathlib.Path, optional
         A tire whose coefficients the ridge holds instead of the start values (e.g. a fit of a
-        similar tire whose camber dependence was measured).
+        similar tire whose camber dependence was measured). Without ``start``, the fit then uses
+        the reference's FNOMIN, so that its load coefficients mean the same.
     validity : bool
         Enforce the validity conditions (:mod:`~vehdyn.tire.fitting.validity`) on the grid that
         spans the data. They are checked and reported on the result either way.
@@ -568,7 +570,9 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
     columns = drop_nonfinite(columns, messages)
     if columns["fz"].size == 0:
         raise ParameterError("data has no finite rows", key="data", value=0)
-    params = _template(version, start, columns, messages)
+    reference_values, reference_name = _reference_values(reference)
+    # a reference tire's load coefficients mean something at its own FNOMIN (dfz = Fz/FNOMIN - 1)
+    params = _template(version, start, columns, messages, reference_values.get("FNOMIN"))
     version = params.version
     model = MagicFormula(params)
     c = model._c
@@ -581,7 +585,6 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
             full[out] = columns[out]
     row_weights = columns.get("_weight")
     grid = ValidityGrid.from_data(full, model)
-    reference_values, reference_name = _reference_values(reference)
     ctx = _Context(version=version, fixed=set(fixed), bounds=bounds, physical=start is None, max_nfev=max_nfev,
                    regularization=float(regularization), reference=reference_values, reference_name=reference_name,
                    states=GridStates(c, grid) if validity else None, messages=messages)
