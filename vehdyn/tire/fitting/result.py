@@ -15,7 +15,7 @@ __all__ = ["StageResult", "TireFit"]
 class StageResult:
     """Diagnostics of one fitting stage.
 
-    Attributes
+    Parameters
     ----------
     name : str
         The stage (:data:`vehdyn.tire.fitting.STAGE_NAMES`, or ``"brush"``, ``"linear"``).
@@ -78,7 +78,7 @@ _LEVEL_UNITS = {"load": ("N", 1.0), "camber": ("deg", 180 / math.pi), "pressure"
 class TireFit:
     """A fitted tire and how well it fits, at the data and between them.
 
-    Attributes
+    Parameters
     ----------
     tire : TireModel
         The fitted model (a :class:`~vehdyn.tire.MagicFormula` whose ``params`` hold every fitted

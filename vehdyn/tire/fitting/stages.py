@@ -25,7 +25,7 @@ __all__ = ["Stage", "STAGES", "STAGE_NAMES", "owned", "STEP_VARIATION", "TYPICAL
 class Stage:
     """One stage of the fit.
 
-    Attributes
+    Parameters
     ----------
     name : str
         The stage's name.

@@ -120,7 +120,7 @@ def families(names):
 class ValidityGrid:
     """Where the validity conditions are checked: every combination of these values.
 
-    Attributes
+    Parameters
     ----------
     loads : ndarray
         Normal loads [N].
@@ -193,11 +193,12 @@ class ValidityGrid:
                    speed=float(np.median(speed)) if speed is not None else (16.7 if c is None else c.LONGVL))
 
     def points(self) -> int:
-        """Number of load-camber-pressure combinations [-].
+        """Number of load-camber-pressure combinations.
 
         Returns
         -------
         int
+            Loads times cambers times pressures [-].
         """
         return self.loads.size * self.cambers.size * self.pressures.size
 
