@@ -26,7 +26,9 @@ STAGES = ("pure_lateral", "aligning")
 def _quiet_fit(data, **kwargs):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", VehdynWarning)
-        return fit_magic_formula(data, stages=STAGES, **kwargs)
+        fit = fit_magic_formula(data, stages=STAGES, **kwargs)
+    assert fit.validity["ok"].all(), fit.violations  # every fit of these tests is valid on its data's span
+    return fit
 
 
 @pytest.fixture(scope="module")

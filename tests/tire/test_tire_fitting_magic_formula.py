@@ -24,10 +24,15 @@ RATIOS = np.linspace(-0.3, 0.3, 21)
 
 
 def _fit(data, **kwargs):
+    """The fit, whose validity conditions hold on the grid spanning the data (unless it is stopped
+    after one evaluation)."""
     kwargs.setdefault("cross_validation", False)  # tested in test_tire_fitting_cross_validation.py
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", VehdynWarning)  # no pressure sweep: PPX*, PPY* not identifiable
-        return fit_magic_formula(data, **kwargs)
+        fit = fit_magic_formula(data, **kwargs)
+    if kwargs.get("max_nfev", 200) > 1:
+        assert fit.validity["ok"].all(), fit.violations
+    return fit
 
 
 def _relative_rms(tire, frame, truth, outputs=("fx", "fy")):
