@@ -205,10 +205,11 @@ def cmd_tire_fit(args) -> int:
     from vehdyn.plotting import save_figure
     from vehdyn.tire import fit_magic_formula, read_tire_data
 
-    data = read_tire_data(args.data, convention=args.convention)
+    data = read_tire_data(args.data, convention=args.convention, units=dict(_unit_option(u) for u in args.unit or ()))
     with warnings.catch_warnings():  # the fit's warnings are also its messages, printed with the table
         warnings.simplefilter("ignore", VehdynWarning)
-        fit = fit_magic_formula(data, version=args.version, start=args.start)
+        fit = fit_magic_formula(data, version=args.version, start=args.start,
+                                cross_validation=not args.no_cross_validation)
     print(fit)
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -216,6 +217,16 @@ def cmd_tire_fit(args) -> int:
     for stage, fig in fit.plot().items():
         print(f"wrote {save_figure(fig, out.with_name(f'{out.stem}_{stage}.png'))}")
     return 0
+
+
+def _unit_option(text):
+    """``--unit alpha=deg`` -> ("alpha", "deg")."""
+    from vehdyn.errors import ParameterError
+
+    name, sep, unit = text.partition("=")
+    if not sep or not name.strip() or not unit.strip():
+        raise ParameterError(f"--unit takes COLUMN=UNIT (e.g. alpha=deg), got {text!r}", key="unit", value=text)
+    return name.strip(), unit.strip()
 
 
 def cmd_vehicles(args) -> int:
@@ -312,6 +323,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--start", default=None, help="start from this .tir file (default: from the data)")
     p.add_argument("--version", default="6.1", choices=("5.2", "6.1", "6.2"), help="Magic Formula version")
     p.add_argument("--convention", default="ISO-W", choices=("ISO-W", "SAE"), help="axes of a CSV file")
+    p.add_argument("--unit", action="append", metavar="COLUMN=UNIT",
+                   help="unit of a CSV column without one in its header (e.g. alpha=deg, kappa=%%, fz=kN); repeat")
+    p.add_argument("--no-cross-validation", action="store_true",
+                   help="skip leaving each measured condition out in turn (about halves the time)")
     p.set_defaults(func=cmd_tire_fit)
     p = sub.add_parser("vehicles", help="list the shipped vehicles")
     p.set_defaults(func=cmd_vehicles)

@@ -33,13 +33,16 @@ def test_tire_fit_writes_tir_and_figures(data_file, tmp_path, capsys):
     text = captured.out
     assert "pure_lateral" in text and f"wrote {out}" in text
     assert "PPY1, PPY2, PPY3, PPY4, PPY5 not identifiable (no pressure sweep" in text
+    assert "held out (each measured condition left out of the fit in turn" in text  # 4 loads, cross-validated
+    assert "validity: all 18 conditions hold" in text
     assert "VehdynWarning" not in captured.err
     fitted = load_tire(out)
     lateral = frame[frame["sweep"] == "lateral"]
     args = (lateral["fz"].to_numpy(), 0.0, lateral["alpha"].to_numpy())
     error = fitted.forces(*args).fy - tire.forces(*args).fy
     assert np.sqrt(np.mean(error**2)) < 0.01 * np.max(np.abs(lateral["fy"]))
-    for stage in ("pure_longitudinal", "pure_lateral", "aligning", "combined", "overturning", "rolling_resistance"):
+    for stage in ("pure_longitudinal", "pure_lateral", "aligning", "combined", "overturning", "rolling_resistance",
+                  "cross_validation"):
         assert (out.parent / f"fitted_{stage}.png").stat().st_size > 0
 
 

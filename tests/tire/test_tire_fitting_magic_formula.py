@@ -6,12 +6,13 @@ validated against MFeval); errors are r.m.s. over the peak force of the noise-fr
 
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
 import pytest
 
-from vehdyn.errors import ParameterError, VehdynWarning
+from vehdyn.errors import ParameterError, TirFileError, VehdynWarning
 from vehdyn.tire import MagicFormula, TireFit, fit_magic_formula, read_tir
 from vehdyn.tire.fitting.synthetic import sample_tire
 
@@ -23,9 +24,15 @@ RATIOS = np.linspace(-0.3, 0.3, 21)
 
 
 def _fit(data, **kwargs):
+    """The fit, whose validity conditions hold on the grid spanning the data (unless it is stopped
+    after one evaluation)."""
+    kwargs.setdefault("cross_validation", False)  # tested in test_tire_fitting_cross_validation.py
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", VehdynWarning)  # no pressure sweep: PPX*, PPY* not identifiable
-        return fit_magic_formula(data, **kwargs)
+        fit = fit_magic_formula(data, **kwargs)
+    if kwargs.get("max_nfev", 200) > 1:
+        assert fit.validity["ok"].all(), fit.violations
+    return fit
 
 
 def _relative_rms(tire, frame, truth, outputs=("fx", "fy")):
@@ -190,6 +197,18 @@ def test_bad_input():
         fit_magic_formula(frame.drop(columns=["fz"]))
     with pytest.raises(ParameterError, match="data must be a DataFrame"):
         fit_magic_formula([1, 2, 3])
+    for value in (-1e-3, math.nan, math.inf, "0.1", True):
+        with pytest.raises(ParameterError, match="regularization must be a finite number >= 0") as error:
+            fit_magic_formula(frame, regularization=value)
+        assert error.value.key == "regularization"
+    with pytest.raises(ParameterError, match="validity must be True or False, got 'yes'"):
+        fit_magic_formula(frame, validity="yes")
+    with pytest.raises(ParameterError, match="cross_validation must be True or False, got 1"):
+        fit_magic_formula(frame, cross_validation=1)
+    with pytest.raises(ParameterError, match="max_nfev must be an integer >= 1, got 0"):
+        fit_magic_formula(frame, max_nfev=0)
+    with pytest.raises(TirFileError, match="no_such_tire: cannot read the file"):
+        fit_magic_formula(frame, reference="no_such_tire")  # as start= does
 
 
 @pytest.mark.parametrize("stage, outputs", [("pure_longitudinal", ("fx",)), ("pure_lateral", ("fy",)),
@@ -244,9 +263,11 @@ def test_pressure_dependence_recovered():
         assert error < 0.01, (out, error)
 
 
-def test_condition_warning_names_degenerate_coefficients():
+def test_condition_warning_names_held_coefficients():
     """Camber at 0 and +-4 deg only: gamma and gamma*|gamma| are proportional, so the residual-torque
-    pairs QDZ8/QDZ10 and QDZ9/QDZ11 cannot be told apart; with +-2 deg added they can."""
+    pairs QDZ8/QDZ10 and QDZ9/QDZ11 cannot be told apart: the fit holds the higher-order QDZ10, QDZ11
+    at their start values (0) and names them; with +-2 deg added they are determined, nothing is
+    held, and the fit recovers the file's aligning moment."""
     truth_tire = shipped_tire("MagicFormula61_Parameters")
     results = {}
     for cambers in ((0.0, -4.0, 4.0), (0.0, -4.0, -2.0, 2.0, 4.0)):
@@ -254,14 +275,21 @@ def test_condition_warning_names_degenerate_coefficients():
                             combined_angles=[])
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", VehdynWarning)
-            fit = fit_magic_formula(frame, stages=("pure_lateral", "aligning"))
-        results[len(cambers)] = ([str(w.message) for w in caught if "condition" in str(w.message)],
-                                 fit.stages["aligning"])
-    texts, stage = results[3]
+            fit = fit_magic_formula(frame, stages=("pure_lateral", "aligning"), cross_validation=False)
+        results[len(cambers)] = ([str(w.message) for w in caught if "stage aligning: the data do not" in str(w.message)],
+                                 fit.stages["aligning"], fit)
+    texts, stage, _ = results[3]
     assert len(texts) == 1 and stage.condition > 1e8
+    assert {"QDZ10", "QDZ11"} <= set(stage.held) and "QDZ10" in texts[0] and "held at their start values" in texts[0]
     assert set(stage.weakest) & {"QDZ8", "QDZ10", "QDZ9", "QDZ11"}
-    texts, stage = results[5]
-    assert texts == [] and stage.condition < 1e4 and stage.nrms["mz"] < 1e-6
+    texts, stage, fit = results[5]
+    assert not any("QDZ" in t for t in texts) and stage.condition < 1e4
+    assert not set(stage.held) & {"QDZ8", "QDZ9", "QDZ10", "QDZ11"}
+    assert stage.nrms["mz"] < 1e-3
+    alpha = np.radians(np.linspace(-15, 15, 61))
+    for gamma in np.radians([1.0, 3.0]):
+        error = fit.tire.forces(4000.0, 0.0, alpha, gamma).mz - truth_tire.forces(4000.0, 0.0, alpha, gamma).mz
+        assert np.max(np.abs(error)) < 0.01 * np.max(np.abs(frame["mz"]))
 
 
 def test_zero_weights_remove_corrupted_rows():

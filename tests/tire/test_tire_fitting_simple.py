@@ -81,7 +81,9 @@ def test_simple_fits_bad_input():
 
 
 def test_fit_plots_data_against_fit():
-    """One figure per stage; the fitted curve of each output lies on its data (exact laws)."""
+    """One figure per stage; the fitted curve of each output lies on its data (exact laws), and the
+    dashed curves between the measured loads are the fitted law at the loads midway, between their
+    neighbours' curves (the brush's force grows with the load at every slip)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -93,10 +95,24 @@ def test_fit_plots_data_against_fit():
     assert list(figures) == ["brush"]
     axes = figures["brush"].axes
     assert [ax.get_ylabel() for ax in axes] == ["fy [N]", "fx [N]", "mz [N*m]"]
-    for ax in axes:
-        lines = ax.get_lines()
-        assert len(lines) == 2 * len(LOADS)
-        for data, model in zip(lines[::2], lines[1::2]):
+    for ax, out in zip(axes, ("fy", "fx", "mz")):
+        lines = [line for line in ax.get_lines() if len(line.get_xdata())]
+        measured = [line for line in lines if line.get_linestyle() == "None"]
+        solid = [line for line in lines if line.get_linestyle() == "-"]
+        between = [line for line in lines if line.get_linestyle() == "--"]
+        assert len(measured) == len(solid) == len(LOADS) and len(between) == len(LOADS) - 1
+        for data, model in zip(measured, solid):
             y = data.get_ydata()
             np.testing.assert_allclose(model.get_ydata(), y, atol=1e-6 * np.max(np.abs(y)))
+        for i, line in enumerate(between):
+            x = line.get_xdata()
+            slip = np.radians(x) if out != "fx" else x
+            load = 0.5 * (LOADS[i] + LOADS[i + 1])
+            kappa, alpha = (slip, 0.0 * slip) if out == "fx" else (0.0 * slip, slip)
+            expected = getattr(fit.tire.forces(np.full(slip.size, load), kappa, alpha, 0.0, 10.0), out)
+            np.testing.assert_allclose(line.get_ydata(), expected, rtol=1e-12, atol=1e-9)
+            if out != "mz":  # |F| grows with the load at every slip
+                low, high = (getattr(fit.tire.forces(np.full(slip.size, f), kappa, alpha, 0.0, 10.0), out)
+                             for f in (LOADS[i], LOADS[i + 1]))
+                assert np.all(np.abs(low) <= np.abs(expected) + 1e-9) and np.all(np.abs(expected) <= np.abs(high) + 1e-9)
     plt.close("all")

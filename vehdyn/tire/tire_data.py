@@ -33,6 +33,13 @@ Two layouts are read:
 
 Every sign flip goes through :func:`vehdyn.conventions.tire_slips_sae_to_iso_w` and
 :func:`vehdyn.conventions.tire_forces_sae_to_iso_w`.
+
+**Units at the door.** A column without a stated unit is taken as SI, and its values must be
+what a tire test produces in SI (:data:`PLAUSIBLE_RANGES`: slip angles within +-pi/2 rad, slip
+ratios within +-1.5, loads positive and between 20 N and 1 MN, pressures between 0.1 and 100
+bar, speeds below 150 m/s); otherwise :func:`check_units` refuses it with the unit it most likely
+has (slip angles in degrees read as radians would give a tire with 1/57 of its cornering
+stiffness). The fits judge their data the same way (:mod:`vehdyn.tire.fitting`).
 """
 
 from __future__ import annotations
@@ -45,7 +52,8 @@ import numpy as np
 
 from vehdyn.errors import ParameterError, TirFileError
 
-__all__ = ["read_tire_data", "TireDataError", "CANONICAL_COLUMNS", "UNIT_FACTORS"]
+__all__ = ["read_tire_data", "check_units", "to_si", "TireDataError", "CANONICAL_COLUMNS", "UNIT_FACTORS",
+           "PLAUSIBLE_RANGES"]
 
 CANONICAL_COLUMNS = ("fz", "kappa", "alpha", "gamma", "vx", "pressure", "fx", "fy", "mx", "my", "mz", "omega",
                      "effective_radius")
@@ -82,13 +90,44 @@ _ALIASES = {
 }
 _ALIAS_TO_NAME = {alias: name for name, aliases in _ALIASES.items() for alias in aliases}
 
+PLAUSIBLE_RANGES = {
+    "alpha": (-math.pi / 2, math.pi / 2),
+    "gamma": (-math.pi / 2, math.pi / 2),
+    "kappa": (-1.5, 1.5),
+    "fz": (20.0, 1e6),
+    "pressure": (1e4, 1e7),
+    "vx": (-150.0, 150.0),
+}
+"""Range [SI] of each column that a tire test can produce: slip and inclination angles within
++-pi/2 rad, slip ratios within the Magic Formula's usual KPUMIN/KPUMAX of +-1.5, a largest load
+between 20 N and 1 MN (a model-car tire to an aircraft's), pressures between 0.1 and 100 bar,
+speeds below 150 m/s. :func:`check_units` refuses a column beyond its range unless its unit was
+stated (the values then are what the user says they are)."""
+
+_LIKELY_UNIT = {
+    "alpha": ("deg", "degrees"), "gamma": ("deg", "degrees"), "kappa": ("%", "percent"), "fz": ("kN", "kN"),
+    "vx": ("km/h", "km/h"),
+}
+
 # Test-consortium channels (SAE tire axes) -> canonical name; SR is used when SL is absent.
 _CONSORTIUM = {"FZ": "fz", "SL": "kappa", "SA": "alpha", "IA": "gamma", "V": "vx", "P": "pressure", "FX": "fx",
                "FY": "fy", "MX": "mx", "MY": "my", "MZ": "mz", "N": "omega", "RE": "effective_radius"}
 
 
 class TireDataError(TirFileError):
-    """A tire data file cannot be read; the message names the file, the line and the column."""
+    """A tire data file cannot be read; the message names the file, the line and the column.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong.
+    path : str or pathlib.Path, optional
+        The file.
+    line : int, optional
+        The line (1-based).
+    column : str, optional
+        The column, as the file names it.
+    """
 
     def __init__(self, message: str, *, path=None, line=None, column=None):
         super().__init__(message, path=None if path is None else str(path), line=line)
@@ -103,6 +142,107 @@ def _unit_factor(name, unit, path, line):
         raise TireDataError(f"column {name!r}: unknown {quantity} unit {unit!r}; known: {', '.join(sorted(table))}",
                             path=path, line=line, column=name)
     return table[key]
+
+
+def to_si(name, values, unit):
+    """Values of a canonical column in a named unit, converted to SI.
+
+    Parameters
+    ----------
+    name : str
+        Canonical column (:data:`CANONICAL_COLUMNS`).
+    values : array_like
+        The values, in ``unit``.
+    unit : str
+        A unit of the column's quantity in :data:`UNIT_FACTORS` (case and spaces ignored).
+
+    Returns
+    -------
+    ndarray
+        The values in SI (N, N*m, rad, m/s, Pa, rad/s, m; slip ratio as a fraction).
+
+    Raises
+    ------
+    ParameterError
+        If ``name`` is not a canonical column or ``unit`` not a unit of its quantity.
+    """
+    if name not in _QUANTITY:
+        raise ParameterError(f"units: {name!r} is not a canonical column ({', '.join(CANONICAL_COLUMNS)})",
+                             key="units", value=name)
+    table = UNIT_FACTORS[_QUANTITY[name]]
+    key = str(unit).strip().lower().replace(" ", "")
+    if key not in table:
+        raise ParameterError(f"units[{name!r}]: unknown {_QUANTITY[name]} unit {unit!r}; known: "
+                             f"{', '.join(sorted(table))}", key="units", value=unit)
+    return np.asarray(values, dtype=float) * table[key]
+
+
+def check_units(columns, *, stated=()):
+    """Refuse columns whose values no tire test produces in SI units (:data:`PLAUSIBLE_RANGES`).
+
+    Slip angles in degrees in a column taken as radians (|alpha| up to 15 "rad") would be fitted
+    without a word and give a tire with a fraction of the real cornering force; so would slip ratios
+    in percent, loads in kN, pressures in bar. Each column beyond its range is refused with the unit
+    it most likely has.
+
+    Parameters
+    ----------
+    columns : mapping of str to array_like
+        Canonical columns [SI] (others are ignored); NaN values are ignored.
+    stated : collection of str
+        Columns whose unit the user (or the file) stated: not judged.
+
+    Raises
+    ------
+    ParameterError
+        Naming the column, its extreme value and the likely unit; ``key`` is the column.
+    """
+    def how(name, unit):
+        return (f"state the unit: units={{{name!r}: {unit!r}}}, a CSV header '{name} [{unit}]' or, for vehdyn "
+                f"tire-fit, --unit {name}={unit}")
+
+    for name, (low, high) in PLAUSIBLE_RANGES.items():
+        if name not in columns or name in stated:
+            continue
+        values = np.asarray(columns[name], dtype=float).ravel()
+        values = values[np.isfinite(values)]
+        if not values.size:
+            continue
+        if name == "fz":
+            typical = float(np.median(values))
+            if typical < 0:
+                raise ParameterError(
+                    f"data column 'fz': the loads are negative (median {typical:.4g} N): these look like SAE tire "
+                    f"axes (z down); read the file with convention='SAE' (vehdyn.tire.read_tire_data) or convert "
+                    f"with vehdyn.conventions.tire_forces_sae_to_iso_w", key="fz", value=typical)
+            largest = float(values.max())
+            if largest < low:
+                raise ParameterError(f"data column 'fz': the largest load is {largest:.4g} N, below any tire test's "
+                                     f"({low:g} N): it looks like kN; {how('fz', 'kN')}", key="fz", value=largest)
+            if largest > high:
+                raise ParameterError(f"data column 'fz': a load of {largest:.4g} N is beyond any tire's ({high:g} N): "
+                                     f"check the unit; {how('fz', 'N')} if it is right", key="fz", value=largest)
+            continue
+        if name == "pressure":
+            largest = float(np.max(np.abs(values)))
+            if largest < low:
+                unit = "bar" if largest < 15 else "psi" if largest < 100 else "kPa"
+                raise ParameterError(f"data column 'pressure': pressures of at most {largest:.4g} Pa are not tire "
+                                     f"pressures: they look like {unit}; {how('pressure', unit)}", key="pressure",
+                                     value=largest)
+            if largest > high:
+                raise ParameterError(f"data column 'pressure': {largest:.4g} Pa is beyond any tire's pressure "
+                                     f"({high:g} Pa); {how('pressure', 'Pa')} if it is right", key="pressure",
+                                     value=largest)
+            continue
+        extreme = float(values[np.argmax(np.abs(values))])
+        if low <= extreme <= high:
+            continue
+        unit, word = _LIKELY_UNIT[name]
+        what = {"alpha": "slip angles", "gamma": "inclination angles", "kappa": "slip ratios",
+                "vx": "speeds"}[name]
+        raise ParameterError(f"data column {name!r}: {what} reach {extreme:.4g} {_SI_UNIT[_QUANTITY[name]]}, beyond "
+                             f"+-{high:.4g}: they look like {word}; {how(name, unit)}", key=name, value=extreme)
 
 
 def _split_name(header: str):
@@ -134,7 +274,8 @@ def _numbers(rows, names, path):
             try:
                 data[r, j] = float(text) if text else math.nan
             except ValueError:
-                raise TireDataError(f"column {names[j]!r}: {text!r} is not a number", path=path, line=line,
+                shown = text if len(text) <= 40 else f"{text[:40]}... ({len(text)} characters)"
+                raise TireDataError(f"column {names[j]!r}: {shown!r} is not a number", path=path, line=line,
                                     column=names[j]) from None
     return data
 
@@ -165,6 +306,9 @@ def _to_frame(columns, sae, path):
     return frame
 
 
+MAX_FIELD = 100_000
+"""Characters a CSV header line may hold."""
+
 _SI_UNIT = {"force": "N", "moment": "N*m", "ratio": "-", "angle": "rad", "speed": "m/s", "pressure": "Pa",
             "rate": "rad/s", "length": "m"}
 
@@ -182,23 +326,49 @@ def read_tire_data(path, *, convention: str = "ISO-W", units=None):
         definition and converted regardless.
     units : dict, optional
         Unit of a CSV column, by canonical name (``{"alpha": "deg", "fz": "kN"}``); overrides a unit
-        in the header. Columns without a unit are taken as SI.
+        in the header. Columns without a unit are taken as SI, and must look like it
+        (:func:`check_units`).
 
     Returns
     -------
     pandas.DataFrame
         The canonical columns the file has (:data:`CANONICAL_COLUMNS`), ISO-W, SI and radians;
-        ``attrs["units"]`` and ``attrs["source"]``. Rows with NaN are kept (the fit drops them and
-        says how many).
+        ``attrs["units"]`` (each column's SI unit), ``attrs["source"]`` (the path) and
+        ``attrs["stated_units"]`` (the columns whose unit the file or ``units`` stated; the fits
+        do not judge those again). Rows with NaN are kept (the fit drops them and says how many).
 
     Raises
     ------
     TireDataError
         (a :class:`~vehdyn.errors.TirFileError`) If the file is empty, has no known column, a
-        field that is not a number or a row of the wrong length (message: file, line, column), or
+        field that is not a number, a row of the wrong length or one the csv module cannot read
+        (a field beyond its size limit), an over-long header line (message: file, line, column), or
         an unknown unit.
     ParameterError
-        If ``convention`` or ``units`` is not understood.
+        If ``convention`` or ``units`` is not understood, or an unlabelled column's values are not
+        plausible in SI units (the message names the file, the column and the unit it looks like).
+
+    Examples
+    --------
+    A CSV file whose header states the units:
+
+    >>> import tempfile, pathlib
+    >>> from vehdyn.tire import read_tire_data
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "sweep.csv"
+    >>> _ = path.write_text("load [kN],slip_angle [deg],FY\\n4,2,-2800\\n4,4,-4300\\n")
+    >>> frame = read_tire_data(path)
+    >>> frame[["fz", "alpha", "fy"]].round(4).values.tolist()
+    [[4000.0, 0.0349, -2800.0], [4000.0, 0.0698, -4300.0]]
+
+    The same slip angles without a unit are refused, since 4 rad is no slip angle:
+
+    >>> _ = path.write_text("fz,alpha,fy\\n4000,2,-2800\\n4000,4,-4300\\n")
+    >>> read_tire_data(path)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    vehdyn.errors.ParameterError: ...sweep.csv: data column 'alpha': slip angles reach 4 rad, beyond +-1.571: ...
+    >>> float(read_tire_data(path, units={"alpha": "deg"})["alpha"].iloc[1].round(4))
+    0.0698
     """
     if convention not in ("ISO-W", "SAE"):
         raise ParameterError(f"convention must be 'ISO-W' or 'SAE', got {convention!r}", key="convention",
@@ -239,16 +409,30 @@ def _read_consortium(lines, head, path):
         if name is None:
             continue
         columns[name] = data[:, j] * _unit_factor(name, unit_row[j], path, head + 2)
-    return _to_frame(columns, True, path)
+    frame = _to_frame(columns, True, path)
+    frame.attrs["stated_units"] = sorted(columns)  # the unit row states every channel's unit
+    return frame
 
 
 def _read_csv(lines, path, sae, units):
     import csv
 
     header_index = next(i for i, line in enumerate(lines) if line.strip())
-    dialect = csv.Sniffer().sniff(lines[header_index], delimiters=",;\t") if any(
-        d in lines[header_index] for d in ",;\t") else csv.excel
-    reader = list(csv.reader(lines[header_index:], dialect))
+    header_line = lines[header_index]
+    if len(header_line) > MAX_FIELD:
+        raise TireDataError(f"the header line has {len(header_line)} characters (at most {MAX_FIELD}): not a CSV "
+                            f"header", path=path, line=header_index + 1)
+    delimiters = [d for d in ",;\t" if d in header_line]
+    try:
+        dialect = csv.Sniffer().sniff(header_line, delimiters=",;\t") if delimiters else csv.excel
+    except csv.Error:  # the sniffer gives up on some headers: the most frequent delimiter
+        dialect = type("Header", (csv.excel,), {"delimiter": max(delimiters, key=header_line.count)})
+    reader = csv.reader(lines[header_index:], dialect)
+    try:
+        reader = list(reader)
+    except csv.Error as error:  # e.g. a field beyond the csv module's size limit, a NUL byte
+        raise TireDataError(f"not a readable CSV row ({error})", path=path,
+                            line=header_index + reader.line_num) from None
     header = reader[0]
     names, header_units, keep = [], {}, []
     for j, field in enumerate(header):
@@ -273,4 +457,11 @@ def _read_csv(lines, path, sae, units):
         unit = units.get(name, header_units.get(name))
         factor = 1.0 if unit is None else _unit_factor(name, unit, path, header_index + 1)
         columns[name] = data[:, j] * factor
-    return _to_frame(columns, sae, path)
+    frame = _to_frame(columns, sae, path)
+    stated = sorted(set(units) | set(header_units))
+    try:
+        check_units(frame, stated=stated)
+    except ParameterError as error:
+        raise ParameterError(f"{path}: {error}", key=error.key, value=error.value) from None
+    frame.attrs["stated_units"] = stated
+    return frame

@@ -11,16 +11,34 @@ stages, the combined forces in the moment stages) is computed once per step. The
 forward difference, one model call per coefficient.
 
 Stages and the coefficients they own: :mod:`vehdyn.tire.fitting.stages`. Each step is a bounded
-:func:`scipy.optimize.least_squares` (trust-region reflective) on residuals normalized by the
-peak of the measured output.
+:func:`scipy.optimize.least_squares` (trust-region reflective) whose residuals are
+
+* the data's, normalized by the peak of the measured output;
+* the Magic Formula's validity conditions (:mod:`vehdyn.tire.fitting.validity`: E <= 1 of every
+  curve, peaks, shape factors and stiffnesses of their sign, a positive trail at small slip) on a
+  grid that fills the span of the data - between the measured loads, cambers and pressures as well
+  as at them - as penalties that vanish while each condition holds with a margin;
+* a ridge toward the start (or a reference tire's) values, measured in each coefficient's typical
+  size (:func:`~vehdyn.tire.fitting.stages.typical_size`), so that the combinations of
+  coefficients the data cannot determine - a camber*|camber| term at a single |camber|, a product
+  whose factors trade - stay where they started instead of wandering to values that are harmless
+  at the data and wrong between them; the coefficients it holds are named.
+
+The nominal step of the pure-slip and aligning stages starts from a few values of the curvature
+(and trail stiffness) factors besides the one read from the data and continues the best; after the
+fit, each measured condition is left out in turn and the fit redone without it
+(:mod:`vehdyn.tire.fitting.cross_validation`), which estimates the error between the conditions.
 
 References
 ----------
-H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012, sec. 4.3.2
-(the characteristic values: peak D, stiffness BCD, shape C from the asymptote y_a,
-C = 1 + (1 - (2/pi) asin(y_a/D))) and appendix 3 (the MF 6.1 equations and a parameter set).
+H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., Butterworth-Heinemann, 2012: sec. 4.3.1 (the
+Magic Formula, the meaning of B, C, D, E and E <= 1), sec. 4.3.2 (the characteristic values: peak D,
+stiffness BCD, shape C from the asymptote y_a, C = 1 + (1 - (2/pi) asin(y_a/D)), and the
+parameter determination), the appendix of chapter 4 (eqs. 4.E1-4.E78) and appendix 3 (the MF 6.1
+equations and a parameter set).
 I. J. M. Besselink, A. J. C. Schmeitz, H. B. Pacejka, "An improved Magic Formula/Swift tyre model
 that can handle inflation pressure changes", *Vehicle System Dynamics* 48 (2010), 337-352.
+A. N. Tikhonov, V. Y. Arsenin, *Solutions of Ill-Posed Problems*, Winston, 1977 (the ridge).
 """
 
 from __future__ import annotations
@@ -29,6 +47,7 @@ import math
 import re
 import time
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -36,8 +55,11 @@ from vehdyn.errors import ParameterError, VehdynWarning
 from vehdyn.tire._mf_ops import NumpyOps
 from vehdyn.tire.mf_forces import lateral_combined, lateral_pure, longitudinal_combined, longitudinal_pure
 from vehdyn.tire.mf_moments import aligning_moment, overturning_moment, rolling_resistance_moment
+from vehdyn.tire.fitting.columns import canonical_columns, drop_nonfinite
+from vehdyn.tire.fitting.cross_validation import RATIO_LIMIT, clusters, cross_validate, exceeded
 from vehdyn.tire.fitting.result import StageResult, TireFit
-from vehdyn.tire.fitting.stages import STAGE_NAMES, STAGES, STEP_VARIATION, owned
+from vehdyn.tire.fitting.stages import STAGE_NAMES, STAGES, STEP_VARIATION, owned, typical_size
+from vehdyn.tire.fitting.validity import GridStates, Penalty, ValidityGrid, check_validity
 
 __all__ = ["fit_magic_formula", "DEFAULT_BOUNDS", "PURE_SLIP_ANGLE", "PURE_SLIP_RATIO"]
 
@@ -49,6 +71,20 @@ PURE_SLIP_RATIO = 0.005
 
 ZERO_CAMBER = math.radians(0.5)
 """|gamma| [rad] below which a point counts as zero camber."""
+
+VALIDITY_WEIGHT = 100.0
+"""Weight of the validity penalties, per square root of the step's data values: a condition broken
+by 0.01 costs as much as a 100 % r.m.s. error of the fit."""
+
+REGULARIZATION = 1e-3
+"""Default weight of the ridge toward the start (or reference) values: a coefficient change of its
+typical size (:func:`~.stages.typical_size`) that moves the fit by less than this r.m.s. fraction
+of the peak is held back."""
+
+FTOL = 1e-7
+"""Relative change of the cost below which a step stops: on noisy data the cost levels off at the
+noise's and a valley of the Magic Formula's coefficients can take hundreds of evaluations to gain a
+millionth of it; clean data keep converging (the cost falls by a factor per iteration) to xtol."""
 
 CONDITION_LIMIT = 1e8
 """Condition number of the column-normalized Jacobian above which a warning says that some
@@ -64,43 +100,7 @@ DEFAULT_BOUNDS = {
 """Default (lower, upper) bounds of the coefficients that have physical limits; PKX1 and PKY1 keep
 the sign of the measured slope; the rest are free."""
 
-_COLUMNS = ("fz", "kappa", "alpha", "gamma", "vx", "pressure", "fx", "fy", "mx", "my", "mz")
 _OUTPUT_OF = {"X": "fx", "Y": "fy", "Z": "mz"}
-
-
-# ------------------------------------------------------------------------------------------ data
-def _as_columns(data):
-    """DataFrame or mapping -> dict of float arrays of the canonical columns present."""
-    try:
-        keys = list(data.keys())
-    except AttributeError:
-        raise ParameterError(f"data must be a DataFrame or a mapping of columns, got {type(data).__name__}",
-                             key="data", value=type(data).__name__) from None
-    columns = {}
-    for key in keys:
-        if key in _COLUMNS:
-            try:
-                columns[key] = np.asarray(data[key], dtype=float).ravel()
-            except (TypeError, ValueError):
-                raise ParameterError(f"data column {key!r} is not numeric", key=key, value=None) from None
-    if "fz" not in columns:
-        raise ParameterError(f"data needs a column 'fz' (normal load [N]); it has {', '.join(map(str, keys))}",
-                             key="fz", value=None)
-    lengths = {len(v) for v in columns.values()}
-    if len(lengths) != 1:
-        raise ParameterError(f"data columns differ in length: { {k: len(v) for k, v in columns.items()} }",
-                             key="data", value=None)
-    return columns
-
-
-def _drop_nan(columns, messages):
-    bad = np.zeros(len(columns["fz"]), dtype=bool)
-    for values in columns.values():
-        bad |= ~np.isfinite(values)
-    if bad.any():
-        messages.append(f"dropped {int(bad.sum())} of {bad.size} rows with NaN or inf")
-        columns = {k: v[~bad] for k, v in columns.items()}
-    return columns
 
 
 def _levels_vary(values, span):
@@ -108,12 +108,13 @@ def _levels_vary(values, span):
 
 
 # ------------------------------------------------------------------------------------ template
-def _template(version, start, columns, messages):
+def _template(version, start, columns, messages, nominal_load=None):
     """The parameter set the fit starts from: ``start`` or MFeval's defaults in a shipped layout,
-    with FNOMIN, LONGVL, NOMPRES and the ranges taken from the data."""
+    with FNOMIN (``nominal_load``, else the load level nearest the mean), LONGVL, NOMPRES and the
+    ranges taken from the data."""
+    from vehdyn.params import data_path
     from vehdyn.tire.magic_formula import MagicFormula, load_tire
     from vehdyn.tire.tir import MFEVAL_DEFAULTS, TirParameters, read_tir
-    from vehdyn.params import data_path
 
     fz = columns["fz"]
     if start is not None:
@@ -139,7 +140,7 @@ def _template(version, start, columns, messages):
         params = layout
         levels = _load_levels(fz)
         nominal = float(levels[np.argmin(np.abs(levels - fz.mean()))])
-        overrides = {"FNOMIN": nominal}
+        overrides = {"FNOMIN": nominal if nominal_load is None else nominal_load}
         if "vx" in columns:
             overrides["LONGVL"] = float(np.median(columns["vx"]))
         if "pressure" in columns:
@@ -204,11 +205,7 @@ def _default_section(key):
 
 def _load_levels(fz, tolerance=0.05):
     """The distinct load levels of ``fz`` (clusters within ``tolerance`` of the mean load)."""
-    values = np.sort(fz)
-    gap = tolerance * max(float(np.mean(np.abs(values))), 1.0)
-    breaks = np.flatnonzero(np.diff(values) > gap)
-    groups = np.split(values, breaks + 1)
-    return np.array([float(np.median(g)) for g in groups if g.size])
+    return clusters(fz, tolerance * max(float(np.mean(np.abs(fz))), 1.0))
 
 
 # --------------------------------------------------------------------------------- evaluation
@@ -237,8 +234,16 @@ class _Problem:
                 self.fx0 = longitudinal_pure(NumpyOps, base, self.state)[0]
                 self.combined = (forces[0], *lateral_combined(NumpyOps, base, self.state, self.pure))
         self.varies_combined = any(n.startswith("R") for n in names)
+        self.n_data = sum(t.size for t in self.targets)
+        self.penalty, self.ridge = None, None
         self._cache = (None, None)
         self.nfev = 0
+
+    def penalize(self, penalty, ridge):
+        """Add the validity conditions (a :class:`~.validity.Penalty` or None) and the ridge (a
+        :class:`_Ridge` or None) to the residuals."""
+        self.penalty, self.ridge = penalty, ridge
+        self._cache = (None, None)
 
     def coefficients(self, x):
         return self.base._replace(**dict(zip(self.names, x)))
@@ -276,9 +281,25 @@ class _Problem:
             r = r * self.weights
         return np.where(np.isfinite(r), r, 1e3)
 
+    def total(self, x, base=None, moved=None):
+        """Residuals of the data, then the validity penalties, then the ridge rows. With ``base``
+        (the residuals at a point that differs from ``x`` in coefficient ``moved`` alone), only the
+        penalties that coefficient moves are evaluated again."""
+        c = self.coefficients(x)
+        parts = [self.residuals(self.model(c))]
+        if self.penalty is not None:
+            if base is None:
+                parts.append(self.penalty.residuals(c))
+            else:
+                previous = base[self.n_data:self.n_data + len(self.penalty.names)]
+                parts.append(self.penalty.residuals(c, previous, moved))
+        if self.ridge is not None:
+            parts.append(self.ridge.residuals(x))
+        return np.concatenate(parts) if len(parts) > 1 else parts[0]
+
     def fun(self, x):
         self.nfev += 1
-        r = self.residuals(self.model(self.coefficients(x)))
+        r = self.total(x)
         self._cache = (x.copy(), r)
         return r
 
@@ -297,7 +318,7 @@ class _Problem:
         for j in range(x.size):
             shifted = x.copy()
             shifted[j] += h[j]
-            jac[:, j] = (self.residuals(self.model(self.coefficients(shifted))) - f0) / h[j]
+            jac[:, j] = (self.total(shifted, f0, self.names[j]) - f0) / h[j]
         return jac
 
 
@@ -308,11 +329,39 @@ def _solve(problem, x0, lower, upper, max_nfev):
     inside = np.clip(x0, lower + 1e-9 * np.where(np.isfinite(span), span, 1.0),
                      upper - 1e-9 * np.where(np.isfinite(span), span, 1.0))
     result = least_squares(problem.fun, inside, jac=lambda x: problem.jac(x, lower, upper), bounds=(lower, upper),
-                           x_scale="jac", method="trf", max_nfev=max_nfev, ftol=1e-10, xtol=1e-10, gtol=1e-10)
+                           x_scale="jac", method="trf", max_nfev=max_nfev, ftol=FTOL, xtol=1e-10, gtol=1e-10)
     return result
 
 
 # ------------------------------------------------------------------------------ start values
+SHAPE_STARTS = {
+    ("pure_longitudinal", "nominal"): ({"PEX1": -1.0}, {"PEX1": 0.5}),
+    ("pure_lateral", "nominal"): ({"PEY1": -1.0}, {"PEY1": 0.5}),
+    ("aligning", "nominal"): tuple({"QBZ1": b, "QEZ1": e} for b in (5.0, 10.0, 20.0) for e in (0.0, -2.0)),
+}
+"""Further starts of the shape and curvature factors of the nominal step (besides the one read from
+the data): the curvature factor E and the stiffness factor B trade against each other on one load's
+sweep, and a start on the wrong side of that valley ends in a local minimum."""
+
+START_EVALUATIONS = 25
+"""Residual evaluations given to each start before the best is continued."""
+
+
+def _best_start(problem, x0, lower, upper, variants):
+    """The start, among ``x0`` and ``x0`` with each of ``variants``, that reaches the smallest cost in
+    :data:`START_EVALUATIONS` evaluations (its end point)."""
+    best, best_cost = x0, math.inf
+    for variant in ({},) + tuple(variants):
+        x = x0.copy()
+        for name, value in variant.items():
+            if name in problem.names:
+                x[problem.names.index(name)] = value
+        result = _solve(problem, np.clip(x, lower, upper), lower, upper, START_EVALUATIONS)
+        if result.cost < best_cost:
+            best, best_cost = result.x, result.cost
+    return best
+
+
 def _slope_at_zero(x, y):
     """Slope dy/dx at x = 0 from the points nearest zero (least squares line)."""
     ax = np.abs(x)
@@ -378,8 +427,9 @@ def _bounds(names, x0, user_bounds):
 
 # ------------------------------------------------------------------------------------ the fit
 def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fixed=(), bounds=None, weights=None,
-                      max_nfev=200):
-    """Fit a Magic Formula to measured forces and moments, stage by stage.
+                      max_nfev=200, regularization=REGULARIZATION, reference=None, validity=True,
+                      cross_validation=True, units=None):
+    """Fit a Magic Formula to measured forces and moments, stage by stage, valid between the data.
 
     Parameters
     ----------
@@ -388,7 +438,9 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
         [N] and the slips (``kappa`` [-], ``alpha``, ``gamma`` [rad]; missing ones are 0),
         ``vx`` [m/s] and ``pressure`` [Pa] (missing: the file's LONGVL and NOMPRES), and the
         measured ``fx``, ``fy`` [N], ``mz``, ``mx``, ``my`` [N*m]. Rows with NaN are dropped (the
-        count is in :attr:`TireFit.messages`).
+        count is in :attr:`TireFit.messages`). Columns beyond a tire test's range in SI units
+        (slip angles beyond +-pi/2 rad, slip ratios beyond +-1.5, ...) are refused unless their
+        unit is stated (``units``, or a file's header read by :func:`~vehdyn.tire.read_tire_data`).
     version : {"6.1", "6.2", "5.2"}
         Magic Formula version of the result (ignored when ``start`` is given: its version).
     start : MagicFormula, TirParameters, str or pathlib.Path, optional
@@ -403,32 +455,88 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
     fixed : sequence of str
         Coefficients held at their start values.
     bounds : dict of str to (float, float), optional
-        Bounds of coefficients, overriding :data:`DEFAULT_BOUNDS`.
+        Bounds of coefficients [the coefficient's unit], overriding :data:`DEFAULT_BOUNDS`.
     weights : array_like, optional
-        One non-negative weight per row of ``data`` (multiplies the residuals).
+        One non-negative weight per row of ``data`` [-] (multiplies the residuals).
     max_nfev : int
-        Function evaluations per step (each Jacobian counts as one).
+        Residual evaluations per step at most.
+    regularization : float
+        Weight of the ridge toward the start (or ``reference``) values [-]: a combination of
+        coefficients that moves the fit by less than this fraction of the peak (r.m.s.) per
+        typical size of its coefficients is held. 0 turns the ridge off. Default
+        :data:`REGULARIZATION`.
+    reference : MagicFormula, TirParameters, str or pathlib.Path, optional
+        A tire whose coefficients the ridge holds instead of the start values (e.g. a fit of a
+        similar tire whose camber dependence was measured). Without ``start``, the fit then uses
+        the reference's FNOMIN, so that its load coefficients mean the same.
+    validity : bool
+        Enforce the validity conditions (:mod:`~vehdyn.tire.fitting.validity`) on the grid that
+        spans the data. They are checked and reported on the result either way.
+    cross_validation : bool
+        Leave each measured load, camber and pressure level out in turn, refit, and report the
+        errors at the left-out points (:attr:`TireFit.cross_validation`). About as long again as
+        the fit on a few thousand points; refits of larger data use a thinned copy.
+    units : dict of str to str, optional
+        Units of columns that are not SI, by canonical name (``{"alpha": "deg", "kappa": "%"}``;
+        the names of :data:`vehdyn.tire.tire_data.UNIT_FACTORS`); such a column is converted and
+        not judged.
 
     Returns
     -------
     TireFit
-        The fitted :class:`~vehdyn.tire.MagicFormula` and per stage its coefficients, errors,
-        coefficients at a bound and the Jacobian's condition.
+        The fitted :class:`~vehdyn.tire.MagicFormula`; per stage its coefficients, errors,
+        coefficients at a bound or held, and the Jacobian's condition; the validity conditions on
+        the grid (:attr:`TireFit.validity`); the held-out errors (:attr:`TireFit.cross_validation`).
 
     Raises
     ------
     ParameterError
-        Unknown version, stage or coefficient name, bad bounds or weights, data without ``fz``,
-        or a stage with fewer points than coefficients.
+        Unknown version, stage or coefficient name, bad bounds, weights, regularization or units,
+        data without ``fz``, a column in another unit than SI (named, with the unit it looks like),
+        or a stage with fewer values than coefficients.
 
     Warns
     -----
     VehdynWarning
-        When coefficients are not identifiable from the data (no load, camber or pressure sweep,
-        or an ill-conditioned Jacobian).
+        When coefficients are not identifiable from the data (no load, camber or pressure sweep)
+        or are held by the ridge (named); when a validity condition fails somewhere on the grid;
+        when an error at a left-out condition exceeds 3 times the training error there (and 1 %).
+
+    References
+    ----------
+    H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 4.3.1, 4.3.2 and the appendix of
+    chapter 4 (eqs. 4.E1-4.E78, the equations fitted); see the module's references.
+
+    Examples
+    --------
+    Recover the MF 6.1 example tire's side force from two loads' slip-angle sweeps:
+
+    >>> import warnings
+    >>> import numpy as np
+    >>> from vehdyn.tire import fit_magic_formula, load_tire
+    >>> from vehdyn.tire.fitting import sample_tire
+    >>> tire = load_tire("MagicFormula61_Parameters")
+    >>> data = sample_tire(tire, loads=[4000.0, 6000.0], slip_angles=np.radians(np.linspace(-12, 12, 13)),
+    ...                    slip_ratios=[], cambers=[0.0], combined_angles=[])
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore")  # no camber or pressure sweep: those terms are not identifiable
+    ...     fit = fit_magic_formula(data, stages=("pure_lateral",))
+    >>> bool(fit.stages["pure_lateral"].nrms["fy"] < 1e-3), bool(fit.validity["ok"].all())
+    (True, True)
+    >>> sorted(set(fit.cross_validation["level_text"]))
+    ['load 4000 N', 'load 6000 N']
     """
     from vehdyn.tire.magic_formula import MagicFormula
 
+    if isinstance(regularization, bool) or not isinstance(regularization, (int, float, np.integer, np.floating)) \
+            or not (math.isfinite(regularization) and regularization >= 0):
+        raise ParameterError(f"regularization must be a finite number >= 0, got {regularization!r}",
+                             key="regularization", value=regularization)
+    for name, flag in (("validity", validity), ("cross_validation", cross_validation)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise ParameterError(f"{name} must be True or False, got {flag!r}", key=name, value=flag)
+    if isinstance(max_nfev, bool) or not isinstance(max_nfev, (int, np.integer)) or max_nfev < 1:
+        raise ParameterError(f"max_nfev must be an integer >= 1, got {max_nfev!r}", key="max_nfev", value=max_nfev)
     if version not in ("5.2", "6.1", "6.2"):
         raise ParameterError(f"version must be '5.2', '6.1' or '6.2', got {version!r}", key="version", value=version)
     stages = (stages,) if isinstance(stages, str) else tuple(stages)
@@ -452,17 +560,19 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
             raise ParameterError(f"bounds[{name!r}]: lower must be < upper, got {pair!r}", key="bounds", value=pair)
         bounds[name] = (low, high)
     messages = []
-    columns = _as_columns(data)
+    columns = canonical_columns(data, units)
     if weights is not None:
         w = np.asarray(weights, dtype=float).ravel()
         if w.shape != columns["fz"].shape or not np.all(np.isfinite(w)) or np.any(w < 0):
             raise ParameterError(f"weights must be {columns['fz'].size} finite values >= 0", key="weights",
                                  value=w.shape)
         columns["_weight"] = w
-    columns = _drop_nan(columns, messages)
+    columns = drop_nonfinite(columns, messages)
     if columns["fz"].size == 0:
         raise ParameterError("data has no finite rows", key="data", value=0)
-    params = _template(version, start, columns, messages)
+    reference_values, reference_name = _reference_values(reference)
+    # a reference tire's load coefficients mean something at its own FNOMIN (dfz = Fz/FNOMIN - 1)
+    params = _template(version, start, columns, messages, reference_values.get("FNOMIN"))
     version = params.version
     model = MagicFormula(params)
     c = model._c
@@ -474,11 +584,14 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
         if out in columns:
             full[out] = columns[out]
     row_weights = columns.get("_weight")
+    grid = ValidityGrid.from_data(full, model)
+    ctx = _Context(version=version, fixed=set(fixed), bounds=bounds, physical=start is None, max_nfev=max_nfev,
+                   regularization=float(regularization), reference=reference_values, reference_name=reference_name,
+                   states=GridStates(c, grid) if validity else None, messages=messages)
     results = {}
     for stage in stages:
         began = time.perf_counter()
-        result, c = _fit_stage(stage, version, c, full, row_weights, set(fixed), bounds, start is None, max_nfev,
-                               messages, results)
+        result, c = _fit_stage(stage, ctx, c, full, row_weights, results)
         result.seconds = time.perf_counter() - began
         results[stage] = result
     fitted = {name: getattr(c, name) for r in results.values() for name in r.coefficients}
@@ -487,7 +600,60 @@ def fit_magic_formula(data, *, version="6.1", start=None, stages=STAGE_NAMES, fi
     from vehdyn.tire.tir import TirParameters
 
     tire = MagicFormula(TirParameters(sections, tables=params.tables))
-    return TireFit(tire=tire, stages=results, messages=messages, data=full)
+    table = check_validity(tire, grid)
+    broken = table[~table["ok"]]
+    if len(broken):
+        text = ("validity conditions violated on the grid spanning the data: "
+                + "; ".join(f"{name} at {row.violations} of {row.points} points (worst {row.worst:.3g})"
+                            for name, row in broken.iterrows()))
+        messages.append(text)
+        warnings.warn(text, VehdynWarning, stacklevel=2)
+    held_out = None
+    if cross_validation:
+        began = time.perf_counter()
+        ran = [name for name, r in results.items() if not r.skipped]
+        channel_rows = {}
+        for name in ran:
+            for out in results[name].outputs:
+                channel_rows[out] = channel_rows.get(out, np.zeros(n, dtype=bool)) | _stage_rows(name, full)
+        held_out = cross_validate(ctx, c, full, row_weights, ran, channel_rows, _fit_stage)
+        too_large = exceeded(held_out)
+        if too_large:
+            text = (f"held-out errors above {RATIO_LIMIT:g}x the training error (each condition left out of the "
+                    f"fit in turn): " + "; ".join(too_large[:6]) + ("; ..." if len(too_large) > 6 else "")
+                    + "; the data do not hold the fit between (or beyond) the measured conditions")
+            messages.append(text)
+            warnings.warn(text, VehdynWarning, stacklevel=2)
+        messages.append(f"cross-validation: {len({(r['variable'], r['level']) for r in held_out})} conditions left "
+                        f"out in turn, {time.perf_counter() - began:.1f} s")
+    return TireFit(tire=tire, stages=results, messages=messages, data=full, validity=table, grid=grid,
+                   held_out=held_out)
+
+
+def _stage_rows(stage, full):
+    """The rows a stage fits (its selection; the combined stage needs non-zero slip angles too)."""
+    select = _select(stage, full)
+    if stage == "combined" and not np.any(select & (np.abs(full["alpha"]) >= PURE_SLIP_ANGLE)):
+        select[:] = False
+    return select
+
+
+def _reference_values(reference):
+    """The coefficient values the ridge pulls toward: {} (each coefficient's start value, filled as
+    the stages run) or every coefficient of a reference tire; and how to name them."""
+    from vehdyn.tire.magic_formula import MagicFormula, load_tire
+    from vehdyn.tire.tir import TirParameters
+
+    if reference is None:
+        return {}, "their start values"
+    if isinstance(reference, MagicFormula):
+        tire = reference
+    elif isinstance(reference, TirParameters):
+        tire = MagicFormula(reference)
+    else:
+        tire = load_tire(reference)
+    c = tire._c
+    return {name: float(getattr(c, name)) for name in c._fields}, "the reference tire's values"
 
 
 def _select(stage, rows):
@@ -510,10 +676,16 @@ def _step_rows(step, rows, c):
         nearest = levels[np.argmin(np.abs(levels - c.FNOMIN))]  # the load level nearest FNOMIN
         keep &= np.abs(rows["fz"] - nearest) < 0.1 * nearest
     if step in ("nominal", "load") and _levels_vary(rows["gamma"], 2 * ZERO_CAMBER):
-        keep &= np.abs(rows["gamma"]) < ZERO_CAMBER
+        keep &= np.abs(rows["gamma"] - _nearest(rows["gamma"], 0.0)) < ZERO_CAMBER
     if step in ("nominal", "load", "camber") and _levels_vary(rows["pressure"], 0.1 * c.NOMPRES):
-        keep &= np.abs(rows["pressure"] - c.NOMPRES) < 0.05 * c.NOMPRES
+        keep &= np.abs(rows["pressure"] - _nearest(rows["pressure"], c.NOMPRES)) < 0.05 * c.NOMPRES
     return keep
+
+
+def _nearest(values, target):
+    """The value of ``values`` nearest ``target`` (zero camber and the nominal pressure, or the level
+    nearest them when the data, e.g. of a cross-validation refit, lack them)."""
+    return float(values[np.argmin(np.abs(values - target))])
 
 
 def _sweeps(step, rows, c):
@@ -523,7 +695,25 @@ def _sweeps(step, rows, c):
     return _levels_vary(rows[column], span)
 
 
-def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physical, max_nfev, messages, done_stages):
+@dataclass
+class _Context:
+    """Settings of one fit, shared by its stages (and by the refits of the cross-validation)."""
+
+    version: str
+    fixed: set
+    bounds: dict
+    physical: bool
+    max_nfev: int
+    regularization: float
+    reference: dict
+    reference_name: str
+    states: object
+    messages: list
+    warm: bool = False
+    quiet: bool = False
+
+
+def _fit_stage(stage, ctx, c, full, row_weights, done_stages):
     spec = STAGES[stage]
     missing = [k for k in spec.needs if k not in full or (k in ("kappa", "alpha") and not np.any(full[k]))]
     outputs = tuple(o for o in spec.outputs if o in full)
@@ -534,14 +724,12 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
         text = (f"stage {stage} skipped: it needs the columns {', '.join(needs)}"
                 + (f" ({' or '.join(spec.outputs)})" if len(spec.outputs) > 1 else "")
                 + f"; missing or all zero: {', '.join(missing)}")
-        messages.append(text)
-        return StageResult(stage, skipped=text), c
-    select = _select(stage, full)
-    if stage == "combined" and not np.any(select & (np.abs(full["alpha"]) >= PURE_SLIP_ANGLE)):
-        select[:] = False  # slip-ratio sweeps at zero slip angle alone do not determine the weighting
+        ctx.messages.append(text)
+        return StageResult(stage, skipped=text), _unlearned(stage, ctx, c)
+    select = _stage_rows(stage, full)  # (slip-ratio sweeps at zero slip angle alone do not determine Gyk)
     rows = {k: v[select] for k, v in full.items()}
     weights = None if row_weights is None else row_weights[select]
-    steps = owned(stage, version)
+    steps = owned(stage, ctx.version)
     if stage == "combined":
         # forces first (Gxa, Gyk, SVyk) on the slip-ratio sweeps; then the aligning moment with the
         # forces held: SSZ (the Fx arm) and, refined on every point, the trail and residual torque
@@ -552,7 +740,7 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
                    None)] if forces else []
         if "mz" in outputs:
             aligned = done_stages.get("aligning")
-            refined = dict(owned("aligning", version)) if aligned is not None and not aligned.skipped else {}
+            refined = dict(owned("aligning", ctx.version)) if aligned is not None and not aligned.skipped else {}
             mz_steps = tuple((s, tuple(n for n in refined.get(s, ()) if n in aligned.coefficients)
                               + tuple(n for n in names if n.startswith("SSZ"))) for s, names in steps)
             groups.append((("mz",), mz_steps, {k: v for k, v in full.items()} if refined else None))
@@ -560,9 +748,9 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
         groups = [(outputs, steps, None)]
     if rows["fz"].size == 0:
         text = f"stage {stage} skipped: no {spec.selection.replace('_', ' ')} points in the data"
-        messages.append(text)
-        return StageResult(stage, skipped=text), c
-    n_coefficients = sum(len([n for n in names if n not in fixed]) for _, st, _ in groups for step, names in st
+        ctx.messages.append(text)
+        return StageResult(stage, skipped=text), _unlearned(stage, ctx, c)
+    n_coefficients = sum(len([n for n in names if n not in ctx.fixed]) for _, st, _ in groups for step, names in st
                          if step == "nominal" or _sweeps(step, rows, c))
     n_values = rows["fz"].size * len(outputs)
     if n_values < n_coefficients:
@@ -571,39 +759,61 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
                              value=n_values)
     fitted, not_identifiable, done, lasts, used = [], {}, [], [], set()
     for group, group_steps, group_rows in groups:
-        active, last = [], None
         group_rows = rows if group_rows is None else group_rows
         group_weights = weights if group_rows is rows else row_weights
+        runnable = []
         for step, names in group_steps:
             if step != "nominal" and not _sweeps(step, group_rows, c):
                 for name in names:
                     not_identifiable[name] = f"no {STEP_VARIATION[step]} sweep in the {stage} data"
                 continue
-            active += [n for n in names if n not in fixed]
+            runnable.append((step, names))
+        if ctx.warm and runnable:  # from a fit's solution: the last (cumulative) step alone
+            runnable = [(runnable[-1][0], tuple(n for _, names in runnable for n in names))]
+        active, last = [], None
+        for step, names in runnable:
+            active += [n for n in names if n not in ctx.fixed]
             keep = _step_rows(step, group_rows, c)
             sub = {k: v[keep] for k, v in group_rows.items()}
             w = None if group_weights is None else np.tile(group_weights[keep], len(group))
-            if physical and step == "nominal":
-                start = {k: v for k, v in _physical_start(stage, sub, c).items() if k not in fixed and np.isfinite(v)}
+            if ctx.physical and not ctx.warm and step == "nominal":
+                start = {k: v for k, v in _physical_start(stage, sub, c).items()
+                         if k not in ctx.fixed and np.isfinite(v)}
                 c = c._replace(**start)
             if not active:
                 continue
+            for name in active:  # the ridge pulls toward the value a coefficient had when first fitted
+                ctx.reference.setdefault(name, float(getattr(c, name)))
             problem = _Problem(c, stage, sub, group, tuple(active), w)
             x0 = np.array([getattr(c, n) for n in active], dtype=float)
-            lower, upper = _bounds(active, x0, user_bounds)
+            lower, upper = _bounds(active, x0, ctx.bounds)
             # coefficients without effect on these points (e.g. RBX3: camber only at zero slip angle),
-            # judged away from the start, where a product with a zero coefficient hides an effect
-            probe = np.clip(x0 + 0.1 * np.maximum(np.abs(x0), 0.1), lower, upper)
-            unused = np.linalg.norm(problem.jac(probe, lower, upper), axis=0) == 0
+            # judged away from the start, where a product with a zero coefficient hides an effect (a
+            # refit from a solution keeps them: the ridge keeps what has no effect at its reference)
+            probe = x0 if ctx.warm else np.clip(x0 + 0.1 * np.maximum(np.abs(x0), 0.1), lower, upper)
+            jac = problem.jac(probe, lower, upper)
+            unused = np.zeros(len(active), dtype=bool) if ctx.warm else np.linalg.norm(jac, axis=0) == 0
             used.update(n for n, u in zip(active, unused) if not u)
             if unused.all():
                 continue
+            names_used = tuple(n for n, u in zip(active, unused) if not u)
             if unused.any():  # held in this step (a later step's points may move them)
-                names_used = tuple(n for n, u in zip(active, unused) if not u)
                 problem = _Problem(c, stage, sub, group, names_used, w)
-                x0, lower, upper = x0[~unused], lower[~unused], upper[~unused]
-            last = (_solve(problem, x0, lower, upper, max_nfev), problem, lower, upper)
-            c = problem.coefficients(last[0].x)
+                x0, lower, upper, jac = x0[~unused], lower[~unused], upper[~unused], jac[:, ~unused]
+            penalty = None
+            if ctx.states is not None:
+                signs = (math.copysign(1.0, c.PKX1), math.copysign(1.0, c.PKY1))  # kept by the bounds
+                penalty = Penalty(ctx.states, names_used, VALIDITY_WEIGHT * math.sqrt(problem.n_data), signs)
+            reference = np.array([ctx.reference[n] for n in names_used])
+            ridge = _Ridge.of(names_used, reference, ctx.regularization, problem.n_data)
+            problem.penalize(penalty, ridge)
+            if ctx.physical and not ctx.warm and (stage, step) in SHAPE_STARTS:
+                x0 = _best_start(problem, x0, lower, upper, SHAPE_STARTS[stage, step])
+            if ctx.warm and ridge is not None:  # what these data leave open starts from the reference
+                x0 = np.clip(ridge.forget(x0, jac), lower, upper)
+            result = _solve(problem, x0, lower, upper, ctx.max_nfev)
+            last = (result, problem, lower, upper, ridge)
+            c = problem.coefficients(result.x)
             if step not in done:
                 done.append(step)
         for name in active:
@@ -612,18 +822,29 @@ def _fit_stage(stage, version, c, full, row_weights, fixed, user_bounds, physica
         fitted += [n for n in active if n in used]
         if last is not None:
             lasts.append(last)
-    if not_identifiable:
+    if ctx.warm:  # a refit from another fit's solution keeps nothing it cannot determine itself
+        c = c._replace(**{n: ctx.reference[n] for n in not_identifiable if n in ctx.reference})
+    if not_identifiable and not ctx.quiet:
         by_reason = {}
         for name, reason in not_identifiable.items():
             by_reason.setdefault(reason, []).append(name)
         for reason, names in by_reason.items():
             text = f"stage {stage}: {', '.join(names)} not identifiable ({reason}); kept at their start values"
-            messages.append(text)
+            ctx.messages.append(text)
             warnings.warn(text, VehdynWarning, stacklevel=3)
-    return _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done, messages), c
+    return _stage_result(stage, ctx, c, rows, outputs, fitted, lasts, not_identifiable, done), c
 
 
-def _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done, messages):
+def _unlearned(stage, ctx, c):
+    """``c`` with a skipped stage's coefficients back at their reference values in a refit from a
+    solution (which learned them from data the refit does not have); ``c`` itself otherwise."""
+    if not ctx.warm:
+        return c
+    names = {n for _, names in owned(stage, ctx.version) for n in names}
+    return c._replace(**{n: ctx.reference[n] for n in names if n in ctx.reference})
+
+
+def _stage_result(stage, ctx, c, rows, outputs, fitted, lasts, not_identifiable, done):
     problem = _Problem(c, stage, rows, outputs, tuple(fitted), None)
     model = problem.model(c)
     rms, nrms, r2 = {}, {}, {}
@@ -633,31 +854,47 @@ def _stage_result(stage, c, rows, outputs, fitted, lasts, not_identifiable, done
         nrms[out] = rms[out] / max(float(np.max(np.abs(t))), 1e-12)
         total = float(np.sum((t - t.mean()) ** 2))
         r2[out] = 1.0 - float(np.sum(err**2)) / total if total > 0 else float("nan")
-    at_bounds, condition, weak = [], float("nan"), []
-    for result, prob, lower, upper in lasts:
+    at_bounds, condition, weak, held = [], float("nan"), [], []
+    for result, prob, lower, upper, ridge in ([] if ctx.warm else lasts):  # (a refit needs no diagnostics)
         x = result.x
         tol = 1e-6 * np.maximum(np.abs(x), 1.0)
         at_bounds += [n for n, xi, lo, hi, t in zip(prob.names, x, lower, upper, tol)
                       if abs(xi - lo) <= t or abs(xi - hi) <= t]
-        jac = np.asarray(result.jac)
+        jac = np.asarray(result.jac)[:prob.n_data]  # the data's rows (not the penalties', the ridge's)
         norms = np.linalg.norm(jac, axis=0)
         zero = norms == 0
-        scaled = jac[:, ~zero] / norms[~zero]
+        scaled = _triangular(jac[:, ~zero] / norms[~zero])
         sv = np.linalg.svd(scaled, compute_uv=False) if scaled.size else np.array([1.0])
         cond = float("inf") if zero.any() or not sv[-1] > 0 else float(sv[0] / sv[-1])
         condition = cond if np.isnan(condition) else max(condition, cond)
         if cond > CONDITION_LIMIT:
-            weak += _weak_coefficients(prob.names, scaled, zero)
-    if weak:
+            weak += [n for n in _weak_coefficients(prob.names, scaled, zero) if n not in weak]
+        if ridge is not None:
+            held += [n for n in ridge.held(prob.names, jac) if n not in held]
+    if held and not ctx.quiet:
+        text = (f"stage {stage}: the data do not determine {', '.join(held)} (Jacobian condition {condition:.3g}); "
+                f"held at {ctx.reference_name} along the directions the data leave open (regularization "
+                f"{ctx.regularization:g})")
+        ctx.messages.append(text)
+        warnings.warn(text, VehdynWarning, stacklevel=4)
+    elif weak and not ctx.quiet:
         text = (f"stage {stage}: Jacobian condition {condition:.3g}: coefficients not identifiable from these "
                 f"data (weakest: {', '.join(weak)}); consider fixing them")
-        messages.append(text)
+        ctx.messages.append(text)
         warnings.warn(text, VehdynWarning, stacklevel=4)
     coefficients = {n: float(getattr(c, n)) for n in fitted}
     return StageResult(stage, coefficients=coefficients, steps=tuple(done), outputs=outputs,
                        n_points=int(rows["fz"].size), rms=rms, nrms=nrms, r2=r2, at_bounds=tuple(at_bounds),
                        condition=condition, not_identifiable=dict(not_identifiable), weakest=tuple(weak),
-                       nfev=sum(int(last[0].nfev) for last in lasts))
+                       held=tuple(held), nfev=sum(int(last[0].nfev) for last in lasts))
+
+
+def _triangular(matrix):
+    """R of the QR factorization of a tall matrix: the same singular values and right singular
+    vectors, in an n x n matrix (an SVD of the n x n factor instead of the m x n matrix)."""
+    if matrix.shape[0] <= matrix.shape[1] or not matrix.size:
+        return matrix
+    return np.linalg.qr(matrix, mode="r")
 
 
 def _weak_coefficients(names, scaled, zero):
@@ -670,3 +907,56 @@ def _weak_coefficients(names, scaled, zero):
     v = np.abs(vt[-1])
     order = np.argsort(v)[::-1]
     return list(unused + [kept[i] for i in order[:3] if v[i] > 0.2])
+
+
+class _Ridge:
+    """The ridge toward the reference values: rows ``weight * (x - reference) / size``.
+
+    ``size`` is each coefficient's typical size (:func:`~.stages.typical_size`) or its reference value,
+    whichever is larger, and ``weight`` the regularization times the square root of the step's data
+    values. A direction in which the data move the fit by less than the regularization (r.m.s.
+    fraction of the peak) per typical size of its coefficients is held at the reference; one that
+    the data determine is not (its bias is of the order of the regularization squared over the
+    data's sensitivity squared). Where the data cannot tell a higher-order term from a lower-order
+    one (camber*|camber| from camber at a single |camber|), the change goes to the term whose
+    typical size is reached first, the lower-order one, instead of splitting in proportion to their
+    effect at the data.
+    """
+
+    def __init__(self, reference, size, weight):
+        self.reference, self.size, self.weight = reference, size, weight
+
+    @classmethod
+    def of(cls, names, reference, regularization, n_data):
+        """The ridge of coefficients ``names`` (None when ``regularization`` is 0)."""
+        if not regularization > 0:
+            return None
+        size = np.maximum(np.abs(reference), [typical_size(n) for n in names])
+        return cls(reference, size, regularization * math.sqrt(n_data))
+
+    def residuals(self, x):
+        return self.weight * (x - self.reference) / self.size
+
+    def forget(self, x, jac, factor=10.0):
+        """``x`` with its components along the directions the ridge influences (singular values of the
+        data Jacobian ``jac`` in the ridge's scaling below ``factor`` times its weight) set to the
+        reference's: a start from another fit's solution keeps nothing those directions learned from
+        data this fit does not have."""
+        _, sv, vt = np.linalg.svd(_triangular(jac * self.size), full_matrices=False)
+        weak = vt[sv < factor * self.weight]
+        z = (x - self.reference) / self.size
+        return self.reference + self.size * (z - weak.T @ (weak @ z))
+
+    def held(self, names, jac):
+        """The coefficients of the directions the ridge holds: right singular vectors of the data
+        Jacobian ``jac`` in the ridge's scaling whose singular value is below the ridge's weight (the
+        ridge keeps more than half of the reference's component), largest components first."""
+        if not jac.size:
+            return []
+        _, sv, vt = np.linalg.svd(_triangular(jac * self.size), full_matrices=False)
+        found = []
+        for s, v in zip(sv, vt):
+            if s < self.weight:
+                order = np.argsort(np.abs(v))[::-1]
+                found += [names[i] for i in order[:4] if abs(v[i]) > 0.3 and names[i] not in found]
+        return found

@@ -14,14 +14,16 @@ import warnings
 import numpy as np
 
 from vehdyn.errors import ParameterError, VehdynWarning
-from vehdyn.tire.fitting.magic_formula_fit import PURE_SLIP_ANGLE, PURE_SLIP_RATIO, _as_columns, _drop_nan
+from vehdyn.tire.fitting.columns import canonical_columns, drop_nonfinite
+from vehdyn.tire.fitting.magic_formula_fit import PURE_SLIP_ANGLE, PURE_SLIP_RATIO
 from vehdyn.tire.fitting.result import StageResult, TireFit
 
 __all__ = ["fit_brush", "fit_linear"]
 
 
-def _pure_rows(data, messages):
-    columns = _drop_nan(_as_columns(data), messages)
+def _pure_rows(data, messages, units):
+    """The data's columns (SI, finite rows), with the pure lateral and pure longitudinal rows."""
+    columns = drop_nonfinite(canonical_columns(data, units), messages)
     n = columns["fz"].size
     for name in ("kappa", "alpha", "gamma"):
         columns.setdefault(name, np.zeros(n))
@@ -46,33 +48,52 @@ def _metrics(name, coefficients, outputs, model, columns, masks, condition=float
                        n_points=n_points, rms=rms, nrms=nrms, r2=r2, condition=condition)
 
 
-def fit_linear(data, *, nominal_load=None, max_slip_angle=math.radians(2.0), max_slip_ratio=0.02):
+def fit_linear(data, *, nominal_load=None, max_slip_angle=math.radians(2.0), max_slip_ratio=0.02, units=None):
     """Fit :class:`vehdyn.tire.LinearTire` to the linear range of measured data (closed form).
 
-    ``F_y = (C_gamma gamma - C_alpha alpha) F_z/F_z0``, ``F_x = C_kappa kappa F_z/F_z0`` and
-    ``M_z = -t F_y`` are linear in the stiffnesses, so ordinary least squares gives them exactly.
+    .. math:: F_y = (C_\\gamma \\gamma - C_\\alpha \\alpha) \\frac{F_z}{F_{z0}}, \\qquad
+              F_x = C_\\kappa \\kappa \\frac{F_z}{F_{z0}}, \\qquad M_z = -t F_y
+
+    are linear in the stiffnesses and the trail, so ordinary least squares gives them exactly.
 
     Parameters
     ----------
     data : pandas.DataFrame or mapping
-        Canonical columns (:func:`vehdyn.tire.read_tire_data`): ``fz``, ``alpha`` and ``fy``
-        (needed), ``kappa`` and ``fx``, ``gamma``, ``mz`` (used where present).
+        Canonical columns (:func:`vehdyn.tire.read_tire_data`, SI): ``fz`` [N], ``alpha`` [rad]
+        and ``fy`` [N] (needed), ``kappa`` [-] and ``fx`` [N], ``gamma`` [rad], ``mz`` [N*m] (used
+        where present). Columns beyond a tire test's range in SI units are refused unless their
+        unit is stated (``units``).
     nominal_load : float, optional
         ``F_z0`` [N]; default the mean load of the points used.
     max_slip_angle : float
         |alpha| [rad] of the linear range (default 2 degrees).
     max_slip_ratio : float
         |kappa| [-] of the linear range (default 0.02).
+    units : dict of str to str, optional
+        Units of columns that are not SI (``{"alpha": "deg"}``), converted.
 
     Returns
     -------
     TireFit
-        ``tire`` a :class:`~vehdyn.tire.LinearTire`; one stage ``"linear"``.
+        ``tire`` a :class:`~vehdyn.tire.LinearTire`; one stage ``"linear"`` (coefficients
+        ``cornering_stiffness``, ``camber_stiffness`` [N/rad], ``slip_stiffness`` [N],
+        ``pneumatic_trail`` [m]).
+
+    Raises
+    ------
+    ParameterError
+        Without a slip-angle sweep, with fewer points in the linear range than stiffnesses, when
+        the cornering stiffness comes out not positive, or for a column in another unit than SI.
+
+    References
+    ----------
+    H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, ch. 1 (the linear range of the tire
+    characteristics: cornering, camber and longitudinal slip stiffness, pneumatic trail).
     """
     from vehdyn.tire.linear import LinearTire
 
     messages = []
-    columns, lateral, longitudinal = _pure_rows(data, messages)
+    columns, lateral, longitudinal = _pure_rows(data, messages, units)
     if "fy" not in columns or not np.any(columns["alpha"]):
         raise ParameterError("fit_linear needs the columns fz, alpha and fy (a slip-angle sweep)", key="data",
                              value=sorted(columns))
@@ -114,7 +135,7 @@ def fit_linear(data, *, nominal_load=None, max_slip_angle=math.radians(2.0), max
     return TireFit(tire=tire, stages={"linear": stage}, messages=messages, data=columns)
 
 
-def fit_brush(data, *, contact_half_length=None, sliding=False):
+def fit_brush(data, *, contact_half_length=None, sliding=False, units=None):
     """Fit :class:`vehdyn.tire.BrushTire` (parabolic pressure) to pure-slip data.
 
     Fits the cornering stiffness ``2 c_p a^2`` (= slip stiffness: the brush is isotropic), the
@@ -125,24 +146,45 @@ def fit_brush(data, *, contact_half_length=None, sliding=False):
     Parameters
     ----------
     data : pandas.DataFrame or mapping
-        Canonical columns: ``fz``, ``alpha``, ``fy``; ``kappa``/``fx`` and ``mz`` where present.
+        Canonical columns (SI): ``fz`` [N], ``alpha`` [rad], ``fy`` [N]; ``kappa`` [-] and ``fx``
+        [N], ``mz`` [N*m] where present. Columns beyond a tire test's range in SI units are
+        refused unless their unit is stated (``units``).
     contact_half_length : float, optional
         ``a`` [m], held fixed. Needed when the data have no ``mz`` (then ``a`` cannot be identified).
     sliding : bool
         Also fit a sliding friction ``mu_sliding <= mu``.
+    units : dict of str to str, optional
+        Units of columns that are not SI (``{"alpha": "deg"}``), converted.
 
     Returns
     -------
     TireFit
         ``tire`` a :class:`~vehdyn.tire.BrushTire`; one stage ``"brush"`` (coefficients
-        ``cornering_stiffness`` [N/rad], ``mu``, ``contact_half_length`` [m], ``mu_sliding``).
+        ``cornering_stiffness`` [N/rad], ``mu`` [-], ``contact_half_length`` [m], ``mu_sliding`` [-]).
+
+    Raises
+    ------
+    ParameterError
+        Without a slip-angle sweep, without ``mz`` and ``contact_half_length``, with fewer measured
+        values at non-zero slip than coefficients, or for a column in another unit than SI.
+
+    Warns
+    -----
+    VehdynWarning
+        When the Jacobian's condition exceeds 1e8 (the data do not determine the coefficients
+        independently).
+
+    References
+    ----------
+    H. B. Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 3.2.1 (pure side slip of the
+    brush model with a parabolic pressure distribution), 3.2.2 (pure longitudinal slip).
     """
     from scipy.optimize import least_squares
 
     from vehdyn.tire.brush import BrushTire
 
     messages = []
-    columns, lateral, longitudinal = _pure_rows(data, messages)
+    columns, lateral, longitudinal = _pure_rows(data, messages, units)
     if "fy" not in columns or not np.any(columns["alpha"]):
         raise ParameterError("fit_brush needs the columns fz, alpha and fy (a slip-angle sweep)", key="data",
                              value=sorted(columns))
@@ -172,6 +214,13 @@ def fit_brush(data, *, contact_half_length=None, sliding=False):
         + (["mu_sliding"] if sliding else [])
     x0 = np.array([max(abs(slope), 1.0), mu0] + ([a0] if contact_half_length is None else [])
                   + ([0.9 * mu0] if sliding else []))
+    informative = {"fy": lateral & (columns["alpha"] != 0), "mz": lateral & (columns["alpha"] != 0),
+                   "fx": longitudinal & (columns["kappa"] != 0)}
+    n_values = sum(int(np.count_nonzero(informative[o] & masks[o])) for o in outputs)
+    if n_values < len(names):
+        raise ParameterError(f"fit_brush: {n_values} measured values at non-zero slip ({', '.join(outputs)}) for "
+                             f"{len(names)} coefficients ({', '.join(names)}); the fit needs at least as many values "
+                             f"as coefficients", key="data", value=n_values)
     targets = [columns[o][masks[o]] for o in outputs]
     scales = [max(float(np.max(np.abs(t))), 1e-9) for t in targets]
 

@@ -18,16 +18,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Stage", "STAGES", "STAGE_NAMES", "owned", "STEP_VARIATION"]
+__all__ = ["Stage", "STAGES", "STAGE_NAMES", "owned", "STEP_VARIATION", "TYPICAL_SIZE", "typical_size"]
 
 
 @dataclass(frozen=True)
 class Stage:
     """One stage of the fit.
 
-    Attributes
+    Parameters
     ----------
     name : str
+        The stage's name.
     outputs : tuple of str
         Measured columns the stage fits (``fx``, ``fy``, ``mz``, ``mx``, ``my``).
     needs : tuple of str
@@ -108,10 +109,22 @@ _NOT_IN = {
 
 
 def owned(stage: str, version: str):
-    """The steps of ``stage`` for Magic Formula ``version``: tuple of ``(step, coefficients)``.
+    """The steps of a stage for one Magic Formula version.
 
     MF 5.2 has no pressure dependence (its pressure step is dropped), no PEY5, PKY5-PKY7 or
     QSY5-QSY8, and uses PHY3 for the camber shift; MF 6.x do not use PHY3.
+
+    Parameters
+    ----------
+    stage : str
+        A key of :data:`STAGES`.
+    version : {"5.2", "6.1", "6.2"}
+        The Magic Formula version.
+
+    Returns
+    -------
+    tuple of (str, tuple of str)
+        ``(step, coefficients)`` in order, without the coefficients the version lacks.
     """
     drop = _NOT_IN[version]
     steps = []
@@ -120,3 +133,35 @@ def owned(stage: str, version: str):
         if kept:
             steps.append((step, kept))
     return tuple(steps)
+
+TYPICAL_SIZE = {
+    "PCX1": 2, "PDX1": 2, "PEX3": 2, "PEX4": 2, "PKX1": 40, "PKX2": 20, "PDX3": 9,
+    "PCY1": 2, "PDY1": 2, "PEY3": 50, "PKY1": 30, "PKY2": 8, "PKY4": 3, "PDY3": 8, "PEY4": 700, "PEY5": 60,
+    "PKY5": 50, "PKY6": 2, "PPY2": 2,
+    "QBZ1": 20, "QBZ9": 200, "QCZ1": 2, "QEZ1": 4, "QEZ4": 2, "QBZ2": 3, "QBZ3": 2, "QBZ10": 20, "QEZ2": 2,
+    "QEZ3": 2, "QBZ4": 2, "QBZ5": 4, "QDZ3": 2, "QDZ4": 30, "QDZ10": 2, "QDZ11": 5, "QEZ5": 100,
+    "RBX1": 20, "RBX2": 20, "RCX1": 2, "REX1": 2, "RBY1": 30, "RBY2": 20, "RCY1": 2, "RVY4": 100, "RVY5": 2,
+    "RVY6": 30, "REX2": 5, "RBX3": 700, "RBY4": 2000,
+    "QSX2": 10, "QSX3": 2, "QSX4": 20, "QSX6": 10, "QSX8": 5, "QSX11": 5,
+}
+"""Typical magnitude of the coefficients whose size exceeds 1 [-]: the largest |value| among the
+published parameter sets shipped in ``data/tires`` (the MF 6.1 and 5.2 example tires of MFeval,
+Project Chrono's 185/80 R14) and MFeval's defaults, rounded up to one significant digit. Every other
+fitted coefficient is of order 1 (the Magic Formula writes its load, camber and pressure terms as
+dimensionless polynomials). The ridge of the fit measures a coefficient's change in these sizes."""
+
+
+def typical_size(name: str) -> float:
+    """Typical magnitude of a coefficient.
+
+    Parameters
+    ----------
+    name : str
+        Coefficient name (``"QBZ9"``).
+
+    Returns
+    -------
+    float
+        :data:`TYPICAL_SIZE` of it, else 1 [the coefficient's unit].
+    """
+    return float(TYPICAL_SIZE.get(name, 1.0))
