@@ -36,6 +36,7 @@ def _loops():
     }
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("name", list(_loops()))
 def test_compiled_rhs_and_outputs_equal_the_numpy_ones(name):
     loop = _loops()[name]
@@ -82,6 +83,7 @@ def _panic(speed, mu, backend, rtol, duration=1.0):
                            method="RK45", rtol=rtol, atol=rtol * 1e-2, max_step=0.05, backend=backend)
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("mu", [0.9, 0.5, 0.2])
 def test_compiled_abs_braking_equals_solve_ivp_within_the_integration_error(mu):
     # The same RK45 with the same step control on the same rhs: where both take the same steps the states agree
@@ -96,6 +98,7 @@ def test_compiled_abs_braking_equals_solve_ivp_within_the_integration_error(mu):
         assert np.max(np.abs(runs["compiled"][name] - reference)) < bound * np.max(np.abs(reference)), name
 
 
+@pytest.mark.compiled_vs_numpy
 def test_compiled_abs_stopping_distance_equals_numpy():
     # the stopping distance (speed below 2 m/s) from 72 km/h on mu 0.5 at a loose tolerance, both backends
     distances = {}
@@ -109,6 +112,7 @@ def test_compiled_abs_stopping_distance_equals_numpy():
     assert distances["compiled"] == pytest.approx(distances["numpy"], rel=2e-3)
 
 
+@pytest.mark.compiled_vs_numpy
 def test_compiled_driver_around_abs_equals_numpy():
     plant = SingleTrack(CAR, *_tires(0.5), wheel_spin=True)
     path_x = np.linspace(-10.0, 100.0, 221)
@@ -131,6 +135,7 @@ def test_compiled_driver_around_abs_equals_numpy():
         assert np.max(np.abs(runs[1][name] - runs[0][name])) < 1e-5 * np.max(np.abs(runs[0][name])), name
 
 
+@pytest.mark.compiled_vs_numpy
 def test_compiled_driver_with_speed_control_equals_numpy():
     plant = SingleTrack(CAR)
     path_x = np.linspace(-10.0, 100.0, 111)

@@ -99,6 +99,7 @@ def test_loop_response_of_the_state_space_loop_matches_the_exact_one():
     assert np.asarray(pade.complex).ravel() == pytest.approx(exact, rel=1e-6)
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("kind", ["crossover", "optimal"])
 def test_drivers_settle_on_an_offset_path_numpy_and_compiled_agree(kind):
     model = SingleTrack(SEDAN)
