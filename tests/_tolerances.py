@@ -109,5 +109,5 @@ def assert_close_ulps(actual, desired, *, ulps: int, what: str, rtol: float = 0.
     budget = f"{ulps} ulps" + (f" or |difference| <= {rtol:.3g} * {np.max(scale):.6g}" if rtol else "")
     raise AssertionError(
         f"{what}: {bad.size} of {a.size} values differ by more than {budget}; the worst, at index "
-        f"{tuple(int(i) for i in index)}: {float(a[index])!r} vs {float(d[index])!r} ({distance[index]:.0f} ulps apart, "
-        f"difference {a[index] - d[index]:.3g})")
+        f"{tuple(int(i) for i in index)}: {float(a[index])!r} vs {float(d[index])!r} "
+        f"({distance[index]:.0f} ulps apart, difference {a[index] - d[index]:.3g})")
