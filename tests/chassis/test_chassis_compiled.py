@@ -37,6 +37,7 @@ def _panic(speed, mu, backend, rtol, duration=1.0):
                            method="RK45", rtol=rtol, atol=rtol * 1e-2, max_step=0.05, backend=backend)
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("mu", [0.9, 0.5, 0.2])
 def test_compiled_abs_braking_equals_solve_ivp_within_the_integration_error(mu):
     # The same RK45 with the same step control on the same rhs: where both take the same steps the states agree
@@ -51,6 +52,7 @@ def test_compiled_abs_braking_equals_solve_ivp_within_the_integration_error(mu):
         assert np.max(np.abs(runs["compiled"][name] - reference)) < bound * np.max(np.abs(reference)), name
 
 
+@pytest.mark.compiled_vs_numpy
 def test_compiled_abs_stopping_distance_equals_numpy():
     # the stopping distance (speed below 2 m/s) from 72 km/h on mu 0.5 at a loose tolerance, both backends
     distances = {}

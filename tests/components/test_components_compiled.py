@@ -42,6 +42,7 @@ def _compiled_steps():
     return steps
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("tire", [MF, LINEAR], ids=["magic_formula", "linear"])
 @pytest.mark.parametrize("mirror", [False, True])
 @pytest.mark.parametrize("scaled", [False, True])
@@ -105,4 +106,6 @@ def test_the_brake_torque_opposes_the_spin_and_vanishes_at_standstill():
     assert torque[2] == 0.0 and np.all(np.sign(torque) == -np.sign(omega))
     assert torque[4] == pytest.approx(-1000.0 * 100.0 / np.sqrt(1.0 + 100.0**2), rel=1e-15)
     assert wheel.net_wheel_torque(NUMPY, K, 50.0, 200.0, 0.0, 1000.0) == pytest.approx(200.0 - 0.3 * 1000.0)
-    assert wheel.rolling_resistance_fade(NUMPY, K, 0.0) == 0.0 and wheel.rolling_resistance_fade(NUMPY, K, 20.0) == 1.0
+    # tanh(20) rounds to 1; a SIMD kernel within numpy's 1-2 ulp spec may return its neighbour
+    assert wheel.rolling_resistance_fade(NUMPY, K, 0.0) == 0.0
+    assert wheel.rolling_resistance_fade(NUMPY, K, 20.0) == pytest.approx(1.0, rel=0.0, abs=4 * np.finfo(float).eps)

@@ -23,7 +23,7 @@ def random_stable_model(seed, n, m, p):
 def test_linearize_round_trip(seed, n, m, p):
     model = random_stable_model(seed, n, m, p)
     lin = model.linearize()
-    for a, b in ((lin.A, model.A), (lin.B, model.B), (lin.C, model.C), (lin.D, model.D)):
+    for a, b in ((lin.A, model.A), (lin.B, model.B), (lin.C, model.C), (lin.D, model.D)):  # its own matrices
         np.testing.assert_array_equal(a, b)
     assert lin.state_names == model.state_names and lin.output_names == model.output_names
 

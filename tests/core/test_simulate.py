@@ -190,9 +190,11 @@ def test_the_method_choice_linearizes_in_one_batched_call_where_the_model_allows
         np.testing.assert_allclose(one_call, _van_der_pol_jacobian(3.0, x), rtol=1e-8, atol=1e-8)
 
 
+@pytest.mark.compiled_vs_numpy
 def test_the_method_choice_of_the_full_vehicle_takes_one_rhs_call_for_its_jacobian():
     # the 32-state full vehicle: one batched numpy call instead of 64 (140 ms -> ~10 ms here), the
-    # same Jacobian as one perturbation per call to rounding
+    # same Jacobian as one perturbation per call to rounding (the batch is numpy's array path, a single
+    # call the tire laws' scalar path, math: the check that picks the one call allows for both)
     from vehdyn.full_vehicle import FullVehicle
     from vehdyn.simulation._stiffness import _single_jacobian_in_one_call
 

@@ -98,6 +98,7 @@ def _driver(kind, model, path_y, **options):
     return OptimalPreviewDriver(PATH_X, path_y, vehicle=SEDAN, speed=20.0, **options)
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("kind", ["preview", "crossover", "optimal"])
 def test_drivers_settle_on_an_offset_path_numpy_and_compiled_agree(kind):
     model = SingleTrack(SEDAN)

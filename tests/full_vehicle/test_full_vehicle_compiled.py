@@ -72,6 +72,7 @@ def random_point(model, data):
     return x, u
 
 
+@pytest.mark.compiled_vs_numpy
 @settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(key=st.sampled_from(sorted(MODELS)), data=st.data())
 def test_compiled_rhs_and_outputs_equal_the_numpy_ones(key, data):
@@ -119,6 +120,7 @@ def solve_ivp_reference():
     return sine_run(MODELS["magic_formula"], "numpy", "DOP853", 1e-10)
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("method", ["RK45", "DOP853"])
 def test_compiled_simulation_equals_solve_ivp(method, solve_ivp_reference):
     """A sine steer to 0.45 g with Magic Formula tires: the compiled run (integrator and rhs) agrees with
@@ -133,6 +135,7 @@ def test_compiled_simulation_equals_solve_ivp(method, solve_ivp_reference):
         assert np.max(np.abs(compiled[name] - reference[name])) < 1e-6 * scale, name
 
 
+@pytest.mark.compiled_vs_numpy
 def test_auto_backend_runs_the_compiled_rhs_on_a_road_profile():
     """A RoadProfile runs compiled (backend "auto" picks it) and agrees with the numpy path."""
     model = MODELS["road_profile"]
@@ -189,6 +192,7 @@ def test_what_has_no_compiled_form_is_refused_with_the_reason():
         assert "compiled" not in result.method_reason and np.all(np.isfinite(result.states))
 
 
+@pytest.mark.compiled_vs_numpy
 def test_a_rejected_trial_stage_beyond_the_domain_does_not_stop_a_good_run():
     """Without max_step, a step grown on the flat start strides onto the bumps: its trial stage
     reaches a pitch of -1 rad and used to abort the run as 'pitching over' on both paths. The domain

@@ -165,7 +165,7 @@ def test_tire_lag_on_one_axle_only():
 def test_at_speed_keeps_the_parameters():
     car = LinearBicycle.from_parameters(**ABE, speed=10.0)
     fast = car.at_speed(30.0)
-    np.testing.assert_array_equal(fast.A, LinearBicycle.from_parameters(**ABE, speed=30.0).A)
+    np.testing.assert_array_equal(fast.A, LinearBicycle.from_parameters(**ABE, speed=30.0).A)  # same code, inputs
 
 
 @pytest.mark.parametrize("speed", [0.0, -5.0, np.nan, np.inf])

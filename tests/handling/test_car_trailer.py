@@ -247,7 +247,7 @@ def test_model_contract_and_names():
     for name in ("lateral_acceleration", "trailer_lateral_acceleration", "articulation_angle", "yaw_rate"):
         assert name in model.output_names
     assert model.linearize().A is not None
-    np.testing.assert_array_equal(model.linearize().A, model.A)
+    np.testing.assert_array_equal(model.linearize().A, model.A)  # a linear model linearizes to its own matrices
     assert model.at_speed(30.0).speed == 30.0
     assert model.at_speed(30.0).critical_speed() == pytest.approx(model.critical_speed(), rel=1e-12)
     # a positive steer turns right: positive yaw rate and articulation angle in the steady state

@@ -113,6 +113,7 @@ def test_coast_down_follows_the_drag_closed_form():
     assert np.allclose(r["x"], m / k * np.log(1 + k * u0 * t / m), rtol=1e-8)
 
 
+@pytest.mark.compiled_vs_numpy
 def test_coast_down_decelerates_by_the_rolling_resistance_moment():
     # MF 5.2 file with QSY2 = QSY3 = QSY4 = 0: M_y = -R0 F_z LMY QSY1 per tire, linear in the load, so
     # that the four tires together give -R0 LMY QSY1 m g whatever the load transfer. A free-rolling
@@ -133,13 +134,23 @@ def test_coast_down_decelerates_by_the_rolling_resistance_moment():
     expected = -p.gravity * c.QSY1 * c.LMY * c.UNLOADED_RADIUS / p.rolling_radius * p.mass / (p.mass + rotating)
     assert np.allclose(r["longitudinal_acceleration"][10:], expected, rtol=2e-4)
     assert np.allclose(r["longitudinal_velocity"][10:], 20.0 + expected * t[10:], rtol=2e-4, atol=0)
-    # the compiled rhs carries the same moment, bit for bit
+    # the compiled rhs carries the same moment. Not bit for bit (it was, at this state on this machine,
+    # by luck): the numpy rhs takes the tires' scalar path (the C library) and numpy's tanh for the
+    # moment's fade (a SIMD kernel, within 2 ulps), the compiled one vehdyn's branchless functions
+    # (tire/_fast_math, 2-4 ulps from the C library) and the C library's tanh. Budget: 4 ulps per value,
+    # or 4 ulps of the wheels' moment term M_y / (2 I_w) (12.6 rad/s^2, 1.1e-14) in the wheel equations
+    # 2 I_w dw/dt = M_y - R_e F_x, a difference of terms ~40x the result (measured at 800 states near
+    # this run: <= 1.1 such ulps, 1.5 with numpy's results moved by 2 ulps; <= 4 ulps in du/dt); the
+    # moment lost or doubled would be 0.3 rad/s^2 off.
     pytest.importorskip("numba")
+    from tests._tolerances import EPS, ONE_CALL_ULPS, assert_close_ulps
     compiled = model.compiled_rhs()
     x, u = r.states[:, 15].copy(), model.input_vector()
     dxdt = np.empty(model.n_states)
     compiled.rhs(0.0, x, u, compiled.args, dxdt)
-    assert np.array_equal(dxdt, model.rhs(0.0, x, u))
+    moment_term = p.gravity * p.mass * c.QSY1 * c.LMY * c.UNLOADED_RADIUS / (2.0 * p.wheel_spin_inertia)
+    assert_close_ulps(dxdt, model.rhs(0.0, x, u), ulps=ONE_CALL_ULPS, rtol=ONE_CALL_ULPS * EPS, scale=moment_term,
+                      what="compiled vs numpy rhs of the coast-down")
 
 
 def test_magic_formula_wheels_at_rest_stay_at_rest():

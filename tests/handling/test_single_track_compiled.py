@@ -36,6 +36,7 @@ FRICTION_MODELS = {("magic_formula", spin, True, "friction", transfer): SingleTr
 RHS_MODELS = {**MODELS, **ROLL_MODELS, **FRICTION_MODELS}
 
 
+@pytest.mark.compiled_vs_numpy
 @settings(max_examples=90, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(key=st.sampled_from(sorted(RHS_MODELS)), data=st.data())
 def test_compiled_rhs_and_outputs_equal_the_numpy_ones(key, data):
@@ -75,6 +76,7 @@ def solve_ivp_reference():
     return sine_run("numpy", "DOP853", 1e-11, sampled=True)
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("method", ["RK45", "DOP853"])
 def test_compiled_simulation_equals_solve_ivp(method, solve_ivp_reference):
     # the same ODE (sampled steer, first-order hold on both backends) at a tight tolerance
@@ -86,6 +88,7 @@ def test_compiled_simulation_equals_solve_ivp(method, solve_ivp_reference):
         assert np.max(np.abs(compiled[name] - reference[name])) < 1e-7 * scale, name
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("method, rtol, accuracy", [("DOP853", 1e-10, 1e-7), ("BDF", 1e-8, 1e-6)])
 def test_manoeuvre_signal_in_closed_form_equals_the_steer_computed_inside_the_rhs(method, rtol, accuracy):
     # the independent reference: a numpy model whose rhs computes delta(t) itself (no sampling);
@@ -114,6 +117,7 @@ def test_manoeuvre_signal_in_closed_form_equals_the_steer_computed_inside_the_rh
 @pytest.mark.parametrize("steer", [step_steer(np.radians(3.0), start=0.503, rise_time=0.15),
                                    sine_with_dwell(np.radians(3.0), frequency=1.5, dwell=0.2, start=0.105)],
                          ids=["step_steer", "sine_with_dwell"])
+@pytest.mark.compiled_vs_numpy
 def test_manoeuvre_signals_on_both_backends_equal_solve_ivp_with_the_exact_steer(steer):
     # kinks between the samples of a coarse grid: both backends evaluate the steer at every stage
     # and end steps on its breakpoints (the numpy one used to sample it: 3-5 % off here); the reference
@@ -191,6 +195,7 @@ def test_compiled_batch_gives_each_variant_its_own_compiled_run_bitwise(key, met
         one = base.variants(mass=p.mass * fi, yaw_inertia=p.yaw_inertia * fi, a=p.a * fi, b=p.b * (2 - fi),
                             front_lateral_relaxation_length=p.front_lateral_relaxation_length * fi)
         single = vehdyn.simulate(one, t, inputs, x0=x0[:, i], method=method, rtol=1e-8, atol=1e-10)
+        # bitwise: both the compiled loop, each variant with its own step-size control
         assert np.array_equal(single.states, result.states[..., i])
         assert np.array_equal(single.outputs, result.outputs[..., i])
 
@@ -201,6 +206,7 @@ def test_compiled_batch_gives_each_variant_its_own_compiled_run_bitwise(key, met
 # (linear tires plain; Magic Formula with every option) over the steer's onset.
 @pytest.mark.parametrize("key", [("linear", False, False),
                                  ("magic_formula", True, True, "lateral_load_transfer")])
+@pytest.mark.compiled_vs_numpy
 def test_compiled_batch_equals_the_numpy_batch_under_solve_ivp(key):
     base = MODELS[key]
     batch, x0, _ = _sine_batch(base, 3)
@@ -235,7 +241,7 @@ def test_compiled_batch_of_models_with_different_tires_and_its_errors():
     assert _compiled_ode.status_message("RK45", report[0]) == ""
     for i in range(2):
         single = vehdyn.simulate(models[i], t, inputs, x0=x0[:, i], method="RK45", rtol=1e-8, atol=1e-10)
-        assert np.array_equal(single.states, states[i])
+        assert np.array_equal(single.states, states[i])  # both the compiled loop: bitwise
     softer = np.max(np.abs(states[1, 2])) / np.max(np.abs(states[0, 2]))
     assert softer < 0.99  # the softer front tire understeers more: a smaller yaw rate
     with pytest.raises(vehdyn.ParameterError, match="one structure"):
@@ -282,5 +288,6 @@ def test_compiled_math_functions_are_the_library_functions_bitwise():
     expected = np.array([[math.cos(v) if math.isfinite(v) else math.nan for v in x],
                          [math.sin(v) if math.isfinite(v) else math.nan for v in x],
                          [math.tanh(v) for v in x], [math.atan2(v, w) for v, w in zip(x, y)]])
+    # bitwise on any CPU: math and numba-compiled code call the same C library (numba without Intel SVML)
     same = (out.view(np.int64) == expected.view(np.int64)) | (np.isnan(out) & np.isnan(expected))
     assert np.all(same), (x[~np.all(same, axis=0)], y[~np.all(same, axis=0)])

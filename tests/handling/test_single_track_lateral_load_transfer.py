@@ -78,7 +78,8 @@ def test_load_insensitive_linear_tires_give_the_no_transfer_forces(nominal_load)
 
 
 def test_no_side_force_no_change_bitwise():
-    # straight braking with wheel spin: no lateral force, no transfer, the same numbers to the bit
+    # straight braking with wheel spin: no lateral force, no transfer, the same numbers to the bit (both numpy:
+    # the transfer adds exact zeros to the same operations)
     vehicle = vehdyn.load_vehicle("sedan")
     off, on = (SingleTrack(vehicle, wheel_spin=True, lateral_load_transfer=llt) for llt in (False, True))
     t = np.linspace(0.0, 1.0, 21)
@@ -190,7 +191,7 @@ def test_tyreside_names_the_unmirrored_wheel_and_the_ply_steer_sign_follows(tire
         image = tire.forces(3500.0, 0.05, -alpha, -gamma, vx)
         f = car.corner_law_loads(own, 3500.0, 0.05, alpha, gamma, vx)
         g = car.corner_law_loads(1 - own, 3500.0, 0.05, alpha, gamma, vx)
-        assert (f[0], f[1], f[2]) == (law.fx, law.fy, law.my)
+        assert (f[0], f[1], f[2]) == (law.fx, law.fy, law.my)  # the same scalar path of the law: bitwise
         assert (g[0], g[1], g[2]) == (image.fx, -image.fy, image.my)
         # the single track's axle at zero slip under a load transfer onto the left wheel: SAE y is
         # -ISO y, the sum of the law's own force at one wheel's load and the image's at the other's

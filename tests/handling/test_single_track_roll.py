@@ -127,6 +127,7 @@ def test_steady_turn_balance_against_the_full_vehicle_trim():
                                                                                rel=0.025)
 
 
+@pytest.mark.compiled_vs_numpy
 def test_compiled_equals_numpy():
     model = SingleTrack(SEDAN, lateral_load_transfer=True, roll=True)
     t = np.linspace(0.0, 0.6, 13)

@@ -397,7 +397,7 @@ def test_study_with_numbers_round_trips_through_report(tmp_path):
     study = Study("s", tmp_path)
     frame = pd.DataFrame({"speed": np.linspace(10, 40, 7), "gain": np.linspace(10, 40, 7) ** 0.5})
     path = study.table(frame, "gains")
-    assert np.array_equal(pd.read_csv(path, index_col=0).to_numpy(), frame.to_numpy())
+    assert np.array_equal(pd.read_csv(path, index_col=0).to_numpy(), frame.to_numpy())  # shortest repr: exact
     assert b"\r\r\n" not in path.read_bytes()
 
 

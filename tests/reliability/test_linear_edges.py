@@ -23,7 +23,7 @@ def test_array_of_speeds_is_refused_naming_speed_and_its_value(cls, vehicle):
         cls(vehicle, speeds)
     assert info.value.key == "speed"
     # one speed in an array of one is that speed
-    np.testing.assert_array_equal(cls(vehicle, np.array([15.0])).A, cls(vehicle, 15.0).A)
+    np.testing.assert_array_equal(cls(vehicle, np.array([15.0])).A, cls(vehicle, 15.0).A)  # the same float, code
 
 
 @pytest.mark.parametrize("cls, vehicle", [(LinearBicycle, CAR), (LateralYawRoll, vehdyn.load_vehicle("sedan"))])

@@ -168,6 +168,7 @@ def test_the_low_speed_damping_is_kept_at_standstill():
     assert np.tan(after) - np.tan(before) == pytest.approx(0.01 * (1 - 0.5 * 1.0 / 2.0), rel=1e-9)
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("wheel_spin", [False, True])
 def test_compiled_low_speed_equations_equal_the_numpy_ones(wheel_spin):
     pytest.importorskip("numba")

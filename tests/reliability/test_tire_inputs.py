@@ -90,7 +90,7 @@ def test_nan_speed_is_not_the_20_m_s_force(backend):
         value = getattr(out, field)
         assert math.isnan(value[1]), field
         assert value[0] == pytest.approx(getattr(alone, field), rel=1e-12, abs=1e-12)
-        assert value[2] == value[0]
+        assert value[2] == value[0]  # two equal points of one call: the same operations
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
@@ -103,7 +103,7 @@ def test_infinite_load_is_not_clamped_to_fzmax(backend, shape):
     assert all(np.isnan(getattr(out, f)).all() for f in FIELDS)
     # a finite load above FZMAX is still clamped to FZMAX, as MFeval does
     fzmax = tire.params["FZMAX"]
-    assert tire.forces(1e7, 0.0, 0.05, 0.0, 20.0).fy == tire.forces(fzmax, 0.0, 0.05, 0.0, 20.0).fy
+    assert tire.forces(1e7, 0.0, 0.05, 0.0, 20.0).fy == tire.forces(fzmax, 0.0, 0.05, 0.0, 20.0).fy  # same input
 
 
 @pytest.mark.parametrize("law", LAWS)

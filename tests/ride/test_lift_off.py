@@ -83,6 +83,7 @@ def test_wheel_dropping_off_a_step_flies_as_the_free_wheel_closed_form():
     assert res["unsprung_acceleration"][0] == pytest.approx(-(ms + mu) * GRAVITY / mu, rel=1e-12)
 
 
+@pytest.mark.compiled_vs_numpy
 def test_compiled_rhs_is_the_numpy_rhs(sedan):
     pytest.importorskip("numba")
     model = LiftOff(FullCar(sedan, cg_heights=True))
@@ -188,6 +189,7 @@ def test_lateral_slip_holds_the_contact_points_steady_state(sedan):
     assert d[model.index("yaw_rate")] == pytest.approx(np.sum(x_i * forces) / 1800.0, rel=1e-12)
 
 
+@pytest.mark.compiled_vs_numpy
 def test_compiled_rhs_with_both_slips_is_the_numpy_rhs(sedan):
     pytest.importorskip("numba")
     model = LiftOff(FullCar(sedan, cg_heights=True), lateral=_slip(), longitudinal=_spin())

@@ -87,6 +87,7 @@ def test_toml_round_trip_of_signals_and_vehicle(tmp_path):
     assert back == scene and back != scene.replace(speed=21.0)
     assert back.vehicle == vehicle
     t = np.linspace(0, 4, 401)
+    # bitwise: TOML keeps the signal's parameters exactly (shortest repr); the same numpy code evaluates them
     np.testing.assert_array_equal(back.manoeuvre["front_steer_angle"](t), steer(t))
     assert back.manoeuvre["rear_steer_angle"] == 0.001
     # a road profile travels as arrays
@@ -112,4 +113,4 @@ def test_step_signal_given_directly_equals_named_manoeuvre():
     named = drive_of(Scene(manoeuvre="step_steer", manoeuvre_parameters={"amplitude": 0.02}, duration=2.0))
     direct = drive_of(Scene(manoeuvre=step_steer(0.02), duration=2.0))
     t = named.time
-    np.testing.assert_array_equal(named.steer(t), direct.steer(t))
+    np.testing.assert_array_equal(named.steer(t), direct.steer(t))  # one signal class, equal parameters

@@ -177,6 +177,7 @@ def test_registry_takes_a_new_rung_in_one_entry_and_skips_missing_modules():
         scene = Scene(manoeuvre="step_steer", duration=1.0, outputs=("yaw_rate",))
         rows = {r.rung.name: r for r in vehdyn.plan(scene).rows}
         assert rows["BicycleTwin"].admissible
+        # bitwise: the same builder and the same exact discretization behind both rungs
         np.testing.assert_array_equal(rows["BicycleTwin"].setup.run()["yaw_rate"],
                                       rows["LinearBicycle"].setup.run()["yaw_rate"])
     finally:

@@ -65,6 +65,8 @@ def test_scene_metrics_equal_direct_runs(scene):
     for _, row in table.iterrows():
         vehicle = base.replace(mass__mass=row["vehicle.mass.mass"])
         out = vehdyn.run(scene.replace(speed=row["speed"], vehicle=vehicle), model="SingleTrack")
+        # bitwise: the sweep's compiled batch integrates each variant as its own compiled run does (the same
+        # loop and step control, simulate's docs); the understeer gradient is the same numpy code
         assert row["peak_yaw_rate"] == np.max(np.abs(out.outputs["yaw_rate"]))
         assert row["final_yaw_rate"] == out.outputs["yaw_rate"][-1]
         assert row["understeer_gradient"] == vehdyn.handling.understeer_gradient(vehicle)
@@ -135,7 +137,7 @@ def test_vectorized_function_matches_scalar_calls_and_isolates_bad_variants():
     table = run(_batched, grid=grid, chunk_size=8, progress=False)
     ok = table["a"] >= 0
     assert table.loc[~ok, "error"].str.contains("a must be >= 0").all()
-    for _, row in table[ok].iterrows():
+    for _, row in table[ok].iterrows():  # sqrt, * and / are correctly rounded: the same bits on arrays and floats
         assert row["root"] == np.sqrt(row["a"]) * row["b"]
         assert row["ratio"] == row["b"] / (1.0 + row["a"])
     # no bad variant: one batched call gives the same bits as the scalar calls

@@ -37,6 +37,7 @@ def test_cli_writes_the_library_table(scene_file, tmp_path, capsys):
     expected = vehdyn.sweep.run(vehdyn.Scene.from_toml(scene_file), grid={"speed": [20.0, 25.0, 30.0]},
                             samples={"vehicle.mass.mass": st.norm(1500, 50)}, n=2, seed=0,
                             metrics=["understeer_gradient"], progress=False)
+    # bitwise: the command runs vehdyn.sweep in this process, with the same draws (seed 0)
     np.testing.assert_array_equal(written["understeer_gradient"], expected["understeer_gradient"])
     np.testing.assert_array_equal(written["vehicle.mass.mass"], expected["vehicle.mass.mass"])
 

@@ -35,7 +35,8 @@ def _same(a, b):
     for c in a.columns:
         if c == "error":
             assert list(a[c]) == list(b[c])
-        else:  # bitwise, NaN where NaN
+        else:  # bitwise, NaN where NaN: every engine runs the same code on this machine (its processes,
+            # threads and Dask workers inherit numpy's SIMD dispatch; a cluster of other CPUs would not)
             x, y = a[c].to_numpy(), b[c].to_numpy()
             assert x.tobytes() == y.tobytes(), c
 
@@ -94,7 +95,7 @@ def test_batched_chunk_is_bitwise_the_one_at_a_time_runs(scene):
     assert kwargs["method"] == "RK45" and args[0] is setup.model
     batched = ChunkTask(target, names, metrics)(list(range(4)), rows)
     alone = [ChunkTask(target, names, metrics)([i], [r]) for i, r in enumerate(rows)]
-    for i, frame in enumerate(alone):
+    for i, frame in enumerate(alone):  # bitwise: one compiled loop, each variant with its own step control
         for c in metrics:
             assert batched[c].to_numpy()[i].tobytes() == frame[c].to_numpy()[0].tobytes(), (i, c)
         assert batched["error"][i] == frame["error"][0]
@@ -123,7 +124,7 @@ def test_solver_options_replace_the_rungs_own_in_every_variant(scene):
     kwargs.update(method="BDF", rtol=1e-5, atol=1e-7)
     direct = vehdyn.simulate(*args, **kwargs)
     assert "compiled BDF" in direct.message
-    assert loose["peak_yaw_rate"].iloc[1] == np.max(np.abs(direct["yaw_rate"]))
+    assert loose["peak_yaw_rate"].iloc[1] == np.max(np.abs(direct["yaw_rate"]))  # both the compiled BDF
     assert np.allclose(loose["peak_yaw_rate"], tight["peak_yaw_rate"], rtol=1e-4)
     assert not np.array_equal(loose["peak_yaw_rate"], tight["peak_yaw_rate"])
 

@@ -33,7 +33,7 @@ def test_out_writes_chunks_that_read_back_to_the_table(tmp_path):
     parts = sorted(out.glob("part-*.parquet"))
     assert len(parts) == 4  # ceil(10 / 3)
     assert not [p for p in out.iterdir() if p.name.startswith(".")]  # no temporary file left
-    back = pd.read_parquet(out).sort_values("variant").set_index("variant")
+    back = pd.read_parquet(out).sort_values("variant").set_index("variant")  # Parquet stores the doubles' bits
     for c in ("x", "y", "f", "g"):
         np.testing.assert_array_equal(back[c], table[c])
     assert back["error"].isna().all() and list(back.index) == list(table.index)
@@ -54,7 +54,7 @@ def test_resume_runs_only_the_missing_variants(tmp_path):
     CALLS.clear()
     table = run(_quadratic, grid=GRID, chunk_size=2, out=out, resume=True, progress=False)
     assert sorted(CALLS) == [(x, y) for x in (3.0, 4.0) for y in GRID["y"]]
-    fresh = run(_quadratic, grid=GRID, progress=False)
+    fresh = run(_quadratic, grid=GRID, progress=False)  # the same Python arithmetic: bitwise
     np.testing.assert_array_equal(table["f"], fresh["f"])
     np.testing.assert_array_equal(table["g"], fresh["g"])
     assert list(table.index) == list(range(10))

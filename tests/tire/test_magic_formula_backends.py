@@ -47,6 +47,7 @@ def points(name):
     return st.lists(one, min_size=1, max_size=40).map(lambda rows: np.array(rows).T)
 
 
+@pytest.mark.compiled_vs_numpy
 @needs_numba
 @pytest.mark.parametrize("name", TIRES)
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -68,7 +69,7 @@ def test_numba_and_numpy_backends_agree_to_1e_12(name, data):
     reference = model.evaluate(fz, kappa, alpha, gamma, vx, pressure, phit, **switches, backend="numpy")
     for field in ours.keys():
         a, b = ours[field], reference[field]
-        np.testing.assert_array_equal(np.isnan(a), np.isnan(b), err_msg=field)
+        np.testing.assert_array_equal(np.isnan(a), np.isnan(b), err_msg=field)  # the same branches: NaN where NaN
         both = ~np.isnan(b)
         assert np.all(np.abs(a - b)[both] <= 1e-12 * (np.abs(b[both]) + scales[field])), field
     del switches["turn_slip"]
@@ -78,6 +79,7 @@ def test_numba_and_numpy_backends_agree_to_1e_12(name, data):
         assert np.all(np.abs(a - b) <= 1e-12 * (np.abs(b) + scales[field])), field
 
 
+@pytest.mark.compiled_vs_numpy
 @needs_numba
 def test_numba_backend_broadcasts_given_spin_and_scalar_calls():
     """Broadcast shapes, a given wheel spin and scalar calls on the compiled path give the numpy
@@ -109,10 +111,10 @@ def test_backend_switch_and_errors(monkeypatch):
         monkeypatch.setattr(mf_module, "AUTO_NUMBA_MIN_POINTS", 30)
         args = (np.linspace(1000.0, 6000.0, 40), 0.05, np.linspace(-0.2, 0.2, 40))
         for method in ("evaluate", "forces"):
-            auto, compiled = (getattr(model, method)(*args, backend=b) for b in ("auto", "numba"))
+            auto, compiled = (getattr(model, method)(*args, backend=b) for b in ("auto", "numba"))  # one loop
             np.testing.assert_array_equal(auto.fy, compiled.fy)
             np.testing.assert_array_equal(auto.mz, compiled.mz)
-        few = (args[0][:20], 0.05, args[2][:20])
+        few = (args[0][:20], 0.05, args[2][:20])  # below the threshold "auto" is numpy itself: bitwise
         np.testing.assert_array_equal(model.forces(*few, backend="auto").fy, model.forces(*few, backend="numpy").fy)
     monkeypatch.setattr(_compiled_ode, "_NUMBA_AVAILABLE", False)
     assert mf_module._auto_backend(10 * mf_module.AUTO_NUMBA_MIN_POINTS) == "numpy"
@@ -148,7 +150,7 @@ def test_numba_threads_give_the_serial_results(monkeypatch):
     monkeypatch.setattr(_mf_numba.os, "cpu_count", lambda: 3)
     monkeypatch.setattr(mf_module, "NUMBA_PARALLEL", True)
     threaded = model.evaluate(*args, backend="numba")
-    for field in serial.keys():
+    for field in serial.keys():  # the same compiled loop on other blocks of points: bitwise
         np.testing.assert_array_equal(threaded[field], serial[field], err_msg=field)
 
 

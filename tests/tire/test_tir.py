@@ -95,7 +95,7 @@ def test_write_read_round_trip_is_exact(name, tmp_path):
     assert copy == original
     assert dict(copy.values) == dict(original.values)
     assert copy.defaulted == original.defaulted and copy.version == original.version
-    # and the written file evaluates identically
+    # and the written file evaluates identically (the same coefficients through the same numpy code)
     a = MagicFormula(original).evaluate(4000.0, 0.05, np.linspace(-0.3, 0.3, 7), 0.02, vx=15.0)
     b = MagicFormula(copy).evaluate(4000.0, 0.05, np.linspace(-0.3, 0.3, 7), 0.02, vx=15.0)
     for field in a.keys():

@@ -125,7 +125,7 @@ def test_to_tir_round_trip_is_exact(small_fit, tmp_path):
     for name, value in fit.coefficients.items():
         assert back.params[name] == value, name
     args = (frame["fz"].to_numpy(), frame["kappa"].to_numpy(), frame["alpha"].to_numpy(), 0.0, 16.6)
-    for a, b in zip(fit.tire.forces(*args), back.forces(*args)):
+    for a, b in zip(fit.tire.forces(*args), back.forces(*args)):  # equal coefficients, the same code: bitwise
         np.testing.assert_array_equal(a, b)
 
 
@@ -237,7 +237,7 @@ def test_fit_model_path_equals_magic_formula_forces(stage, outputs):
         reference.__dict__.update(tire.__dict__, _c=c)
         expected = reference.forces(rows["fz"], rows["kappa"], rows["alpha"], rows["gamma"], rows["vx"],
                                     backend="numpy")
-        for out, got in zip(outputs, problem.model(c)):
+        for out, got in zip(outputs, problem.model(c)):  # both the NumpyOps equation functions: bitwise
             np.testing.assert_array_equal(got, getattr(expected, out), err_msg=f"{out} {values}")
 
 

@@ -57,7 +57,7 @@ def net_wheel_torque(xp, k, wheel_speed, drive, brake, longitudinal_force):
 def rolling_resistance_fade(xp, k, wheel_speed):
     """tanh(|omega| / omega_b): the rolling resistance opposes rolling and fades to 0 at standstill.
 
-    Exactly 1 in floating point above about 19 omega_b.
+    1 to rounding (within an ulp of numpy's or the C library's tanh) above about 19 omega_b.
 
     Parameters
     ----------
