@@ -206,11 +206,20 @@ def crosswind_sensitivity(vehicle, speed: float = 100 / 3.6, *, wind_speed: floa
         states ``x``, ``y``, ``yaw_angle``, ``yaw_rate``, the input ``wind_velocity_lateral`` and,
         for the driver, ``front_steer_angle``.
     rtol : float
-        Relative tolerance of the RK45 integration.
+        Relative tolerance of the RK45 integration [-] (default 1e-7; the absolute tolerance is
+        1e-9 max(u, 1 m/s)); the output is sampled every 5 ms.
 
     Returns
     -------
     CrosswindSensitivity
+        The metrics (peak yaw rate and lateral acceleration, the lateral deviation and yaw angle
+        when the rear axle leaves the zone, the deviation at the end and its largest magnitude),
+        the centre of pressure and neutral steer point, and the run (``result``).
+
+    References
+    ----------
+    ISO 12021:2010, *Road vehicles - Sensitivity to lateral wind - Open-loop test method using wind
+    generator input* (the test set-up; the metrics are this package's, see above).
     """
     from vehdyn.simulation import simulate
     from vehdyn.handling.bicycle import check_speed

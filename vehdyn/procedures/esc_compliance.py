@@ -171,7 +171,16 @@ class FMVSS126Result:
         return bool(self.runs) and all(run["passed"] for run in self.runs)
 
     def failures(self) -> list[str]:
-        """One line per failed criterion, citing the paragraph of 49 CFR 571.126."""
+        """One line per failed criterion, citing the paragraph of 49 CFR 571.126.
+
+        Returns
+        -------
+        list of str
+            For each run (``"<direction> <multiple> A"``) and each criterion it misses: the
+            yaw-rate ratio 1.00 s after completion of steer above 0.35 (S5.2.1), the ratio at
+            1.75 s above 0.20 (S5.2.2), the lateral displacement below :attr:`displacement_limit`
+            where the run requires it (S5.2.3). Empty when every run passes.
+        """
         lines = []
         for run in self.runs:
             tag = f"{run['direction']} {run['amplitude_multiple']:.2f} A"
@@ -185,7 +194,17 @@ class FMVSS126Result:
         return lines
 
     def to_frame(self):
-        """pandas DataFrame, one row per run (units in ``attrs["units"]``)."""
+        """The runs as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per run, the columns of :attr:`runs` (``direction``, ``amplitude_multiple``
+            [-], ``hand_wheel_amplitude_deg`` and ``road_wheel_amplitude_deg`` [deg],
+            ``peak_yaw_rate`` [rad/s], ``yaw_rate_ratio_1000ms`` and ``yaw_rate_ratio_1750ms``
+            [-], ``lateral_displacement`` [m], ``displacement_required``, ``passed``); the units in
+            ``attrs["units"]``, the rule ("49 CFR 571.126 S5.2") in ``attrs["rule"]``.
+        """
         import pandas as pd
 
         frame = pd.DataFrame(self.runs)
@@ -239,9 +258,13 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
         GVWR [kg] choosing the displacement limit; default the vehicle's mass (the vehicle files
         carry no GVWR: a car of 3,500 kg or less is taken as such).
     amplitude_multiples : sequence of float, optional
-        Run only these multiples of A (a subset, for quick checks); default the S7.9.4 series.
-    rtol, atol : float
-        Tolerances of the RK45 integration.
+        Run only these multiples of A [-], each finite and > 0 (a subset, for quick checks);
+        default the S7.9.4 series: 1.5 A to the greater of 6.5 A and 270 degrees of hand-wheel
+        angle (300 degrees if 6.5 A exceeds it) in steps of 0.5 A.
+    rtol : float
+        Relative tolerance of the RK45 integration [-] (default 1e-5; maximum step 0.02 s).
+    atol : float
+        Absolute tolerance of the RK45 integration [state units] (default 1e-8).
     n_points : int
         Samples of each run's output grid (``FMVSS126Result.results``), >= 2. The metrics and the
         verdict do not depend on it: they are read off the procedure's own grid of
@@ -251,6 +274,19 @@ def fmvss126(vehicle, controller=None, *, plant: str = "single_track", speed: fl
     -------
     FMVSS126Result
         ``.passed``, ``.to_frame()`` (one row per run), ``.failures()``, ``.results``.
+
+    Raises
+    ------
+    ParameterError
+        ``vehicle`` not a :class:`~vehdyn.params.Vehicle`, an unknown ``plant`` or direction, a
+        ``speed`` or GVWR not finite and > 0, ``n_points`` < 2 (or too many samples), or
+        ``amplitude_multiples`` not finite and > 0.
+
+    References
+    ----------
+    NHTSA, FMVSS No. 126, *Electronic stability control systems*, 49 CFR 571.126 (final rule,
+    72 FR 17236, 2007): S7.9 (the sine-with-dwell test series: S7.9.1 entry speed 80 km/h,
+    S7.9.4 the amplitudes) and S5.2 (S5.2.1, S5.2.2 lateral stability, S5.2.3 responsiveness).
     """
     from vehdyn.params import Vehicle
     from vehdyn.simulation import simulate

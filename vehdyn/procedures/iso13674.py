@@ -281,14 +281,32 @@ def weave_test(vehicle, speed: float = 100 / 3.6, amplitude_g: float = 0.2, freq
         Output samples per period of the returned ``result``, >= 1. The metrics do not depend on
         it: they are read off the procedure's own grid of :data:`METRIC_SAMPLES_PER_CYCLE` samples
         per period, in the same integration.
-    method, rtol : str, float
-        Integrator (implicit by default: the friction law is stiff) and its relative tolerance.
+    method : str
+        Integrator of :func:`vehdyn.simulate` (default ``"LSODA"``: the steering friction law is
+        stiff).
+    rtol : float
+        Relative tolerance of the integration [-] (default 1e-7).
     **steering_overrides
         Fields of :class:`~vehdyn.handling.SteeringSystemParameters` for the default steering.
 
     Returns
     -------
     WeaveTestMetrics
+        The metrics of the last cycle (module docstring), the steering-wheel amplitude found and
+        the run.
+
+    Raises
+    ------
+    ParameterError
+        A speed or frequency not finite and > 0, ``amplitude_g`` outside [0.11, 0.8], ``cycles``
+        < 2, ``iterations`` < 1, ``samples_per_cycle`` < 1 (or too many samples), both
+        ``steering`` and ``steering_overrides``, or a steering system that is not angle-driven.
+
+    References
+    ----------
+    ISO 13674-1:2010, *Road vehicles - Test method for the quantification of on-centre handling -
+    Part 1: Weave test* (100 km/h, 0.2 Hz, 0.2 g; the metrics after its sec. 8).
+    D. J. Norman, "Objective evaluation of on-center handling performance", SAE 840069, 1984.
     """
     from vehdyn.simulation import simulate
     from vehdyn.handling.bicycle import LinearBicycle, check_speed

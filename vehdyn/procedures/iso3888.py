@@ -49,6 +49,24 @@ class DoubleLaneChangeTrack:
         (3.25 - 0.1 b and 3.25 - 0.3 b m in ISO 3888-1, against 3.5 + 0.05 b and 3.5 - 0.05 b between
         the lane centres),
         the line a test driver aims for.
+
+        Parameters
+        ----------
+        margin : float
+            Clearance [m] between the vehicle's side and the cone line (finite; default 0.1 m;
+            negative: the side overlaps the cones).
+
+        Returns
+        -------
+        path_x : ndarray
+            The track's :attr:`path_x` [m].
+        path_y : ndarray
+            Lateral position of the CG on the inner line at ``path_x`` [m] (SAE: y to the right).
+
+        Raises
+        ------
+        ParameterError
+            A non-finite ``margin``.
         """
         margin = finite_number(margin, "margin")
         half = self.vehicle_width / 2 + margin
@@ -61,6 +79,24 @@ class DoubleLaneChangeTrack:
         The path of :func:`lane_change_speed_bound` for lanes ``margin`` narrower on each side (room
         for the driver's tracking error), held constant before lane 1 and after lane 5: the racing
         line of the lane change.
+
+        Parameters
+        ----------
+        margin : float
+            Narrowing of each lane on each side [m] (finite; default 0.15 m).
+
+        Returns
+        -------
+        path_x : ndarray
+            The track's :attr:`path_x` [m].
+        path_y : ndarray
+            Lateral position of the CG on the least-curvature line at ``path_x`` [m] (the linear
+            program's path on a 0.5 m grid, interpolated; constant outside it).
+
+        Raises
+        ------
+        ParameterError
+            A non-finite ``margin``, or one that narrows the lanes so far that no path is left.
         """
         margin = finite_number(margin, "margin")
         narrow = DoubleLaneChangeTrack([(x0, x1, left + margin, right - margin)
@@ -169,7 +205,7 @@ def obstacle_avoidance_track(vehicle_width: float, *, run_in: float = 30.0,
 
 def lane_change_speed_bound(track: DoubleLaneChangeTrack, friction_coefficient: float, *, step: float = 0.5,
                             gravity: float = 9.80665):
-    """The cone geometry's speed bound: the highest speed at which a point mass at mu g clears the cones.
+    r"""The cone geometry's speed bound: the highest speed at which a point mass at mu g clears the cones.
 
     The path y(x) through the coned lanes (the CG kept b/2 from the cone lines, as
     :func:`lane_change_outcome` checks) whose largest curvature |y''| is smallest: a linear program
@@ -178,12 +214,44 @@ def lane_change_speed_bound(track: DoubleLaneChangeTrack, friction_coefficient: 
     cones faster than u* = sqrt(mu g / kappa_min) [m/s] on any path: a bound from the geometry and
     the friction alone, without yaw dynamics or driver.
 
+    .. math::
+
+        \kappa_{\min} = \min_{y} \max_i \left|\frac{y_{i+1} - 2 y_i + y_{i-1}}{h^2}\right|
+        \quad \text{subject to the cone lines}, \qquad
+        u^* = \sqrt{\mu g / \kappa_{\min}}
+
+    Parameters
+    ----------
+    track : DoubleLaneChangeTrack
+        The coned track (:func:`double_lane_change_track` or :func:`obstacle_avoidance_track`)
+        with the vehicle's width.
+    friction_coefficient : float
+        Tire-road friction coefficient :math:`\mu` [-], > 0.
+    step : float
+        Grid spacing :math:`h` along x [m], > 0 (default 0.5 m), leaving at least 3 and at most
+        20,000 grid points on the coned length.
+    gravity : float
+        Gravitational acceleration :math:`g` [m/s^2], > 0 (default 9.80665).
+
     Returns
     -------
     speed : float
-        u* [m/s].
+        u* [m/s] (``inf`` if a straight path clears the cones).
     x, y : ndarray
         The minimal-curvature path [m].
+
+    Raises
+    ------
+    ParameterError
+        ``track`` not a :class:`DoubleLaneChangeTrack`, a ``friction_coefficient``, ``gravity``
+        or ``step`` not finite and > 0, a ``step`` giving too few or too many grid points, or no
+        path through the cones (the linear program infeasible).
+
+    References
+    ----------
+    ISO 3888-1:2018, *Passenger cars - Test track for a severe lane-change manoeuvre - Part 1:
+    Double lane-change*, Fig. 1 and Table 1 (the cone layout); ISO 3888-2:2011, *Part 2:
+    Obstacle avoidance*, Fig. 1 and Table 1.
     """
     from scipy.optimize import linprog
     from scipy.sparse import diags, hstack, vstack

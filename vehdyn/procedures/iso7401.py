@@ -49,11 +49,28 @@ class StepResponseMetrics:
     overshoot: np.ndarray
 
     def as_dict(self) -> dict:
-        """The metrics as a dict of floats (or arrays for a batch)."""
+        """The metrics as a dict.
+
+        Returns
+        -------
+        dict
+            ``{field name: value}`` of every field, in the order of the class (``signal``,
+            ``unit``, ``step_time`` [s], then the metrics in their units: floats, or arrays for a
+            batch).
+        """
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
     def to_frame(self):
-        """One row per batch member, one column per metric, ``attrs["units"]``."""
+        """The metrics as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per batch member (one row for a single run), one column per metric
+            (``initial_value``, ``steady_state_value``, ``response_time``, ``rise_time``,
+            ``peak_value``, ``peak_response_time``, ``overshoot``); their units in
+            ``attrs["units"]``, the signal's name in ``attrs["signal"]``.
+        """
         import pandas as pd
 
         names = ["initial_value", "steady_state_value", "response_time", "rise_time", "peak_value",

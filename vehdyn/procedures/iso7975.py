@@ -59,12 +59,32 @@ def braking_in_turn(model, *, radius: float = 100.0, lateral_acceleration: float
         Brake onset [s], >= 0.
     duration : float
         Run after the brake onset [s], > 0 (at least the 1 s the metrics need).
-    method, rtol : str, float
-        Integrator and its relative tolerance.
+    method : str
+        Integrator of :func:`vehdyn.simulate` (default ``"RK45"``; the inputs are held between
+        the 0.01 s samples, ``hold="zoh"``).
+    rtol : float
+        Relative tolerance of the integration [-] (default 1e-6).
 
     Returns
     -------
     BrakingInTurn
+        The run, the initial steady turn and the metrics 1 s after brake onset: yaw rate over the
+        initial yaw rate [-], sideslip change [rad], mean deceleration [m/s^2].
+
+    Raises
+    ------
+    ParameterError
+        ``model`` not a force-mode SingleTrack, ``brake_front_share`` outside [0, 1],
+        ``deceleration`` not finite and > 0, ``brake_start`` < 0, ``duration`` < 1 s, too many
+        samples, or a radius and lateral acceleration of opposite signs.
+    SimulationError
+        No steady turn of the model at that radius and lateral acceleration.
+
+    References
+    ----------
+    ISO 7975:2019, *Passenger cars - Braking in a turn - Open-loop test method* (the manoeuvre:
+    brake from a steady turn with the steering held; the metrics here are read 1 s after brake
+    onset).
     """
     from vehdyn.simulation import simulate
     from vehdyn.handling.nonlinear_steady_state import steady_state_cornering
