@@ -84,6 +84,14 @@ class Study:
         The heavy series that would take the default report past a few minutes (a complete
         FMVSS 126 series on every car's full vehicle, ...): ``vehdyn report --full`` or ``VEHDYN_FULL=1``.
         Without it such a study runs a representative subset and says so.
+    items : list of tuple
+        What the study has produced, in order: ``("figure", file name, caption)``,
+        ``("table", HTML, caption)``, ``("text", paragraph, "")`` (default empty; filled by
+        :meth:`figure`, :meth:`table` and :meth:`text`, read by :func:`write_report`).
+
+    Notes
+    -----
+    Creating a Study creates ``out_dir`` (and its parents).
     """
 
     name: str
@@ -100,7 +108,22 @@ class Study:
         self.out_dir.mkdir(parents=True, exist_ok=True)
 
     def figure(self, fig, name: str, caption: str = "") -> Path:
-        """Save a matplotlib figure as ``NAME.png`` (atomically) and close it."""
+        """Save a matplotlib figure as ``NAME.png`` (atomically) and close it.
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure
+            The figure, saved at 110 dpi with a tight bounding box.
+        name : str
+            File stem in :attr:`out_dir` (``NAME.png``; an earlier file of that name is replaced).
+        caption : str
+            Caption under the figure in the report (default none).
+
+        Returns
+        -------
+        pathlib.Path
+            ``out_dir / "NAME.png"``.
+        """
         from vehdyn.plotting import save_figure
 
         path = save_figure(fig, self.out_dir / f"{name}.png", dpi=110)
@@ -108,7 +131,27 @@ class Study:
         return path
 
     def table(self, frame, name: str, caption: str = "", floatfmt: str = "{:.6g}") -> Path:
-        """Save a pandas DataFrame as ``NAME.csv`` (atomically), show it in the report and print it."""
+        """Save a pandas DataFrame as ``NAME.csv`` (atomically), show it in the report and print it.
+
+        Parameters
+        ----------
+        frame : pandas.DataFrame
+            The table, written with its index; its ``attrs["units"]`` (``{column: unit}``), if
+            any, are listed under it in the report.
+        name : str
+            File stem in :attr:`out_dir` (``NAME.csv``).
+        caption : str
+            Heading of the table in the report and in the printout (default: ``name`` in the
+            printout, none in the report).
+        floatfmt : str
+            :meth:`str.format` pattern of the floats in the report's HTML (default ``"{:.6g}"``);
+            the CSV keeps full precision.
+
+        Returns
+        -------
+        pathlib.Path
+            ``out_dir / "NAME.csv"``.
+        """
         import pandas as pd
 
         path = self.out_dir / f"{name}.csv"
@@ -125,13 +168,32 @@ class Study:
         return path
 
     def text(self, paragraph: str) -> None:
-        """A paragraph of findings."""
+        """A paragraph of findings: printed, and shown in the report after what precedes it.
+
+        Parameters
+        ----------
+        paragraph : str
+            Plain text (HTML-escaped in the report).
+        """
         print(paragraph)
         self.items.append(("text", paragraph, ""))
 
     @staticmethod
     def main(run: Callable[["Study"], None], file: str) -> None:
-        """Run a study as a script: ``python studies/NAME.py [OUT_DIR]``."""
+        """Run a study as a script: ``python studies/NAME.py [OUT_DIR]``.
+
+        Selects matplotlib's non-interactive Agg backend and runs ``run`` on a :class:`Study`
+        named after the script, in quick mode if ``VEHDYN_QUICK`` is set (not ``0`` or
+        ``false``).
+
+        Parameters
+        ----------
+        run : callable
+            The study's ``run(study)``.
+        file : str
+            The script's path (``__file__``): its stem names the study. The output folder is the
+            first command-line argument, else ``out/NAME`` in the current directory.
+        """
         name = Path(file).stem
         out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("out") / name
         import matplotlib
@@ -143,6 +205,25 @@ class Study:
 
 @dataclass
 class StudyOutcome:
+    """What one study run produced (:func:`run_study`), for :func:`write_report`.
+
+    Parameters
+    ----------
+    name : str
+        File stem of the study script (its folder in the report).
+    title : str
+        First line of the script's docstring without its final period (the stem if there is no
+        docstring).
+    description : str
+        The rest of the docstring (paragraphs separated by blank lines), or "".
+    items : list of tuple
+        :attr:`Study.items`: the figures, tables and text the study produced before it ended.
+    seconds : float
+        Wall-clock time of the run [s].
+    error : str, optional
+        The traceback if the study raised, else None.
+    """
+
     name: str
     title: str
     description: str
@@ -152,7 +233,19 @@ class StudyOutcome:
 
 
 def discover_studies(folder: str | Path | None = None) -> list[Path]:
-    """The study scripts ``studies/*.py`` (sorted), from ``folder`` or the project's ``studies/``."""
+    """The study scripts ``studies/*.py`` (sorted), from ``folder`` or the project's ``studies/``.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike, optional
+        Where the scripts are. Default: ``studies/`` beside the package (a checkout), else in the
+        current directory, else the installed package data.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The ``*.py`` files of ``folder`` whose names do not start with an underscore, sorted.
+    """
     if folder is None:
         folder = find_studies_folder()
     return sorted(p for p in Path(folder).glob("*.py") if not p.name.startswith("_"))
@@ -177,7 +270,24 @@ def _load_module(path: Path):
 
 
 def run_study(path: str | Path, out_dir: str | Path, quick: bool = False) -> StudyOutcome:
-    """Run one study script into ``out_dir/NAME``; errors are caught and reported in the outcome."""
+    """Run one study script into ``out_dir/NAME``; errors are caught and reported in the outcome.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The study script (it must define ``run(study)``).
+    out_dir : str or os.PathLike
+        Report folder; the study writes into ``out_dir/NAME`` (created).
+    quick : bool
+        Small grids (:attr:`Study.quick`); default False.
+
+    Returns
+    -------
+    StudyOutcome
+        Title and description from the script's docstring, what the study produced, its run time
+        [s], and the traceback if loading or running the script raised an ``Exception`` (the
+        exception is not propagated; ``KeyboardInterrupt`` and ``SystemExit`` are).
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -216,6 +326,22 @@ def write_report(outcomes: list[StudyOutcome], out_dir: str | Path, *, quick: bo
     """Write ``out_dir/index.html`` from study outcomes (atomically: the old page or the new, whole).
 
     This writes the page only; :func:`build_report` runs studies and publishes a whole report folder.
+
+    Parameters
+    ----------
+    outcomes : list of StudyOutcome
+        The studies, in the order of the page: a table of contents (with each study's run time or
+        "failed"), then per study its description, figures (``NAME/FILE.png``, relative to
+        ``out_dir``), tables, text and any traceback.
+    out_dir : str or os.PathLike
+        Folder of the page; it must exist (the figures are expected in its subfolders).
+    quick : bool
+        Say on the page that the studies ran in quick mode (keyword only).
+
+    Returns
+    -------
+    pathlib.Path
+        ``out_dir / "index.html"``.
     """
     import vehdyn
 
