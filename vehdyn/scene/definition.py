@@ -145,15 +145,56 @@ class Scene:
     outputs : sequence of str
         The signals wanted (e.g. ``"yaw_rate"``, ``"roll_angle"``, ``"sprung_acceleration"``).
     tolerance : float
-        Relative error acceptable on every output, max |x - x_ref| / max |x_ref| (default 0.02).
+        Relative error acceptable on every output, max |x - x_ref| / max |x_ref| [-], in (0, 1)
+        (default 0.02).
     tire : str, optional
         A ``.tir`` file (path or shipped name) replacing the vehicle's tires in the rungs that use
         a tire law.
     seed : int
         Seed of a random (ISO 8608) road.
     time_step : float, optional
-        Output time step [s] of the common time grid; default 0.01 s for handling, 0.002 s with a
-        road.
+        Output time step [s] of the common time grid, > 0 and at most half the duration; default
+        0.01 s for handling, 0.002 s with a road.
+
+    Raises
+    ------
+    ParameterError
+        A field out of its range (``speed``, ``duration`` not finite and > 0, ``tolerance`` not in
+        (0, 1), more than ``MAX_RUN_SAMPLES`` samples), an unknown manoeuvre, road class or road
+        event, a manoeuvre parameter not taken by its manoeuvre or out of its range (module
+        docstring), a manoeuvre or road event that begins after the scene ends, or neither a
+        manoeuvre nor a road; the message names the field (``key``) and the value.
+
+    Examples
+    --------
+    A scene is plain data: :meth:`to_dict` and :meth:`from_dict` (and :meth:`to_toml`,
+    :meth:`from_toml`) take it apart and put it back together.
+
+    >>> from vehdyn.scene import Scene
+    >>> scene = Scene(manoeuvre="step_steer", manoeuvre_parameters={"lateral_acceleration": 2.0},
+    ...               speed=27.8, outputs=["yaw_rate", "lateral_acceleration"])
+    >>> data = scene.to_dict()
+    >>> for key, value in data.items():
+    ...     print(key, "=", value)
+    vehicle = sedan
+    manoeuvre = step_steer
+    manoeuvre_parameters = {'lateral_acceleration': 2.0}
+    speed = 27.8
+    duration = 3.0
+    outputs = ['yaw_rate', 'lateral_acceleration']
+    tolerance = 0.02
+    seed = 0
+    >>> Scene.from_dict(data) == scene
+    True
+
+    A steer signal of :mod:`vehdyn.procedures` goes through as its table of pieces:
+
+    >>> from vehdyn.procedures import step_steer
+    >>> scene = Scene(manoeuvre=step_steer(0.02), speed=25.0)
+    >>> list(scene.to_dict()["manoeuvre"])
+    ['front_steer_angle']
+    >>> Scene.from_dict(scene.to_dict()) == scene
+    True
     """
 
     vehicle: Any = "sedan"
@@ -331,24 +372,75 @@ class Scene:
         return 0.01 if self.road is None else 0.002
 
     def time(self) -> np.ndarray:
-        """The common time grid [s] (every rung's outputs are compared on it)."""
+        """The common time grid (every rung's outputs are compared on it).
+
+        Returns
+        -------
+        ndarray
+            ``0, dt, 2 dt, ..., n dt`` [s] with ``dt`` = :attr:`effective_time_step` and
+            ``n = round(duration / dt)``.
+        """
         n = int(round(self.duration / self.effective_time_step))
         return np.linspace(0.0, n * self.effective_time_step, n + 1)
 
     def load_vehicle(self):
-        """The scene's :class:`~vehdyn.Vehicle`."""
+        """The scene's vehicle.
+
+        Returns
+        -------
+        Vehicle
+            :attr:`vehicle` itself if it is a :class:`~vehdyn.Vehicle`, else the shipped vehicle of
+            that name or the vehicle file at that path (:func:`vehdyn.params.load_vehicle`).
+        """
         from vehdyn.params import Vehicle, load_vehicle
 
         return self.vehicle if isinstance(self.vehicle, Vehicle) else load_vehicle(self.vehicle)
 
     def replace(self, **changes) -> "Scene":
-        """A copy with some fields changed (validated again)."""
+        """A copy with some fields changed (validated again).
+
+        Parameters
+        ----------
+        **changes
+            New values of fields of :class:`Scene` by name.
+
+        Returns
+        -------
+        Scene
+            The new scene (this one is frozen and unchanged).
+
+        Raises
+        ------
+        ParameterError
+            A new value out of its range (as :class:`Scene`).
+        """
         return dataclasses.replace(self, **changes)
 
     # ------------------------------------------------------------------ TOML
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> "Scene":
-        """A scene from a mapping of its fields (as read from TOML)."""
+        """A scene from a mapping of its fields (as read from TOML; the inverse of :meth:`to_dict`).
+
+        Parameters
+        ----------
+        data : mapping
+            ``{field name: value}`` of some fields of :class:`Scene` (the others take their
+            defaults). Besides the values :class:`Scene` takes: ``vehicle`` may be a table of a
+            vehicle's parameters (:meth:`vehdyn.Vehicle.from_dict`), ``manoeuvre`` a table of
+            signals each a number or ``{pieces = [[...], ...]}`` (a
+            :class:`~vehdyn.PiecewiseSignal`), ``road`` a table ``{distance = [...], elevation =
+            [...]}`` [m] (a :class:`~vehdyn.ride.RoadProfile` for both tracks).
+
+        Returns
+        -------
+        Scene
+
+        Raises
+        ------
+        ParameterError
+            ``data`` not a mapping, an unknown field, a signal that is neither a number nor a
+            table of pieces, or a field out of its range (as :class:`Scene`).
+        """
         from vehdyn.params import Vehicle
 
         if not isinstance(data, Mapping):
@@ -374,13 +466,39 @@ class Scene:
 
     @classmethod
     def from_toml(cls, path: str | Path) -> "Scene":
-        """Read a scene from a TOML file (fields as in :class:`Scene`; see the module docstring)."""
+        """Read a scene from a TOML file (fields as in :class:`Scene`; see the module docstring).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The TOML file, as :meth:`to_toml` writes it; its tables are read by :meth:`from_dict`.
+
+        Returns
+        -------
+        Scene
+        """
         from vehdyn.params.base import load_toml
 
         return load_toml(cls, path)
 
     def to_dict(self) -> dict[str, Any]:
-        """The fields as plain data (the inverse of :meth:`from_dict`); None fields are left out."""
+        """The fields as plain data (the inverse of :meth:`from_dict`); None fields are left out.
+
+        Returns
+        -------
+        dict
+            ``{field name: value}`` in the order of the fields, without the None ones and without
+            empty ``manoeuvre_parameters``: a :class:`~vehdyn.Vehicle` as its parameter table, a
+            steer signal or mapping of signals as ``{input name: {"pieces": [[...]]} or number}``,
+            a :class:`~vehdyn.ride.RoadProfile` as ``{"distance": [...], "elevation": [...]}``,
+            tuples as lists.
+
+        Raises
+        ------
+        ParameterError
+            A manoeuvre signal that is neither a :class:`~vehdyn.PiecewiseSignal` nor a number
+            (another callable has no plain-data form).
+        """
         from vehdyn.params import Vehicle
         from vehdyn.road import RoadProfile
 
@@ -406,6 +524,17 @@ class Scene:
 
         Steer signals must be :class:`~vehdyn.PiecewiseSignal` s (the manoeuvre functions return
         them) or numbers; other callables cannot be written (ParameterError).
+
+        Parameters
+        ----------
+        path : str or os.PathLike, optional
+            File to write (atomically); None (the default): only return the text.
+
+        Returns
+        -------
+        str
+            The TOML text: the plain fields of :meth:`to_dict`, then one table per mapping
+            (``[manoeuvre_parameters]``, ``[manoeuvre]``, ``[road]``, ``[vehicle]``).
         """
         data = self.to_dict()
         lines, tables = [], []
