@@ -32,13 +32,17 @@ class Drive:
     inputs : dict
         Input name -> callable of t or number (steer ``front_steer_angle`` [rad] and any other
         input of a user's mapping).
-    braking : tuple of callable or None
-        (front, rear) axle longitudinal force programmes [N] (negative braking) of a braking
-        manoeuvre.
+    braking : tuple or None
+        ``(front, rear, start)`` of a braking manoeuvre: the front and rear axle longitudinal
+        force programmes (callables of t [s], [N], negative braking; zero before ``start``) and the
+        brake onset ``start`` [s].
     initial_turn : float or None
         Steady lateral acceleration [m/s^2] the scene starts in (braking in a turn).
     track : DoubleLaneChangeTrack or None
         The ISO 3888-1 track with the driver's parameters in ``driver``.
+    driver : dict
+        ``{"preview_time": [s], "lag": [s]}`` of the ISO 3888-1 preview driver (defaults 0.8 s,
+        0.1 s); empty for other manoeuvres.
     road : tuple of (distance, left, right) or None
         Road profile of each track [m] on a common distance grid (front axle at distance V t).
     built : dict
@@ -58,7 +62,20 @@ class Drive:
     built: dict = field(default_factory=dict)
 
     def once(self, key, make: Callable):
-        """``make()`` the first time ``key`` is asked for, the same object after (see ``built``)."""
+        """``make()`` the first time ``key`` is asked for, the same object after (see ``built``).
+
+        Parameters
+        ----------
+        key : hashable
+            The builder's name for what ``make`` builds (e.g. a model class and its options).
+        make : callable
+            Called without arguments, once per key and Drive.
+
+        Returns
+        -------
+        object
+            What ``make()`` returned the first time.
+        """
         if key not in self.built:
             self.built[key] = make()
         return self.built[key]
@@ -101,7 +118,35 @@ def _constant(value) -> Callable:
 
 
 def drive_of(scene) -> Drive:
-    """The :class:`Drive` of ``scene`` (raises ParameterError for inconsistent parameters)."""
+    """The :class:`Drive` of ``scene``: its vehicle, time grid and inputs, made once per scene.
+
+    A named manoeuvre becomes its signals here: a steer given as ``lateral_acceleration`` is sized
+    by the linear bicycle's steady-state gain at the scene's speed (default 2 m/s^2 for the steps
+    and sines); ``lane_change`` is one period of a sine at f = sqrt(a / (2 pi offset));
+    ``iso3888_1`` a track for a vehicle 0.2 m wider than its wider axle track with a run-in of
+    max(30 m, 1.5 s at the speed); ``iso4138_circle`` a ramp from ``start`` reaching at the end of
+    the scene the steer of ``lateral_acceleration`` (default mu g); the braking manoeuvres axle
+    forces m ``deceleration`` split by ``brake_front_share``.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its fields already checked by :class:`~vehdyn.scene.Scene`).
+
+    Returns
+    -------
+    Drive
+        The vehicle loaded, :meth:`Scene.time`, the input signals, the braking programme,
+        initial turn, track and driver as the manoeuvre needs, and the road profiles of both
+        tracks [m] over speed x duration + wheelbase + 10 m (synthesized roads and events on a
+        0.02 m and 0.01 m grid).
+
+    Raises
+    ------
+    ParameterError
+        A sized steer at or above the vehicle's critical speed (no steady-state gain), road event
+        parameters its function does not take, or other inconsistent manoeuvre parameters.
+    """
     from vehdyn import procedures as mv
 
     vehicle = scene.load_vehicle()

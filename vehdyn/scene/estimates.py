@@ -265,7 +265,33 @@ def estimated_cost(rung_name: str, duration: float, *, closed_loop: bool = False
 
 
 def relative_error(x, x_ref) -> float:
-    """max |x - x_ref| / max |x_ref| on a common time grid (0 when both are zero, inf when only x_ref is)."""
+    r"""max |x - x_ref| / max |x_ref| on a common time grid (0 when both are zero, inf when only x_ref is).
+
+    .. math::
+
+        e = \frac{\max_k |x_k - x_{\mathrm{ref},k}|}{\max_k |x_{\mathrm{ref},k}|}
+
+    Parameters
+    ----------
+    x : array_like
+        A signal on the common time grid [its unit].
+    x_ref : array_like
+        The reference signal on the same grid (broadcastable with ``x``) [the same unit].
+
+    Returns
+    -------
+    float
+        The relative error e [-]: 0 when both are zero (or empty), ``inf`` when only the reference
+        is zero.
+
+    Examples
+    --------
+    >>> from vehdyn.scene import relative_error
+    >>> round(relative_error([0.0, 1.0, 2.1], [0.0, 1.0, 2.0]), 12)    # 0.1 / 2
+    0.05
+    >>> relative_error([0.0, 0.1], [0.0, 0.0])                          # only the reference is zero
+    inf
+    """
     x, x_ref = np.asarray(x, dtype=float), np.asarray(x_ref, dtype=float)
     scale = float(np.max(np.abs(x_ref))) if x_ref.size else 0.0
     diff = float(np.max(np.abs(x - x_ref))) if x.size else 0.0
@@ -275,7 +301,21 @@ def relative_error(x, x_ref) -> float:
 
 
 def relative_errors(signals: dict, reference: dict) -> dict:
-    """:func:`relative_error` per output name."""
+    """:func:`relative_error` per output name.
+
+    Parameters
+    ----------
+    signals : mapping of str to array_like
+        Signals by name [their units]; it must hold every name of ``reference``.
+    reference : mapping of str to array_like
+        The reference signals by name, on the same time grid [the same units].
+
+    Returns
+    -------
+    dict of str to float
+        ``{name: relative_error(signals[name], reference[name])}`` [-] for each name of
+        ``reference``, in its order.
+    """
     return {name: relative_error(signals[name], reference[name]) for name in reference}
 
 
@@ -493,6 +533,26 @@ def lift_off_error(lift: float, speed: float, asymmetry: float, outputs) -> dict
     ``lift_off_floor + lift_off_gain * lift * speed`` per output (``lift`` from :func:`tire_lift`,
     ``speed`` [m/s]), plus ``lift_off_roll_gain * asymmetry`` (:func:`road_asymmetry`) at an output
     that sees the body's roll (not :func:`is_body_output`).
+
+    Parameters
+    ----------
+    lift : float
+        Largest tire tension relative to the static wheel load [-] (:func:`tire_lift`; 0 without
+        lift-off).
+    speed : float
+        Forward speed [m/s].
+    asymmetry : float
+        Left-right difference of the road [-] (:func:`road_asymmetry`; 0 for identical tracks).
+    outputs : iterable of str
+        The scene's output names.
+
+    Returns
+    -------
+    dict of str to float
+        Estimated relative error [-] per output name: ``THRESHOLDS["lift_off_floor"]`` +
+        ``THRESHOLDS["lift_off_gain"]`` x ``lift`` x ``speed`` [s/m], plus
+        ``THRESHOLDS["lift_off_roll_gain"]`` x ``asymmetry`` for an output that is not a heave or
+        pitch output of the body.
     """
     base = THRESHOLDS["lift_off_floor"] + THRESHOLDS["lift_off_gain"] * lift * speed
     roll = THRESHOLDS["lift_off_roll_gain"] * asymmetry

@@ -16,7 +16,57 @@ _HANDLING = ("yaw_rate", "lateral_acceleration")
 
 
 def standard_scenes(vehicle="sedan", *, tolerance: float = 0.02) -> dict[str, Scene]:
-    """The standard scenes for ``vehicle`` (a name or a Vehicle), by name."""
+    """The standard scenes for ``vehicle`` (a name or a Vehicle), by name.
+
+    Parameters
+    ----------
+    vehicle : Vehicle or str
+        The vehicle of every scene: a :class:`~vehdyn.Vehicle`, the name of a shipped one or a
+        vehicle file (default ``"sedan"``).
+    tolerance : float
+        Relative error acceptable on every output [-], in (0, 1) (default 0.02; see
+        :class:`~vehdyn.scene.Scene`).
+
+    Returns
+    -------
+    dict of str to Scene
+        Thirteen scenes (module docstring), in this order: handling ``gentle_step_steer`` (1 m/s^2)
+        and ``limit_step_steer`` (8 m/s^2) at 22.2 m/s, ``sine_with_dwell`` (5 m/s^2, 22.2 m/s),
+        ``lane_change_60`` and ``lane_change_100`` (16.7 and 27.8 m/s), ``circle_to_limit``
+        (ISO 4138 ramp to mu g at 16.7 m/s), ``braking_in_turn`` (4 m/s^2 turn, 4 m/s^2 braking,
+        22.2 m/s), all with outputs ``yaw_rate`` and ``lateral_acceleration``; ride
+        ``smooth_road_54``, ``smooth_road_108`` (ISO 8608 class B), ``rough_road_54``,
+        ``rough_road_108`` (class D) at 15 and 30 m/s, ``pothole`` (4 cm deep, 0.6 m long, left
+        wheels, 10 m/s), with output ``sprung_acceleration``; combined ``cornering_rough_road``
+        (a 4 m/s^2 step steer on a class D road at 20 m/s).
+
+    Raises
+    ------
+    ParameterError
+        A ``vehicle`` that is neither a Vehicle nor a name, or a ``tolerance`` outside (0, 1).
+
+    Examples
+    --------
+    >>> from vehdyn.scene import standard_scenes
+    >>> scenes = standard_scenes()
+    >>> for name, scene in scenes.items():
+    ...     print(f"{name:21s} {scene.kind:8s} {scene.speed:5.1f} m/s {scene.duration:3.1f} s")
+    gentle_step_steer     handling  22.2 m/s 3.0 s
+    limit_step_steer      handling  22.2 m/s 3.0 s
+    sine_with_dwell       handling  22.2 m/s 4.5 s
+    lane_change_60        handling  16.7 m/s 6.0 s
+    lane_change_100       handling  27.8 m/s 4.5 s
+    circle_to_limit       handling  16.7 m/s 8.0 s
+    braking_in_turn       handling  22.2 m/s 3.0 s
+    smooth_road_54        ride      15.0 m/s 4.0 s
+    smooth_road_108       ride      30.0 m/s 4.0 s
+    rough_road_54         ride      15.0 m/s 4.0 s
+    rough_road_108        ride      30.0 m/s 4.0 s
+    pothole               ride      10.0 m/s 2.0 s
+    cornering_rough_road  combined  20.0 m/s 3.0 s
+    >>> standard_scenes(tolerance=0.05)["pothole"].tolerance
+    0.05
+    """
     S = lambda **kw: Scene(vehicle=vehicle, tolerance=tolerance, **kw)  # noqa: E731
     return {
         "gentle_step_steer": S(manoeuvre="step_steer", manoeuvre_parameters={"lateral_acceleration": 1.0},
