@@ -29,7 +29,29 @@ __all__ = ["Plan", "RungAssessment", "SceneResult", "plan", "run", "ladder", "pl
 
 @dataclass
 class RungAssessment:
-    """One row of a :class:`Plan`."""
+    """One row of a :class:`Plan`: whether a rung can answer the scene, at what cost and error.
+
+    Parameters
+    ----------
+    rung : Rung
+        The rung assessed.
+    admissible : bool
+        Whether it can answer the scene (it builds for the vehicle and scene, has every output
+        and, for a scene with longitudinal forces, longitudinal dynamics).
+    reason : str
+        Why not, or (admissible) how its estimated error compares with the tolerance and what it
+        ignores; "" until :func:`plan` fills it.
+    setup : Setup, optional
+        What the rung built for the scene (None where building it failed).
+    estimated_cost_s : float
+        Estimated wall time of the run [s] (from the measured tables of
+        :mod:`vehdyn.scene.estimates`, never this machine's timing); NaN until estimated.
+    errors : dict of str to float
+        Estimated relative error against the reference rung [-] per scene output (empty until
+        estimated).
+    outputs : dict of str to str
+        Scene output name -> the model output that answers it.
+    """
 
     rung: Rung
     admissible: bool
@@ -59,7 +81,14 @@ class Plan:
     needs : dict
         Phenomena the scene needs -> why.
     lateral_utilization : float or None
-        Peak lateral acceleration of the linear probe over mu g.
+        Peak lateral acceleration of the linear probe over mu g [-] (without a linear handling
+        probe, for a braking scene: the combined demand sqrt(a_x^2 + a_y^2) / (mu g)); None when
+        neither applies.
+    drive : Drive
+        The scene's inputs (:func:`~vehdyn.scene.drive.drive_of`), shared by the rungs.
+    probes : dict of str to SimulationResult
+        The linear rungs run while planning (the linear handling rungs, and on a road the linear
+        ride rungs), by rung name.
     """
 
     scene: Any
@@ -77,7 +106,16 @@ class Plan:
         return self.chosen.rung.model_class()
 
     def to_frame(self):
-        """pandas DataFrame, a row per rung: model, rung, admissible, estimated_cost_s, estimated_error, reason."""
+        """The plan as a table.
+
+        Returns
+        -------
+        pandas.DataFrame
+            A row per rung in ladder order, the columns ``model`` (class name), ``rung``,
+            ``ladder``, ``admissible``, ``estimated_cost_s`` [s], ``estimated_error`` [-] (NaN
+            where not admissible), ``chosen``, ``reason``; the units in ``attrs["units"]``, the
+            scene's tolerance in ``attrs["tolerance"]``.
+        """
         import pandas as pd
 
         rows = [{"model": (r.rung.model.split(":")[1]), "rung": r.rung.name, "ladder": r.rung.ladder,
@@ -107,7 +145,25 @@ class Plan:
         return f"<Plan: {self.chosen.rung.name} for {list(self.scene.outputs)} (reference {self.top.rung.name})>"
 
     def row(self, name: str) -> RungAssessment:
-        """The row of rung ``name`` (rung name or model class name; the first admissible match)."""
+        """The row of rung ``name`` (rung name or model class name; the first admissible match).
+
+        Parameters
+        ----------
+        name : str
+            A rung's name (``"LinearBicycle+lag"``) or, if no rung has that name, a model class
+            name (``"SingleTrack"``).
+
+        Returns
+        -------
+        RungAssessment
+            The first admissible row that matches.
+
+        Raises
+        ------
+        ParameterError
+            ``key="model"``: no rung of that name (the message lists them), or none of the rungs
+            that match can answer the scene (the message gives the reason).
+        """
         matches = [r for r in self.rows if name == r.rung.name] \
             or [r for r in self.rows if name == r.rung.model.split(":")[1]]  # a rung's name first
         admissible = [r for r in matches if r.admissible]
@@ -564,7 +620,15 @@ class SceneResult:
         return f"BEYOND TOLERANCE: verified {worst:.2e} > {self.tolerance:g}"
 
     def headline(self) -> str:
-        """Peak |value| of each output with its estimated (and verified) error, and the verdict."""
+        """Peak |value| of each output with its estimated (and verified) error, and the verdict.
+
+        Returns
+        -------
+        str
+            Lines: the rung, its model class and integration wall time [s]; per output its peak
+            |value| with unit, estimated error and (``verify=True``) verified error against the
+            reference; then the verdict (within or beyond the tolerance, or the escalation).
+        """
         lines = [f"{self.rung} ({type(self.model).__name__}): {self.result.wall_time:.3g} s of integration"]
         for name, x in self.outputs.items():
             unit = self.result.unit(self.signals[name]) if name in self.signals else ""
@@ -783,7 +847,8 @@ def plot_ladder(frame, *, ax=None, title: str | None = None, error_floor: float 
     ax : matplotlib Axes, optional
     title : str, optional
     error_floor : float
-        Errors below it (the reference's zero) are drawn at it.
+        Errors below it (the reference's zero) are drawn at it [-], > 0 (default 1e-7; both axes
+        are logarithmic).
 
     Returns
     -------
