@@ -100,6 +100,9 @@ class Rung:
         For a linear rung: the plan runs it while planning to estimate the others' errors (the
         linear models of a few states cost about a millisecond); False for a rung whose run costs
         more (a trim and a linearization).
+    options : dict
+        Keyword arguments passed to the builder, ``build(drive, **options)`` (default none; e.g.
+        ``{"tire_lag": True}``), so that one builder serves several rungs.
     """
 
     name: str
@@ -113,7 +116,14 @@ class Rung:
     probe: bool = True
 
     def model_class(self):
-        """The model class, or None when its module is not importable."""
+        """The model class, or None when its module is not importable.
+
+        Returns
+        -------
+        type or None
+            The class named by :attr:`model` (``"module:Class"``), imported now; None when the
+            module cannot be imported or lacks the class.
+        """
         module, _, attr = self.model.partition(":")
         try:
             return getattr(importlib.import_module(module), attr)
@@ -125,7 +135,20 @@ class Rung:
         return self.model_class() is not None
 
     def phenomena(self, setup: Setup | None = None) -> frozenset:
-        """What the rung represents: the instance's ``phenomena`` when built, else the class's."""
+        """What the rung represents: the instance's ``phenomena`` when built, else the class's.
+
+        Parameters
+        ----------
+        setup : Setup, optional
+            The rung built for a scene; its own ``phenomena`` (where given) come first, then its
+            model instance's.
+
+        Returns
+        -------
+        frozenset of str
+            The phenomena (``"lateral"``, ``"yaw"``, ``"roll"``, ``"longitudinal"``, ...); empty
+            when neither the setup nor the model class names any (or the class is not importable).
+        """
         if setup is not None and setup.phenomena is not None:
             return frozenset(setup.phenomena)
         if setup is not None and getattr(setup.model, "phenomena", None) is not None:
@@ -133,6 +156,24 @@ class Rung:
         return frozenset(getattr(self.model_class(), "phenomena", frozenset()))
 
     def setup(self, drive) -> Setup:
+        """Build the rung for a scene: ``build(drive, **options)``.
+
+        Parameters
+        ----------
+        drive : Drive
+            The scene's inputs (:func:`~vehdyn.scene.drive.drive_of`).
+
+        Returns
+        -------
+        Setup
+            The model built for the scene and its ``run()``.
+
+        Raises
+        ------
+        NotAdmissible
+            The rung cannot represent the scene (the message is the reason), also when a builder
+            named ``"module:function"`` cannot be imported.
+        """
         build = self.build
         if isinstance(build, str):
             module, _, attr = build.partition(":")
@@ -147,7 +188,23 @@ RUNGS: list[Rung] = []
 
 
 def register_rung(rung: Rung) -> Rung:
-    """Add ``rung`` to the ladder (replacing a rung of the same name)."""
+    """Add ``rung`` to the ladder (replacing a rung of the same name).
+
+    Parameters
+    ----------
+    rung : Rung
+        The entry; its ``ladder`` must be ``"handling"`` or ``"ride"``.
+
+    Returns
+    -------
+    Rung
+        ``rung`` itself (now last in :data:`RUNGS`).
+
+    Raises
+    ------
+    ParameterError
+        ``key="ladder"``: a ladder other than ``"handling"`` or ``"ride"``.
+    """
     if rung.ladder not in ("handling", "ride"):
         raise ParameterError(f"Rung.ladder must be 'handling' or 'ride', got {rung.ladder!r}", key="ladder",
                              value=rung.ladder)
@@ -156,7 +213,18 @@ def register_rung(rung: Rung) -> Rung:
 
 
 def rungs(*, available_only: bool = True) -> list[Rung]:
-    """The registered rungs in ladder order (handling, then ride; by fidelity)."""
+    """The registered rungs in ladder order (handling, then ride; by fidelity).
+
+    Parameters
+    ----------
+    available_only : bool
+        Leave out the rungs whose model class cannot be imported (default True).
+
+    Returns
+    -------
+    list of Rung
+        The rungs of the handling ladder by increasing fidelity, then those of the ride ladder.
+    """
     out = [r for r in RUNGS if r.available or not available_only]
     return sorted(out, key=lambda r: (r.ladder != "handling", r.fidelity))
 
@@ -177,6 +245,22 @@ class SteadyStateAlgebra:
     y(t) = G(u) delta(t) for the yaw rate, lateral acceleration, sideslip and path curvature
     (:func:`vehdyn.handling.steady_state_gains`; Gillespie 1992, ch. 6). Exact for a
     steer that changes slowly against the yaw mode; no states.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle whose linear bicycle gives the gains.
+    speed : float
+        Forward speed [m/s], finite and >= 0 (as :func:`vehdyn.handling.steady_state_gains`
+        takes it; an oversteering vehicle's gains are finite below its critical speed only).
+
+    Attributes
+    ----------
+    gains : dict of str to float
+        Steady-state gain per unit front steer of ``yaw_rate`` [1/s], ``lateral_acceleration``
+        [m/s^2/rad], ``sideslip_angle`` [-] and ``path_curvature`` [1/(m rad)].
+    output_names : tuple of str
+        The keys of ``gains``.
     """
 
     phenomena = frozenset({"lateral", "yaw"})
@@ -198,6 +282,21 @@ class SteadyStateAlgebra:
         return f"<SteadyStateAlgebra at {self.speed:g} m/s>"
 
     def evaluate(self, time, steer):
+        """The outputs at ``time``: each gain times the steer at that instant.
+
+        Parameters
+        ----------
+        time : ndarray
+            The time grid [s].
+        steer : callable
+            ``steer(t)``, the front steer angle [rad], vectorized over ``t``.
+
+        Returns
+        -------
+        SimulationResult
+            The outputs of :attr:`output_names` on ``time``, no states or inputs, method
+            ``"algebraic"``, the evaluation's wall time.
+        """
         start = _time.perf_counter()
         delta = np.asarray(steer(time), dtype=float)
         outputs = np.array([gain * delta for gain in self.gains.values()])
