@@ -132,6 +132,18 @@ def road_inputs(drive) -> dict:
 
     Front wheels at distance V t on their track's profile, rear wheels a wheelbase behind (V the
     scene's speed), sampled by :meth:`vehdyn.ride.RoadProfile.road_inputs` as for the ride rungs.
+
+    Parameters
+    ----------
+    drive : vehdyn.scene.drive.Drive
+        A scene's inputs with a road (``drive.road`` = (distance, left, right) [m]); its
+        vehicle's wheelbase, the scene's speed and ``drive.time``.
+
+    Returns
+    -------
+    dict of str to ndarray
+        ``road_displacement<sfx>`` [m] and ``road_velocity<sfx>`` [m/s] on ``drive.time`` for the
+        four corners (``sfx`` ``_front_left``, ``_rear_left``, ``_front_right``, ``_rear_right``).
     """
     from vehdyn.road import RoadProfile
 
@@ -164,8 +176,9 @@ def scene_inputs(drive, model, trim_inputs, road=None) -> dict:
     drive : vehdyn.scene.drive.Drive
     model : FullVehicle
     trim_inputs : array_like
-        The input vector of the starting trim (drive torques that hold the speed, the steer of a
-        steady turn).
+        The input vector of the starting trim, in the order of ``model.input_names`` [each
+        input's unit: N*m for the drive torques that hold the speed, rad for the steer of a steady
+        turn]; the nonzero entries become constant inputs.
     road : dict, optional
         The corners' road inputs (:func:`road_inputs`).
 
@@ -336,6 +349,13 @@ def linearized_setup(drive, ladder: str = "handling"):
     drive : vehdyn.scene.drive.Drive
     ladder : {"handling", "ride"}
         As :func:`ladder_setup`.
+
+    Returns
+    -------
+    Setup
+        ``model`` the :class:`FullVehicle`, ``run()`` the linearized run
+        (:func:`linearized_run`: trim, Jacobian, simulation) on ``drive.time``, ``phenomena`` the
+        model's without ``tire_saturation`` and ``wheel_lift``.
 
     Raises
     ------
