@@ -357,6 +357,26 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the ``vehdyn`` command (module docstring) and return its exit status.
+
+    Errors the library reports (:class:`~vehdyn.errors.ParameterError`,
+    :class:`~vehdyn.errors.VehdynError`, an ``OSError``) and usage errors are printed as one line
+    ``vehdyn COMMAND: what is wrong`` on stderr, without a traceback (a ``ParameterError`` about
+    ``out_dir`` names the option ``--out``).
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``vehdyn`` (default: ``sys.argv[1:]``, as :mod:`argparse` reads it).
+
+    Returns
+    -------
+    int
+        The exit status: 0 on success (also for no command: the help is printed), the command's
+        own status (1 if a study failed), 2 for a usage or input error, 130 if interrupted
+        (Ctrl-C). An argument :mod:`argparse` rejects exits with status 2 (``SystemExit``), as
+        ``--help`` exits with 0.
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "command", None):

@@ -22,7 +22,8 @@ class StageResult:
     skipped : str or None
         Why the stage did not run (missing columns, no points), else None.
     coefficients : dict of str to float
-        The coefficients fitted, with their values (SI: the coefficient record's units).
+        The coefficients fitted, with their values [each in its unit of the coefficient record,
+        SI; most Magic Formula coefficients are dimensionless, -].
     steps : tuple of str
         Steps run (``"nominal"``, ``"load"``, ``"camber"``, ``"pressure"``).
     outputs : tuple of str
