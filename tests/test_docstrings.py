@@ -160,12 +160,15 @@ def _returns_a_value(function) -> bool:
     except (OSError, TypeError, SyntaxError):
         return False
     top = tree.body[0]
-    for node in ast.walk(top):
-        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)) and node is not top:
+    pending = list(ast.iter_child_nodes(top))
+    while pending:  # the function's own statements: a nested function's returns are not its own
+        node = pending.pop()
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda, ast.ClassDef)):
             continue
         if isinstance(node, ast.Return) and node.value is not None and not (
                 isinstance(node.value, ast.Constant) and node.value.value is None):
             return True
+        pending.extend(ast.iter_child_nodes(node))
     return False
 
 
@@ -225,7 +228,21 @@ def test_the_checker_finds_what_is_missing():
         """
         return speed * mass
 
+    def checks(speed):
+        """A function that returns nothing; its helper returns a value.
+
+        Parameters
+        ----------
+        speed : float
+            Forward speed [m/s].
+        """
+        def positive(value):
+            return value > 0
+
+        assert positive(speed)
+
     assert problems_of("documented", documented) == []
+    assert problems_of("checks", checks) == []
     assert problems_of("undocumented", undocumented) == [
         "parameter 'speed' has no unit in brackets", "parameter 'mass' undocumented", "no Returns section"]
 

@@ -152,7 +152,7 @@ def to_si(name, values, unit):
     name : str
         Canonical column (:data:`CANONICAL_COLUMNS`).
     values : array_like
-        The values, in ``unit``.
+        The values [``unit``].
     unit : str
         A unit of the column's quantity in :data:`UNIT_FACTORS` (case and spaces ignored).
 

@@ -19,7 +19,7 @@ def canonical_columns(data, units=None):
     Parameters
     ----------
     data : pandas.DataFrame or mapping of str to array_like
-        Columns by canonical name; others are ignored.
+        Columns by canonical name [SI, or the unit given in ``units``]; others are ignored.
     units : dict of str to str, optional
         Unit of a column that is not SI (``{"alpha": "deg"}``; names of
         :data:`vehdyn.tire.tire_data.UNIT_FACTORS`); converted here. A column named here, or in
@@ -79,7 +79,7 @@ def drop_nonfinite(columns, messages):
     Parameters
     ----------
     columns : dict of str to ndarray
-        Columns of one length (with ``fz``).
+        Columns of one length (with ``fz``) [SI units of each column].
     messages : list of str
         Receives the count of rows dropped, if any.
 

@@ -121,9 +121,9 @@ def cross_validate(ctx, c, full, row_weights, stages, channel_rows, fit_stage):
     c : MFCoefficients
         The full fit's coefficients.
     full : dict of str to ndarray
-        The fit's data.
+        The fit's data, canonical columns [SI].
     row_weights : ndarray or None
-        The fit's row weights.
+        The fit's row weights [-].
     stages : sequence of str
         The stages the fit ran (not skipped).
     channel_rows : dict of str to ndarray of bool

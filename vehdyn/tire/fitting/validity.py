@@ -537,7 +537,8 @@ def check_validity(tire, grid=None, *, data=None, signs=None):
     data : pandas.DataFrame or mapping, optional
         Measured data whose span makes the grid (when ``grid`` is None).
     signs : (float, float), optional
-        Signs the slip and cornering stiffness must keep; default those of PKX1 and PKY1.
+        Signs [-] (+1 or -1) the slip and cornering stiffness must keep; default those of PKX1 and
+        PKY1.
 
     Returns
     -------
