@@ -137,7 +137,8 @@ class FullVehicle(Model):
     vehicle : Vehicle
         Masses and inertias (sprung tensor with I_xz; ``mass.sprung_yaw_inertia`` or derived),
         geometry (roll-centre heights), suspension (wheel rates, dampers, anti-roll bars, roll
-        steer, optional camber gains and anti-dive/anti-squat), tires (vertical stiffness and
+        steer, optional camber gains and anti-dive/anti-squat, the unsprung transfer fractions;
+        compliance steer is refused: not carried yet), tires (vertical stiffness and
         damping, rolling radius, wheel inertia, relaxation lengths, law), steering (Ackermann
         fraction), aero (drag, lift, the crosswind's side-force slope and
         centre of pressure, as the handling models).
@@ -271,6 +272,14 @@ class FullVehicle(Model):
                             ("brake_regularization_speed", brake_regularization_speed), ("gravity", gravity)):
             if not is_number(value) or not (np.isfinite(value) and value > 0):
                 raise ParameterError(f"{name} must be a finite number > 0, got {value!r}", key=name, value=value)
+        for axle in _AXLES:  # not carried yet: refused rather than dropped
+            for kind in ("lateral_force", "aligning_moment"):
+                key = f"{axle}_{kind}_compliance_steer"
+                if getattr(vehicle.suspension, key) != 0.0:
+                    raise ParameterError(f"suspension.{key} = {getattr(vehicle.suspension, key):g}: the full vehicle "
+                                         f"does not carry compliance steer yet (LinearBicycle does; "
+                                         f"vehdyn.handling.understeer_budget gives its understeer term)",
+                                         key=f"suspension.{key}", value=getattr(vehicle.suspension, key))
         self.vehicle = vehicle
         self.tire_lag = bool(tire_lag)
         self.gravity = float(gravity)
