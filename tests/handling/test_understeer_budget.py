@@ -48,7 +48,7 @@ def test_rows_are_their_formulas(sedan):
     tires = _linear_tires(vehicle, camber=(-1500.0, -1200.0), trails=(0.04, 0.035))
     budget = understeer_budget(vehicle, tires=tires)
     rad = budget["rad_per_g"]
-    s, t = vehicle.suspension, vehicle.tires
+    t = vehicle.tires
     W_f, W_r = vehicle.static_axle_loads()
     C_f, C_r = t.front_cornering_stiffness, t.rear_cornering_stiffness
     assert rad["weight_distribution"] == pytest.approx(W_f / C_f - W_r / C_r, rel=1e-12)
@@ -91,11 +91,12 @@ def test_road_wheel_rows_sum_to_the_understeer_gradient(name, terms):
         assert total == pytest.approx(budget.loc["weight_distribution", "deg_per_g"], rel=1e-15)
 
 
-def _bicycle_gradient(model, speed):
+def _bicycle_gradient(model, speed, wheelbase=None):
     dc = model.D - model.C @ np.linalg.solve(model.A, model.B)
     j = model.index("front_steer_angle", "inputs")
     ay, r = dc[model.index("lateral_acceleration", "outputs"), j], dc[model.index("yaw_rate", "outputs"), j]
-    return (1.0 - model.bicycle_parameters.wheelbase * r / speed) / ay * GRAVITY * DEG
+    wheelbase = model.bicycle_parameters.wheelbase if wheelbase is None else wheelbase
+    return (1.0 - wheelbase * r / speed) / ay * GRAVITY * DEG
 
 
 @pytest.mark.parametrize("lag", [0.0, 0.4])
@@ -189,3 +190,29 @@ def test_plot_understeer_budget(sedan):
     assert len(ax.patches) == len(budget)
     widths = [p.get_width() for p in ax.patches]
     np.testing.assert_allclose(sorted(widths), sorted(budget["deg_per_g"]), rtol=1e-12)
+
+
+def test_lateral_yaw_roll_carries_compliance_and_roll_steer(sedan):
+    """LateralYawRoll with compliance and roll steer: its DC gradient is the bicycle's with C_eff plus
+    (eps_f - eps_r) times its own roll gradient (Segel's m_s h / (K_phi - m_s g h), not the full
+    vehicle's: the budget's roll-steer row differs by that ratio)."""
+    from vehdyn.handling import LateralYawRoll
+
+    vehicle = sedan.replace(suspension__front_lateral_force_compliance_steer=-1.0e-6,
+                            suspension__rear_lateral_force_compliance_steer=0.5e-6,
+                            suspension__front_roll_steer=0.08, suspension__rear_roll_steer=-0.04)
+    model = LateralYawRoll(vehicle, 20.0)
+    measured = _bicycle_gradient(model, 20.0, vehicle.wheelbase)
+    budget = understeer_budget(vehicle)["deg_per_g"]
+    own_roll = model.parameters.roll_gradient * GRAVITY * DEG
+    expected = (budget["weight_distribution"] + budget["lateral_force_compliance_steer"]
+                + (0.08 + 0.04) * own_roll)
+    assert measured == pytest.approx(expected, rel=1e-10)
+    assert measured == pytest.approx(np.rad2deg(model.understeer_gradient() * GRAVITY), rel=1e-10)
+
+
+def test_lateral_yaw_roll_lag_refuses_compliance(sedan):
+    from vehdyn.handling import LateralYawRollLag
+
+    with pytest.raises(ParameterError, match="rear_lateral_force_compliance_steer"):
+        LateralYawRollLag(sedan.replace(suspension__rear_lateral_force_compliance_steer=5e-7), 20.0)

@@ -12,7 +12,7 @@ CARRIES = {
     "SteadyState": {"compliance_steer"},
     "LinearBicycle": {"compliance_steer"},
     "LinearBicycle+lag": {"compliance_steer"},
-    "LateralYawRoll": {"roll_steer"},
+    "LateralYawRoll": {"roll_steer", "compliance_steer"},
     "LateralYawRoll+lag": {"roll_steer"},
     "SingleTrack(linear tires)": set(),
     "SingleTrack": set(),

@@ -307,7 +307,7 @@ def build_linear_bicycle(drive, tire_lag=False) -> Setup:
 def build_lateral_yaw_roll(drive) -> Setup:
     from vehdyn.handling.lateral_yaw_roll import LateralYawRoll
 
-    refuse_dropped_terms(drive.vehicle, ("roll_steer",))
+    refuse_dropped_terms(drive.vehicle, ("roll_steer", "compliance_steer"))
     return _linear_setup(LateralYawRoll(drive.vehicle, drive.scene.speed), drive)
 
 
