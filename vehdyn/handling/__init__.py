@@ -35,8 +35,8 @@ from vehdyn.handling.nonlinear_steady_state import (
     steady_state_cornering,
 )
 from vehdyn.handling.single_track import SingleTrack, SingleTrackParameters
-from vehdyn.handling.steady_roll import SteadyRoll, steady_roll, unsprung_cg_height
-from vehdyn.handling.understeer_budget import plot_understeer_budget, understeer_budget, vehicle_roll_understeer
+from vehdyn.handling.roll_balance import SteadyRoll, steady_roll, unsprung_cg_height
+from vehdyn.handling.understeer_terms import plot_understeer_budget, understeer_budget, vehicle_roll_understeer
 from vehdyn.handling.steady_state import (
     AckermannWheelAngles,
     HandlingDiagram,

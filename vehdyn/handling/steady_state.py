@@ -92,7 +92,7 @@ def understeer_gradient(vehicle_or_bicycle) -> float:
     """
     K = float(bicycle_parameters(vehicle_or_bicycle).understeer_gradient)
     if isinstance(vehicle_or_bicycle, Vehicle):
-        from vehdyn.handling.understeer_budget import vehicle_roll_understeer
+        from vehdyn.handling.understeer_terms import vehicle_roll_understeer
 
         K += sum(vehicle_roll_understeer(vehicle_or_bicycle, GRAVITY)) / GRAVITY
     return K

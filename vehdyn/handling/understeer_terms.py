@@ -67,7 +67,7 @@ def vehicle_roll_understeer(vehicle, gravity: float = GRAVITY, tires=None) -> tu
         (roll steer, camber thrust) [rad/g].
     """
     from vehdyn.handling.axle_tires import camber_stiffness
-    from vehdyn.handling.steady_roll import steady_roll
+    from vehdyn.handling.roll_balance import steady_roll
 
     s, G = vehicle.suspension, vehicle.geometry
     gains = (s.front_camber_gain, s.rear_camber_gain)
