@@ -147,10 +147,14 @@ THRESHOLDS = {
     "lift_off_floor": 2e-3,
     "lift_off_gain": 3.3e-4,
     # the same rung at an output that sees the body's roll and pitch at a corner, per unit road
-    # asymmetry: the front-left corner in the one-sided pothole (asymmetry 1) is 0.0071 / 0.0070 /
-    # 0.0093 off, 0.003-0.005 above the CG's (0.031 / 0.038 / 0.048 without the longitudinal slip
-    # and the wheels' spin: a driven wheel spins up in the air and lands with ~1 kN of F_x)
-    "lift_off_roll_gain": 0.004,
+    # asymmetry: the front-left corner in the one-sided pothole (asymmetry 1). Re-measured with the
+    # full vehicle's unsprung masses' lateral inertia taken by the tires (issue 28, lambda = 1, the
+    # default; the full car has no such coupling): sedan / compact / van 0.0324 / 0.0304 / 0.0243
+    # off, 0.021-0.029 above the CG's (0.0170 / 0.0171 / 0.0138 with lambda = 0, the treatment
+    # before; 0.031 / 0.038 / 0.048 without the longitudinal slip and the wheels' spin: a driven
+    # wheel spins up in the air and lands with ~1 kN of F_x). The gain bounds the sedan's excess
+    # over the base (0.0256): an estimate near the tolerance must not fall short
+    "lift_off_roll_gain": 0.026,
     # a handling rung without the full vehicle's pitch, heave and wheel motion, on a flat road: the
     # error that is left when every other difference is represented -- LateralYawRoll+lag against
     # FullVehicle(linearized) in the three linear scenes (gentle step steer, lane changes at 60 and
