@@ -3,8 +3,9 @@ form of :func:`vehdyn.handling.steady_roll` (stated in the FullVehicle docstring
 
 Gradients are central differences of steady trims at +-0.5 m/s^2 (linear tires, no tire lag, 20 m/s),
 which cancel every even-order term; what is left against the linear closed form is of higher order
-(the drag's pitch, the yaw rate's gyroscopic terms): <= 0.015 % with the roll centres on the ground,
-<= 0.06 % with them 0.3-0.4 m high (measured). Each term's size, the difference of two
+(the drag's pitch, the yaw rate's gyroscopic terms): <= 0.015 % for the sedan with the roll centres on
+the ground, <= 0.06 % with them 0.3-0.4 m high, for the compact and the van as shipped (drag on) and at
+other gravities (measured). Each term's size, the difference of two
 configurations that switch it, is held to 0.5 % of the term.
 """
 
@@ -89,8 +90,8 @@ def test_every_shipped_car_rolls_as_the_closed_form(name, linear_tires):
     vehicle = vehdyn.load_vehicle(name)
     phi, transfer = _measure(vehicle, linear_tires)
     expected = steady_roll(vehicle)
-    assert phi == pytest.approx(expected.roll_gradient, rel=3e-4)
-    np.testing.assert_allclose(transfer, expected.load_transfer, rtol=3e-4)
+    assert phi == pytest.approx(expected.roll_gradient, rel=1e-3)
+    np.testing.assert_allclose(transfer, expected.load_transfer, rtol=1e-3)
 
 
 def test_gravity_moment_is_the_closed_form(sedan, linear_tires):
@@ -98,8 +99,8 @@ def test_gravity_moment_is_the_closed_form(sedan, linear_tires):
     for gravity in (4.0, 20.0):
         phi, transfer = _measure(sedan, linear_tires, gravity=gravity)
         expected = steady_roll(sedan, gravity=gravity)
-        assert phi == pytest.approx(expected.roll_gradient, rel=3e-4)
-        np.testing.assert_allclose(transfer, expected.load_transfer, rtol=3e-4)
+        assert phi == pytest.approx(expected.roll_gradient, rel=1e-3)
+        np.testing.assert_allclose(transfer, expected.load_transfer, rtol=1e-3)
 
 
 def _term(measured_pair, closed_pair):

@@ -257,5 +257,5 @@ def plot_understeer_budget(budget, ax=None, measured=None):
         ax.axvline(value, color=f"C{2 + k}", lw=1.0, alpha=0.8, label=f"{label} {value:.3f}")
     ax.set_xlabel("understeer gradient [deg/g] (understeer +)")
     ax.set_title(f"Understeer budget: {budget.attrs.get('vehicle', '')}")
-    ax.legend(fontsize="small", loc="lower right")
+    ax.legend(fontsize="x-small", loc="upper center", bbox_to_anchor=(0.5, -0.22), ncol=2, frameon=False)
     return ax
