@@ -128,9 +128,13 @@ THRESHOLDS = {
     # with roll against the same model with the tire law, FullVehicle(linearized) against
     # FullVehicle (the tire's saturation and load sensitivity are all that differ; the saturation
     # part at its gain 0.6 taken off): gain 0.72, 0.76, 0.65 in the sedan's lane change at 100 km/h,
-    # limit step steer, sine with dwell; 0.8 bounds them (an estimate near the tolerance must not
-    # fall short: the pick rests on it)
-    "load_transfer_gain": 0.8,
+    # limit step steer, sine with dwell, measured with the unsprung masses' lateral inertia through
+    # the springs; with it through the tires (issue 28, lambda = 1) those errors are 3 % smaller
+    # (0.0192 -> 0.0186, 0.290 -> 0.282, 0.110 -> 0.107): gains about 0.70, 0.74, 0.63. 0.75 bounds
+    # them (an estimate near the tolerance must not fall short: the pick rests on it) and keeps the
+    # linear-tire single track's estimate in the lane change at 100 km/h within a factor 3 of its
+    # measured error (0.070 / 0.0232 = 3.02 with 0.8)
+    "load_transfer_gain": 0.75,
     # a linear ride rung against the full vehicle (nonlinear contact): error = floor + gain * the
     # largest tension of the linear probe's tires over the static wheel load (estimates.tire_lift;
     # the full vehicle lifts that wheel off). bench_ladder sedan with FullVehicle(ride) as the
