@@ -167,8 +167,8 @@ def steady_roll(vehicle, *, gravity: float = GRAVITY, tire_compliance: bool = Tr
     --------
     >>> import vehdyn
     >>> from vehdyn.handling import steady_roll
-    >>> round(steady_roll(vehdyn.load_vehicle("sedan")).roll_gradient, 5)
-    0.01581
+    >>> round(steady_roll(vehdyn.load_vehicle("sedan")).roll_gradient, 4)
+    0.0158
     """
     m, G, s = vehicle.mass, vehicle.geometry, vehicle.suspension
     L = G.wheelbase
