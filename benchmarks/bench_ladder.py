@@ -40,7 +40,7 @@ def main(vehicles, repeat: int = 3, only=None) -> None:
     from vehdyn.scene.standard import standard_scenes
 
     print(f"vehdyn {vehdyn.__version__}, Python {platform.python_version()}, {platform.machine()}; "
-          f"rungs: {[r.name for r in vehdyn.scene.registry()]}")
+          f"rungs: {[r.name for r in vehdyn.scene.rungs()]}")
     began = time.perf_counter()
     matrix, goals, calibration, costs = [], [], [], []
     for name_v in vehicles:

@@ -48,46 +48,21 @@ def _outputs(model, x, u) -> dict:
 def closed_form_load_transfer(model, ay):
     """Steady lateral load transfer per axle (N_outer - N_inner) / 2 [N]: elastic and geometric parts.
 
-    Per axle i (track T_i, suspension roll stiffness K_i, roll-centre height h_i, tire rate k_t, axle
-    load N_i = m g l_i / L, side force F_i = m a_y l_i / L) with body roll phi and suspension roll
-    phi_i (magnitudes, out of the turn): the roll moment on the sprung mass
-    sum K_i phi_i = sum (h_s - h_i) (F_i + N_i phi) - (h_s - h_u) m_u (a_y + g phi), with
-    F_i + N_i phi the side force the axle passes to the body through its roll centre (Milliken &
-    Milliken 1995, ch. 18, with the rolled CG and the unsprung masses rolling with the body); elastic
-    part K_i phi_i / T_i, geometric part h_i (F_i + N_i phi) / T_i; the axle rolls on its tires by
-    phi - phi_i = 2 Delta N_i / (k_t T_i).
+    The closed form of :func:`vehdyn.handling.steady_roll` (stated in the FullVehicle docstring;
+    Milliken & Milliken 1995, ch. 18, with the rolled CG, the tires' compliance and the unsprung
+    masses' lateral inertia taken by the tires in the share lambda_i of the vehicle file), linear in
+    a_y: elastic part K_i phi_si / T_i through springs and bars; geometric part the rest, through the
+    links (m_si h_i (a_y + g phi) / T_i) and the unsprung masses' direct part
+    (m_ui lambda_i h_u (a_y + g phi) / T_i).
     Returns (roll angle magnitude [rad], elastic (front, rear), geometric (front, rear)) per a_y.
     """
-    v = model.vehicle
-    m, geo = v.mass, v.geometry
+    from vehdyn.handling import steady_roll
+
+    roll = steady_roll(model.vehicle, gravity=model.gravity)
     ay = np.atleast_1d(np.asarray(ay, dtype=float))
-    L = v.wheelbase
-    tracks = (geo.front_track, geo.rear_track)
-    stiff = (v.front_roll_stiffness, v.rear_roll_stiffness)
-    heights = (geo.front_roll_centre_height, geo.rear_roll_centre_height)
-    shares = (geo.b / L, geo.a / L)
-    kt, h_s, h_u = v.tires.vertical_stiffness, m.sprung_cg_height, model.unsprung_cg_height
-    phi, elastic, geometric = [], [], []
-    for a in ay:
-        loads = [m.mass * G * s for s in shares]
-        forces = [m.mass * a * s for s in shares]
-        # unknowns: phi, phi_f, phi_r (magnitudes, rolling out of the turn)
-        A = np.zeros((3, 3))
-        b = np.zeros(3)
-        A[0, 1:] = stiff
-        A[0, 0] = -sum((h_s - h) * n for h, n in zip(heights, loads)) + (h_s - h_u) * m.unsprung_mass * G
-        b[0] = sum((h_s - h) * f for h, f in zip(heights, forces)) - (h_s - h_u) * m.unsprung_mass * a
-        for i, (T, K, h) in enumerate(zip(tracks, stiff, heights)):
-            # phi - phi_i = 2 (K phi_i + h (F + N phi)) / (k_t T^2)
-            c = 2.0 / (kt * T * T)
-            A[1 + i, 0] = 1.0 - c * h * loads[i]
-            A[1 + i, 1 + i] = -1.0 - c * K
-            b[1 + i] = c * h * forces[i]
-        sol = np.linalg.solve(A, b)
-        phi.append(sol[0])
-        elastic.append([K * p / T for K, p, T in zip(stiff, sol[1:], tracks)])
-        geometric.append([h * (f + n * sol[0]) / T for h, f, n, T in zip(heights, forces, loads, tracks)])
-    return np.array(phi), np.array(elastic), np.array(geometric)
+    elastic = np.outer(ay, roll.elastic_transfer)
+    geometric = np.outer(ay, np.add(roll.geometric_transfer, roll.unsprung_transfer))
+    return roll.roll_gradient * ay, elastic, geometric
 
 
 def load_transfer(study: Study) -> None:
@@ -156,8 +131,9 @@ def load_transfer(study: Study) -> None:
     study.text(
         f"The trimmed full vehicle's load transfer follows the closed form within {100 * max(err.values()):.2g} % "
         "up to "
-        "0.6 g, part by part. The geometric (roll-centre) part grows with the roll-centre height and reaches the "
-        "tires without rolling the body; the elastic part is split between the axles by their roll stiffness. "
+        "0.6 g, part by part. The geometric part (through the roll centres, and the unsprung masses' lateral "
+        "inertia taken by the tires) grows with the roll-centre height and reaches the tires without rolling the "
+        "body; the elastic part is split between the axles by their roll stiffness. "
         "Both grow almost linearly: the rolled CG (phi times the sprung CG height above the roll axis) and the "
         "tire compliance bend them only slightly upwards.")
 

@@ -94,7 +94,11 @@ def build_case(name):
         x0 = loop.state_vector(dict(zip(plant.state_names, plant.straight_running(15.0))))
         return loop, driver, np.linspace(0.0, 0.8, 17), braking, x0, short
     if name == "preview_full_vehicle":
-        full = FullVehicle(CAR)
+        # the reference loops were recorded with the unsprung masses' lateral inertia through the
+        # springs: lambda = 0 (parallel links) is that model exactly with the roll centres on the
+        # ground (issue 28; the default since is lambda = 1, the textbook's)
+        full = FullVehicle(CAR.replace(suspension__front_unsprung_transfer_fraction=0.0,
+                                       suspension__rear_unsprung_transfer_fraction=0.0))
         driver = PreviewDriver(path_x, path_y, wheelbase=WHEELBASE, preview_time=0.8, lag=0.1)
         x_full = np.asarray(full.trim(15.0)[0], dtype=float).copy()
         x_full[full.index("x")] = 0.0

@@ -68,7 +68,9 @@ Constants = namedtuple("Constants", (
     "longitudinal_relaxation_length", "peak_slip_ratio", "peak_tan_slip_angle", "low_speed_damping_speed",
     "brake_regularization_speed", "mirror_image", "road_friction", "wheel_spin", "tire_lag", "friction_scaled",
     # aero
-    "drag_factor", "wind_side_force_factor", "centre_of_pressure", "front_lift_factor", "rear_lift_factor"))
+    "drag_factor", "wind_side_force_factor", "centre_of_pressure", "front_lift_factor", "rear_lift_factor",
+    # the unsprung masses' lateral force through the linkage (issue 28)
+    "unsprung_jacking"))
 Constants.__doc__ = """The numbers the equations read (floats; 4-tuples per corner in corner order; nested tuples).
 
 :meth:`FullVehicle.constants <vehdyn.full_vehicle.FullVehicle.constants>` builds them; a compiled
@@ -149,7 +151,11 @@ wind_side_force_factor : float
 centre_of_pressure : float
     The crosswind's centre of pressure ahead of the sprung CG [m] (:mod:`~vehdyn.full_vehicle.aero`).
 front_lift_factor, rear_lift_factor : float
-    0.5 rho c_l A [kg/m]."""
+    0.5 rho c_l A [kg/m].
+unsprung_jacking : tuple
+    kappa_c = (h_rc,i - lambda_i h_u) / y_c per corner: the vertical linkage force on the body per
+    unit lateral force W_y of the corner's unsprung mass (:func:`~vehdyn.full_vehicle.corner.unsprung_jacking`)
+    [-]."""
 
 Evaluation = namedtuple("Evaluation", (
     "velocity_rate", "angular_acceleration", "cg_acceleration", "euler_rates", "position_rates",
@@ -345,7 +351,11 @@ def _corner(xp, laws, k, c, s, i, R, travel_rate, spring, steer, camber, frictio
     cx, cy, _cz = cross_components(p, q, r, ox, oy, oz)
     wheel_x = m_u * (k.gravity * R[2][0] - cx - 2.0 * q * travel_rate)
     wheel_y = m_u * (k.gravity * R[2][1] - cy + 2.0 * p * travel_rate)
-    f_z = jack - spring + tz
+    # the unsprung mass's lateral force reaches the body through the linkage as the tire's does; the
+    # part of its moment the linkage does not pass is taken by the tire load (corner.unsprung_jacking;
+    # its acceleration-proportional part is in k.projection and in evaluate)
+    jack_u = k.unsprung_jacking[c] * wheel_y
+    f_z = jack + jack_u - spring + tz
     # the contact point lies on the road: its body z below the sprung CG changes as the body rolls,
     # pitches and heaves (road height i[10 + c] up, CG displacement s[11] down); the road-plane
     # forces act there, which with tz at the wheel gives their moment the CG's height over the road
@@ -354,7 +364,7 @@ def _corner(xp, laws, k, c, s, i, R, travel_rate, spring, steer, camber, frictio
     mx2, my2, mz2 = cross_components(x_c, y_c, zw, wheel_x, wheel_y, 0.0 * u)
     return (load, alpha, kappa, fx, fy,
             driveline.wheel_acceleration(xp, k, omega, i[2 + c], i[6 + c], fx, rolling_moment),
-            (load - spring + jack) / m_u - k.gravity, lat_rate, lon_rate,
+            (load - spring + jack + jack_u) / m_u - k.gravity, lat_rate, lon_rate,
             link_x + wheel_x, link_y + wheel_y, f_z, mx1 + mx2, my1 + my2, mz1 + mz2, link_x, link_y,
             tz - load * R[2][2])
 
@@ -442,6 +452,17 @@ def evaluate(xp, laws, k, s, i, friction):
     velocity_rate, angular, cg_acc = body.body_accelerations(
         xp, k, (u, v, w), (p, q, r), (fx_body, fy_body, fz_body), (_total(corners, 12), moment_y, _total(corners, 14) + wind_moment))
 
+    # the wheels' share of the unsprung masses' acceleration-proportional lateral force through the
+    # linkage: -kappa_c (a + omega' x W_c)_y per unit unsprung mass (explicit: the body's accelerations
+    # do not depend on the wheels' vertical ones)
+    unsprung = (corners[0][6] - k.unsprung_jacking[0] * (cg_acc[1] + angular[2] * k.corner_x[0]
+                                                          - angular[0] * k.wheel_z),
+                corners[1][6] - k.unsprung_jacking[1] * (cg_acc[1] + angular[2] * k.corner_x[1]
+                                                          - angular[0] * k.wheel_z),
+                corners[2][6] - k.unsprung_jacking[2] * (cg_acc[1] + angular[2] * k.corner_x[2]
+                                                          - angular[0] * k.wheel_z),
+                corners[3][6] - k.unsprung_jacking[3] * (cg_acc[1] + angular[2] * k.corner_x[3]
+                                                          - angular[0] * k.wheel_z))
     euler = xp.euler_angle_rates(roll, pitch, p, q, r)
     position = (R[0][0] * u + R[0][1] * v + R[0][2] * w, R[1][0] * u + R[1][1] * v + R[1][2] * w,
                 R20 * u + R21 * v + R22 * w)
@@ -454,7 +475,7 @@ def evaluate(xp, laws, k, s, i, friction):
     horizontal = ((cpsi * ex + spsi * ey) / k.mass, (-spsi * ex + cpsi * ey) / k.mass)
     vertical = -(R20 * cg_acc[0] + R21 * cg_acc[1] + R22 * cg_acc[2])
     return Evaluation(velocity_rate, angular, cg_acc, (euler[0], euler[1], euler[2]), position, _column(corners, 5),
-                      _column(corners, 6), _column(corners, 7), _column(corners, 8), _column(corners, 0),
+                      unsprung, _column(corners, 7), _column(corners, 8), _column(corners, 0),
                       _column(corners, 1), _column(corners, 2), _column(corners, 3), _column(corners, 4), travel,
                       camber, steer, horizontal, vertical)
 

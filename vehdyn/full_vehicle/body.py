@@ -11,8 +11,12 @@ acceleration (body axes), the x-y part of the wheel-centre acceleration is
 
 (s_i' the wheel's rate of travel along body z, the Coriolis term), and the body equations
 
-    m_s a + sum m_i H a_i = F,       J omega' + omega x J omega + sum W_i x (m_i H a_i) = M
+    m_s a + sum m_i G_i a_i = F,     J omega' + omega x J omega + sum W_i x (m_i G_i a_i) = M
 
+with G_i = H + kappa_i e_z e_y^T: besides its x-y inertia, the unsprung mass's lateral force passes
+a vertical linkage force kappa_i (per unit of it) to the body (and the opposite to the wheel), the
+part of its moment about the roll centre that the linkage does not pass
+(:func:`vehdyn.full_vehicle.corner.unsprung_jacking`; kappa_i = 0: none). The equations
 are linear in alpha. Split into the part proportional to alpha (an added-mass matrix M_a, constant
 in body axes) and the rest, they read (M_s + M_a) alpha = M_s alpha_0, where alpha_0 is what
 :func:`vehdyn.mechanics.equations_of_motion.accelerations` returns for the sprung body alone under F and M
@@ -37,8 +41,13 @@ from vehdyn.mechanics.kinematics import cross_components as cross
 __all__ = ["added_mass_projection", "body_accelerations"]
 
 
-def added_mass_projection(sprung_mass, inertia, masses, points) -> np.ndarray:
+def added_mass_projection(sprung_mass, inertia, masses, points, jacking=None) -> np.ndarray:
     """P = (M_s + M_a)^-1 M_s (6 x 6) of the module docstring.
+
+    With ``jacking`` the lateral inertia force -m_i (H a_i)_y of each unsprung mass also passes a
+    vertical linkage force kappa_i (-m_i (H a_i)_y) (body z) to the body at the wheel
+    (:func:`vehdyn.full_vehicle.corner.unsprung_jacking`): its acceleration-proportional part is
+    a z column of M_a.
 
     Parameters
     ----------
@@ -50,6 +59,9 @@ def added_mass_projection(sprung_mass, inertia, masses, points) -> np.ndarray:
         Unsprung mass of each corner [kg].
     points : sequence of (x, y, z)
         Wheel centres from the sprung CG, body axes [m].
+    jacking : sequence of float, optional
+        kappa_i of each corner [-] (None: zeros, the unsprung masses' lateral force passes no
+        vertical force).
 
     Returns
     -------
@@ -60,11 +72,12 @@ def added_mass_projection(sprung_mass, inertia, masses, points) -> np.ndarray:
     body[:3, :3] = sprung_mass * np.eye(3)
     body[3:, 3:] = inertia
     added = np.zeros((6, 6))
-    for mass, (x, y, z) in zip(masses, points):
+    jacking = (0.0,) * len(masses) if jacking is None else jacking
+    for mass, (x, y, z), kappa in zip(masses, points, jacking):
         for j in range(6):
             e = np.eye(6)[j]
             acc = np.array(e[:3]) + np.array(cross(*e[3:], x, y, z))
-            force = -mass * np.array([acc[0], acc[1], 0.0])
+            force = -mass * np.array([acc[0], acc[1], kappa * acc[1]])
             added[:, j] -= np.concatenate([force, cross(x, y, z, *force)])
     return np.linalg.solve(body + added, body)
 

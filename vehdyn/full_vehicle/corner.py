@@ -27,6 +27,20 @@ moment about the roll centre: the axle's lateral load transfer splits into the g
 L_y h_rc / T and the elastic part through springs and bars (Milliken & Milliken, *Race Car Vehicle
 Dynamics*, 1995, ch. 17-18; Gillespie, *Fundamentals of Vehicle Dynamics*, 1992, ch. 7-8).
 
+The unsprung masses' lateral force W_y (their d'Alembert force and the body-y component of their
+weight) reaches the body through the linkage as the tire's force does, at the roll centre; the
+part lambda of its moment about the roll centre, W_y lambda h_u (h_u the unsprung CG height), is
+taken by the tire loads directly instead of the springs: one more jacking force on the body, the
+opposite on the wheel::
+
+    F_Ju = kappa_i W_y,      kappa_i = (h_rc - lambda h_u) / y_i
+
+with lambda the axle's ``unsprung_transfer_fraction`` (:class:`vehdyn.params.Suspension`): 1 a
+beam or swing axle, the textbook's treatment (Milliken & Milliken 1995, ch. 18; Gillespie 1992,
+ch. 7), (T/2)/d for an independent suspension whose front-view swing arm is d long, 0 parallel
+equal-length links (the carrier keeps the body's orientation and passes the moment to the body as
+a couple; with the roll centre on the ground no vertical force).
+
 Tire normal load from the tire's compression delta = delta_0 + z_road - z_wheel::
 
     F_z = max(k_t delta + c_t delta', 0) where delta > 0, else 0
@@ -42,7 +56,7 @@ wheels stay upright to the road (gamma = 0).
 from __future__ import annotations
 
 __all__ = ["CORNERS", "SIDES", "suspension_travel", "suspension_forces", "normal_load", "jacking_force",
-           "camber"]
+           "unsprung_jacking", "camber"]
 
 #: Signal-name suffixes of the corners, in order.
 CORNERS = ("_front_left", "_front_right", "_rear_left", "_rear_right")
@@ -156,6 +170,29 @@ def jacking_force(k, c, link_x, link_y):
         F_J [N] (SAE z, down +).
     """
     return k.roll_centre_height[c] / k.corner_y[c] * link_y + k.anti_pitch[c] * link_x
+
+
+def unsprung_jacking(roll_centre_height, transfer_fraction, unsprung_cg_height, corner_y):
+    """kappa_i = (h_rc - lambda h_u) / y_i of the module docstring.
+
+    Parameters
+    ----------
+    roll_centre_height : float
+        h_rc of the corner's axle [m].
+    transfer_fraction : float
+        lambda of the axle [-].
+    unsprung_cg_height : float
+        h_u [m].
+    corner_y : float
+        y_i, the corner's lateral position from the sprung CG (right +) [m].
+
+    Returns
+    -------
+    float
+        kappa_i [-]: vertical force on the body (SAE z, down +) per unit lateral force (SAE y) of
+        the unsprung mass.
+    """
+    return (roll_centre_height - transfer_fraction * unsprung_cg_height) / corner_y
 
 
 def camber(k, c, roll, travel):

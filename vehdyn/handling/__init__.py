@@ -35,6 +35,8 @@ from vehdyn.handling.nonlinear_steady_state import (
     steady_state_cornering,
 )
 from vehdyn.handling.single_track import SingleTrack, SingleTrackParameters
+from vehdyn.handling.roll_balance import SteadyRoll, steady_roll, unsprung_cg_height
+from vehdyn.handling.understeer_terms import plot_understeer_budget, understeer_budget, vehicle_roll_understeer
 from vehdyn.handling.steady_state import (
     AckermannWheelAngles,
     HandlingDiagram,
@@ -83,6 +85,8 @@ __all__ = [
     "yaw_rate_feedback_rear_steer", "zero_sideslip_rear_steer_ratio",
     # roll
     "LateralYawRoll", "LateralYawRollParameters", "lateral_yaw_roll_parameters", "roll_gradient", "LateralYawRollLag",
+    "SteadyRoll", "steady_roll", "unsprung_cg_height", "understeer_budget", "plot_understeer_budget",
+    "vehicle_roll_understeer",
     # nonlinear single track and its steady state
     "SingleTrack", "SingleTrackParameters", "SteadyStateCornering", "steady_state_cornering",
     "NonlinearHandlingDiagram", "nonlinear_handling_diagram", "limit_lateral_acceleration",

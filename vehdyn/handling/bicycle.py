@@ -34,6 +34,17 @@ steady-state curvature at 0.01 m/s, 4e-6 at 1e-4 m/s, 3 % at 1e-6 m/s; below wal
 linear slip-angle tire is no model of a tire anyway (use :class:`~vehdyn.handling.SingleTrack`,
 which runs through standstill).
 
+Compliance steer (from the vehicle file's ``suspension.*_compliance_steer`` fields, through
+:func:`bicycle_parameters`): each axle steers by delta_c = c F_y, c = c_i - e_i t_i the net
+road-wheel steer per unit axle force of the lateral-force and aligning-moment compliances
+(:meth:`vehdyn.params.Suspension.compliance_steer`, t_i the pneumatic trail), quasi-statically::
+
+    F_yi = -C_i (alpha_i - c_i F_yi)   ->   F_yi = -C_i,eff alpha_i,   C_i,eff = C_i / (1 - c_i C_i)
+
+so the matrices, transfer functions and understeer gradient are the rigid ones with C_eff
+(Gillespie 1992, ch. 6, Table 6.1: the understeer terms -c_f W_f + c_r W_r). With tire lag the
+relaxation acts on the slip the tire sees: (sigma/u) d(alpha')/dt + alpha' = alpha + c C alpha'.
+
 Crosswind (optional, ``crosswind=True``: input ``wind_velocity_lateral`` w [m/s], the air's velocity
 along y, positive toward the right): the aerodynamic side force of :mod:`vehdyn.handling.crosswind`
 linearized about w = 0, F_w = k_w u w with k_w = 0.5 rho A C_Y', acts at the centre of pressure x_p
@@ -68,7 +79,7 @@ from vehdyn.params.base import parameter
 from vehdyn.signals import STEER_INPUTS, Signal
 from vehdyn.handling.crosswind import optional_wind_input
 
-__all__ = ["BicycleParameters", "LinearBicycle", "bicycle_parameters", "LINEAR_MIN_SPEED"]
+__all__ = ["BicycleParameters", "LinearBicycle", "bicycle_parameters", "vehicle_compliance_steer", "LINEAR_MIN_SPEED"]
 
 LINEAR_MIN_SPEED = 0.01
 """Lowest forward speed [m/s] of the linear handling models (LinearBicycle, LateralYawRoll); see the
@@ -121,6 +132,23 @@ class BicycleParameters(ParameterSet):
                                               ge=0, default=0.0)
     centre_of_pressure: float = parameter("m", "aerodynamic centre of pressure x_p ahead of the CG (negative: behind)",
                                           default=0.0)
+    front_compliance_steer: float = parameter(
+        "rad/N", "net front road-wheel compliance steer per unit front axle force, c_f - e_f t_f (lateral-force "
+        "and aligning-moment compliance, :meth:`vehdyn.params.Suspension.compliance_steer`; SAE, positive "
+        "steering with the force; 0: rigid)", default=0.0)
+    rear_compliance_steer: float = parameter(
+        "rad/N", "net rear road-wheel compliance steer per unit rear axle force, c_r - e_r t_r (0: rigid)",
+        default=0.0)
+
+    def check(self):
+        for axle in ("front", "rear"):
+            c = getattr(self, f"{axle}_compliance_steer")
+            C = getattr(self, f"{axle}_cornering_stiffness")
+            if 1.0 - c * C <= 0.0:
+                raise ParameterError(
+                    f"{axle}_compliance_steer = {c:.6g} rad/N with {axle}_cornering_stiffness = {C:.6g} N/rad makes "
+                    f"1 - c C = {1.0 - c * C:.6g} <= 0: the axle's force steers it further than its slip "
+                    f"(no effective cornering stiffness)", key=f"{axle}_compliance_steer", value=c)
 
     @property
     def wheelbase(self) -> float:
@@ -128,10 +156,27 @@ class BicycleParameters(ParameterSet):
         return self.a + self.b
 
     @property
+    def effective_cornering_stiffnesses(self) -> tuple[float, float]:
+        r"""(front, rear) axle cornering stiffness with the compliance steer, C / (1 - c C) [N/rad].
+
+        The compliance steer delta_c = c F_y (quasi-static) takes c F_y off the slip the tire sees,
+        F_y = -C (alpha_kin - c F_y), so that
+
+        .. math::
+
+            F_y = -\frac{C}{1 - c C} \alpha_{kin}
+
+        (Gillespie, *Fundamentals of Vehicle Dynamics*, 1992, ch. 6, compliance steer).
+        """
+        return (self.front_cornering_stiffness / (1.0 - self.front_compliance_steer * self.front_cornering_stiffness),
+                self.rear_cornering_stiffness / (1.0 - self.rear_compliance_steer * self.rear_cornering_stiffness))
+
+    @property
     def understeer_gradient(self) -> float:
-        """K = (m / L) (b / C_f - a / C_r) [rad/(m/s^2)] (Gillespie eq. 6-15 with W = m g b / L)."""
-        return self.mass / self.wheelbase * (self.b / self.front_cornering_stiffness
-                                             - self.a / self.rear_cornering_stiffness)
+        """K = (m / L) (b / C_f,eff - a / C_r,eff) [rad/(m/s^2)] (Gillespie eq. 6-15 with W = m g b / L; the
+        effective stiffnesses with the compliance steer, :attr:`effective_cornering_stiffnesses`)."""
+        cf, cr = self.effective_cornering_stiffnesses
+        return self.mass / self.wheelbase * (self.b / cf - self.a / cr)
 
 
 def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
@@ -165,6 +210,7 @@ def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
         from vehdyn.components.aero import centre_of_pressure_ahead_of_cg, wind_side_force_factor
 
         v = vehicle_or_model
+        compliance = vehicle_compliance_steer(v)
         return BicycleParameters(
             mass=v.mass.mass,
             yaw_inertia=v.mass.yaw_inertia,
@@ -176,10 +222,53 @@ def bicycle_parameters(vehicle_or_model) -> BicycleParameters:
             rear_relaxation_length=v.tires.rear_relaxation_length,
             wind_side_force_factor=wind_side_force_factor(v),
             centre_of_pressure=centre_of_pressure_ahead_of_cg(v),
+            front_compliance_steer=compliance[0], rear_compliance_steer=compliance[1],
         )
     raise ParameterError(
         f"expected a Vehicle, a LinearBicycle or BicycleParameters, got {type(vehicle_or_model).__name__}",
         key="vehicle", value=vehicle_or_model)
+
+
+def vehicle_compliance_steer(vehicle, trails=None) -> tuple[float, float]:
+    """(front, rear) net compliance steer c_i - e_i t_i [rad/N] of a Vehicle, checked against its cornering stiffness.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle (``suspension.*_compliance_steer``, ``tires.*_cornering_stiffness``).
+    trails : tuple of float, optional
+        (front, rear) pneumatic trails t_i [m]; default from the vehicle's tire law where an
+        aligning-moment compliance is set (:func:`vehdyn.handling.axle_tires.pneumatic_trail`).
+
+    Returns
+    -------
+    tuple of float
+        (c_f - e_f t_f, c_r - e_r t_r) [rad/N].
+
+    Raises
+    ------
+    ParameterError
+        Naming ``suspension.<axle>_lateral_force_compliance_steer`` when 1 - (c - e t) C <= 0 (the
+        compliance loop has no stable solution: no effective cornering stiffness).
+    """
+    from vehdyn.handling.axle_tires import pneumatic_trail
+
+    s, out = vehicle.suspension, []
+    for k, axle in enumerate(("front", "rear")):
+        e = getattr(s, f"{axle}_aligning_moment_compliance_steer")
+        t = trails[k] if trails is not None else (pneumatic_trail(vehicle, axle) if e != 0.0 else 0.0)
+        c = s.compliance_steer(axle, t)
+        C = getattr(vehicle.tires, f"{axle}_cornering_stiffness")
+        if 1.0 - c * C <= 0.0:
+            key = f"suspension.{axle}_lateral_force_compliance_steer"
+            raise ParameterError(f"{key} = {getattr(s, f'{axle}_lateral_force_compliance_steer'):.6g} rad/N (with "
+                                 f"{axle}_aligning_moment_compliance_steer = {e:.6g} rad/(N*m), trail {t:.4g} m) "
+                                 f"and tires.{axle}_cornering_stiffness = {C:.6g} N/rad make 1 - (c - e t) C = "
+                                 f"{1.0 - c * C:.6g} <= 0: the axle's force steers it further than its slip (no "
+                                 f"effective cornering stiffness)", key=key,
+                                 value=getattr(s, f"{axle}_lateral_force_compliance_steer"))
+        out.append(float(c))
+    return out[0], out[1]
 
 
 def check_speed(speed, *, allow_zero: bool = False, name: str = "speed") -> np.ndarray:
@@ -423,13 +512,17 @@ def _state_space(p: BicycleParameters, u: float):
     S[1, :2] = [1.0 / u, -b / u]
     T = -np.eye(2)
     # axle forces F = -C alpha_force, alpha_force = kinematic slip, or the transient slip state
-    stiff = np.array([cf, cr])
+    # compliance steer: the tire sees alpha_kin - c F; without lag F = -C_eff alpha_kin,
+    # C_eff = C / (1 - c C); with lag the transient slip relaxes to alpha_kin + c C alpha'
+    compliance = np.array([p.front_compliance_steer, p.rear_compliance_steer])
+    stiff = np.array(p.effective_cornering_stiffnesses)
+    stiff_lag = np.array([cf, cr])
     F_x = -stiff[:, None] * S
     F_u = -stiff[:, None] * T
     for k, axle in enumerate(lagged):
         row = 0 if axle == "front" else 1
         F_x[row] = 0.0
-        F_x[row, 2 + k] = -stiff[row]
+        F_x[row, 2 + k] = -stiff_lag[row]
         F_u[row] = 0.0
     # m (v' + u r) = Ff + Fr + Fw ;  Iz r' = a Ff - b Fr + x_p Fw,  Fw = k_w u w (crosswind)
     lever = np.array([[1.0 / m, 1.0 / m], [a / iz, -b / iz]])
@@ -445,7 +538,7 @@ def _state_space(p: BicycleParameters, u: float):
         row = 0 if axle == "front" else 1
         rate = u / lag[axle]
         A[2 + k] = rate * S[row]
-        A[2 + k, 2 + k] -= rate
+        A[2 + k, 2 + k] -= rate * (1.0 - compliance[row] * stiff_lag[row])
         B[2 + k, :2] = rate * T[row]
     # outputs: a_y = v' + u r, beta, r, v, alpha_f, alpha_r, curvature, Ff, Fr
     ay_x = A[0].copy()

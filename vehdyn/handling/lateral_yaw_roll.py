@@ -47,7 +47,9 @@ give, linearized (the m_s h u p terms of the yaw equation cancel),
 
     F_yf = C_f (delta_f + eps_f phi - (v + a r) / u),   F_yr = C_r (delta_r + eps_r phi - (v - b r) / u)
 
-with eps the roll-steer coefficients (road-wheel steer per unit roll, SAE signs). This is the
+with eps the roll-steer coefficients (road-wheel steer per unit roll, SAE signs); with compliance
+steer (``front_compliance_steer``, ``rear_compliance_steer``: delta_c = c F_y, quasi-static) C_f and
+C_r are the effective stiffnesses C / (1 - c C) of :class:`~vehdyn.handling.BicycleParameters`. This is the
 model of Segel (*Theoretical prediction and experimental substantiation of the response of the
 automobile to steering control*, Proc. IMechE AD 1956) in the form of Mastinu & Ploechl (eds.),
 *Road and Off-Road Vehicle System Dynamics Handbook*, 2014, sec. 20.5, and Kiencke & Nielsen,
@@ -125,8 +127,14 @@ class LateralYawRollParameters(ParameterSet):
     roll_axis_inclination: float = parameter("rad", "theta, positive when the roll axis rises to the front",
                                              default=0.0, gt=-np.pi / 4, lt=np.pi / 4)
     gravity: float = parameter("m/s^2", "gravitational acceleration", gt=0, default=GRAVITY)
+    front_compliance_steer: float = parameter(
+        "rad/N", "net front compliance steer c_f - e_f t_f per unit axle force (SAE; 0: rigid; "
+        ":class:`~vehdyn.handling.BicycleParameters`)", default=0.0)
+    rear_compliance_steer: float = parameter("rad/N", "net rear compliance steer c_r - e_r t_r (0: rigid)",
+                                             default=0.0)
 
     def check(self):
+        self.bicycle_parameters()  # the compliance leaves an effective cornering stiffness
         if self.sprung_mass > self.mass:
             raise ParameterError(f"sprung_mass = {self.sprung_mass} kg exceeds mass = {self.mass} kg",
                                  key="sprung_mass", value=self.sprung_mass)
@@ -164,7 +172,9 @@ class LateralYawRollParameters(ParameterSet):
         """
         return BicycleParameters(mass=self.mass, yaw_inertia=self.yaw_inertia, a=self.a, b=self.b,
                                  front_cornering_stiffness=self.front_cornering_stiffness,
-                                 rear_cornering_stiffness=self.rear_cornering_stiffness)
+                                 rear_cornering_stiffness=self.rear_cornering_stiffness,
+                                 front_compliance_steer=self.front_compliance_steer,
+                                 rear_compliance_steer=self.rear_compliance_steer)
 
 
 def lateral_yaw_roll_parameters(vehicle: Vehicle, *, tire_compliance: bool = False,
@@ -196,7 +206,10 @@ def lateral_yaw_roll_parameters(vehicle: Vehicle, *, tire_compliance: bool = Fal
         When the yaw inertia leaves none for the sprung mass, or the roll stiffness does not
         exceed the pendulum term m_s g h cos(theta).
     """
+    from vehdyn.handling.bicycle import vehicle_compliance_steer
+
     ms, g, s, t = vehicle.mass, vehicle.geometry, vehicle.suspension, vehicle.tires
+    compliance = vehicle_compliance_steer(vehicle)
     L = g.wheelbase
     theta = np.arctan2(g.front_roll_centre_height - g.rear_roll_centre_height, L)
     axis_height = g.front_roll_centre_height + (g.rear_roll_centre_height - g.front_roll_centre_height) \
@@ -224,7 +237,8 @@ def lateral_yaw_roll_parameters(vehicle: Vehicle, *, tire_compliance: bool = Fal
         roll_stiffness=float(k_front + k_rear),
         roll_damping=s.front_damping * g.front_track**2 / 2 + s.rear_damping * g.rear_track**2 / 2,
         front_roll_steer=s.front_roll_steer, rear_roll_steer=s.rear_roll_steer,
-        roll_axis_inclination=float(theta), gravity=gravity)
+        roll_axis_inclination=float(theta), gravity=gravity, front_compliance_steer=compliance[0],
+        rear_compliance_steer=compliance[1])
 
 
 class LateralYawRoll(LinearModel):
@@ -480,7 +494,7 @@ def roll_gradient(vehicle_or_model, *, tire_compliance: bool = False) -> float:
 def _state_space(p: LateralYawRollParameters, u: float):
     """Exact (A, B, C, D) over x = [v, r, p, phi], inputs [delta_f, delta_r]."""
     m, ms, h, a, b = p.mass, p.sprung_mass, p.roll_arm, p.a, p.b
-    cf, cr = p.front_cornering_stiffness, p.rear_cornering_stiffness
+    cf, cr = p.bicycle_parameters().effective_cornering_stiffnesses  # with the compliance steer
     M = np.array([[m, 0.0, ms * h, 0.0],
                   [0.0, p.yaw_inertia, -p.roll_yaw_product, 0.0],
                   [ms * h, -p.roll_yaw_product, p.roll_inertia, 0.0],

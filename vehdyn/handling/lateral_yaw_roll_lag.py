@@ -252,6 +252,13 @@ class LateralYawRollLag(LinearModel):
             raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
                                  value=vehicle)
         u = linear_model_speed(speed, "LateralYawRollLag")
+        if vehicle.suspension.has_compliance_steer:  # not carried: refused rather than dropped
+            key = next(f"suspension.{a}_{k}_compliance_steer" for a in ("front", "rear")
+                       for k in ("lateral_force", "aligning_moment")
+                       if getattr(vehicle.suspension, f"{a}_{k}_compliance_steer") != 0.0)
+            raise ParameterError(f"{key} is set: LateralYawRollLag does not carry compliance steer (LinearBicycle and "
+                                 f"LateralYawRoll do)", key=key,
+                                 value=getattr(vehicle.suspension, key.partition(".")[2]))
         p = lateral_yaw_roll_parameters(vehicle, gravity=gravity)
         g, s, masses = vehicle.geometry, vehicle.suspension, vehicle.mass
         tires = [tire_for_vehicle(vehicle, axle) if t is None else t

@@ -28,6 +28,7 @@ import numpy as np
 from vehdyn.errors import ParameterError
 from vehdyn.params.checks import is_number
 from vehdyn.units import GRAVITY
+from vehdyn.params import Vehicle
 from vehdyn.handling.bicycle import bicycle_parameters, check_speed, speed_of
 
 __all__ = [
@@ -65,8 +66,12 @@ def understeer_gradient(vehicle_or_bicycle) -> float:
           = \frac{W_f}{C_f} - \frac{W_r}{C_r} \text{ per unit } g,
         \qquad \delta_f - \delta_r = \frac{L}{R} + K a_y
 
-    K > 0 understeer, K = 0 neutral steer, K < 0 oversteer. (With roll steer, see
-    :meth:`vehdyn.handling.LateralYawRoll.understeer_gradient`.)
+    K > 0 understeer, K = 0 neutral steer, K < 0 oversteer. With compliance steer (the vehicle
+    file's ``suspension.*_compliance_steer``) C_f, C_r are the effective stiffnesses
+    C_i / (1 - (c_i - e_i t_i) C_i) of :class:`~vehdyn.handling.BicycleParameters`; for a Vehicle
+    the roll steer and the camber thrust from roll are added
+    (:func:`vehdyn.handling.vehicle_roll_understeer`, with the full vehicle's roll gradient), so that
+    K is the road-wheel total of :func:`vehdyn.handling.understeer_budget` exactly.
 
     Parameters
     ----------
@@ -85,7 +90,12 @@ def understeer_gradient(vehicle_or_bicycle) -> float:
        the axle loads W_f = m g b / L, W_r = m g a / L).
     .. [2] W. F. Milliken and D. L. Milliken, *Race Car Vehicle Dynamics*, SAE, 1995, ch. 5.
     """
-    return float(bicycle_parameters(vehicle_or_bicycle).understeer_gradient)
+    K = float(bicycle_parameters(vehicle_or_bicycle).understeer_gradient)
+    if isinstance(vehicle_or_bicycle, Vehicle):
+        from vehdyn.handling.understeer_terms import vehicle_roll_understeer
+
+        K += sum(vehicle_roll_understeer(vehicle_or_bicycle, GRAVITY)) / GRAVITY
+    return K
 
 
 def understeer_gradient_rad_per_g(vehicle_or_bicycle, gravity: float = GRAVITY) -> float:

@@ -158,7 +158,8 @@ class Geometry(ParameterSet):
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class Suspension(ParameterSet):
-    """Corner springs and dampers (wheel rates), anti-roll bars, roll steer."""
+    """Corner springs and dampers (wheel rates), anti-roll bars, roll steer, camber gain, anti-dive/squat,
+    compliance steer and the treatment of the unsprung masses' lateral inertia."""
 
     front_spring_rate: float = parameter("N/m", "vertical spring rate at each front wheel (per corner, wheel rate)",
                                          gt=0)
@@ -186,6 +187,72 @@ class Suspension(ParameterSet):
     rear_anti_squat: float = parameter(
         "-", "rear anti-squat (and anti-lift) fraction tan(beta_r) L / h of the rear longitudinal tire forces "
         "(0: none)", default=0.0)
+    # compliance steer (issue 28). SAE signs; 0: rigid. The understeer term of each is given in
+    # closed form (W_i the static axle loads, t_i the tires' pneumatic trails, both of the axle) and
+    # computed by vehdyn.handling.understeer_budget; Gillespie, Fundamentals of Vehicle Dynamics,
+    # 1992, ch. 6, Table 6.1; Milliken & Milliken, Race Car Vehicle Dynamics, 1995, ch. 5 and 18
+    front_lateral_force_compliance_steer: float = parameter(
+        "rad/N", "front road-wheel steer per unit lateral force of the front AXLE (both tires), delta_c = c F_y, "
+        "positive steering in the sense of the force (SAE: to the right for F_y > 0); a front axle that toes out "
+        "of the turn has c < 0. Understeer term -c_f W_f [rad/g]. In the full vehicle each wheel steers by "
+        "2 c times its own lateral force (the same axle steer when the wheels share the force)", default=0.0)
+    rear_lateral_force_compliance_steer: float = parameter(
+        "rad/N", "rear road-wheel steer per unit lateral force of the rear axle (both tires), delta_c = c F_y, "
+        "positive in the sense of the force (SAE); a rear axle steering with the force (c > 0) understeers. "
+        "Understeer term +c_r W_r [rad/g]", default=0.0)
+    front_aligning_moment_compliance_steer: float = parameter(
+        "rad/(N*m)", "front road-wheel steer per unit aligning moment of the front axle (both tires), "
+        "delta_c = e M_z, positive in the sense of the moment (SAE yaw, nose right); with M_z = -t_f F_y "
+        "(pneumatic trail t_f > 0 behind the contact centre) the understeer term is +e_f t_f W_f [rad/g]. "
+        "Referred to the road wheel with the hand wheel held: the kingpin-axis compliance of the suspension "
+        "alone; the steering system's stiffness is Steering.road_wheel_stiffness", default=0.0)
+    rear_aligning_moment_compliance_steer: float = parameter(
+        "rad/(N*m)", "rear road-wheel steer per unit aligning moment of the rear axle (both tires), "
+        "delta_c = e M_z, positive in the sense of the moment (SAE); understeer term -e_r t_r W_r [rad/g]",
+        default=0.0)
+    front_unsprung_transfer_fraction: float = parameter(
+        "-", "share lambda_f of the front unsprung masses' lateral-inertia moment about the roll centre that the "
+        "tires take directly, bypassing the springs: 1 (default) a beam axle or swing axle, the textbook "
+        "treatment (Milliken 1995 ch. 18, Gillespie 1992 ch. 7); (T/2)/d for an independent suspension whose "
+        "front-view swing arm (contact patch to instant centre) is d long; 0 parallel equal-length links or a "
+        "sliding pillar (the carrier keeps the body's orientation and passes the moment to the body as a "
+        "couple, through the springs)", default=1.0, ge=0.0, le=1.0)
+    rear_unsprung_transfer_fraction: float = parameter(
+        "-", "share lambda_r of the rear unsprung masses' lateral-inertia moment about the roll centre that the "
+        "tires take directly (see front_unsprung_transfer_fraction; 1: beam axle, the textbook; 0: parallel "
+        "links)", default=1.0, ge=0.0, le=1.0)
+
+    def compliance_steer(self, axle: str, pneumatic_trail: float = 0.0) -> float:
+        r"""Net road-wheel steer per unit lateral force of an axle from both compliances.
+
+        .. math::
+
+            \frac{\partial \delta_c}{\partial F_y} = c_i - e_i t_i
+
+        (the aligning moment M_z = -t_i F_y of the axle's tires, t_i their pneumatic trail).
+
+        Parameters
+        ----------
+        axle : {"front", "rear"}
+            The axle.
+        pneumatic_trail : float, optional
+            The axle's pneumatic trail t_i [m] (0: the aligning-moment compliance left out).
+
+        Returns
+        -------
+        float
+            c_i - e_i t_i [rad/N].
+        """
+        if axle not in ("front", "rear"):
+            raise ParameterError(f"axle must be 'front' or 'rear', got {axle!r}", key="axle", value=axle)
+        return (getattr(self, f"{axle}_lateral_force_compliance_steer")
+                - getattr(self, f"{axle}_aligning_moment_compliance_steer") * float(pneumatic_trail))
+
+    @property
+    def has_compliance_steer(self) -> bool:
+        """True when any compliance-steer field is nonzero."""
+        return any(getattr(self, f"{a}_{k}_compliance_steer") != 0.0 for a in ("front", "rear")
+                   for k in ("lateral_force", "aligning_moment"))
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -239,6 +306,33 @@ class Steering(ParameterSet):
                                     "0.02)", default=0.02)
     pneumatic_trail: float = parameter("m", "pneumatic trail of the front tires (None: from the tire law, -dM_z/dF_y "
                                        "at zero slip and the static load)", default=None)
+
+    @property
+    def road_wheel_stiffness(self) -> float:
+        r"""Steering-system stiffness K_ss between the held hand wheel and the road wheels [N*m/rad].
+
+        The on-centre stiffness of the system :class:`vehdyn.handling.SteeringSystem` models, referred
+        to the road wheels about the kingpins: the column (with its torsion bar) seen through the
+        overall ratio N,
+
+        .. math::
+
+            K_{ss} = N^2 k_c
+
+        (manual or assisted alike: the boost curve has zero slope at centre, so the assist adds no
+        stiffness there). The rack, the tie rods and the kingpin bushes are taken as rigid beside the
+        torsion bar (no separate field: a compliance of the suspension about the kingpin axis is
+        :attr:`Suspension.front_aligning_moment_compliance_steer`). The understeer it adds to a gradient
+        measured against the hand-wheel angle / N is (t_m + t_p) W_f / K_ss [rad/g] (Gillespie,
+        *Fundamentals of Vehicle Dynamics*, 1992, ch. 6, Table 6.1), with t_m the caster trail and
+        t_p the pneumatic trail: the steering torque about the kingpins is -(t_m + t_p) F_f.
+
+        Returns
+        -------
+        float
+            K_ss [N*m/rad].
+        """
+        return self.ratio**2 * self.column_stiffness
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -379,6 +473,18 @@ class Vehicle(ParameterSet):
                 f"geometry.sprung_cg_to_front_axle = {g.sprung_cg_to_front_axle} m is inconsistent with the "
                 f"masses and the total CG (it implies {implied:.4f} m)",
                 key="geometry.sprung_cg_to_front_axle", value=g.sprung_cg_to_front_axle)
+        # the compliance steer must leave each axle an effective cornering stiffness C / (1 - c C) > 0
+        # (the aligning-moment part needs the tire law's trail: checked where a model reads it,
+        # vehdyn.handling.bicycle.vehicle_compliance_steer)
+        for axle in ("front", "rear"):
+            c = getattr(self.suspension, f"{axle}_lateral_force_compliance_steer")
+            C = getattr(self.tires, f"{axle}_cornering_stiffness")
+            if 1.0 - c * C <= 0.0:
+                raise ParameterError(
+                    f"suspension.{axle}_lateral_force_compliance_steer = {c:.6g} rad/N with "
+                    f"tires.{axle}_cornering_stiffness = {C:.6g} N/rad makes 1 - c C = {1.0 - c * C:.6g} <= 0: the "
+                    f"axle's force would steer it further than its slip (no effective cornering stiffness)",
+                    key=f"suspension.{axle}_lateral_force_compliance_steer", value=c)
 
     # ------------------------------------------------------------------ derived quantities
     @property

@@ -206,7 +206,7 @@ def scene_inputs(drive, model, trim_inputs, road=None) -> dict:
 def _model_for(drive, ladder, name):
     """The FullVehicle for ``drive`` and the corners' road inputs, or NotAdmissible (see
     :func:`ladder_setup`: which of the two ladders answers which scene)."""
-    from vehdyn.scene.registry import tire_laws
+    from vehdyn.scene.registry import refuse_dropped_terms, tire_laws
     from vehdyn.full_vehicle.model import FullVehicle
 
     if ladder not in ("handling", "ride"):
@@ -217,6 +217,7 @@ def _model_for(drive, ladder, name):
         raise _not_admissible("no road input")
     if ladder == "handling" and not drive.handling_input:
         raise _not_admissible(f"no steer or braking: the ride rung {name}(ride) answers")
+    refuse_dropped_terms(drive.vehicle, ("roll_steer", "camber_thrust"))  # no compliance steer yet
     # one model for this plan's full-vehicle rungs, the tire laws the other rungs read
     model = drive.once("FullVehicle", lambda: FullVehicle(drive.vehicle, *tire_laws(drive)))
     unknown = [k for k in drive.inputs if k not in model.input_names]

@@ -26,7 +26,9 @@ front axle at distance V t) or None. The Setup holds the model instance (its ``o
 answer the scene's outputs, also as ``name + "_left"``), ``run()`` returning a SimulationResult on
 ``drive.time``, what the rung ignores, and its ``phenomena`` if they differ from the model's.
 A builder raises :class:`NotAdmissible` (message: the reason) when the rung cannot represent the
-scene.
+scene, and when the vehicle has a term of its understeer budget (roll steer, camber thrust,
+compliance steer: :data:`UNDERSTEER_TERMS`) that the rung does not carry
+(:func:`refuse_dropped_terms`), so the planner never picks a rung that drops one.
 """
 
 from __future__ import annotations
@@ -40,7 +42,8 @@ import numpy as np
 
 from vehdyn.errors import ParameterError
 
-__all__ = ["Rung", "Setup", "NotAdmissible", "RUNGS", "register_rung", "rungs", "SteadyStateAlgebra"]
+__all__ = ["Rung", "Setup", "NotAdmissible", "RUNGS", "register_rung", "rungs", "SteadyStateAlgebra",
+           "UNDERSTEER_TERMS", "refuse_dropped_terms"]
 
 
 class NotAdmissible(Exception):
@@ -303,6 +306,44 @@ class SteadyStateAlgebra:
         return _result(self, time, outputs, _time.perf_counter() - start, "algebraic")
 
 
+#: The terms of a vehicle's understeer budget (:func:`vehdyn.handling.understeer_budget`) a rung may
+#: or may not carry, with the vehicle-file fields that switch each on.
+UNDERSTEER_TERMS = {
+    "roll_steer": ("suspension.front_roll_steer", "suspension.rear_roll_steer"),
+    "camber_thrust": ("suspension.front_camber_gain", "suspension.rear_camber_gain"),
+    "compliance_steer": ("suspension.front_lateral_force_compliance_steer",
+                         "suspension.rear_lateral_force_compliance_steer",
+                         "suspension.front_aligning_moment_compliance_steer",
+                         "suspension.rear_aligning_moment_compliance_steer"),
+}
+
+
+def refuse_dropped_terms(vehicle, carries=()) -> None:
+    """NotAdmissible when the vehicle has a term of its understeer budget that the rung does not carry.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The scene's vehicle.
+    carries : tuple of str
+        The keys of :data:`UNDERSTEER_TERMS` the rung carries.
+
+    Raises
+    ------
+    NotAdmissible
+        Naming the first field (and its value) of a term the rung would drop.
+    """
+    for term, fields in UNDERSTEER_TERMS.items():
+        if term in carries:
+            continue
+        for name in fields:
+            group, _, attr = name.partition(".")
+            value = getattr(getattr(vehicle, group), attr)
+            if value is not None and value != 0.0:
+                raise NotAdmissible(f"does not carry the {term.replace('_', ' ')} of the vehicle ({name} = {value:g}): "
+                                    f"a term of its understeer budget")
+
+
 def _steer_only(drive, accepted=("front_steer_angle", "rear_steer_angle")):
     """The scene's inputs for a constant-speed model (NotAdmissible for an input it does not have)."""
     unknown = [k for k in drive.inputs if k not in accepted]
@@ -321,6 +362,7 @@ def build_steady_state(drive) -> Setup:
     steer = _steer_only(drive, ("front_steer_angle",)).get("front_steer_angle")
     if steer is None:
         raise NotAdmissible("no steer input")
+    refuse_dropped_terms(drive.vehicle, ("compliance_steer",))
     model = SteadyStateAlgebra(drive.vehicle, drive.scene.speed)
     return Setup(model, lambda: model.evaluate(drive.time, steer), _constant_speed_ignores(drive))
 
@@ -357,12 +399,14 @@ def _linear_setup(model, drive) -> Setup:
 def build_linear_bicycle(drive, tire_lag=False) -> Setup:
     from vehdyn.handling.bicycle import LinearBicycle
 
+    refuse_dropped_terms(drive.vehicle, ("compliance_steer",))
     return _linear_setup(LinearBicycle(drive.vehicle, drive.scene.speed, tire_lag=tire_lag), drive)
 
 
 def build_lateral_yaw_roll(drive) -> Setup:
     from vehdyn.handling.lateral_yaw_roll import LateralYawRoll
 
+    refuse_dropped_terms(drive.vehicle, ("roll_steer", "compliance_steer"))
     return _linear_setup(LateralYawRoll(drive.vehicle, drive.scene.speed), drive)
 
 
@@ -385,6 +429,7 @@ def build_lateral_yaw_roll_lag(drive) -> Setup:
     speed, is derived again in every run (per-scene work is part of the cost)."""
     from vehdyn.handling.lateral_yaw_roll_lag import LateralYawRollLag
 
+    refuse_dropped_terms(drive.vehicle, ("roll_steer",))
     front, rear = tire_laws(drive)
 
     def make():
@@ -452,6 +497,7 @@ def build_single_track(drive, tires="vehicle", lateral_load_transfer=False, roll
     from vehdyn.tire import load_tire, tire_for_vehicle
 
     vehicle, scene = drive.vehicle, drive.scene
+    refuse_dropped_terms(vehicle)
     if tires == "linear":
         front, rear = tire_for_vehicle(vehicle, "front", "linear"), tire_for_vehicle(vehicle, "rear", "linear")
     elif scene.tire is not None:

@@ -1,0 +1,103 @@
+"""Small-slip properties of an axle's tire law at the static load: pneumatic trail and camber stiffness.
+
+The linear models and the understeer budget read them where a vehicle file's field needs a tire
+property (the aligning-moment compliance steer needs the trail, the camber gain the camber
+stiffness); both at zero slip and half the static axle load (one wheel), by central differences of
+the law (Pacejka, *Tire and Vehicle Dynamics*, 3rd ed., 2012, sec. 1.3 and 4.3: the cornering,
+aligning and camber stiffnesses at zero slip).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vehdyn.errors import ParameterError
+
+__all__ = ["pneumatic_trail", "camber_stiffness"]
+
+_EPS = 1e-4  # [rad]
+_SPEED = 20.0  # [m/s]
+
+
+def _law(vehicle, axle, tire):
+    if axle not in ("front", "rear"):
+        raise ParameterError(f"axle must be 'front' or 'rear', got {axle!r}", key="axle", value=axle)
+    if tire is not None:
+        return tire
+    from vehdyn.tire import tire_for_vehicle
+
+    return tire_for_vehicle(vehicle, axle)
+
+
+def _wheel_load(vehicle, axle):
+    return 0.5 * vehicle.static_axle_loads()[0 if axle == "front" else 1]
+
+
+def pneumatic_trail(vehicle, axle: str = "front", tire=None) -> float:
+    r"""Pneumatic trail t of an axle's tires: -dM_z/dF_y at zero slip and the static load.
+
+    .. math::
+
+        t = -\frac{\partial M_z / \partial \alpha}{\partial F_y / \partial \alpha}\Big|_{\alpha = 0}
+
+    (the same in SAE and ISO-W: F_y and M_z both change sign between them); t > 0 for a force
+    acting behind the contact centre, so that M_z = -t F_y steers the wheel away from the force.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle; the front axle's ``steering.pneumatic_trail`` is used where it is set (and no
+        ``tire`` is given).
+    axle : {"front", "rear"}
+        The axle.
+    tire : TireModel, optional
+        The law of one wheel (default the vehicle's, :func:`vehdyn.tire.tire_for_vehicle`).
+
+    Returns
+    -------
+    float
+        t [m] (0.0 for a law without an aligning moment).
+    """
+    if axle == "front" and tire is None and vehicle.steering.pneumatic_trail is not None:
+        return float(vehicle.steering.pneumatic_trail)
+    law = _law(vehicle, axle, tire)
+    load = _wheel_load(vehicle, axle)
+    plus, minus = law.forces(load, 0.0, _EPS, 0.0, _SPEED), law.forces(load, 0.0, -_EPS, 0.0, _SPEED)
+    dfy = float(np.asarray(plus.fy) - np.asarray(minus.fy))
+    mz_plus, mz_minus = getattr(plus, "mz", None), getattr(minus, "mz", None)
+    if mz_plus is None or dfy == 0.0:
+        return 0.0
+    return -float(np.asarray(mz_plus) - np.asarray(mz_minus)) / dfy
+
+
+def camber_stiffness(vehicle, axle: str = "front", tire=None) -> float:
+    r"""Camber stiffness of an axle (both tires, SAE): dF_y/d(gamma) at zero slip and the static load.
+
+    .. math::
+
+        C_{\gamma} = 2 \frac{\partial F_{y,SAE}}{\partial \gamma}\Big|_{\alpha = \gamma = 0}
+                   = -2 \frac{\partial F_{y,ISO}}{\partial \gamma}
+
+    gamma the inclination, a rotation about the vehicle's x axis (the same in SAE and ISO-W): with
+    the wheels' planes rolled together (both tops toward +y) the two wheels of an axle push the
+    same way, a mirror-image tire (:func:`vehdyn.components.tire_setup.mirrored_wheel`) as much as
+    the other.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle (its static axle load).
+    axle : {"front", "rear"}
+        The axle.
+    tire : TireModel, optional
+        The law of one wheel (default the vehicle's).
+
+    Returns
+    -------
+    float
+        C_gamma [N/rad] (SAE force per SAE inclination).
+    """
+    law = _law(vehicle, axle, tire)
+    load = _wheel_load(vehicle, axle)
+    plus, minus = law.forces(load, 0.0, 0.0, _EPS, _SPEED), law.forces(load, 0.0, 0.0, -_EPS, _SPEED)
+    return -2.0 * float(np.asarray(plus.fy) - np.asarray(minus.fy)) / (2 * _EPS)
