@@ -17,7 +17,9 @@ import numpy as np
 from vehdyn.errors import ParameterError, SimulationError
 from vehdyn.model import LinearModel, Model, signal_vector
 from vehdyn.results import SimulationResult
+from vehdyn.simulation import _background
 from vehdyn.simulation._backend import (
+    _auto_backend,
     _compiled_backend,
     _compiled_member,
     _compiled_outputs,
@@ -240,13 +242,21 @@ def simulate(
     if violation is not None:
         raise violation
     compiled, why = _compiled_backend(model, method, backend, x0v, u)
+    backend_reason, key = why, None
     if compiled is not None:
-        reason = f"{reason}; {why}" if reason else why
+        run_compiled, key, backend_reason = _auto_backend(model, compiled, method, backend, t, u, x0v)
+        if run_compiled:
+            reason = f"{reason}; {why}" if reason else why
+        else:
+            compiled = None
 
     start = _time.perf_counter()
     x, counters = _integrate(model, compiled, method, t, inputs, u, x0v, hold, rtol, atol, max_step, first_step,
                              substeps, check_stability)
     wall = _time.perf_counter() - start
+    if compiled is not None and key is not None:
+        _background.mark_ready(key)
+    _background.learn(model, t, counters.get("nfev", 0))
 
     _raise_on_nonfinite(model, t, x, method)
     y = _compiled_outputs(model, compiled, t, x, u) if compiled is not None else None
@@ -266,6 +276,8 @@ def simulate(
         method_reason=reason,
         wall_time=wall,
         options={"rtol": rtol, "atol": atol, "hold": hold, "substeps": substeps},
+        backend="compiled" if compiled is not None else "numpy",
+        backend_reason=backend_reason,
         **counters,
     )
 
