@@ -228,3 +228,20 @@ def test_the_result_says_which_backend_ran_and_why():
     lag = vehdyn.LinearModel([[-2.0]], [[2.0]], states=["yaw_rate"], inputs=["front_steer_angle"])
     exact = vehdyn.simulate(lag, T, {"front_steer_angle": 0.01})
     assert exact.backend == "numpy" and "method 'exact'" in exact.backend_reason
+
+
+def test_a_compiled_run_records_its_build_for_other_processes(builds):
+    """After a backend="compiled" run (what vehdyn.warm_up does), an auto call in a new process runs
+    compiled from its first call, starting no build."""
+    model = CoastDown()
+    _run(model, backend="compiled")
+    assert _background.record(_key(model)) is not None
+    script = ("import sys, numpy as np, vehdyn; sys.path[:0] = {path!r}; from _coast_down import CoastDown; "
+              "from vehdyn.simulation import _background; "
+              "r = vehdyn.simulate(CoastDown(), np.linspace(0, 10, 101), {{'rear_longitudinal_force': 0.0}}, "
+              "x0=[30.0, 0.0], method='RK45'); print(r.backend, len(_background._CHILDREN), r.backend_reason)"
+              ).format(path=sys.path)
+    other = subprocess.run([sys.executable, "-c", script], env=dict(os.environ), timeout=TIMEOUT, capture_output=True,
+                           text=True)
+    assert other.returncode == 0, other.stderr
+    assert other.stdout.startswith("compiled 0 compiled code in the cache"), other.stdout

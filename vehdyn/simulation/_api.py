@@ -255,7 +255,7 @@ def simulate(
                              substeps, check_stability)
     wall = _time.perf_counter() - start
     if compiled is not None and key is not None:
-        _background.mark_ready(key)
+        _background.mark_ready(key, compiled.key, wall)
     _background.learn(model, t, counters.get("nfev", 0))
 
     _raise_on_nonfinite(model, t, x, method)

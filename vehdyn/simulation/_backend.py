@@ -71,12 +71,13 @@ def _auto_backend(model, compiled, method, backend, t, u, x0):
     """Whether a call whose compiled backend can run runs compiled now, with the code key and why
     (:func:`vehdyn.simulation._background.decide` for one run on ``"auto"``; an explicit
     ``"compiled"`` and a batch compile here first)."""
-    if backend == "compiled":
-        return True, None, "backend='compiled' asked for: compiled in this process first if not cached"
-    if hasattr(compiled, "pick"):
-        return True, None, "a batch: compiled in this process first if not cached (it waits for the compiler once)"
     from vehdyn.simulation import _background
 
+    if hasattr(compiled, "pick"):
+        return True, None, "a batch: compiled in this process first if not cached (it waits for the compiler once)"
+    if backend == "compiled":
+        return True, _background.code_key(compiled, method), ("backend='compiled' asked for: compiled in this "
+                                                              "process first if not cached")
     return _background.decide(model, compiled, method, t, u, x0)
 
 

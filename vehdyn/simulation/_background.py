@@ -50,6 +50,7 @@ STEP_OVERHEAD = 1e-4
 _ENTRY = "import sys; from vehdyn.simulation._background import build; sys.exit(build(sys.argv[1]))"
 #: (tests) a path: the builder waits while that file exists, after compiling, before writing its record
 _HOLD_ENV = "VEHDYN_BUILD_HOLD_WHILE"
+_WRITE_RECORDS = True  # False in a builder, which writes its record when its whole build is done
 _READY: set = set()  # code keys that ran compiled in this process
 _CHILDREN: dict = {}  # code key -> Popen of the builds this process started
 _CALLS_PER_SECOND: dict = {}  # model class name -> rhs calls per simulated second (learnt)
@@ -229,9 +230,25 @@ def learn(model, t, nfev: int) -> None:
         _CALLS_PER_SECOND[type(model).__name__] = nfev / span
 
 
-def mark_ready(key: str) -> None:
-    """Note that ``key``'s code ran compiled in this process (later calls need no record)."""
+def mark_ready(key: str, label: str, seconds: float) -> None:
+    """Note that ``key``'s code ran compiled in this process, and write its build record if there is
+    none (it was compiled here, or loaded from a cache built by ``"compiled"`` calls or
+    :func:`vehdyn.warm_up`), so that ``"auto"`` calls in other processes run it from their first."""
+    if key in _READY:
+        return
     _READY.add(key)
+    if _WRITE_RECORDS and record(key) is None:
+        _write_record(key, {"label": label, "seconds": seconds, "pid": os.getpid()})
+
+
+def _write_record(key: str, data: dict) -> None:
+    done = _paths(key)[1]
+    temporary = done.with_suffix(f".done.{os.getpid()}")
+    try:
+        temporary.write_text(json.dumps(data))
+        os.replace(temporary, done)
+    except OSError:  # a read-only build folder: the next process builds (or loads) again
+        pass
 
 
 def decide(model, compiled, method: str, t, u, x0) -> tuple[bool, str, str]:
@@ -280,6 +297,8 @@ def build(key: str) -> int:
     """The builder's work: take the lock (or leave: another builds), build, write the record."""
     import fcntl
 
+    global _WRITE_RECORDS
+    _WRITE_RECORDS = False
     lock, done, payload, _ = _paths(key)
     try:
         os.nice(NICENESS)
@@ -309,10 +328,10 @@ def build(key: str) -> int:
 
     stream = io.BytesIO(data)
     sys.path.extend(p for p in pickle.load(stream) if p not in sys.path)  # where the model's classes live
-    return _run(pickle.load(stream), key, start, done, payload)
+    return _run(pickle.load(stream), key, start, payload)
 
 
-def _run(job, key, start, done, payload) -> int:
+def _run(job, key, start, payload) -> int:
     import numpy as np
 
     from vehdyn.errors import SimulationError
@@ -328,10 +347,7 @@ def _run(job, key, start, done, payload) -> int:
     while hold and os.path.exists(hold):  # the tests' seam: a build caught between compiling and its record
         time.sleep(0.05)
     seconds = time.time() - start
-    temporary = done.with_suffix(f".done.{os.getpid()}")
-    temporary.write_text(json.dumps({"label": job["label"], "seconds": seconds, "pid": os.getpid(),
-                                     "method": job["method"]}))
-    os.replace(temporary, done)
+    _write_record(key, {"label": job["label"], "seconds": seconds, "pid": os.getpid(), "method": job["method"]})
     try:
         payload.unlink()
     except OSError:
