@@ -133,7 +133,8 @@ def builder(key: str) -> tuple[int, float] | None:
 
 def expected_seconds(label: str) -> float:
     """The expected duration [s] of a build of ``label``'s code: the longest recorded build of the
-    same label in the build folder, else :data:`DEFAULT_BUILD_SECONDS`."""
+    same label in the build folder, else :data:`DEFAULT_BUILD_SECONDS` times the machine's load per core
+    (when above 1)."""
     seconds = []
     for path in build_dir().glob("*.done"):
         try:
@@ -142,25 +143,44 @@ def expected_seconds(label: str) -> float:
             continue
         if data.get("label") == label:
             seconds.append(float(data.get("seconds", 0.0)))
-    return max(seconds) if seconds else DEFAULT_BUILD_SECONDS
+    if seconds:
+        return max(seconds)
+    try:  # a loaded machine builds slower (and runs numpy slower: both estimates scale alike)
+        load = os.getloadavg()[0] / (os.cpu_count() or 1)
+    except OSError:  # pragma: no cover
+        load = 1.0
+    return DEFAULT_BUILD_SECONDS * max(1.0, load)
 
 
-class _Pickler:
-    """pickle with read-only mappings (``types.MappingProxyType``, as in a parsed .tir file) as dicts."""
+def _mapping_proxy(mapping):
+    import types
 
-    @staticmethod
-    def dumps(obj) -> bytes:
-        import copyreg
-        import io
-        import pickle
-        import types
+    return types.MappingProxyType(mapping)
 
-        buffer = io.BytesIO()
-        pickler = pickle.Pickler(buffer, protocol=pickle.HIGHEST_PROTOCOL)
-        pickler.dispatch_table = copyreg.dispatch_table.copy()
-        pickler.dispatch_table[types.MappingProxyType] = lambda m: (types.MappingProxyType, (dict(m),))
-        pickler.dump(obj)
-        return buffer.getvalue()
+
+def _dumps(obj) -> bytes:
+    """``pickle.dumps`` of a model for the builder: read-only mappings (``types.MappingProxyType``, as
+    in a parsed .tir file) as dicts, and without an object's cached compiled code (attributes named
+    ``_compiled*``: numba dispatchers, rebuilt by the builder)."""
+    import io
+    import pickle
+    import types
+
+    class Pickler(pickle.Pickler):
+        def reducer_override(self, item):
+            if isinstance(item, types.MappingProxyType):
+                return _mapping_proxy, (dict(item),)
+            state = getattr(item, "__dict__", None)
+            if isinstance(item, type) or not isinstance(state, dict) or not any(
+                    name.startswith("_compiled") for name in state):
+                return NotImplemented
+            reduced = item.__reduce_ex__(pickle.HIGHEST_PROTOCOL)
+            kept = {name: value for name, value in reduced[2].items() if not name.startswith("_compiled")}
+            return (*reduced[:2], kept, *reduced[3:])
+
+    buffer = io.BytesIO()
+    Pickler(buffer, protocol=pickle.HIGHEST_PROTOCOL).dump(obj)
+    return buffer.getvalue()
 
 
 def start_build(key: str, label: str, model, t, u, x0, method: str) -> int | None:
@@ -176,7 +196,7 @@ def start_build(key: str, label: str, model, t, u, x0, method: str) -> int | Non
     lock, _, payload, log = _paths(key)
     span = slice(0, min(2, len(t)))
     try:
-        data = _Pickler.dumps(list(sys.path)) + _Pickler.dumps(
+        data = _dumps(list(sys.path)) + _dumps(
             {"label": label, "model": model, "t": t[span], "u": u[:, span], "x0": x0, "method": method})
     except Exception:  # an unpicklable model (a Python callable inside): no background build
         return None
@@ -347,7 +367,8 @@ def _run(job, key, start, payload) -> int:
     while hold and os.path.exists(hold):  # the tests' seam: a build caught between compiling and its record
         time.sleep(0.05)
     seconds = time.time() - start
-    _write_record(key, {"label": job["label"], "seconds": seconds, "pid": os.getpid(), "method": job["method"]})
+    _write_record(key, {"label": job["label"], "seconds": seconds, "cpu_seconds": time.process_time(),
+                        "pid": os.getpid(), "method": job["method"]})
     try:
         payload.unlink()
     except OSError:
