@@ -245,3 +245,13 @@ def test_a_compiled_run_records_its_build_for_other_processes(builds):
                            text=True)
     assert other.returncode == 0, other.stderr
     assert other.stdout.startswith("compiled 0 compiled code in the cache"), other.stdout
+
+
+def test_an_unwritable_build_folder_compiles_in_the_calling_process(builds, tmp_path, monkeypatch):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    monkeypatch.setenv(_background.DIR_ENV, str(blocker / "builds"))  # below a file: cannot be created
+    model = CoastDown()
+    result = _run(model)
+    assert result.backend == "compiled" and "no background build" in result.backend_reason
+    _check_closed_form(model, result)

@@ -112,8 +112,9 @@ def simulate(
     -------
     SimulationResult
         Time, states, inputs and outputs (signals x time [x batch]) with their names and units,
-        the method and why it was chosen (``method_reason``), the solver's counters and the wall
-        time of the integration.
+        the method and why it was chosen (``method_reason``), the backend that ran and why
+        (``backend``, ``backend_reason``), the solver's counters and the wall time of the
+        integration.
 
     Raises
     ------
@@ -184,6 +185,17 @@ def simulate(
     compiled backend when the method is one of those three, numba is installed and the model
     has a compiled rhs (and, for a batch, a compiled batch), and says so in
     ``result.method_reason``.
+
+    The first call answers soonest on ``"auto"``: when a single run's compiled code is not built
+    yet (numba's on-disk cache; 10-40 s the first time, milliseconds to load afterwards), a
+    detached, niced background process builds it -- one per code, under a lock -- and this call
+    runs on numpy when numpy's estimated run time is below the build's expected remaining time,
+    else it waits for the build. Later calls, in this process or another, run compiled as soon as
+    the build has finished; ``result.backend`` and ``result.backend_reason`` say which path ran
+    and why. A batch, ``simulate_many`` and an explicit ``"compiled"`` compile first, then run.
+    ``VEHDYN_BACKGROUND_COMPILE=0`` turns background builds off (then ``"auto"`` compiles first,
+    whatever the call); :func:`vehdyn.warm_up` (``vehdyn compile``) builds the shipped models'
+    code ahead of time.
 
     References
     ----------

@@ -237,7 +237,8 @@ def _run_compiled_group(members, threads) -> list:
         results.append(SimulationResult(
             time=t, states=states[j], inputs=U[..., j], outputs=outputs[j], state_signals=model.states,
             input_signals=model.inputs, output_signals=model.output_signals, method=method,
-            method_reason=reason, wall_time=wall, nfev=nfev, n_steps=accepted,
+            method_reason=reason, wall_time=wall, nfev=nfev, n_steps=accepted, backend="compiled",
+            backend_reason="simulate_many: one compiled batch (compiled in this process first if not cached)",
             message=f"compiled {method}: {accepted} steps ({rejected} rejected), {nfev} rhs calls",
             options={"rtol": options["rtol"], "atol": options["atol"], "hold": options["hold"], "substeps": 1}))
     return results

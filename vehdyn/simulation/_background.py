@@ -35,7 +35,8 @@ import sys
 import time
 from pathlib import Path
 
-ENV = "VEHDYN_BACKGROUND_COMPILE"
+from vehdyn.simulation.compiled import BACKGROUND_ENV as ENV
+
 DIR_ENV = "VEHDYN_BUILD_DIR"
 #: expected duration [s] of a build of code never built before in the build folder (a cold
 #: compile of a shipped model on a 2-core machine: 10-40 s)
@@ -257,8 +258,11 @@ def mark_ready(key: str, label: str, seconds: float) -> None:
     if key in _READY:
         return
     _READY.add(key)
-    if _WRITE_RECORDS and record(key) is None:
-        _write_record(key, {"label": label, "seconds": seconds, "pid": os.getpid()})
+    try:
+        if _WRITE_RECORDS and record(key) is None:
+            _write_record(key, {"label": label, "seconds": seconds, "pid": os.getpid()})
+    except OSError:  # no build folder can be written: other processes build (or load) again
+        pass
 
 
 def _write_record(key: str, data: dict) -> None:
@@ -279,6 +283,13 @@ def decide(model, compiled, method: str, t, u, x0) -> tuple[bool, str, str]:
     started (or found running) and numpy runs when its estimate is below the build's remaining time,
     else this call waits for the build.
     """
+    try:
+        return _decide(model, compiled, method, t, u, x0)
+    except OSError as exc:  # no build folder can be written: compile here, as without background builds
+        return True, None, f"no background build ({exc}): compiled in this process first if not cached"
+
+
+def _decide(model, compiled, method, t, u, x0):
     key = code_key(compiled, method)
     if key in _READY:
         return True, key, "compiled code already loaded in this process"
