@@ -52,7 +52,9 @@ _ENTRY = "import sys; from vehdyn.simulation._background import build; sys.exit(
 #: (tests) a path: the builder waits while that file exists, after compiling, before writing its record
 _HOLD_ENV = "VEHDYN_BUILD_HOLD_WHILE"
 _WRITE_RECORDS = True  # False in a builder, which writes its record when its whole build is done
-_READY: set = set()  # code keys that ran compiled in this process
+_READY: set = set()
+_DTYPES: dict = {}  # numpy dtype -> its description
+_KEYS: dict = {}  # (id of a compiled model, method) -> (that compiled model, its code key): the latest 256  # code keys that ran compiled in this process
 _CHILDREN: dict = {}  # code key -> Popen of the builds this process started
 _CALLS_PER_SECOND: dict = {}  # model class name -> rhs calls per simulated second (learnt)
 
@@ -86,13 +88,35 @@ def build_dir() -> Path:
     return path
 
 
+def _signature(value) -> str:
+    """What numba's typing of ``value`` depends on, cheaply (microseconds, where ``numba.typeof`` of a
+    model's arguments takes milliseconds): tuples (their class and items), arrays (dtype, dimensions,
+    layout, writability), and the type of anything else."""
+    if isinstance(value, tuple):
+        return f"{type(value).__name__}({','.join(_signature(v) for v in value)})"
+    if hasattr(value, "dtype") and hasattr(value, "flags"):
+        layout = "C" if value.flags.c_contiguous else "F" if value.flags.f_contiguous else "A"
+        dtype = _DTYPES.get(value.dtype)
+        if dtype is None:
+            dtype = _DTYPES[value.dtype] = str(value.dtype.descr)  # slow for a Magic Formula record: once
+        return f"a[{dtype},{value.ndim},{layout},{'w' if value.flags.writeable else 'r'}]"
+    return type(value).__name__
+
+
 def code_key(compiled, method: str) -> str:
     """A digest naming one piece of compiled code: the model's compiled key (its sources' stamps),
-    the method's loop, the numba types of the model's arguments, numba's and Python's versions."""
+    the method's loop, the types of the model's arguments, numba's and Python's versions."""
     import numba
 
-    text = "|".join((compiled.key, method, str(numba.typeof(compiled.args)), numba.__version__, sys.version))
-    return hashlib.sha256(text.encode()).hexdigest()[:24]
+    known = _KEYS.get((id(compiled), method))
+    if known is not None and known[0] is compiled:  # the model's cached compiled form: its key once
+        return known[1]
+    text = "|".join((compiled.key, method, _signature(compiled.args), numba.__version__, sys.version))
+    key = hashlib.sha256(text.encode()).hexdigest()[:24]
+    if len(_KEYS) >= 256:
+        _KEYS.pop(next(iter(_KEYS)))
+    _KEYS[(id(compiled), method)] = (compiled, key)
+    return key
 
 
 def _paths(key: str):
