@@ -108,6 +108,7 @@ def _builder_pid(key, timeout=TIMEOUT):
         time.sleep(0.05)
 
 
+@pytest.mark.compiled_vs_numpy  # within the integrator's tolerance, not ulps
 def test_auto_answers_on_numpy_then_runs_the_built_code(builds, tmp_path, monkeypatch):
     """Cold: numpy answers and says why; once the build's record exists, compiled; both equal the
     closed form and each other within the tolerance."""
