@@ -43,7 +43,7 @@ import argparse
 import sys
 import time
 
-__all__ = ["main"]
+__all__ = ["main", "shipped_runs"]
 
 
 class _UsageError(Exception):
