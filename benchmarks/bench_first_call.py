@@ -133,7 +133,7 @@ def main(argv) -> None:
     names = [a for a in argv if not a.startswith("--")] or list(shipped_runs())
     print(f"Python {sys.version.split()[0]}, {os.cpu_count()} cores; every row from an empty numba cache; "
           "wall [s] (CPU [s]); goals: auto 1st <= 3 s, cold compile <= 10 s per model")
-    header = (f"{'model':<24} {'auto 1st':>9} {'build wall (cpu)':>17} {'auto next':>9} {'compiled 1st (cpu)':>19} "
+    header = (f"{'model':<24} {'auto 1st (cpu)':>15} {'build wall (cpu)':>17} {'auto next':>9} {'compiled 1st (cpu)':>19} "
               f"{'integrator':>10} {'model':>6} {'tire':>6} {'numba':>6} {'warm':>8} {'import':>6}  load")
     print(header)
     for name in names:
@@ -141,7 +141,8 @@ def main(argv) -> None:
         compiled = _measure(name, "compiled")
         g = compiled["groups"]
         build = auto.get("build") or {}
-        print(f"{name:<24} {auto['first']:8.2f}{'n' if auto['first_backend'] == 'numpy' else 'c'} "
+        print(f"{name:<24} {auto['first']:7.2f}{'n' if auto['first_backend'] == 'numpy' else 'c'} "
+              f"({auto['first_cpu']:5.2f}) "
               f"{build.get('seconds', float('nan')):8.1f} ({build.get('cpu_seconds', float('nan')):5.1f}) "
               f"{auto['next']:9.2f} {compiled['first']:10.1f} ({compiled['first_cpu']:5.1f}) "
               f"{g.get('integrator', 0):10.1f} {g.get('model', 0):6.1f} {g.get('tire laws', 0):6.1f} "
