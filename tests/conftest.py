@@ -23,6 +23,11 @@ import pytest
 
 _PERTURB_DIR = Path(__file__).resolve().parent / "_perturb"
 
+# backend="auto" compiles before it runs, as it always did, unless a test turns background builds on
+# (tests/core/test_background_build.py): the suite's numbers and timings do not depend on a build's progress,
+# and no builder outlives a test. Subprocesses of the tests (the CLI, process pools) inherit it.
+os.environ["VEHDYN_BACKGROUND_COMPILE"] = "0"
+
 
 def _load_perturbation():
     """tests/_perturb/sitecustomize.py as a module (the one a subprocess imports as ``sitecustomize``)."""

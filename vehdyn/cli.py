@@ -13,6 +13,10 @@
     shipped soil name or ``soils.toml:NAME``) and write the curves' figure.
 ``vehdyn vehicles``
     List the shipped vehicles with their key numbers.
+``vehdyn compile [MODEL ...]``
+    Build the compiled code of the shipped models (all, or those named: :func:`shipped_runs`) into
+    numba's cache ahead of time, with a progress bar (:func:`warm_up`), so that the first
+    ``simulate`` of each runs compiled.
 ``vehdyn scene FILE.toml [--verify [--no-escalate]]``
     Plan a scene (the fidelity ladder), run the chosen model and print the headline numbers. With
     ``--verify`` the reference rung runs too; a rung beyond the tolerance is reported (a warning on
@@ -39,7 +43,7 @@ import argparse
 import sys
 import time
 
-__all__ = ["main"]
+__all__ = ["main", "shipped_runs"]
 
 
 class _UsageError(Exception):
@@ -242,6 +246,200 @@ def cmd_vehicles(args) -> int:
     return 0
 
 
+def _sine_steer():
+    from vehdyn.procedures import sine_steer
+
+    return sine_steer(0.035, 0.5)  # 2 deg road-wheel amplitude, 0.5 Hz
+
+
+def _sedan_single_track(**options):
+    import numpy as np
+
+    from vehdyn.handling import SingleTrack
+    from vehdyn.params import load_vehicle
+
+    model = SingleTrack(load_vehicle("sedan"), **options)
+    return model, np.linspace(0.0, 5.0, 501), {"front_steer_angle": _sine_steer()}, model.straight_running(20.0)
+
+
+def _linear_single_track():
+    import numpy as np
+
+    from vehdyn.handling import SingleTrack
+    from vehdyn.params import load_vehicle
+    from vehdyn.tire import LinearTire
+
+    car = load_vehicle("sedan")
+    model = SingleTrack(car, LinearTire(cornering_stiffness=car.tires.front_cornering_stiffness / 2, nominal_load=3000.0),
+                        LinearTire(cornering_stiffness=car.tires.rear_cornering_stiffness / 2))
+    return model, np.linspace(0.0, 5.0, 501), {"front_steer_angle": _sine_steer()}, model.straight_running(20.0)
+
+
+def _full_vehicle():
+    import numpy as np
+
+    from vehdyn.full_vehicle import FullVehicle
+    from vehdyn.params import load_vehicle
+
+    model = FullVehicle(load_vehicle("sedan"))
+    x0, u0 = model.trim(20.0)
+    inputs = dict(zip(model.input_names, u0))
+    inputs["front_steer_angle"] = _sine_steer()
+    return model, np.linspace(0.0, 5.0, 501), inputs, x0
+
+
+def _loop(controller, speed, duration, steer=True, wheel_spin=False):
+    import numpy as np
+
+    from vehdyn.handling import SingleTrack
+    from vehdyn.interconnect import ClosedLoop
+    from vehdyn.params import load_vehicle
+
+    car = load_vehicle("sedan")
+    plant = SingleTrack(car, wheel_spin=wheel_spin)
+    model = controller(car).close(plant) if controller.__name__ == "driver" else ClosedLoop(plant, controller(car))
+    x0 = model.state_vector(dict(zip(plant.state_names, plant.straight_running(speed))))
+    return model, np.linspace(0.0, duration, int(round(duration * 100)) + 1), (
+        {"front_steer_angle": _sine_steer()} if steer else None), x0
+
+
+def _abs_loop():
+    from vehdyn.chassis import ABS
+
+    return _loop(ABS, 25.0, 2.0, steer=False, wheel_spin=True)
+
+
+def _esc_loop():
+    from vehdyn.chassis import ESC
+
+    return _loop(ESC, 20.0, 5.0)
+
+
+def _driver_loop():
+    import numpy as np
+
+    from vehdyn.driver import PreviewDriver
+
+    path_x = np.linspace(-10.0, 300.0, 120)
+
+    def driver(car):
+        return PreviewDriver(path_x, 2.0 * np.sin(path_x / 25.0), wheelbase=car.geometry.wheelbase, target_speed=18.0,
+                             mass=car.mass.mass)
+
+    return _loop(driver, 18.0, 5.0, steer=False)
+
+
+def _lift_off():
+    import numpy as np
+
+    from vehdyn.params import load_vehicle
+    from vehdyn.ride import FullCar, LiftOff
+
+    model = LiftOff(FullCar(load_vehicle("sedan")))
+    t = np.linspace(0.0, 1.0, 201)
+    w = 2 * np.pi * 1.5
+    inputs = {}
+    for corner, phase in zip(("front_left", "front_right", "rear_left", "rear_right"), (0.0, 0.5, 1.0, 1.5)):
+        inputs[f"road_displacement_{corner}"] = 0.03 * np.sin(w * t + phase)  # lifts the wheels off
+        inputs[f"road_velocity_{corner}"] = 0.03 * w * np.cos(w * t + phase)
+    return model, t, inputs, None
+
+
+_RUNS = {"single_track": _sedan_single_track, "single_track_linear": _linear_single_track,
+         "single_track_wheel_spin": lambda: _sedan_single_track(wheel_spin=True), "full_vehicle": _full_vehicle,
+         "abs": _abs_loop, "esc": _esc_loop, "driver": _driver_loop, "lift_off": _lift_off}
+
+
+def shipped_runs(names=None) -> dict:
+    """One representative ``simulate`` call of each shipped model with a compiled form (the sedan's).
+
+    Parameters
+    ----------
+    names : list of str, optional
+        The models (default: all): ``single_track`` (Magic Formula tires), ``single_track_linear``,
+        ``single_track_wheel_spin``, ``full_vehicle``, ``abs`` / ``esc`` (a single track with the
+        controller in the loop), ``driver`` (a preview driver closing the loop), ``lift_off`` (the
+        full car's wheels leaving the road).
+
+    Returns
+    -------
+    dict
+        Per name a function returning ``(model, time [s], inputs, x0)`` for :func:`vehdyn.simulate`.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown name.
+    """
+    from vehdyn.errors import ParameterError
+
+    names = list(_RUNS) if not names else list(names)
+    for name in names:
+        if name not in _RUNS:
+            raise ParameterError(f"unknown model {name!r}: one of {', '.join(_RUNS)}", key="models", value=name)
+    return {name: _RUNS[name] for name in names}
+
+
+def warm_up(models=None, progress=None) -> dict:
+    """Build the compiled code of shipped models into numba's on-disk cache ahead of time.
+
+    Each model's representative run (:func:`shipped_runs`) is simulated with
+    ``backend="compiled"``: its rhs, outputs and integrator loop are compiled in this process (or
+    loaded, when already cached) and recorded as built, so that a later ``simulate`` of the model
+    on ``backend="auto"``, in any process, runs compiled from its first call.
+
+    Parameters
+    ----------
+    models : list of str, optional
+        The models (default: all; names as in :func:`shipped_runs`).
+    progress : callable or bool, optional
+        Called as ``progress(i, n, name)`` before each model and once with ``i == n`` at the end;
+        True: a progress bar on stderr.
+
+    Returns
+    -------
+    dict
+        Per model the time it took [s] (a cold compile, or a cache load).
+    """
+    from vehdyn.simulation import simulate
+
+    runs = shipped_runs(models)
+    if progress is True:
+        def progress(i, n, name):
+            sys.stderr.write(_progress(i, n, name) + ("\n" if i == n else ""))
+    elif not progress:
+        progress = None
+    seconds = {}
+    for i, (name, make) in enumerate(runs.items()):
+        if progress is not None:
+            progress(i, len(runs), name)
+        start = time.perf_counter()
+        model, t, inputs, x0 = make()
+        simulate(model, t, inputs, x0=x0, backend="compiled")
+        seconds[name] = time.perf_counter() - start
+    if progress is not None:
+        progress(len(runs), len(runs), "done")
+    return seconds
+
+
+def cmd_compile(args) -> int:
+    from vehdyn.simulation.compiled import numba_available
+
+    if not numba_available():
+        raise _UsageError("numba is not installed (pip install vehdyn[fast]): nothing to compile")
+    shipped_runs(args.models)  # an unknown name: one line before any work
+
+    def progress(i, n, name):
+        args.progress_line_open = i < n
+        sys.stderr.write(_progress(i, n, name) + ("\n" if i == n else ""))
+
+    seconds = warm_up(args.models, progress=progress)
+    for name, value in seconds.items():
+        print(f"{name:<26} {value:7.1f} s")
+    print(f"{'total':<26} {sum(seconds.values()):7.1f} s")
+    return 0
+
+
 def cmd_scene(args) -> int:
     import warnings
 
@@ -330,6 +528,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_tire_fit)
     p = sub.add_parser("vehicles", help="list the shipped vehicles")
     p.set_defaults(func=cmd_vehicles)
+    p = sub.add_parser("compile", help="build the compiled code of the shipped models ahead of time")
+    p.add_argument("models", nargs="*", metavar="MODEL", help=f"default: all ({', '.join(_RUNS)})")
+    p.set_defaults(func=cmd_compile)
     p = sub.add_parser("scene", help="plan a scene (.toml), run the chosen model, print the headline numbers")
     p.add_argument("file", help="path of a scene .toml file")
     p.add_argument("--verify", action="store_true", help="also run the reference rung and measure the error; "

@@ -272,6 +272,9 @@ def _load_module(path: Path):
 def run_study(path: str | Path, out_dir: str | Path, quick: bool = False) -> StudyOutcome:
     """Run one study script into ``out_dir/NAME``; errors are caught and reported in the outcome.
 
+    The study's ``simulate`` calls compile before they run (background builds off, as with
+    ``VEHDYN_BACKGROUND_COMPILE=0``): its numbers do not depend on how far a build has come.
+
     Parameters
     ----------
     path : str or os.PathLike
@@ -288,6 +291,22 @@ def run_study(path: str | Path, out_dir: str | Path, quick: bool = False) -> Stu
         [s], and the traceback if loading or running the script raised an ``Exception`` (the
         exception is not propagated; ``KeyboardInterrupt`` and ``SystemExit`` are).
     """
+    import os
+
+    from vehdyn.simulation import compiled as compiled_backend
+
+    previous = os.environ.get(compiled_backend.BACKGROUND_ENV)
+    os.environ[compiled_backend.BACKGROUND_ENV] = "0"
+    try:
+        return _run_study(path, out_dir, quick)
+    finally:
+        if previous is None:
+            os.environ.pop(compiled_backend.BACKGROUND_ENV, None)
+        else:
+            os.environ[compiled_backend.BACKGROUND_ENV] = previous
+
+
+def _run_study(path, out_dir, quick):
     import matplotlib
 
     matplotlib.use("Agg")

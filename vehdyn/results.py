@@ -42,6 +42,12 @@ class SimulationResult:
     options : dict
         The options the run used: ``rtol`` [-], ``atol`` [the states' units], ``hold``,
         ``substeps``.
+    backend : str
+        Where the run integrated: ``"compiled"`` (numba) or ``"numpy"``.
+    backend_reason : str
+        Why: the ``backend`` argument, why the compiled backend cannot run, or, on ``"auto"``,
+        whether the compiled code was in the cache, is building in the background (numpy answering
+        sooner) or was waited for (:func:`vehdyn.simulate`, Notes).
 
     Examples
     --------
@@ -71,6 +77,8 @@ class SimulationResult:
     wall_time: float = 0.0
     message: str = ""
     options: dict = field(default_factory=dict)
+    backend: str = "numpy"
+    backend_reason: str = ""
 
     @property
     def state_names(self) -> tuple[str, ...]:

@@ -17,7 +17,9 @@ import numpy as np
 from vehdyn.errors import ParameterError, SimulationError
 from vehdyn.model import LinearModel, Model, signal_vector
 from vehdyn.results import SimulationResult
+from vehdyn.simulation import _background
 from vehdyn.simulation._backend import (
+    _auto_backend,
     _compiled_backend,
     _compiled_member,
     _compiled_outputs,
@@ -110,8 +112,9 @@ def simulate(
     -------
     SimulationResult
         Time, states, inputs and outputs (signals x time [x batch]) with their names and units,
-        the method and why it was chosen (``method_reason``), the solver's counters and the wall
-        time of the integration.
+        the method and why it was chosen (``method_reason``), the backend that ran and why
+        (``backend``, ``backend_reason``), the solver's counters and the wall time of the
+        integration.
 
     Raises
     ------
@@ -183,6 +186,17 @@ def simulate(
     has a compiled rhs (and, for a batch, a compiled batch), and says so in
     ``result.method_reason``.
 
+    The first call answers soonest on ``"auto"``: when a single run's compiled code is not built
+    yet (numba's on-disk cache; 10-40 s the first time, milliseconds to load afterwards), a
+    detached, niced background process builds it -- one per code, under a lock -- and this call
+    runs on numpy when numpy's estimated run time is below the build's expected remaining time,
+    else it waits for the build. Later calls, in this process or another, run compiled as soon as
+    the build has finished; ``result.backend`` and ``result.backend_reason`` say which path ran
+    and why. A batch, ``simulate_many`` and an explicit ``"compiled"`` compile first, then run.
+    ``VEHDYN_BACKGROUND_COMPILE=0`` turns background builds off (then ``"auto"`` compiles first,
+    whatever the call); :func:`vehdyn.warm_up` (``vehdyn compile``) builds the shipped models'
+    code ahead of time.
+
     References
     ----------
     .. [1] E. Hairer, S. P. Nørsett and G. Wanner, *Solving Ordinary Differential Equations I:
@@ -240,13 +254,21 @@ def simulate(
     if violation is not None:
         raise violation
     compiled, why = _compiled_backend(model, method, backend, x0v, u)
+    backend_reason, key = why, None
     if compiled is not None:
-        reason = f"{reason}; {why}" if reason else why
+        run_compiled, key, backend_reason = _auto_backend(model, compiled, method, backend, t, u, x0v)
+        if run_compiled:
+            reason = f"{reason}; {why}" if reason else why
+        else:
+            compiled = None
 
     start = _time.perf_counter()
     x, counters = _integrate(model, compiled, method, t, inputs, u, x0v, hold, rtol, atol, max_step, first_step,
                              substeps, check_stability)
     wall = _time.perf_counter() - start
+    if compiled is not None and key is not None:
+        _background.mark_ready(key, compiled.key, wall)
+    _background.learn(model, t, counters.get("nfev", 0))
 
     _raise_on_nonfinite(model, t, x, method)
     y = _compiled_outputs(model, compiled, t, x, u) if compiled is not None else None
@@ -266,6 +288,8 @@ def simulate(
         method_reason=reason,
         wall_time=wall,
         options={"rtol": rtol, "atol": atol, "hold": hold, "substeps": substeps},
+        backend="compiled" if compiled is not None else "numpy",
+        backend_reason=backend_reason,
         **counters,
     )
 

@@ -28,14 +28,14 @@ _BATCH_OPTIONS = {"x0", "method", "rtol", "atol", "hold", "backend"}
 
 
 def _compiled_backend(model, method, backend, x0, u):
-    """(compiled rhs, key, args) and the reason when the compiled backend runs, else (None, "")."""
+    """(compiled rhs, key, args) and the reason when the compiled backend can run, else (None, why not)."""
     from vehdyn.simulation import compiled as _compiled_ode
 
     backends = ("auto", "numpy", "compiled")
     if backend not in backends:
         raise ParameterError(f"backend must be one of {backends}, got {backend!r}", key="backend", value=backend)
     if backend == "numpy":
-        return None, ""
+        return None, "backend='numpy' asked for"
     explicit = backend == "compiled"
     problem = None
     if method not in _compiled_ode.METHODS:
@@ -51,20 +51,34 @@ def _compiled_backend(model, method, backend, x0, u):
                 compiled = model.compiled_batch(x0.shape[1] if x0.ndim > 1 else u.shape[2])
             else:
                 compiled = model.compiled_rhs()
-        except ParameterError:
+        except ParameterError as exc:
             if explicit:
                 raise
-            return None, ""
+            return None, f"no compiled form of this configuration: {exc}"
         if compiled is None:
             problem = f"{type(model).__name__} has no compiled rhs"
     if problem is not None:
         if explicit:
             raise ParameterError(f"backend='compiled' cannot run: {problem}", key="backend", value=backend)
-        return None, ""
+        return None, problem
     if hasattr(compiled, "pick"):
         return compiled, (f"compiled backend ({method} on {type(model).__name__}'s compiled rhs, numba; "
                           f"{compiled.n_variants} variants, each with its own step-size control)")
     return compiled, f"compiled backend ({method} on {type(model).__name__}'s compiled rhs, numba)"
+
+
+def _auto_backend(model, compiled, method, backend, t, u, x0):
+    """Whether a call whose compiled backend can run runs compiled now, with the code key and why
+    (:func:`vehdyn.simulation._background.decide` for one run on ``"auto"``; an explicit
+    ``"compiled"`` and a batch compile here first)."""
+    from vehdyn.simulation import _background
+
+    if hasattr(compiled, "pick"):
+        return True, None, "a batch: compiled in this process first if not cached (it waits for the compiler once)"
+    if backend == "compiled":
+        return True, _background.code_key(compiled, method), ("backend='compiled' asked for: compiled in this "
+                                                              "process first if not cached")
+    return _background.decide(model, compiled, method, t, u, x0)
 
 
 def _solve_compiled(model, compiled, t, inputs, u, x0, hold, method, rtol, atol, first_step, max_step):
@@ -223,7 +237,8 @@ def _run_compiled_group(members, threads) -> list:
         results.append(SimulationResult(
             time=t, states=states[j], inputs=U[..., j], outputs=outputs[j], state_signals=model.states,
             input_signals=model.inputs, output_signals=model.output_signals, method=method,
-            method_reason=reason, wall_time=wall, nfev=nfev, n_steps=accepted,
+            method_reason=reason, wall_time=wall, nfev=nfev, n_steps=accepted, backend="compiled",
+            backend_reason="simulate_many: one compiled batch (compiled in this process first if not cached)",
             message=f"compiled {method}: {accepted} steps ({rejected} rejected), {nfev} rhs calls",
             options={"rtol": options["rtol"], "atol": options["atol"], "hold": options["hold"], "substeps": 1}))
     return results

@@ -87,6 +87,8 @@ __all__ = ["METHODS", "CompiledModel", "CompiledBatch", "integrator", "input_tab
            "solve_batch", "outputs", "batch_outputs", "numba_available", "source_stamp", "compiled_copy"]
 
 METHODS = ("RK45", "DOP853", "BDF")
+#: the environment variable that turns ``simulate(..., backend="auto")``'s background builds off ("0")
+BACKGROUND_ENV = "VEHDYN_BACKGROUND_COMPILE"
 _METHOD_CODE = {"RK45": 0, "DOP853": 1, "BDF": 2}
 
 CompiledModel = namedtuple("CompiledModel", ("rhs", "output", "key", "args"))
