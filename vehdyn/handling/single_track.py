@@ -159,7 +159,6 @@ evaluated exactly inside the compiled steps (see :mod:`vehdyn.simulation.compile
 from __future__ import annotations
 
 import dataclasses
-import types
 from dataclasses import dataclass
 
 import numpy as np
@@ -674,7 +673,7 @@ class SingleTrack(Model):
     # ------------------------------------------------------------------ the equations
     # They live in single_track_equations (one source for numpy and the compiled backend); the
     # methods below map the model's vectors onto them and supply the tire laws.
-    def _transfer_coefficients(self, parameters=None) -> dict:
+    def _transfer_coefficients(self) -> dict:
         """The coefficients of the lateral load transfer (module docstring) [-]: geometric z_i / t_i
         and elastic h_1 K_i / ((K_f + K_r - m g h_1) t_i) of each axle (from the vehicle's tracks,
         roll centres and roll stiffnesses and the parameters' mass, CG height, a, b and gravity);
@@ -686,7 +685,7 @@ class SingleTrack(Model):
         out["roll_inertia"] = 1.0  # unused without roll (its arm is 0)
         if not self.lateral_load_transfer:
             return out
-        p, v = self.parameters if parameters is None else parameters, self.vehicle
+        p, v = self.parameters, self.vehicle
         transfer = lateral_load_transfer_coefficients(v, mass=p.mass, cg_height=p.cg_height, a=p.a, b=p.b,
                                                       gravity=p.gravity)
         out.update({f"{axle}_{kind}_transfer": value for axle, pair in zip(_AXLES, transfer)
@@ -700,12 +699,10 @@ class SingleTrack(Model):
     def _constants(self, overrides=None) -> equations.Constants:
         p = self.parameters
         fields = {f.name: getattr(p, f.name) for f in dataclasses.fields(p)}
-        transfer = self._transfer_coefficients()
-        if overrides:  # symbols for some parameters (symbolic_equations)
+        if overrides:  # symbols for some parameters (symbolic_equations: none of the transfer's)
             fields.update(overrides)
-            transfer = self._transfer_coefficients(types.SimpleNamespace(**fields))
         return equations.Constants(
-            **fields, **transfer, lateral_load_transfer=self.lateral_load_transfer,
+            **fields, **self._transfer_coefficients(), lateral_load_transfer=self.lateral_load_transfer,
             low_speed_damping_speed=self.low_speed_damping_speed,
             brake_regularization_speed=self.brake_regularization_speed,
             front_peak_slip_ratio=self._peak_slip["front"][0], front_peak_tan_slip_angle=self._peak_slip["front"][1],
@@ -939,6 +936,11 @@ class SingleTrack(Model):
             if name not in names:
                 raise ParameterError(f"{name!r} is not a SingleTrack parameter (those are {names})", key="parameters",
                                      value=name)
+        derived = sorted({"mass", "cg_height", "a", "b", "gravity"} & set(parameters))
+        if self.lateral_load_transfer and derived:
+            raise ParameterError(f"with lateral load transfer, {derived[0]} sets the transfer coefficients, which are "
+                                 "checked on numbers (lateral_load_transfer_coefficients): it cannot be a symbol",
+                                 key="parameters", value=derived[0])
         if self.n_variants is not None:
             raise ParameterError("a batch SingleTrack (array parameters) has no symbolic form: take one variant",
                                  key="parameters", value=self.n_variants)
