@@ -45,7 +45,7 @@ LAYERS = {
     "vehicles": [("handling", "ride"), ("full_vehicle",)],
     "controllers": [("driver", "chassis")],
     "procedures": [("procedures",)],
-    "applications": [("scene",), ("sweep",)],
+    "applications": [("scene", "optimal"), ("sweep",)],
     "interfaces": [("report",), ("cli",)],
 }
 LEVEL = {unit: (layer_index, rank)

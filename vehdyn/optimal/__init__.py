@@ -18,6 +18,8 @@ References
 """
 
 from vehdyn.optimal.lane_change import minimum_time_lane_change, passage_time
+from vehdyn.optimal.nmpc import PathTrackingNMPC
 from vehdyn.optimal.transcription import OptimalControlError, Problem, Solution
 
-__all__ = ["Problem", "Solution", "OptimalControlError", "minimum_time_lane_change", "passage_time"]
+__all__ = ["Problem", "Solution", "OptimalControlError", "minimum_time_lane_change", "passage_time",
+           "PathTrackingNMPC"]

@@ -130,7 +130,7 @@ class _Signals:
         p, k = self._problem, self._k
         interval = min(k, p.intervals - 1)
         if name == "time":
-            return p._X[p.n_states, k]
+            return p._time(k)
         if name in p.model.state_names:
             return p._X[p.model.state_names.index(name), k]
         if name in p.model.input_names:
@@ -142,7 +142,8 @@ class _Signals:
         if name.endswith("_rate") and name[:-5] in p.controls:
             i = p.controls.index(name[:-5])
             before = p._U[i, interval - 1] if interval > 0 else p._u_initial[i]
-            step = p._X[p.n_states, interval] - (p._X[p.n_states, interval - 1] if interval > 0 else p._t_before)
+            # the step from the previous control: the previous interval, or the first one's length at the start
+            step = p._time(interval) - p._time(interval - 1) if interval > 0 else p._time(1) - p._time(0)
             return (p._U[i, interval] - before) / step
         raise ParameterError(f"{name!r} is not a signal of {type(p.model).__name__} (states, inputs, outputs, "
                              "'time', or '<control>_rate')", key="name", value=name)
@@ -181,6 +182,9 @@ class Problem:
         The values of the inputs that are not controls [each input's unit]; default 0.
     substeps : int
         Runge-Kutta steps per interval (>= 1).
+    expand : bool
+        Expand the program into CasADi's scalar graph (SX) before solving: slower to build, faster
+        per iteration (what a receding horizon wants).
 
     References
     ----------
@@ -203,8 +207,9 @@ class Problem:
     """
 
     def __init__(self, model, intervals: int, *, controls, duration=None, along=None, span=None, inputs=None,
-                 substeps: int = 1):
+                 substeps: int = 1, expand: bool = False):
         self.model = model
+        self.expand = bool(expand)
         self.form = to_casadi(model)
         if not isinstance(intervals, (int, np.integer)) or isinstance(intervals, bool) or intervals < 1:
             raise ParameterError(f"intervals must be an integer >= 1, got {intervals!r}", key="intervals",
@@ -245,7 +250,6 @@ class Problem:
         self._U = ca.MX.sym("U", len(self.controls), self.intervals)
         self._x_initial = ca.MX.sym("x_initial", self.n_states)
         self._u_initial = ca.MX.sym("u_initial", len(self.controls))
-        self._t_before = ca.MX.sym("t_before")  # the time of the last control change before the start
         self._parameters, self._free = [], set()
         self._lbx = np.full(self._X.shape, -np.inf)
         self._ubx = np.full(self._X.shape, np.inf)
@@ -371,6 +375,10 @@ class Problem:
         return _Signals(self, int(k))
 
     # ------------------------------------------------------------------ the program
+    def _time(self, k):
+        """Time at node k: the grid's (a grid in time) or the time state (a grid along a state)."""
+        return float(self.grid[k]) if self.along is None else self._X[self.n_states, k]
+
     def _input_vector(self, k):
         """Every input of interval k: the controls' symbols, the others' values."""
         rows = [self._U[self.controls.index(n), k] if n in self.controls else self.fixed_inputs[i]
@@ -428,12 +436,11 @@ class Problem:
         cost = 0.0
         if self._integral is not None:
             for k in range(self.intervals):
-                cost = cost + self._integral(_Signals(self, k), k) * (self._X[-1, k + 1] - self._X[-1, k])
+                cost = cost + self._integral(_Signals(self, k), k) * (self._time(k + 1) - self._time(k))
         if self._final is not None:
             cost = cost + self._final(_Signals(self, self.intervals), self.intervals)
         w = ca.vertcat(ca.vec(self._X), ca.vec(self._U))
-        p = ca.vertcat(self._x_initial, self._u_initial, self._t_before,
-                       *(ca.vec(symbol) for _, symbol in self._parameters))
+        p = ca.vertcat(self._x_initial, self._u_initial, *(ca.vec(symbol) for _, symbol in self._parameters))
         self._nlp = {"x": w, "p": p, "f": cost, "g": ca.vertcat(*g)}
         self._lbg, self._ubg, self._labels = np.array(lbg, dtype=float), np.array(ubg, dtype=float), labels
         self._lbw = np.concatenate([self._lbx.ravel(order="F"), self._lbu.ravel(order="F")])
@@ -475,7 +482,8 @@ class Problem:
         ca = self._ca
         if self._solver is None:
             self._build()
-            opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes", "ipopt.max_iter": 1000}
+            opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes", "ipopt.max_iter": 1000,
+                    "expand": self.expand}
             opts.update({f"ipopt.{k}": v for k, v in (options or {}).items()})
             self._solver = ca.nlpsol("solver", "ipopt", self._nlp, opts)
         x0 = self.model.state_vector(x0)
@@ -484,8 +492,7 @@ class Problem:
         missing = [name for name, _ in self._parameters if name not in values]
         if missing:
             raise ParameterError(f"give the value of parameter {missing[0]!r}", key="parameters", value=missing)
-        p = np.concatenate([x0, u0, [-1.0], *(np.broadcast_to(np.asarray(values[n], float), s.shape).ravel(order="F")
-                                              for n, s in self._parameters)])
+        p = np.concatenate([x0, u0, *(self._parameter_value(n, s.shape, values[n]) for n, s in self._parameters)])
         args = {"p": p, "lbx": self._lbw, "ubx": self._ubw, "lbg": self._lbg, "ubg": self._ubg}
         if guess is not None:
             args.update(x0=guess.raw["x"], lam_x0=guess.raw["lam_x"], lam_g0=guess.raw["lam_g"])
@@ -500,6 +507,17 @@ class Problem:
         if status not in _SUCCESS:
             self._raise(status, w, p, stats.get("iter_count", -1))
         return self._solution(w, result, status, stats.get("iter_count", -1), elapsed)
+
+    @staticmethod
+    def _parameter_value(name, shape, value):
+        value = np.asarray(value, dtype=float)
+        if value.size == shape[0] * shape[1]:
+            return value.reshape(shape, order="F").ravel(order="F")
+        try:
+            return np.broadcast_to(value, shape).ravel(order="F")
+        except ValueError:
+            raise ParameterError(f"parameter {name!r} has shape {shape}, got {value.shape}", key=name,
+                                 value=value.shape) from None
 
     def _cold_guess(self, x0, u0):
         X = np.repeat(np.concatenate([x0, [0.0]])[:, None], self.intervals + 1, axis=1)
