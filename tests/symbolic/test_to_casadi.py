@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import vehdyn
-from vehdyn import LinearModel, Model, ParameterError
+from vehdyn import Model, ParameterError
 from vehdyn.handling import LateralYawRoll, LateralYawRollLag, LinearBicycle, SingleTrack
 from vehdyn.tire import FialaTire, LinearTire
 
@@ -199,3 +199,30 @@ def test_importing_vehdyn_does_not_import_casadi():
     code = "import sys, vehdyn, vehdyn.symbolic; print('casadi' in sys.modules)"
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert result.stdout.strip() == "False"
+
+
+@pytest.fixture(scope="module")
+def full_vehicle_pair():
+    from vehdyn.full_vehicle import FullVehicle
+
+    model = FullVehicle(SEDAN)
+    return model, to_casadi(model)
+
+
+@pytest.mark.compiled_vs_numpy
+def test_full_vehicle_rhs_and_outputs_equal_numpy_at_random_states(full_vehicle_pair):
+    model, form = full_vehicle_pair
+    for speed, ay in ((10.0, 0.0), (20.0, 4.0), (30.0, -6.0)):
+        x0, u0 = model.trim(speed, lateral_acceleration=ay)
+        for _ in range(3):
+            x = x0 + RNG.uniform(-0.05, 0.05, x0.size) * np.maximum(np.abs(x0), 0.05)
+            u = u0 + RNG.uniform(-0.05, 0.05, u0.size) * np.maximum(np.abs(u0), 0.01)
+            assert_equal_within(form.rhs(x, u), model.rhs(0.0, x, u))
+            assert_equal_within(form.output(x, u), model.output(0.0, x, u))
+
+
+def test_full_vehicle_jacobian_equals_central_differences(full_vehicle_pair):
+    model, form = full_vehicle_pair
+    x, u = model.trim(20.0, lateral_acceleration=3.0)
+    for ours, theirs, name in zip(form.linear_matrices(x, u), central_differences(model, x, u), "ABCD"):
+        assert np.allclose(ours, theirs, rtol=1e-6, atol=1e-7 * max(np.max(np.abs(theirs)), 1.0)), name

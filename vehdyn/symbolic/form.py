@@ -144,8 +144,9 @@ def to_casadi(model, parameters=()) -> SymbolicModel:
     ----------
     model : Model
         A model with a symbolic form (:meth:`vehdyn.Model.symbolic_equations`): every
-        ``LinearModel``, the single track with Magic Formula or linear tires (every option but a
-        road friction that is a function of position), the lateral-yaw-roll models.
+        ``LinearModel`` (the bicycle, the lateral-yaw-roll models), the single track and the full
+        vehicle with Magic Formula or linear tires (every option but a road or friction that is a
+        function of position).
     parameters : sequence of str
         Model parameters to make a third argument ``p`` of the functions (e.g. ``"mass"``,
         ``"yaw_inertia"``), for identification and robust design; empty: none.
