@@ -125,3 +125,46 @@ def test_bad_input_is_refused():
         p.solve([0.0, 0.0])
     with pytest.raises(ParameterError, match="DoubleLaneChangeTrack"):
         minimum_time_lane_change(SingleTrack(SEDAN), "ISO 3888-2")
+
+
+def test_the_nmpc_loop_clears_the_double_lane_change_above_the_crossover_drivers_limit():
+    # ISO 3888-1, speed held, on the single track with tire lag: the crossover driver (the best of 4 tunings) has
+    # a highest passing entry speed; the NMPC (the single track without lag inside, 20 steps of 0.1 s) clears the
+    # cones 1 m/s above it, where every crossover tuning tried hit a cone
+    from vehdyn.driver import CrossoverDriver
+    from vehdyn.interconnect import ClosedLoop
+    from vehdyn.optimal import PathTrackingNMPC
+    from vehdyn.procedures import double_lane_change_track
+
+    track = double_lane_change_track(TRACK.vehicle_width)
+    plant, planner = SingleTrack(SEDAN), SingleTrack(SEDAN, tire_lag=False)
+    px, py = track.least_curvature_line(0.15)
+    paths = {"centre": (track.path_x, track.path_y), "least curvature": (px, py)}
+
+    def make(speed, line, **tuning):
+        return CrossoverDriver.tuned(planner, speed, *paths[line], **tuning)
+
+    tunings = [{"line": line, "preview_time": 1.0, "crossover_frequency": w} for line in paths for w in (2.5, 4.0)]
+    limit = lane_change_limit(plant, track, make, tunings, throttle="hold", speeds=(10.0, 30.0), resolution=0.5)
+    assert 10.0 < limit["speed"] < 30.0 and not limit["failing"][1]["passed"]
+    speed = limit["speed"] + 1.0
+    drag = float(planner.parameters.drag_factor) * speed**2
+    nmpc = PathTrackingNMPC(planner, px, py, horizon=20, period=0.1, inputs={"rear_longitudinal_force": drag})
+    loop = ClosedLoop(plant, nmpc)
+    t = np.arange(0.0, 1.05 * (px[-1] - px[0]) / speed, 0.05)
+    result = vehdyn.simulate(loop, t, {"rear_longitudinal_force": drag}, x0=plant.straight_running(speed, x=px[0]),
+                             method="rk4", substeps=5)
+    assert lane_change_outcome(track, result)["passed"]
+    solves = np.array(nmpc.log)
+    assert solves.shape[0] == int(np.ceil(t[-1] / 0.1 - 1e-9)) + 1  # one solve per sample, none in between
+    steer = result["front_steer_angle_after_path_tracking_nmpc"]
+    assert np.all(np.abs(steer) <= 0.5 + 1e-9)
+
+
+def test_nmpc_refuses_a_prediction_model_of_other_states():
+    from vehdyn.optimal import PathTrackingNMPC
+
+    with pytest.raises(ParameterError, match="prediction model must have the states"):
+        PathTrackingNMPC(SingleTrack(SEDAN), [0.0, 1.0], [0.0, 0.0])
+    with pytest.raises(ParameterError, match="path_x"):
+        PathTrackingNMPC(SingleTrack(SEDAN, tire_lag=False), [1.0, 0.0], [0.0, 0.0])
