@@ -20,8 +20,9 @@ def minimum_time_lane_change(model, track, *, spacing: float = 0.5, run_in: floa
 
     The optimizer chooses the entry speed and the front steer angle along the track: the grid runs
     along the earth x (at most ``spacing`` apart and on every lane's start and end, from ``run_in``
-    before the first lane to the end of the last), the car enters straight at y = 0 on the track's centre line, and the vehicle (a rectangle
-    of the track's vehicle width, yaw neglected as in :func:`vehdyn.procedures.lane_change_outcome`)
+    before the first lane to the end of the last), the car enters straight at y = 0 on the track's
+    centre line, and the vehicle (a rectangle of the track's vehicle width, yaw neglected as in
+    :func:`vehdyn.procedures.lane_change_outcome`)
     stays inside the cones at every node of a coned lane. The cost is the passage time from the
     first lane's start to the last lane's end, plus a small steer-rate penalty that makes the
     optimum unique where it is flat:
