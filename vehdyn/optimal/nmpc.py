@@ -34,7 +34,8 @@ class PathTrackingNMPC(Controller):
     steer is held until the next sample (zero-order hold). It samples the state at the first
     evaluation at or after each sampling instant: on ``simulate(..., method="rk4")`` with the
     loop's output grid at ``period`` that is the last Runge-Kutta stage of the step, x_k + h k_3,
-    which differs from the step's result by O(h^2) -- a small measurement error. It has no compiled
+    which differs from the step's result by O(h^2) -- a small measurement error. A run that starts
+    again at an earlier time starts afresh (:meth:`reset`). It has no compiled
     form (it calls IPOPT): a :class:`~vehdyn.interconnect.ClosedLoop` with it runs on numpy.
 
     Parameters
@@ -147,6 +148,8 @@ class PathTrackingNMPC(Controller):
             k = np.clip(np.searchsorted(times, np.broadcast_to(np.asarray(t, float), u.shape[1:]), "right") - 1, 0,
                         None)
             return steers[k][None]
+        if self.log and t < self.log[-1][0] - self.period:  # time ran back: a new run
+            self.reset()
         if t >= self._next_sample - 1e-9 * self.period:
             self.command(t, u)
             self._next_sample = (np.floor(t / self.period + 1e-9) + 1.0) * self.period
