@@ -46,12 +46,14 @@ class SymbolicModel:
 
     Examples
     --------
-    >>> import numpy as np
     >>> from vehdyn import LinearModel
     >>> from vehdyn.symbolic import to_casadi
-    >>> m = to_casadi(LinearModel([[-1.0]], [[2.0]], [[1.0]], [[0.0]]))
-    >>> float(m.rhs([1.0], [0.5]))
-    0.0
+    >>> lag = LinearModel([[-1.0]], [[2.0]], [[1.0]], [[0.0]], states=["v"], inputs=["force"], outputs=["v_out"])
+    >>> m = to_casadi(lag)
+    >>> float(m.rhs([1.0], [0.25])), m.state_names
+    (-0.5, ('v',))
+    >>> [float(j) for j in m.jacobians([1.0], [0.25])]
+    [-1.0, 2.0, 1.0, 0.0]
     """
 
     def __init__(self, model, rhs, output, jacobians, parameter_names=(), parameter_values=()):
