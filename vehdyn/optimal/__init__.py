@@ -1,12 +1,12 @@
 """Optimal control of vehdyn's models: direct multiple shooting over their symbolic forms, solved by IPOPT.
 
 :class:`Problem` transcribes a model with a symbolic form (:func:`vehdyn.symbolic.to_casadi`) into a
-nonlinear program by direct multiple shooting (Bock & Plitt 1984): the states at the nodes of a grid
+nonlinear program by direct multiple shooting (Bock & Plitt 1984 [1]_): the states at the nodes of a grid
 are unknowns, each interval is integrated by Runge-Kutta steps of the model's own equations, and the
 continuity of the states across the nodes is a constraint. The grid runs in time, or along a state
 (the distance travelled: a track's cones then sit at fixed nodes). Bounds and constraints on any
 signal (states, inputs, outputs, input rates, time) and the cost are written in the signals' names;
-IPOPT (shipped with casadi) solves the program with CasADi's exact derivatives. casadi is optional
+IPOPT [2]_ (shipped with casadi) solves the program with CasADi's exact derivatives. casadi is optional
 (``pip install 'vehdyn[optimal]'``).
 
 References

@@ -2,7 +2,7 @@
 
 :func:`to_casadi` builds ``casadi.Function`` objects of a model's right-hand side and outputs by
 calling the model's own equation functions (the ones its numpy and compiled paths run) with
-CasADi symbols through the namespace of :func:`casadi_namespace`: no equation is restated, and
+CasADi [1]_ symbols through the namespace of :func:`casadi_namespace`: no equation is restated, and
 every derivative an optimal-control solver asks for is exact. A model has a symbolic form when it
 defines ``symbolic_equations(xp, x, u, parameters)`` (:meth:`vehdyn.Model.symbolic_equations`).
 
