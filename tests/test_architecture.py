@@ -40,12 +40,12 @@ ROOT = Path(vehdyn.__file__).resolve().parent
 
 LAYERS = {
     "foundation": [("errors",), ("units", "_atomic"), ("conventions", "signals", "piecewise_signal"), ("params",)],
-    "core": [("plotting",), ("results",), ("model",), ("simulation",), ("interconnect",)],
+    "core": [("plotting",), ("results",), ("symbolic",), ("model",), ("simulation",), ("interconnect",)],
     "physics": [("mechanics", "tire", "road"), ("components",)],
     "vehicles": [("handling", "ride"), ("full_vehicle",)],
     "controllers": [("driver", "chassis")],
     "procedures": [("procedures",)],
-    "applications": [("scene",), ("sweep",)],
+    "applications": [("scene", "optimal"), ("sweep",)],
     "interfaces": [("report",), ("cli",)],
 }
 LEVEL = {unit: (layer_index, rank)

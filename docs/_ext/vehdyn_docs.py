@@ -48,6 +48,9 @@ LAYERS = [
     ("interconnect", "Interconnection",
      "Closed loops of a plant and its controllers, series connection, the Padé delay.",
      [("vehdyn", ["ClosedLoop", "connect_in_series"]), ("vehdyn.interconnect", None)]),
+    ("symbolic", "Symbolic forms",
+     "A model's own equations as CasADi functions with exact Jacobians (``pip install 'vehdyn[optimal]'``).",
+     [("vehdyn.symbolic", None)]),
     # physics
     ("mechanics", "Mechanics", "Rigid-body mechanics in the SAE body frame.", [("vehdyn.mechanics", None)]),
     ("tire", "Tire", "Tire laws, ``.tir`` files, slip, relaxation, fitting and soft soil.",
@@ -70,6 +73,9 @@ LAYERS = [
     # applications
     ("scene", "Scenes and the fidelity ladder", "The cheapest model that answers a question.",
      [("vehdyn", ["Scene", "plan", "run", "ladder", "plot_ladder"]), ("vehdyn.scene", None)]),
+    ("optimal", "Optimal control",
+     "Direct multiple shooting with IPOPT: the minimum-time lane change, NMPC path tracking.",
+     [("vehdyn.optimal", None)]),
     ("sweep", "Sweeps and sensitivity", "Grids, samples, Monte Carlo and Sobol'/Morris indices.",
      [("vehdyn.sweep", None), ("vehdyn.sweep.metrics", None)]),
     # interfaces
@@ -78,11 +84,11 @@ LAYERS = [
 ]
 
 # the order in which a re-exported object's first public path is chosen (bottom up)
-_ORDER = ["vehdyn", "vehdyn.params", "vehdyn.conventions", "vehdyn.units", "vehdyn.model", "vehdyn.simulation",
+_ORDER = ["vehdyn", "vehdyn.params", "vehdyn.conventions", "vehdyn.units", "vehdyn.symbolic", "vehdyn.model", "vehdyn.simulation",
           "vehdyn.interconnect", "vehdyn.mechanics", "vehdyn.tire", "vehdyn.tire.fitting",
           "vehdyn.tire.terramechanics", "vehdyn.road", "vehdyn.components", "vehdyn.handling", "vehdyn.ride",
           "vehdyn.full_vehicle", "vehdyn.driver", "vehdyn.chassis", "vehdyn.procedures", "vehdyn.scene",
-          "vehdyn.sweep", "vehdyn.sweep.metrics", "vehdyn.plotting", "vehdyn.cli"]
+          "vehdyn.optimal", "vehdyn.sweep", "vehdyn.sweep.metrics", "vehdyn.plotting", "vehdyn.cli"]
 
 
 def public_names() -> dict[str, list[str]]:

@@ -22,9 +22,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from vehdyn.errors import ParameterError
 from vehdyn.tire.kernels import NUMPY as _TIRE_NUMPY
+from vehdyn.tire.kernels import forces_kernel, linear_tire_law
+from vehdyn.tire.linear import LinearTire
+from vehdyn.tire.magic_formula import MagicFormula
 
-__all__ = ["NUMPY", "stack"]
+__all__ = ["NUMPY", "stack", "with_tire_hooks"]
 
 
 def _scalars(*values) -> bool:
@@ -124,3 +128,43 @@ def stack(rows) -> np.ndarray:
         return np.array(rows, dtype=float)
     shape = np.broadcast_shapes(*(np.shape(row) for row in rows))
     return np.stack([np.broadcast_to(row, shape) for row in rows])
+
+
+def with_tire_hooks(xp):
+    """``xp`` with the tire hooks evaluating a law's kernel on that namespace itself.
+
+    What a symbolic namespace (:func:`vehdyn.symbolic.casadi_namespace`) needs to run the vehicle
+    equations: ``tire_law`` calls :func:`vehdyn.tire.kernels.forces_kernel` for a
+    :class:`~vehdyn.tire.MagicFormula` (as :meth:`MagicFormula.forces` evaluates it: the file's
+    limits, its pressure, no turn slip) and :func:`vehdyn.tire.kernels.linear_tire_law` for a
+    :class:`~vehdyn.tire.LinearTire` (M_y = 0); ``tire_law_pair`` calls it twice.
+
+    Parameters
+    ----------
+    xp : type
+        A namespace with the kernels' interface (:mod:`vehdyn.tire.kernels`).
+
+    Returns
+    -------
+    type
+        A subclass of ``xp`` with ``tire_law`` and ``tire_law_pair``; their ``law`` raises
+        ParameterError, naming the law, for a law without such a kernel (brush, Fiala, Dugoff).
+    """
+
+    def tire_law(law, fz, kappa, alpha, gamma, vx):
+        if isinstance(law, MagicFormula):
+            c = law.coefficients
+            f = forces_kernel(xp, c, fz, kappa, alpha, gamma, vx, c.INFLPRES, True, False)
+            return f[0], f[1], f[4]
+        if isinstance(law, LinearTire):
+            fx, fy, _ = linear_tire_law(xp, law.coefficients, fz, kappa, alpha, gamma, vx)
+            return fx, fy, 0.0 * fx
+        raise ParameterError(f"a {type(law).__name__} tire has no kernel over an xp namespace (only MagicFormula "
+                             "and LinearTire have one): it cannot run on symbols", key="tire",
+                             value=type(law).__name__)
+
+    def tire_law_pair(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx):
+        return (*tire_law(law, fz_1, kappa, alpha_1, gamma_1, vx), *tire_law(law, fz_2, kappa, alpha_2, gamma_2, vx))
+
+    return type(f"{xp.__name__}_VEHICLE", (xp,), {"tire_law": staticmethod(tire_law),
+                                                  "tire_law_pair": staticmethod(tire_law_pair)})

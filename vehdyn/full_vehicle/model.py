@@ -629,6 +629,63 @@ class FullVehicle(Model):
         states, e = self._evaluate(x, u)
         return _stack(assembly.outputs(assembly.NUMPY, states, e))
 
+    def symbolic_equations(self, xp, x, u, parameters):
+        """These equations on symbols (:meth:`vehdyn.Model.symbolic_equations`, for
+        :func:`vehdyn.symbolic.to_casadi`): :func:`~vehdyn.full_vehicle.assembly.evaluate`,
+        ``derivatives`` and ``outputs`` with ``xp``, the tire laws through their kernels (Magic
+        Formula or linear) and the rigid-body hooks from :mod:`vehdyn.mechanics.kinematics`'s
+        ``rotation_matrix`` and ``euler_rates``.
+
+        Parameters
+        ----------
+        xp : type
+            The symbolic namespace.
+        x : casadi.SX
+            States [each state's unit].
+        u : casadi.SX
+            Inputs [each input's unit].
+        parameters : dict
+            Must be empty (the full vehicle's numbers are derived from the vehicle file).
+
+        Returns
+        -------
+        tuple
+            (dx/dt, y, {}).
+
+        Raises
+        ------
+        ParameterError
+            For parameters, a road or a friction that is a function of position, or a tire law without
+            a kernel (naming it).
+        """
+        from vehdyn.components.xp import with_tire_hooks
+        from vehdyn.mechanics import kinematics
+
+        if parameters:
+            raise ParameterError(f"FullVehicle takes no symbolic parameters, got {sorted(parameters)}",
+                                 key="parameters", value=sorted(parameters))
+        for name, value in (("road", self.road), ("friction", self.friction if callable(self.friction) else None)):
+            if value is not None:
+                raise ParameterError(f"FullVehicle with a {name} has no symbolic form (a function of position): "
+                                     "build it without", key=name, value=value)
+        base = with_tire_hooks(xp)
+        for axle, tire in zip(("front", "rear"), (self.front_tire, self.rear_tire)):
+            try:
+                base.tire_law(tire, 3000.0, 0.0, 0.0, 0.0, 20.0)
+            except ParameterError as error:
+                raise ParameterError(f"FullVehicle's {axle}_tire: {error}", key=f"{axle}_tire",
+                                     value=type(tire).__name__) from None
+        hooks = {"rotation_body_to_earth": staticmethod(lambda roll, pitch, yaw:
+                                                        kinematics.rotation_matrix(base, roll, pitch, yaw)),
+                 "euler_angle_rates": staticmethod(lambda roll, pitch, p, q, r:
+                                                   kinematics.euler_rates(base, roll, pitch, p, q, r))}
+        xp = type("FULL_VEHICLE_" + base.__name__, (base,), hooks)
+        states = assembly.gather([x[j] for j in range(self.n_states)], self._state_index)
+        e = assembly.evaluate(xp, (self.front_tire, self.rear_tire), self._k, states,
+                              [u[j] for j in range(self.n_inputs)], (self._k.road_friction,) * 4)
+        rates = assembly.derivatives(states, e)
+        return [rates[j] for j in self._state_order], list(assembly.outputs(xp, states, e)), {}
+
     # ------------------------------------------------------------------ operating points
     def static_loads(self) -> dict[str, float]:
         """Tire normal loads at rest on a flat road [N], ``{"normal_load_front_left": ..., ...}``.

@@ -175,6 +175,7 @@ from vehdyn.components.tire_forces import axle_tire_loads, wheel_pair_tire_loads
 from vehdyn.components.tire_setup import (friction_at, longitudinal_relaxation_lengths, mirrored_wheel, road_friction,
                                           tire_characteristics)
 from vehdyn.components.xp import stack as _stack
+from vehdyn.components.xp import with_tire_hooks
 
 __all__ = ["SingleTrack", "SingleTrackParameters", "lateral_load_transfer_coefficients", "roll_parameters"]
 
@@ -695,9 +696,11 @@ class SingleTrack(Model):
             out.update(roll_parameters(v, mass=p.mass, cg_height=p.cg_height, a=p.a, b=p.b))
         return out
 
-    def _constants(self) -> equations.Constants:
+    def _constants(self, overrides=None) -> equations.Constants:
         p = self.parameters
         fields = {f.name: getattr(p, f.name) for f in dataclasses.fields(p)}
+        if overrides:  # symbols for some parameters (symbolic_equations: none of the transfer's)
+            fields.update(overrides)
         return equations.Constants(
             **fields, **self._transfer_coefficients(), lateral_load_transfer=self.lateral_load_transfer,
             low_speed_damping_speed=self.low_speed_damping_speed,
@@ -710,13 +713,15 @@ class SingleTrack(Model):
             road_friction=self.friction if isinstance(self.friction, float) else 1.0,
             wheel_spin=self.wheel_spin, tire_lag=self.tire_lag, friction_scaled=self.friction is not None)
 
-    def _evaluate(self, x, u):
-        """(named states, named inputs, Evaluation) at x, u (numpy arrays, optional batch axis)."""
-        x = np.asarray(x, dtype=float)
-        u = np.asarray(u, dtype=float)
+    def _evaluate(self, x, u, xp=equations.NUMPY, k=None):
+        """(named states, named inputs, Evaluation) at x, u (numpy arrays, optional batch axis; or
+        sequences of symbols, with a symbolic ``xp`` and constants ``k``)."""
+        if xp is equations.NUMPY:
+            x = np.asarray(x, dtype=float)
+            u = np.asarray(u, dtype=float)
         states = equations.named_states(x, self._state_index)
         inputs = equations.named_inputs(u, self._input_index)
-        k = self._constants()
+        k = self._constants() if k is None else k
         friction = (k.road_friction, k.road_friction)
         if callable(self.friction):  # the road under each axle's centre
             p = self.parameters
@@ -724,7 +729,7 @@ class SingleTrack(Model):
                                                                       forward, 0.0))
                              for forward in (p.a, -p.b))
         tires = (self.front_tire, self.rear_tire)
-        return states, inputs, k, equations.evaluate(equations.NUMPY, tires, k, states, inputs, friction)
+        return states, inputs, k, equations.evaluate(xp, tires, k, states, inputs, friction)
 
     def axle_law_forces(self, axle, fz, kappa, alpha, vx):
         """Axle forces in ISO-W from the law of one tire at half the load: those of :meth:`axle_law_loads`.
@@ -888,12 +893,73 @@ class SingleTrack(Model):
     def output(self, t, x, u):
         """Outputs (see :attr:`outputs`)."""
         states, _, _, e = self._evaluate(x, u)
-        values = equations.outputs(equations.NUMPY, states, e)
+        return _stack(self._output_values(equations.NUMPY, states, e))
+
+    def _output_values(self, xp, states, e):
+        values = equations.outputs(xp, states, e)
         if self.lateral_load_transfer:
             values = values + equations.wheel_load_outputs(e)
         if self.roll:
             values = values + (states[12], states[13])
-        return _stack(values)
+        return values
+
+    def symbolic_equations(self, xp, x, u, parameters):
+        """These equations on symbols (:meth:`vehdyn.Model.symbolic_equations`, for
+        :func:`vehdyn.symbolic.to_casadi`): the same functions of
+        :mod:`~vehdyn.handling.single_track_equations` as :meth:`rhs` and :meth:`output`, the tire
+        laws through their kernels (Magic Formula or linear).
+
+        Parameters
+        ----------
+        xp : type
+            The symbolic namespace.
+        x : casadi.SX
+            States [each state's unit].
+        u : casadi.SX
+            Inputs [each input's unit].
+        parameters : dict
+            Symbols for fields of :class:`SingleTrackParameters`, by name [their units].
+
+        Returns
+        -------
+        tuple
+            (dx/dt, y, the model's values of the named parameters).
+
+        Raises
+        ------
+        ParameterError
+            For a tire law without a kernel (naming it), a road friction given as a function of
+            position, a batch model, or a name that is not a parameter.
+        """
+        names = [f.name for f in dataclasses.fields(self.parameters)]
+        for name in parameters:
+            if name not in names:
+                raise ParameterError(f"{name!r} is not a SingleTrack parameter (those are {names})", key="parameters",
+                                     value=name)
+        derived = sorted({"mass", "cg_height", "a", "b", "gravity"} & set(parameters))
+        if self.lateral_load_transfer and derived:
+            raise ParameterError(f"with lateral load transfer, {derived[0]} sets the transfer coefficients, which are "
+                                 "checked on numbers (lateral_load_transfer_coefficients): it cannot be a symbol",
+                                 key="parameters", value=derived[0])
+        if self.n_variants is not None:
+            raise ParameterError("a batch SingleTrack (array parameters) has no symbolic form: take one variant",
+                                 key="parameters", value=self.n_variants)
+        if callable(self.friction):
+            raise ParameterError("a road friction that is a function of position has no symbolic form: give a "
+                                 "number", key="friction", value=self.friction)
+        xp = with_tire_hooks(xp)
+        for axle, tire in zip(_AXLES, (self.front_tire, self.rear_tire)):
+            try:
+                xp.tire_law(tire, 3000.0, 0.0, 0.0, 0.0, 20.0)
+            except ParameterError as error:
+                raise ParameterError(f"SingleTrack's {axle}_tire: {error}", key=f"{axle}_tire",
+                                     value=type(tire).__name__) from None
+        k = self._constants(dict(parameters))
+        states, inputs, k, e = self._evaluate([x[i] for i in range(self.n_states)],
+                                              [u[i] for i in range(self.n_inputs)], xp, k)
+        rates = equations.derivatives(xp, k, e, states, inputs)
+        return ([rates[j] for j in self._state_order], self._output_values(xp, states, e),
+                {name: float(getattr(self.parameters, name)) for name in parameters})
 
     # ------------------------------------------------------------------ operating points
     def straight_running(self, speed: float, **states) -> np.ndarray:
@@ -918,13 +984,14 @@ class SingleTrack(Model):
         values.update(states)
         return self.state_vector(values)
 
-    def linearize(self, x0=None, u0=None, t: float = 0.0, *, speed: float | None = None):
+    def linearize(self, x0=None, u0=None, t: float = 0.0, method: str = "auto", *, speed: float | None = None):
         """Linearize about ``(x0, u0)``, or about straight running at ``speed`` [m/s].
 
         With ``speed`` given (and no ``x0``), the operating point is :meth:`straight_running`; in
         force mode the rear axle force balances the aerodynamic drag so that the speed is an
-        equilibrium. See :meth:`vehdyn.Model.linearize`; :meth:`lateral_yaw` extracts the
-        lateral-yaw block that the linear bicycle model describes.
+        equilibrium. See :meth:`vehdyn.Model.linearize` (``method="exact"``: CasADi's Jacobians of
+        these equations); :meth:`lateral_yaw` extracts the lateral-yaw block that the linear
+        bicycle model describes.
         """
         if speed is not None:
             if x0 is not None:
@@ -936,7 +1003,7 @@ class SingleTrack(Model):
                     u0 = {"rear_drive_torque": drag * float(np.asarray(self.parameters.rolling_radius))}
                 else:
                     u0 = {"rear_longitudinal_force": drag}
-        return super().linearize(x0, u0, t)
+        return super().linearize(x0, u0, t, method)
 
     def lateral_yaw(self, speed: float, *, crosswind: bool = False):
         """The lateral-yaw linearization at straight running at ``speed`` [m/s].

@@ -442,6 +442,31 @@ class Model:
         """
         return None
 
+    def symbolic_equations(self, xp, x, u, parameters):
+        """The model's equations on symbols, for :func:`vehdyn.symbolic.to_casadi`; ``NotImplemented`` (default).
+
+        A model that has a symbolic form calls the same equation functions as :meth:`rhs` and
+        :meth:`output` with the symbolic namespace ``xp``.
+
+        Parameters
+        ----------
+        xp : type
+            The symbolic namespace (:func:`vehdyn.symbolic.casadi_namespace`).
+        x : casadi.SX
+            The states, a column of symbols [each state's unit].
+        u : casadi.SX
+            The inputs, a column of symbols [each input's unit].
+        parameters : dict
+            Model parameters to take as symbols, by name [their units].
+
+        Returns
+        -------
+        tuple or NotImplemented
+            ``(rates, outputs, values)``: dx/dt and y (sequences of expressions, or columns) and the
+            model's own numeric value of each parameter named in ``parameters`` (a dict).
+        """
+        return NotImplemented
+
     # ------------------------------------------------------------------ services
     def state_vector(self, values=None, **named) -> np.ndarray:
         """A state vector from a mapping or array (``None`` is zeros); keywords set named states.
@@ -481,7 +506,7 @@ class Model:
             values = {**(values or {}), **named}
         return signal_vector(values, self.inputs, "u0")
 
-    def linearize(self, x0=None, u0=None, t: float = 0.0) -> "LinearModel":
+    def linearize(self, x0=None, u0=None, t: float = 0.0, method: str = "auto") -> "LinearModel":
         r"""Linearize about the operating point ``(x0, u0)`` at time ``t``.
 
         Parameters
@@ -490,6 +515,10 @@ class Model:
             Operating point (by name or as arrays) [each signal's unit]; ``None`` is zeros.
         t : float
             Time [s].
+        method : str
+            ``"auto"`` (the model's :meth:`jacobian` where it gives one, else finite differences),
+            ``"finite_difference"``, or ``"exact"``: the Jacobians of the model's symbolic form
+            (:func:`vehdyn.symbolic.to_casadi`, needs casadi), exact to rounding.
 
         Returns
         -------
@@ -507,8 +536,9 @@ class Model:
             C = \frac{\partial g}{\partial x}, \quad D = \frac{\partial g}{\partial u}
             \quad \text{at } (t, x_0, u_0).
 
-        The Jacobians come from :meth:`jacobian` where a model provides them, else from a
-        fourth-order central difference, all perturbed points evaluated in one batched call,
+        With ``method="exact"`` the Jacobians are CasADi's algorithmic derivatives of the model's
+        own equations (time-invariant models: ``t`` is not read). Otherwise they come from
+        :meth:`jacobian` where a model provides them, else from a fourth-order central difference, all perturbed points evaluated in one batched call,
 
         .. math::
 
@@ -531,9 +561,16 @@ class Model:
         u0 = self.input_vector(u0)
         if x0.ndim != 1 or u0.ndim != 1:
             raise ParameterError("linearize: x0 and u0 must be single points, not batches", key="x0", value=x0.shape)
+        if method not in ("auto", "finite_difference", "exact"):
+            raise ParameterError(f"method must be 'auto', 'finite_difference' or 'exact', got {method!r}",
+                                 key="method", value=method)
         y0 = np.asarray(self.output(t, x0, u0), dtype=float)
-        jac = self.jacobian(t, x0, u0)
-        if jac is None:
+        jac = self.jacobian(t, x0, u0) if method == "auto" else None
+        if method == "exact":
+            from vehdyn.symbolic import to_casadi
+
+            A, B, C, D = to_casadi(self).linear_matrices(x0, u0)
+        elif jac is None:
             A, B, C, D = self._finite_difference_jacobian(t, x0, u0)
         else:
             A, B, C, D = (np.asarray(m, dtype=float) for m in jac)

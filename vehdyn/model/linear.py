@@ -252,8 +252,51 @@ class LinearModel(Model):
     def jacobian(self, t, x, u):
         return self.A, self.B, self.C, self.D
 
-    def linearize(self, x0=None, u0=None, t: float = 0.0) -> "LinearModel":
-        """A linear model is its own linearization: the same matrices and names."""
+    def symbolic_equations(self, xp, x, u, parameters):
+        """dx/dt = A x + B u and y = C x + D u on symbols (:meth:`vehdyn.Model.symbolic_equations`;
+        no parameters: ParameterError naming any).
+
+        Parameters
+        ----------
+        xp : type
+            The symbolic namespace (with ``mtimes``).
+        x : casadi.SX
+            States [each state's unit].
+        u : casadi.SX
+            Inputs [each input's unit].
+        parameters : dict
+            Must be empty.
+
+        Returns
+        -------
+        tuple
+            (dx/dt, y, {}).
+        """
+        if parameters:
+            raise ParameterError(f"a LinearModel takes no symbolic parameters (its matrices are numbers), got "
+                                 f"{sorted(parameters)}", key="parameters", value=sorted(parameters))
+        return xp.mtimes(self.A, x) + xp.mtimes(self.B, u), xp.mtimes(self.C, x) + xp.mtimes(self.D, u), {}
+
+    def linearize(self, x0=None, u0=None, t: float = 0.0, method: str = "auto") -> "LinearModel":
+        """A linear model is its own linearization: the same matrices and names.
+
+        Parameters
+        ----------
+        x0, u0 : mapping, array_like or None
+            Operating point [each signal's unit]; ``None`` is zeros.
+        t : float
+            Time [s].
+        method : str
+            Accepted for the interface of :meth:`vehdyn.Model.linearize` (every method gives the
+            matrices themselves).
+
+        Returns
+        -------
+        LinearModel
+        """
+        if method not in ("auto", "finite_difference", "exact"):
+            raise ParameterError(f"method must be 'auto', 'finite_difference' or 'exact', got {method!r}",
+                                 key="method", value=method)
         x0 = self.state_vector(x0)
         u0 = self.input_vector(u0)
         return LinearModel(

@@ -369,6 +369,11 @@ class MagicFormula(TireModel):
         self.version = params.version
         self._c = _coefficients(params)
 
+    @property
+    def coefficients(self) -> MFCoefficients:
+        """The numbers :func:`forces_kernel` reads (the file's coefficients, SI, MFeval's defaults)."""
+        return self._c
+
     @classmethod
     def from_tir(cls, path, *, strict: bool = False) -> MagicFormula:
         """Read a ``.tir`` file and build the model (see :func:`vehdyn.tire.read_tir`).

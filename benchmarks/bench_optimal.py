@@ -1,0 +1,178 @@
+"""Optimal control on vehdyn's models (vehdyn.symbolic, vehdyn.optimal), from one run on this machine.
+
+Run: ``python benchmarks/bench_optimal.py [--quick]``. Prints:
+
+1. the single track's rhs (shipped sedan, Magic Formula tires, tire lag, force mode) and its
+   Jacobian: CasADi (``to_casadi``, exact derivatives) against numpy and the compiled (numba) rhs --
+   the largest relative difference of the values at 50 random states and the time per call (the
+   CasADi and numpy calls from Python; the compiled one inside a compiled loop; the Jacobian of
+   numpy by ``Model.linearize``'s central differences);
+2. the minimum-time ISO 3888-2 lane change (``minimum_time_lane_change``, the single track without
+   tire lag): build and solve time and IPOPT iterations from a cold start, at two node spacings;
+3. NMPC path tracking (``PathTrackingNMPC``, 40 steps of 50 ms, warm started) closing the loop on the
+   single track through the ISO 3888-1 double lane change at 20 m/s: solve time per step (median,
+   90th percentile) and iterations, against the same controller and program with the model written
+   by hand in CasADi (a dynamic bicycle with a four-coefficient Pacejka lateral force fitted to the
+   same tire at the static loads: the usual practice), and the ratio (goal: <= 1.5; per step <= 20 ms).
+"""
+
+from __future__ import annotations
+
+import _timing  # first: pins BLAS to one thread before numpy loads
+import sys
+import time
+
+import numpy as np
+
+
+def rhs_and_jacobian():
+    import vehdyn
+    from vehdyn.handling import SingleTrack
+    from vehdyn.symbolic import to_casadi
+
+    model = SingleTrack(vehdyn.load_vehicle("sedan"))
+    form = to_casadi(model)
+    rng = np.random.default_rng(1)
+    points = []
+    for _ in range(50):
+        x = model.straight_running(rng.uniform(5, 35))
+        points.append((x + rng.uniform(-0.3, 0.3, x.size) * np.maximum(np.abs(x), 0.05),
+                       rng.uniform(-0.1, 0.1, model.n_inputs) * np.array([1 if "steer" in n else 3e4 for n in
+                                                                          model.input_names])))
+    worst_numpy = max(np.max(np.abs(np.array(form.rhs(x, u)).ravel() - model.rhs(0, x, u))
+                             / np.maximum(np.abs(model.rhs(0, x, u)), 1e-9)) for x, u in points)
+    compiled = model.compiled_rhs()
+    out = np.empty(model.n_states)
+    worst_compiled = 0.0
+    for x, u in points:
+        compiled.rhs(0.0, x, u, compiled.args, out)
+        worst_compiled = max(worst_compiled, np.max(np.abs(np.array(form.rhs(x, u)).ravel() - out)
+                                                    / np.maximum(np.abs(out), 1e-9)))
+    x, u = points[0]
+    t_casadi, _ = _timing.best_time(lambda: [form.rhs(x, u) for _ in range(200)])
+    t_numpy, _ = _timing.best_time(lambda: [model.rhs(0.0, x, u) for _ in range(200)])
+    t_compiled = _timing.compiled_rhs_call_time(model, x, u)
+    t_jac_casadi, _ = _timing.best_time(lambda: [form.jacobians(x, u) for _ in range(50)])
+    t_jac_fd, _ = _timing.best_time(lambda: model.linearize(x, u, method="finite_difference"), repeats=5)
+    exact = form.linear_matrices(x, u)[0]
+    fd = model.linearize(x, u, method="finite_difference").A
+    print("\n1. SingleTrack rhs and Jacobian (sedan, MF tires, tire lag, force mode)")
+    print(f"   largest relative difference of rhs at 50 random states: CasADi vs numpy {worst_numpy:.2e}, "
+          f"CasADi vs compiled {worst_compiled:.2e}")
+    print(f"   rhs per call: CasADi (from Python) {t_casadi / 200 * 1e6:8.1f} us, numpy {t_numpy / 200 * 1e6:8.1f} us, "
+          f"compiled (in a compiled loop) {t_compiled * 1e6:8.2f} us")
+    print(f"   Jacobians (A, B, C, D) per call: CasADi exact {t_jac_casadi / 50 * 1e6:8.1f} us, numpy central "
+          f"differences {t_jac_fd * 1e6:8.1f} us; largest |A_exact - A_fd| / max|A| = "
+          f"{np.max(np.abs(exact - fd)) / np.max(np.abs(fd)):.1e}")
+
+
+def minimum_time(quick):
+    import vehdyn
+    from vehdyn.handling import SingleTrack
+    from vehdyn.optimal import minimum_time_lane_change
+    from vehdyn.procedures import obstacle_avoidance_track
+
+    car = vehdyn.load_vehicle("sedan")
+    track = obstacle_avoidance_track(max(car.geometry.front_track, car.geometry.rear_track) + 0.2)
+    print("\n2. Minimum-time ISO 3888-2 lane change (single track, MF tires, no tire lag), cold start")
+    for spacing in ((1.0,) if quick else (1.0, 0.5)):
+        start = time.perf_counter()
+        s = minimum_time_lane_change(SingleTrack(car, tire_lag=False), track, spacing=spacing)
+        wall = time.perf_counter() - start
+        print(f"   spacing {spacing} m: {s.problem.intervals} intervals, {s.iterations} iterations, solve "
+              f"{s.solve_time:.2f} s, with building {wall:.2f} s; entry {s.entry_speed * 3.6:.1f} km/h, "
+              f"passage {s.passage_time:.3f} s")
+
+
+def hand_bicycle(car):
+    """A Model whose symbolic form is a hand-written dynamic bicycle with a fitted Pacejka lateral force."""
+    import casadi as ca
+    from scipy.optimize import least_squares
+
+    import vehdyn
+    from vehdyn.handling import SingleTrack
+
+    reference = SingleTrack(car, tire_lag=False)
+    p = reference.parameters
+    m, iz, a, b, drag = p.mass, p.yaw_inertia, p.a, p.b, p.drag_factor
+    g = 9.80665
+    alpha = np.linspace(-0.25, 0.25, 101)
+    fits = []
+    for axle, load in ((0, m * g * b / (a + b)), (1, m * g * a / (a + b))):
+        one = np.ones_like(alpha)
+        fy = np.array(reference.axle_law_forces(axle, load * one, 0.0 * one, alpha, 20.0 * one)[1])  # ISO-W
+
+        def residual(c):
+            B, C, D, E = c
+            return D * np.sin(C * np.arctan(B * alpha - E * (B * alpha - np.arctan(B * alpha)))) + fy
+        fits.append(least_squares(residual, [10.0, 1.3, np.max(np.abs(fy)), 0.0]).x)
+
+    class Bicycle(vehdyn.Model):
+        def __init__(self):
+            self.declare(states=reference.states, inputs=reference.inputs, outputs=reference.output_signals[:1])
+
+        def symbolic_equations(self, xp, x, u, parameters):
+            vx, vy, r, _, _, psi = (x[i] for i in range(6))
+            delta, force = u[0], u[3]
+
+            def lateral(c, slip):
+                B, C, D, E = c
+                return D * ca.sin(C * ca.atan(B * slip - E * (B * slip - ca.atan(B * slip))))
+
+            # SAE axes (y right): a wheel sliding right is pushed left
+            vxf = vx * ca.cos(delta) + (vy + a * r) * ca.sin(delta)
+            vyf = -vx * ca.sin(delta) + (vy + a * r) * ca.cos(delta)
+            ff = -lateral(fits[0], ca.atan(vyf / vxf))
+            fr = -lateral(fits[1], ca.atan((vy - b * r) / vx))
+            dvx = (force - ff * ca.sin(delta) - drag * vx * vx) / m + vy * r
+            dvy = (ff * ca.cos(delta) + fr) / m - vx * r
+            dr = (a * ff * ca.cos(delta) - b * fr) / iz
+            dX = vx * ca.cos(psi) - vy * ca.sin(psi)
+            dY = vx * ca.sin(psi) + vy * ca.cos(psi)
+            return [dvx, dvy, dr, dX, dY, r], [(ff + fr) / m], {}
+
+        def rhs(self, t, x, u):
+            raise NotImplementedError("symbolic only")
+
+    return Bicycle()
+
+
+def nmpc(quick):
+    import vehdyn
+    from vehdyn.handling import SingleTrack
+    from vehdyn.optimal import PathTrackingNMPC
+    from vehdyn.procedures import double_lane_change_track
+
+    car = vehdyn.load_vehicle("sedan")
+    track = double_lane_change_track(max(car.geometry.front_track, car.geometry.rear_track) + 0.2)
+    px, py = track.least_curvature_line(0.15)
+    speed, steps = 20.0, (30 if quick else 120)
+    plant = SingleTrack(car, tire_lag=False)
+    drag = float(plant.parameters.drag_factor) * speed**2
+    print(f"\n3. NMPC path tracking, 40 steps of 50 ms, warm start, {steps} steps of the ISO 3888-1 lane change at "
+          f"{speed:g} m/s on the single track (plant simulated by RK45 between samples)")
+    results = {}
+    for label, model in (("vehdyn SingleTrack (MF 6.1 tires)", plant), ("hand-written CasADi bicycle",
+                                                                        hand_bicycle(car))):
+        controller = PathTrackingNMPC(model, px, py, horizon=40, period=0.05, inputs={"rear_longitudinal_force": drag})
+        x = plant.straight_running(speed, x=-20.0)
+        u = plant.input_vector(rear_longitudinal_force=drag)
+        for k in range(steps):
+            feedback = [x[plant.index(n)] for n in controller.input_names]
+            u[plant.index("front_steer_angle", "inputs")] = controller.command(0.05 * k, feedback)
+            held = dict(zip(plant.input_names, u))
+            x = vehdyn.simulate(plant, [0.0, 0.05], held, x0=x, method="RK45", rtol=1e-8).states[:, -1]
+        log = np.array(controller.log)[1:]  # the first solve is a cold start
+        results[label] = np.median(log[:, 2])
+        print(f"   {label:36s}: solve per step median {np.median(log[:, 2]) * 1e3:7.1f} ms, 90 % "
+              f"{np.percentile(log[:, 2], 90) * 1e3:7.1f} ms, iterations median {np.median(log[:, 3]):.0f}, "
+              f"lateral error at the end {abs(x[plant.index('y')] - np.interp(x[plant.index('x')], px, py)):.3f} m")
+    ratio = results["vehdyn SingleTrack (MF 6.1 tires)"] / results["hand-written CasADi bicycle"]
+    print(f"   ratio vehdyn / hand-written: {ratio:.2f} (goal <= 1.5)")
+
+
+if __name__ == "__main__":
+    quick = "--quick" in sys.argv
+    rhs_and_jacobian()
+    minimum_time(quick)
+    nmpc(quick)
