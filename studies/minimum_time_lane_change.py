@@ -46,8 +46,14 @@ def replay(model, solution, x0, inputs=None):
 
 
 def run(study: Study) -> None:
+    import importlib.util
+
     import pandas as pd
 
+    if importlib.util.find_spec("casadi") is None:
+        study.text("The optimal-control problems need CasADi (with its IPOPT), which is not installed here: "
+                   'pip install "vehdyn[optimal]" and run this study again.')
+        return
     car = vehdyn.load_vehicle("sedan")
     width = max(car.geometry.front_track, car.geometry.rear_track) + 0.2
     track = obstacle_avoidance_track(width)
