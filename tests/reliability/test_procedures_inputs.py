@@ -240,3 +240,20 @@ def test_numpy_scalars_are_numbers(single_track):
     a = pr.braking_in_turn(single_track, lateral_acceleration=np.float32(4.0), duration=np.int64(2))
     b = pr.braking_in_turn(single_track, lateral_acceleration=float(np.float32(4.0)), duration=2.0)
     assert a.yaw_rate_ratio == b.yaw_rate_ratio
+
+
+def test_a_response_at_90_percent_at_once_needs_no_resolution():
+    """The van's sideslip angle at 12.5 m/s (its steady value changes sign near this speed) reaches
+    90 % at the step itself: t90 - step_time was 1.1e-16 s, and the resolution check refused a
+    0.001 s grid for it (the report's step-steer study failed). At once is 0, not a response to
+    resolve; a response of a few samples is still refused."""
+    from vehdyn.handling import LinearBicycle, steady_state_gains
+
+    car = LinearBicycle(vehdyn.load_vehicle("van"), 12.5)
+    t = np.linspace(0.0, 4.0, 4001)
+    delta = 2.0 / float(steady_state_gains(car).lateral_acceleration)
+    res = vehdyn.simulate(car, t, {"front_steer_angle": delta * np.clip((t - 0.5) / 0.15, 0.0, 1.0)}, method="exact")
+    m = pr.step_response_metrics(res, "sideslip_angle", steer="front_steer_angle", steady_window=1.0)
+    assert abs(float(m.response_time)) < 1e-9
+    yaw = pr.step_response_metrics(res, "yaw_rate", steer="front_steer_angle", steady_window=1.0)
+    assert 0.0 < float(yaw.response_time) < 0.5  # an ordinary response, resolved by the 1 ms grid

@@ -233,7 +233,10 @@ def _signal(result, name, what):
 def _check_resolution(t_after, step_time, response_time):
     """ParameterError when the samples after the step are too far apart for the response time."""
     response = np.atleast_1d(response_time)
-    response = response[np.isfinite(response) & (response > 0)]  # 0: at 90 % at once (a direct feedthrough)
+    # 0 (to the rounding of the time values): at 90 % at once -- a direct feedthrough, or a signal whose
+    # steady change is ~0 (the sideslip angle near the speed where it changes sign) -- nothing to resolve
+    at_once = 1e-9 * max(1.0, abs(float(step_time)), abs(float(t_after[-1])) if t_after.size else 1.0)
+    response = response[np.isfinite(response) & (response > at_once)]
     if t_after.size < 2 or not response.size:
         return
     horizon = t_after[t_after <= step_time + float(np.max(response)) + 1e-12]
