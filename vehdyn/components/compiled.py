@@ -27,6 +27,8 @@ from vehdyn import conventions
 from vehdyn.components import aero, planar, tire_forces, tire_slip, wheel
 from vehdyn.tire import compiled as tire_compiled
 from vehdyn.tire.compiled import lateral_or_full_loads, tire_law_loads
+from vehdyn.tire.linear import linear_tire_law
+from vehdyn.tire.magic_formula import forces_kernel
 
 __all__ = ["XP", "FULL_FORCES", "namespace", "SOURCE_MODULES", "JIT_OPTIONS"]
 
@@ -78,6 +80,16 @@ def _tire_law_pair_full(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma
     return fx1, fy1, my1, fx2, fy2, my2
 
 
+def _tire_law_aligning(law, fz, kappa, alpha, gamma, vx):
+    """ISO-W aligning moment M_z [N*m] of one tire of a :class:`~vehdyn.tire.compiled.TireLaw`: the
+    Magic Formula's (:func:`~vehdyn.tire.kernels.forces_kernel`, as ``tire_law_loads`` evaluates it)
+    or the linear law's -t F_y."""
+    if law.kind == tire_compiled.MAGIC_FORMULA:
+        c = law.records[law.record]
+        return forces_kernel(tire_compiled.XP, c, fz, kappa, alpha, gamma, vx, c.INFLPRES, True, False)[5]
+    return linear_tire_law(tire_compiled.XP, law.linear, fz, kappa, alpha, gamma, vx)[2]
+
+
 def namespace(name: str, **hooks) -> types.ModuleType:
     """A copy of :data:`XP` with a model's own hooks added (numba reads a namespace's functions as
     compile-time constants, so a model that adds hooks needs a namespace of its own).
@@ -111,6 +123,7 @@ for _name in ("abs", "where", "minimum", "maximum"):
     setattr(XP, _name, getattr(tire_compiled.XP, _name))
 XP.tire_law = lateral_or_full_loads
 XP.tire_law_pair = register_jitable(**JIT_OPTIONS)(_tire_law_pair)
+XP.tire_law_aligning = register_jitable(**JIT_OPTIONS)(_tire_law_aligning)
 
 FULL_FORCES = {"tire_law": tire_law_loads, "tire_law_pair": register_jitable(**JIT_OPTIONS)(_tire_law_pair_full),
                "cos": math.cos, "sin": math.sin, "tanh": math.tanh, "atan2": math.atan2}

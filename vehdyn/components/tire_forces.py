@@ -50,7 +50,8 @@ from vehdyn.components.tire_slip import contact_slips
 from vehdyn.components.wheel import rolling_resistance_fade
 from vehdyn.conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slips_sae_to_iso_w
 
-__all__ = ["tire_loads", "axle_tire_loads", "wheel_pair_tire_loads", "demanded_forces", "contact_loads"]
+__all__ = ["tire_loads", "axle_tire_loads", "wheel_pair_tire_loads", "wheel_pair_aligning_moments", "demanded_forces",
+           "contact_loads"]
 
 
 def tire_loads(xp, law, fz, kappa, alpha, gamma, vx, mirror, friction, scaled):
@@ -165,13 +166,14 @@ def axle_tire_loads(xp, law, fz, kappa, alpha, vx, ply_steer, friction, scaled):
     return 2.0 * fx, 2.0 * fy, 2.0 * my
 
 
-def wheel_pair_tire_loads(xp, law, left_load, right_load, kappa, alpha, vx, mirror_left, mirror_right, friction,
-                          scaled):
+def wheel_pair_tire_loads(xp, law, left_load, right_load, kappa, alpha, gamma, vx, mirror_left, mirror_right,
+                          friction, scaled):
     """ISO-W (F_x, F_y, M_y) of the left, then the right tire of an axle at their own loads.
 
     :func:`tire_loads` for each: the one of ``mirror_left``, ``mirror_right`` that is set is the
     law's mirror image (a law with ply steer: the left tire for a right-side law, the right one for
-    a ``TYRESIDE = 'LEFT'`` file), both at zero inclination and the same slips.
+    a ``TYRESIDE = 'LEFT'`` file), both at the same slips and inclination (the wheels of an axle
+    lean together when the body rolls; the mirror image sees -alpha and -gamma).
 
     Parameters
     ----------
@@ -185,6 +187,8 @@ def wheel_pair_tire_loads(xp, law, left_load, right_load, kappa, alpha, vx, mirr
         Slip ratio [-] (ISO-W), both tires.
     alpha : float or ndarray
         Slip angle [rad] (ISO-W), both tires.
+    gamma : float or ndarray
+        Inclination angle [rad] (ISO-W, rotation about x), both tires (0.0: upright).
     vx : float or ndarray
         Signed forward speed [m/s].
     mirror_left, mirror_right : bool
@@ -202,8 +206,67 @@ def wheel_pair_tire_loads(xp, law, left_load, right_load, kappa, alpha, vx, mirr
     kappa, alpha = _similar(xp, kappa, alpha, friction, scaled)
     left_alpha = -alpha if mirror_left else alpha
     right_alpha = -alpha if mirror_right else alpha
-    w = xp.tire_law_pair(law, left_load, right_load, kappa, left_alpha, right_alpha, 0.0, 0.0, vx)
+    # 0.0 - gamma, not -gamma: an upright mirror image sees +0.0 as before
+    left_gamma = 0.0 - gamma if mirror_left else gamma
+    right_gamma = 0.0 - gamma if mirror_right else gamma
+    w = xp.tire_law_pair(law, left_load, right_load, kappa, left_alpha, right_alpha, left_gamma, right_gamma, vx)
     return _scaled_pair(w, mirror_left, mirror_right, friction, scaled)
+
+
+def wheel_pair_aligning_moments(xp, law, left_load, right_load, kappa, alpha, gamma, vx, mirror_left, mirror_right,
+                                friction, scaled):
+    """ISO-W aligning moments M_z of the left, then the right tire of an axle, as :func:`wheel_pair_tire_loads`.
+
+    The hook ``xp.tire_law_aligning`` at the slips of :func:`wheel_pair_tire_loads`: the mirror
+    image's moment is negated (a mirror image is (F_x, -F_y, M_y, -M_z) at (-alpha, -gamma)), and on
+    a road of friction ratio mu the moment scales as the forces do,
+
+    .. math::
+
+        M_z = \pm\mu M_z^*(\kappa / \mu,\ \arctan(\tan(\pm\alpha) / \mu),\ \pm\gamma)
+
+    (the pneumatic trail at the similar slip times the scaled force; Pacejka 2012, sec. 4.3.2).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace (with ``tire_law_aligning``).
+    law : TireModel or TireLaw
+        The law of one tire.
+    left_load, right_load : float or ndarray
+        Normal loads [N].
+    kappa : float or ndarray
+        Slip ratio [-] (ISO-W), both tires.
+    alpha : float or ndarray
+        Slip angle [rad] (ISO-W), both tires.
+    gamma : float or ndarray
+        Inclination angle [rad] (ISO-W), both tires.
+    vx : float or ndarray
+        Signed forward speed [m/s].
+    mirror_left, mirror_right : bool
+        Which tire is the law's mirror image.
+    friction : float or ndarray
+        Friction ratio mu [-].
+    scaled : bool
+        Apply ``friction``.
+
+    Returns
+    -------
+    tuple
+        (M_z left [N*m], M_z right [N*m]), ISO-W.
+    """
+    kappa, alpha = _similar(xp, kappa, alpha, friction, scaled)
+    left = xp.tire_law_aligning(law, left_load, kappa, -alpha if mirror_left else alpha,
+                                0.0 - gamma if mirror_left else gamma, vx)
+    right = xp.tire_law_aligning(law, right_load, kappa, -alpha if mirror_right else alpha,
+                                 0.0 - gamma if mirror_right else gamma, vx)
+    if mirror_left:
+        left = -left
+    if mirror_right:
+        right = -right
+    if scaled:
+        return friction * left, friction * right
+    return left, right
 
 
 def demanded_forces(xp, k, fz, fx, fy, force_demand, friction):

@@ -8,7 +8,9 @@ functions of an ``xp`` namespace and plain arithmetic. The interface an ``xp`` o
   ``abs``; ``where(condition, a, b)``, ``minimum(a, b)``, ``maximum(a, b)`` (elementwise);
 * the tire hooks ``tire_law(law, fz, kappa, alpha, gamma, vx) -> (fx, fy, my)`` and
   ``tire_law_pair(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx)`` (a 6-tuple):
-  one tire law evaluated at ISO-W slips (:mod:`vehdyn.components.tire_forces`).
+  one tire law evaluated at ISO-W slips (:mod:`vehdyn.components.tire_forces`);
+  ``tire_law_aligning(law, fz, kappa, alpha, gamma, vx) -> mz``, the ISO-W aligning moment of one
+  tire (read only by a model whose compliance steer needs the law's M_z).
 
 A model may add hooks of its own (the full vehicle's rigid-body functions,
 :mod:`vehdyn.full_vehicle.assembly`). :data:`NUMPY` runs the equations on numpy arrays with a
@@ -74,6 +76,34 @@ class NUMPY(_TIRE_NUMPY):
             fz, kappa, alpha, gamma, vx = float(fz), float(kappa), float(alpha), float(gamma), float(vx)
         f = law.forces(fz, kappa, alpha, gamma, vx)
         return f.fx, f.fy, f.my
+
+    @staticmethod
+    def tire_law_aligning(law, fz, kappa, alpha, gamma, vx):
+        """ISO-W aligning moment M_z [N*m] of one tire (the arguments of :meth:`tire_law`).
+
+        Parameters
+        ----------
+        law : TireModel
+            The law.
+        fz : float or ndarray
+            Normal load [N].
+        kappa : float or ndarray
+            Slip ratio [-].
+        alpha : float or ndarray
+            Slip angle [rad].
+        gamma : float or ndarray
+            Inclination [rad].
+        vx : float or ndarray
+            Signed forward speed [m/s].
+
+        Returns
+        -------
+        float or ndarray
+            M_z [N*m], ISO-W.
+        """
+        if _scalars(fz, kappa, alpha, gamma, vx):
+            fz, kappa, alpha, gamma, vx = float(fz), float(kappa), float(alpha), float(gamma), float(vx)
+        return law.forces(fz, kappa, alpha, gamma, vx).mz
 
     @staticmethod
     def tire_law_pair(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx):
@@ -166,5 +196,14 @@ def with_tire_hooks(xp):
     def tire_law_pair(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx):
         return (*tire_law(law, fz_1, kappa, alpha_1, gamma_1, vx), *tire_law(law, fz_2, kappa, alpha_2, gamma_2, vx))
 
+    def tire_law_aligning(law, fz, kappa, alpha, gamma, vx):
+        if isinstance(law, MagicFormula):
+            c = law.coefficients
+            return forces_kernel(xp, c, fz, kappa, alpha, gamma, vx, c.INFLPRES, True, False)[5]
+        if isinstance(law, LinearTire):
+            return linear_tire_law(xp, law.coefficients, fz, kappa, alpha, gamma, vx)[2]
+        return tire_law(law, fz, kappa, alpha, gamma, vx)  # raises, naming the law
+
     return type(f"{xp.__name__}_VEHICLE", (xp,), {"tire_law": staticmethod(tire_law),
-                                                  "tire_law_pair": staticmethod(tire_law_pair)})
+                                                  "tire_law_pair": staticmethod(tire_law_pair),
+                                                  "tire_law_aligning": staticmethod(tire_law_aligning)})

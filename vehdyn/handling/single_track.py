@@ -536,7 +536,54 @@ class SingleTrack(Model):
         self._peak_slip = {axle: value[1] for axle, value in characteristics.items()}
         if self.lateral_load_transfer:
             self._transfer_coefficients()  # a vehicle whose body would roll over: error here
+        self._understeer_terms = self._understeer_constants()
         self._declare_signals()
+
+    def _understeer_constants(self) -> dict:
+        """The constants of roll steer, camber from roll and compliance steer (:class:`Constants`)
+        from the vehicle's ``suspension`` fields; all 0 (and the steps skipped) for a vehicle without."""
+        from vehdyn.handling.axle_tires import pneumatic_trail
+
+        s, g = self.vehicle.suspension, self.vehicle.geometry
+        out = {}
+        compliance = False
+        for axle, tire, stiffness in zip(_AXLES, (self.front_tire, self.rear_tire), (0, 1)):
+            c = float(getattr(s, f"{axle}_lateral_force_compliance_steer"))
+            e = float(getattr(s, f"{axle}_aligning_moment_compliance_steer"))
+            slope = 0.0
+            if c != 0.0 or e != 0.0:
+                compliance = True
+                trail = pneumatic_trail(self.vehicle, axle, tire) if e != 0.0 else 0.0
+                slope = (c - e * trail) * float(self.axle_cornering_stiffness()[stiffness])
+                if not slope < 1.0:
+                    raise ParameterError(f"suspension.{axle}_lateral_force_compliance_steer = {c:.6g} rad/N and "
+                                         f"{axle}_aligning_moment_compliance_steer = {e:.6g} rad/(N*m) with the "
+                                         f"{axle} tire law's cornering stiffness and trail {trail:.4g} m make "
+                                         f"(c - e t) C = {slope:.6g} >= 1: no effective cornering stiffness",
+                                         key=f"suspension.{axle}_lateral_force_compliance_steer", value=c)
+            out.update({f"{axle}_lateral_force_compliance": c, f"{axle}_aligning_moment_compliance": e,
+                        f"{axle}_compliance_slope": slope})
+        out["compliance_steer"] = float(compliance)
+        steer = (float(s.front_roll_steer), float(s.rear_roll_steer))
+        gains = (s.front_camber_gain, s.rear_camber_gain)
+        roll_terms = self.lateral_load_transfer and (steer != (0.0, 0.0) or gains != (None, None))
+        out.update(front_roll_steer=steer[0], rear_roll_steer=steer[1], front_camber_per_roll=0.0,
+                   rear_camber_per_roll=0.0, quasi_static_roll=0.0, roll_terms=float(roll_terms))
+        if not roll_terms:
+            return out
+        tracks = (g.front_track, g.rear_track)
+        if self.roll:  # rigid tires: the body rolls on the springs alone, phi_s = phi
+            ratios = (1.0, 1.0)
+        else:
+            from vehdyn.handling.roll_balance import steady_roll
+
+            roll = steady_roll(self.vehicle, gravity=float(self.parameters.gravity))
+            out["quasi_static_roll"] = -float(roll.roll_gradient)
+            ratios = tuple(float(r) / float(roll.roll_gradient) for r in roll.suspension_roll_gradient)
+        for axle, gain, track, ratio in zip(_AXLES, gains, tracks, ratios):
+            if gain is not None:
+                out[f"{axle}_camber_per_roll"] = 1.0 + float(gain) * 0.5 * track * ratio
+        return out
 
     # ------------------------------------------------------------------ construction helpers
     # (for the handling models that share them: vehdyn.components.tire_setup holds them)
@@ -710,7 +757,7 @@ class SingleTrack(Model):
             front_mirror_right=float(self._mirrored_wheels["front"] == "right"),
             rear_mirror_right=float(self._mirrored_wheels["rear"] == "right"),
             front_ply_steer=float(self._mirrored["front"]), rear_ply_steer=float(self._mirrored["rear"]),
-            road_friction=self.friction if isinstance(self.friction, float) else 1.0,
+            road_friction=self.friction if isinstance(self.friction, float) else 1.0, **self._understeer_terms,
             wheel_spin=self.wheel_spin, tire_lag=self.tire_lag, friction_scaled=self.friction is not None)
 
     def _evaluate(self, x, u, xp=equations.NUMPY, k=None):
@@ -815,7 +862,8 @@ class SingleTrack(Model):
         name = _AXLES[axle]
         tire = self.front_tire if axle == 0 else self.rear_tire
         side = self._mirrored_wheels[name]
-        return wheel_pair_tire_loads(equations.NUMPY, tire, left_load, right_load, kappa, alpha, vx, side == "left",
+        return wheel_pair_tire_loads(equations.NUMPY, tire, left_load, right_load, kappa, alpha, 0.0, vx,
+                                     side == "left",
                                      side == "right", 1.0, False)
 
     def compiled_rhs(self):

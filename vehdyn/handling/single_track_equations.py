@@ -26,7 +26,8 @@ from collections import namedtuple
 
 from vehdyn.components.aero import aero_side_force
 from vehdyn.components.planar import position_rates
-from vehdyn.components.tire_forces import contact_loads, demanded_forces, wheel_pair_tire_loads
+from vehdyn.components.tire_forces import (contact_loads, demanded_forces, wheel_pair_aligning_moments,
+                                           wheel_pair_tire_loads)
 from vehdyn.components.tire_slip import contact_slips, deflection_rate, low_speed_blend
 from vehdyn.components.wheel import net_wheel_torque, rolling_resistance_fade
 from vehdyn.components.xp import NUMPY
@@ -34,7 +35,7 @@ from vehdyn.conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slip
 
 __all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate",
            "derivatives", "outputs", "axle_loads", "wheel_pair_loads", "wheel_load_outputs", "normal_loads",
-           "lateral_load_transfer", "roll_acceleration", "deflection_rates"]
+           "lateral_load_transfer", "roll_acceleration", "deflection_rates", "axle_aligning_moment"]
 
 STATES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y", "yaw_angle", "front_wheel_speed",
           "rear_wheel_speed", "front_lateral_deflection", "rear_lateral_deflection", "front_longitudinal_deflection",
@@ -55,8 +56,11 @@ Constants = namedtuple("Constants", (
     "front_geometric_transfer", "front_elastic_transfer", "rear_geometric_transfer", "rear_elastic_transfer",
     "front_track", "rear_track", "roll_inertia", "roll_arm", "front_roll_transfer_stiffness",
     "rear_roll_transfer_stiffness", "front_roll_transfer_damping", "rear_roll_transfer_damping",
-    "front_mirror_right", "rear_mirror_right", "front_ply_steer", "rear_ply_steer", "road_friction", "wheel_spin",
-    "tire_lag", "lateral_load_transfer", "friction_scaled"))
+    "front_mirror_right", "rear_mirror_right", "front_ply_steer", "rear_ply_steer", "road_friction",
+    "front_lateral_force_compliance", "rear_lateral_force_compliance", "front_aligning_moment_compliance",
+    "rear_aligning_moment_compliance", "front_compliance_slope", "rear_compliance_slope", "compliance_steer",
+    "front_roll_steer", "rear_roll_steer", "front_camber_per_roll", "rear_camber_per_roll", "quasi_static_roll",
+    "roll_terms", "wheel_spin", "tire_lag", "lateral_load_transfer", "friction_scaled"))
 Constants.__doc__ = """What the equations read: the model's numbers, options and the two laws' characteristics.
 
 The fields of :class:`~vehdyn.handling.single_track.SingleTrackParameters` are floats, or arrays
@@ -120,6 +124,30 @@ front_ply_steer, rear_ply_steer : float
     image), else 0.0 [-].
 road_friction : float
     The road's friction relative to the laws' own, mu [-] (a constant ratio; 1.0 without).
+front_lateral_force_compliance, rear_lateral_force_compliance : float
+    c_i [rad/N]: the axle's compliance steer per unit of its lateral force (SAE, positive in the
+    sense of the force; the vehicle's ``suspension.*_lateral_force_compliance_steer``).
+front_aligning_moment_compliance, rear_aligning_moment_compliance : float
+    e_i [rad/(N*m)]: the axle's compliance steer per unit of its aligning moment (SAE yaw;
+    ``suspension.*_aligning_moment_compliance_steer``).
+front_compliance_slope, rear_compliance_slope : float
+    s_i = (c_i - e_i t_i) C_i [-]: the slope of the compliance steer against itself (C_i the law's
+    axle cornering stiffness and t_i its pneumatic trail at the static axle load), the Newton step
+    of the model without tire lag (:func:`evaluate`).
+compliance_steer : float
+    1.0 where a compliance is nonzero, else 0.0 [-] (the step is skipped).
+front_roll_steer, rear_roll_steer : float
+    eps_i [rad/rad]: the axle's road-wheel steer per unit body roll (SAE; ``suspension.*_roll_steer``).
+front_camber_per_roll, rear_camber_per_roll : float
+    dgamma_i / dphi [-]: the axle's (ISO-W) inclination per unit body roll, 1 + g_i (T_i / 2)
+    phi_si / phi with camber gains g_i, 0 without (upright wheels).
+quasi_static_roll : float
+    -RG [rad/(m/s^2)]: the body's roll per unit lateral acceleration where the model has no roll
+    degree of freedom (the steady roll of :func:`vehdyn.handling.steady_roll`, taken at a_y = u r);
+    0 with the roll state.
+roll_terms : float
+    1.0 where roll steer or camber from roll acts (lateral load transfer and a nonzero roll steer
+    or camber gains), else 0.0 [-].
 wheel_spin, tire_lag, lateral_load_transfer : bool
     The model's options.
 friction_scaled : bool
@@ -131,7 +159,8 @@ Evaluation = namedtuple("Evaluation", (
     "rear_slip_angle", "rear_slip_ratio", "front_normal_load", "rear_normal_load", "front_vx", "front_vy",
     "rear_vx", "rear_vy", "front_lateral_deflection_rate", "rear_lateral_deflection_rate",
     "front_longitudinal_deflection_rate", "rear_longitudinal_deflection_rate", "front_rolling_moment",
-    "rear_rolling_moment", "front_load_transfer", "rear_load_transfer", "roll_acceleration"))
+    "rear_rolling_moment", "front_load_transfer", "rear_load_transfer", "roll_acceleration", "front_steer_angle",
+    "rear_steer_angle", "front_compliance_steer_angle", "rear_compliance_steer_angle"))
 Evaluation.__doc__ = """Everything one evaluation of the equations yields.
 
 Parameters
@@ -161,7 +190,11 @@ front_load_transfer, rear_load_transfer : float or ndarray
     Lateral load transfer onto each axle's left wheel [N] (which carries F_z / 2 + dF_z; 0
     without lateral load transfer).
 roll_acceleration : float or ndarray
-    dp/dt [rad/s^2] (0 without roll)."""
+    dp/dt [rad/s^2] (0 without roll).
+front_steer_angle, rear_steer_angle : float or ndarray
+    The road-wheel steer angles the axles run at: the inputs plus roll steer and compliance steer [rad].
+front_compliance_steer_angle, rear_compliance_steer_angle : float or ndarray
+    Their compliance steer c_i F_y,i + e_i M_z,i [rad] (0 without compliance)."""
 
 
 def _at(values, i):
@@ -374,7 +407,7 @@ def roll_acceleration(xp, k, lateral_acceleration, roll_angle, roll_rate):
 
 def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral_deflection,
                      longitudinal_deflection, lateral_rate, longitudinal_rate, lateral_length, longitudinal_length,
-                     peak_slip_ratio, peak_tan_slip_angle, force_demand, friction):
+                     peak_slip_ratio, peak_tan_slip_angle, force_demand, friction, gamma):
     """The tire step of an axle whose wheels carry F_z / 2 + ``shift`` (left) and F_z / 2 - ``shift`` (right).
 
     Each wheel's law at its own load (:func:`vehdyn.components.tire_forces.wheel_pair_tire_loads`;
@@ -413,6 +446,8 @@ def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral
         Force mode's longitudinal force demand of the axle [N].
     friction : float or ndarray
         The road's friction ratio under the axle [-].
+    gamma : float or ndarray
+        Inclination of both wheels [rad] (ISO-W; 0.0 upright).
 
     Returns
     -------
@@ -427,7 +462,7 @@ def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral
     left_load, right_load = 0.5 * fz + shift, 0.5 * fz - shift
     ply_steer = (k.front_ply_steer if axle == 0 else k.rear_ply_steer) > 0.5
     right_mirrored = (k.front_mirror_right if axle == 0 else k.rear_mirror_right) > 0.5
-    w = wheel_pair_tire_loads(xp, tires[axle], left_load, right_load, kappa_iso, alpha_iso,
+    w = wheel_pair_tire_loads(xp, tires[axle], left_load, right_load, kappa_iso, alpha_iso, gamma,
                               direction * xp.maximum(speed, 1e-3), ply_steer and not right_mirrored, right_mirrored,
                               friction, k.friction_scaled)
     fx_left, fy_left = planar_tire_forces_iso_w_to_sae(w[0], w[1])
@@ -444,8 +479,78 @@ def wheel_pair_loads(xp, tires, axle, k, fz, shift, vx, vy, wheel_speed, lateral
             fx_left - fx_right)
 
 
+def axle_aligning_moment(xp, tires, axle, k, fz, shift, alpha, kappa, gamma, vx, force_demand, friction):
+    """The SAE aligning moment M_z [N*m] of an axle's two tires at the slips its forces were taken at.
+
+    :func:`vehdyn.components.tire_forces.wheel_pair_aligning_moments` at the wheels' loads
+    F_z / 2 +- ``shift`` (the mirror image where :func:`axle_loads` or :func:`wheel_pair_loads` has
+    it), turned to SAE (M_z,SAE = -M_z,ISO-W: z points down); in force mode each wheel's moment is
+    reduced by its friction ellipse as its lateral force is
+    (:func:`vehdyn.components.tire_forces.demanded_forces`).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace (with ``tire_law_aligning``).
+    tires : tuple
+        The (front, rear) laws.
+    axle : int
+        0 front, 1 rear.
+    k : Constants
+        The model's constants.
+    fz : float or ndarray
+        Axle load [N].
+    shift : float or ndarray
+        Lateral load transfer onto the left wheel [N] (0 without).
+    alpha : float or ndarray
+        SAE slip angle acting in the law [rad].
+    kappa : float or ndarray
+        Slip ratio acting in the law [-].
+    gamma : float or ndarray
+        Inclination of both wheels [rad] (ISO-W).
+    vx : float or ndarray
+        Wheel-centre forward velocity (SAE wheel axes) [m/s].
+    force_demand : float or ndarray
+        Force mode's longitudinal force demand of the axle [N].
+    friction : float or ndarray
+        The road's friction ratio under the axle [-].
+
+    Returns
+    -------
+    float or ndarray
+        M_z of the axle [N*m], SAE.
+    """
+    kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
+    direction = xp.where(vx < 0.0, -1.0, 1.0)
+    ply_steer = (k.front_ply_steer if axle == 0 else k.rear_ply_steer) > 0.5
+    if k.lateral_load_transfer:
+        right_mirrored = (k.front_mirror_right if axle == 0 else k.rear_mirror_right) > 0.5
+        mirror_left = ply_steer and not right_mirrored
+    else:  # the lumped axle: the law's tire and, with ply steer, its mirror image
+        right_mirrored, mirror_left = ply_steer, False
+    left_load, right_load = 0.5 * fz + shift, 0.5 * fz - shift
+    left, right = wheel_pair_aligning_moments(xp, tires[axle], left_load, right_load, kappa_iso, alpha_iso, gamma,
+                                              direction * xp.maximum(xp.abs(vx), 1e-3), mirror_left, right_mirrored,
+                                              friction, k.friction_scaled)
+    if not k.wheel_spin:
+        left = demanded_forces(xp, k, left_load, 0.0 * left, left, 0.5 * force_demand, friction)[1]
+        right = demanded_forces(xp, k, right_load, 0.0 * right, right, 0.5 * force_demand, friction)[1]
+    return -(left + right)
+
+
 def evaluate(xp, tires, k, states, inputs, friction):
     """Forces, loads and accelerations at ``states``, ``inputs``.
+
+    The axles run at the steer inputs plus roll steer eps_i phi and compliance steer
+    delta_c,i = c_i F_y,i + e_i M_z,i (the axle's SAE force and its law's aligning moment). With
+    tire lag the forces follow from the deflection states, not from the steer (above the low-speed
+    damping's speed and below the sliding limit), so delta_c,i is explicit: the law once at the
+    steer without compliance for F_y,i, M_z,i, then every force at the full steer. Without tire lag
+    the slip needs the steer: one Newton step on delta_c = c F(alpha_0 - delta_c) + e M(alpha_0 -
+    delta_c) from 0, delta_c = (c_i F_y,i + e_i M_z,i) / (1 - s_i) at the slip alpha_0 without
+    compliance, with the slope s_i = (c_i - e_i t_i) C_i of :class:`Constants` (exact for a law
+    linear in the slip whose stiffness at the running load is that at the static load; otherwise the
+    error is (s_i - s) / (1 - s_i) of delta_c, s the law's slope at the running point).
 
     Parameters
     ----------
@@ -472,74 +577,105 @@ def evaluate(xp, tires, k, states, inputs, friction):
     (front_steer, rear_steer, front_force, rear_force, _fd, _rd, _fb, _rb, external_force, external_moment,
      wind) = inputs
     front_lift, rear_lift = k.front_lift_factor * lon * lon, k.rear_lift_factor * lon * lon
-    cf, sf = xp.cos(front_steer), xp.sin(front_steer)
-    cr, sr = xp.cos(rear_steer), xp.sin(rear_steer)
-    front_body_lateral, rear_body_lateral = lat + k.a * yaw_rate, lat - k.b * yaw_rate
-    vxf, vyf = lon * cf + front_body_lateral * sf, -lon * sf + front_body_lateral * cf
-    vxr, vyr = lon * cr + rear_body_lateral * sr, -lon * sr + rear_body_lateral * cr
     # the peak-force slips scale with the road's friction (similarity)
     peaks = (k.front_peak_slip_ratio, k.front_peak_tan_slip_angle, k.rear_peak_slip_ratio, k.rear_peak_tan_slip_angle)
     if k.friction_scaled:
         peaks = (peaks[0] * friction[0], peaks[1] * friction[0], peaks[2] * friction[1], peaks[3] * friction[1])
-    rates = deflection_rates(xp, k, vxf, vyf, vxr, vyr, states, peaks)
+    front_gamma = rear_gamma = 0.0
+    if k.roll_terms > 0.5:  # roll steer and camber: the roll state, or the steady roll at a_y = u r
+        roll = roll_angle + k.quasi_static_roll * lon * yaw_rate
+        front_steer = front_steer + k.front_roll_steer * roll
+        rear_steer = rear_steer + k.rear_roll_steer * roll
+        front_gamma, rear_gamma = k.front_camber_per_roll * roll, k.rear_camber_per_roll * roll
 
-    def front_axle(fz):
-        return axle_loads(xp, tires, 0, k, fz, vxf, vyf, front_wheel_speed, front_lateral_deflection,
-                          front_longitudinal_deflection, rates[0], rates[2], k.front_lateral_relaxation_length,
-                          k.front_longitudinal_relaxation_length, peaks[0], peaks[1], front_force, friction[0])
+    def axles(front_steer, rear_steer):
+        """Every force of the two axles at these road-wheel steer angles."""
+        cf, sf = xp.cos(front_steer), xp.sin(front_steer)
+        cr, sr = xp.cos(rear_steer), xp.sin(rear_steer)
+        front_body_lateral, rear_body_lateral = lat + k.a * yaw_rate, lat - k.b * yaw_rate
+        vxf, vyf = lon * cf + front_body_lateral * sf, -lon * sf + front_body_lateral * cf
+        vxr, vyr = lon * cr + rear_body_lateral * sr, -lon * sr + rear_body_lateral * cr
+        rates = deflection_rates(xp, k, vxf, vyf, vxr, vyr, states, peaks)
 
-    def rear_axle(fz):
-        return axle_loads(xp, tires, 1, k, fz, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
-                          rear_longitudinal_deflection, rates[1], rates[3], k.rear_lateral_relaxation_length,
-                          k.rear_longitudinal_relaxation_length, peaks[2], peaks[3], rear_force, friction[1])
+        def front_axle(fz):
+            return axle_loads(xp, tires, 0, k, fz, vxf, vyf, front_wheel_speed, front_lateral_deflection,
+                              front_longitudinal_deflection, rates[0], rates[2], k.front_lateral_relaxation_length,
+                              k.front_longitudinal_relaxation_length, peaks[0], peaks[1], front_force, friction[0])
 
-    # with lateral load transfer the left wheel carries fz / 2 + shift, the right fz / 2 - shift
-    # (with the difference of the wheels' longitudinal forces, zero without the transfer)
-    def front(fz, shift):
-        if k.lateral_load_transfer:
-            return wheel_pair_loads(xp, tires, 0, k, fz, shift, vxf, vyf, front_wheel_speed, front_lateral_deflection,
-                                    front_longitudinal_deflection, rates[0], rates[2],
-                                    k.front_lateral_relaxation_length, k.front_longitudinal_relaxation_length,
-                                    peaks[0], peaks[1], front_force, friction[0])
-        return front_axle(fz) + (0.0 * fz,)
+        def rear_axle(fz):
+            return axle_loads(xp, tires, 1, k, fz, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
+                              rear_longitudinal_deflection, rates[1], rates[3], k.rear_lateral_relaxation_length,
+                              k.rear_longitudinal_relaxation_length, peaks[2], peaks[3], rear_force, friction[1])
 
-    def rear(fz, shift):
-        if k.lateral_load_transfer:
-            return wheel_pair_loads(xp, tires, 1, k, fz, shift, vxr, vyr, rear_wheel_speed, rear_lateral_deflection,
-                                    rear_longitudinal_deflection, rates[1], rates[3],
-                                    k.rear_lateral_relaxation_length, k.rear_longitudinal_relaxation_length,
-                                    peaks[2], peaks[3], rear_force, friction[1])
-        return rear_axle(fz) + (0.0 * fz,)
-
-    def transfer(f, r, fz_f, fz_r):
-        return lateral_load_transfer(xp, k, f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr, fz_f, fz_r, roll_angle,
-                                     roll_rate)
-
-    # quasi-static load transfer: the forces depend on the loads and the loads on the forces.
-    # Longitudinal: with force inputs the dependence is explicit, with wheel spin two fixed-point
-    # passes from the static loads: the iteration contracts by about mu h / L (~0.2), so the load
-    # transfer is within (mu h / L)^2 ~ 4 % of its converged value. Lateral: from the transfer of
-    # the steady turn at the present yaw rate (side forces m u r b / L and m u r a / L: exact in a
-    # steady turn), with wheel spin updated along the two longitudinal passes; in force mode the
-    # forces take one evaluation of the law at each wheel's load.
-    shift_f = shift_r = 0.0 * lon
-    if k.lateral_load_transfer:
-        turn = k.mass * lon * yaw_rate / (k.a + k.b)
-        fz_f, fz_r = normal_loads(xp, k, front_force * cf + rear_force * cr, front_lift, rear_lift)
-        shift_f, shift_r = lateral_load_transfer(xp, k, turn * k.b, turn * k.a, fz_f, fz_r, roll_angle, roll_rate)
-    if k.wheel_spin:
-        weight, wheelbase = k.mass * k.gravity, k.a + k.b
-        fz_f, fz_r = weight * k.b / wheelbase - front_lift, weight * k.a / wheelbase - rear_lift
-        for _ in range(2):
-            f, r = front(fz_f, shift_f), rear(fz_r, shift_r)
-            fz_f, fz_r = normal_loads(xp, k, f[0] * cf - f[1] * sf + r[0] * cr - r[1] * sr, front_lift, rear_lift)
+        # with lateral load transfer the left wheel carries fz / 2 + shift, the right fz / 2 - shift
+        # (with the difference of the wheels' longitudinal forces, zero without the transfer)
+        def front(fz, shift):
             if k.lateral_load_transfer:
-                shift_f, shift_r = transfer(f, r, fz_f, fz_r)
-    else:
-        fz_f, fz_r = normal_loads(xp, k, front_force * cf + rear_force * cr, front_lift, rear_lift)
-    f, r = front(fz_f, shift_f), rear(fz_r, shift_r)
-    if k.lateral_load_transfer:  # the transfer of the final forces (shown in the outputs)
-        shift_f, shift_r = transfer(f, r, fz_f, fz_r)
+                return wheel_pair_loads(xp, tires, 0, k, fz, shift, vxf, vyf, front_wheel_speed,
+                                        front_lateral_deflection, front_longitudinal_deflection, rates[0], rates[2],
+                                        k.front_lateral_relaxation_length, k.front_longitudinal_relaxation_length,
+                                        peaks[0], peaks[1], front_force, friction[0], front_gamma)
+            return front_axle(fz) + (0.0 * fz,)
+
+        def rear(fz, shift):
+            if k.lateral_load_transfer:
+                return wheel_pair_loads(xp, tires, 1, k, fz, shift, vxr, vyr, rear_wheel_speed,
+                                        rear_lateral_deflection, rear_longitudinal_deflection, rates[1], rates[3],
+                                        k.rear_lateral_relaxation_length, k.rear_longitudinal_relaxation_length,
+                                        peaks[2], peaks[3], rear_force, friction[1], rear_gamma)
+            return rear_axle(fz) + (0.0 * fz,)
+
+        def transfer(f, r, fz_f, fz_r):
+            return lateral_load_transfer(xp, k, f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr, fz_f, fz_r, roll_angle,
+                                         roll_rate)
+
+        # quasi-static load transfer: the forces depend on the loads and the loads on the forces.
+        # Longitudinal: with force inputs the dependence is explicit, with wheel spin two fixed-point
+        # passes from the static loads: the iteration contracts by about mu h / L (~0.2), so the load
+        # transfer is within (mu h / L)^2 ~ 4 % of its converged value. Lateral: from the transfer of
+        # the steady turn at the present yaw rate (side forces m u r b / L and m u r a / L: exact in a
+        # steady turn), with wheel spin updated along the two longitudinal passes; in force mode the
+        # forces take one evaluation of the law at each wheel's load.
+        shift_f = shift_r = 0.0 * lon
+        if k.lateral_load_transfer:
+            turn = k.mass * lon * yaw_rate / (k.a + k.b)
+            fz_f, fz_r = normal_loads(xp, k, front_force * cf + rear_force * cr, front_lift, rear_lift)
+            shift_f, shift_r = lateral_load_transfer(xp, k, turn * k.b, turn * k.a, fz_f, fz_r, roll_angle,
+                                                     roll_rate)
+        if k.wheel_spin:
+            weight, wheelbase = k.mass * k.gravity, k.a + k.b
+            fz_f, fz_r = weight * k.b / wheelbase - front_lift, weight * k.a / wheelbase - rear_lift
+            for _ in range(2):
+                f, r = front(fz_f, shift_f), rear(fz_r, shift_r)
+                fz_f, fz_r = normal_loads(xp, k, f[0] * cf - f[1] * sf + r[0] * cr - r[1] * sr, front_lift,
+                                          rear_lift)
+                if k.lateral_load_transfer:
+                    shift_f, shift_r = transfer(f, r, fz_f, fz_r)
+        else:
+            fz_f, fz_r = normal_loads(xp, k, front_force * cf + rear_force * cr, front_lift, rear_lift)
+        f, r = front(fz_f, shift_f), rear(fz_r, shift_r)
+        if k.lateral_load_transfer:  # the transfer of the final forces (shown in the outputs)
+            shift_f, shift_r = transfer(f, r, fz_f, fz_r)
+        return cf, sf, cr, sr, vxf, vyf, vxr, vyr, rates, f, r, fz_f, fz_r, shift_f, shift_r
+
+    a = axles(front_steer, rear_steer)
+    front_compliance = rear_compliance = 0.0 * lon
+    if k.compliance_steer > 0.5:
+        f, r = a[9], a[10]
+        front_compliance = k.front_lateral_force_compliance * f[1]
+        rear_compliance = k.rear_lateral_force_compliance * r[1]
+        if k.front_aligning_moment_compliance != 0.0:
+            front_compliance = front_compliance + k.front_aligning_moment_compliance * axle_aligning_moment(
+                xp, tires, 0, k, a[11], a[13], f[2], f[3], front_gamma, a[4], front_force, friction[0])
+        if k.rear_aligning_moment_compliance != 0.0:
+            rear_compliance = rear_compliance + k.rear_aligning_moment_compliance * axle_aligning_moment(
+                xp, tires, 1, k, a[12], a[14], r[2], r[3], rear_gamma, a[6], rear_force, friction[1])
+        if not k.tire_lag:  # one Newton step (docstring)
+            front_compliance = front_compliance / (1.0 - k.front_compliance_slope)
+            rear_compliance = rear_compliance / (1.0 - k.rear_compliance_slope)
+        front_steer, rear_steer = front_steer + front_compliance, rear_steer + rear_compliance
+        a = axles(front_steer, rear_steer)
+    cf, sf, cr, sr, vxf, vyf, vxr, vyr, rates, f, r, fz_f, fz_r, shift_f, shift_r = a
     fx_body = f[0] * cf - f[1] * sf + r[0] * cr - r[1] * sr
     front_lateral, rear_lateral = f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr
     wind_force = aero_side_force(xp, k.wind_side_force_factor, lon, wind)  # crosswind, at the centre of pressure
@@ -552,7 +688,8 @@ def evaluate(xp, tires, k, states, inputs, friction):
     return Evaluation((fx_body - drag) / k.mass, lateral_acceleration,
                       moment / k.yaw_inertia, f[0], f[1], f[2], f[3], r[0], r[1], r[2], r[3], fz_f, fz_r,
                       vxf, vyf, vxr, vyr, rates[0], rates[1], rates[2], rates[3], f[4], r[4], shift_f, shift_r,
-                      roll_acceleration(xp, k, lateral_acceleration, roll_angle, roll_rate))
+                      roll_acceleration(xp, k, lateral_acceleration, roll_angle, roll_rate), front_steer, rear_steer,
+                      front_compliance, rear_compliance)
 
 
 def deflection_rates(xp, k, front_vx, front_vy, rear_vx, rear_vy, states, peaks):
