@@ -37,7 +37,7 @@ __all__ = ["XP", "compiled_model", "compiled_functions", "compiled_batch", "batc
 
 for _name in ("_at", "named_states", "named_inputs", "axle_loads", "normal_loads", "evaluate", "derivatives",
               "outputs", "deflection_rates", "lateral_load_transfer", "wheel_pair_loads", "wheel_load_outputs",
-              "roll_acceleration", "axle_aligning_moment"):
+              "roll_acceleration", "axle_aligning_moment", "secant_compliance"):
     register_jitable(**_JIT)(getattr(equations, _name))
 
 
@@ -78,6 +78,10 @@ def _output(t, x, u, args, y):
     if state_index[12] >= 0:  # the roll degree of freedom: roll angle and rate
         y[n] = states[12]
         y[n + 1] = states[13]
+        n += 2
+    if k.compliance_steer > 0.5:
+        y[n] = e.front_compliance_steer_angle
+        y[n + 1] = e.rear_compliance_steer_angle
 
 
 @functools.lru_cache(maxsize=None)

@@ -660,6 +660,10 @@ class SingleTrack(Model):
         if self.roll:
             outputs += [Signal("roll_angle", "rad", "roll angle of the body (positive right side down, SAE)"),
                         Signal("roll_rate", "rad/s", "roll rate of the body")]
+        if self._understeer_terms["compliance_steer"]:
+            outputs += [Signal(f"{axle}_compliance_steer_angle", "rad",
+                               f"compliance steer of the {axle} axle, c F_y + e M_z (SAE, positive turning right)")
+                        for axle in _AXLES]
         self.declare(states=states, inputs=inputs, outputs=outputs)
         # positions of the model's signals in the equations' fixed order (-1: not a signal of this model)
         self._state_index = np.array([self.state_names.index(n) if n in self.state_names else -1
@@ -949,6 +953,8 @@ class SingleTrack(Model):
             values = values + equations.wheel_load_outputs(e)
         if self.roll:
             values = values + (states[12], states[13])
+        if self._understeer_terms["compliance_steer"]:
+            values = values + (e.front_compliance_steer_angle, e.rear_compliance_steer_angle)
         return values
 
     def symbolic_equations(self, xp, x, u, parameters):

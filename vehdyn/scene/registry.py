@@ -497,7 +497,10 @@ def build_single_track(drive, tires="vehicle", lateral_load_transfer=False, roll
     from vehdyn.tire import load_tire, tire_for_vehicle
 
     vehicle, scene = drive.vehicle, drive.scene
-    refuse_dropped_terms(vehicle)
+    # compliance steer always; roll steer and camber from roll with the load transfer (the roll state
+    # or the steady roll), not without it
+    refuse_dropped_terms(vehicle, ("compliance_steer",) + (("roll_steer", "camber_thrust") if lateral_load_transfer
+                                                          else ()))
     if tires == "linear":
         front, rear = tire_for_vehicle(vehicle, "front", "linear"), tire_for_vehicle(vehicle, "rear", "linear")
     elif scene.tire is not None:
