@@ -61,8 +61,8 @@ left tire of an axle is the law's mirror image when the law has ply steer, the r
 own, as in :class:`vehdyn.full_vehicle.FullVehicle` (the zero-slip forces cancel at equal loads, not
 under the transfer: 2.7 % of the sedan's steady steer at 2 m/s^2, so the side must be the full
 vehicle's). Without the roll degree of freedom (below) the transfer follows the forces without the
-roll mode's lag; roll steer and camber are absent. With wheel spin the axle's two wheels share one
-spin state.
+roll mode's lag; roll steer and camber take the steady roll (below). With wheel spin the axle's two
+wheels share one spin state.
 
 Roll degree of freedom (``roll=True``, with ``lateral_load_transfer=True``): the body rolls by phi
 (SAE: positive right side down) about the roll axis through the roll centres, and the suspension's
@@ -81,11 +81,32 @@ the roll damping of the corner dampers c_i, and J = I_x - (m_s h_s)^2 / m the bo
 with the vehicle free to move sideways (I_x Segel's sprung-mass roll inertia about the roll axis,
 :func:`~vehdyn.handling.lateral_yaw_roll_parameters`; eliminating dv/dt from Segel's lateral and
 roll equations). v is then the lateral velocity of the non-rolling frame, from which the slips are
-taken. The geometric part follows the yaw rate as without roll; roll steer, camber and the roll-yaw
-product of inertia are left out. States ``roll_angle`` and ``roll_rate``, outputs of the same names.
+taken. The geometric part follows the yaw rate as without roll; the roll-yaw product of inertia is
+left out. States ``roll_angle`` and ``roll_rate``, outputs of the same names.
 At 2 % on yaw rate and lateral acceleration against :class:`vehdyn.full_vehicle.FullVehicle`, what
 the quasi-static transfer misses in transient manoeuvres is the roll's lag (sine with dwell of the
 sedan: 12 % without the roll degree of freedom, 3.3 % with it; see the README's fidelity ladder).
+
+Roll steer, camber and compliance steer (the vehicle file's ``suspension`` fields; Gillespie 1992,
+ch. 6, Table 6.1; Milliken & Milliken 1995, ch. 5 and 18): each axle runs at its steer input plus::
+
+    delta_i += eps_i phi + delta_c,i,    delta_c,i = c_i F_y,i + e_i M_z,i,    gamma_i = phi + g_i (T_i / 2) phi_si
+
+with eps_i the roll steer, c_i and e_i the lateral-force and aligning-moment compliance steer (SAE:
+positive in the sense of the axle's force F_y,i and of its law's aligning moment M_z,i), g_i the
+camber gain and gamma_i the inclination of both wheels (ISO-W; the Magic Formula's camber input;
+upright without camber gains). The roll phi is the roll state with ``roll=True`` (rigid tires:
+phi_si = phi), else, with ``lateral_load_transfer=True``, the steady roll of the full vehicle at
+a_y = u r, phi = -RG u r and phi_si = -RG_si u r (:func:`vehdyn.handling.steady_roll`: springs, bars,
+roll centres, tire compliance, unsprung masses; the vehicle's, not a variant's). Without the load
+transfer there is no roll: roll steer and camber are absent (the fidelity ladder refuses the rung
+for them). The compliance steer is quasi-static: with tire lag the forces come from the deflection
+states, so delta_c,i is explicit (the law once for F_y,i and M_z,i at the steer without it, then at
+the full steer); without tire lag a Newton step with the law's slope at the static load and a
+secant step (:func:`~vehdyn.handling.single_track_equations.evaluate`). Then the understeer gradient
+from the model's steady turns is the budget's (:func:`vehdyn.handling.understeer_budget`) to 1e-9
+with linear tires (tests/handling/test_single_track_understeer_terms.py). Outputs
+``front_compliance_steer_angle`` and ``rear_compliance_steer_angle`` where a compliance is set.
 
 An axle whose load would become negative (the vehicle would tip over that axle) is held at zero
 and the other axle carries the whole weight; the output ``front_normal_load`` shows it.
@@ -453,7 +474,14 @@ class SingleTrack(Model):
 
     with the axle loads F_zf = m g b / L - h X / L - L_f (quasi-static longitudinal transfer) and
     each axle's forces from its tire law at the transient slips (two tires at half the axle load, or
-    each wheel at its own load under the lateral load transfer).
+    each wheel at its own load under the lateral load transfer), each axle at the road-wheel steer
+
+    .. math::
+
+        \delta_i = \delta_{i,input} + \varepsilon_i \phi + c_i F_{y,i} + e_i M_{z,i},\qquad
+        \gamma_i = \phi + g_i (T_i / 2) \phi_{si}
+
+    (roll steer, compliance steer and camber from roll: module docstring).
 
     Parameters may vary across a batch: :meth:`variants` returns a model whose mass, inertia,
     axle positions, CG height or relaxation lengths are arrays, and one ``simulate`` call with
