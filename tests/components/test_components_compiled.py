@@ -34,10 +34,12 @@ def _compiled_steps():
                                                                      vx[i], mirror, mu[i], scaled)
             out[3, i], out[4, i], out[5, i] = tire_forces.axle_tire_loads(XP, law, fz[i], kappa[i], alpha[i], vx[i],
                                                                           mirror, mu[i], scaled)
-            w = tire_forces.wheel_pair_tire_loads(XP, law, fz[i], 0.5 * fz[i], kappa[i], alpha[i], vx[i], mirror,
-                                                  not mirror, mu[i], scaled)
+            w = tire_forces.wheel_pair_tire_loads(XP, law, fz[i], 0.5 * fz[i], kappa[i], alpha[i], gamma[i], vx[i],
+                                                  mirror, not mirror, mu[i], scaled)
             for j in range(6):
                 out[6 + j, i] = w[j]
+            out[12, i] = tire_forces.tire_aligning_moment(XP, law, fz[i], kappa[i], alpha[i], gamma[i], vx[i], mirror,
+                                                          mu[i], scaled)
 
     return steps
 
@@ -49,12 +51,13 @@ def _compiled_steps():
 def test_the_compiled_tire_step_is_the_numpy_one(tire, mirror, scaled):
     from vehdyn.tire.compiled import tire_law
 
-    out = np.empty((12, N))
+    out = np.empty((13, N))
     _compiled_steps()(tire_law(tire), FZ, KAPPA, ALPHA, GAMMA, VX, MU, mirror, scaled, out)
     expected = (tire_forces.tire_loads(NUMPY, tire, FZ, KAPPA, ALPHA, GAMMA, VX, mirror, MU, scaled)
                 + tire_forces.axle_tire_loads(NUMPY, tire, FZ, KAPPA, ALPHA, VX, mirror, MU, scaled)
-                + tire_forces.wheel_pair_tire_loads(NUMPY, tire, FZ, 0.5 * FZ, KAPPA, ALPHA, VX, mirror, not mirror,
-                                                    MU, scaled))
+                + tire_forces.wheel_pair_tire_loads(NUMPY, tire, FZ, 0.5 * FZ, KAPPA, ALPHA, GAMMA, VX, mirror,
+                                                    not mirror, MU, scaled)
+                + (tire_forces.tire_aligning_moment(NUMPY, tire, FZ, KAPPA, ALPHA, GAMMA, VX, mirror, MU, scaled),))
     expected = np.array(expected)
     scale = np.maximum(np.abs(expected), 1e-3 * FZ)
     assert np.max(np.abs(out - expected) / scale) < BUDGET

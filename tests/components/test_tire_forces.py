@@ -51,7 +51,8 @@ def test_an_axle_is_two_tires_at_half_its_load_one_the_mirror_image_with_ply_ste
 @pytest.mark.parametrize("mirror_left, mirror_right", [(True, False), (False, True), (False, False)])
 def test_a_wheel_pair_is_each_tire_at_its_own_load(mirror_left, mirror_right):
     left, right = FZ, 0.6 * FZ
-    w = tf.wheel_pair_tire_loads(NUMPY, MF, left, right, KAPPA, ALPHA, VX, mirror_left, mirror_right, 1.0, False)
+    w = tf.wheel_pair_tire_loads(NUMPY, MF, left, right, KAPPA, ALPHA, 0.0, VX, mirror_left, mirror_right, 1.0,
+                                 False)
     for load, mirror, got in ((left, mirror_left, w[:3]), (right, mirror_right, w[3:])):
         expected = tf.tire_loads(NUMPY, MF, load, KAPPA, ALPHA, 0.0, VX, mirror, 1.0, False)
         assert all(np.array_equal(a, b) for a, b in zip(got, expected))
@@ -207,3 +208,24 @@ def test_the_full_vehicle_takes_the_same_friction_argument():
     assert np.array_equal(constant.rhs(0.0, x, u), varying.rhs(0.0, x, u))
     assert np.array_equal(constant.output(0.0, x, u), varying.output(0.0, x, u))
     assert not np.allclose(constant.rhs(0.0, x, u), FullVehicle(SEDAN).rhs(0.0, x, u))
+
+
+def test_aligning_moment_of_a_tire_its_mirror_image_and_a_cambered_pair():
+    """tire_aligning_moment is the law's M_z, the mirror image's -M_z(-alpha, -gamma), on another road
+    mu M_z(kappa / mu, atan(tan(alpha) / mu)) (as the forces); a wheel pair with an inclination is each
+    tire's tire_loads at it (the mirror image at -gamma)."""
+    gamma, mu = 0.02, 0.6
+    own, image = MF.forces(FZ, KAPPA, ALPHA, gamma, VX), MF.forces(FZ, KAPPA, -ALPHA, -gamma, VX)
+    assert np.allclose(tf.tire_aligning_moment(NUMPY, MF, FZ, KAPPA, ALPHA, gamma, VX, False, 1.0, False), own.mz,
+                       rtol=1e-14, atol=0.0)
+    assert np.allclose(tf.tire_aligning_moment(NUMPY, MF, FZ, KAPPA, ALPHA, gamma, VX, True, 1.0, False), -image.mz,
+                       rtol=1e-14, atol=0.0)
+    similar = MF.forces(FZ, KAPPA / mu, np.arctan(np.tan(ALPHA) / mu), gamma, VX)
+    assert np.allclose(tf.tire_aligning_moment(NUMPY, MF, FZ, KAPPA, ALPHA, gamma, VX, False, mu, True),
+                       mu * similar.mz, rtol=1e-14, atol=0.0)
+    w = tf.wheel_pair_tire_loads(NUMPY, MF, FZ, 0.6 * FZ, KAPPA, ALPHA, gamma, VX, True, False, 1.0, False)
+    for load, mirror, got in ((FZ, True, w[:3]), (0.6 * FZ, False, w[3:])):
+        expected = tf.tire_loads(NUMPY, MF, load, KAPPA, ALPHA, gamma, VX, mirror, 1.0, False)
+        assert all(np.allclose(a, b, rtol=1e-14, atol=0.0) for a, b in zip(got, expected))
+    assert np.max(np.abs(w[1] - tf.wheel_pair_tire_loads(NUMPY, MF, FZ, 0.6 * FZ, KAPPA, ALPHA, 0.0, VX, True, False,
+                                                           1.0, False)[1])) > 1.0  # the camber acts

@@ -198,7 +198,7 @@ def test_tyreside_names_the_unmirrored_wheel_and_the_ply_steer_sign_follows(tire
         model = SingleTrack(SEDAN, tire, tire, lateral_load_transfer=True)
         k = model._constants()
         axle = equations.wheel_pair_loads(equations.NUMPY, (tire, tire), 0, k, fz, shift, vx, 0.0,
-                                          vx / k.rolling_radius, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.2, 0.2, 0.0, 1.0)
+                                          vx / k.rolling_radius, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.2, 0.2, 0.0, 1.0, 0.0)
         f_left, f_right = (float(tire.forces(fz / 2 + d, 0.0, 0.0, 0.0, vx).fy) for d in (shift, -shift))
         iso = f_left - f_right if side == "LEFT" else f_right - f_left
         assert abs(iso) > 10.0  # the ply steer of this law is not small against the check

@@ -50,8 +50,8 @@ from vehdyn.components.tire_slip import contact_slips
 from vehdyn.components.wheel import rolling_resistance_fade
 from vehdyn.conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slips_sae_to_iso_w
 
-__all__ = ["tire_loads", "axle_tire_loads", "wheel_pair_tire_loads", "wheel_pair_aligning_moments", "demanded_forces",
-           "contact_loads"]
+__all__ = ["tire_loads", "axle_tire_loads", "wheel_pair_tire_loads", "wheel_pair_aligning_moments", "tire_aligning_moment",
+           "secant_compliance", "demanded_forces", "contact_loads"]
 
 
 def tire_loads(xp, law, fz, kappa, alpha, gamma, vx, mirror, friction, scaled):
@@ -213,19 +213,60 @@ def wheel_pair_tire_loads(xp, law, left_load, right_load, kappa, alpha, gamma, v
     return _scaled_pair(w, mirror_left, mirror_right, friction, scaled)
 
 
-def wheel_pair_aligning_moments(xp, law, left_load, right_load, kappa, alpha, gamma, vx, mirror_left, mirror_right,
-                                friction, scaled):
-    """ISO-W aligning moments M_z of the left, then the right tire of an axle, as :func:`wheel_pair_tire_loads`.
+def tire_aligning_moment(xp, law, fz, kappa, alpha, gamma, vx, mirror, friction, scaled):
+    """ISO-W aligning moment M_z [N*m] of one tire, as :func:`tire_loads` evaluates its forces.
 
-    The hook ``xp.tire_law_aligning`` at the slips of :func:`wheel_pair_tire_loads`: the mirror
-    image's moment is negated (a mirror image is (F_x, -F_y, M_y, -M_z) at (-alpha, -gamma)), and on
-    a road of friction ratio mu the moment scales as the forces do,
+    The hook ``xp.tire_law_aligning``; the mirror image's moment is negated (a mirror image is
+    (F_x, -F_y, M_y, -M_z) at (-alpha, -gamma)), and on a road of friction ratio mu the moment
+    scales as the forces do,
 
     .. math::
 
         M_z = \pm\mu M_z^*(\kappa / \mu,\ \arctan(\tan(\pm\alpha) / \mu),\ \pm\gamma)
 
     (the pneumatic trail at the similar slip times the scaled force; Pacejka 2012, sec. 4.3.2).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace (with ``tire_law_aligning``).
+    law : TireModel or TireLaw
+        The law.
+    fz : float or ndarray
+        Normal load [N].
+    kappa : float or ndarray
+        Slip ratio [-] (ISO-W).
+    alpha : float or ndarray
+        Slip angle [rad] (ISO-W).
+    gamma : float or ndarray
+        Inclination angle [rad] (ISO-W).
+    vx : float or ndarray
+        Signed forward speed [m/s].
+    mirror : bool
+        The tire is the law's mirror image.
+    friction : float or ndarray
+        Friction ratio mu [-].
+    scaled : bool
+        Apply ``friction``.
+
+    Returns
+    -------
+    float or ndarray
+        M_z [N*m], ISO-W.
+    """
+    kappa, alpha = _similar(xp, kappa, alpha, friction, scaled)
+    if mirror:
+        moment = -xp.tire_law_aligning(law, fz, kappa, -alpha, 0.0 - gamma, vx)
+    else:
+        moment = xp.tire_law_aligning(law, fz, kappa, alpha, gamma, vx)
+    return friction * moment if scaled else moment
+
+
+def wheel_pair_aligning_moments(xp, law, left_load, right_load, kappa, alpha, gamma, vx, mirror_left, mirror_right,
+                                friction, scaled):
+    """ISO-W aligning moments M_z of the left, then the right tire of an axle, as :func:`wheel_pair_tire_loads`.
+
+    :func:`tire_aligning_moment` of each.
 
     Parameters
     ----------
@@ -255,18 +296,42 @@ def wheel_pair_aligning_moments(xp, law, left_load, right_load, kappa, alpha, ga
     tuple
         (M_z left [N*m], M_z right [N*m]), ISO-W.
     """
-    kappa, alpha = _similar(xp, kappa, alpha, friction, scaled)
-    left = xp.tire_law_aligning(law, left_load, kappa, -alpha if mirror_left else alpha,
-                                0.0 - gamma if mirror_left else gamma, vx)
-    right = xp.tire_law_aligning(law, right_load, kappa, -alpha if mirror_right else alpha,
-                                 0.0 - gamma if mirror_right else gamma, vx)
-    if mirror_left:
-        left = -left
-    if mirror_right:
-        right = -right
-    if scaled:
-        return friction * left, friction * right
-    return left, right
+    return (tire_aligning_moment(xp, law, left_load, kappa, alpha, gamma, vx, mirror_left, friction, scaled),
+            tire_aligning_moment(xp, law, right_load, kappa, alpha, gamma, vx, mirror_right, friction, scaled))
+
+
+def secant_compliance(xp, first, second, step, slope):
+    r"""The compliance steer delta = g(delta) from two evaluations of g: at 0 and at a first ``step``.
+
+    .. math::
+
+        \delta = \frac{g(0)}{1 - s'},\qquad s' = \min\left(\frac{g(\delta_1) - g(0)}{\delta_1},\ 0.9\right)
+
+    the root of the chord through (0, g(0)) and (delta_1, g(delta_1)) (the secant method): exact
+    for g linear in delta, else in error by the chord's departure from g between delta_1 and delta
+    (second order in delta - delta_1). Where delta_1 is 0 (no force) the slope is ``slope``; s' is
+    held below 0.9 (beyond, the force would steer the wheel further than its slip). g(delta) =
+    c F_y + e M_z of a wheel or axle steered by delta more (compliance steer, issue 28).
+
+    Parameters
+    ----------
+    xp : namespace
+        The equations' namespace.
+    first, second : float or ndarray
+        g(0) and g(delta_1) [rad].
+    step : float or ndarray
+        delta_1 [rad].
+    slope : float or ndarray
+        The slope to take where delta_1 = 0 [-].
+
+    Returns
+    -------
+    float or ndarray
+        delta [rad].
+    """
+    moved = xp.abs(step) > 1e-12
+    chord = xp.where(moved, (second - first) / xp.where(moved, step, 1.0), slope)
+    return first / (1.0 - xp.minimum(chord, 0.9))
 
 
 def demanded_forces(xp, k, fz, fx, fy, force_demand, friction):

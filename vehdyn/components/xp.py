@@ -134,7 +134,7 @@ class NUMPY(_TIRE_NUMPY):
             g = law.forces(float(fz_2), float(kappa), float(alpha_2), float(gamma_2), float(vx))
             return f.fx, f.fy, f.my, g.fx, g.fy, g.my
         gamma = gamma_1 if _scalars(gamma_1, gamma_2) and gamma_1 == gamma_2 else \
-            np.stack(np.broadcast_arrays(gamma_1, gamma_2))
+            np.stack(np.broadcast_arrays(gamma_1, gamma_2, fz_1, fz_2, kappa, alpha_1, alpha_2, vx)[:2])
         both = law.forces(np.stack(np.broadcast_arrays(fz_1, fz_2)), np.stack(np.broadcast_arrays(kappa, kappa)),
                           np.stack(np.broadcast_arrays(alpha_1, alpha_2)), gamma,
                           np.stack(np.broadcast_arrays(vx, vx)))

@@ -37,7 +37,7 @@ __all__ = ["XP", "compiled_model", "compiled_functions", "compiled_batch", "batc
 
 for _name in ("_at", "named_states", "named_inputs", "axle_loads", "normal_loads", "evaluate", "derivatives",
               "outputs", "deflection_rates", "lateral_load_transfer", "wheel_pair_loads", "wheel_load_outputs",
-              "roll_acceleration", "axle_aligning_moment", "secant_compliance"):
+              "roll_acceleration", "axle_aligning_moment"):
     register_jitable(**_JIT)(getattr(equations, _name))
 
 

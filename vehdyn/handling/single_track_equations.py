@@ -26,8 +26,8 @@ from collections import namedtuple
 
 from vehdyn.components.aero import aero_side_force
 from vehdyn.components.planar import position_rates
-from vehdyn.components.tire_forces import (contact_loads, demanded_forces, wheel_pair_aligning_moments,
-                                           wheel_pair_tire_loads)
+from vehdyn.components.tire_forces import (contact_loads, demanded_forces, secant_compliance,
+                                           wheel_pair_aligning_moments, wheel_pair_tire_loads)
 from vehdyn.components.tire_slip import contact_slips, deflection_rate, low_speed_blend
 from vehdyn.components.wheel import net_wheel_torque, rolling_resistance_fade
 from vehdyn.components.xp import NUMPY
@@ -35,8 +35,7 @@ from vehdyn.conventions import planar_tire_forces_iso_w_to_sae, planar_tire_slip
 
 __all__ = ["STATES", "INPUTS", "Constants", "Evaluation", "NUMPY", "named_states", "named_inputs", "evaluate",
            "derivatives", "outputs", "axle_loads", "wheel_pair_loads", "wheel_load_outputs", "normal_loads",
-           "lateral_load_transfer", "roll_acceleration", "deflection_rates", "axle_aligning_moment",
-           "secant_compliance"]
+           "lateral_load_transfer", "roll_acceleration", "deflection_rates", "axle_aligning_moment"]
 
 STATES = ("longitudinal_velocity", "lateral_velocity", "yaw_rate", "x", "y", "yaw_angle", "front_wheel_speed",
           "rear_wheel_speed", "front_lateral_deflection", "rear_lateral_deflection", "front_longitudinal_deflection",
@@ -539,39 +538,6 @@ def axle_aligning_moment(xp, tires, axle, k, fz, shift, alpha, kappa, gamma, vx,
     return -(left + right)
 
 
-def secant_compliance(xp, first, second, step, slope):
-    r"""The compliance steer delta = g(delta) from two evaluations of g: at 0 and at a first ``step``.
-
-    .. math::
-
-        \delta = \frac{g(0)}{1 - s'},\qquad s' = \min\left(\frac{g(\delta_1) - g(0)}{\delta_1},\ 0.9\right)
-
-    the root of the chord through (0, g(0)) and (delta_1, g(delta_1)): exact for a g linear in
-    delta, else in error by the chord's departure from g between delta_1 and delta (second order
-    in delta - delta_1). Where delta_1 is 0 (no force) the slope is ``slope``; s' is held below
-    0.9 (beyond, the axle's force would steer it further than its slip).
-
-    Parameters
-    ----------
-    xp : namespace
-        The equations' namespace.
-    first, second : float or ndarray
-        g(0) and g(delta_1) [rad].
-    step : float or ndarray
-        delta_1 [rad].
-    slope : float or ndarray
-        The slope to take where delta_1 = 0 [-].
-
-    Returns
-    -------
-    float or ndarray
-        delta [rad].
-    """
-    moved = xp.abs(step) > 1e-12
-    chord = xp.where(moved, (second - first) / xp.where(moved, step, 1.0), slope)
-    return first / (1.0 - xp.minimum(chord, 0.9))
-
-
 def evaluate(xp, tires, k, states, inputs, friction):
     """Forces, loads and accelerations at ``states``, ``inputs``.
 
@@ -585,7 +551,7 @@ def evaluate(xp, tires, k, states, inputs, friction):
     slip needs the steer: delta_c = g(delta_c) = c F(alpha_0 - delta_c) + e M(alpha_0 - delta_c)
     is solved by a Newton step from 0 with the slope s_i = (c_i - e_i t_i) C_i of
     :class:`Constants` (the law's at the static load), delta_1 = g(0) / (1 - s_i), then a secant
-    step through g(0) and g(delta_1) (:func:`secant_compliance`): three evaluations of the law per
+    step through g(0) and g(delta_1) (:func:`vehdyn.components.tire_forces.secant_compliance`): three evaluations of the law per
     axle; exact for g linear in delta_c, else in error by the second order of the step.
 
     Parameters
