@@ -18,8 +18,8 @@ CARRIES = {
     "SingleTrack": {"compliance_steer"},
     "SingleTrack+LLT": {"roll_steer", "camber_thrust", "compliance_steer"},
     "SingleTrack+roll": {"roll_steer", "camber_thrust", "compliance_steer"},
-    "FullVehicle": {"roll_steer", "camber_thrust"},
-    "FullVehicle(linearized)": {"roll_steer", "camber_thrust"},
+    "FullVehicle": {"roll_steer", "camber_thrust", "compliance_steer"},
+    "FullVehicle(linearized)": {"roll_steer", "camber_thrust", "compliance_steer"},
 }
 TERMS = {
     "roll_steer": ("suspension.front_roll_steer", {"suspension__front_roll_steer": 0.05}),
@@ -51,10 +51,9 @@ def test_the_shipped_sedan_is_refused_by_no_rung_for_a_term():
     assert not any("understeer budget" in str(r.reason) for r in plan.rows)
 
 
-def test_full_vehicle_refuses_compliance_steer_by_name():
+def test_full_vehicle_carries_compliance_steer():
+    """Once refused by name, now carried (tests/full_vehicle/test_compliance_steer.py measures it)."""
     from vehdyn.full_vehicle import FullVehicle
 
     vehicle = vehdyn.load_vehicle("sedan").replace(suspension__front_aligning_moment_compliance_steer=2e-5)
-    with pytest.raises(vehdyn.ParameterError, match="front_aligning_moment_compliance_steer") as err:
-        FullVehicle(vehicle)
-    assert err.value.key == "suspension.front_aligning_moment_compliance_steer"
+    assert "compliance_steer_angle_front_left" in FullVehicle(vehicle).output_names

@@ -141,6 +141,9 @@ def _output(t, x, u, args, y):
     values = assembly.outputs(XP, s, e)
     for j in range(len(values)):
         y[j] = values[j]
+    if k.compliance_on > 0.5:  # the compliance steer of each corner
+        for j in range(4):
+            y[len(values) + j] = e.compliance_steer[j]
 
 
 @functools.lru_cache(maxsize=None)

@@ -31,8 +31,9 @@ from __future__ import annotations
 from collections import namedtuple
 
 from vehdyn.components import xp as components_xp
-from vehdyn.components.tire_forces import contact_loads
+from vehdyn.components.tire_forces import contact_loads, secant_compliance, tire_aligning_moment
 from vehdyn.components.tire_slip import deflection_rate
+from vehdyn.conventions import planar_tire_slips_sae_to_iso_w
 from vehdyn.errors import SimulationError
 from vehdyn.mechanics import euler_angle_rates, rotation_body_to_earth
 from vehdyn.mechanics.kinematics import cross_components
@@ -70,7 +71,9 @@ Constants = namedtuple("Constants", (
     # aero
     "drag_factor", "wind_side_force_factor", "centre_of_pressure", "front_lift_factor", "rear_lift_factor",
     # the unsprung masses' lateral force through the linkage (issue 28)
-    "unsprung_jacking"))
+    "unsprung_jacking",
+    # compliance steer (issue 28)
+    "compliance_on", "lateral_compliance", "moment_compliance", "compliance_slope"))
 Constants.__doc__ = """The numbers the equations read (floats; 4-tuples per corner in corner order; nested tuples).
 
 :meth:`FullVehicle.constants <vehdyn.full_vehicle.FullVehicle.constants>` builds them; a compiled
@@ -155,13 +158,25 @@ front_lift_factor, rear_lift_factor : float
 unsprung_jacking : tuple
     kappa_c = (h_rc,i - lambda_i h_u) / y_c per corner: the vertical linkage force on the body per
     unit lateral force W_y of the corner's unsprung mass (:func:`~vehdyn.full_vehicle.corner.unsprung_jacking`)
-    [-]."""
+    [-].
+compliance_on : float
+    1.0 where a compliance steer is set, else 0.0 (the step is skipped) [-].
+lateral_compliance : tuple
+    2 c_i per corner [rad/N]: the wheel's steer per unit of its own lateral force (the axle's
+    ``suspension.*_lateral_force_compliance_steer`` c_i is per unit of the axle's force, which its
+    two wheels share).
+moment_compliance : tuple
+    2 e_i per corner [rad/(N*m)]: the wheel's steer per unit of its own aligning moment.
+compliance_slope : tuple
+    (c_i - e_i t_i) C_i per corner [-]: the wheel's compliance steer against itself at the static
+    load (C_i, t_i the law's axle cornering stiffness and pneumatic trail), the first step without
+    tire lag."""
 
 Evaluation = namedtuple("Evaluation", (
     "velocity_rate", "angular_acceleration", "cg_acceleration", "euler_rates", "position_rates",
     "wheel_acceleration", "unsprung_acceleration", "lateral_deflection_rate", "longitudinal_deflection_rate",
     "normal_load", "slip_angle", "slip_ratio", "longitudinal_force", "lateral_force", "suspension_travel",
-    "camber", "steer", "horizontal_acceleration", "sprung_acceleration"))
+    "camber", "steer", "horizontal_acceleration", "sprung_acceleration", "compliance_steer"))
 Evaluation.__doc__ = """Everything one evaluation yields.
 
 Parameters
@@ -193,7 +208,9 @@ camber, steer : tuple
 horizontal_acceleration : tuple
     The total CG's horizontal acceleration in the intermediate (yaw-only) axes, gravity excluded [m/s^2].
 sprung_acceleration : float or ndarray
-    The sprung CG's vertical acceleration (up) [m/s^2]."""
+    The sprung CG's vertical acceleration (up) [m/s^2].
+compliance_steer : tuple
+    Per corner, the compliance steer 2 c_i F_y + 2 e_i M_z of the wheel [rad] (in ``steer``; 0 without)."""
 
 
 DOMAIN_STATES = ("roll_angle", "pitch_angle")
@@ -323,19 +340,53 @@ def _corner(xp, laws, k, c, s, i, R, travel_rate, spring, steer, camber, frictio
     # wheel axes
     h = k.contact_z
     vcx, vcy = u + q * h - r * y_c, v + r * x_c - p * h
-    cd, sd = xp.cos(steer), xp.sin(steer)
-    vx, vy = vcx * cd + vcy * sd, -vcx * sd + vcy * cd
-    lat_rate, lon_rate = 0.0 * u, 0.0 * u
-    if k.tire_lag:  # the deflection rates: state derivatives and the low-speed damping's input
-        lat_rate = deflection_rate(xp, vy, vx, lateral_deflection, k.lateral_relaxation_length[c],
-                                   k.peak_tan_slip_angle[c] * friction)
-        lon_rate = deflection_rate(xp, -(vx - omega * k.rolling_radius), vx, longitudinal_deflection,
-                                   k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction)
-    # the tire step of one wheel (the mirror image of its axle's law where k.mirror_image says so)
-    fx, fy, alpha, kappa, rolling_moment = contact_loads(
-        xp, k, laws[c // 2], load, vx, vy, omega, lateral_deflection, longitudinal_deflection, lat_rate, lon_rate,
-        k.lateral_relaxation_length[c], k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction,
-        k.peak_tan_slip_angle[c] * friction, 0.0 * u, camber, False, k.mirror_image[c] > 0.5, friction)
+
+    def tire(steer):
+        """The tire step at road-wheel angle ``steer``: cos, sin, wheel-axis velocities, deflection
+        rates, and contact_loads' forces and slips."""
+        cd, sd = xp.cos(steer), xp.sin(steer)
+        vx, vy = vcx * cd + vcy * sd, -vcx * sd + vcy * cd
+        lat_rate, lon_rate = 0.0 * u, 0.0 * u
+        if k.tire_lag:  # the deflection rates: state derivatives and the low-speed damping's input
+            lat_rate = deflection_rate(xp, vy, vx, lateral_deflection, k.lateral_relaxation_length[c],
+                                       k.peak_tan_slip_angle[c] * friction)
+            lon_rate = deflection_rate(xp, -(vx - omega * k.rolling_radius), vx, longitudinal_deflection,
+                                       k.longitudinal_relaxation_length[c], k.peak_slip_ratio[c] * friction)
+        # the tire step of one wheel (the mirror image of its axle's law where k.mirror_image says so)
+        loads = contact_loads(
+            xp, k, laws[c // 2], load, vx, vy, omega, lateral_deflection, longitudinal_deflection, lat_rate,
+            lon_rate, k.lateral_relaxation_length[c], k.longitudinal_relaxation_length[c],
+            k.peak_slip_ratio[c] * friction, k.peak_tan_slip_angle[c] * friction, 0.0 * u, camber, False,
+            k.mirror_image[c] > 0.5, friction)
+        return cd, sd, vx, lat_rate, lon_rate, loads
+
+    def compliance(step):
+        """The wheel's compliance steer 2 c F_y + 2 e M_z (SAE) of a tire step."""
+        fy, alpha, kappa = step[5][1], step[5][2], step[5][3]
+        out = k.lateral_compliance[c] * fy
+        if k.moment_compliance[c] != 0.0:
+            kappa_iso, alpha_iso = planar_tire_slips_sae_to_iso_w(kappa, alpha)
+            speed = xp.where(step[2] < 0.0, -1.0, 1.0) * xp.maximum(xp.abs(step[2]), 1e-3)
+            # SAE M_z = -ISO-W M_z (z down)
+            out = out - k.moment_compliance[c] * tire_aligning_moment(
+                xp, laws[c // 2], load, kappa_iso, alpha_iso, camber, speed, k.mirror_image[c] > 0.5, friction,
+                k.friction_scaled)
+        return out
+
+    # compliance steer: explicit with tire lag (the forces come from the deflections: the law once at
+    # the steer without it), a Newton step with the static slope and a secant step without
+    step = tire(steer)
+    compliance_steer = 0.0 * u
+    if k.compliance_on > 0.5:
+        compliance_steer = compliance(step)
+        if not k.tire_lag:
+            first = compliance_steer
+            compliance_steer = first / (1.0 - k.compliance_slope[c])
+            compliance_steer = secant_compliance(xp, first, compliance(tire(steer + compliance_steer)),
+                                                 compliance_steer, k.compliance_slope[c])
+        steer = steer + compliance_steer
+        step = tire(steer)
+    cd, sd, _vx, lat_rate, lon_rate, (fx, fy, alpha, kappa, rolling_moment) = step
     # the tire's forces lie in the road plane (ISO-W): along the wheel heading projected on the road
     # and its normal there, in body axes; n = R[2] is the earth's z (down) in body axes. Applied
     # along the rolled/pitched body's x-y plane instead, they would lift the car by sum F_y sin(roll)
@@ -366,7 +417,7 @@ def _corner(xp, laws, k, c, s, i, R, travel_rate, spring, steer, camber, frictio
             driveline.wheel_acceleration(xp, k, omega, i[2 + c], i[6 + c], fx, rolling_moment),
             (load - spring + jack + jack_u) / m_u - k.gravity, lat_rate, lon_rate,
             link_x + wheel_x, link_y + wheel_y, f_z, mx1 + mx2, my1 + my2, mz1 + mz2, link_x, link_y,
-            tz - load * R[2][2])
+            tz - load * R[2][2], steer, compliance_steer)
 
 
 def _road_plane_force(xp, R, cd, sd, fx, fy):
@@ -477,7 +528,7 @@ def evaluate(xp, laws, k, s, i, friction):
     return Evaluation(velocity_rate, angular, cg_acc, (euler[0], euler[1], euler[2]), position, _column(corners, 5),
                       unsprung, _column(corners, 7), _column(corners, 8), _column(corners, 0),
                       _column(corners, 1), _column(corners, 2), _column(corners, 3), _column(corners, 4), travel,
-                      camber, steer, horizontal, vertical)
+                      camber, _column(corners, 18), horizontal, vertical, _column(corners, 19))
 
 
 def derivatives(s, e):

@@ -272,14 +272,6 @@ class FullVehicle(Model):
                             ("brake_regularization_speed", brake_regularization_speed), ("gravity", gravity)):
             if not is_number(value) or not (np.isfinite(value) and value > 0):
                 raise ParameterError(f"{name} must be a finite number > 0, got {value!r}", key=name, value=value)
-        for axle in _AXLES:  # not carried yet: refused rather than dropped
-            for kind in ("lateral_force", "aligning_moment"):
-                key = f"{axle}_{kind}_compliance_steer"
-                if getattr(vehicle.suspension, key) != 0.0:
-                    raise ParameterError(f"suspension.{key} = {getattr(vehicle.suspension, key):g}: the full vehicle "
-                                         f"does not carry compliance steer yet (LinearBicycle does; "
-                                         f"vehdyn.handling.understeer_budget gives its understeer term)",
-                                         key=f"suspension.{key}", value=getattr(vehicle.suspension, key))
         self.vehicle = vehicle
         self.tire_lag = bool(tire_lag)
         self.gravity = float(gravity)
@@ -317,6 +309,7 @@ class FullVehicle(Model):
             longitudinal_relaxation_length=(longitudinal[0],) * 2 + (longitudinal[1],) * 2,
             peak_slip_ratio=(peaks[0][0],) * 2 + (peaks[1][0],) * 2,
             peak_tan_slip_angle=(peaks[0][1],) * 2 + (peaks[1][1],) * 2)
+        self._compliance = self._compliance_constants()
         self._k = self.constants()
         self._declare_signals()
         phenomena = {"longitudinal", "lateral", "yaw", "roll", "pitch", "heave", "wheel_hop", "wheel_lift",
@@ -326,6 +319,33 @@ class FullVehicle(Model):
         self.phenomena = frozenset(phenomena)
 
     # ------------------------------------------------------------------ construction
+    def _compliance_constants(self) -> dict:
+        """The compliance steer's constants (:class:`~vehdyn.full_vehicle.assembly.Constants`): per
+        wheel 2 c_i, 2 e_i and the slope (c_i - e_i t_i) C_i of the law at the static load; ParameterError
+        naming the field where the slope is >= 1 (no effective cornering stiffness)."""
+        from vehdyn.handling.axle_tires import cornering_stiffness, pneumatic_trail
+
+        s, values = self.vehicle.suspension, {"lateral": [], "moment": [], "slope": []}
+        for axle, tire in zip(_AXLES, (self.front_tire, self.rear_tire)):
+            c = float(getattr(s, f"{axle}_lateral_force_compliance_steer"))
+            e = float(getattr(s, f"{axle}_aligning_moment_compliance_steer"))
+            slope = 0.0
+            if c != 0.0 or e != 0.0:
+                trail = pneumatic_trail(self.vehicle, axle, tire) if e != 0.0 else 0.0
+                slope = (c - e * trail) * cornering_stiffness(self.vehicle, axle, tire)
+                if not slope < 1.0:
+                    raise ParameterError(f"suspension.{axle}_lateral_force_compliance_steer = {c:.6g} rad/N and "
+                                         f"{axle}_aligning_moment_compliance_steer = {e:.6g} rad/(N*m) with the "
+                                         f"{axle} tire law's cornering stiffness and trail {trail:.4g} m make "
+                                         f"(c - e t) C = {slope:.6g} >= 1: no effective cornering stiffness",
+                                         key=f"suspension.{axle}_lateral_force_compliance_steer", value=c)
+            values["lateral"] += [2.0 * c] * 2
+            values["moment"] += [2.0 * e] * 2
+            values["slope"] += [slope] * 2
+        on = any(v != 0.0 for v in values["lateral"] + values["moment"])
+        return dict(compliance_on=float(on), lateral_compliance=tuple(values["lateral"]),
+                    moment_compliance=tuple(values["moment"]), compliance_slope=tuple(values["slope"]))
+
     @staticmethod
     def _check_road(road):
         if road is None:
@@ -444,7 +464,7 @@ class FullVehicle(Model):
             centre_of_pressure=float(self.corner_x[0] - a.centre_of_pressure_from_front_axle * L),
             front_lift_factor=half * a.front_lift_coefficient, rear_lift_factor=half * a.rear_lift_coefficient,
             unsprung_jacking=jacking,
-            **self._tire_constants)
+            **self._tire_constants, **self._compliance)
 
     def _declare_signals(self):
         states = [Signal(n, *_BODY_SIGNALS[n]) for n in assembly.BODY_STATES]
@@ -457,6 +477,9 @@ class FullVehicle(Model):
         outputs = [Signal(*o) for o in assembly.OUTPUTS]
         outputs += [Signal(f"{name}{sfx}", unit, text) for name, unit, text in assembly.CORNER_OUTPUTS
                     for sfx in CORNERS]
+        if self._k.compliance_on:
+            outputs += [Signal(f"compliance_steer_angle{sfx}", "rad", "the wheel's compliance steer 2 c F_y + 2 e M_z "
+                               "(SAE; in steer_angle)") for sfx in CORNERS]
         self.declare(states=states, inputs=inputs, outputs=outputs)
         self._state_index = [self.state_names.index(n) if n in self.state_names else -1 for n in assembly.STATES]
         self._state_order = [assembly.STATES.index(n) for n in self.state_names]
@@ -627,7 +650,10 @@ class FullVehicle(Model):
     def output(self, t, x, u):
         """Outputs (see :attr:`outputs`)."""
         states, e = self._evaluate(x, u)
-        return _stack(assembly.outputs(assembly.NUMPY, states, e))
+        values = assembly.outputs(assembly.NUMPY, states, e)
+        if self._k.compliance_on:
+            values = values + e.compliance_steer
+        return _stack(values)
 
     def symbolic_equations(self, xp, x, u, parameters):
         """These equations on symbols (:meth:`vehdyn.Model.symbolic_equations`, for
@@ -684,7 +710,8 @@ class FullVehicle(Model):
         e = assembly.evaluate(xp, (self.front_tire, self.rear_tire), self._k, states,
                               [u[j] for j in range(self.n_inputs)], (self._k.road_friction,) * 4)
         rates = assembly.derivatives(states, e)
-        return [rates[j] for j in self._state_order], list(assembly.outputs(xp, states, e)), {}
+        values = assembly.outputs(xp, states, e) + (e.compliance_steer if self._k.compliance_on else ())
+        return [rates[j] for j in self._state_order], list(values), {}
 
     # ------------------------------------------------------------------ operating points
     def static_loads(self) -> dict[str, float]:

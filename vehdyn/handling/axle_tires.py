@@ -13,7 +13,7 @@ import numpy as np
 
 from vehdyn.errors import ParameterError
 
-__all__ = ["pneumatic_trail", "camber_stiffness"]
+__all__ = ["pneumatic_trail", "camber_stiffness", "cornering_stiffness"]
 
 _EPS = 1e-4  # [rad]
 _SPEED = 20.0  # [m/s]
@@ -100,4 +100,34 @@ def camber_stiffness(vehicle, axle: str = "front", tire=None) -> float:
     law = _law(vehicle, axle, tire)
     load = _wheel_load(vehicle, axle)
     plus, minus = law.forces(load, 0.0, 0.0, _EPS, _SPEED), law.forces(load, 0.0, 0.0, -_EPS, _SPEED)
+    return -2.0 * float(np.asarray(plus.fy) - np.asarray(minus.fy)) / (2 * _EPS)
+
+
+def cornering_stiffness(vehicle, axle: str = "front", tire=None) -> float:
+    r"""Cornering stiffness of an axle (both tires, SAE) from its law: -dF_y/d(alpha) at zero slip and the static load.
+
+    .. math::
+
+        C = 2 \frac{\partial F_{y,ISO}}{\partial \alpha}\Big|_{\alpha = 0}\cdot(-1)
+
+    (one wheel at half the static axle load, doubled; positive for the usual tire). The file's
+    ``tires.*_cornering_stiffness`` is the linear models' number; this is the law's.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle (its static axle load).
+    axle : {"front", "rear"}
+        The axle.
+    tire : TireModel, optional
+        The law of one wheel (default the vehicle's).
+
+    Returns
+    -------
+    float
+        C [N/rad].
+    """
+    law = _law(vehicle, axle, tire)
+    load = _wheel_load(vehicle, axle)
+    plus, minus = law.forces(load, 0.0, _EPS, 0.0, _SPEED), law.forces(load, 0.0, -_EPS, 0.0, _SPEED)
     return -2.0 * float(np.asarray(plus.fy) - np.asarray(minus.fy)) / (2 * _EPS)

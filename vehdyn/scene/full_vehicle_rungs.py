@@ -217,7 +217,7 @@ def _model_for(drive, ladder, name):
         raise _not_admissible("no road input")
     if ladder == "handling" and not drive.handling_input:
         raise _not_admissible(f"no steer or braking: the ride rung {name}(ride) answers")
-    refuse_dropped_terms(drive.vehicle, ("roll_steer", "camber_thrust"))  # no compliance steer yet
+    refuse_dropped_terms(drive.vehicle, ("roll_steer", "camber_thrust", "compliance_steer"))
     # one model for this plan's full-vehicle rungs, the tire laws the other rungs read
     model = drive.once("FullVehicle", lambda: FullVehicle(drive.vehicle, *tire_laws(drive)))
     unknown = [k for k in drive.inputs if k not in model.input_names]
