@@ -33,6 +33,16 @@ Modelling choices (where the full vehicle differs from the models below it)
   angles: 0.27 % at 0.1 rad of roll). Angles are small in the force projections of the unsprung
   masses (their vertical equation uses the tire load itself, not its body-z component).
 * The roll centres and anti-pitch lines are fixed in the body (no migration with travel).
+* Compliance steer (``suspension.*_lateral_force_compliance_steer`` c_i and
+  ``*_aligning_moment_compliance_steer`` e_i, per unit of the axle's force and moment): each wheel
+  steers by 2 c_i F_y + 2 e_i M_z of its own lateral force and its law's aligning moment (SAE), the
+  axle's c_i F_y,i + e_i M_z,i when its two wheels share them (Gillespie 1992, ch. 6, Table 6.1;
+  Milliken & Milliken 1995, ch. 5). Quasi-static: with tire lag the forces come from the
+  deflections, so the steer is explicit (the law once at the wheel's steer without it, then every
+  force at the full steer); without tire lag a Newton step with the law's slope at the static load
+  and a secant step (:func:`vehdyn.components.tire_forces.secant_compliance`). The understeer
+  gradient from the trims is then the budget's (:func:`vehdyn.handling.understeer_budget`) to 1e-8
+  with linear tires (``tests/full_vehicle/test_compliance_steer.py``).
 
 What it reduces to
 ------------------
@@ -137,8 +147,8 @@ class FullVehicle(Model):
     vehicle : Vehicle
         Masses and inertias (sprung tensor with I_xz; ``mass.sprung_yaw_inertia`` or derived),
         geometry (roll-centre heights), suspension (wheel rates, dampers, anti-roll bars, roll
-        steer, optional camber gains and anti-dive/anti-squat, the unsprung transfer fractions;
-        compliance steer is refused: not carried yet), tires (vertical stiffness and
+        steer, optional camber gains and anti-dive/anti-squat, the unsprung transfer fractions,
+        lateral-force and aligning-moment compliance steer), tires (vertical stiffness and
         damping, rolling radius, wheel inertia, relaxation lengths, law), steering (Ackermann
         fraction), aero (drag, lift, the crosswind's side-force slope and
         centre of pressure, as the handling models).
@@ -183,7 +193,8 @@ class FullVehicle(Model):
         Accelerations of the CG (intermediate axes), sideslip, speed, curvature, attitude, sprung
         vertical acceleration, position, and per corner ``normal_load_*``, ``slip_angle_*``,
         ``slip_ratio_*``, ``longitudinal_force_*``, ``lateral_force_*``, ``suspension_travel_*``,
-        ``camber_angle_*``, ``steer_angle_*``.
+        ``camber_angle_*``, ``steer_angle_*`` (the road-wheel angle, compliance steer included), and
+        ``compliance_steer_angle_*`` where the vehicle has a compliance steer.
 
     Notes
     -----
