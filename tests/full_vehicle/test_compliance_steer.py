@@ -15,7 +15,6 @@ own force and its law's aligning moment (the axle's c_i F_y,i + e_i M_z,i when i
 import numpy as np
 import pytest
 
-import vehdyn
 from tests._tolerances import ONE_CALL_ULPS, assert_close_ulps
 from vehdyn import ParameterError
 from vehdyn.full_vehicle import FullVehicle
@@ -24,18 +23,11 @@ from vehdyn.handling import understeer_budget
 from vehdyn.tire import LinearTire
 from vehdyn.units import GRAVITY
 
+# the sedan with every term on and its linear tires: those of the single track's test
+from tests.handling.test_single_track_understeer_terms import SEDAN, TERMS, TIRES, VEHICLE  # noqa: E402
+
 DEG = np.rad2deg(1.0)
-SEDAN = vehdyn.load_vehicle("sedan")
-TERMS = dict(suspension__front_roll_steer=0.08, suspension__rear_roll_steer=-0.04,
-             suspension__front_camber_gain=0.6, suspension__rear_camber_gain=0.4,
-             suspension__front_lateral_force_compliance_steer=-1.0e-6,
-             suspension__rear_lateral_force_compliance_steer=0.5e-6,
-             suspension__front_aligning_moment_compliance_steer=1.0e-4,
-             suspension__rear_aligning_moment_compliance_steer=5.0e-5)
-VEHICLE = SEDAN.replace(aero__drag_coefficient=0.0, **TERMS)
-TRAILS = (0.04, 0.035)
-TIRES = tuple(LinearTire.from_vehicle(VEHICLE, axle).replace(camber_stiffness=c, pneumatic_trail=t)
-              for axle, c, t in zip(("front", "rear"), (-1500.0, -1200.0), TRAILS))
+TRAILS = (0.04, 0.035)  # the linear tires' pneumatic trails [m]
 
 
 def _gradient(model, speed=20.0):

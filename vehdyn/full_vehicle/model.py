@@ -334,22 +334,11 @@ class FullVehicle(Model):
         """The compliance steer's constants (:class:`~vehdyn.full_vehicle.assembly.Constants`): per
         wheel 2 c_i, 2 e_i and the slope (c_i - e_i t_i) C_i of the law at the static load; ParameterError
         naming the field where the slope is >= 1 (no effective cornering stiffness)."""
-        from vehdyn.handling.axle_tires import cornering_stiffness, pneumatic_trail
+        from vehdyn.handling.axle_tires import compliance_steer_slope
 
-        s, values = self.vehicle.suspension, {"lateral": [], "moment": [], "slope": []}
+        values = {"lateral": [], "moment": [], "slope": []}
         for axle, tire in zip(_AXLES, (self.front_tire, self.rear_tire)):
-            c = float(getattr(s, f"{axle}_lateral_force_compliance_steer"))
-            e = float(getattr(s, f"{axle}_aligning_moment_compliance_steer"))
-            slope = 0.0
-            if c != 0.0 or e != 0.0:
-                trail = pneumatic_trail(self.vehicle, axle, tire) if e != 0.0 else 0.0
-                slope = (c - e * trail) * cornering_stiffness(self.vehicle, axle, tire)
-                if not slope < 1.0:
-                    raise ParameterError(f"suspension.{axle}_lateral_force_compliance_steer = {c:.6g} rad/N and "
-                                         f"{axle}_aligning_moment_compliance_steer = {e:.6g} rad/(N*m) with the "
-                                         f"{axle} tire law's cornering stiffness and trail {trail:.4g} m make "
-                                         f"(c - e t) C = {slope:.6g} >= 1: no effective cornering stiffness",
-                                         key=f"suspension.{axle}_lateral_force_compliance_steer", value=c)
+            c, e, slope = compliance_steer_slope(self.vehicle, axle, tire)
             values["lateral"] += [2.0 * c] * 2
             values["moment"] += [2.0 * e] * 2
             values["slope"] += [slope] * 2

@@ -13,7 +13,7 @@ import numpy as np
 
 from vehdyn.errors import ParameterError
 
-__all__ = ["pneumatic_trail", "camber_stiffness", "cornering_stiffness"]
+__all__ = ["pneumatic_trail", "camber_stiffness", "cornering_stiffness", "compliance_steer_slope"]
 
 _EPS = 1e-4  # [rad]
 _SPEED = 20.0  # [m/s]
@@ -131,3 +131,52 @@ def cornering_stiffness(vehicle, axle: str = "front", tire=None) -> float:
     load = _wheel_load(vehicle, axle)
     plus, minus = law.forces(load, 0.0, _EPS, 0.0, _SPEED), law.forces(load, 0.0, -_EPS, 0.0, _SPEED)
     return -2.0 * float(np.asarray(plus.fy) - np.asarray(minus.fy)) / (2 * _EPS)
+
+
+def compliance_steer_slope(vehicle, axle: str = "front", tire=None) -> tuple[float, float, float]:
+    r"""An axle's compliance steer fields and the slope of the steer against itself with a tire law.
+
+    .. math::
+
+        s = (c - e t) C
+
+    c the ``suspension.<axle>_lateral_force_compliance_steer`` [rad/N], e the
+    ``*_aligning_moment_compliance_steer`` [rad/(N*m)], t the law's pneumatic trail and C its axle
+    cornering stiffness at the static load (:func:`pneumatic_trail`, :func:`cornering_stiffness`;
+    read only where c or e is set): d(delta_c)/d(delta_c) of delta_c = c F_y + e M_z, the first
+    step of the nonlinear models without tire lag.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        The vehicle.
+    axle : {"front", "rear"}
+        The axle.
+    tire : TireModel, optional
+        The law of one wheel (default the vehicle's).
+
+    Returns
+    -------
+    tuple of float
+        (c [rad/N], e [rad/(N*m)], s [-]).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``suspension.<axle>_lateral_force_compliance_steer`` where s >= 1 (the axle's force
+        would steer it further than its slip: no effective cornering stiffness).
+    """
+    s = vehicle.suspension
+    c = float(getattr(s, f"{axle}_lateral_force_compliance_steer"))
+    e = float(getattr(s, f"{axle}_aligning_moment_compliance_steer"))
+    if c == 0.0 and e == 0.0:
+        return c, e, 0.0
+    trail = pneumatic_trail(vehicle, axle, tire) if e != 0.0 else 0.0
+    slope = (c - e * trail) * cornering_stiffness(vehicle, axle, tire)
+    if not slope < 1.0:
+        raise ParameterError(f"suspension.{axle}_lateral_force_compliance_steer = {c:.6g} rad/N and "
+                             f"{axle}_aligning_moment_compliance_steer = {e:.6g} rad/(N*m) with the {axle} tire law's "
+                             f"cornering stiffness and trail {trail:.4g} m make (c - e t) C = {slope:.6g} >= 1: no "
+                             "effective cornering stiffness", key=f"suspension.{axle}_lateral_force_compliance_steer",
+                             value=c)
+    return c, e, float(slope)

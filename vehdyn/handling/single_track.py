@@ -570,25 +570,14 @@ class SingleTrack(Model):
     def _understeer_constants(self) -> dict:
         """The constants of roll steer, camber from roll and compliance steer (:class:`Constants`)
         from the vehicle's ``suspension`` fields; all 0 (and the steps skipped) for a vehicle without."""
-        from vehdyn.handling.axle_tires import pneumatic_trail
+        from vehdyn.handling.axle_tires import compliance_steer_slope
 
         s, g = self.vehicle.suspension, self.vehicle.geometry
         out = {}
         compliance = False
-        for axle, tire, stiffness in zip(_AXLES, (self.front_tire, self.rear_tire), (0, 1)):
-            c = float(getattr(s, f"{axle}_lateral_force_compliance_steer"))
-            e = float(getattr(s, f"{axle}_aligning_moment_compliance_steer"))
-            slope = 0.0
-            if c != 0.0 or e != 0.0:
-                compliance = True
-                trail = pneumatic_trail(self.vehicle, axle, tire) if e != 0.0 else 0.0
-                slope = (c - e * trail) * float(self.axle_cornering_stiffness()[stiffness])
-                if not slope < 1.0:
-                    raise ParameterError(f"suspension.{axle}_lateral_force_compliance_steer = {c:.6g} rad/N and "
-                                         f"{axle}_aligning_moment_compliance_steer = {e:.6g} rad/(N*m) with the "
-                                         f"{axle} tire law's cornering stiffness and trail {trail:.4g} m make "
-                                         f"(c - e t) C = {slope:.6g} >= 1: no effective cornering stiffness",
-                                         key=f"suspension.{axle}_lateral_force_compliance_steer", value=c)
+        for axle, tire in zip(_AXLES, (self.front_tire, self.rear_tire)):
+            c, e, slope = compliance_steer_slope(self.vehicle, axle, tire)
+            compliance = compliance or c != 0.0 or e != 0.0
             out.update({f"{axle}_lateral_force_compliance": c, f"{axle}_aligning_moment_compliance": e,
                         f"{axle}_compliance_slope": slope})
         out["compliance_steer"] = float(compliance)
