@@ -1,6 +1,8 @@
 """vehdyn.optimal: a closed form, the minimum-time lane change against the closed-loop driver, friction-ellipse
 constraints, infeasible problems and bad input."""
 
+import shutil
+
 import numpy as np
 import pytest
 
@@ -20,13 +22,19 @@ CART = LinearModel([[0.0, 1.0], [0.0, 0.0]], [[0.0], [1.0]], [[1.0, 0.0]], [[0.0
                    states=["position", "velocity"], inputs=["force"], outputs=["y"])
 
 
-def rest_to_rest(intervals, duration=2.0, force_limit=np.inf):
-    p = Problem(CART, intervals, controls=["force"], duration=duration)
+def rest_to_rest(intervals, duration=2.0, force_limit=np.inf, **options):
+    p = Problem(CART, intervals, controls=["force"], duration=duration, **options)
     p.bound("force", -force_limit, force_limit)
     p.constrain(lambda s, k: s["position"], 1.0, 1.0, "arrive", nodes=[intervals])
     p.constrain(lambda s, k: s["velocity"], 0.0, 0.0, "stop", nodes=[intervals])
-    p.minimize(integral=lambda s, k: s["force"] ** 2)
+    if options.get("hessian") == "gauss-newton":
+        p.minimize(integral=lambda s, k: s["force"], squares=True)
+    else:
+        p.minimize(integral=lambda s, k: s["force"] ** 2)
     return p
+
+
+C_COMPILER = shutil.which("cc") or shutil.which("gcc")
 
 
 @pytest.mark.parametrize("intervals", [5, 20, 60])
@@ -36,6 +44,16 @@ def test_rest_to_rest_energy_is_the_closed_form_of_piecewise_constant_forces(int
     assert solution.cost == pytest.approx(12.0 / 8.0 * intervals**2 / (intervals**2 - 1), rel=1e-9)
     assert solution["position"][-1] == pytest.approx(1.0, abs=1e-9)
     assert solution.status == "Solve_Succeeded"
+
+
+@pytest.mark.parametrize("options", [{"hessian": "gauss-newton"}, {"hessian": "limited-memory"},
+                                     pytest.param({"hessian": "gauss-newton", "jit": True}, marks=pytest.mark.skipif(
+                                         C_COMPILER is None, reason="no C compiler for jit"))])
+def test_rest_to_rest_closed_form_with_each_hessian_and_compiled(options):
+    # the cost in squares (residual F, weighted by sqrt(dt)) is the same cost: the same closed form
+    solution = rest_to_rest(20, **options).solve([0.0, 0.0])
+    assert solution.cost == pytest.approx(12.0 / 8.0 * 400 / 399, rel=1e-8)
+    assert solution["position"][-1] == pytest.approx(1.0, abs=1e-8)
 
 
 @pytest.fixture(scope="module")
@@ -125,6 +143,12 @@ def test_bad_input_is_refused():
         p.solve([0.0, 0.0])
     with pytest.raises(ParameterError, match="DoubleLaneChangeTrack"):
         minimum_time_lane_change(SingleTrack(SEDAN), "ISO 3888-2")
+    with pytest.raises(ParameterError, match="hessian must be one of") as error:
+        Problem(CART, 10, controls=["force"], duration=1.0, hessian="newton")
+    assert error.value.key == "hessian" and error.value.value == "newton"
+    p = Problem(CART, 10, controls=["force"], duration=1.0, hessian="gauss-newton")
+    with pytest.raises(ParameterError, match="needs a cost in squares"):
+        p.minimize(integral=lambda s, k: s["force"] ** 2)
 
 
 def test_the_nmpc_loop_clears_the_double_lane_change_above_the_crossover_drivers_limit():
@@ -168,6 +192,29 @@ def test_nmpc_refuses_a_prediction_model_of_other_states():
         PathTrackingNMPC(SingleTrack(SEDAN), [0.0, 1.0], [0.0, 0.0])
     with pytest.raises(ParameterError, match="path_x"):
         PathTrackingNMPC(SingleTrack(SEDAN, tire_lag=False), [1.0, 0.0], [0.0, 0.0])
+    with pytest.raises(ParameterError, match="weights\\['yaw'\\]"):
+        PathTrackingNMPC(SingleTrack(SEDAN, tire_lag=False), [0.0, 1.0], [0.0, 0.0], weights={"yaw": -1.0})
+
+
+@pytest.mark.parametrize("options", [{"hessian": "exact"}, {"hessian": "limited-memory"},
+                                     pytest.param({"jit": True}, marks=pytest.mark.skipif(
+                                         C_COMPILER is None, reason="no C compiler for jit"))])
+def test_nmpc_finds_the_same_optimum_with_each_hessian(options):
+    # the Hessian changes IPOPT's path, not the optimum (a KKT point of the same program): the Gauss-Newton
+    # default, the exact Hessian, L-BFGS and the compiled interval give one first steer, the car 0.3 m off a
+    # straight path and turned towards it
+    from vehdyn.optimal import PathTrackingNMPC
+
+    planner = SingleTrack(SEDAN, tire_lag=False)
+    path_x = np.linspace(-10.0, 200.0, 50)
+    feedback = [0.0, 0.3, -0.02, 20.0, 0.0, 0.0]
+    steers = []
+    for each in ({}, options):
+        nmpc = PathTrackingNMPC(planner, path_x, 0.0 * path_x, horizon=30, period=0.05, options={"tol": 1e-10},
+                                **each)
+        steers.append(nmpc.command(0.0, feedback))
+    assert abs(steers[0]) > 1e-3
+    assert steers[1] == pytest.approx(steers[0], rel=1e-6, abs=1e-9)
 
 
 def test_nmpc_steers_back_to_a_straight_path_and_a_second_run_starts_afresh():
