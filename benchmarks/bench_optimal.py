@@ -16,7 +16,11 @@ Run: ``python benchmarks/bench_optimal.py [--quick]``. Prints:
    same tire at the static loads: the usual practice), and the ratio (goal: <= 1.5; per step <= 20 ms),
    both sides with the same solver settings: the exact Hessian, the Gauss-Newton Hessian (the
    controller's default), and the Gauss-Newton Hessian with the interval integration compiled to C
-   (``jit=True``).
+   (``jit=True``);
+4. the highest entry speed at which the NMPC loop (on the single track with tire lag, the one without
+   lag inside) and the crossover driver (the best of 4 tunings) each clear the ISO 3888-1 cones, the
+   speed held: bisection (``lane_change_limit`` for the driver; for the NMPC from the driver's limit
+   up, the same assumption that what passes at a speed passes at lower ones).
 """
 
 from __future__ import annotations
@@ -195,8 +199,71 @@ def nmpc(quick):
         print(f"   {setting:21s} ratio vehdyn / hand-written: {runs[0]['median'] / runs[1]['median']:.2f} (goals: <= "
               f"1.5, and vehdyn <= 20 ms)")
 
+def highest_passing_speed(quick):
+    """The highest entry speed at which the NMPC loop and the crossover driver clear ISO 3888-1 (bisection)."""
+    import vehdyn
+    from vehdyn.driver import CrossoverDriver
+    from vehdyn.interconnect import ClosedLoop
+    from vehdyn.optimal import PathTrackingNMPC
+    from vehdyn.procedures import double_lane_change_track, lane_change_limit, lane_change_outcome
+
+    car = vehdyn.load_vehicle("sedan")
+    track = double_lane_change_track(max(car.geometry.front_track, car.geometry.rear_track) + 0.2)
+    plant, planner = single_track_pair(car)
+    px, py = track.least_curvature_line(0.15)
+    paths = {"centre": (track.path_x, track.path_y), "least curvature": (px, py)}
+    resolution = 0.5 if quick else 0.25
+    print(f"\n4. Highest entry speed clearing the ISO 3888-1 cones, speed held (the single track with tire lag as the "
+          f"car), by bisection to {resolution} m/s")
+    start = time.process_time()
+
+    def make(speed, line, **tuning):
+        return CrossoverDriver.tuned(planner, speed, *paths[line], **tuning)
+
+    tunings = [{"line": line, "preview_time": 1.0, "crossover_frequency": w} for line in paths for w in (2.5, 4.0)]
+    crossover = lane_change_limit(plant, track, make, tunings, throttle="hold", speeds=(10.0, 35.0),
+                                  resolution=resolution)
+    print(f"   crossover driver (best of {len(tunings)} tunings): {crossover['speed']:.2f} m/s "
+          f"({crossover['speed'] * 3.6:.1f} km/h), {crossover['runs']} runs, {time.process_time() - start:.0f} s CPU")
+
+    def nmpc_passes(speed):
+        drag = float(planner.parameters.drag_factor) * speed**2
+        controller = PathTrackingNMPC(planner, px, py, horizon=20, period=0.1, inputs={"rear_longitudinal_force": drag})
+        t = np.arange(0.0, 1.05 * (px[-1] - px[0]) / speed, 0.025)  # the cones scored at most 1 m apart
+        try:
+            result = vehdyn.simulate(ClosedLoop(plant, controller), t, {"rear_longitudinal_force": drag},
+                                     x0=plant.straight_running(speed, x=px[0]), method="rk4", substeps=3)
+        except vehdyn.SimulationError:  # IPOPT failed (the car beyond recovery) or the run diverged
+            return False, None
+        outcome = lane_change_outcome(track, result)
+        return bool(outcome["passed"]), outcome
+
+    start = time.process_time()
+    low, high, runs = crossover["speed"], 35.0, 0
+    passed, _ = nmpc_passes(low)
+    runs += 1
+    if not passed:
+        print(f"   NMPC loop: fails already at the crossover driver's limit {low:.2f} m/s")
+        return
+    while high - low > resolution:
+        middle = 0.5 * (low + high)
+        passed, _ = nmpc_passes(middle)
+        runs += 1
+        low, high = (middle, high) if passed else (low, middle)
+    print(f"   NMPC loop (single track without lag inside, 20 x 0.1 s, Gauss-Newton, warm start): {low:.2f} m/s "
+          f"({low * 3.6:.1f} km/h), {runs} runs, {time.process_time() - start:.0f} s CPU; "
+          f"{low - crossover['speed']:+.2f} m/s over the crossover driver (goal: higher)")
+
+
+def single_track_pair(car):
+    from vehdyn.handling import SingleTrack
+
+    return SingleTrack(car), SingleTrack(car, tire_lag=False)
+
+
 if __name__ == "__main__":
     quick = "--quick" in sys.argv
     rhs_and_jacobian()
     minimum_time(quick)
     nmpc(quick)
+    highest_passing_speed(quick)

@@ -75,6 +75,26 @@ def test_minimum_time_lane_change_converges_from_a_cold_start_and_replays_inside
     assert np.all(np.abs(np.diff(optimum["front_steer_angle"]) / np.diff(optimum.time[:-1])) <= 1.0 + 1e-6)
 
 
+def test_minimum_time_with_tire_lag_converges_and_replays_on_its_model(optimum):
+    # with tire lag the transient slips are bounded to 0.98 of the peak-force slip (deflection_limit), off the
+    # force's switch to the kinematic slip at 0.999: a cold start converges, the replay on the lagged model stays
+    # on the plan and inside the cones, and the lag costs time against the plan without it
+    model = SingleTrack(SEDAN)
+    lagged = minimum_time_lane_change(model, TRACK, spacing=1.0)
+    assert lagged.status == "Solve_Succeeded" and lagged.iterations < 200
+    for axle in ("front", "rear"):
+        reach = 0.98 * model.peak_slip(axle)[1] * getattr(model.parameters, f"{axle}_lateral_relaxation_length")
+        assert np.max(np.abs(lagged[f"{axle}_lateral_deflection"])) <= reach * (1 + 1e-6)  # IPOPT relaxes bounds
+    t = np.arange(0.0, 1.05 * lagged.time[-1], 0.005)
+    result = vehdyn.simulate(model, t, lagged.input_signals(), x0=lagged.states[:, 0], method="RK45", rtol=1e-9,
+                             atol=1e-11)
+    assert np.max(np.abs(np.interp(lagged.grid, result["x"], result["y"]) - lagged["y"])) < 0.01
+    assert lane_change_outcome(TRACK, result)["passed"]
+    assert optimum.passage_time < lagged.passage_time < 1.01 * optimum.passage_time
+    with pytest.raises(ParameterError, match="deflection_limit"):
+        minimum_time_lane_change(model, TRACK, deflection_limit=0.0)
+
+
 def test_minimum_time_is_at_most_the_best_closed_loop_driver(optimum):
     model = optimum.problem.model
     paths = {"centre": (TRACK.path_x, TRACK.path_y), "least curvature": TRACK.least_curvature_line(0.15)}

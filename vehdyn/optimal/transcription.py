@@ -483,8 +483,9 @@ class Problem:
         if self.hessian == "gauss-newton":  # 2 lam_f J_r' J_r: the curvature of the residuals and of g left out
             lam_f, lam_g = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", self._nlp["g"].shape[0])
             jr = ca.jacobian(residuals, w)
-            self._hess_lag = ca.Function("nlp_hess_l", [w, p, lam_f, lam_g], [ca.triu(2.0 * lam_f * ca.mtimes(jr.T, jr))],
-                                         ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
+            hessian = ca.triu(2.0 * lam_f * ca.mtimes(jr.T, jr))
+            self._hess_lag = ca.Function("nlp_hess_l", [w, p, lam_f, lam_g], [hessian], ["x", "p", "lam_f", "lam_g"],
+                                         ["triu_hess_gamma_x_x"])
             if self.expand:
                 self._hess_lag = self._hess_lag.expand()
         self._lbg, self._ubg, self._labels = np.array(lbg, dtype=float), np.array(ubg, dtype=float), labels
