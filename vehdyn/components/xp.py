@@ -164,8 +164,8 @@ def with_tire_hooks(xp):
             fx, fy, _ = law.xp_kernel(xp, xp.maximum(fz, 0.0), kappa, alpha, gamma, vx)
             return fx, fy, 0.0 * fx
         raise ParameterError(f"a {type(law).__name__} tire has no kernel over an xp namespace (only MagicFormula, "
-                             "LinearTire and the laws with an xp_kernel have one): it cannot run on symbols", key="tire",
-                             value=type(law).__name__)
+                             "LinearTire and the laws with an xp_kernel have one): it cannot run on symbols",
+                             key="tire", value=type(law).__name__)
 
     def tire_law_pair(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx):
         return (*tire_law(law, fz_1, kappa, alpha_1, gamma_1, vx), *tire_law(law, fz_2, kappa, alpha_2, gamma_2, vx))

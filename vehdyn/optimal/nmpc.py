@@ -114,7 +114,8 @@ class PathTrackingNMPC(Controller):
         problem.bound("front_steer_angle_rate", -steer_rate_limit, steer_rate_limit)
         rate_weight = np.sqrt(w["steer_rate"])
         problem.minimize(final=lambda s, k: tracking(s, k, w["terminal"]),
-                         integral=lambda s, k: tracking(s, k) + [rate_weight * s["front_steer_angle_rate"]], squares=True)
+                         integral=lambda s, k: tracking(s, k) + [rate_weight * s["front_steer_angle_rate"]],
+                         squares=True)
         self.problem, self.options = problem, {**_WARM_START, **(options or {})}
         self.log, self._last, self._next_sample, self._steer = [], None, 0.0, 0.0
         self.declare(inputs=tuple(Signal(n, unit, f"{n} of the vehicle (feedback)") for n, unit in _FEEDBACK),
