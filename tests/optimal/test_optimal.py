@@ -163,6 +163,10 @@ def test_bad_input_is_refused():
         p.solve([0.0, 0.0])
     with pytest.raises(ParameterError, match="DoubleLaneChangeTrack"):
         minimum_time_lane_change(SingleTrack(SEDAN), "ISO 3888-2")
+    for key in ("steer_weight", "steer_rate_weight"):
+        with pytest.raises(ParameterError, match=key) as error:
+            minimum_time_lane_change(SingleTrack(SEDAN), TRACK, **{key: -1.0})
+        assert error.value.key == key
     with pytest.raises(ParameterError, match="hessian must be one of") as error:
         Problem(CART, 10, controls=["force"], duration=1.0, hessian="newton")
     assert error.value.key == "hessian" and error.value.value == "newton"

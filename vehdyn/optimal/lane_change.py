@@ -15,6 +15,7 @@ __all__ = ["minimum_time_lane_change", "passage_time"]
 def minimum_time_lane_change(model, track, *, spacing: float = 0.5, run_in: float = 10.0, margin: float = 0.02,
                              speeds=(5.0, 45.0),
                              steer_limit: float = 0.35, steer_rate_limit: float = 1.0, steer_rate_weight: float = 1e-4,
+                             steer_weight: float = 0.0,
                              substeps: int | None = None, deflection_limit: float = 0.98, options=None):
     r"""The fastest passage of a lane-change track from straight running, the throttle released.
 
@@ -29,7 +30,8 @@ def minimum_time_lane_change(model, track, *, spacing: float = 0.5, run_in: floa
 
     .. math::
 
-        \min\; t(x_{\mathrm{end}}) - t(x_{\mathrm{start}}) + w \int \dot\delta^2\,dt, \quad
+        \min\; t(x_{\mathrm{end}}) - t(x_{\mathrm{start}}) + w \int \dot\delta^2\,dt
+        + w_\delta \int \delta^2\,dt, \quad
         |\delta| \le \delta_{\max},\ |\dot\delta| \le \dot\delta_{\max}
 
     (the inputs other than the front steer angle held at 0: the throttle released, ISO 3888-2).
@@ -56,6 +58,8 @@ def minimum_time_lane_change(model, track, *, spacing: float = 0.5, run_in: floa
         Road-wheel steer-rate bound [rad/s].
     steer_rate_weight : float
         w [s] (on rad^2/s^2).
+    steer_weight : float
+        w_delta [1/s] (on rad^2) of a steer-effort term :math:`w_\delta \int \delta^2\,dt`.
     substeps : int, optional
         Runge-Kutta steps per interval; default 1, and with tire lag as many as keep a step within
         half the shortest lateral relaxation length (the deflections' time constant sigma / V_x: the
@@ -92,6 +96,8 @@ def minimum_time_lane_change(model, track, *, spacing: float = 0.5, run_in: floa
         raise ParameterError(f"track must be a DoubleLaneChangeTrack, got {type(track).__name__}", key="track",
                              value=type(track).__name__)
     spacing = finite_number(spacing, "spacing", positive=True)
+    steer_rate_weight = finite_number(steer_rate_weight, "steer_rate_weight", minimum=0.0)
+    steer_weight = finite_number(steer_weight, "steer_weight", minimum=0.0)
     run_in = finite_number(run_in, "run_in", minimum=0.0)
     margin = finite_number(margin, "margin", minimum=0.0)
     low, high = (finite_number(v, "speeds", positive=True) for v in speeds)
@@ -123,7 +129,8 @@ def minimum_time_lane_change(model, track, *, spacing: float = 0.5, run_in: floa
     k_first = int(np.argmin(np.abs(problem.grid - first)))
     t_first = problem.signals(k_first)["time"]
     problem.minimize(final=lambda s, k: s["time"] - t_first,
-                     integral=lambda s, k: steer_rate_weight * s["front_steer_angle_rate"] ** 2)
+                     integral=lambda s, k: steer_rate_weight * s["front_steer_angle_rate"] ** 2
+                     + steer_weight * s["front_steer_angle"] ** 2)
     guess_speed = min(max(0.5 * (low + high), low), high)
     solution = problem.solve(model.straight_running(guess_speed, x=start), options=options)
     solution.passage_time = float(solution.time[-1] - solution.time[k_first])
