@@ -477,7 +477,9 @@ class Problem:
                                                                 else value) for value, weight in terms))
             cost = ca.sumsqr(residuals)
         else:
-            cost = sum((value * weight for value, weight in terms), ca.MX(0.0))
+            cost = 0.0
+            for value, weight in terms:
+                cost = cost + value * weight
         self._nlp = {"x": w, "p": p, "f": cost, "g": ca.vertcat(*g)}
         self._hess_lag = None
         if self.hessian == "gauss-newton":  # 2 lam_f J_r' J_r: the curvature of the residuals and of g left out
