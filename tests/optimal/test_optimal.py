@@ -173,6 +173,8 @@ def test_bad_input_is_refused():
     p = Problem(CART, 10, controls=["force"], duration=1.0, hessian="gauss-newton")
     with pytest.raises(ParameterError, match="needs a cost in squares"):
         p.minimize(integral=lambda s, k: s["force"] ** 2)
+    with pytest.raises(ParameterError, match="needs a cost in squares"):
+        p.solve([0.0, 0.0])  # no cost at all
 
 
 def test_the_nmpc_loop_clears_the_double_lane_change_above_the_crossover_drivers_limit():

@@ -439,7 +439,11 @@ class Problem:
                    "jit_options": {"flags": ["-O1"], "directory": tempfile.gettempdir()}}
             options = {**jit, "jacobian_options": jit, "der_options": jit, "forward_options": jit,
                        "reverse_options": jit}
-        return ca.Function("interval", [z, uc, h], [zz], options)
+        try:
+            return ca.Function("interval", [z, uc, h], [zz], options)
+        except RuntimeError as error:  # no C compiler, or it failed
+            raise ParameterError(f"jit=True compiles C code with CasADi's shell compiler (gcc), which failed: "
+                                 f"{str(error).strip().splitlines()[-1]}", key="jit", value=True) from None
 
     def _build(self):
         ca = self._ca
@@ -482,6 +486,9 @@ class Problem:
                 cost = cost + value * weight
         self._nlp = {"x": w, "p": p, "f": cost, "g": ca.vertcat(*g)}
         self._hess_lag = None
+        if self.hessian == "gauss-newton" and residuals is None:
+            raise ParameterError("hessian='gauss-newton' needs a cost in squares: minimize(..., squares=True)",
+                                 key="hessian", value=self.hessian)
         if self.hessian == "gauss-newton":  # 2 lam_f J_r' J_r: the curvature of the residuals and of g left out
             lam_f, lam_g = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", self._nlp["g"].shape[0])
             jr = ca.jacobian(residuals, w)
