@@ -1,6 +1,8 @@
 """vehdyn.optimal: a closed form, the minimum-time lane change against the closed-loop driver, friction-ellipse
 constraints, infeasible problems and bad input."""
 
+import shutil
+
 import numpy as np
 import pytest
 
@@ -20,13 +22,19 @@ CART = LinearModel([[0.0, 1.0], [0.0, 0.0]], [[0.0], [1.0]], [[1.0, 0.0]], [[0.0
                    states=["position", "velocity"], inputs=["force"], outputs=["y"])
 
 
-def rest_to_rest(intervals, duration=2.0, force_limit=np.inf):
-    p = Problem(CART, intervals, controls=["force"], duration=duration)
+def rest_to_rest(intervals, duration=2.0, force_limit=np.inf, **options):
+    p = Problem(CART, intervals, controls=["force"], duration=duration, **options)
     p.bound("force", -force_limit, force_limit)
     p.constrain(lambda s, k: s["position"], 1.0, 1.0, "arrive", nodes=[intervals])
     p.constrain(lambda s, k: s["velocity"], 0.0, 0.0, "stop", nodes=[intervals])
-    p.minimize(integral=lambda s, k: s["force"] ** 2)
+    if options.get("hessian") == "gauss-newton":
+        p.minimize(integral=lambda s, k: s["force"], squares=True)
+    else:
+        p.minimize(integral=lambda s, k: s["force"] ** 2)
     return p
+
+
+C_COMPILER = shutil.which("cc") or shutil.which("gcc")
 
 
 @pytest.mark.parametrize("intervals", [5, 20, 60])
@@ -36,6 +44,16 @@ def test_rest_to_rest_energy_is_the_closed_form_of_piecewise_constant_forces(int
     assert solution.cost == pytest.approx(12.0 / 8.0 * intervals**2 / (intervals**2 - 1), rel=1e-9)
     assert solution["position"][-1] == pytest.approx(1.0, abs=1e-9)
     assert solution.status == "Solve_Succeeded"
+
+
+@pytest.mark.parametrize("options", [{"hessian": "gauss-newton"}, {"hessian": "limited-memory"},
+                                     pytest.param({"hessian": "gauss-newton", "jit": True}, marks=pytest.mark.skipif(
+                                         C_COMPILER is None, reason="no C compiler for jit"))])
+def test_rest_to_rest_closed_form_with_each_hessian_and_compiled(options):
+    # the cost in squares (residual F, weighted by sqrt(dt)) is the same cost: the same closed form
+    solution = rest_to_rest(20, **options).solve([0.0, 0.0])
+    assert solution.cost == pytest.approx(12.0 / 8.0 * 400 / 399, rel=1e-8)
+    assert solution["position"][-1] == pytest.approx(1.0, abs=1e-8)
 
 
 @pytest.fixture(scope="module")
@@ -55,6 +73,26 @@ def test_minimum_time_lane_change_converges_from_a_cold_start_and_replays_inside
     assert passage_time(result, TRACK) == pytest.approx(optimum.passage_time, rel=1e-3)
     assert np.all(np.abs(optimum["front_steer_angle"]) <= 0.35 + 1e-8)
     assert np.all(np.abs(np.diff(optimum["front_steer_angle"]) / np.diff(optimum.time[:-1])) <= 1.0 + 1e-6)
+
+
+def test_minimum_time_with_tire_lag_converges_and_replays_on_its_model(optimum):
+    # with tire lag the transient slips are bounded to 0.98 of the peak-force slip (deflection_limit), off the
+    # force's switch to the kinematic slip at 0.999: a cold start converges, the replay on the lagged model stays
+    # on the plan and inside the cones, and the lag costs time against the plan without it
+    model = SingleTrack(SEDAN)
+    lagged = minimum_time_lane_change(model, TRACK, spacing=1.0)
+    assert lagged.status == "Solve_Succeeded" and lagged.iterations < 200
+    for axle in ("front", "rear"):
+        reach = 0.98 * model.peak_slip(axle)[1] * getattr(model.parameters, f"{axle}_lateral_relaxation_length")
+        assert np.max(np.abs(lagged[f"{axle}_lateral_deflection"])) <= reach * (1 + 1e-6)  # IPOPT relaxes bounds
+    t = np.arange(0.0, 1.05 * lagged.time[-1], 0.005)
+    result = vehdyn.simulate(model, t, lagged.input_signals(), x0=lagged.states[:, 0], method="RK45", rtol=1e-9,
+                             atol=1e-11)
+    assert np.max(np.abs(np.interp(lagged.grid, result["x"], result["y"]) - lagged["y"])) < 0.01
+    assert lane_change_outcome(TRACK, result)["passed"]
+    assert optimum.passage_time < lagged.passage_time < 1.01 * optimum.passage_time
+    with pytest.raises(ParameterError, match="deflection_limit"):
+        minimum_time_lane_change(model, TRACK, deflection_limit=0.0)
 
 
 def test_minimum_time_is_at_most_the_best_closed_loop_driver(optimum):
@@ -125,6 +163,18 @@ def test_bad_input_is_refused():
         p.solve([0.0, 0.0])
     with pytest.raises(ParameterError, match="DoubleLaneChangeTrack"):
         minimum_time_lane_change(SingleTrack(SEDAN), "ISO 3888-2")
+    for key in ("steer_weight", "steer_rate_weight"):
+        with pytest.raises(ParameterError, match=key) as error:
+            minimum_time_lane_change(SingleTrack(SEDAN), TRACK, **{key: -1.0})
+        assert error.value.key == key
+    with pytest.raises(ParameterError, match="hessian must be one of") as error:
+        Problem(CART, 10, controls=["force"], duration=1.0, hessian="newton")
+    assert error.value.key == "hessian" and error.value.value == "newton"
+    p = Problem(CART, 10, controls=["force"], duration=1.0, hessian="gauss-newton")
+    with pytest.raises(ParameterError, match="needs a cost in squares"):
+        p.minimize(integral=lambda s, k: s["force"] ** 2)
+    with pytest.raises(ParameterError, match="needs a cost in squares"):
+        p.solve([0.0, 0.0])  # no cost at all
 
 
 def test_the_nmpc_loop_clears_the_double_lane_change_above_the_crossover_drivers_limit():
@@ -168,6 +218,29 @@ def test_nmpc_refuses_a_prediction_model_of_other_states():
         PathTrackingNMPC(SingleTrack(SEDAN), [0.0, 1.0], [0.0, 0.0])
     with pytest.raises(ParameterError, match="path_x"):
         PathTrackingNMPC(SingleTrack(SEDAN, tire_lag=False), [1.0, 0.0], [0.0, 0.0])
+    with pytest.raises(ParameterError, match="weights\\['yaw'\\]"):
+        PathTrackingNMPC(SingleTrack(SEDAN, tire_lag=False), [0.0, 1.0], [0.0, 0.0], weights={"yaw": -1.0})
+
+
+@pytest.mark.parametrize("options", [{"hessian": "exact"}, {"hessian": "limited-memory"},
+                                     pytest.param({"jit": True}, marks=pytest.mark.skipif(
+                                         C_COMPILER is None, reason="no C compiler for jit"))])
+def test_nmpc_finds_the_same_optimum_with_each_hessian(options):
+    # the Hessian changes IPOPT's path, not the optimum (a KKT point of the same program): the Gauss-Newton
+    # default, the exact Hessian, L-BFGS and the compiled interval give one first steer, the car 0.3 m off a
+    # straight path and turned towards it
+    from vehdyn.optimal import PathTrackingNMPC
+
+    planner = SingleTrack(SEDAN, tire_lag=False)
+    path_x = np.linspace(-10.0, 200.0, 50)
+    feedback = [0.0, 0.3, -0.02, 20.0, 0.0, 0.0]
+    steers = []
+    for each in ({}, options):
+        nmpc = PathTrackingNMPC(planner, path_x, 0.0 * path_x, horizon=30, period=0.05, options={"tol": 1e-10},
+                                **each)
+        steers.append(nmpc.command(0.0, feedback))
+    assert abs(steers[0]) > 1e-3
+    assert steers[1] == pytest.approx(steers[0], rel=1e-6, abs=1e-9)
 
 
 def test_nmpc_steers_back_to_a_straight_path_and_a_second_run_starts_afresh():

@@ -10,7 +10,7 @@ import pytest
 import vehdyn
 from vehdyn import Model, ParameterError
 from vehdyn.handling import LateralYawRoll, LateralYawRollLag, LinearBicycle, SingleTrack
-from vehdyn.tire import FialaTire, LinearTire
+from vehdyn.tire import BrushTire, DugoffTire, FialaTire, LinearTire, TireModel
 
 ca = pytest.importorskip("casadi")
 from vehdyn.symbolic import to_casadi  # noqa: E402
@@ -31,6 +31,13 @@ OPTIONS = {
     "friction": dict(friction=0.6, wheel_spin=True),
     "linear_tires": dict(tire_lag=False, tires=LINEAR_TIRES),
     "linear_tires_spin_transfer": dict(wheel_spin=True, lateral_load_transfer=True, tires=LINEAR_TIRES),
+    "brush_tires": dict(tire_lag=False, tires=(BrushTire.from_vehicle(SEDAN, "front"),
+                                               BrushTire.from_vehicle(SEDAN, "rear"))),
+    "fiala_tires_spin_lag": dict(wheel_spin=True, tires=(FialaTire.from_vehicle(SEDAN, "front"),
+                                                         FialaTire.from_vehicle(SEDAN, "rear"))),
+    "dugoff_tires_spin_transfer": dict(wheel_spin=True, lateral_load_transfer=True, tire_lag=False,
+                                       tires=(DugoffTire.from_vehicle(SEDAN, "front"),
+                                              DugoffTire.from_vehicle(SEDAN, "rear"))),
 }
 
 
@@ -175,11 +182,55 @@ class _Plain(Model):
         return x
 
 
+class _Delegating(TireModel):
+    """A law of the user's own (here the Fiala law's forces behind it): no kernel over xp."""
+
+    def __init__(self, law):
+        self.law = law
+
+    def forces(self, fz, kappa, alpha, gamma=0.0, vx=10.0):
+        return self.law.forces(fz, kappa, alpha, gamma, vx)
+
+
+TIRE_LAWS = {
+    "brush": BrushTire.from_vehicle(SEDAN, "front"),
+    "brush_sliding_friction": BrushTire(contact_half_length=0.08, tread_stiffness=5e6, mu=1.0, mu_sliding=0.8),
+    "fiala": FialaTire.from_vehicle(SEDAN, "front"),
+    "fiala_moment_slip_stiffness": FialaTire(cornering_stiffness=6e4, mu=0.9, slip_stiffness=8e4,
+                                             contact_half_length=0.07),
+    "dugoff": DugoffTire.from_vehicle(SEDAN, "rear"),
+    "dugoff_speed_reduction_trail": DugoffTire(cornering_stiffness=6e4, slip_stiffness=9e4, mu=0.9,
+                                               speed_friction_reduction=0.01, pneumatic_trail=0.03),
+}
+
+
+@pytest.mark.compiled_vs_numpy
+@pytest.mark.parametrize("name", list(TIRE_LAWS))
+def test_brush_fiala_and_dugoff_kernels_on_casadi_equal_their_forces(name):
+    # the law's xp_kernel on CasADi symbols against forces() on numpy, at random points from adhesion to full
+    # sliding, braking to locked (kappa -1) and driving, both rolling directions
+    from vehdyn.symbolic.namespace import casadi_namespace
+
+    law = TIRE_LAWS[name]
+    symbols = [ca.SX.sym(n) for n in ("fz", "kappa", "alpha", "vx")]
+    fx, fy, mz = law.xp_kernel(casadi_namespace(), symbols[0], symbols[1], symbols[2], 0.0, symbols[3])
+    kernel = ca.Function("kernel", symbols, [fx, fy, 0.0 * fy if mz is None else mz])
+    rng = np.random.default_rng(7)
+    points = np.column_stack([rng.uniform(0.0, 9000.0, 200), rng.uniform(-1.0, 1.5, 200),
+                              rng.uniform(-0.6, 0.6, 200), rng.uniform(-30.0, 30.0, 200)])
+    points[:20, 1] = 0.0  # pure side slip
+    points[20:30, 2] = 0.0  # pure longitudinal slip
+    expected = law.forces(points[:, 0], points[:, 1], points[:, 2], 0.0, points[:, 3])
+    got = np.array(kernel(*points.T), dtype=float)
+    for row, value in zip(got, (expected.fx, expected.fy, expected.mz)):
+        np.testing.assert_allclose(row.ravel(), value, rtol=1e-10, atol=1e-10 * np.max(np.abs(value)) + 1e-300)
+
+
 def test_bad_input_is_refused_with_the_model_and_the_missing_piece():
     with pytest.raises(ParameterError, match="_Plain has no symbolic form.*symbolic_equations"):
         to_casadi(_Plain())
-    with pytest.raises(ParameterError, match="front_tire.*FialaTire") as error:
-        to_casadi(SingleTrack(SEDAN, FialaTire.from_vehicle(SEDAN, "front"), LINEAR_TIRES[1]))
+    with pytest.raises(ParameterError, match="front_tire.*_Delegating") as error:
+        to_casadi(SingleTrack(SEDAN, _Delegating(FialaTire.from_vehicle(SEDAN, "front")), LINEAR_TIRES[1]))
     assert error.value.key == "front_tire"
     with pytest.raises(ParameterError, match="'wheelbase' is not a SingleTrack parameter"):
         to_casadi(SingleTrack(SEDAN), parameters=("wheelbase",))

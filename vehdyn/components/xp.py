@@ -166,8 +166,9 @@ def with_tire_hooks(xp):
     What a symbolic namespace (:func:`vehdyn.symbolic.casadi_namespace`) needs to run the vehicle
     equations: ``tire_law`` calls :func:`vehdyn.tire.kernels.forces_kernel` for a
     :class:`~vehdyn.tire.MagicFormula` (as :meth:`MagicFormula.forces` evaluates it: the file's
-    limits, its pressure, no turn slip) and :func:`vehdyn.tire.kernels.linear_tire_law` for a
-    :class:`~vehdyn.tire.LinearTire` (M_y = 0); ``tire_law_pair`` calls it twice.
+    limits, its pressure, no turn slip), :func:`vehdyn.tire.kernels.linear_tire_law` for a
+    :class:`~vehdyn.tire.LinearTire` (M_y = 0) and a law's own ``xp_kernel`` (brush, Fiala, Dugoff;
+    M_y = 0); ``tire_law_pair`` calls it twice.
 
     Parameters
     ----------
@@ -178,7 +179,7 @@ def with_tire_hooks(xp):
     -------
     type
         A subclass of ``xp`` with ``tire_law`` and ``tire_law_pair``; their ``law`` raises
-        ParameterError, naming the law, for a law without such a kernel (brush, Fiala, Dugoff).
+        ParameterError, naming the law, for a law without such a kernel.
     """
 
     def tire_law(law, fz, kappa, alpha, gamma, vx):
@@ -189,9 +190,12 @@ def with_tire_hooks(xp):
         if isinstance(law, LinearTire):
             fx, fy, _ = linear_tire_law(xp, law.coefficients, fz, kappa, alpha, gamma, vx)
             return fx, fy, 0.0 * fx
-        raise ParameterError(f"a {type(law).__name__} tire has no kernel over an xp namespace (only MagicFormula "
-                             "and LinearTire have one): it cannot run on symbols", key="tire",
-                             value=type(law).__name__)
+        if hasattr(law, "xp_kernel"):  # the brush, Fiala and Dugoff laws (M_y = 0), the load clipped as forces() does
+            fx, fy, _ = law.xp_kernel(xp, xp.maximum(fz, 0.0), kappa, alpha, gamma, vx)
+            return fx, fy, 0.0 * fx
+        raise ParameterError(f"a {type(law).__name__} tire has no kernel over an xp namespace (only MagicFormula, "
+                             "LinearTire and the laws with an xp_kernel have one): it cannot run on symbols",
+                             key="tire", value=type(law).__name__)
 
     def tire_law_pair(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx):
         return (*tire_law(law, fz_1, kappa, alpha_1, gamma_1, vx), *tire_law(law, fz_2, kappa, alpha_2, gamma_2, vx))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import tempfile
 import time as _time
 
 import numpy as np
@@ -13,6 +14,7 @@ from vehdyn.symbolic import require_casadi, to_casadi
 __all__ = ["Problem", "Solution", "OptimalControlError"]
 
 _SUCCESS = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+_HESSIANS = ("exact", "gauss-newton", "limited-memory")
 
 
 class OptimalControlError(SimulationError):
@@ -185,12 +187,25 @@ class Problem:
     expand : bool
         Expand the program into CasADi's scalar graph (SX) before solving: slower to build, faster
         per iteration (what a receding horizon wants).
+    hessian : {"exact", "gauss-newton", "limited-memory"}
+        The Hessian of the Lagrangian IPOPT uses: CasADi's exact one; the Gauss-Newton one
+        :math:`2 J_r^\top J_r` of a cost in squares (:meth:`minimize` with ``squares=True``: the
+        curvature of the model and of the constraints left out -- cheap, and exact at a zero-residual
+        optimum; what tracking MPC uses [3]_); or IPOPT's L-BFGS update.
+    jit : bool
+        Compile the integration of one interval and its derivatives to C with the system C compiler
+        (CasADi's ``"shell"`` compiler, ``-O1``) when the solver is built, the program calling them on
+        each interval (``expand`` is then left out: inlining would undo it): seconds to build, then
+        faster per iteration.
 
     References
     ----------
     .. [1] H. G. Bock and K. J. Plitt, "A multiple shooting algorithm for direct solution of optimal
        control problems", *IFAC Proceedings Volumes* 17(2), 1603-1608, 1984.
     .. [2] A. Wächter and L. T. Biegler, *Mathematical Programming* 106(1), 25-57, 2006 (IPOPT).
+    .. [3] M. Diehl, H. G. Bock and J. P. Schlöder, "A real-time iteration scheme for nonlinear
+       optimization in optimal feedback control", *SIAM Journal on Control and Optimization* 43(5),
+       1714-1736, 2005 (the Gauss-Newton Hessian of a least-squares tracking cost).
 
     Examples
     --------
@@ -207,9 +222,12 @@ class Problem:
     """
 
     def __init__(self, model, intervals: int, *, controls, duration=None, along=None, span=None, inputs=None,
-                 substeps: int = 1, expand: bool = False):
+                 substeps: int = 1, expand: bool = False, hessian: str = "exact", jit: bool = False):
         self.model = model
-        self.expand = bool(expand)
+        self.expand, self.jit = bool(expand), bool(jit)
+        if hessian not in _HESSIANS:
+            raise ParameterError(f"hessian must be one of {_HESSIANS}, got {hessian!r}", key="hessian", value=hessian)
+        self.hessian = hessian
         self.form = to_casadi(model)
         if not isinstance(intervals, (int, np.integer)) or isinstance(intervals, bool) or intervals < 1:
             raise ParameterError(f"intervals must be an integer >= 1, got {intervals!r}", key="intervals",
@@ -256,7 +274,7 @@ class Problem:
         self._lbu = np.full(self._U.shape, -np.inf)
         self._ubu = np.full(self._U.shape, np.inf)
         self._constraints = []  # (expression, low, high, label)
-        self._final, self._integral, self._solver = None, None, None
+        self._final, self._integral, self._squares, self._solver = None, None, False, None
         self._lbx[-1, 0] = self._ubx[-1, 0] = 0.0  # time starts at 0
         if self.along is not None:
             self._lbx[self.along] = self._ubx[self.along] = self.grid
@@ -346,7 +364,7 @@ class Problem:
         for k, lo, hi in zip(nodes, low, high):
             self._constraints.append((function(_Signals(self, int(k)), int(k)), lo, hi, f"{label} at node {k}"))
 
-    def minimize(self, final=None, integral=None):
+    def minimize(self, final=None, integral=None, squares: bool = False):
         r"""The cost :math:`\phi(s_N) + \sum_k L(s_k)\,(t_{k+1} - t_k)`, written in signal names.
 
         Parameters
@@ -355,9 +373,15 @@ class Problem:
             ``final(s, N)``: the cost at the last node, e.g. ``lambda s, k: s["time"]``.
         integral : callable, optional
             ``integral(s, k)``: the integrand, at the start of each interval (rectangle rule in time).
+        squares : bool
+            The callables return residuals r (an expression or a list of them) and the term is
+            :math:`\sum_i r_i^2`: a least-squares cost, which ``hessian="gauss-newton"`` needs.
         """
         self._require_unbuilt()
-        self._final, self._integral = final, integral
+        if self.hessian == "gauss-newton" and not squares:
+            raise ParameterError("hessian='gauss-newton' needs a cost in squares: minimize(..., squares=True) with "
+                                 "callables returning the residuals", key="squares", value=squares)
+        self._final, self._integral, self._squares = final, integral, bool(squares)
 
     def signals(self, k: int):
         """The signals at node ``k`` by name (what the callables of :meth:`constrain` and :meth:`minimize` get).
@@ -409,7 +433,17 @@ class Problem:
             k3 = rate(zz + 0.5 * step * k2)
             k4 = rate(zz + step * k3)
             zz = zz + step / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
-        return ca.Function("interval", [z, uc, h], [zz])
+        options = {}
+        if self.jit:  # the interval compiled once, with its derivatives; the program calls it N times
+            jit = {"jit": True, "compiler": "shell", "jit_cleanup": True,
+                   "jit_options": {"flags": ["-O1"], "directory": tempfile.gettempdir()}}
+            options = {**jit, "jacobian_options": jit, "der_options": jit, "forward_options": jit,
+                       "reverse_options": jit}
+        try:
+            return ca.Function("interval", [z, uc, h], [zz], options)
+        except RuntimeError as error:  # no C compiler, or it failed
+            raise ParameterError(f"jit=True compiles C code with CasADi's shell compiler (gcc), which failed: "
+                                 f"{str(error).strip().splitlines()[-1]}", key="jit", value=True) from None
 
     def _build(self):
         ca = self._ca
@@ -433,15 +467,36 @@ class Problem:
             lbg.append(lo)
             ubg.append(hi)
             labels.append(label)
-        cost = 0.0
+        terms = []  # (value of the callable, its weight)
         if self._integral is not None:
-            for k in range(self.intervals):
-                cost = cost + self._integral(_Signals(self, k), k) * (self._time(k + 1) - self._time(k))
+            terms += [(self._integral(_Signals(self, k), k), self._time(k + 1) - self._time(k))
+                      for k in range(self.intervals)]
         if self._final is not None:
-            cost = cost + self._final(_Signals(self, self.intervals), self.intervals)
+            terms.append((self._final(_Signals(self, self.intervals), self.intervals), 1.0))
         w = ca.vertcat(ca.vec(self._X), ca.vec(self._U))
         p = ca.vertcat(self._x_initial, self._u_initial, *(ca.vec(symbol) for _, symbol in self._parameters))
+        residuals = None
+        if self._squares:
+            residuals = ca.vertcat(*(ca.sqrt(weight) * ca.vec(ca.vertcat(*value) if isinstance(value, (list, tuple))
+                                                                else value) for value, weight in terms))
+            cost = ca.sumsqr(residuals)
+        else:
+            cost = 0.0
+            for value, weight in terms:
+                cost = cost + value * weight
         self._nlp = {"x": w, "p": p, "f": cost, "g": ca.vertcat(*g)}
+        self._hess_lag = None
+        if self.hessian == "gauss-newton" and residuals is None:
+            raise ParameterError("hessian='gauss-newton' needs a cost in squares: minimize(..., squares=True)",
+                                 key="hessian", value=self.hessian)
+        if self.hessian == "gauss-newton":  # 2 lam_f J_r' J_r: the curvature of the residuals and of g left out
+            lam_f, lam_g = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", self._nlp["g"].shape[0])
+            jr = ca.jacobian(residuals, w)
+            hessian = ca.triu(2.0 * lam_f * ca.mtimes(jr.T, jr))
+            self._hess_lag = ca.Function("nlp_hess_l", [w, p, lam_f, lam_g], [hessian], ["x", "p", "lam_f", "lam_g"],
+                                         ["triu_hess_gamma_x_x"])
+            if self.expand:
+                self._hess_lag = self._hess_lag.expand()
         self._lbg, self._ubg, self._labels = np.array(lbg, dtype=float), np.array(ubg, dtype=float), labels
         self._lbw = np.concatenate([self._lbx.ravel(order="F"), self._lbu.ravel(order="F")])
         self._ubw = np.concatenate([self._ubx.ravel(order="F"), self._ubu.ravel(order="F")])
@@ -483,7 +538,11 @@ class Problem:
         if self._solver is None:
             self._build()
             opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes", "ipopt.max_iter": 1000,
-                    "expand": self.expand}
+                    "expand": self.expand and not self.jit}
+            if self.hessian == "gauss-newton":
+                opts["hess_lag"] = self._hess_lag
+            elif self.hessian == "limited-memory":
+                opts["ipopt.hessian_approximation"] = "limited-memory"
             opts.update({f"ipopt.{k}": v for k, v in (options or {}).items()})
             self._solver = ca.nlpsol("solver", "ipopt", self._nlp, opts)
         x0 = self.model.state_vector(x0)

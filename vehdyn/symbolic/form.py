@@ -162,7 +162,8 @@ def to_casadi(model, parameters=()) -> SymbolicModel:
     ------
     ParameterError
         For a model without a symbolic form (naming it and the missing method), a piece of it without
-        one (e.g. a brush tire, naming it), or a parameter the model does not take symbolically.
+        one (e.g. a tire law of the user's own without an ``xp_kernel``, naming it), or a parameter the
+        model does not take symbolically.
     ImportError
         Without casadi.
     """

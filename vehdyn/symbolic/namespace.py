@@ -119,6 +119,7 @@ def casadi_namespace():
         atan2 = staticmethod(ca.atan2)
         acos = staticmethod(ca.acos)
         sqrt = staticmethod(ca.sqrt)
+        hypot = staticmethod(ca.hypot)
         exp = staticmethod(ca.exp)
         pow = staticmethod(ca.power)
         log10 = staticmethod(ca.log10)

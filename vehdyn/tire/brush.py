@@ -54,7 +54,7 @@ import numpy as np
 from vehdyn.errors import ParameterError
 from vehdyn.params.base import ParameterSet, parameter
 from vehdyn.tire._common import (VectorizedTire, broadcast_inputs, load_input, nan_at, planar_forces, rolling_direction,
-                      scalar_rolling_direction)
+                                 scalar_rolling_direction)
 from vehdyn.tire.base import TireForces
 
 __all__ = ["BrushTire", "brush_force_fraction", "brush_moment_fraction"]
@@ -275,26 +275,47 @@ class BrushTire(ParameterSet, VectorizedTire):
     # ------------------------------------------------------------------ the law
     def _kernel(self, fz, kappa, alpha, gamma, vx):
         """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
-        direction = rolling_direction(vx)
-        tan_alpha = np.tan(alpha)
-        slip = np.hypot(kappa, tan_alpha)  # |V_s| / |V_x|
-        lam = self._adhesion_parameter(fz, kappa, slip)
+        return self.xp_kernel(np, fz, kappa, alpha, gamma, vx)
+
+    def xp_kernel(self, xp, fz, kappa, alpha, gamma, vx):
+        """``(F_x, F_y, M_z)`` (ISO-W) over an ``xp`` namespace: numpy (``numpy`` itself, what
+        :meth:`forces` evaluates on arrays) or CasADi symbols (:func:`vehdyn.symbolic.casadi_namespace`).
+
+        Parameters
+        ----------
+        xp : namespace
+            ``tan``, ``hypot``, ``where``.
+        fz : float or ndarray
+            Normal load [N] (>= 0).
+        kappa : float or ndarray
+            Slip ratio [-].
+        alpha : float or ndarray
+            Slip angle [rad].
+        gamma : float or ndarray
+            Inclination [rad] (unused).
+        vx : float or ndarray
+            Forward speed of the wheel centre [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x [N], F_y [N], M_z [N*m]).
+        """
+        direction = xp.where(vx < 0.0, -1.0, 1.0)  # rolling_direction
+        tan_alpha = xp.tan(alpha)
+        slip = xp.hypot(kappa, tan_alpha)  # |V_s| / |V_x|
+        lam = self._adhesion_parameter(fz, kappa, slip, xp)
         r = self.sliding_ratio
         mu_fz = self.mu * fz
         # resultant force and moment over the slip (bounded: F <= C slip), times the direction cosines
         has_slip = slip > 0.0
-        force = np.divide(mu_fz * brush_force_fraction(lam, r), slip, out=np.zeros_like(slip), where=has_slip)
-        fy = force * tan_alpha
-        np.negative(fy, out=fy)
-        moment = np.divide(mu_fz * (self.contact_half_length * brush_moment_fraction(lam, r)), slip,
-                           out=np.zeros_like(slip), where=has_slip)
-        moment *= tan_alpha
-        moment *= direction
-        force *= kappa
-        force *= direction
-        return force, fy, moment
+        safe_slip = xp.where(has_slip, slip, 1.0)
+        force = xp.where(has_slip, mu_fz * brush_force_fraction(lam, r) / safe_slip, 0.0)
+        moment = xp.where(has_slip, mu_fz * (self.contact_half_length * brush_moment_fraction(lam, r)) / safe_slip,
+                          0.0)
+        return force * kappa * direction, -(force * tan_alpha), moment * tan_alpha * direction
 
-    def _adhesion_parameter(self, fz, kappa, slip):
+    def _adhesion_parameter(self, fz, kappa, slip, xp=np):
         """``lambda = theta sigma = C slip / (3 mu_0 F_z (1 + kappa))`` clipped at 1.
 
         ``slip`` is ``|V_s| / |V_x|``; the rolling factor ``1 + kappa`` is ``V_r / V_x``.
@@ -302,7 +323,8 @@ class BrushTire(ParameterSet, VectorizedTire):
         """
         numerator = self.cornering_stiffness * slip
         denominator = (3.0 * self.mu) * fz * (1.0 + kappa)
-        return np.divide(numerator, denominator, out=np.ones_like(numerator), where=numerator < denominator)
+        below = numerator < denominator
+        return xp.where(below, numerator / xp.where(below, denominator, 1.0), 1.0)
 
     def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
         """The same equations for one point with :mod:`math` (no numpy overhead)."""

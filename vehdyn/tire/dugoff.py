@@ -36,7 +36,7 @@ import math
 import numpy as np
 
 from vehdyn.params.base import ParameterSet, parameter
-from vehdyn.tire._common import VectorizedTire, planar_forces, rolling_direction, scalar_rolling_direction
+from vehdyn.tire._common import VectorizedTire, planar_forces, scalar_rolling_direction
 from vehdyn.tire.base import TireForces
 
 __all__ = ["DugoffTire"]
@@ -132,26 +132,51 @@ class DugoffTire(ParameterSet, VectorizedTire):
 
     def _kernel(self, fz, kappa, alpha, gamma, vx):
         """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
-        direction = rolling_direction(vx)
-        tan_alpha = np.tan(alpha)
+        return self.xp_kernel(np, fz, kappa, alpha, gamma, vx)
+
+    def xp_kernel(self, xp, fz, kappa, alpha, gamma, vx):
+        """``(F_x, F_y, M_z)`` (ISO-W) over an ``xp`` namespace: numpy (``numpy`` itself, what
+        :meth:`forces` evaluates on arrays) or CasADi symbols (:func:`vehdyn.symbolic.casadi_namespace`).
+
+        Parameters
+        ----------
+        xp : namespace
+            ``tan``, ``abs``, ``hypot``, ``where``, ``maximum``.
+        fz : float or ndarray
+            Normal load [N] (>= 0).
+        kappa : float or ndarray
+            Slip ratio [-].
+        alpha : float or ndarray
+            Slip angle [rad].
+        gamma : float or ndarray
+            Inclination [rad] (unused).
+        vx : float or ndarray
+            Forward speed of the wheel centre [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x [N], F_y [N], M_z [N*m]).
+        """
+        direction = xp.where(vx < 0.0, -1.0, 1.0)  # rolling_direction
+        tan_alpha = xp.tan(alpha)
         rolling = 1.0 + kappa
         limit = self.mu * fz
         if self.speed_friction_reduction:
-            limit *= np.maximum(1.0 - self.speed_friction_reduction * np.abs(vx) * np.hypot(kappa, tan_alpha), 0.0)
+            limit = limit * xp.maximum(1.0 - self.speed_friction_reduction * xp.abs(vx) * xp.hypot(kappa, tan_alpha),
+                                       0.0)
         ux = self.slip_stiffness * kappa
         uy = self.cornering_stiffness * tan_alpha
-        stiff_slip = np.hypot(ux, uy)  # S
+        stiff_slip = xp.hypot(ux, uy)  # S
         adhering = 2.0 * stiff_slip <= limit * rolling  # lambda >= 1 (includes S = 0 under load)
-        # resultant over S: 1/rho while adhering, mu F_z (1 - lambda/2) / S once sliding;
-        # each branch with harmless denominators where the other applies
-        sliding_part = limit - limit * limit * np.maximum(rolling, 0.0) / np.where(adhering, 1.0, 4.0 * stiff_slip)
-        per_slip = np.divide(sliding_part, stiff_slip, out=np.zeros_like(stiff_slip),
-                             where=~adhering & (stiff_slip > 0.0))
-        np.divide(1.0, rolling, out=per_slip, where=adhering & (stiff_slip > 0.0))
-        fx = per_slip * ux
-        fx *= direction
-        fy = per_slip * uy
-        np.negative(fy, out=fy)
+        # resultant over S: 1/rho while adhering (there rho > 0), mu F_z (1 - lambda/2) / S once sliding
+        # (0 at S = 0); each branch with harmless denominators where the other applies
+        sliding_part = limit - limit * limit * xp.maximum(rolling, 0.0) / xp.where(adhering, 1.0, 4.0 * stiff_slip)
+        sliding = ~adhering & (stiff_slip > 0.0)
+        per_slip = xp.where(adhering, 1.0 / xp.where(adhering, rolling, 1.0),
+                            xp.where(sliding, sliding_part / xp.where(sliding, stiff_slip, 1.0), 0.0))
+        fx = per_slip * ux * direction
+        fy = -(per_slip * uy)
         return fx, fy, (-self.pneumatic_trail) * fy * direction
 
     def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:

@@ -37,18 +37,19 @@ import math
 import numpy as np
 
 from vehdyn.params.base import ParameterSet, parameter
-from vehdyn.tire._common import VectorizedTire, load_input, planar_forces, rolling_direction, scalar_rolling_direction, scalar_sign
+from vehdyn.tire._common import VectorizedTire, load_input, planar_forces, scalar_rolling_direction, scalar_sign
 from vehdyn.tire.base import TireForces
 from vehdyn.tire.brush import brush_force_fraction, brush_moment_fraction
 
 __all__ = ["FialaTire"]
 
 
-def _saturation(stiffness, slip_magnitude, limit):
+def _saturation(xp, stiffness, slip_magnitude, limit):
     """``min(stiffness |slip| / (3 limit), 1)`` without a division by zero (limit 0: fully sliding)."""
     numerator = stiffness * slip_magnitude
     denominator = 3.0 * limit
-    return np.divide(numerator, denominator, out=np.ones_like(numerator), where=numerator < denominator)
+    below = numerator < denominator
+    return xp.where(below, numerator / xp.where(below, denominator, 1.0), 1.0)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -166,27 +167,45 @@ class FialaTire(ParameterSet, VectorizedTire):
 
     def _kernel(self, fz, kappa, alpha, gamma, vx):
         """``(F_x, F_y, M_z)`` for float arrays of one shape (``fz >= 0``)."""
+        fx, fy, mz = self.xp_kernel(np, fz, kappa, alpha, gamma, vx)
+        return fx, fy, np.zeros_like(fy) if mz is None else mz
+
+    def xp_kernel(self, xp, fz, kappa, alpha, gamma, vx):
+        """``(F_x, F_y, M_z)`` (ISO-W) over an ``xp`` namespace: numpy (``numpy`` itself, what
+        :meth:`forces` evaluates on arrays) or CasADi symbols (:func:`vehdyn.symbolic.casadi_namespace`).
+
+        Parameters
+        ----------
+        xp : namespace
+            ``tan``, ``abs``, ``sign``, ``sqrt``, ``where``, ``maximum``.
+        fz : float or ndarray
+            Normal load [N] (>= 0).
+        kappa : float or ndarray
+            Slip ratio [-].
+        alpha : float or ndarray
+            Slip angle [rad].
+        gamma : float or ndarray
+            Inclination [rad] (unused).
+        vx : float or ndarray
+            Forward speed of the wheel centre [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x [N], F_y [N], M_z [N*m], or None without a contact length).
+        """
         limit = self.mu * fz
-        lam_x = _saturation(self.longitudinal_stiffness, np.abs(kappa), limit)
-        direction = rolling_direction(vx)
-        fx = limit * brush_force_fraction(lam_x)
-        fx *= np.sign(kappa)
-        fx *= direction
-        lateral_limit = limit * limit
-        lateral_limit -= fx * fx
-        np.maximum(lateral_limit, 0.0, out=lateral_limit)
-        np.sqrt(lateral_limit, out=lateral_limit)
-        tan_alpha = np.tan(alpha)
-        lam_y = _saturation(self.cornering_stiffness, np.abs(tan_alpha), lateral_limit)
-        side = np.sign(tan_alpha)
-        fy = lateral_limit * brush_force_fraction(lam_y)
-        fy *= side
-        np.negative(fy, out=fy)
+        lam_x = _saturation(xp, self.longitudinal_stiffness, xp.abs(kappa), limit)
+        direction = xp.where(vx < 0.0, -1.0, 1.0)  # rolling_direction
+        fx = limit * brush_force_fraction(lam_x) * xp.sign(kappa) * direction
+        lateral_limit = xp.sqrt(xp.maximum(limit * limit - fx * fx, 0.0))
+        tan_alpha = xp.tan(alpha)
+        lam_y = _saturation(xp, self.cornering_stiffness, xp.abs(tan_alpha), lateral_limit)
+        side = xp.sign(tan_alpha)
+        fy = -(lateral_limit * brush_force_fraction(lam_y) * side)
         if self.contact_half_length is None:
-            return fx, fy, np.zeros_like(fy)
-        mz = lateral_limit * (self.contact_half_length * brush_moment_fraction(lam_y))
-        mz *= side
-        mz *= direction
+            return fx, fy, None
+        mz = lateral_limit * (self.contact_half_length * brush_moment_fraction(lam_y)) * side * direction
         return fx, fy, mz
 
     def _forces_scalar(self, fz: float, kappa: float, alpha: float, gamma: float, vx: float) -> TireForces:
