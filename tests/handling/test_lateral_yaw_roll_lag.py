@@ -116,3 +116,83 @@ def test_errors():
         LateralYawRollLag("sedan", 20.0)
     with pytest.raises(vehdyn.ParameterError):
         LateralYawRollLag(vehdyn.load_vehicle("sedan"), -1.0)
+
+
+def _equal_responses(a, b, outputs=("yaw_rate", "lateral_acceleration", "roll_angle", "sideslip_angle")):
+    """The two models' frequency responses from both steer inputs to ``outputs`` at 0-5 Hz, as arrays."""
+    w = 2 * np.pi * np.array([0.0, 0.2, 0.7, 1.5, 3.0, 5.0])
+
+    def response(model):
+        out = [model.index(name, "outputs") for name in outputs]
+        rows = []
+        for omega in w:
+            G = model.C @ np.linalg.solve(1j * omega * np.eye(model.A.shape[0]) - model.A, model.B) + model.D
+            rows.append(G[out])
+        return np.array(rows)
+
+    return response(a), response(b)
+
+
+@pytest.mark.parametrize("c, e", [(-1.2e-6, 0.0), (0.0, 2e-4), (-1.2e-6, 2e-4)])
+def test_compliance_steer_is_an_effective_stiffness_and_relaxation_length(c, e):
+    """Linear laws with a pneumatic trail t: the compliance steer (c - e t) F_i, explicit in the
+    lagged force, makes (sigma/u) alpha'' + (1 - (c - e t) C) alpha' = alpha - delta, which is the
+    model without compliance with the tire stiffness C / (1 - (c - e t) C) and the relaxation length
+    sigma / (1 - (c - e t) C) (Gillespie 1992, Table 6.1, for the steady part): every transfer
+    function from the steer to the body's motion is the same."""
+    vehicle = vehdyn.load_vehicle("sedan")
+    trail = 0.035
+    laws = [vehdyn.tire.LinearTire.from_vehicle(vehicle, axle).replace(pneumatic_trail=trail)
+            for axle in ("front", "rear")]
+    compliant = vehicle.replace(suspension__front_lateral_force_compliance_steer=c,
+                                suspension__rear_lateral_force_compliance_steer=-0.5 * c,
+                                suspension__front_aligning_moment_compliance_steer=e,
+                                suspension__rear_aligning_moment_compliance_steer=0.5 * e)
+    model = LateralYawRollLag(compliant, 20.0, front_tire=laws[0], rear_tire=laws[1])
+    net = model.compliance_steer
+    assert net == pytest.approx((c - e * trail, -0.5 * c - 0.5 * e * trail), rel=1e-6)
+    factor = [1.0 - n * C for n, C in zip(net, model.cornering_stiffness)]
+    stiff = [law.replace(cornering_stiffness=law.cornering_stiffness / f) for law, f in zip(laws, factor)]
+    equivalent = vehicle.replace(tires__front_relaxation_length=vehicle.tires.front_relaxation_length / factor[0],
+                                 tires__rear_relaxation_length=vehicle.tires.rear_relaxation_length / factor[1])
+    reference = LateralYawRollLag(equivalent, 20.0, front_tire=stiff[0], rear_tire=stiff[1])
+    assert reference.cornering_stiffness == pytest.approx([C / f for C, f in zip(model.cornering_stiffness, factor)],
+                                                          rel=1e-9)
+    got, expected = _equal_responses(model, reference)
+    np.testing.assert_allclose(got, expected, rtol=1e-9, atol=1e-12 * np.abs(expected).max())
+    # and the compliance is not nothing: the steady yaw gain moved
+    rigid = LateralYawRollLag(vehicle, 20.0, front_tire=laws[0], rear_tire=laws[1])
+    moved, _ = _equal_responses(model, rigid)
+    assert abs(moved[0, 0, 0] - _equal_responses(rigid, rigid)[0][0, 0, 0]) > 1e-3 * abs(moved[0, 0, 0])
+
+
+def test_compliance_steer_gradient_with_the_shipped_law():
+    """Magic Formula tires: the steady understeer gradient moves by the compliance rows of the
+    budget evaluated with the model's own running stiffnesses, m/L (b (1/C_f,eff - 1/C_f) -
+    a (1/C_r,eff - 1/C_r)) = m/L (-b n_f + a n_r) (Gillespie 1992, Table 6.1), within the ply-steer
+    and rolling-resistance couplings of the load transfer (second order in the compliance)."""
+    vehicle = vehdyn.load_vehicle("sedan")
+    compliant = vehicle.replace(suspension__front_lateral_force_compliance_steer=-1.0e-6,
+                                suspension__rear_lateral_force_compliance_steer=0.5e-6,
+                                suspension__front_aligning_moment_compliance_steer=5e-5)
+    u = 20.0
+
+    def gradient(model):  # K from the steady yaw gain u / (L + K u^2)
+        steady = -model.C @ np.linalg.solve(model.A, model.B[:, 0]) + model.D[:, 0]
+        return (u / steady[model.index("yaw_rate", "outputs")] - vehicle.wheelbase) / u**2
+
+    rigid, model = LateralYawRollLag(vehicle, u), LateralYawRollLag(compliant, u)
+    nf, nr = model.compliance_steer
+    assert nf < -1e-6  # the aligning-moment compliance adds to the front's lateral-force compliance
+    m, L = vehicle.mass.mass, vehicle.wheelbase
+    expected = m / L * (-vehicle.geometry.b * nf + vehicle.geometry.a * nr)
+    assert gradient(model) - gradient(rigid) == pytest.approx(expected, rel=0.01)  # 0.4 % measured
+
+
+def test_compliance_without_an_effective_stiffness_names_the_field():
+    """The vehicle file checks c C < 1 with its own stiffness; the trail of the aligning-moment
+    compliance and the running stiffness are checked here, (c - e t) C < 1."""
+    vehicle = vehdyn.load_vehicle("sedan").replace(suspension__rear_aligning_moment_compliance_steer=-1e-2)
+    with pytest.raises(vehdyn.errors.ParameterError, match="rear_lateral_force_compliance_steer") as info:
+        LateralYawRollLag(vehicle, 20.0)
+    assert info.value.key == "suspension.rear_lateral_force_compliance_steer"

@@ -209,10 +209,3 @@ def test_lateral_yaw_roll_carries_compliance_and_roll_steer(sedan):
                 + (0.08 + 0.04) * own_roll)
     assert measured == pytest.approx(expected, rel=1e-10)
     assert measured == pytest.approx(np.rad2deg(model.understeer_gradient() * GRAVITY), rel=1e-10)
-
-
-def test_lateral_yaw_roll_lag_refuses_compliance(sedan):
-    from vehdyn.handling import LateralYawRollLag
-
-    with pytest.raises(ParameterError, match="rear_lateral_force_compliance_steer"):
-        LateralYawRollLag(sedan.replace(suspension__rear_lateral_force_compliance_steer=5e-7), 20.0)

@@ -13,7 +13,7 @@ CARRIES = {
     "LinearBicycle": {"compliance_steer"},
     "LinearBicycle+lag": {"compliance_steer"},
     "LateralYawRoll": {"roll_steer", "compliance_steer"},
-    "LateralYawRoll+lag": {"roll_steer"},
+    "LateralYawRoll+lag": {"roll_steer", "compliance_steer"},
     "SingleTrack(linear tires)": {"compliance_steer"},
     "SingleTrack": {"compliance_steer"},
     "SingleTrack+LLT": {"roll_steer", "camber_thrust", "compliance_steer"},

@@ -38,6 +38,13 @@ derivation there) by:
   orientation, so the unsprung masses m_u swing with the roll at their height above the roll axis
   r_w - h_ra (wheel-centre height r_w, the rolling radius): they add m_u (r_w - h_ra) to the
   coupling m_s h and m_u (r_w - h_ra)^2 to the roll inertia and the pendulum term.
+* **Compliance steer** (the vehicle's ``suspension.*_lateral_force_compliance_steer`` c_i and
+  ``*_aligning_moment_compliance_steer`` e_i): each axle steers by delta_c,i = (c_i - e_i t_i) F_i,
+  quasi-statically, with t_i the law's pneumatic trail at the running load (M_z = -t F_y, Gillespie
+  1992, Table 6.1; Milliken & Milliken 1995, ch. 18). The force F_i is that of the lagged slip, so
+  the compliance steer is explicit in the states; it enters the kinematic slip that the lag
+  follows. With a linear law this is the model without compliance with the effective stiffness
+  C_i / (1 - (c_i - e_i t_i) C_i) and the relaxation length sigma_i / (1 - (c_i - e_i t_i) C_i).
 * **Lateral acceleration of the total CG**: a_y = (F_f + F_r) / m, what an accelerometer at the
   CG reads (the non-rolling frame's dv/dt + u r of :class:`LateralYawRoll` differs from it by
   m_s h dp/dt / m while the body rolls).
@@ -143,11 +150,27 @@ def running_slip_ratios(vehicle: Vehicle, tires, loads, speed: float) -> tuple[f
     return float(kappa[0]), float(kappa[1])
 
 
+def _net_compliance_steer(vehicle, axle, stiffness, trail):
+    """c_i - e_i t_i [rad/N] of an axle (``Suspension.compliance_steer``), checked
+    against the axle's cornering stiffness at the running load: (c - e t) C >= 1 leaves no effective
+    cornering stiffness (ParameterError naming the lateral-force field)."""
+    net = vehicle.suspension.compliance_steer(axle, trail)
+    if net * stiffness >= 1.0:
+        key = f"suspension.{axle}_lateral_force_compliance_steer"
+        raise ParameterError(f"{key} = {getattr(vehicle.suspension, key.partition('.')[2]):g} rad/N with the "
+                             f"aligning-moment compliance and the trail {trail:.4g} m makes (c - e t) C = "
+                             f"{net * stiffness:.6g} >= 1 at the running cornering stiffness {stiffness:.6g} N/rad: "
+                             f"no effective cornering stiffness", key=key,
+                             value=getattr(vehicle.suspension, key.partition(".")[2]))
+    return net
+
+
 def _axle_law(tire, axle_load, kappa=0.0):
-    """(C, k, e): cornering stiffness [N/rad] of the axle's two tires, the SAE axle force per unit
-    load moved onto the left wheel [N/N] (ply steer of mirrored tires) and one tire's dM_y/dF_z [m]
-    (rolling-resistance moment per load), from the law at half the axle load and the running slip
-    ratio ``kappa`` (central differences)."""
+    """(C, k, e, t): cornering stiffness [N/rad] of the axle's two tires, the SAE axle force per unit
+    load moved onto the left wheel [N/N] (ply steer of mirrored tires), one tire's dM_y/dF_z [m]
+    (rolling-resistance moment per load) and the pneumatic trail -dM_z/dF_y [m] (0 for a law without
+    an aligning moment), from the law at half the axle load and the running slip ratio ``kappa``
+    (central differences)."""
     from vehdyn.handling.single_track import SingleTrack
 
     load = 0.5 * float(axle_load)
@@ -166,7 +189,9 @@ def _axle_law(tire, axle_load, kappa=0.0):
     side = SingleTrack._mirrored_wheel(tire, SingleTrack._needs_mirror(tire, load))
     ply = {"left": 1.0, "right": -1.0, None: 0.0}[side] * (fy[2] - fy[3]) / dz
     rolling = (my[2] - my[3]) / (2.0 * dz)  # dM_y/dF_z of one tire [m]
-    return stiffness, ply, rolling
+    mz = getattr(out, "mz", None)
+    trail = 0.0 if mz is None else -float(np.asarray(mz)[0] - np.asarray(mz)[1]) / float(fy[0] - fy[1])
+    return stiffness, ply, rolling, trail
 
 
 class LateralYawRollLag(LinearModel):
@@ -192,6 +217,8 @@ class LateralYawRollLag(LinearModel):
         (C_f, C_r), the axles' cornering stiffnesses at the running loads and slip ratios [N/rad].
     ply_steer_load_coefficient : tuple of float
         (k_f, k_r), the SAE axle force per unit load moved onto the left wheel [N/N].
+    compliance_steer : tuple of float
+        (c_f - e_f t_f, c_r - e_r t_r), the net compliance steer per unit axle force [rad/N].
     speed : float
         [m/s].
     mass_matrix : ndarray, shape (6, 6)
@@ -210,7 +237,7 @@ class LateralYawRollLag(LinearModel):
         I_z \dot r - I_{xz} \dot p = a F_f - b F_r + \sum_i \frac{T_i e_i}{R_e} \Delta F_{z,i}, \\
         c (\dot v + u r) - I_{xz} \dot r + I_x' \dot p &= -(K_\phi - g c') \phi - C_\phi p,
         \qquad \dot\phi = p, \\
-        \frac{\sigma_i}{u} \dot\alpha_i' + \alpha_i' &= \alpha_i, \qquad
+        \frac{\sigma_i}{u} \dot\alpha_i' + \alpha_i' &= \alpha_i - (c_i - e_i t_i) F_i, \qquad
         F_i = -C_i \alpha_i' + k_i \Delta F_{z,i}, \qquad
         \Delta F_{z,i} = -\frac{K_{\phi,i} \phi + C_{\phi,i} p}{T_i} + \frac{h_{rc,i}}{T_i} F_i, \\
         c &= m_s h + m_u (r_w - h_{ra}), \quad c' = m_s h \cos\theta + m_u (r_w - h_{ra}), \quad
@@ -219,7 +246,8 @@ class LateralYawRollLag(LinearModel):
     with alpha_i the kinematic slip angles of :class:`~vehdyn.handling.LateralYawRoll` (with roll
     steer), sigma_i the relaxation lengths, C_i the cornering stiffnesses of the tire law at the
     running axle load and slip ratio (:func:`running_axle_loads`, :func:`running_slip_ratios`),
-    k_i the ply-steer force per unit load transfer of mirrored tires, e_i = dM_y/dF_z of one tire,
+    c_i - e_i t_i the net compliance steer per unit axle force (t_i the law's pneumatic trail at the
+    running load), k_i the ply-steer force per unit load transfer of mirrored tires, e_i = dM_y/dF_z of one tire,
     T_i the tracks, h_rc,i the roll-centre heights, K_phi,i and C_phi,i the axles' roll stiffness
     and damping, R_e the rolling radius. With zero relaxation length the tire lag is that of a
     very short one (1 mm).
@@ -252,21 +280,17 @@ class LateralYawRollLag(LinearModel):
             raise ParameterError(f"vehicle must be a vehdyn Vehicle, got {type(vehicle).__name__}", key="vehicle",
                                  value=vehicle)
         u = linear_model_speed(speed, "LateralYawRollLag")
-        if vehicle.suspension.has_compliance_steer:  # not carried: refused rather than dropped
-            key = next(f"suspension.{a}_{k}_compliance_steer" for a in ("front", "rear")
-                       for k in ("lateral_force", "aligning_moment")
-                       if getattr(vehicle.suspension, f"{a}_{k}_compliance_steer") != 0.0)
-            raise ParameterError(f"{key} is set: LateralYawRollLag does not carry compliance steer (LinearBicycle and "
-                                 f"LateralYawRoll do)", key=key,
-                                 value=getattr(vehicle.suspension, key.partition(".")[2]))
         p = lateral_yaw_roll_parameters(vehicle, gravity=gravity)
         g, s, masses = vehicle.geometry, vehicle.suspension, vehicle.mass
         tires = [tire_for_vehicle(vehicle, axle) if t is None else t
                  for axle, t in (("front", front_tire), ("rear", rear_tire))]
         loads = running_axle_loads(vehicle, u, gravity)
         slips = running_slip_ratios(vehicle, tires, loads, u)
-        (cf, kf, ef), (cr, kr, er) = (_axle_law(t, load, k) for t, load, k in zip(tires, loads, slips))
+        (cf, kf, ef, tf), (cr, kr, er, tr) = (_axle_law(t, load, k) for t, load, k in zip(tires, loads, slips))
         self.cornering_stiffness, self.ply_steer_load_coefficient = (cf, cr), (kf, kr)
+        compliance = tuple(_net_compliance_steer(vehicle, axle, c, t)
+                           for axle, c, t in (("front", cf, tf), ("rear", cr, tr)))
+        self.compliance_steer = compliance
         sigma = [max(x, 1e-3) for x in (vehicle.tires.front_relaxation_length, vehicle.tires.rear_relaxation_length)]
         axis = g.front_roll_centre_height + (g.rear_roll_centre_height - g.front_roll_centre_height) \
             * g.sprung_cg_to_front_axle / g.wheelbase
@@ -309,6 +333,9 @@ class LateralYawRollLag(LinearModel):
         Q_x[2, 2] = -p.roll_damping
         Q_x[2, 3] = -(p.roll_stiffness - pendulum)
         Q_x[3, 2] = 1.0
+        # compliance steer delta_c,i = (c_i - e_i t_i) F_i, quasi-static and explicit in the states
+        # (F_i is the lagged slip's force): it steers the kinematic slip that the tire lag follows
+        S = S - np.array(compliance)[:, None] * F_x
         for i in range(2):
             rate = u / sigma[i]
             Q_x[4 + i] = rate * S[i]

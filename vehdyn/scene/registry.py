@@ -429,7 +429,7 @@ def build_lateral_yaw_roll_lag(drive) -> Setup:
     speed, is derived again in every run (per-scene work is part of the cost)."""
     from vehdyn.handling.lateral_yaw_roll_lag import LateralYawRollLag
 
-    refuse_dropped_terms(drive.vehicle, ("roll_steer",))
+    refuse_dropped_terms(drive.vehicle, ("roll_steer", "compliance_steer"))
     front, rear = tire_laws(drive)
 
     def make():
