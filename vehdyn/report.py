@@ -394,10 +394,11 @@ def write_report(outcomes: list[StudyOutcome], out_dir: str | Path, *, quick: bo
     return atomic_write_text(out_dir / "index.html", "\n".join(parts) + "\n")
 
 
-#: the shipped studies that take longest, longest first (their run time in a report from a fresh
-#: cache, mostly compiling: 20-50 s each on a 2-core machine, the others 1-15 s); a scheduling hint only
-LONGEST_STUDIES = ("fidelity_ladder", "full_vehicle", "minimum_time_lane_change", "abs_braking", "crosswind",
-                   "esc_sine_with_dwell", "tire_fitting", "on_center", "double_lane_change", "off_road")
+#: the shipped studies that take longest, longest first (as measured in ``vehdyn report`` from a fresh
+#: numba cache on 2 processes, much of it compiling; the others take a few seconds each); a scheduling hint only
+LONGEST_STUDIES = ("fidelity_ladder", "minimum_time_lane_change", "full_vehicle", "monte_carlo", "tire_fitting",
+                   "integrator_work_precision", "abs_braking", "rigid_body_tumbling", "active_suspension",
+                   "ride_comfort", "on_center", "esc_sine_with_dwell", "off_road", "articulated_vehicles")
 
 
 def longest_first(paths) -> list:
