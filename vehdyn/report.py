@@ -394,6 +394,33 @@ def write_report(outcomes: list[StudyOutcome], out_dir: str | Path, *, quick: bo
     return atomic_write_text(out_dir / "index.html", "\n".join(parts) + "\n")
 
 
+#: the shipped studies that take longest, longest first (as measured in ``vehdyn report`` from a fresh
+#: numba cache on 2 processes, much of it compiling; the others take a few seconds each); a scheduling hint only
+LONGEST_STUDIES = ("fidelity_ladder", "minimum_time_lane_change", "full_vehicle", "monte_carlo", "tire_fitting",
+                   "integrator_work_precision", "abs_braking", "rigid_body_tumbling", "active_suspension",
+                   "ride_comfort", "on_center", "esc_sine_with_dwell", "off_road", "articulated_vehicles")
+
+
+def longest_first(paths) -> list:
+    """``paths`` in the order to start them on several processes: the studies of :data:`LONGEST_STUDIES`
+    first, in its order, then the others in their given order (a long study started last would
+    keep one process busy after the others have finished).
+
+    Parameters
+    ----------
+    paths : sequence of path-like
+        Study scripts.
+
+    Returns
+    -------
+    list
+        The same paths, reordered.
+    """
+    rank = {name: i for i, name in enumerate(LONGEST_STUDIES)}
+    order = sorted(range(len(paths)), key=lambda i: (rank.get(Path(paths[i]).stem, len(rank)), i))
+    return [paths[i] for i in order]
+
+
 def _run_studies(paths, stage: Path, quick: bool, progress, jobs: int) -> list[StudyOutcome]:
     """The outcomes of ``paths`` in their order: one after another, or on ``jobs`` processes."""
     if jobs <= 1 or len(paths) <= 1:
@@ -407,15 +434,16 @@ def _run_studies(paths, stage: Path, quick: bool, progress, jobs: int) -> list[S
     import multiprocessing
 
     # spawned workers (no forked copies of the parent's state); each imports vehdyn once and runs
-    # whole studies, the page keeps the studies' order
+    # whole studies, the longest first (the processes end together); the page keeps the studies' order
     pool = concurrent.futures.ProcessPoolExecutor(max_workers=min(jobs, len(paths)),
                                                   mp_context=multiprocessing.get_context("spawn"))
     try:
-        futures = {pool.submit(run_study, path, stage, quick): Path(path).stem for path in paths}
-        for done, future in enumerate(concurrent.futures.as_completed(futures)):
+        futures = {path: pool.submit(run_study, path, stage, quick) for path in longest_first(paths)}
+        names = {future: Path(path).stem for path, future in futures.items()}
+        for done, future in enumerate(concurrent.futures.as_completed(names)):
             if progress is not None:
-                progress(done + 1, len(paths), futures[future])
-        outcomes = [future.result() for future in futures]
+                progress(done + 1, len(paths), names[future])
+        outcomes = [futures[path].result() for path in paths]
     except BaseException:
         pool.shutdown(wait=False, cancel_futures=True)
         raise

@@ -208,7 +208,8 @@ def test_background_builds_off_compile_in_the_calling_process(builds, monkeypatc
     model = CoastDown()
     result = _run(model)
     assert result.backend == "compiled" and f"{_background.ENV}=0" in result.backend_reason
-    assert not _background._CHILDREN and not list(Path(_background.build_dir()).glob("*.lock"))
+    folder = Path(_background.build_dir())
+    assert not _background._CHILDREN and not list(folder.glob("*.log")) and not list(folder.glob("*.payload"))
     _check_closed_form(model, result)
 
 
@@ -256,3 +257,44 @@ def test_an_unwritable_build_folder_compiles_in_the_calling_process(builds, tmp_
     result = _run(model)
     assert result.backend == "compiled" and "no background build" in result.backend_reason
     _check_closed_form(model, result)
+
+
+@pytest.mark.skipif(not Path("/proc/locks").exists(), reason="reads the kernel's lock table (Linux)")
+def test_a_compiled_call_waits_for_the_running_build_of_its_code(builds, tmp_path, monkeypatch):
+    """backend="compiled" (and vehdyn compile / warm_up) takes the build lock: while a background build
+    of the same code runs, a compiled call in another process waits on the lock (the kernel lists it as
+    a blocked waiter) instead of compiling the same code at once, then runs on the built cache."""
+    hold = _hold(tmp_path, monkeypatch)
+    model = CoastDown()
+    assert _run(model).backend == "numpy"  # starts the build, held after compiling, before its record
+    key = _key(model)
+    pid = _builder_pid(key)
+    script = ("import sys, numpy as np, vehdyn; sys.path[:0] = {path!r}; from _coast_down import CoastDown; "
+              "from vehdyn.simulation import compiled; m = CoastDown(); print('calling', flush=True); "
+              "r = vehdyn.simulate(m, np.linspace(0, 10, 101), {{'rear_longitudinal_force': 0.0}}, "
+              "x0=[30.0, 0.0], method='RK45', rtol=1e-8, atol=1e-8, backend='compiled'); "
+              "c = m.compiled_rhs(); loop = compiled.integrator(c.rhs, c.key, 'RK45'); "
+              "print(r.backend, sum(loop.stats.cache_misses.values()), float(r.states[0, -1]))").format(path=sys.path)
+    other = subprocess.Popen([sys.executable, "-c", script], env=dict(os.environ), stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+    try:
+        assert other.stdout.readline().strip() == "calling"
+        deadline = time.monotonic() + TIMEOUT
+        while not any(line.split()[1] == "->" and line.split()[5] == str(other.pid)
+                      for line in Path("/proc/locks").read_text().splitlines() if len(line.split()) > 5):
+            assert other.poll() is None, "the compiled call ended while the build held its lock"
+            assert time.monotonic() < deadline, "the compiled call never waited on the build lock"
+            time.sleep(0.05)
+        assert _background.builder(key)[0] == pid  # the build still holds the lock; the call waits
+        hold.unlink()
+        out, err = other.communicate(timeout=TIMEOUT)
+    finally:
+        if other.poll() is None:
+            other.kill()
+            other.wait()
+    assert other.returncode == 0, err
+    backend, misses, v_end = out.split()
+    assert backend == "compiled" and misses == "0"  # the loop loaded from the build's cache: nothing compiled twice
+    assert float(v_end) == pytest.approx(model.closed_form(T, V0)[0][-1], rel=1e-6)
+    log = (Path(_background.build_dir()) / f"{key}.log").read_text()
+    assert log.count("building ") == 1 and log.count("built ") == 1

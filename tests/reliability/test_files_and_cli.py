@@ -444,3 +444,13 @@ def test_report_on_two_processes_equals_the_sequential_report(tmp_path):
         build_report(paths, tmp_path / "c", jobs=0)
     with pytest.raises(SystemExit):
         main(["report", "--studies", str(studies), "--out", str(tmp_path / "d"), "--jobs", "0"])
+
+
+def test_report_processes_start_the_longest_studies_first(tmp_path):
+    """With several processes the studies of LONGEST_STUDIES start first (in its order), the others
+    in their given order; the page keeps the given order (test above)."""
+    from vehdyn.report import LONGEST_STUDIES, longest_first
+
+    paths = [tmp_path / f"{name}.py" for name in ("alpha", LONGEST_STUDIES[2], "beta", LONGEST_STUDIES[0], "gamma")]
+    assert longest_first(paths) == [paths[3], paths[1], paths[0], paths[2], paths[4]]
+    assert longest_first([]) == [] and longest_first(paths[::2]) == paths[::2]

@@ -262,16 +262,18 @@ def simulate(
         else:
             compiled = None
 
-    start = _time.perf_counter()
-    x, counters = _integrate(model, compiled, method, t, inputs, u, x0v, hold, rtol, atol, max_step, first_step,
-                             substeps, check_stability)
-    wall = _time.perf_counter() - start
-    if compiled is not None and key is not None:
-        _background.mark_ready(key, compiled.key, wall)
+    # a compile here holds the code's build lock (no background build of the same code meanwhile)
+    with _background.compiling(key if compiled is not None else None, compiled.key if compiled is not None else ""):
+        start = _time.perf_counter()
+        x, counters = _integrate(model, compiled, method, t, inputs, u, x0v, hold, rtol, atol, max_step, first_step,
+                                 substeps, check_stability)
+        wall = _time.perf_counter() - start
+        _raise_on_nonfinite(model, t, x, method)
+        y = _compiled_outputs(model, compiled, t, x, u) if compiled is not None else None
+        if compiled is not None and key is not None:
+            _background.mark_ready(key, compiled.key, wall)
     _background.learn(model, t, counters.get("nfev", 0))
 
-    _raise_on_nonfinite(model, t, x, method)
-    y = _compiled_outputs(model, compiled, t, x, u) if compiled is not None else None
     if y is None:
         y = _outputs(model, t, x, u)
     if u.ndim < x.ndim:

@@ -28,6 +28,7 @@ folder. Platforms without ``fcntl`` (Windows) compile in the calling process.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
@@ -57,6 +58,7 @@ _DTYPES: dict = {}  # numpy dtype -> its description
 _KEYS: dict = {}  # (id of a compiled model, method) -> (that compiled model, its code key): the latest 256  # code keys that ran compiled in this process
 _CHILDREN: dict = {}  # code key -> Popen of the builds this process started
 _CALLS_PER_SECOND: dict = {}  # model class name -> rhs calls per simulated second (learnt)
+_HOLDING: set = set()  # code keys whose build lock this process holds
 
 
 def enabled() -> bool:
@@ -299,6 +301,44 @@ def _write_record(key: str, data: dict) -> None:
         pass
 
 
+@contextlib.contextmanager
+def compiling(key: str | None, label: str = ""):
+    """Hold ``key``'s build lock while this process compiles its code (``backend="compiled"``,
+    :func:`vehdyn.warm_up`, ``"auto"`` without background builds), as a background build holds it.
+
+    A background build of the same code started meanwhile then leaves it to this process, and one
+    running already is waited for (its cache then loads here instead of compiling the same code
+    twice at once). Nothing is locked when ``key`` is None, its code ran or was built already, this
+    process holds the lock (a builder), or the platform or the build folder does not allow it.
+    """
+    if key is None or key in _READY or key in _HOLDING or record(key) is not None:
+        yield
+        return
+    try:
+        import fcntl
+
+        handle = open(_paths(key)[0], "a+")
+    except (ImportError, OSError):  # Windows, an unwritable build folder: compile unlocked
+        yield
+        return
+    held = False
+    try:
+        fcntl.flock(handle, fcntl.LOCK_EX)  # blocks while a build of the same code runs
+        held = True
+        handle.seek(0)
+        handle.truncate()
+        handle.write(f"{os.getpid()} {time.time()!r} {label}")
+        handle.flush()
+        _HOLDING.add(key)
+        yield
+    finally:
+        _HOLDING.discard(key)
+        if held:  # the text names the holder while it holds the lock only
+            handle.seek(0)
+            handle.truncate()
+        handle.close()  # releases the lock
+
+
 def decide(model, compiled, method: str, t, u, x0) -> tuple[bool, str, str]:
     """Whether an ``"auto"`` call runs compiled now: (compiled, code key, why).
 
@@ -370,6 +410,7 @@ def build(key: str) -> int:
     start = time.time()
     handle.write(f"{os.getpid()} {start!r}")
     handle.flush()
+    _HOLDING.add(key)
     if done.exists():
         _log(f"skipped {key}: already built")
         return 0

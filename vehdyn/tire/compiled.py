@@ -22,6 +22,7 @@ import numpy as np
 from numba.extending import register_jitable
 
 from vehdyn.errors import ParameterError
+from vehdyn.simulation.compiled import compiled_copy, source_stamp
 from vehdyn.tire import _mf_numba, linear
 from vehdyn.tire.linear import LinearTire, linear_tire_law
 from vehdyn.tire.magic_formula import MagicFormula, MFCoefficients, forces_kernel, lateral_force_kernel
@@ -173,8 +174,16 @@ def lateral_or_full_loads(law, fz, kappa, alpha, gamma, vx):
 
 
 register_jitable(**_JIT)(linear_tire_law)
-register_jitable(**_JIT)(tire_law_loads)
-register_jitable(**_JIT)(lateral_or_full_loads)
 
 SOURCE_MODULES = (*_mf_numba.SOURCE_MODULES, linear, sys.modules[__name__])
 """The modules whose source a compiled caller's disk cache is keyed on (editing one recompiles)."""
+
+# The two entry points are compiled once and cached on disk (numba dispatchers named by the source of
+# every module they draw on), not registered for inlining into each caller: every model family (single
+# track, full vehicle, the controllers' loops) then links the same compiled law (numba links a cached
+# callee's LLVM module into the caller without retyping it; LLVM may still inline it), instead of typing
+# and lowering the Magic Formula again per family. The Python functions stay documented above.
+_STAMP = source_stamp(*SOURCE_MODULES)
+tire_law_loads = compiled_copy(tire_law_loads, f"tire_law_loads_{_STAMP}")
+lateral_or_full_loads = compiled_copy(lateral_or_full_loads, f"lateral_or_full_loads_{_STAMP}",
+                                      tire_law_loads=tire_law_loads)
