@@ -174,3 +174,38 @@ def test_numba_zero_camber_loop_agrees_with_the_general_loop(name):
     assert not np.signbit(plus.fz).any()
     out = model.evaluate(*args, np.full(n, -0.0), vx, backend="numba")
     assert np.signbit(out.gamma).all()
+
+
+@pytest.mark.compiled_vs_numpy
+@needs_numba
+@pytest.mark.parametrize("phit", [5e-324, -5e-324, 1e-310, 1e-300, 1e-20])
+def test_turn_slip_near_zero_is_its_limit_on_both_backends(phit):
+    """The residual torque's zeta_7 = (2/pi) acos(M_zp90 / |D_rp|) (Pacejka 2012, eq. 4.103) is a
+    quotient of two terms proportional to phit; hypothesis found phit = 5e-324 (a denormal, one bit
+    of precision) where that quotient is noise and the backends disagreed by 0.117 N m of 80 N m
+    (MF 6.1, F_z 12367 N, camber 0.125 rad, v_x 1 m/s). Below |x| = 1e-8 the quotient is its limit
+    at phit = 0 to the last bit (atan(x) = x (1 - x^2/3)): both backends give the phit = 0 moment."""
+    model = tire("MagicFormula61_Parameters")
+    scale = output_scales(model)["mz"]
+    args = dict(fz=np.array([12367.0, 4000.0]), kappa=np.array([0.0, 0.05]), alpha=np.array([0.0, -0.03]),
+                gamma=np.array([0.125, 0.02]), vx=np.array([1.0, 20.0]), pressure=np.full(2, 208000.0))
+    switches = dict(limits=False, alpha_star=False, turn_slip=True)
+    at_zero = model.evaluate(**args, phit=np.zeros(2), **switches, backend="numpy")["mz"]
+    for backend in ("numpy", "numba"):
+        got = model.evaluate(**args, phit=np.full(2, phit), **switches, backend=backend)["mz"]
+        assert np.all(np.abs(got - at_zero) <= 1e-12 * (np.abs(at_zero) + scale)), (backend, got, at_zero)
+
+
+def test_turn_slip_limit_joins_the_quotient_continuously():
+    """Across the switch to the limit (about |phit| = 1e-8 / (r0 max(|B_drp|, Q_CRP2)), inside the
+    range below) the moment stays on its first-order line M_z(0) + phit dM_z/dphit: the slope from
+    phit = 0 is the same, to the rounding of M_z, at every phit from 1e-11 to 1e-6 1/m."""
+    model = tire("MagicFormula61_Parameters")
+    phit = np.r_[0.0, np.geomspace(1e-11, 1e-6, 300)]
+    n = phit.size
+    out = model.evaluate(fz=np.full(n, 4000.0), kappa=np.zeros(n), alpha=np.zeros(n), gamma=np.full(n, 0.05),
+                         vx=np.full(n, 20.0), pressure=np.full(n, model._c.NOMPRES), phit=phit, limits=False,
+                         alpha_star=False, turn_slip=True, backend="numpy")["mz"]
+    slope = (out[1:] - out[0]) / phit[1:]
+    rounding = 4 * np.spacing(abs(out[0])) / phit[1:]  # the slope's error from rounding M_z
+    assert np.all(np.abs(slope - slope[-1]) <= 1e-4 * abs(slope[-1]) + rounding)

@@ -221,6 +221,11 @@ def aligning_moment(xp, c, s, pure, fy, fx, kxk, gyk, svyk):
         ratio = xp.div(mzp90, xp.abs(drp))
         ratio_at_zero_phit = xp.div(mzp_inf * _TWO_OVER_PI * c.QCRP2 * gyk * xp.abs(1 - s.eps_gamma),
                                     xp.abs(kzgr0))
+        # the limit phit -> 0 (0/0) and where it is exact to the last bit: with x = |b_drp r0 phit|
+        # and |Q_CRP2 r0 phit| below 1e-8, atan(x) = x (1 - x^2/3) is x to 3e-17, and the quotient of
+        # two denormals (phit ~ 5e-324) carries no digit at all (numba and numpy then disagreed by 0.1 %)
+        small = xp.abs(s.phit) * r0 * xp.maximum(xp.abs(b_drp), abs(c.QCRP2)) < 1e-8
+        ratio = xp.where(small, ratio_at_zero_phit, ratio)
         ratio = xp.where(xp.isnan(ratio), ratio_at_zero_phit, ratio)
         ratio = xp.where(xp.isnan(ratio), 1.0, xp.maximum(xp.minimum(ratio, 1.0), -1.0))
         cr = _TWO_OVER_PI * xp.acos(ratio)  # zeta7
