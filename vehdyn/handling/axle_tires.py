@@ -33,6 +33,17 @@ def _wheel_load(vehicle, axle):
     return 0.5 * vehicle.static_axle_loads()[0 if axle == "front" else 1]
 
 
+def _axle_lateral_slope(vehicle, axle, tire, variable):
+    """-2 dF_y,ISO/d(variable) [N/rad] of one wheel at half the static axle load, zero slip and
+    inclination: central differences in ``variable`` ("alpha" or "gamma"), the other held at 0."""
+    law = _law(vehicle, axle, tire)
+    load = _wheel_load(vehicle, axle)
+    step = {"alpha": (_EPS, 0.0), "gamma": (0.0, _EPS)}[variable]
+    plus = law.forces(load, 0.0, step[0], step[1], _SPEED)
+    minus = law.forces(load, 0.0, -step[0] if step[0] else 0.0, -step[1] if step[1] else 0.0, _SPEED)
+    return -2.0 * float(np.asarray(plus.fy) - np.asarray(minus.fy)) / (2 * _EPS)
+
+
 def pneumatic_trail(vehicle, axle: str = "front", tire=None) -> float:
     r"""Pneumatic trail t of an axle's tires: -dM_z/dF_y at zero slip and the static load.
 
@@ -97,10 +108,7 @@ def camber_stiffness(vehicle, axle: str = "front", tire=None) -> float:
     float
         C_gamma [N/rad] (SAE force per SAE inclination).
     """
-    law = _law(vehicle, axle, tire)
-    load = _wheel_load(vehicle, axle)
-    plus, minus = law.forces(load, 0.0, 0.0, _EPS, _SPEED), law.forces(load, 0.0, 0.0, -_EPS, _SPEED)
-    return -2.0 * float(np.asarray(plus.fy) - np.asarray(minus.fy)) / (2 * _EPS)
+    return _axle_lateral_slope(vehicle, axle, tire, "gamma")
 
 
 def cornering_stiffness(vehicle, axle: str = "front", tire=None) -> float:
@@ -127,10 +135,7 @@ def cornering_stiffness(vehicle, axle: str = "front", tire=None) -> float:
     float
         C [N/rad].
     """
-    law = _law(vehicle, axle, tire)
-    load = _wheel_load(vehicle, axle)
-    plus, minus = law.forces(load, 0.0, _EPS, 0.0, _SPEED), law.forces(load, 0.0, -_EPS, 0.0, _SPEED)
-    return -2.0 * float(np.asarray(plus.fy) - np.asarray(minus.fy)) / (2 * _EPS)
+    return _axle_lateral_slope(vehicle, axle, tire, "alpha")
 
 
 def compliance_steer_slope(vehicle, axle: str = "front", tire=None) -> tuple[float, float, float]:
