@@ -37,6 +37,109 @@ _ROWS = (
      _GILLESPIE + " (W_f (r + p) / K_ss)"),
 )
 
+_PACEJKA = "Pacejka 2012, sec. 1.3 and 4.3"
+_AT_SPEED_ROWS = (
+    ("law_cornering_stiffness", "W_f / C*_f - W_r / C*_r - (W_f / C_f - W_r / C_r), C*_i the law's at the static loads",
+     _PACEJKA + "; " + _GILLESPIE),
+    ("aero_load_transfer", "-(W_f / g) dN_f C*_f' / C*_f^2 + (W_r / g) dN_r C*_r' / C*_r^2 (x g), dN_f = -X - Z_f, "
+     "dN_r = X - Z_r, X = (F_D h_s + m g h theta_Z) / (L - m g h c_theta), c_theta = (1/k_sf + 1/k_sr + 2/k_t) / "
+     "(2 L)", "Gillespie 1992, ch. 2 (longitudinal load transfer); " + _PACEJKA + " (load sensitivity)"),
+    ("drag_roll_pitch", "-(M / L)(1 / C*_f + 1 / C*_r) g, M = -RG X L + theta (T_f dN_yf + T_r dN_yr) per a_y",
+     "Milliken 1995, ch. 18 (roll moments); this module's derivation (issue 28, NOTES B.3)"),
+    ("ply_steer_load_transfer", "(-k_f dN_yf / C*_f + k_r dN_yr / C*_r) g, k_i = dF_y0,i/d(dN_yi) of the axle's "
+     "two wheels (ply steer, conicity; one the law's mirror image)", _GILLESPIE + "; " + _PACEJKA),
+    ("rolling_resistance_couple", "-(M / L)(1 / C*_f + 1 / C*_r) g, M = -(T_f f'_f dN_yf + T_r f'_r dN_yr), "
+     "f'_i = -dM_y/dF_z / R_e", "Gillespie 1992, ch. 3 (rolling resistance); " + _PACEJKA),
+    ("front_longitudinal_force_steer", "-F_xf (L / u^2 + K*) g / C*_f, F_xf = p (F_D + R_f + R_r) - R_f, "
+     "R_i = -2 M_y,i / R_e", "Gillespie 1992, ch. 6 (steady-state cornering)"),
+    ("ply_steer_steer_couple", "-(M / L)(1 / C*_f + 1 / C*_r) g, M = -(T_f / 2)(L / u^2 + K*)(F_y0,fl - F_y0,fr) per "
+     "a_y: the front wheels' zero-slip forces (opposite on mirror-image tires) turned by the steer",
+     _PACEJKA + " (ply steer); Gillespie 1992, ch. 6"),
+    ("drive_slip", "-(W_f / C*_f^2)(C_f,kappa - C*_f) + (W_r / C*_r^2)(C_r,kappa - C*_r), C_i,kappa the law's at "
+     "the slip ratio of the axle's F_x", _PACEJKA + " (combined slip)"),
+)
+
+
+def _at_speed_rows(vehicle, speed, gravity, tires):
+    """The full vehicle's speed- and law-dependent rows [rad/g] (:func:`understeer_budget`), by name."""
+    from vehdyn.handling.axle_tires import cornering_stiffness, wheel_loads, wheel_slip_ratio
+    from vehdyn.handling.roll_balance import steady_roll
+
+    m, G, s, t, aero = vehicle.mass, vehicle.geometry, vehicle.suspension, vehicle.tires, vehicle.aero
+    L = G.wheelbase
+    W = vehicle.static_axle_loads(gravity)  # the axle forces' distribution F_i = W_i a_y / g
+    T = (G.front_track, G.rear_track)
+    axles = ("front", "rear")
+    law = tuple(None if tires is None else tires[i] for i in range(2))
+    step = 20.0  # [N] load step of the load derivatives (central differences)
+
+    def stiffness(i, wheel_load, kappa=0.0):
+        return cornering_stiffness(vehicle, axles[i], law[i], wheel_load=wheel_load, slip_ratio=kappa, speed=speed)
+
+    def wheel(i, side, wheel_load, kappa=0.0):
+        return wheel_loads(vehicle, axles[i], side, wheel_load, kappa, 0.0, 0.0, speed, law[i])
+
+    # aerodynamic loads: drag F_D at the sprung CG, lift Z_i on the axles; the pitch theta of the springs
+    # and tires in series, with the gravity moment m g h theta of the pitched body
+    q = 0.5 * aero.air_density * aero.frontal_area * speed**2
+    drag, lift = q * aero.drag_coefficient, (q * aero.front_lift_coefficient, q * aero.rear_lift_coefficient)
+    e = (1 / s.front_spring_rate + 1 / t.vertical_stiffness, 1 / s.rear_spring_rate + 1 / t.vertical_stiffness)
+    c_theta = (e[0] + e[1]) / (2 * L)
+    theta_lift = (lift[0] * e[0] - lift[1] * e[1]) / (2 * L)
+    X = (drag * m.sprung_cg_height + m.mass * gravity * m.cg_height * theta_lift) / (L - m.mass * gravity
+                                                                                   * m.cg_height * c_theta)
+    theta = c_theta * X + theta_lift  # nose up [rad]
+    N = (W[0] - X - lift[0], W[1] + X - lift[1])  # the running axle loads
+
+    static = tuple(stiffness(i, W[i] / 2) for i in range(2))
+    C = tuple(stiffness(i, N[i] / 2) for i in range(2))  # the law's, at the running loads
+    file_C = (t.front_cornering_stiffness, t.rear_cornering_stiffness)
+    K_law = (W[0] / C[0] - W[1] / C[1]) / gravity  # [rad/(m/s^2)]
+    rows = {"law_cornering_stiffness": W[0] / static[0] - W[1] / static[1] - (W[0] / file_C[0] - W[1] / file_C[1]),
+            "aero_load_transfer": W[0] / C[0] - W[1] / C[1] - (W[0] / static[0] - W[1] / static[1])}
+
+    roll = steady_roll(vehicle, gravity=gravity)
+    transfer = roll.load_transfer  # dN_yi per a_y, the outer wheels' gain
+    flexibility = 1 / C[0] + 1 / C[1]
+    yaw = -roll.roll_gradient * X * L + theta * (T[0] * transfer[0] + T[1] * transfer[1])
+    rows["drag_roll_pitch"] = -gravity * yaw / L * flexibility
+
+    # the axle's force at zero slip under the transfer (SAE, a right turn: the left wheel gains dN_y)
+    k, rolling, rolling_slope = [], [], []
+    for i in range(2):
+        half = N[i] / 2
+        fy0 = [(-wheel(i, side, half + step)[1] + wheel(i, side, half - step)[1]) / (2 * step)
+               for side in ("left", "right")]  # dF_y,SAE/dF_z of each wheel
+        k.append(fy0[0] - fy0[1])
+        my = [wheel(i, "left", half + sign * step)[2] for sign in (1, 0, -1)]
+        rolling.append(-2 * my[1] / t.rolling_radius)  # R_i [N], both wheels
+        rolling_slope.append(-(my[0] - my[2]) / (2 * step) / t.rolling_radius)  # f'_i [-]
+    rows["ply_steer_load_transfer"] = gravity * (-k[0] * transfer[0] / C[0] + k[1] * transfer[1] / C[1])
+    couple = -(T[0] * rolling_slope[0] * transfer[0] + T[1] * rolling_slope[1] * transfer[1])
+    rows["rolling_resistance_couple"] = -gravity * couple / L * flexibility
+
+    # the axles' longitudinal forces in the steady run: the drive torque (share p in front) against drag
+    # and rolling resistance; the free-rolling or driven front wheels' F_x turns with the steer
+    p = vehicle.driveline.front_drive_fraction
+    thrust = drag + rolling[0] + rolling[1]
+    fx = (p * thrust - rolling[0], (1 - p) * thrust - rolling[1])
+    steer = L / speed**2 + K_law  # the steer angle per a_y [rad/(m/s^2)]
+    rows["front_longitudinal_force_steer"] = -gravity * fx[0] * steer / C[0]
+    # the front wheels' forces at zero slip (SAE) along the steered wheels' x: a yaw couple
+    ply = [-wheel(0, side, N[0] / 2)[1] for side in ("left", "right")]
+    rows["ply_steer_steer_couple"] = gravity * (T[0] / 2) * steer * (ply[0] - ply[1]) / L * flexibility
+    kappa = []
+    for i in range(2):
+        try:
+            kappa.append(wheel_slip_ratio(vehicle, axles[i], N[i] / 2, fx[i] / 2, speed, law[i]))
+        except ParameterError as error:
+            raise ParameterError(f"understeer_budget at speed = {speed} m/s needs the {axles[i]} tire law's "
+                                 f"longitudinal force ({fx[i] / 2:.4g} N per wheel to hold the speed): {error}",
+                                 key="tires", value=law[i]) from error
+    C_kappa = tuple(stiffness(i, N[i] / 2, kappa[i]) for i in range(2))
+    rows["drive_slip"] = -W[0] * (C_kappa[0] - C[0]) / C[0]**2 + W[1] * (C_kappa[1] - C[1]) / C[1]**2
+    return rows
+
 
 def vehicle_roll_understeer(vehicle, gravity: float = GRAVITY, tires=None) -> tuple[float, float]:
     r"""The roll-steer and camber-thrust terms of the understeer gradient [rad/g].
@@ -205,13 +308,21 @@ def understeer_budget(vehicle, speed=None, *, gravity: float = GRAVITY, tires=No
         "steering_system_compliance": (steering.caster_trail + steering.pneumatic_trail) * W_f
         / vehicle.steering.road_wheel_stiffness,
     }
-    frame = pd.DataFrame([{"term": name, "rad_per_g": float(values[name]), "deg_per_g": float(np.rad2deg(values[name])),
-                           "formula": formula, "reference": reference,
-                           "road_wheel": name != "steering_system_compliance"}
-                          for name, formula, reference in _ROWS]).set_index("term")
-    road = float(frame.loc[frame["road_wheel"], "deg_per_g"].sum())
+    records = [{"term": name, "rad_per_g": float(values[name]), "deg_per_g": float(np.rad2deg(values[name])),
+                "formula": formula, "reference": reference, "road_wheel": name != "steering_system_compliance",
+                "at_speed": False} for name, formula, reference in _ROWS]
+    if speed is not None:
+        rows = _at_speed_rows(vehicle, float(speed), gravity, tires)
+        records += [{"term": name, "rad_per_g": float(rows[name]), "deg_per_g": float(np.rad2deg(rows[name])),
+                     "formula": formula, "reference": reference, "road_wheel": True, "at_speed": True}
+                    for name, formula, reference in _AT_SPEED_ROWS]
+    frame = pd.DataFrame(records).set_index("term")
+    linear = ~frame["at_speed"]
+    road = float(frame.loc[linear & frame["road_wheel"], "deg_per_g"].sum())
+    at_speed = None if speed is None else road + float(frame.loc[frame["at_speed"], "deg_per_g"].sum())
     frame.attrs.update(road_wheel_total_deg_per_g=road,
-                       hand_wheel_total_deg_per_g=float(frame["deg_per_g"].sum()),
+                       hand_wheel_total_deg_per_g=float(frame.loc[linear, "deg_per_g"].sum()),
+                       at_speed_total_deg_per_g=at_speed,
                        vehicle=vehicle.name, speed=None if speed is None else float(speed))
     return frame
 
