@@ -200,7 +200,7 @@ def compliance_steer_slope(vehicle, axle: str = "front", tire=None) -> tuple[flo
 
 def wheel_loads(vehicle, axle: str, side: str, fz, kappa=0.0, alpha=0.0, gamma=0.0, speed: float = _SPEED,
                 tire=None) -> tuple[float, float, float]:
-    r"""ISO-W (F_x, F_y, M_y) of one wheel of an axle: the law's own tire or its mirror image, as the full vehicle has it.
+    r"""ISO-W (F_x, F_y, M_y) of one wheel of an axle: the law's own tire or its mirror image.
 
     .. math::
 

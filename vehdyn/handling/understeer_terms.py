@@ -49,7 +49,7 @@ _AT_SPEED_ROWS = (
     ("ply_steer_load_transfer", "(-k_f dN_yf / C*_f + k_r dN_yr / C*_r) g, k_i = dF_y0,i/d(dN_yi) of the axle's "
      "two wheels (ply steer, conicity; one the law's mirror image)", _GILLESPIE + "; " + _PACEJKA),
     ("rolling_resistance_couple", "-(M / L)(1 / C*_f + 1 / C*_r) g, M = -(T_f f'_f dN_yf + T_r f'_r dN_yr), "
-     "f'_i = -dM_y/dF_z / R_e", "Gillespie 1992, ch. 3 (rolling resistance); " + _PACEJKA),
+     "f'_i = -dM_y/dF_z / R_e", "Gillespie 1992, ch. 4 (rolling resistance); " + _PACEJKA),
     ("front_longitudinal_force_steer", "-F_xf (L / u^2 + K*) g / C*_f, F_xf = p (F_D + R_f + R_r) - R_f, "
      "R_i = -2 M_y,i / R_e", "Gillespie 1992, ch. 6 (steady-state cornering)"),
     ("ply_steer_steer_couple", "-(M / L)(1 / C*_f + 1 / C*_r) g, M = -(T_f / 2)(L / u^2 + K*)(F_y0,fl - F_y0,fr) per "
@@ -234,31 +234,101 @@ def understeer_budget(vehicle, speed=None, *, gravity: float = GRAVITY, tires=No
     none of vehdyn's models applies M_z to the yaw balance (it would add +0.24 to +0.39 deg/g to the
     shipped cars in every rung).
 
+    **At a speed** (``speed`` given) the rows that the full vehicle (:class:`vehdyn.full_vehicle.FullVehicle`)
+    adds with its tire laws and its aerodynamics follow (``at_speed`` True), each from the laws'
+    own forces and moments by central differences (:mod:`vehdyn.handling.axle_tires`) at the
+    *running* axle loads N_i = W_i + dN_i (the static loads moved by drag and lift). W_i stay the
+    static loads: the axle forces F_i = W_i a_y / g follow from the lateral and yaw balance alone.
+    With C*_i the law's axle cornering stiffness at N_i, K* = (W_f / C*_f - W_r / C*_r) / g, RG the
+    roll per unit a_y and dN_yi the per-axle lateral load transfer per unit a_y of
+    :func:`vehdyn.handling.steady_roll`, T_i the tracks, R_e the rolling radius, u the speed:
+
+    .. math::
+
+        K_{C} &= \frac{W_f}{C^0_f} - \frac{W_r}{C^0_r} - \left(\frac{W_f}{C_f} - \frac{W_r}{C_r}\right)
+            \quad (C^0_i \text{ the law's at the static loads}) \\
+        K_{aero} &= \frac{W_f}{C^*_f} - \frac{W_r}{C^*_r} - \left(\frac{W_f}{C^0_f} - \frac{W_r}{C^0_r}\right)
+            \approx -\frac{W_f\, dN_f\, C'_f}{C_f^2} + \frac{W_r\, dN_r\, C'_r}{C_r^2}, \quad
+            dN_f = -X - Z_f,\ dN_r = X - Z_r \\
+        X &= \frac{F_D h_s + m g h \theta_Z}{L - m g h c_\theta}, \quad
+            c_\theta = \frac{1/k_{sf} + 1/k_{sr} + 2/k_t}{2 L}, \quad \theta = c_\theta X + \theta_Z \\
+        K_{drag\,roll} &= -\frac{g M_1}{L}\left(\frac{1}{C^*_f} + \frac{1}{C^*_r}\right), \quad
+            M_1 = -RG\, X L + \theta (T_f dN_{yf} + T_r dN_{yr}) \\
+        K_{ply} &= g\left(-\frac{k_f dN_{yf}}{C^*_f} + \frac{k_r dN_{yr}}{C^*_r}\right), \quad
+            k_i = \frac{\partial (F_{y0,i,outer} + F_{y0,i,inner})}{\partial\, dN_{yi}} \\
+        K_{rr} &= -\frac{g M_2}{L}\left(\frac{1}{C^*_f} + \frac{1}{C^*_r}\right), \quad
+            M_2 = -(T_f f'_f dN_{yf} + T_r f'_r dN_{yr}), \quad
+            f'_i = -\frac{1}{R_e}\frac{\partial M_y}{\partial F_z} \\
+        K_{F_x\delta} &= -\frac{g F_{xf}}{C^*_f}\left(\frac{L}{u^2} + K^*\right), \quad
+            F_{xf} = p (F_D + R_f + R_r) - R_f, \quad R_i = -\frac{2 M_{y,i}}{R_e} \\
+        K_{ply\,\delta} &= -\frac{g M_3}{L}\left(\frac{1}{C^*_f} + \frac{1}{C^*_r}\right), \quad
+            M_3 = -\frac{T_f}{2}\left(\frac{L}{u^2} + K^*\right)(F_{y0,fl} - F_{y0,fr}) \\
+        K_{\kappa} &= -\frac{W_f}{C^{*2}_f}(C_{f,\kappa} - C^*_f) + \frac{W_r}{C^{*2}_r}(C_{r,\kappa} - C^*_r)
+
+    * ``law_cornering_stiffness``: the law's cornering stiffness at the static loads against the
+      file's ``tires.*_cornering_stiffness`` (the file's numbers are rounded or fitted).
+    * ``aero_load_transfer``: drag F_D = rho c_x A u^2 / 2 at the sprung CG height h_s and lift Z_i
+      move the axle loads (X the longitudinal transfer with the gravity moment of the pitched body,
+      springs k_si and tires k_t in series; theta_Z the lift's pitch) and so the law's cornering
+      stiffnesses (first order: the load sensitivity C'_i = dC_i / dN_i).
+    * ``drag_roll_pitch``: the drag acting on the rolled body (its CG carried h_s phi out of the turn
+      from the drive forces at the ground yaws the car out of the turn) less the pitch's projection
+      of the roll moment onto the yaw axis (Milliken 1995, ch. 18).
+    * ``ply_steer_load_transfer``: the first-order part of the lateral load transfer row: the
+      zero-slip lateral forces F_y0 of a law with ply steer or conicity change with the load, and
+      the axle's two wheels are mirror images (:func:`vehdyn.handling.axle_tires.wheel_loads`), so
+      the axle gains a force k_i dN_yi at zero slip (Pacejka 2012, sec. 4.3.2).
+    * ``rolling_resistance_couple``: equal drive torques on the two wheels of an axle leave the
+      outer (loaded) wheel with more rolling resistance: a yaw couple out of the turn.
+    * ``front_longitudinal_force_steer``: the front axle's longitudinal force (rolling resistance;
+      with a front drive share p = ``driveline.front_drive_fraction``, its drive) turned by the steer
+      angle (L / u^2 + K*) a_y into a lateral force.
+    * ``ply_steer_steer_couple``: the front wheels' opposite zero-slip forces of mirror-image tires,
+      turned by the steer, make a yaw couple.
+    * ``drive_slip``: the slip ratio at which each axle's law makes its longitudinal force lowers
+      (combined slip) or raises its cornering stiffness.
+
+    Their sum with the road-wheel rows, ``attrs["at_speed_total_deg_per_g"]``, is the full
+    vehicle's gradient from its own steady trims (Richardson-extrapolated from a_y = +-0.1 and
+    +-0.2 m/s^2): the three shipped cars with their Magic Formula tires and drag, 10 to 30 m/s,
+    within 0.05 % (what is left is of second order in the drag, e.g. X^2 in the pitch and the
+    drag's transfer of the roll moment; ``tests/handling/test_understeer_budget_at_speed.py``).
+    With linear tires (``LinearTire.from_vehicle``: load-proportional cornering stiffness, no
+    rolling resistance, no ply steer, no combined slip) the law's rows are 0 (to round-off) and only
+    the drag rows remain: ``aero_load_transfer`` (C' = C / F_z0) and ``drag_roll_pitch``. The rows
+    are those of the full vehicle; the linear rungs have none of them, the single track some
+    (the fidelity ladder judges a rung by its error against the full vehicle).
+
     Parameters
     ----------
     vehicle : Vehicle
         The vehicle.
     speed : float, optional
-        Forward speed [m/s]. The linear budget does not depend on it; given, it is checked and kept
-        in ``attrs`` (the full vehicle's speed-dependent terms, drag and rolling resistance, are not
-        rows: compare at low speed or without drag).
+        Forward speed [m/s]. The linear rows do not depend on it; given, the full vehicle's
+        speed- and law-dependent rows are added (``at_speed`` True).
     gravity : float, optional
         g [m/s^2].
     tires : tuple of TireModel, optional
-        (front, rear) laws for the camber stiffness and the pneumatic trails (default the vehicle's).
+        (front, rear) laws for the camber stiffness, the pneumatic trails and the rows at a speed
+        (default the vehicle's own, :func:`vehdyn.tire.tire_for_vehicle`: the Magic Formula of its
+        ``.tir`` where it has one).
 
     Returns
     -------
     pandas.DataFrame
         Index: the term; columns ``rad_per_g`` [rad/g], ``deg_per_g`` [deg/g], ``formula``,
-        ``reference``, ``road_wheel`` (bool: in the road-wheel gradient). ``attrs``:
-        ``road_wheel_total_deg_per_g``, ``hand_wheel_total_deg_per_g`` [deg/g], ``vehicle``, ``speed``.
+        ``reference``, ``road_wheel`` (bool: in the road-wheel gradient), ``at_speed`` (bool: a row
+        of the full vehicle at ``speed``). ``attrs``: ``road_wheel_total_deg_per_g`` (the linear
+        road-wheel rows, = :func:`vehdyn.handling.understeer_gradient_deg_per_g`),
+        ``hand_wheel_total_deg_per_g``, ``at_speed_total_deg_per_g`` (the road-wheel rows and the
+        rows at the speed; None without a speed) [deg/g], ``vehicle``, ``speed`` [m/s].
 
     Raises
     ------
     ParameterError
-        For a speed that is not a positive number, or a compliance without effective cornering
-        stiffness (naming the field).
+        For a speed that is not a positive number, a compliance without effective cornering
+        stiffness (naming the field), or (at a speed) a tire law that cannot make the longitudinal
+        force that holds the speed (``tires``).
 
     References
     ----------
@@ -272,6 +342,9 @@ def understeer_budget(vehicle, speed=None, *, gravity: float = GRAVITY, tires=No
     >>> budget = understeer_budget(vehdyn.load_vehicle("sedan"))
     >>> round(budget.attrs["road_wheel_total_deg_per_g"], 4)
     0.2998
+    >>> at_speed = understeer_budget(vehdyn.load_vehicle("sedan"), speed=20.0)
+    >>> round(at_speed.attrs["at_speed_total_deg_per_g"], 3)
+    0.363
     """
     import pandas as pd
 
