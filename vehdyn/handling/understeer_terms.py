@@ -403,6 +403,10 @@ def understeer_budget(vehicle, speed=None, *, gravity: float = GRAVITY, tires=No
 def plot_understeer_budget(budget, ax=None, measured=None):
     """Horizontal bars of an understeer budget in the textbook's form (understeer to the right).
 
+    The linear rows blue (understeer) and red (oversteer), the hand-wheel-only row pale, the rows at
+    a speed cyan and orange; the road-wheel (dashed), hand-wheel (dotted) and at-speed (dash-dotted)
+    totals as vertical lines.
+
     Parameters
     ----------
     budget : pandas.DataFrame
@@ -426,17 +430,22 @@ def plot_understeer_budget(budget, ax=None, measured=None):
         ax = axes[0, 0]
     names = list(budget.index)
     values = budget["deg_per_g"].to_numpy()
-    colours = [to_rgba("tab:blue" if v >= 0 else "tab:red", 1.0 if road else 0.45)
-               for v, road in zip(values, budget["road_wheel"])]
+    at_speed = budget["at_speed"].to_numpy() if "at_speed" in budget else np.zeros(len(names), bool)
+    colours = [to_rgba(("tab:cyan" if v >= 0 else "tab:orange") if fast else ("tab:blue" if v >= 0 else "tab:red"),
+                       1.0 if road else 0.45) for v, road, fast in zip(values, budget["road_wheel"], at_speed)]
     y = np.arange(len(names))[::-1]
     ax.barh(y, values, color=colours)
-    ax.set_yticks(y, [n.replace("_", " ") + ("" if r else " (hand wheel)") for n, r in zip(names,
-                                                                                       budget["road_wheel"])])
+    labels = [n.replace("_", " ") + ("" if r else " (hand wheel)") + (" (at speed)" if fast else "")
+              for n, r, fast in zip(names, budget["road_wheel"], at_speed)]
+    ax.set_yticks(y, labels)
     ax.axvline(0.0, color="k", lw=0.8)
     road = budget.attrs["road_wheel_total_deg_per_g"]
     ax.axvline(road, color="k", ls="--", label=f"road-wheel total {road:.3f} deg/g")
     hand = budget.attrs["hand_wheel_total_deg_per_g"]
     ax.axvline(hand, color="0.5", ls=":", label=f"hand-wheel total {hand:.3f} deg/g")
+    total = budget.attrs.get("at_speed_total_deg_per_g")
+    if total is not None:
+        ax.axvline(total, color="k", ls="-.", label=f"at {budget.attrs['speed']:g} m/s {total:.3f} deg/g")
     for k, (label, value) in enumerate((measured or {}).items()):
         ax.axvline(value, color=f"C{2 + k}", lw=1.0, alpha=0.8, label=f"{label} {value:.3f}")
     ax.set_xlabel("understeer gradient [deg/g] (understeer +)")
