@@ -211,7 +211,7 @@ def run(study: Study) -> None:
         "drag's longitudinal load transfer through the load sensitivity, drag and pitch with the roll, the tires' "
         "ply steer under the load transfer and turned by the steer, the rolling-resistance couple, the front "
         "rolling resistance turned by the steer and the drive slip. Their total is the full vehicle's measured "
-        f"gradient within {worst:.1e} of it for the three cars (table at_speed_budget). The fourth panel switches "
+        f"gradient within {worst:.1e} (relative) for the three cars (table at_speed_budget). The fourth panel switches "
         "every term on (roll steer 0.08 / -0.04 rad/rad, "
         "camber gains 0.6 / 0.4 rad/m, compliance steer -1e-6 / 0.5e-6 rad/N and 2e-5 / 1e-5 rad/(N m)); the full "
         "vehicle and the single track with load transfer carry them all (linear tires with the law's camber "

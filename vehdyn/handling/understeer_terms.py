@@ -328,7 +328,8 @@ def understeer_budget(vehicle, speed=None, *, gravity: float = GRAVITY, tires=No
     ParameterError
         For a speed that is not a positive number, a compliance without effective cornering
         stiffness (naming the field), or (at a speed) a tire law that cannot make the longitudinal
-        force that holds the speed (``tires``).
+        force that holds the speed (``tires``), or a vehicle without a steady roll
+        (:func:`vehdyn.handling.steady_roll`).
 
     References
     ----------
