@@ -43,6 +43,21 @@ def _linear_gradient(model):
     return r, ay
 
 
+def full_vehicle_gradient(model, speed, quick):
+    """The full vehicle's gradient from its own steady trims at ``speed`` [deg/g] (:func:`_richardson`)."""
+    L = model.vehicle.wheelbase
+
+    def k(A):
+        s = []
+        for a in (A, -A):
+            x0, u0 = model.trim(speed, lateral_acceleration=a)
+            s.append(u0[model.index("front_steer_angle", "inputs")]
+                     - L * x0[model.index("yaw_rate")] / x0[model.index("longitudinal_velocity")])
+        return (s[0] - s[1]) / (2 * A)
+
+    return _richardson(k, quick) * DEG_PER_G
+
+
 def measured_gradients(vehicle, quick):
     """{rung: gradient [deg/g]} of the rungs that can take the vehicle, at SPEED."""
     from vehdyn.full_vehicle import FullVehicle
@@ -63,14 +78,7 @@ def measured_gradients(vehicle, quick):
         return _richardson(k, quick) * DEG_PER_G
 
     def full_vehicle(model):
-        def k(A):
-            s = []
-            for a in (A, -A):
-                x0, u0 = model.trim(SPEED, lateral_acceleration=a)
-                s.append(u0[model.index("front_steer_angle", "inputs")]
-                         - L * x0[model.index("yaw_rate")] / x0[model.index("longitudinal_velocity")])
-            return (s[0] - s[1]) / (2 * A)
-        return _richardson(k, quick) * DEG_PER_G
+        return full_vehicle_gradient(model, SPEED, quick)
 
     out["SingleTrack+roll"] = single_track(handling.SingleTrack(vehicle, lateral_load_transfer=True, roll=True))
     no_drag = vehicle.replace(aero__drag_coefficient=0.0)
@@ -118,20 +126,11 @@ def at_speed_rows(vehicle, speeds):
     (Richardson-extrapolated from +-0.1 and +-0.2 m/s^2 in both modes: the comparison is at the 1e-4 level)."""
     from vehdyn.full_vehicle import FullVehicle
 
-    L = vehicle.wheelbase
     model = FullVehicle(vehicle, tire_lag=False)
     rows = []
     for speed in speeds:
-        def k(A):
-            s = []
-            for a in (A, -A):
-                x0, u0 = model.trim(speed, lateral_acceleration=a)
-                s.append(u0[model.index("front_steer_angle", "inputs")]
-                         - L * x0[model.index("yaw_rate")] / x0[model.index("longitudinal_velocity")])
-            return (s[0] - s[1]) / (2 * A)
-
         budget = handling.understeer_budget(vehicle, speed)
-        measured = _richardson(k, False) * DEG_PER_G
+        measured = full_vehicle_gradient(model, speed, False)
         total = budget.attrs["at_speed_total_deg_per_g"]
         rows.append({"vehicle": vehicle.name, "speed_m_per_s": speed,
                      "road_wheel_total": budget.attrs["road_wheel_total_deg_per_g"],

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import vehdyn
+from tests.handling.test_understeer_budget import _full_vehicle_gradient  # Richardson from +-0.1, +-0.2 m/s^2
 from vehdyn import ParameterError
 from vehdyn.handling import understeer_budget, understeer_gradient_deg_per_g
 from vehdyn.tire import LinearTire, MagicFormula, tire_for_vehicle
@@ -27,25 +28,10 @@ LAW_ROWS = ["law_cornering_stiffness", "ply_steer_load_transfer", "rolling_resis
             "front_longitudinal_force_steer", "ply_steer_steer_couple", "drive_slip"]
 
 
-def _gradient(model, speed):
-    """The full vehicle's understeer gradient from its steady trims [deg/g] (Richardson, module docstring)."""
-    L = model.vehicle.wheelbase
-
-    def k(A):
-        val = []
-        for a in (A, -A):
-            x0, u0 = model.trim(speed, lateral_acceleration=a)
-            val.append(u0[model.index("front_steer_angle", "inputs")]
-                       - L * x0[model.index("yaw_rate")] / x0[model.index("longitudinal_velocity")])
-        return (val[0] - val[1]) / (2 * A)
-
-    return (4 * k(0.1) - k(0.2)) / 3 * GRAVITY * DEG
-
-
 def _measure(vehicle, speed, tires=None):
     from vehdyn.full_vehicle import FullVehicle
 
-    return _gradient(FullVehicle(vehicle, *(tires or ()), tire_lag=False), speed)
+    return _full_vehicle_gradient(FullVehicle(vehicle, *(tires or ()), tire_lag=False), speed)
 
 
 def _linear(vehicle):
