@@ -208,8 +208,8 @@ def understeer_budget(vehicle, speed=None, *, gravity: float = GRAVITY, tires=No
     * ``weight_distribution``: W_f / C_f - W_r / C_r.
     * ``lateral_load_transfer``: the tires' load sensitivity under the transfer; Gillespie's term
       is quadratic in the load transfer, so 0 in the linear limit (a_y -> 0) in which the gradient
-      is defined (a law with ply steer or conicity adds a first-order part at the static loads; not
-      in the file's linear model).
+      is defined (a law with ply steer or conicity adds a first-order part: not in the file's linear
+      model; the row ``ply_steer_load_transfer`` at a speed).
     * ``camber_thrust``: camber from roll and camber gains through the law's camber stiffness
       (:func:`vehicle_roll_understeer`).
     * ``roll_steer``: (eps_f - eps_r) RG.
