@@ -10,11 +10,12 @@ gradient each rung measures from its own steady states at 20 m/s (central differ
 delta - L r / u at a_y = +-0.1 and +-0.2 m/s^2, Richardson-extrapolated; one difference at
 +-0.1 m/s^2 in quick mode): the linear rungs carry the file's terms exactly; the nonlinear rungs
 add what their tire law and their speed add (the law's cornering stiffness at the running loads,
-the load transfer of the drag and of the drive force, rolling resistance), which the file's linear
-budget does not have. A fourth budget, the sedan with roll steer, camber gains and compliance
-steer, shows every row, with the gradients of the two rungs that carry them all (the full vehicle and
-the single track with load transfer, linear tires with the law's camber stiffness and trail at the
-static loads, no drag).
+the load transfer of the drag and of the drive force, rolling resistance, ply steer). The budget at
+the speed has those as rows of the full vehicle, and their total is set beside the full vehicle's
+gradient with its own Magic Formula tires and drag (20 m/s; 10, 20 and 30 m/s in the full run).
+A fourth budget, the sedan with roll steer, camber gains and compliance steer, shows every row,
+with the gradients of the two rungs that carry them all (the full vehicle and the single track with
+load transfer, linear tires with the law's camber stiffness and trail at the static loads, no drag).
 """
 
 import numpy as np
@@ -42,6 +43,21 @@ def _linear_gradient(model):
     return r, ay
 
 
+def full_vehicle_gradient(model, speed, quick):
+    """The full vehicle's gradient from its own steady trims at ``speed`` [deg/g] (:func:`_richardson`)."""
+    L = model.vehicle.wheelbase
+
+    def k(A):
+        s = []
+        for a in (A, -A):
+            x0, u0 = model.trim(speed, lateral_acceleration=a)
+            s.append(u0[model.index("front_steer_angle", "inputs")]
+                     - L * x0[model.index("yaw_rate")] / x0[model.index("longitudinal_velocity")])
+        return (s[0] - s[1]) / (2 * A)
+
+    return _richardson(k, quick) * DEG_PER_G
+
+
 def measured_gradients(vehicle, quick):
     """{rung: gradient [deg/g]} of the rungs that can take the vehicle, at SPEED."""
     from vehdyn.full_vehicle import FullVehicle
@@ -62,14 +78,7 @@ def measured_gradients(vehicle, quick):
         return _richardson(k, quick) * DEG_PER_G
 
     def full_vehicle(model):
-        def k(A):
-            s = []
-            for a in (A, -A):
-                x0, u0 = model.trim(SPEED, lateral_acceleration=a)
-                s.append(u0[model.index("front_steer_angle", "inputs")]
-                         - L * x0[model.index("yaw_rate")] / x0[model.index("longitudinal_velocity")])
-            return (s[0] - s[1]) / (2 * A)
-        return _richardson(k, quick) * DEG_PER_G
+        return full_vehicle_gradient(model, SPEED, quick)
 
     out["SingleTrack+roll"] = single_track(handling.SingleTrack(vehicle, lateral_load_transfer=True, roll=True))
     no_drag = vehicle.replace(aero__drag_coefficient=0.0)
@@ -111,6 +120,25 @@ def every_term_gradients(vehicle, quick):
     return out
 
 
+def at_speed_rows(vehicle, speeds):
+    """[row] of the at-speed budget (the full vehicle's speed- and law-dependent rows, its own Magic Formula
+    tires, drag) beside the gradient the full vehicle measures from its own steady trims at each speed
+    (Richardson-extrapolated from +-0.1 and +-0.2 m/s^2 in both modes: the comparison is at the 1e-4 level)."""
+    from vehdyn.full_vehicle import FullVehicle
+
+    model = FullVehicle(vehicle, tire_lag=False)
+    rows = []
+    for speed in speeds:
+        budget = handling.understeer_budget(vehicle, speed)
+        measured = full_vehicle_gradient(model, speed, False)
+        total = budget.attrs["at_speed_total_deg_per_g"]
+        rows.append({"vehicle": vehicle.name, "speed_m_per_s": speed,
+                     "road_wheel_total": budget.attrs["road_wheel_total_deg_per_g"],
+                     **budget.loc[budget["at_speed"], "deg_per_g"].to_dict(), "at_speed_total": total,
+                     "full_vehicle_measured": measured, "difference": measured - total})
+    return rows
+
+
 def run(study: Study) -> None:
     import pandas as pd
 
@@ -122,16 +150,29 @@ def run(study: Study) -> None:
         suspension__front_aligning_moment_compliance_steer=2.0e-5,
         suspension__rear_aligning_moment_compliance_steer=1.0e-5, name="sedan, every term")
     fig, axes = new_figure(2, 2, width=12.0, height_per_row=4.6)
-    rows, measured_rows = [], []
+    rows, measured_rows, at_speed_table = [], [], []
+    speeds = (SPEED,) if study.quick else (10.0, SPEED, 30.0)
     for ax, (name, vehicle) in zip(axes.flat, list(cars.items()) + [("sedan, every term", everything)]):
-        budget = handling.understeer_budget(vehicle, SPEED)
+        # the shipped cars at the speed (their full vehicle's rows too); the every-term sedan's rungs run
+        # with linear tires and no drag, so its budget is the linear one
+        budget = handling.understeer_budget(vehicle, None if vehicle is everything else SPEED)
         # every term at once: the rungs that carry them all (the ladder refuses each that drops one)
         measured = (every_term_gradients if vehicle is everything else measured_gradients)(vehicle, study.quick)
-        handling.plot_understeer_budget(budget, ax=ax, measured=measured)
+        shown = dict(measured)
+        if vehicle is not everything:
+            at_speed_table += at_speed_rows(vehicle, speeds)
+            # the full vehicle with its own tires and drag, beside the at-speed total (the full run measures
+            # it among the rungs already)
+            shown.setdefault("FullVehicle", next(r["full_vehicle_measured"] for r in at_speed_table
+                                                 if r["vehicle"] == vehicle.name and r["speed_m_per_s"] == SPEED))
+        handling.plot_understeer_budget(budget, ax=ax, measured=shown)
         ax.set_title(name, fontsize=9)
-        row = {"vehicle": name, **budget["deg_per_g"].to_dict(),
+        linear = ~budget["at_speed"]
+        row = {"vehicle": name, **budget.loc[linear, "deg_per_g"].to_dict(),
                "road_wheel_total": budget.attrs["road_wheel_total_deg_per_g"],
-               "hand_wheel_total": budget.attrs["hand_wheel_total_deg_per_g"]}
+               "hand_wheel_total": budget.attrs["hand_wheel_total_deg_per_g"],
+               **budget.loc[~linear, "deg_per_g"].to_dict(),
+               "at_speed_total": budget.attrs["at_speed_total_deg_per_g"]}
         rows.append(row)
         for rung, value in measured.items():
             measured_rows.append({"vehicle": name, "rung": rung, "measured_deg_per_g": value,
@@ -149,6 +190,12 @@ def run(study: Study) -> None:
     study.table(measured, "measured_gradients",
                 caption="Understeer gradient each rung measures from its own steady states at 20 m/s against the "
                         "budget's road-wheel total [deg/g]")
+    at_speed = pd.DataFrame(at_speed_table).set_index(["vehicle", "speed_m_per_s"])
+    at_speed.attrs["units"] = {c: "deg/g" for c in at_speed.columns}
+    study.table(at_speed, "at_speed_budget",
+                caption="The full vehicle's speed- and law-dependent rows (its Magic Formula tires, drag), the "
+                        "at-speed total and the gradient the full vehicle measures from its own steady trims [deg/g]")
+    worst = float((at_speed["difference"].abs() / at_speed["full_vehicle_measured"]).max())
     lin = measured.drop("sedan, every term").xs("FullVehicle (linear tires, no drag)",
                                                  level="rung")["difference_deg_per_g"].abs().max()
     every = measured.loc["sedan, every term", "difference_deg_per_g"].abs().max()
@@ -158,9 +205,13 @@ def run(study: Study) -> None:
         f"over the cornering stiffnesses ({totals} "
         "deg/g), and the steering system's compliance doubles to triples it at the hand wheel. The full vehicle with "
         f"linear tires and no drag measures the budget within {lin:.1e} deg/g; the linear rungs carry it exactly. "
-        "The nonlinear rungs (Magic Formula tires, drag) are 5-30 % above: the law's cornering stiffness at the "
-        "loads the drag moves, rolling resistance and the tires' ply steer under the load transfer, none of which is "
-        "in the file's linear budget. The fourth panel switches every term on (roll steer 0.08 / -0.04 rad/rad, "
+        "The nonlinear rungs (Magic Formula tires, drag) are 5-30 % above the file's linear budget: at a speed the "
+        "budget adds the full vehicle's own rows (lighter bars; dash-dotted total): the law's cornering stiffness, "
+        "drag's longitudinal load transfer through the load sensitivity, drag and pitch with the roll, the tires' "
+        "ply steer under the load transfer and turned by the steer, the rolling-resistance couple, the front "
+        "rolling resistance turned by the steer and the drive slip. Their total is the full vehicle's measured "
+        f"gradient within {worst:.1e} (relative) for the three cars (table at_speed_budget). The fourth panel switches "
+        "every term on (roll steer 0.08 / -0.04 rad/rad, "
         "camber gains 0.6 / 0.4 rad/m, compliance steer -1e-6 / 0.5e-6 rad/N and 2e-5 / 1e-5 rad/(N m)); the full "
         "vehicle and the single track with load transfer carry them all (linear tires with the law's camber "
         f"stiffness and trail, no drag) and measure its budget within {every:.1e} deg/g.")
