@@ -19,8 +19,9 @@ gives the reference a driver model reaches on the same single track.
 Second, the same single track inside a nonlinear model-predictive controller (vehdyn.optimal.PathTrackingNMPC:
 20 steps of 0.1 s, warm started, |delta| <= 0.5 rad, |d delta/dt| <= 1 rad/s) closes the loop on the full vehicle
 through the ISO 3888-1 double lane change with the speed held (least-curvature line through the lanes narrowed by
-0.15 m), against the crossover driver tuned at each speed: the loop runs on numpy (the controller calls IPOPT), RK4 at
-5 ms; the solve time per step, the tracking error and what the numpy loop costs against the driver's compiled one.
+0.15 m), against the crossover driver tuned at each speed: the loop runs in Python (the controller calls IPOPT), RK4
+at 5 ms, the full vehicle's compiled code called point by point (ClosedLoop's plant_backend="compiled"); the solve
+time per step, the tracking error and what the Python loop costs against the driver's compiled one.
 """
 
 import time
@@ -187,11 +188,12 @@ def nmpc_on_the_full_vehicle(study, car, planner, full):
     track = double_lane_change_track(max(car.geometry.front_track, car.geometry.rear_track) + 0.2)
     px, py = track.least_curvature_line(0.15)
     rows, shown = [], {}
-    # the loop runs on numpy (about 13 s per speed): one speed in quick mode, two by default, three with --full
+    # the loop runs in Python (a few s per speed, mostly IPOPT): one speed in quick mode, two by default, three with
+    # --full
     for speed in ((22.0,) if study.quick else (18.0, 22.0, 26.0) if study.full else (22.0, 26.0)):
         drag = float(planner.parameters.drag_factor) * speed**2
         nmpc = PathTrackingNMPC(planner, px, py, horizon=20, period=0.1, inputs={"rear_longitudinal_force": drag})
-        loop = ClosedLoop(full, nmpc)
+        loop = ClosedLoop(full, nmpc, plant_backend="compiled")  # the NMPC in Python, the car's compiled code
         x0, u0 = full.trim(speed)
         x0 = np.array(x0, dtype=float)
         x0[full.index("x")] = px[0]
@@ -228,16 +230,15 @@ def nmpc_on_the_full_vehicle(study, car, planner, full):
     frame.attrs["units"] = {"nmpc_margin_m": "m", "nmpc_max_tracking_error_m": "m", "solve_median_ms": "ms",
                             "solve_p90_ms": "ms", "nmpc_loop_wall_s": "s", "crossover_margin_m": "m",
                             "crossover_max_tracking_error_m": "m", "crossover_loop_wall_s": "s"}
-    study.table(frame, "nmpc", caption="ISO 3888-1 on the full vehicle: the NMPC loop (single track inside, numpy "
-                "loop) "
-                "against the crossover driver (compiled loop)")
+    study.table(frame, "nmpc", caption="ISO 3888-1 on the full vehicle: the NMPC loop (single track inside; a Python "
+                "loop around the car's compiled code) against the crossover driver (compiled loop)")
     last = rows[-1]
     study.text(f"At {last['speed_kmh']:.0f} km/h the NMPC loop tracks the line within "
                f"{last['nmpc_max_tracking_error_m'] * 100:.1f} cm (cone margin {last['nmpc_margin_m']:.2f} m), "
                f"{last['solve_median_ms']:.0f} ms per solve (median, this machine under its load), the crossover "
                f"driver within {last['crossover_max_tracking_error_m'] * 100:.1f} cm "
                f"(margin {last['crossover_margin_m']:.2f} m). "
-               f"The NMPC loop runs on numpy ({last['nmpc_loop_wall_s']:.1f} s, mostly IPOPT) where the driver's "
+               f"The NMPC loop runs in Python ({last['nmpc_loop_wall_s']:.1f} s, mostly IPOPT) where the driver's "
                f"compiled loop takes {last['crossover_loop_wall_s']:.2f} s.")
     fig, axes = new_figure(1, 1, height_per_row=3.0, width=8.0)
     ax = axes[0, 0]

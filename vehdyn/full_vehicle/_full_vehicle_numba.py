@@ -32,7 +32,7 @@ import numpy as np
 from numba.extending import register_jitable
 
 from vehdyn.components.compiled import JIT_OPTIONS as _JIT
-from vehdyn.components.compiled import FULL_FORCES, SOURCE_MODULES, namespace
+from vehdyn.components.compiled import FULL_FORCES, SOURCE_MODULES, WITHOUT_ALIGNING, namespace
 from vehdyn.errors import ParameterError
 from vehdyn.full_vehicle import aero, assembly, body, corner, driveline, steering
 from vehdyn.mechanics import equations_of_motion, kinematics
@@ -66,6 +66,10 @@ def _euler_angle_rates(roll, pitch, p, q, r):
 XP = namespace("vehdyn.full_vehicle._full_vehicle_numba.XP", **FULL_FORCES,
                rotation_body_to_earth=register_jitable(**_JIT)(_rotation_body_to_earth),
                euler_angle_rates=register_jitable(**_JIT)(_euler_angle_rates))
+XP_WITHOUT_ALIGNING = namespace("vehdyn.full_vehicle._full_vehicle_numba.XP_WITHOUT_ALIGNING",
+                                **{**{name: value for name, value in vars(XP).items()
+                                      if not name.startswith("__")}, **WITHOUT_ALIGNING})
+""":data:`XP` for a vehicle without aligning-moment compliance: the Magic Formula's M_z is not compiled."""
 
 
 def _friction(k):
@@ -147,11 +151,16 @@ def _output(t, x, u, args, y):
 
 
 @functools.lru_cache(maxsize=None)
-def compiled_functions():
-    """(rhs, output, cache key): compiled on first call, cached on disk per source digest."""
+def compiled_functions(aligning: bool = False):
+    """(rhs, output, cache key): compiled on first call, cached on disk per source digest; with
+    ``aligning`` the copy whose compliance steer reads the laws' M_z (:data:`XP`), else without it
+    (:data:`XP_WITHOUT_ALIGNING`)."""
     key = "full_vehicle_" + source_stamp(assembly, body, corner, steering, driveline, aero, kinematics,
                                          equations_of_motion, *SOURCE_MODULES, sys.modules[__name__])
-    compiled = [compiled_copy(python, f"{key}_{suffix}") for python, suffix in ((_rhs, "rhs"), (_output, "output"))]
+    key += "_aligning" if aligning else ""
+    xp = XP if aligning else XP_WITHOUT_ALIGNING
+    compiled = [compiled_copy(python, f"{key}_{suffix}", XP=xp) for python, suffix in ((_rhs, "rhs"),
+                                                                                       (_output, "output"))]
     return compiled[0], compiled[1], key
 
 
@@ -189,7 +198,7 @@ def compiled_model(model) -> CompiledModel:
                                  value=type(tire).__name__) from None
     k = model._k
     domain = tuple(tuple(float(b) for b in assembly.trial_bounds(*model.domain[name])) for name in assembly.DOMAIN_STATES)
-    rhs, output, key = compiled_functions()
+    rhs, output, key = compiled_functions(any(e != 0.0 for e in k.moment_compliance))
     # tuples, not arrays, for the constants and the index: passed by value, without reference counting
     args = (k, tuple(laws), tuple(int(i) for i in model._state_index), domain, _road(model))
     return CompiledModel(rhs, output, key, args)

@@ -375,17 +375,25 @@ def _corner(xp, laws, k, c, s, i, R, travel_rate, spring, steer, camber, frictio
 
     # compliance steer: explicit with tire lag (the forces come from the deflections: the law once at
     # the steer without it), a Newton step with the static slope and a secant step without
-    step = tire(steer)
-    compliance_steer = 0.0 * u
+    # (the passes in a loop: one call site of tire and of compliance, which numba inlines at each)
+    passes = 1
     if k.compliance_on > 0.5:
-        compliance_steer = compliance(step)
-        if not k.tire_lag:
-            first = compliance_steer
-            compliance_steer = first / (1.0 - k.compliance_slope[c])
-            compliance_steer = secant_compliance(xp, first, compliance(tire(steer + compliance_steer)),
-                                                 compliance_steer, k.compliance_slope[c])
-        steer = steer + compliance_steer
-        step = tire(steer)
+        passes = 2 if k.tire_lag else 3
+    at = steer
+    compliance_steer = first = 0.0 * u
+    for n in range(passes):
+        step = tire(at)
+        if n + 1 < passes:
+            g = compliance(step)
+            if n > 0:
+                compliance_steer = secant_compliance(xp, first, g, compliance_steer, k.compliance_slope[c])
+            elif k.tire_lag:
+                compliance_steer = g
+            else:
+                first = g
+                compliance_steer = first / (1.0 - k.compliance_slope[c])
+            at = steer + compliance_steer
+    steer = at
     cd, sd, _vx, lat_rate, lon_rate, (fx, fy, alpha, kappa, rolling_moment) = step
     # the tire's forces lie in the road plane (ISO-W): along the wheel heading projected on the road
     # and its normal there, in body axes; n = R[2] is the earth's z (down) in body axes. Applied

@@ -25,7 +25,7 @@ from numba.extending import register_jitable
 from numba.np.unsafe.ndarray import to_fixed_tuple
 
 from vehdyn.components.compiled import JIT_OPTIONS as _JIT
-from vehdyn.components.compiled import SOURCE_MODULES, XP
+from vehdyn.components.compiled import SOURCE_MODULES, XP, XP_WITHOUT_ALIGNING
 from vehdyn.errors import ParameterError
 from vehdyn.handling import single_track_equations as equations
 from vehdyn.simulation.compiled import CompiledBatch, CompiledModel, compiled_copy, source_stamp
@@ -85,11 +85,21 @@ def _output(t, x, u, args, y):
 
 
 @functools.lru_cache(maxsize=None)
-def compiled_functions():
-    """(rhs, output, cache key): compiled on first call, cached on disk per source digest."""
+def compiled_functions(aligning: bool = False):
+    """(rhs, output, cache key): compiled on first call, cached on disk per source digest; with
+    ``aligning`` the copy whose compliance steer reads the laws' M_z (``XP``), else without it
+    (``XP_WITHOUT_ALIGNING``, :data:`vehdyn.components.compiled.WITHOUT_ALIGNING`)."""
     key = "single_track_" + source_stamp(equations, *SOURCE_MODULES, sys.modules[__name__])
-    compiled = [compiled_copy(python, f"{key}_{suffix}") for python, suffix in ((_rhs, "rhs"), (_output, "output"))]
+    key += "_aligning" if aligning else ""
+    xp = XP if aligning else XP_WITHOUT_ALIGNING
+    compiled = [compiled_copy(python, f"{key}_{suffix}", XP=xp) for python, suffix in ((_rhs, "rhs"),
+                                                                                       (_output, "output"))]
     return compiled[0], compiled[1], key
+
+
+def _aligning(front, rear) -> bool:
+    """Whether a model (or any variant) has an aligning-moment compliance steer."""
+    return bool(np.any(np.asarray(front) != 0.0) or np.any(np.asarray(rear) != 0.0))
 
 
 def _tire_laws(model, lateral_only):
@@ -110,7 +120,8 @@ def compiled_model(model) -> CompiledModel:
     k = model._constants()
     k = k._replace(**{name: float(getattr(k, name)) for name in _FLOATS})
     tires = _tire_laws(model, _lateral_only(model.wheel_spin, model.lateral_load_transfer))
-    rhs, output, key = compiled_functions()
+    rhs, output, key = compiled_functions(_aligning(k.front_aligning_moment_compliance,
+                                                    k.rear_aligning_moment_compliance))
     # tuples, not arrays: passed by value, without reference counting on every call
     index = (tuple(int(i) for i in model._state_index), tuple(int(i) for i in model._input_index))
     return CompiledModel(rhs, output, key, (k, tires, *index))
@@ -195,7 +206,6 @@ def compiled_batch(models, n_variants: int | None = None) -> CompiledBatch:
     ParameterError
         For a tire law without a compiled form, or models of different structures.
     """
-    rhs, output, key = compiled_functions()
     if isinstance(models, (list, tuple)):
         if not models:
             raise ParameterError("a compiled batch needs at least one model", key="models", value=models)
@@ -225,6 +235,8 @@ def compiled_batch(models, n_variants: int | None = None) -> CompiledBatch:
     if callable(first.friction):
         raise ParameterError("a compiled batch takes a constant road friction, not a Python callable",
                              key="friction", value=first.friction)
+    rhs, output, key = compiled_functions(_aligning(K[:, _FLOATS.index("front_aligning_moment_compliance")],
+                                                    K[:, _FLOATS.index("rear_aligning_moment_compliance")]))
     batch = (np.ascontiguousarray(K), bool(first.wheel_spin), bool(first.tire_lag), bool(first.lateral_load_transfer),
              first.friction is not None, _axle(tires["front"], "front"), _axle(tires["rear"], "rear"),
              tuple(int(i) for i in first._state_index), tuple(int(i) for i in first._input_index))

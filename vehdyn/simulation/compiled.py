@@ -83,7 +83,7 @@ import numpy as np
 
 from vehdyn.errors import ParameterError, SimulationError
 
-__all__ = ["METHODS", "CompiledModel", "CompiledBatch", "integrator", "input_table", "solve",
+__all__ = ["METHODS", "CompiledModel", "CompiledBatch", "integrator", "input_table", "solve", "point_by_point",
            "solve_batch", "outputs", "batch_outputs", "numba_available", "source_stamp", "compiled_copy"]
 
 METHODS = ("RK45", "DOP853", "BDF")
@@ -613,6 +613,57 @@ def _stamp():
     from vehdyn.simulation import _bdf as _compiled_bdf
 
     return source_stamp(sys.modules[__name__], piecewise_signal, _compiled_bdf)
+
+
+def point_by_point(model):
+    """A model's compiled ``rhs`` and ``output`` as Python functions ``f(t, x, u)``, one state vector at a time.
+
+    For a Python loop around a compiled model (a controller without a compiled form, such as an
+    NMPC, in :class:`vehdyn.interconnect.ClosedLoop` with ``plant_backend="compiled"``): each call
+    runs the model's compiled code (:meth:`vehdyn.Model.compiled_rhs`, compiled or loaded from the
+    cache on the first call) at one state (n,) and input vector (m,); states (n, k) and inputs
+    (m, k) are taken column by column. The same equations as the model's numpy ``rhs`` and
+    ``output``, equal within a few ulps (compiled math against numpy's).
+
+    Parameters
+    ----------
+    model : Model
+        A model with a compiled rhs and output.
+
+    Returns
+    -------
+    rhs, output : callable
+        ``rhs(t, x, u)`` -> dx/dt (n,) or (n, k) [each state's unit/s]; ``output(t, x, u)`` ->
+        y (p,) or (p, k) [each output's unit].
+
+    Raises
+    ------
+    ParameterError
+        When the model has no compiled rhs or output (naming it), or its configuration has none
+        (the model's own error).
+    """
+    compiled = model.compiled_rhs()
+    if compiled is None or compiled.output is None:
+        raise ParameterError(f"{type(model).__name__} has no compiled rhs and output to call point by point",
+                             key="model", value=type(model).__name__)
+    n, p, args = model.n_states, model.n_outputs, compiled.args
+
+    def columns(function, size):
+        def call(t, x, u):
+            x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
+            if x.ndim == 1:
+                out = np.empty(size)
+                function(float(t), np.ascontiguousarray(x), np.ascontiguousarray(u), args, out)
+                return out
+            u = np.broadcast_to(u.reshape(u.shape[0], -1), (u.shape[0], x.shape[1]))
+            out, column = np.empty((size, x.shape[1])), np.empty(size)
+            for j in range(x.shape[1]):
+                function(float(t), np.ascontiguousarray(x[:, j]), np.ascontiguousarray(u[:, j]), args, column)
+                out[:, j] = column
+            return out
+        return call
+
+    return columns(compiled.rhs, n), columns(compiled.output, p)
 
 
 def outputs(model: CompiledModel, n_outputs: int, t, x, u):

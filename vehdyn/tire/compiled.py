@@ -28,7 +28,7 @@ from vehdyn.tire.linear import LinearTire, linear_tire_law
 from vehdyn.tire.magic_formula import MagicFormula, MFCoefficients, forces_kernel, lateral_force_kernel
 
 __all__ = ["XP", "MAGIC_FORMULA", "LINEAR", "TireLaw", "tire_law", "coefficient_records", "tire_law_loads",
-           "lateral_or_full_loads", "SOURCE_MODULES"]
+           "lateral_or_full_loads", "tire_law_aligning", "SOURCE_MODULES"]
 
 _JIT = {"error_model": "numpy"}
 
@@ -173,12 +173,45 @@ def lateral_or_full_loads(law, fz, kappa, alpha, gamma, vx):
     return tire_law_loads(law, fz, kappa, alpha, gamma, vx)
 
 
+def tire_law_aligning(law, fz, kappa, alpha, gamma, vx):
+    """ISO-W aligning moment M_z [N*m] of one tire of ``law`` (compiled code; floats).
+
+    The Magic Formula's M_z as :func:`tire_law_loads` evaluates the law
+    (:func:`~vehdyn.tire.kernels.forces_kernel` with ``limits=True``, ``alpha_star=False``), or the
+    linear law's -t F_y (Pacejka 2012, sec. 1.2: the pneumatic trail t behind the contact centre).
+
+    Parameters
+    ----------
+    law : TireLaw
+        The law.
+    fz : float
+        Normal load [N].
+    kappa : float
+        Slip ratio [-] (ISO-W).
+    alpha : float
+        Slip angle [rad] (ISO-W).
+    gamma : float
+        Inclination angle [rad] (ISO-W).
+    vx : float
+        Forward speed of the wheel centre [m/s].
+
+    Returns
+    -------
+    float
+        M_z [N*m], ISO-W.
+    """
+    if law.kind == MAGIC_FORMULA:
+        c = law.records[law.record]
+        return forces_kernel(XP, c, fz, kappa, alpha, gamma, vx, c.INFLPRES, True, False)[5]
+    return linear_tire_law(XP, law.linear, fz, kappa, alpha, gamma, vx)[2]
+
+
 register_jitable(**_JIT)(linear_tire_law)
 
 SOURCE_MODULES = (*_mf_numba.SOURCE_MODULES, linear, sys.modules[__name__])
 """The modules whose source a compiled caller's disk cache is keyed on (editing one recompiles)."""
 
-# The two entry points are compiled once and cached on disk (numba dispatchers named by the source of
+# The three entry points are compiled once and cached on disk (numba dispatchers named by the source of
 # every module they draw on), not registered for inlining into each caller: every model family (single
 # track, full vehicle, the controllers' loops) then links the same compiled law (numba links a cached
 # callee's LLVM module into the caller without retyping it; LLVM may still inline it), instead of typing
@@ -187,3 +220,4 @@ _STAMP = source_stamp(*SOURCE_MODULES)
 tire_law_loads = compiled_copy(tire_law_loads, f"tire_law_loads_{_STAMP}")
 lateral_or_full_loads = compiled_copy(lateral_or_full_loads, f"lateral_or_full_loads_{_STAMP}",
                                       tire_law_loads=tire_law_loads)
+tire_law_aligning = compiled_copy(tire_law_aligning, f"tire_law_aligning_{_STAMP}")
