@@ -57,6 +57,15 @@ def test_the_compiled_plant_equals_the_numpy_plant_in_the_loop(plant):
     assert batch.shape == (loop.n_states, X.shape[1])
     for j in range(X.shape[1]):
         assert np.array_equal(batch[:, j], loop.rhs(0.0, X[:, j], U[:, j]))
+    # read-only states (as some solvers pass them) call the code compiled for the integrator's
+    # arrays: no second compilation of the plant
+    compiled = base.compiled_rhs()
+    signatures = len(compiled.rhs.signatures), len(compiled.output.signatures)
+    frozen = X[:, 0].copy()
+    frozen.flags.writeable = False
+    assert np.array_equal(loop.rhs(0.0, frozen, U[:, 0]), loop.rhs(0.0, X[:, 0], U[:, 0]))
+    loop.output(0.0, frozen, U[:, 0])
+    assert (len(compiled.rhs.signatures), len(compiled.output.signatures)) == signatures
 
 
 @pytest.mark.compiled_vs_numpy

@@ -648,17 +648,22 @@ def point_by_point(model):
                              key="model", value=type(model).__name__)
     n, p, args = model.n_states, model.n_outputs, compiled.args
 
+    def vector(v):
+        # contiguous and writable, as the integrator passes them: a read-only or strided array is
+        # another type to numba, which would compile the model's code again for it
+        return np.require(v, dtype=float, requirements=("C", "W"))
+
     def columns(function, size):
         def call(t, x, u):
             x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
             if x.ndim == 1:
                 out = np.empty(size)
-                function(float(t), np.ascontiguousarray(x), np.ascontiguousarray(u), args, out)
+                function(float(t), vector(x), vector(u), args, out)
                 return out
             u = np.broadcast_to(u.reshape(u.shape[0], -1), (u.shape[0], x.shape[1]))
             out, column = np.empty((size, x.shape[1])), np.empty(size)
             for j in range(x.shape[1]):
-                function(float(t), np.ascontiguousarray(x[:, j]), np.ascontiguousarray(u[:, j]), args, column)
+                function(float(t), vector(x[:, j]), vector(u[:, j]), args, column)
                 out[:, j] = column
             return out
         return call
