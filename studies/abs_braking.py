@@ -15,10 +15,11 @@ Steerability: on mu 0.5 the preview driver (vehdyn.driver.PreviewDriver) follows
 side force: the car follows the path. Without ABS the front wheels lock, the front axle has no
 side force left and the car slides straight on whatever the driver does.
 
-Every run is compiled (numba): the closed loop of car and ABS (vehdyn.interconnect.ClosedLoop) and the
-driver around it (driver.close(...), a ClosedLoop too) have compiled right-hand sides, so the stops from 100 km/h and
-the swerve from 80 km/h take about a second together (numpy: about 2 minutes; without numba the
-study brakes from 40 km/h and swerves at 50 km/h unless run with --full).
+Every run uses compiled code (numba): the stops run the compiled closed loop of car and ABS
+(vehdyn.interconnect.ClosedLoop); the two swerves run the preview driver in Python around that compiled loop or
+the compiled car (ClosedLoop's plant_backend="compiled": two runs of 1-2 s, where compiling a loop of its own for
+each cost about 15 s CPU). The stops from 100 km/h and the swerve from 80 km/h take a few seconds together (numpy:
+about 2 minutes; without numba the study brakes from 40 km/h and swerves at 50 km/h unless run with --full).
 """
 
 import numpy as np
@@ -126,10 +127,11 @@ def run(study: Study) -> None:
     ax.plot(path_x[near], path_y[near], "k--", label="path")
     rows = []
     for label, model in (("ABS", ClosedLoop(plant, ABS(car))), ("locked", plant)):
-        loop = driver.close(model)
+        loop = ClosedLoop(model, driver, plant_backend="compiled" if numba_available() else "numpy")
         x0 = loop.state_vector(dict(zip(plant.state_names, plant.straight_running(speed))))
         t = np.linspace(0.0, 0.9 * speed / (0.7 * mu * G), 300)
-        r = vehdyn.simulate(loop, t, demand, x0=x0, method="RK45", rtol=1e-4, atol=1e-6, max_step=0.05)
+        r = vehdyn.simulate(loop, t, demand, x0=x0, method="RK45", rtol=1e-4, atol=1e-6, max_step=0.05,
+                            backend="numpy")
         moving = r["longitudinal_velocity"] > 0.5
         error = r["y"] - np.interp(r["x"], path_x, path_y)
         rows.append({"brakes": label, "final_lateral_offset": float(r["y"][moving][-1]),
