@@ -214,7 +214,7 @@ def wheel_pair_tire_loads(xp, law, left_load, right_load, kappa, alpha, gamma, v
 
 
 def tire_aligning_moment(xp, law, fz, kappa, alpha, gamma, vx, mirror, friction, scaled):
-    """ISO-W aligning moment M_z [N*m] of one tire, as :func:`tire_loads` evaluates its forces.
+    r"""ISO-W aligning moment M_z [N*m] of one tire, as :func:`tire_loads` evaluates its forces.
 
     The hook ``xp.tire_law_aligning``; the mirror image's moment is negated (a mirror image is
     (F_x, -F_y, M_y, -M_z) at (-alpha, -gamma)), and on a road of friction ratio mu the moment
