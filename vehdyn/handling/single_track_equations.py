@@ -672,18 +672,15 @@ def evaluate(xp, tires, k, states, inputs, friction):
                 xp, tires, 1, k, a[12], a[14], r[2], r[3], rear_gamma, a[6], rear_force, friction[1])
         return front, rear
 
-    # the passes of the compliance steer (docstring): one without it; with it, the forces at the steer
-    # without compliance steer, then (without tire lag) at the Newton step, then at the final steer.
-    # One call site of axles and of compliance, in a loop: numba inlines a closure at every call
-    # site, and three sites tripled the compiled model (the cold compile 33 -> 52 s)
-    passes = 1
-    if k.compliance_steer > 0.5:
-        passes = 2 if k.tire_lag else 3
-    front_at, rear_at = front_steer, rear_steer
+    # the passes of the compliance steer (docstring): the forces at the steer without compliance steer;
+    # with it, (without tire lag) at the Newton step, then at the final steer. numba inlines a closure
+    # at every call site: two sites of axles, the second in a loop (three sites tripled the compiled
+    # model: cold compile 33 -> 52 s; one site in a loop of all passes compiled in 33 s but cost the
+    # shipped single track's warm call 10 %, the first pass no longer straight-line code)
+    a = axles(front_steer, rear_steer)
     front_compliance = rear_compliance = g_f = g_r = 0.0 * lon
-    for n in range(passes):
-        a = axles(front_at, rear_at)
-        if n + 1 < passes:
+    if k.compliance_steer > 0.5:
+        for n in range(1 if k.tire_lag else 2):
             h_f, h_r = compliance(a)
             if n > 0:  # the secant step through g(0) and g(delta_1)
                 front_compliance = secant_compliance(xp, g_f, h_f, front_compliance, k.front_compliance_slope)
@@ -694,8 +691,8 @@ def evaluate(xp, tires, k, states, inputs, friction):
                 g_f, g_r = h_f, h_r
                 front_compliance = g_f / (1.0 - k.front_compliance_slope)
                 rear_compliance = g_r / (1.0 - k.rear_compliance_slope)
-            front_at, rear_at = front_steer + front_compliance, rear_steer + rear_compliance
-    front_steer, rear_steer = front_at, rear_at
+            a = axles(front_steer + front_compliance, rear_steer + rear_compliance)
+        front_steer, rear_steer = front_steer + front_compliance, rear_steer + rear_compliance
     cf, sf, cr, sr, vxf, vyf, vxr, vyr, rates, f, r, fz_f, fz_r, shift_f, shift_r = a
     fx_body = f[0] * cf - f[1] * sf + r[0] * cr - r[1] * sr
     front_lateral, rear_lateral = f[0] * sf + f[1] * cf, r[0] * sr + r[1] * cr
