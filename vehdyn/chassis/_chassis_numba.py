@@ -14,13 +14,13 @@ import sys
 
 from numba.extending import register_jitable
 
-from vehdyn.simulation.compiled import CompiledModel, compiled_copy, source_stamp
+from vehdyn.simulation.compiled import CALLEE_ONLY, CompiledModel, compiled_copy, source_stamp
 from vehdyn.chassis import abs as abs_law
 from vehdyn.chassis import base, esc, traction_control
 
 __all__ = ["compiled_abs", "compiled_traction_control", "compiled_esc"]
 
-_JIT = {"error_model": "numpy"}
+_JIT = {"error_model": "numpy", **CALLEE_ONLY}
 
 for _module, _names in ((base, ("sigmoid", "deadband")), (abs_law, ("braking_slip", "torque_rate")),
                         (traction_control, ("drive_slip", "reduction_rate", "brake_rate", "applied_torques")),

@@ -25,14 +25,16 @@ from numba.extending import register_jitable
 
 from vehdyn import conventions
 from vehdyn.components import aero, planar, tire_forces, tire_slip, wheel
+from vehdyn.simulation.compiled import CALLEE_ONLY
 from vehdyn.tire import compiled as tire_compiled
 from vehdyn.tire.compiled import lateral_or_full_loads, tire_law_loads
 
 __all__ = ["XP", "XP_WITHOUT_ALIGNING", "FULL_FORCES", "WITHOUT_ALIGNING", "namespace", "SOURCE_MODULES",
            "JIT_OPTIONS"]
 
-JIT_OPTIONS = {"error_model": "numpy"}
-"""numba options of the equations: x/0 = inf and 0/0 = nan as numpy, no exceptions."""
+JIT_OPTIONS = {"error_model": "numpy", **CALLEE_ONLY}
+"""numba options of the equations: x/0 = inf and 0/0 = nan as numpy, no exceptions; called from
+compiled code only (:data:`vehdyn.simulation.compiled.CALLEE_ONLY`)."""
 
 for _module, _names in ((conventions, ("planar_tire_slips_sae_to_iso_w", "planar_tire_forces_iso_w_to_sae")),
                         (aero, ("aero_side_force",)), (tire_slip, tire_slip.__all__[1:]), (wheel, wheel.__all__),

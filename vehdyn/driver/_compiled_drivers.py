@@ -16,11 +16,11 @@ import sys
 from numba.extending import register_jitable
 
 from vehdyn.driver import base, crossover, optimal_preview, preview
-from vehdyn.simulation.compiled import CompiledModel, compiled_copy, source_stamp
+from vehdyn.simulation.compiled import CALLEE_ONLY, CompiledModel, compiled_copy, source_stamp
 
 __all__ = ["compiled_driver"]
 
-_JIT = {"error_model": "numpy"}
+_JIT = {"error_model": "numpy", **CALLEE_ONLY}
 
 for _module, _names in ((base, ("preview_offsets", "heading_offsets", "delay_rates", "steer_rates", "steer_output")),
                         (preview, ("pure_pursuit_command", "speed_control_force", "preview_driver_rhs",

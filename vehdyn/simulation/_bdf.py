@@ -57,9 +57,11 @@ def setup():
     """Register the loop's helpers with numba (once; :func:`vehdyn.simulation.compiled.integrator` calls it)."""
     from numba.extending import register_jitable
 
+    from vehdyn.simulation.compiled import CALLEE_ONLY
+
     for helper in (_compute_r, _change_differences, _lu_factor, _lu_solve, _start_history, _scaled_rms,
                    _norm_factor):
-        register_jitable(helper)
+        register_jitable(**CALLEE_ONLY)(helper)
 
 
 # ------------------------------------------------------------------------------ small helpers

@@ -34,6 +34,8 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic, register_jitable
 
+from vehdyn.simulation.compiled import CALLEE_ONLY
+
 __all__ = ["fast_sin", "fast_cos", "fast_tan", "fast_atan", "fast_acos", "fast_exp", "fast_log", "fast_log10",
            "fast_pow"]
 
@@ -111,7 +113,7 @@ def _from_bits(typingctx, x):
     return sig, codegen
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def _poly(z, coefficients):
     """Horner's rule with fma, coefficients in ascending order."""
     n = len(coefficients)
@@ -121,13 +123,13 @@ def _poly(z, coefficients):
     return acc
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def _power_of_two(k):
     """2.0**k for an integer-valued float64 k with |k| <= 1022 (bits built directly)."""
     return _from_bits((_bits(k + _ROUND) - _ROUND_BITS + 1023) << 52)
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def _quarter_turns(x):
     """x = k*pi/2 + r: (r, k mod 4 as a float in {0, 1, 2, 3}), |r| <= 0.787 (pi/4 = 0.785...).
 
@@ -145,7 +147,7 @@ def _quarter_turns(x):
     return r, 4.0 * (quarter - np.floor(quarter))
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def _sin_cos_reduced(r):
     """sin r and cos r for |r| <= ~pi/4."""
     z = r * r
@@ -156,7 +158,7 @@ def _sin_cos_reduced(r):
     return s, c
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def fast_sin(x):
     """sin(x) [-] for float64 x [rad] (branchless; see the module docstring for accuracy)."""
     r, q = _quarter_turns(x)
@@ -166,7 +168,7 @@ def fast_sin(x):
     return x if x == 0.0 else value  # sin(-0) = -0
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def fast_cos(x):
     """cos(x) [-] for float64 x [rad]."""
     r, q = _quarter_turns(x)
@@ -175,7 +177,7 @@ def fast_cos(x):
     return -value if (q == 1.0) | (q == 2.0) else value
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def fast_tan(x):
     """tan(x) [-] for float64 x [rad]."""
     r, q = _quarter_turns(x)
@@ -185,7 +187,7 @@ def fast_tan(x):
     return x if x == 0.0 else value  # tan(-0) = -0
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def fast_atan(x):
     """atan(x) [rad] for float64 x: atan(+-inf) = +-pi/2, atan(-0) = -0."""
     t = abs(x)
@@ -201,13 +203,13 @@ def fast_atan(x):
     return math.copysign(value, x)
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def fast_acos(x):
     """acos(x) [rad] for float64 x = 2*atan(sqrt((1 - x)/(1 + x))); nan outside [-1, 1]."""
     return 2.0 * fast_atan(math.sqrt((1.0 - x) / (1.0 + x)))
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def fast_exp(x):
     """exp(x) for float64 x (inf above ~709.78, 0 below ~-745.1, subnormal results in between)."""
     xc = _EXP_LIMIT if x > _EXP_LIMIT else (-_EXP_LIMIT if x < -_EXP_LIMIT else x)
@@ -219,7 +221,7 @@ def fast_exp(x):
     return p * _power_of_two(k1) * _power_of_two(k - k1)
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def _log_parts(x):
     """x = 2^e * m with m in [1/sqrt(2), sqrt(2)): (e as a float, log m); x > 0 finite."""
     small = x < _SMALLEST_NORMAL
@@ -235,7 +237,7 @@ def _log_parts(x):
     return e, fma(s * w, _poly(w, _LOG), 2.0 * s)
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def _log_special(x, value):
     """IEEE results of log at x <= 0, inf and nan."""
     value = math.inf if x == math.inf else value
@@ -244,21 +246,21 @@ def _log_special(x, value):
     return x if x != x else value
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def fast_log(x):
     """Natural logarithm of float64 x (-inf at 0, nan below)."""
     e, log_m = _log_parts(x)
     return _log_special(x, fma(e, _LN2_1, fma(e, _LN2_2, log_m)))
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def fast_log10(x):
     """Base-10 logarithm of float64 x."""
     e, log_m = _log_parts(x)
     return _log_special(x, fma(e, _LOG10_2_1, fma(e, _LOG10_2_2, log_m * _INV_LN10)))
 
 
-@register_jitable(forceinline=True)
+@register_jitable(forceinline=True, **CALLEE_ONLY)
 def fast_pow(x, y):
     """x**y for float64 x, y with C's (and numpy's) special cases: exp(y*log|x|), with the sign of
     x for odd integer y, nan for finite x < 0 and non-integer y, pow(x, 0) = pow(1, y) = 1."""

@@ -57,13 +57,13 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from vehdyn.simulation.compiled import compiled_copy, source_stamp
+from vehdyn.simulation.compiled import CALLEE_ONLY, compiled_copy, source_stamp
 from vehdyn.tire import _fast_math, _mf_ops, magic_formula, mf_forces, mf_moments, mf_vertical
 from vehdyn.tire._mf_ops import ScalarOps
 
 __all__ = ["OPS", "OPS_VECTOR", "run"]
 
-_JIT_OPTIONS = {"error_model": "numpy"}  # x/0 = inf, 0/0 = nan (MFeval's MATLAB and numpy), no exceptions
+_JIT_OPTIONS = {"error_model": "numpy", **CALLEE_ONLY}  # x/0 = inf, 0/0 = nan (MFeval's MATLAB and numpy), no exceptions
 # in the equations: x/c as x*(1/c), with 1/c computed once outside the loop (within an ulp; assumes
 # nothing about inf/nan, so MFeval's inf/nan cases stay). Not "contract": fused multiply-adds change
 # ill-conditioned results (the MF 6.1 deflection's quadratic formula) by 1e-11 against numpy.
@@ -118,7 +118,7 @@ _full_kernel = magic_formula._full_kernel
 _BLOCK = 128  # points per block: a block's inputs are copied into one buffer (one pointer for LLVM)
 
 
-@register_jitable
+@register_jitable(**CALLEE_ONLY)
 def _load_block(inputs, start, m, buffer):
     """Rows 0..len(inputs)-1 of ``buffer[:, :m]`` = the inputs' points start..start+m (one value: repeated)."""
     for k in range(len(inputs)):
@@ -129,7 +129,7 @@ def _load_block(inputs, start, m, buffer):
             buffer[k, :m] = values[start:start + m]
 
 
-@register_jitable
+@register_jitable(**CALLEE_ONLY)
 def _zero_inclination(values, m):
     """Whether values[:m] are all +0.0: then the loops pass the literal 0.0, and (with the limits
     CAMMIN <= 0 <= CAMMAX tested by the caller, the same comparisons as the clip in the kernel)
@@ -146,7 +146,7 @@ def _column_store(n):
     body = "\n".join(f"    results[{k}, i] = r[{k}]" for k in range(n))
     namespace = {}
     exec(f"def store(results, i, r):\n{body}\n", namespace)  # noqa: S102 (generated from n only)
-    return register_jitable(forceinline=True)(namespace["store"])
+    return register_jitable(forceinline=True, **CALLEE_ONLY)(namespace["store"])
 
 
 _store_forces = _column_store(6)

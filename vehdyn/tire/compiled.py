@@ -22,7 +22,7 @@ import numpy as np
 from numba.extending import register_jitable
 
 from vehdyn.errors import ParameterError
-from vehdyn.simulation.compiled import compiled_copy, source_stamp
+from vehdyn.simulation.compiled import CALLEE_ONLY, compiled_copy, source_stamp
 from vehdyn.tire import _mf_numba, linear
 from vehdyn.tire.linear import LinearTire, linear_tire_law
 from vehdyn.tire.magic_formula import MagicFormula, MFCoefficients, forces_kernel, lateral_force_kernel
@@ -30,7 +30,7 @@ from vehdyn.tire.magic_formula import MagicFormula, MFCoefficients, forces_kerne
 __all__ = ["XP", "MAGIC_FORMULA", "LINEAR", "TireLaw", "tire_law", "coefficient_records", "tire_law_loads",
            "lateral_or_full_loads", "tire_law_aligning", "SOURCE_MODULES"]
 
-_JIT = {"error_model": "numpy"}
+_JIT = {"error_model": "numpy", **CALLEE_ONLY}
 
 XP = _mf_numba.OPS
 """The ``xp`` of the kernels in compiled code (floats; numba-compiled, inlined into the caller)."""
