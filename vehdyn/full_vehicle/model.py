@@ -730,7 +730,7 @@ class FullVehicle(Model):
         return {f"normal_load{sfx}": float(y[self.index(f'normal_load{sfx}', 'outputs')]) for sfx in CORNERS}
 
     def trim(self, speed: float, *, lateral_acceleration: float = 0.0, radius: float | None = None,
-             longitudinal_acceleration: float = 0.0, tol: float = 1e-9, guess=None):
+             longitudinal_acceleration: float = 0.0, tol: float = 1e-9, guess=None, backend: str = "numpy"):
         """Steady straight running or steady cornering: ``(x0, u0)``.
 
         Parameters
@@ -753,6 +753,10 @@ class FullVehicle(Model):
         guess : (x, u), optional
             A nearby operating point to start from (continuation towards the limit), instead of the
             closed-form start.
+        backend : {"numpy", "compiled"}
+            The residuals from the numpy equations, or from the model's compiled code (the same
+            equations within a few ulps, ~100x less time per evaluation; compiled on first use, or
+            loaded from numba's cache): for many trims of a model that also runs compiled.
 
         Returns
         -------
@@ -765,12 +769,14 @@ class FullVehicle(Model):
         ------
         ParameterError
             For a bad speed or acceleration, or when no steady state is found within ``tol`` (e.g.
-            beyond the limit lateral acceleration).
+            beyond the limit lateral acceleration); for a bad ``backend``, or ``"compiled"`` without
+            numba or for a model without compiled code (a tire law without one).
         """
         from vehdyn.full_vehicle import operating_points
 
         return operating_points.trim(self, speed, lateral_acceleration=lateral_acceleration, radius=radius,
-                                     longitudinal_acceleration=longitudinal_acceleration, tol=tol, guess=guess)
+                                     longitudinal_acceleration=longitudinal_acceleration, tol=tol, guess=guess,
+                                     backend=backend)
 
     @staticmethod
     def wheel_lift(result) -> dict[str, list[tuple[float, float]]]:

@@ -54,6 +54,10 @@ allowed). For example (a sketch; the compilation takes seconds, once per install
             key = "coast_down_" + source_stamp(sys.modules[__name__])
             return CompiledModel(compiled_copy(_rhs, f"{key}_rhs"), None, key, (self.mass, self.drag))
 
+Helpers that only compiled code calls (the equations a model registers with ``register_jitable``)
+take ``CALLEE_ONLY`` among their options: numba then builds no Python or C entry point for them
+(machine code of its own for every function: less to compile).
+
 A model that also runs batches of variants (arrays of parameters, one loop per variant with its
 own step-size control) returns a :class:`CompiledBatch` from ``compiled_batch(n_variants)``, with
 a compiled ``pick(batch, i)`` that returns variant ``i``'s ``args``. The compiled and the numpy
