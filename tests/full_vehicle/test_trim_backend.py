@@ -43,3 +43,14 @@ def test_compiled_refuses_a_car_without_compiled_code():
         car.trim(20.0, backend="compiled")
     assert error.value.key == "friction"
     car.trim(20.0)  # numpy trims it
+
+
+def test_compiled_without_numba_is_named(monkeypatch):
+    """Without numba installed, "compiled" names backend (not an ImportError from deep inside)."""
+    from vehdyn.simulation import compiled
+
+    monkeypatch.setattr(compiled, "_NUMBA_AVAILABLE", False)
+    with pytest.raises(ParameterError) as error:
+        CAR.trim(20.0, backend="compiled")
+    assert error.value.key == "backend"
+    assert "numba" in str(error.value)

@@ -206,16 +206,9 @@ def trim(model, speed, *, lateral_acceleration=0.0, radius=None, longitudinal_ac
 
 def _equations(model, backend):
     """The (rhs, output) functions ``f(t, x, u)`` the residuals read, by ``backend``, or ParameterError."""
-    if backend == "numpy":
-        return model.rhs, model.output
-    if backend != "compiled":
-        raise ParameterError(f"backend must be 'numpy' or 'compiled', got {backend!r}", key="backend", value=backend)
-    from vehdyn.simulation.compiled import numba_available, point_by_point
+    from vehdyn.simulation.compiled import backend_option, point_by_point
 
-    if not numba_available():
-        raise ParameterError("backend='compiled' needs numba (pip install \"vehdyn[fast]\"); use backend='numpy'",
-                             key="backend", value=backend)
-    return point_by_point(model)
+    return (model.rhs, model.output) if backend_option(backend) == "numpy" else point_by_point(model)
 
 
 def _towards_speed(model, x, speed, heading_rate):

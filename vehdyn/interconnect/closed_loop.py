@@ -127,9 +127,9 @@ class ClosedLoop(Model):
             if not isinstance(model, Model):
                 raise ParameterError(f"ClosedLoop {label} must be a vehdyn Model, got {type(model).__name__}",
                                      key=label, value=model)
-        if plant_backend not in ("numpy", "compiled"):
-            raise ParameterError(f"plant_backend must be 'numpy' or 'compiled', got {plant_backend!r}",
-                                 key="plant_backend", value=plant_backend)
+        from vehdyn.simulation.compiled import backend_option
+
+        backend_option(plant_backend, "plant_backend")
         p_in, p_states, p_out = plant.input_names, plant.state_names, plant.output_names
         c_name = type(controller).__name__
         missing = [n for n in controller.input_names if n not in p_in and n not in p_states and n not in p_out]

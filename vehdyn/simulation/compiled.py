@@ -815,6 +815,17 @@ def _check_options(method, rtol, atol, shape, first_step, max_step):
     return rtol, atol_vec
 
 
+def backend_option(backend, key: str = "backend") -> str:
+    """How a Python loop evaluates a model's equations -- ``"numpy"``, or ``"compiled"`` (its compiled
+    code, :func:`point_by_point`; numba installed) -- or ParameterError naming ``key``."""
+    if backend not in ("numpy", "compiled"):
+        raise ParameterError(f"{key} must be 'numpy' or 'compiled', got {backend!r}", key=key, value=backend)
+    if backend == "compiled" and not numba_available():
+        raise ParameterError(f"{key}='compiled' needs numba (pip install \"vehdyn[fast]\"); use {key}='numpy'",
+                             key=key, value=backend)
+    return backend
+
+
 def threads_option(threads) -> int:
     """The number of threads of a batch (None: every core), or ParameterError."""
     import os
