@@ -14,7 +14,8 @@ functions of an ``xp`` namespace and plain arithmetic. The interface an ``xp`` o
 
 A model may add hooks of its own (the full vehicle's rigid-body functions,
 :mod:`vehdyn.full_vehicle.assembly`). :data:`NUMPY` runs the equations on numpy arrays with a
-trailing batch axis (what the models' ``rhs`` and ``output`` use); the compiled namespace of
+trailing batch axis (what the models' ``rhs`` and ``output`` use on a batch), :data:`SCALAR` on
+Python floats (one state, without numpy's per-call overhead); the compiled namespace of
 :mod:`vehdyn.components.compiled` runs them on floats inside numba-compiled code. Control flow in
 the equations branches only on the model's constants (its options), never on a state, so that the
 same source also builds a symbolic expression.
@@ -22,15 +23,18 @@ same source also builds a symbolic expression.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from vehdyn.errors import ParameterError
 from vehdyn.tire.kernels import NUMPY as _TIRE_NUMPY
+from vehdyn.tire.kernels import SCALAR as _TIRE_SCALAR
 from vehdyn.tire.kernels import forces_kernel, linear_tire_law
 from vehdyn.tire.linear import LinearTire
 from vehdyn.tire.magic_formula import MagicFormula
 
-__all__ = ["NUMPY", "stack", "with_tire_hooks"]
+__all__ = ["NUMPY", "SCALAR", "stack", "with_tire_hooks"]
 
 
 def _scalars(*values) -> bool:
@@ -141,6 +145,124 @@ class NUMPY(_TIRE_NUMPY):
         return both.fx[0], both.fy[0], both.my[0], both.fx[1], both.fy[1], both.my[1]
 
 
+def _tanh(x):
+    """numpy's tanh of a float, as a float.
+
+    numpy's own (SIMD) tanh differs from :func:`math.tanh` by an ulp at some points; this gives
+    the number :data:`NUMPY` gives on an array.
+
+    Parameters
+    ----------
+    x : float
+        The argument [-].
+
+    Returns
+    -------
+    float
+        tanh(x) [-].
+    """
+    return float(np.tanh(x))
+
+
+class SCALAR(_TIRE_SCALAR):
+    """``xp`` of the equations on Python floats: one operating point without numpy's per-call
+    overhead (a model's ``rhs`` at one state; the full vehicle's is about twice as fast so).
+
+    The functions of :data:`vehdyn.tire.kernels.SCALAR` (:mod:`math`'s, ``where`` as a conditional,
+    ``minimum``/``maximum`` NaN-propagating as numpy's), ``tanh`` numpy's (:data:`NUMPY`'s) and the
+    tire hooks of :data:`NUMPY` without its checks for arrays. Where a float operation has no IEEE
+    result in Python (a division by zero, a math domain or range error) it raises
+    ``ArithmeticError`` or ``ValueError``: the caller then repeats the point on :data:`NUMPY`,
+    whose rules give the inf or NaN. ``cos``, ``sin``, ``tan``, ``atan``, ``atan2`` and ``sqrt`` are
+    the C library's, as numpy's float64 loops on a CPU without AVX-512 (there numpy may use SIMD
+    forms of its own, within an ulp of them).
+    """
+
+    tanh = staticmethod(_tanh)
+    atan2 = staticmethod(math.atan2)
+
+    @staticmethod
+    def tire_law(law, fz, kappa, alpha, gamma, vx):
+        """ISO-W (F_x, F_y, M_y) of one tire at floats (:meth:`NUMPY.tire_law`).
+
+        Parameters
+        ----------
+        law : TireModel
+            The law (``law.forces`` on floats: the laws' scalar path).
+        fz : float
+            Normal load [N].
+        kappa : float
+            Slip ratio [-].
+        alpha : float
+            Slip angle [rad].
+        gamma : float
+            Inclination [rad].
+        vx : float
+            Signed forward speed [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x [N], F_y [N], M_y [N*m]), ISO-W.
+        """
+        f = law.forces(fz, kappa, alpha, gamma, vx)
+        return f.fx, f.fy, f.my
+
+    @staticmethod
+    def tire_law_aligning(law, fz, kappa, alpha, gamma, vx):
+        """ISO-W aligning moment of one tire at floats (:meth:`NUMPY.tire_law_aligning`).
+
+        Parameters
+        ----------
+        law : TireModel
+            The law.
+        fz : float
+            Normal load [N].
+        kappa : float
+            Slip ratio [-].
+        alpha : float
+            Slip angle [rad].
+        gamma : float
+            Inclination [rad].
+        vx : float
+            Signed forward speed [m/s].
+
+        Returns
+        -------
+        float
+            M_z [N*m], ISO-W.
+        """
+        return law.forces(fz, kappa, alpha, gamma, vx).mz
+
+    @staticmethod
+    def tire_law_pair(law, fz_1, fz_2, kappa, alpha_1, alpha_2, gamma_1, gamma_2, vx):
+        """Two tires at floats, one call of the law each (:meth:`NUMPY.tire_law_pair`).
+
+        Parameters
+        ----------
+        law : TireModel
+            The law.
+        fz_1, fz_2 : float
+            Normal loads [N].
+        kappa : float
+            Slip ratio of both [-].
+        alpha_1, alpha_2 : float
+            Slip angles [rad].
+        gamma_1, gamma_2 : float
+            Inclinations [rad].
+        vx : float
+            Signed forward speed of both [m/s].
+
+        Returns
+        -------
+        tuple
+            (F_x, F_y, M_y of the first, F_x, F_y, M_y of the second) [N, N, N*m], ISO-W.
+        """
+        f = law.forces(fz_1, kappa, alpha_1, gamma_1, vx)
+        g = law.forces(fz_2, kappa, alpha_2, gamma_2, vx)
+        return f.fx, f.fy, f.my, g.fx, g.fy, g.my
+
+
 def stack(rows) -> np.ndarray:
     """Rows of numbers or arrays as one array, the batch axis last.
 
@@ -154,7 +276,7 @@ def stack(rows) -> np.ndarray:
     ndarray
         Shape (len(rows),) for numbers, else (len(rows), *batch shape).
     """
-    if all(np.ndim(row) == 0 for row in rows):
+    if all(isinstance(row, float) or np.ndim(row) == 0 for row in rows):
         return np.array(rows, dtype=float)
     shape = np.broadcast_shapes(*(np.shape(row) for row in rows))
     return np.stack([np.broadcast_to(row, shape) for row in rows])

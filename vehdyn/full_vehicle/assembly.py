@@ -9,10 +9,12 @@ arithmetic the equations use the interface of :mod:`vehdyn.components.xp` (``xp.
 the tire hooks ``xp.tire_law``, ``xp.tire_law_pair``) and two hooks of their own:
 
 ``xp.rotation_body_to_earth(roll, pitch, yaw)``
-    R with R[i][j] indexable (numpy: :func:`vehdyn.mechanics.rotation_body_to_earth`; compiled:
+    R with R[i][j] indexable (numpy: :func:`vehdyn.mechanics.rotation_body_to_earth`; floats
+    (:class:`SCALAR`, one state without numpy's per-call overhead) and compiled:
     :func:`vehdyn.mechanics.kinematics.rotation_matrix`, the same source as nested tuples);
 ``xp.euler_angle_rates(roll, pitch, p, q, r)``
-    (numpy: :func:`vehdyn.mechanics.euler_angle_rates`, which refuses gimbal lock; compiled:
+    (numpy and floats: :func:`vehdyn.mechanics.euler_angle_rates`' check of gimbal lock and its
+    source; compiled:
     :func:`vehdyn.mechanics.kinematics.euler_rates`, its source without the check: the domain,
     |pitch| <= pi/4, is checked first).
 
@@ -36,7 +38,7 @@ from vehdyn.components.tire_slip import deflection_rate
 from vehdyn.conventions import planar_tire_slips_sae_to_iso_w
 from vehdyn.errors import SimulationError
 from vehdyn.mechanics import euler_angle_rates, rotation_body_to_earth
-from vehdyn.mechanics.kinematics import cross_components
+from vehdyn.mechanics.kinematics import check_gimbal_lock, cross_components, euler_rates, rotation_matrix
 from vehdyn.full_vehicle import aero, body, corner, driveline, steering
 from vehdyn.full_vehicle.corner import CORNERS
 
@@ -283,6 +285,48 @@ class NUMPY(components_xp.NUMPY):
             (dphi/dt, dtheta/dt, dpsi/dt) [rad/s].
         """
         return euler_angle_rates(roll, pitch, p, q, r)
+
+
+class SCALAR(components_xp.SCALAR):
+    """``xp`` of the equations on Python floats (:data:`vehdyn.components.xp.SCALAR`) plus the hooks:
+    one state without numpy's per-call overhead, the same numbers as :class:`NUMPY` on it."""
+
+    @staticmethod
+    def rotation_body_to_earth(roll, pitch, yaw):
+        """:func:`vehdyn.mechanics.kinematics.rotation_matrix` on floats (the source of
+        :func:`vehdyn.mechanics.rotation_body_to_earth`).
+
+        Parameters
+        ----------
+        roll, pitch, yaw : float
+            Euler angles [rad].
+
+        Returns
+        -------
+        tuple
+            R, three rows of three floats [-].
+        """
+        return rotation_matrix(SCALAR, roll, pitch, yaw)
+
+    @staticmethod
+    def euler_angle_rates(roll, pitch, p, q, r):
+        """:func:`vehdyn.mechanics.euler_angle_rates` on floats: the same gimbal-lock check, then its
+        source :func:`vehdyn.mechanics.kinematics.euler_rates`.
+
+        Parameters
+        ----------
+        roll, pitch : float
+            phi, theta [rad].
+        p, q, r : float
+            Body rates [rad/s].
+
+        Returns
+        -------
+        tuple
+            (dphi/dt, dtheta/dt, dpsi/dt) [rad/s].
+        """
+        check_gimbal_lock(pitch)
+        return euler_rates(SCALAR, roll, pitch, p, q, r)
 
 
 def gather(values, index):
