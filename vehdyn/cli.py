@@ -111,7 +111,10 @@ def cmd_report(args) -> int:
         sys.stderr.write(_progress(i, n, name))
         sys.stderr.flush()
 
-    index, outcomes = build_report(paths, args.out, quick=quick, progress=progress, jobs=args.jobs)
+    from vehdyn.simulation.compiled import numba_available
+
+    index, outcomes = build_report(paths, args.out, quick=quick, progress=progress, jobs=args.jobs,
+                                   prebuild=warm_up if numba_available() else None)
     sys.stderr.write(_progress(len(paths), len(paths), "done") + "\n")
     failed = [o for o in outcomes if o.error]
     print(f"\nvehdyn report: {len(outcomes)} studies in {time.perf_counter() - start:.1f} s -> {index}")

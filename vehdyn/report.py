@@ -421,8 +421,49 @@ def longest_first(paths) -> list:
     return [paths[i] for i in order]
 
 
-def _run_studies(paths, stage: Path, quick: bool, progress, jobs: int) -> list[StudyOutcome]:
-    """The outcomes of ``paths`` in their order: one after another, or on ``jobs`` processes."""
+#: shipped models (:func:`vehdyn.cli.shipped_runs`) whose compiled code (numba's cache key as in that run)
+#: several shipped studies run, and those studies; a scheduling hint only (see :func:`shared_code`)
+SHARED_CODE = {"single_track": ("fidelity_ladder", "minimum_time_lane_change", "abs_braking", "esc_sine_with_dwell",
+                                "crosswind", "sine_with_dwell"),
+               "full_vehicle": ("fidelity_ladder", "minimum_time_lane_change", "full_vehicle")}
+
+
+def shared_code(paths) -> list[str]:
+    """The models of :data:`SHARED_CODE` that the studies ``paths`` run compiled.
+
+    With several processes, :func:`build_report` builds their compiled code first, one model per
+    process, before the studies start: a study needing code that another process is compiling
+    waits for it (numba's cache and the build lock of :mod:`vehdyn.simulation`), and its process
+    would sit idle meanwhile (measured in a report from an empty cache: ``minimum_time_lane_change``
+    waited 42 s for the single track and the full vehicle that ``fidelity_ladder`` compiled one after
+    the other).
+
+    Parameters
+    ----------
+    paths : sequence of path-like
+        Study scripts.
+
+    Returns
+    -------
+    list of str
+        Model names of :func:`vehdyn.cli.shipped_runs`, in the order of :data:`SHARED_CODE`.
+    """
+    stems = {Path(path).stem for path in paths}
+    return [model for model, studies in SHARED_CODE.items() if stems.intersection(studies)]
+
+
+def _prebuild(build, model: str) -> None:
+    """``build([model])`` in a worker. An exception is dropped: the studies that need the code then
+    compile it for themselves, and one that cannot reports the error in its own section."""
+    try:
+        build([model])
+    except Exception:  # noqa: BLE001
+        pass
+
+
+def _run_studies(paths, stage: Path, quick: bool, progress, jobs: int, prebuild=None) -> list[StudyOutcome]:
+    """The outcomes of ``paths`` in their order: one after another, or on ``jobs`` processes (the
+    shared code built first where ``prebuild`` is given, see :func:`shared_code`)."""
     if jobs <= 1 or len(paths) <= 1:
         outcomes = []
         for i, path in enumerate(paths):
@@ -438,6 +479,9 @@ def _run_studies(paths, stage: Path, quick: bool, progress, jobs: int) -> list[S
     pool = concurrent.futures.ProcessPoolExecutor(max_workers=min(jobs, len(paths)),
                                                   mp_context=multiprocessing.get_context("spawn"))
     try:
+        # submitted first, so taken first: one model per process while the others start on the next
+        for model in shared_code(paths) if prebuild is not None else ():
+            pool.submit(_prebuild, prebuild, model)
         futures = {path: pool.submit(run_study, path, stage, quick) for path in longest_first(paths)}
         names = {future: Path(path).stem for path, future in futures.items()}
         for done, future in enumerate(concurrent.futures.as_completed(names)):
@@ -453,7 +497,7 @@ def _run_studies(paths, stage: Path, quick: bool, progress, jobs: int) -> list[S
 
 def build_report(paths, out_dir: str | Path, *, quick: bool = False,
                  progress: Callable[[int, int, str], None] | None = None,
-                 jobs: int = 1) -> tuple[Path, list[StudyOutcome]]:
+                 jobs: int = 1, prebuild: Callable[[list], object] | None = None) -> tuple[Path, list[StudyOutcome]]:
     """Run studies and publish their report as the folder ``out_dir``, all or nothing.
 
     The studies run into a hidden sibling folder ``.NAME.partial-*`` (same file system); when every
@@ -480,6 +524,12 @@ def build_report(paths, out_dir: str | Path, *, quick: bool = False,
     jobs : int
         Processes that run studies at the same time (default 1: one after another in this
         process). Each study runs whole in one process; the page lists them in the given order.
+    prebuild : callable, optional
+        ``prebuild([model])`` builds a shipped model's compiled code into numba's cache
+        (:func:`vehdyn.cli.warm_up`; a module-level function, so that it pickles). With ``jobs`` > 1
+        the models the studies share (:func:`shared_code`) are built first, one per process, so
+        that no process waits idle for another's compile of the same code. A build that raises is
+        left to the studies (each compiles what it needs). Default: none.
 
     Returns
     -------
@@ -506,7 +556,7 @@ def build_report(paths, out_dir: str | Path, *, quick: bool = False,
                              value=str(out_dir)) from None
     try:
         keep_permissions(out, stage, default=0o777)  # mkdtemp makes 0700
-        outcomes = _run_studies(list(paths), stage, quick, progress, jobs)
+        outcomes = _run_studies(list(paths), stage, quick, progress, jobs, prebuild)
         write_report(outcomes, stage, quick=quick)
     except BaseException:
         shutil.rmtree(stage, ignore_errors=True)

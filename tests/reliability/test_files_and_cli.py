@@ -446,6 +446,53 @@ def test_report_on_two_processes_equals_the_sequential_report(tmp_path):
         main(["report", "--studies", str(studies), "--out", str(tmp_path / "d"), "--jobs", "0"])
 
 
+def record_build(models):
+    """A stand-in for vehdyn.cli.warm_up in the report's processes: writes (model, pid, start time) to
+    $VEHDYN_TEST_BUILDS; raises for "full_vehicle" after writing (a build that fails)."""
+    import os
+    import time
+
+    (model,) = models
+    with open(os.environ["VEHDYN_TEST_BUILDS"], "a") as f:
+        f.write(f"build {model} {os.getpid()} {time.time()!r}\n")
+    if model == "full_vehicle":
+        raise RuntimeError("no compiler today")
+
+
+def test_report_builds_the_shared_code_first_and_survives_a_failed_build(tmp_path, monkeypatch):
+    """SHARED_CODE: with several processes the models the selected studies share are built before the
+    studies start (prebuild, one call per model); a build that raises leaves the studies to compile for
+    themselves; one process, or no shared model, builds nothing."""
+    from vehdyn.report import SHARED_CODE, shared_code
+
+    log = tmp_path / "log.txt"
+    monkeypatch.setenv("VEHDYN_TEST_BUILDS", str(log))
+    studies = tmp_path / "studies"
+    studies.mkdir()
+    body = ('import os, time\n    open(os.environ["VEHDYN_TEST_BUILDS"], "a").write(f"study {study.name} '
+            '{os.getpid()} {time.time()!r}\\n")\n    study.text("ran")')
+    for name in ("fidelity_ladder", "full_vehicle", "alpha"):
+        (studies / f"{name}.py").write_text(f'"""Fake study {name}."""\n\n\ndef run(study):\n    {body}\n')
+    paths = discover_studies(studies)
+    assert shared_code(paths) == ["single_track", "full_vehicle"] == list(SHARED_CODE)
+    assert shared_code([studies / "full_vehicle.py"]) == ["full_vehicle"]
+    assert shared_code([studies / "alpha.py"]) == []
+
+    _, outcomes = build_report(paths, tmp_path / "a", jobs=2, prebuild=record_build)
+    assert [o.error for o in outcomes] == [None, None, None]
+    rows = [line.split() for line in log.read_text().splitlines()]
+    builds = {row[1]: float(row[3]) for row in rows if row[0] == "build"}
+    starts = [float(row[3]) for row in rows if row[0] == "study"]
+    assert sorted(builds) == ["full_vehicle", "single_track"] and len(starts) == 3
+    assert min(builds.values()) <= min(starts)  # taken off the queue before any study
+
+    log.unlink()
+    build_report([studies / "alpha.py", studies / "fidelity_ladder.py"], tmp_path / "b", jobs=1,
+                 prebuild=record_build)
+    build_report([studies / "alpha.py"] * 2, tmp_path / "c", jobs=2, prebuild=record_build)
+    assert not any(line.startswith("build") for line in log.read_text().splitlines())
+
+
 def test_report_processes_start_the_longest_studies_first(tmp_path):
     """With several processes the studies of LONGEST_STUDIES start first (in its order), the others
     in their given order; the page keeps the given order (test above)."""
