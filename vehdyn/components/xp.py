@@ -166,7 +166,8 @@ def _tanh(x):
 
 class SCALAR(_TIRE_SCALAR):
     """``xp`` of the equations on Python floats: one operating point without numpy's per-call
-    overhead (a model's ``rhs`` at one state; the full vehicle's is about twice as fast so).
+    overhead (a model's ``rhs`` at one state: the single track's and the full vehicle's numpy runs
+    take 25-45 % less CPU so).
 
     The functions of :data:`vehdyn.tire.kernels.SCALAR` (:mod:`math`'s, ``where`` as a conditional,
     ``minimum``/``maximum`` NaN-propagating as numpy's), ``tanh`` numpy's (:data:`NUMPY`'s) and the

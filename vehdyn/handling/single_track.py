@@ -184,7 +184,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vehdyn.errors import ParameterError
+from vehdyn.errors import ParameterError, VehdynError
 from vehdyn.model import Model
 from vehdyn.params import Vehicle
 from vehdyn.signals import STEER_INPUTS, Signal
@@ -195,12 +195,18 @@ from vehdyn.components.planar import body_point
 from vehdyn.components.tire_forces import axle_tire_loads, wheel_pair_tire_loads
 from vehdyn.components.tire_setup import (friction_at, longitudinal_relaxation_lengths, mirrored_wheel, road_friction,
                                           tire_characteristics)
+from vehdyn.components.xp import SCALAR
 from vehdyn.components.xp import stack as _stack
 from vehdyn.components.xp import with_tire_hooks
 
 __all__ = ["SingleTrack", "SingleTrackParameters", "lateral_load_transfer_coefficients", "roll_parameters"]
 
 _AXLES = ("front", "rear")
+
+
+def _namespace(states):
+    """The ``xp`` the states were evaluated on: :data:`~vehdyn.components.xp.SCALAR` for floats, else numpy's."""
+    return SCALAR if type(states[0]) is float else equations.NUMPY
 
 
 @dataclass(frozen=True)
@@ -783,10 +789,23 @@ class SingleTrack(Model):
 
     def _evaluate(self, x, u, xp=equations.NUMPY, k=None):
         """(named states, named inputs, Evaluation) at x, u (numpy arrays, optional batch axis; or
-        sequences of symbols, with a symbolic ``xp`` and constants ``k``)."""
+        sequences of symbols, with a symbolic ``xp`` and constants ``k``).
+
+        On numpy one state (``x`` and ``u`` 1-D) is evaluated on Python floats
+        (:data:`vehdyn.components.xp.SCALAR`, the same numbers without numpy's per-call overhead),
+        repeated on numpy where a float operation has no IEEE result in Python; the named states
+        are then floats.
+        """
         if xp is equations.NUMPY:
             x = np.asarray(x, dtype=float)
             u = np.asarray(u, dtype=float)
+            if x.ndim == 1 and u.ndim == 1:
+                try:
+                    return self._evaluate(x.tolist(), u.tolist(), SCALAR, k)
+                except VehdynError:
+                    raise
+                except (ArithmeticError, ValueError):  # no IEEE result in Python: numpy's rules (inf, nan)
+                    pass
         states = equations.named_states(x, self._state_index)
         inputs = equations.named_inputs(u, self._input_index)
         k = self._constants() if k is None else k
@@ -956,13 +975,13 @@ class SingleTrack(Model):
     def rhs(self, t, x, u):
         """State derivatives (equations in the module docstring)."""
         states, inputs, k, e = self._evaluate(x, u)
-        rates = equations.derivatives(equations.NUMPY, k, e, states, inputs)
+        rates = equations.derivatives(_namespace(states), k, e, states, inputs)
         return _stack([rates[j] for j in self._state_order])
 
     def output(self, t, x, u):
         """Outputs (see :attr:`outputs`)."""
         states, _, _, e = self._evaluate(x, u)
-        return _stack(self._output_values(equations.NUMPY, states, e))
+        return _stack(self._output_values(_namespace(states), states, e))
 
     def _output_values(self, xp, states, e):
         values = equations.outputs(xp, states, e)
