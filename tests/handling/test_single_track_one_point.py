@@ -1,10 +1,15 @@
 """SingleTrack at one state: evaluated on Python floats (components.xp.SCALAR), the numbers of the
-numpy batch path, numpy's rules where a float operation has no IEEE result, the model's own errors kept."""
+numpy batch path, numpy's rules where a float operation has no IEEE result, the model's own errors kept.
+
+math's functions against numpy's: kind (b) of tests/_tolerances.py (bitwise on the development
+machine; a few ulps apart where numpy has SIMD kernels of its own).
+"""
 
 import numpy as np
 import pytest
 
 import vehdyn
+from tests._tolerances import ONE_CALL_ULPS, assert_close_ulps
 from vehdyn.components import xp as components_xp
 from vehdyn.errors import ParameterError
 from vehdyn.handling import SingleTrack
@@ -31,6 +36,7 @@ def _near(model, seed=5, n=4):
     return X, U
 
 
+@pytest.mark.compiled_vs_numpy
 @pytest.mark.parametrize("options", list(OPTIONS.values()), ids=list(OPTIONS))
 def test_one_point_equals_the_numpy_batch(options):
     model = SingleTrack(vehdyn.load_vehicle("sedan"), **options)
@@ -39,12 +45,13 @@ def test_one_point_equals_the_numpy_batch(options):
     for j in range(X.shape[1]):
         states, _, _, _ = model._evaluate(X[:, j], U[:, j])
         assert type(states[0]) is float  # the float path ran
-        # the same operations in the same order: equal to the last ulp where numpy's sin and cos are
-        # the C library's (an ulp or so where numpy has SIMD forms of its own)
-        np.testing.assert_allclose(model.rhs(0.0, X[:, j], U[:, j]), F[:, j], rtol=1e-13, atol=1e-12)
-        np.testing.assert_allclose(model.output(0.0, X[:, j], U[:, j]), G[:, j], rtol=1e-13, atol=1e-10)
+        assert_close_ulps(model.rhs(0.0, X[:, j], U[:, j]), F[:, j], ulps=ONE_CALL_ULPS, rtol=1e-12,
+                          what="float vs numpy rhs")
+        assert_close_ulps(model.output(0.0, X[:, j], U[:, j]), G[:, j], ulps=ONE_CALL_ULPS, rtol=1e-12,
+                          what="float vs numpy output")
 
 
+@pytest.mark.compiled_vs_numpy
 def test_a_float_operation_without_ieee_result_falls_back_to_numpy(monkeypatch):
     model = SingleTrack(vehdyn.load_vehicle("sedan"), wheel_spin=True)
     X, U = _near(model, n=1)
@@ -54,7 +61,8 @@ def test_a_float_operation_without_ieee_result_falls_back_to_numpy(monkeypatch):
         raise ZeroDivisionError("float division by zero")
 
     monkeypatch.setattr(components_xp.SCALAR, "atan", staticmethod(no_result))
-    np.testing.assert_array_equal(model.rhs(0.0, X[:, 0], U[:, 0]), expected)
+    assert_close_ulps(model.rhs(0.0, X[:, 0], U[:, 0]), expected, ulps=ONE_CALL_ULPS, rtol=1e-12,
+                      what="fallback rhs")
     states, _, _, _ = model._evaluate(X[:, 0], U[:, 0])
     assert type(states[0]) is not float  # numpy's path answered
 
