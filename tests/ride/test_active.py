@@ -195,6 +195,38 @@ def test_semi_active_damper_only_dissipates_and_respects_limits():
     assert sa.rhs(0.0, x, np.zeros((2, 2))).shape == (4, 2)
 
 
+def test_semi_active_one_state_on_floats_equals_the_batch(monkeypatch):
+    """One state runs the law on Python floats: the same IEEE operations as the batch path (no
+    transcendental function), so the same numbers on every CPU; non-finite states take numpy's path."""
+    sa = SemiActiveQuarterCar(iso_c_car(), skyhook_damping=4000.0, groundhook_damping=500.0, min_damping=300.0,
+                              max_damping=3000.0)
+    i_s, i_u = sa.index("sprung_velocity"), sa.index("unsprung_velocity")
+    rng = np.random.default_rng(7)
+    X = rng.standard_normal((4, 200)) * 0.3
+    X[i_s, :4], X[i_u, :4] = [0.2, 0.0, 1e-9, 0.5], [0.2, 0.0, -1e-9, 0.5]  # v_rel = 0, tiny, 0 again
+    X[i_s, 4], X[i_u, 4] = 1.0, 0.999  # wants 3.5e6 N*s/m: clipped to c_max
+    X[i_s, 5], X[i_s, 6], X[i_u, 7] = np.nan, np.inf, -np.inf
+    U = rng.standard_normal((sa.n_inputs, 200)) * 0.01
+    with np.errstate(invalid="ignore"):
+        c, f = sa.damper(X)
+        F, Y = sa.rhs(0.0, X, U), sa.output(0.0, X, U)
+        for j in range(X.shape[1]):
+            cj, fj = sa.damper(X[:, j])
+            assert np.array_equal(cj, c[j], equal_nan=True) and np.array_equal(fj, f[j], equal_nan=True), j
+            # the linear part, A @ x, is a matrix-vector product here and a matrix product for the batch
+            # (BLAS may sum in another order): within an ulp or so of the terms
+            np.testing.assert_allclose(sa.rhs(0.0, X[:, j], U[:, j]), F[:, j], rtol=1e-13, atol=1e-9)
+            np.testing.assert_allclose(sa.output(0.0, X[:, j], U[:, j]), Y[:, j], rtol=1e-13, atol=1e-9)
+    assert c[4] == 3000.0 and np.ndim(sa.damper(X[:, 0])[0]) == 0
+
+    def no_numpy(*args, **kwargs):
+        raise AssertionError("a finite state took numpy's path")
+
+    monkeypatch.setattr(np, "clip", no_numpy)
+    monkeypatch.setattr(np, "where", no_numpy)
+    assert sa.damper(X[:, 4])[0] == 3000.0  # the float path: no numpy clip or where
+
+
 @pytest.mark.parametrize("kw,key", [
     (dict(min_damping=-1.0, max_damping=10.0), "min_damping"),
     (dict(min_damping=100.0, max_damping=10.0), "max_damping"),

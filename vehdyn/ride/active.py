@@ -305,6 +305,16 @@ class SemiActiveQuarterCar(Model):
             f on the body [N] (up +; the wheel feels -f).
         """
         vs, vu = x[self._i_vs], x[self._i_vu]
+        if np.ndim(vs) == 0 and np.isfinite(vs) and np.isfinite(vu):
+            # one finite state (what an integrator's Python loop asks): the same law on floats, the
+            # same operations, without numpy's per-call overhead on scalars
+            vs, vu = float(vs), float(vu)
+            rel = vs - vu
+            target = -self.skyhook_damping * vs + self.groundhook_damping * vu
+            c = self.min_damping
+            if target * rel < 0:  # rel != 0
+                c = min(max(-target / rel, self.min_damping), self.max_damping)
+            return np.asarray(c), np.asarray(-c * rel)
         rel = vs - vu
         target = -self.skyhook_damping * vs + self.groundhook_damping * vu
         with np.errstate(divide="ignore", invalid="ignore"):
