@@ -259,9 +259,8 @@ class SCALAR(_TIRE_SCALAR):
         tuple
             (F_x, F_y, M_y of the first, F_x, F_y, M_y of the second) [N, N, N*m], ISO-W.
         """
-        f = law.forces(fz_1, kappa, alpha_1, gamma_1, vx)
-        g = law.forces(fz_2, kappa, alpha_2, gamma_2, vx)
-        return f.fx, f.fy, f.my, g.fx, g.fy, g.my
+        return (*SCALAR.tire_law(law, fz_1, kappa, alpha_1, gamma_1, vx),
+                *SCALAR.tire_law(law, fz_2, kappa, alpha_2, gamma_2, vx))
 
 
 def stack(rows) -> np.ndarray:

@@ -586,16 +586,17 @@ class FullVehicle(Model):
         """
         x = np.asarray(x, dtype=float)
         u = self._inputs_with_road(x, np.asarray(u, dtype=float))
-        states = assembly.gather(x, self._state_index)
         friction = (self._k.road_friction,) * 4
+        one_point = x.ndim == 1 and u.ndim == 1
         if callable(self.friction):  # the road under each contact point
             friction = [_called("friction", self.friction, X, Y, ("ratio",))[0]
-                        for X, Y, _, _ in self._ground_points(states)]
+                        for X, Y, _, _ in self._ground_points(assembly.gather(x, self._state_index))]
             if not all(np.all(f > 0) for f in friction):
                 raise ParameterError("friction(X, Y) must be > 0 under every wheel", key="friction",
                                      value=[float(np.min(f)) for f in friction])
+            one_point = one_point and all(np.ndim(f) == 0 for f in friction)
         laws = (self.front_tire, self.rear_tire)
-        if x.ndim == 1 and u.ndim == 1 and all(np.ndim(f) == 0 for f in friction):
+        if one_point:
             point = assembly.gather(x.tolist(), self._state_index)
             try:
                 return point, assembly.evaluate(assembly.SCALAR, laws, self._k, point, u.tolist(),
@@ -604,6 +605,7 @@ class FullVehicle(Model):
                 raise
             except (ArithmeticError, ValueError):  # no IEEE result in Python: numpy's rules (inf, nan)
                 pass
+        states = assembly.gather(x, self._state_index)
         return states, assembly.evaluate(assembly.NUMPY, laws, self._k, states, list(u), friction)
 
     def rhs(self, t, x, u):
