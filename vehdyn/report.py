@@ -461,6 +461,39 @@ def _prebuild(build, model: str) -> None:
         pass
 
 
+#: the environment variables that size the thread pools of the linear-algebra libraries numpy and scipy may
+#: be built on (OpenBLAS, MKL, BLIS, Apple Accelerate) and of OpenMP; read once, when the library loads
+LIBRARY_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS",
+                            "OMP_NUM_THREADS")
+
+
+@contextlib.contextmanager
+def _one_library_thread_per_process():
+    """Set each of :data:`LIBRARY_THREAD_VARIABLES` that is not set to 1 while the block runs (the
+    report's worker processes start inside it and inherit them); a variable the user has set is kept.
+
+    Why: BLAS sizes its thread pool to the machine's cores. With one study per core, every BLAS call
+    of a study then waits for threads that the other processes' studies hold; the studies that spend
+    their time in LAPACK slow down twofold and more (a report from a warm cache on 2 cores:
+    ``tire_fitting`` 31.9 -> 12.8 s wall, ``monte_carlo`` 30.3 -> 13.3 s, the report 2:07 -> 1:34).
+    The studies' matrices are small: one thread is not slower even with the machine to itself
+    (``tire_fitting`` alone: 14.7 s on two threads, 13.3 s on one). And a study's numbers then no
+    longer depend on how many cores the machine has, which decides how BLAS splits its sums.
+
+    Yields
+    ------
+    None
+    """
+    added = [name for name in LIBRARY_THREAD_VARIABLES if name not in os.environ]
+    for name in added:
+        os.environ[name] = "1"
+    try:
+        yield
+    finally:
+        for name in added:
+            os.environ.pop(name, None)
+
+
 def _run_studies(paths, stage: Path, quick: bool, progress, jobs: int, prebuild=None) -> list[StudyOutcome]:
     """The outcomes of ``paths`` in their order: one after another, or on ``jobs`` processes (the
     shared code built first where ``prebuild`` is given, see :func:`shared_code`)."""
@@ -471,11 +504,17 @@ def _run_studies(paths, stage: Path, quick: bool, progress, jobs: int, prebuild=
                 progress(i, len(paths), Path(path).stem)
             outcomes.append(run_study(path, stage, quick=quick))
         return outcomes
+    # spawned workers (no forked copies of the parent's state), one BLAS thread each; each imports vehdyn
+    # once and runs whole studies, the longest first (the processes end together); the page keeps the
+    # studies' order
+    with _one_library_thread_per_process():
+        return _run_on_processes(paths, stage, quick, progress, jobs, prebuild)
+
+
+def _run_on_processes(paths, stage: Path, quick: bool, progress, jobs: int, prebuild) -> list[StudyOutcome]:
     import concurrent.futures
     import multiprocessing
 
-    # spawned workers (no forked copies of the parent's state); each imports vehdyn once and runs
-    # whole studies, the longest first (the processes end together); the page keeps the studies' order
     pool = concurrent.futures.ProcessPoolExecutor(max_workers=min(jobs, len(paths)),
                                                   mp_context=multiprocessing.get_context("spawn"))
     try:

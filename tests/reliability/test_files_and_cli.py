@@ -493,6 +493,37 @@ def test_report_builds_the_shared_code_first_and_survives_a_failed_build(tmp_pat
     assert not any(line.startswith("build") for line in log.read_text().splitlines())
 
 
+def test_report_processes_run_one_library_thread_each(tmp_path, monkeypatch):
+    """With several processes every study process starts with one BLAS/OpenMP thread (each variable of
+    LIBRARY_THREAD_VARIABLES is 1 there), except where the user set the variable (kept as set); the
+    report's own process gets its environment back; one process (the studies run in this one) sets
+    nothing."""
+    from vehdyn.report import LIBRARY_THREAD_VARIABLES
+
+    for name in LIBRARY_THREAD_VARIABLES:
+        monkeypatch.delenv(name, raising=False)
+    monkeypatch.setenv("MKL_NUM_THREADS", "3")
+    studies = tmp_path / "studies"
+    studies.mkdir()
+    body = ('import os\n    names = {names!r}\n'
+            '    study.text(" ".join(f"{{n}}={{os.environ.get(n, \'-\')}}" for n in names) + f" pid={{os.getpid()}}")')
+    for name in ("alpha", "beta"):
+        (studies / f"{name}.py").write_text(f'"""Fake study {name}."""\n\n\ndef run(study):\n    '
+                                            f'{body.format(names=LIBRARY_THREAD_VARIABLES)}\n')
+    paths = discover_studies(studies)
+    expected = " ".join(f"{n}={3 if n == 'MKL_NUM_THREADS' else 1}" for n in LIBRARY_THREAD_VARIABLES)
+    _, outcomes = build_report(paths, tmp_path / "a", jobs=2)
+    texts = [o.items[0][1] for o in outcomes]
+    assert [t.rsplit(" pid=", 1)[0] for t in texts] == [expected, expected]
+    assert all(int(t.rsplit("pid=", 1)[1]) != os.getpid() for t in texts)
+    assert [n for n in LIBRARY_THREAD_VARIABLES if n in os.environ] == ["MKL_NUM_THREADS"]
+    assert os.environ["MKL_NUM_THREADS"] == "3"
+
+    _, outcomes = build_report(paths, tmp_path / "b", jobs=1)
+    unset = " ".join(f"{n}={3 if n == 'MKL_NUM_THREADS' else '-'}" for n in LIBRARY_THREAD_VARIABLES)
+    assert [o.items[0][1] for o in outcomes] == [f"{unset} pid={os.getpid()}"] * 2
+
+
 def test_report_processes_start_the_longest_studies_first(tmp_path):
     """With several processes the studies of LONGEST_STUDIES start first (in its order), the others
     in their given order; the page keeps the given order (test above)."""
