@@ -563,6 +563,8 @@ def build_report(paths, out_dir: str | Path, *, quick: bool = False,
     jobs : int
         Processes that run studies at the same time (default 1: one after another in this
         process). Each study runs whole in one process; the page lists them in the given order.
+        With ``jobs`` > 1 each process starts with one BLAS/OpenMP thread (the variables of
+        :data:`LIBRARY_THREAD_VARIABLES` that the environment does not set are 1 there).
     prebuild : callable, optional
         ``prebuild([model])`` builds a shipped model's compiled code into numba's cache
         (:func:`vehdyn.cli.warm_up`; a module-level function, so that it pickles). With ``jobs`` > 1
